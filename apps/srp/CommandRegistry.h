@@ -1,0 +1,36 @@
+#pragma once
+/// \file CommandRegistry.h
+/// \brief Self-registering subcommands of the `srp` executable.
+///
+/// A command file defines a setup function that adds options and a callback to
+/// its CLI11 subcommand, and registers it with a static CommandRegistrar:
+/// \code
+///   static const srp::app::CommandRegistrar kDb{"db", "Inspect and export the task database", 10, setupDb};
+/// \endcode
+/// The callback throws on error; main() prints "srp <cmd>: error: <message>" and exits 1.
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace srp::app {
+
+struct CommandSpec {
+  std::string name;
+  std::string description;
+  int order = 100;  ///< position in `srp --help`
+  std::function<void(CLI::App&)> setup;
+};
+
+std::vector<CommandSpec>& commandRegistry();
+
+struct CommandRegistrar {
+  CommandRegistrar(std::string name, std::string description, int order,
+                   std::function<void(CLI::App&)> setup);
+};
+
+/// Exit code a command can request (e.g. 2 for "done, but with skipped steps").
+int& commandExitCode();
+
+}  // namespace srp::app

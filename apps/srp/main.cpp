@@ -1,0 +1,37 @@
+// srp: semantic robot programming. One executable, one subcommand per job;
+// each subcommand is a thin front end over its module (see cmd_*.cpp).
+#include <algorithm>
+#include <exception>
+#include <iostream>
+
+#include "CommandRegistry.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "srp - teach a UR5 a multi-step pick & place task from one instruction and one RGB-D "
+      "demonstration, then adapt and run it in simulation.",
+      "srp"};
+  app.set_version_flag("--version", std::string("srp ") + SRP_VERSION);
+  app.require_subcommand(1);
+  app.footer("Run 'srp <command> --help' for the options of a command.");
+
+  auto& registry = srp::app::commandRegistry();
+  std::stable_sort(registry.begin(), registry.end(),
+                   [](const auto& a, const auto& b) { return a.order < b.order; });
+  for (const auto& spec : registry) {
+    CLI::App* sub = app.add_subcommand(spec.name, spec.description);
+    spec.setup(*sub);
+  }
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::string cmd;
+    for (const auto* sub : app.get_subcommands()) cmd += " " + sub->get_name();
+    std::cerr << "srp" << cmd << ": error: " << e.what() << "\n";
+    return 1;
+  }
+  return srp::app::commandExitCode();
+}

@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Installs the Debian packages srp needs to build, test and run the demo.
+# Idempotent: only missing packages are installed; apt-get is the only network use.
+set -euo pipefail
+
+PACKAGES=(
+  # toolchain and test tools
+  build-essential cmake pkg-config
+  libgtest-dev libgmock-dev libbenchmark-dev
+  # core utilities
+  libeigen3-dev nlohmann-json3-dev libcli11-dev
+  # taskdb
+  libsqlite3-dev libsqlitecpp-dev sqlite3
+  # perception and calibration (ViSP modules used, not the meta package)
+  libvisp-core-dev libvisp-detection-dev libvisp-vision-dev libvisp-io-dev
+  libopencv-dev libopencv-contrib-dev
+  # MRPT modules used (not libmrpt-dev, which pulls in ROS)
+  libmrpt-poses-dev libmrpt-obs-dev libmrpt-opengl-dev libmrpt-img-dev
+  libmrpt-hwdrivers-dev mrpt-common
+  # headless rendering (EGL on Mesa's software driver)
+  libegl-dev libegl-mesa0 libgl1-mesa-dri libgles-dev
+  # language
+  libdlib-dev liblink-grammar-dev link-grammar-dictionaries-en wordnet-dev wordnet-base
+  # motion and execution
+  libnlopt-cxx-dev libsimbody-dev liburdfdom-dev liburdfdom-headers-dev
+  # test data shipped by Debian
+  visp-images-data
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#PACKAGES[@]} packages present"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "install-deps: installing ${#missing[@]} missing packages: ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+echo "install-deps: done"

@@ -176,12 +176,18 @@ struct LanguageModel::Impl {
     for (int i = 0; i < n; ++i) {
       auto& f = feats[i];
       const bool action = isActionWord(w[i]);
+      const bool firstNounHere = actionsBefore > 0 && !nounSinceAction && nounish(i);
       if (kPrepositions.count(w[i]) || info[i].noun) {
         const std::string ctx = std::string(laterPhrase[i] ? "L" : "-") + (actionAheadOf[i] ? "A" : "-") +
                                 std::to_string(std::min(actionsBefore, 2)) + (pronounSinceAction ? "p" : "-") +
                                 (nounSinceAction ? "n" : "-");
         f.push_back("ctx=" + ctx);
-        if (kPrepositions.count(w[i])) f.push_back("prep|ctx=" + ctx);
+        if (kPrepositions.count(w[i])) {
+          f.push_back("prep|ctx=" + ctx);
+          f.push_back("prep|act|ctx=" + prevAction + "|" + ctx);
+        } else if (firstNounHere) {
+          f.push_back("noun1|act|ctx=" + prevAction + "|" + ctx);
+        }
         f.push_back("w|ctx=" + w[i] + "|" + ctx);
       }
       const bool firstNoun = actionsBefore > 0 && !nounSinceAction && nounish(i);

@@ -438,12 +438,9 @@ LanguageModel LanguageModel::train(const std::vector<AnnotatedSentence>& corpus,
 
   // Entity feature dictionary (sorted names, so ids do not depend on hashing).
   std::map<std::string, int> counts;
-  std::vector<std::vector<std::vector<std::string>>> names;
-  for (const auto& s : corpus) {
-    names.push_back(m.tokenFeatures(s.tokens));
-    for (const auto& tok : names.back())
+  for (const auto& s : corpus)
+    for (const auto& tok : m.tokenFeatures(s.tokens))
       for (const auto& f : tok) ++counts[f];
-  }
   for (const auto& [name, count] : counts)
     if (count >= options.minFeatureCount) {
       m.entityFeatureIds[name] = m.entityFeatureNames.size();
@@ -453,8 +450,7 @@ LanguageModel LanguageModel::train(const std::vector<AnnotatedSentence>& corpus,
   // BIO labels; overlapping gold spans (2 in train) keep the first-starting one.
   std::vector<EntityFeatureExtractor::sequence_type> samples;
   std::vector<std::vector<unsigned long>> labels;
-  for (size_t i = 0; i < corpus.size(); ++i) {
-    const auto& s = corpus[i];
+  for (const auto& s : corpus) {
     if (s.tokens.empty()) continue;
     std::vector<unsigned long> y(s.tokens.size(), 0);
     auto sorted = s.entities;
@@ -468,18 +464,7 @@ LanguageModel LanguageModel::train(const std::vector<AnnotatedSentence>& corpus,
       y[e.start] = 1 + 2 * t;
       for (int k = e.start + 1; k < e.end; ++k) y[k] = 2 + 2 * t;
     }
-    EntityFeatureExtractor::sequence_type seq;
-    for (const auto& tok : names[i]) {
-      std::vector<unsigned long> ids;
-      for (const auto& f : tok) {
-        auto it = m.entityFeatureIds.find(f);
-        if (it != m.entityFeatureIds.end()) ids.push_back(it->second);
-      }
-      std::sort(ids.begin(), ids.end());
-      ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-      seq.push_back(std::move(ids));
-    }
-    samples.push_back(std::move(seq));
+    samples.push_back(m.entitySequence(s.tokens));
     labels.push_back(std::move(y));
   }
   EntityFeatureExtractor fe;

@@ -382,6 +382,7 @@ struct LanguageModel::Impl {
     for (const auto& e : entities) {
       if (e.type != "SpatialIndicator") continue;
       const int from = clauseStart(e.start);
+      if (from == 0 || typeAt(from - 1) != "Action") continue;  // no verb before it: nothing is being moved
       bool hasTrajector = false;
       for (int k = from; k < e.start; ++k) hasTrajector |= typeAt(k) == "Trajector";
       if (hasTrajector) continue;

@@ -354,6 +354,24 @@ std::vector<PlanStep> buildPlanSteps(const std::vector<AnnotatedSentence>& sente
     }
   }
 
+  // "Only the star this time": no action, but objects of the known plan -> those known steps.
+  if (steps.empty() && !knownSteps.empty()) {
+    for (size_t sid = 0; sid < sentences.size(); ++sid) {
+      const SentenceView v(sentences[sid], static_cast<int>(sid), lexicon);
+      for (int k = 0; k < v.size(); ++k) {
+        const auto np = v.nounPhrase(k);
+        if (!np || !np->mention) continue;
+        for (const auto& known : knownSteps)
+          if (sameObject(known.object, np->mention->object) &&
+              std::none_of(steps.begin(), steps.end(), [&](const PlanStep& s) { return s.object == known.object; })) {
+            steps.push_back(known);
+            steps.back().objectAnchor = np->mention->anchor;
+          }
+        k = np->end - 1;
+      }
+    }
+  }
+
   // "back to": complete a return from the move it reverses.
   for (size_t s = 0; s < steps.size(); ++s) {
     auto& step = steps[s];

@@ -5,6 +5,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <thread>
 #include <filesystem>
 
 #include "srp/core/Error.h"
@@ -51,6 +56,84 @@ void markBox(const Eigen::AlignedBox3d& box, const srp::core::Pose3& X_camera_pa
       if (l[c] && d[c] >= zMin - kMaskDepthMargin_m && d[c] <= zMax + kMaskDepthMargin_m) m[c] = 255;
   }
 }
+
+// Writes frames on a background thread so that serialisation and compression
+// (the costliest step with noisy images) overlap with rendering the next frames.
+class AsyncRawlogWriter {
+ public:
+  AsyncRawlogWriter(const std::string& path, double depthUnit_m) : writer_(path, depthUnit_m) {
+    thread_ = std::thread([this] { loop(); });
+  }
+  ~AsyncRawlogWriter() {
+    try {
+      close();
+    } catch (...) {
+    }
+  }
+  void write(srp::rawlog::RgbdFrame frame) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    spaceFree_.wait(lock, [this] { return queue_.size() < kMaxQueued || error_; });
+    rethrow();
+    queue_.push_back(std::move(frame));
+    frameQueued_.notify_one();
+  }
+  /// Waits for the queue to drain, closes the file; returns the seconds spent writing.
+  double close() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      done_ = true;
+      frameQueued_.notify_one();
+    }
+    if (thread_.joinable()) thread_.join();
+    writer_.close();
+    std::lock_guard<std::mutex> lock(mutex_);
+    rethrow();
+    return writeTime_s_;
+  }
+
+ private:
+  static constexpr std::size_t kMaxQueued = 4;
+  void rethrow() {
+    if (error_) {
+      auto e = error_;
+      error_ = nullptr;
+      std::rethrow_exception(e);
+    }
+  }
+  void loop() {
+    for (;;) {
+      srp::rawlog::RgbdFrame frame;
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        frameQueued_.wait(lock, [this] { return !queue_.empty() || done_; });
+        if (queue_.empty()) return;
+        frame = std::move(queue_.front());
+        queue_.pop_front();
+        spaceFree_.notify_one();
+      }
+      try {
+        const auto t0 = Clock::now();
+        writer_.write(frame);
+        const double dt = secondsSince(t0);
+        std::lock_guard<std::mutex> lock(mutex_);
+        writeTime_s_ += dt;
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        error_ = std::current_exception();
+        spaceFree_.notify_all();
+        return;
+      }
+    }
+  }
+  srp::rawlog::RawlogWriter writer_;
+  std::thread thread_;
+  std::mutex mutex_;
+  std::condition_variable frameQueued_, spaceFree_;
+  std::deque<srp::rawlog::RgbdFrame> queue_;
+  bool done_ = false;
+  std::exception_ptr error_;
+  double writeTime_s_ = 0.0;
+};
 
 cv::Mat colourMapDepth(const cv::Mat& depth_m, double near_m, double far_m) {
   cv::Mat scaled;
@@ -161,7 +244,7 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
   // With realism on, depth is already quantised to depthStep_m: storing it finer adds only size.
   const double depthUnit_m = options.sensor.enabled ? std::max(options.rawlogDepthUnit_m, options.sensor.depthStep_m)
                                                     : options.rawlogDepthUnit_m;
-  srp::rawlog::RawlogWriter writer(rawlogPath, depthUnit_m);
+  AsyncRawlogWriter writer(rawlogPath, depthUnit_m);
   SensorModel sensor(options.sensor, options.demo.seed);
   const srp::core::Pose3 X_camera_world = world.X_world_camera.inverse();
   cv::Mat previousColour;
@@ -240,13 +323,11 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
     gt.frames.push_back(std::move(g));
     result.sensorTime_s += secondsSince(t0);
 
-    t0 = Clock::now();
-    writer.write(frame);
-    result.writeTime_s += secondsSince(t0);
     if (std::find(sheetFrames.begin(), sheetFrames.end(), k) != sheetFrames.end()) sheet.emplace_back(k, frame);
+    writer.write(std::move(frame));
     if (progress) progress(k, frameCount);
   }
-  writer.close();
+  result.writeTime_s = writer.close();
   result.groundTruthPath = groundTruthPathFor(rawlogPath);
   gt.save(result.groundTruthPath);
   result.frameCount = frameCount;
@@ -256,7 +337,7 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
 
   // ---- Contact sheet: colour | depth per frame, two frames per row ----------------
   if (!options.contactSheetPath.empty() && !sheet.empty()) {
-    const cv::Size tile(320, 240);
+    const cv::Size tile(256, 192);
     const int perRow = 2, rows = (static_cast<int>(sheet.size()) + perRow - 1) / perRow;
     cv::Mat canvas(rows * tile.height, perRow * 2 * tile.width, CV_8UC3, cv::Scalar(255, 255, 255));
     for (std::size_t i = 0; i < sheet.size(); ++i) {

@@ -36,7 +36,7 @@ struct SynthDemoResult {
   double duration_s = 0.0;
   double renderTime_s = 0.0;   ///< rendering (MRPT/EGL)
   double sensorTime_s = 0.0;   ///< masks and sensor realism
-  double writeTime_s = 0.0;    ///< rawlog serialisation and compression
+  double writeTime_s = 0.0;    ///< rawlog serialisation and compression (on a background thread, overlapping)
   double totalTime_s = 0.0;
   double meanHandValidDepth = -1.0;    ///< over frames with a visible hand
   double meanObjectValidDepth = -1.0;  ///< over frames with visible parts

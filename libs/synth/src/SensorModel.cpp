@@ -107,10 +107,7 @@ void SensorModel::apply(srp::rawlog::RgbdFrame& frame, const cv::Mat& handMask, 
     cv::Mat noise;
     cv::resize(noiseWindow(colourTable_, (rows + 1) / 2, (cols + 1) / 2), noise, cv::Size(cols, rows), 0, 0,
                cv::INTER_NEAREST);
-    cv::Mat colour16;
-    frame.colour_bgr8.convertTo(colour16, CV_16SC3);
-    colour16 += noise;
-    colour16.convertTo(frame.colour_bgr8, CV_8UC3);  // saturates to [0, 255]
+    cv::add(frame.colour_bgr8, noise, frame.colour_bgr8, cv::noArray(), CV_8UC3);  // saturating, one pass
   }
 }
 

@@ -130,6 +130,30 @@ TEST(DemoGenerator, LayeredRenderingMatchesFullRendering) {
   EXPECT_LT(static_cast<double>(different) / total, kMaxDifferentPixels) << different << " of " << total;
 }
 
+TEST(DemoGroundTruth, LoadNamesTheFileAndMissingField) {
+  Fixture f;
+  auto options = quickOptions();
+  options.maxFrames = 2;
+  options.sensor.enabled = false;
+  const std::string rawlog = tempPath("gtfields.rawlog");
+  srp::synth::generateSyntheticDemo(f.scene, f.catalogue, oneStepPlan(), options, rawlog);
+  auto j = srp::core::readJsonFile(srp::synth::groundTruthPathFor(rawlog));
+  j.erase("camera");
+  const std::string broken = tempPath("broken.gt.json");
+  srp::core::writeJsonFile(broken, j);
+  try {
+    srp::synth::DemoGroundTruth::load(broken);
+    FAIL();
+  } catch (const srp::core::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("broken.gt.json"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("camera"), std::string::npos) << e.what();
+  }
+  j = srp::core::readJsonFile(srp::synth::groundTruthPathFor(rawlog));
+  j["schema_version"] = srp::synth::DemoGroundTruth::kSchemaVersion + 1;
+  srp::core::writeJsonFile(broken, j);
+  EXPECT_THROW(srp::synth::DemoGroundTruth::load(broken), srp::core::Error);
+}
+
 TEST(DemoGenerator, BadSceneFailsNamingTheField) {
   Fixture f;
   const std::string rawlog = tempPath("bad.rawlog");

@@ -388,7 +388,8 @@ struct LanguageModel::Impl {
       if (hasTrajector) continue;
       int head = -1;
       for (int k = from; k < e.start; ++k) {
-        if (owner[k] >= 0 && typeAt(k) != "Color") {
+        if (typeAt(k) == "Color") continue;  // "the single red block": the head is after the colour
+        if (owner[k] >= 0) {
           if (head >= 0) break;
           continue;
         }

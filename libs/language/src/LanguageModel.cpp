@@ -359,7 +359,7 @@ struct LanguageModel::Impl {
         e.type = "GoalIndicator";
       firstInClause = false;
     }
-    // One goal per clause (train: 1 clause of 400 has two): of several goals the
+    // One goal per clause (train: only 1 clause has two goals): of several goals the
     // directional one ("to / onto / into the ...") stays, else the first.
     for (size_t i = 0; i < entities.size();) {
       size_t end = i + 1;

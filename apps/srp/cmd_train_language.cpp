@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "CommandRegistry.h"
+#include "srp/core/Json.h"
 #include "srp/language/LanguageModel.h"
 #include "srp/language/SpertEvaluation.h"
 
@@ -19,8 +20,26 @@ void setupTrainLanguage(CLI::App& app) {
   app.add_option("--entity-c", options->entityC, "entity tagger SVM C")->capture_default_str();
   app.add_option("--relation-c", options->relationC, "relation classifier SVM C")->capture_default_str();
   app.add_option("--min-feature-count", options->minFeatureCount, "drop rarer entity features")->capture_default_str();
+  auto cvFolds = std::make_shared<int>(0);
+  auto cvThreads = std::make_shared<int>(2);
+  auto cvPredictions = std::make_shared<std::string>();
+  app.add_option("--cv", *cvFolds, "only cross-validate on the training corpus with this many folds (no model written)");
+  app.add_option("--cv-threads", *cvThreads, "folds trained in parallel")->capture_default_str();
+  app.add_option("--cv-predictions", *cvPredictions, "write the out-of-fold predictions (SpERT JSON) here");
   app.callback([=] {
     const auto corpus = srp::language::readSpertCorpus(*trainPath);
+    if (*cvFolds > 0) {
+      std::cerr << *cvFolds << "-fold cross-validation on " << corpus.size() << " sentences...\n";
+      const auto cv = srp::language::crossValidate(corpus, *options, *cvFolds, *cvThreads);
+      if (!cvPredictions->empty()) {
+        nlohmann::json out = nlohmann::json::array();
+        for (const auto& s : cv.predictions) out.push_back(srp::language::toJson(s));
+        srp::core::writeJsonFile(*cvPredictions, out);
+      }
+      std::cout << *cvFolds << "-fold cross-validation (" << *trainPath << "):\n"
+                << srp::language::formatScoreTable(cv.scores);
+      return;
+    }
     std::cerr << "training on " << corpus.size() << " sentences...\n";
     const auto t0 = std::chrono::steady_clock::now();
     const auto model = srp::language::LanguageModel::train(corpus, *options);

@@ -359,6 +359,28 @@ struct LanguageModel::Impl {
         e.type = "GoalIndicator";
       firstInClause = false;
     }
+    // One goal per clause (train: only 1 clause has two goals): of several goals the
+    // directional one ("to / onto / into the ...") stays, else the first.
+    for (size_t i = 0; i < entities.size();) {
+      size_t end = i + 1;
+      while (end < entities.size() && entities[end].type != "Action") ++end;
+      std::vector<size_t> goals;
+      for (size_t k = i; k < end; ++k)
+        if (entities[k].type == "GoalIndicator") goals.push_back(k);
+      if (goals.size() > 1) {
+        size_t keep = goals.front();
+        for (size_t k : goals) {
+          const std::string first = lowerOf(tokens[entities[k].start]);
+          if (first == "to" || first == "onto" || first == "into") {
+            keep = k;
+            break;
+          }
+        }
+        for (size_t k : goals)
+          if (k != keep) entities[k].type = "SpatialIndicator";
+      }
+      i = end;
+    }
   }
 
   /// The corpus annotates a Trajector exactly when a SpatialIndicator locates it
@@ -381,14 +403,20 @@ struct LanguageModel::Impl {
     std::vector<EntitySpan> added;
     for (const auto& e : entities) {
       if (e.type != "SpatialIndicator") continue;
-      const int from = clauseStart(e.start);
-      if (from == 0 || typeAt(from - 1) != "Action") continue;  // no verb before it: nothing is being moved
+      const int clause = clauseStart(e.start);
+      if (clause == 0 || typeAt(clause - 1) != "Action") continue;  // no verb before it: nothing is being moved
+      // After a goal the phrase locates the goal's landmark ("on the table in the
+      // kitchen": train 22 of 22), so its trajector is sought after the goal.
+      int from = clause;
+      for (int k = clause; k < e.start; ++k)
+        if (typeAt(k) == "GoalIndicator") from = k + 1;
       bool hasTrajector = false;
       for (int k = from; k < e.start; ++k) hasTrajector |= typeAt(k) == "Trajector";
       if (hasTrajector) continue;
       int head = -1;
       for (int k = from; k < e.start; ++k) {
-        if (owner[k] >= 0 && typeAt(k) != "Color") {
+        if (typeAt(k) == "Color") continue;  // "the single red block": the head is after the colour
+        if (owner[k] >= 0) {
           if (head >= 0) break;
           continue;
         }

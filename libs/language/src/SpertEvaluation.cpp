@@ -1,8 +1,10 @@
 #include "srp/language/SpertEvaluation.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <set>
+#include <thread>
 #include <tuple>
 
 #include "srp/core/Error.h"
@@ -75,6 +77,30 @@ SpertScores evaluateModel(const LanguageModel& model, const std::vector<Annotate
   if (!gold.empty())
     scores.msPerSentence = std::chrono::duration<double, std::milli>(t1 - t0).count() / static_cast<double>(gold.size());
   return scores;
+}
+
+CrossValidationResult crossValidate(const std::vector<AnnotatedSentence>& corpus,
+                                    const LanguageTrainingOptions& options, int folds, int threads) {
+  core::require(folds >= 2 && folds <= static_cast<int>(corpus.size()),
+                "crossValidate: folds must be in [2, corpus size], got " + std::to_string(folds));
+  CrossValidationResult result;
+  result.predictions.resize(corpus.size());
+  auto runFold = [&](int fold) {
+    std::vector<AnnotatedSentence> train;
+    for (size_t i = 0; i < corpus.size(); ++i)
+      if (static_cast<int>(i % folds) != fold) train.push_back(corpus[i]);
+    const LanguageModel model = LanguageModel::train(train, options);
+    for (size_t i = fold; i < corpus.size(); i += folds) result.predictions[i] = model.annotate(corpus[i].tokens);
+  };
+  const int workers = std::max(1, std::min(threads, folds));
+  std::vector<std::thread> pool;
+  for (int w = 0; w < workers; ++w)
+    pool.emplace_back([&, w] {
+      for (int fold = w; fold < folds; fold += workers) runFold(fold);
+    });
+  for (auto& t : pool) t.join();
+  result.scores = scoreSpert(corpus, result.predictions);
+  return result;
 }
 
 nlohmann::json toJson(const SpertScores& scores) {

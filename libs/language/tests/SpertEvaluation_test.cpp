@@ -35,3 +35,26 @@ TEST(SpertEvaluation, MismatchedCorporaAreRejected) {
   a.tokens = {"pick"};
   EXPECT_THROW(scoreSpert({a}, {}), srp::core::InvalidInputError);
 }
+
+// Cross-validation on a slice of the training corpus: every sentence gets one
+// out-of-fold prediction, the pooled supports are the gold counts, the fold
+// threads do not change the result, and actions are still found.
+TEST(SpertEvaluation, CrossValidationIsOutOfFoldAndDeterministic) {
+  constexpr double kMinActionF1 = 0.9;
+  auto corpus = readSpertCorpus(std::string(SRP_DATASETS_DIR) + "/language/train.json");
+  corpus.resize(90);
+  const auto oneThread = crossValidate(corpus, {}, 3, 1);
+  const auto twoThreads = crossValidate(corpus, {}, 3, 2);
+  ASSERT_EQ(oneThread.predictions.size(), corpus.size());
+  int goalIndicators = 0;
+  for (const auto& s : corpus)
+    for (const auto& e : s.entities) goalIndicators += e.type == "GoalIndicator";
+  EXPECT_EQ(oneThread.scores.types.at("GoalIndicator").support(), goalIndicators);
+  for (const auto& [type, score] : oneThread.scores.types) {
+    SCOPED_TRACE(type);
+    EXPECT_EQ(score.truePositives, twoThreads.scores.types.at(type).truePositives);
+    EXPECT_EQ(score.falsePositives, twoThreads.scores.types.at(type).falsePositives);
+  }
+  EXPECT_GT(oneThread.scores.types.at("Action").f1(), kMinActionF1);
+  EXPECT_THROW(crossValidate(corpus, {}, 1), srp::core::InvalidInputError);
+}

@@ -38,6 +38,19 @@ SpertScores scoreSpert(const std::vector<AnnotatedSentence>& gold, const std::ve
 /// Annotates every gold sentence's tokens with `model`, times it and scores it.
 SpertScores evaluateModel(const LanguageModel& model, const std::vector<AnnotatedSentence>& gold);
 
+/// Out-of-fold predictions of k-fold cross-validation and their pooled scores.
+struct CrossValidationResult {
+  SpertScores scores;                         ///< TP/FP/FN summed over the folds
+  std::vector<AnnotatedSentence> predictions; ///< one per corpus sentence, same order
+};
+
+/// k-fold cross-validation: sentence i is in fold i % folds; each fold is
+/// annotated by a model trained on the other folds with `options`. Folds run
+/// on `threads` threads (each training single-threaded), so the result is
+/// deterministic. Throws InvalidInputError when folds < 2 or > corpus size.
+CrossValidationResult crossValidate(const std::vector<AnnotatedSentence>& corpus,
+                                    const LanguageTrainingOptions& options, int folds, int threads = 1);
+
 /// The `srp eval-language --json` form: {"types": {"Action": {"precision", "recall",
 /// "f1", "support"}, ...}, "ms_per_sentence": x}.
 nlohmann::json toJson(const SpertScores& scores);

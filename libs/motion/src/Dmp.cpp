@@ -323,12 +323,7 @@ Dmp Dmp::fromJson(const nlohmann::json& j) {
   using detail::matrixFromJson;
   using detail::vectorFromJson;
   const std::string ctx = "DMP JSON";
-  require(j.is_object(), ctx + ": expected an object");
-  const auto cls = requireField(j, "class", ctx).get<std::string>();
-  require(cls == "srp::motion::Dmp", ctx + ": class is '" + cls + "', expected srp::motion::Dmp");
-  const int version = requireField(j, "schema_version", ctx).get<int>();
-  require(version == 1, ctx + ": schema_version " + std::to_string(version) +
-                            " is not known to this build (knows 1); update srp");
+  detail::requireClassAndVersion(j, "srp::motion::Dmp", 1, ctx);
   Dmp dmp;
   dmp.config_ = requireField(j, "config", ctx).get<DmpConfig>();
   dmp.weights_ = matrixFromJson(requireField(j, "weights", ctx), ctx + " weights");

@@ -43,7 +43,7 @@ void runMotion(const MotionOptions& o) {
   std::cerr << "srp motion: learning DMPs\n";
   const auto skills = motion::SkillLearner().learn(seg, inputs.objects);
   const auto rows = motion::skillRows(skills, inputs);
-  store.replaceSkills(id, rows);  // one transaction, after everything above succeeded
+  motion::storeSkills(db, id, skills, inputs);  // one transaction, after everything above succeeded
 
   std::vector<std::string> pngs;
   if (!o.noPlots) {

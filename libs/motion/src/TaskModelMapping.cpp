@@ -3,6 +3,9 @@
 #include <set>
 
 #include "srp/core/Error.h"
+#include "srp/taskdb/ProductPoseDao.h"
+#include "srp/taskdb/SkillDao.h"
+#include "srp/taskdb/TaskModelDao.h"
 
 namespace srp::motion {
 
@@ -75,6 +78,32 @@ std::vector<taskdb::SkillRow> skillRows(const std::vector<SkillSet>& skills, con
     }
   }
   return rows;
+}
+
+void storeSkills(taskdb::TaskDatabase& db, int taskModelId, const std::vector<SkillSet>& skills,
+                 const MotionInputs& inputs) {
+  const std::vector<taskdb::SkillRow> rows = skillRows(skills, inputs);
+  taskdb::ScopedTransaction tx(db);
+  if (!taskdb::TaskModelDao(db).get(taskModelId))
+    throw core::InvalidInputError("no task model with id " + std::to_string(taskModelId) + " in '" + db.path() + "'");
+  taskdb::SkillDao skillDao(db);
+  for (const auto& old : skillDao.list(taskModelId)) skillDao.remove(taskModelId, old.classId, old.skill);
+  for (const auto& r : rows) skillDao.add(taskModelId, r);
+  taskdb::ProductPoseDao poses(db);
+  const std::vector<taskdb::ProductPoseRow> allPoses = poses.list(taskModelId);
+  for (const auto& s : skills) {
+    const int classId = inputs.classIdByName.at(s.objectName);
+    for (auto row : allPoses) {
+      if (row.classId != classId) continue;
+      const bool reach = row.timeId >= s.reachStartFrame && row.timeId < s.graspFrame;
+      const bool grasp = row.timeId == s.graspFrame, release = row.timeId == s.releaseFrame;
+      const bool move = row.timeId > s.graspFrame && row.timeId < s.releaseFrame;
+      if (row.reach == reach && row.grasp == grasp && row.move == move && row.release == release) continue;
+      row.reach = reach, row.grasp = grasp, row.move = move, row.release = release;
+      poses.update(taskModelId, row);
+    }
+  }
+  tx.commit();
 }
 
 taskdb::TaskModel taskModelFromSyntheticDemo(const SyntheticPickPlace& demo, const std::string& name) {

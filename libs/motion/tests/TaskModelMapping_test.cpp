@@ -8,6 +8,7 @@
 
 #include "srp/core/Error.h"
 #include "srp/motion/SkillLearner.h"
+#include "srp/taskdb/ProductPoseDao.h"
 #include "srp/taskdb/TaskModelStore.h"
 
 namespace srp::motion {
@@ -41,7 +42,14 @@ TEST(TaskModelMapping, StoredDemoSegmentsLearnsAndStoresSkillsThatRollOutIdentic
   const auto skills = SkillLearner().learn(seg, in.objects);
   const auto rows = skillRows(skills, in);
   ASSERT_EQ(rows.size(), 16u);
-  store.replaceSkills(id, rows);
+  storeSkills(db, id, skills, in);
+  // The ProductPose flags mark the grasp and release frames.
+  for (const auto& s : skills) {
+    const auto frames = taskdb::ProductPoseDao(db).graspReleaseFrames(id, in.classIdByName.at(s.objectName));
+    EXPECT_EQ(frames.graspTimeId, s.graspFrame);
+    EXPECT_EQ(frames.releaseTimeId, s.releaseFrame);
+  }
+  EXPECT_THROW(storeSkills(db, id + 100, skills, in), core::InvalidInputError);
 
   const taskdb::TaskModel back = store.read(id);
   ASSERT_EQ(back.skills.size(), 16u);

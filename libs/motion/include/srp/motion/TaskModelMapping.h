@@ -10,6 +10,7 @@
 #include "srp/motion/Segmenter.h"
 #include "srp/motion/SyntheticPickPlace.h"
 #include "srp/motion/SkillSet.h"
+#include "srp/taskdb/TaskDatabase.h"
 #include "srp/taskdb/TaskModel.h"
 
 namespace srp::motion {
@@ -32,6 +33,14 @@ MotionInputs motionInputsFromTaskModel(const taskdb::TaskModel& model);
 
 /// Skills rows of the learned skill sets (TimeIds = the demo's frame numbers).
 std::vector<taskdb::SkillRow> skillRows(const std::vector<SkillSet>& skills, const MotionInputs& inputs);
+
+/// Stores learned skills in one transaction: replaces the task model's Skills
+/// rows and sets the Reach/Grasp/Move/Release flags of the moved objects'
+/// ProductPose rows (Reach: reach start <= TimeId < grasp, Grasp: the grasp
+/// frame, Move: between, Release: the release frame; other flags cleared).
+/// Throws InvalidInputError for an unknown task model; on any error nothing changes.
+void storeSkills(taskdb::TaskDatabase& db, int taskModelId, const std::vector<SkillSet>& skills,
+                 const MotionInputs& inputs);
 
 /// A task model holding a synthetic demo (SyntheticPickPlaceGenerator): one
 /// Product and GroundedProduct per object (ObjectId = ClassId = index), the

@@ -1,0 +1,140 @@
+#include "srp/perception/ObjectDetector.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "srp/core/Error.h"
+#include "srp/perception/DepthCloud.h"
+
+namespace srp::perception {
+namespace {
+
+double srgbToLinear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
+/// Agreement [0, 1] of two linear-RGB colours by chromaticity and brightness.
+double colourAgreement(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d ca = a / std::max(1e-6, a.sum()), cb = b / std::max(1e-6, b.sum());
+  const double dChroma = (ca - cb).norm();
+  return std::exp(-0.5 * std::pow(dChroma / 0.08, 2));
+}
+
+}  // namespace
+
+ObjectDetector::ObjectDetector(std::vector<ObjectModel> models) : ObjectDetector(std::move(models), Options{}) {}
+
+ObjectDetector::ObjectDetector(std::vector<ObjectModel> models, const Options& options) : options_(options) {
+  core::require(!models.empty(), "ObjectDetector: no object models (is the knowledge base empty?)");
+  for (const auto& m : models) fitters_.emplace_back(m, options.fit);
+}
+
+std::vector<ObjectModel> ObjectDetector::modelsFromCatalogue(const core::ObjectCatalogue& catalogue,
+                                                             const std::vector<std::string>& classNames) {
+  std::vector<ObjectModel> models;
+  if (classNames.empty())
+    for (const auto& c : catalogue.classes()) models.push_back(ObjectModel::fromCatalogue(c));
+  else
+    for (const auto& n : classNames) models.push_back(ObjectModel::fromCatalogue(catalogue.at(n)));
+  return models;
+}
+
+int ObjectDetector::segment(const cv::Mat& cloud, const Plane& plane, cv::Mat& labels) const {
+  cv::Mat mask(cloud.size(), CV_8UC1, cv::Scalar(0));
+  for (int v = 0; v < cloud.rows; ++v) {
+    const cv::Vec3f* row = cloud.ptr<cv::Vec3f>(v);
+    uchar* m = mask.ptr<uchar>(v);
+    for (int u = 0; u < cloud.cols; ++u) {
+      if (row[u][2] <= 0.f) continue;
+      const double h = plane.height({row[u][0], row[u][1], row[u][2]});
+      if (h < options_.minHeight_m || h > options_.maxHeight_m) continue;
+      // Depth edges separate touching-in-the-image objects.
+      bool edge = false;
+      if (u + 1 < cloud.cols && row[u + 1][2] > 0.f && std::abs(row[u + 1][2] - row[u][2]) > options_.depthEdge_m) edge = true;
+      if (v + 1 < cloud.rows) {
+        const float z = cloud.ptr<cv::Vec3f>(v + 1)[u][2];
+        if (z > 0.f && std::abs(z - row[u][2]) > options_.depthEdge_m) edge = true;
+      }
+      m[u] = edge ? 0 : 255;
+    }
+  }
+  cv::morphologyEx(mask, mask, cv::MORPH_OPEN, cv::getStructuringElement(cv::MORPH_RECT, {3, 3}));
+  return cv::connectedComponents(mask, labels, 8, CV_32S) - 1;
+}
+
+std::vector<ObjectDetection> ObjectDetector::detect(const rawlog::RgbdFrame& frame, const Plane* support) const {
+  if (frame.depth_m.empty())
+    throw core::InvalidInputError("frame " + std::to_string(frame.index) + " has no depth image: objects need depth");
+  const CameraModel camera(frame.intrinsics);
+  const cv::Mat cloud = depthToCloud(frame.depth_m, camera);
+  lastPlane_ = support ? std::optional<Plane>(*support) : fitDominantPlane(cloud, options_.plane);
+  if (!lastPlane_) return {};
+  const Plane& plane = *lastPlane_;
+
+  cv::Mat labels;
+  const int nSegments = segment(cloud, plane, labels);
+  std::vector<std::vector<Eigen::Vector3d>> points(static_cast<std::size_t>(nSegments));
+  std::vector<std::vector<cv::Point>> pixels(static_cast<std::size_t>(nSegments));
+  std::vector<Eigen::Vector3d> colourSum(static_cast<std::size_t>(nSegments), Eigen::Vector3d::Zero());
+  const bool hasColour = !frame.colour_bgr8.empty();
+  for (int v = 0; v < labels.rows; ++v) {
+    const int* l = labels.ptr<int>(v);
+    for (int u = 0; u < labels.cols; ++u) {
+      if (l[u] <= 0) continue;
+      const std::size_t s = static_cast<std::size_t>(l[u] - 1);
+      points[s].push_back(cloudAt(cloud, u, v));
+      pixels[s].emplace_back(u, v);
+      if (hasColour) {
+        const cv::Vec3b c = frame.colour_bgr8.at<cv::Vec3b>(v, u);
+        colourSum[s] += Eigen::Vector3d(srgbToLinear(c[2] / 255.0), srgbToLinear(c[1] / 255.0), srgbToLinear(c[0] / 255.0));
+      }
+    }
+  }
+
+  std::vector<ObjectDetection> out;
+  for (std::size_t s = 0; s < points.size(); ++s) {
+    if (static_cast<int>(points[s].size()) < options_.minPixels) continue;
+    // Segment extent along the plane, to skip models of the wrong size early.
+    const core::Pose3 X_plane_camera = plane.X_camera_plane().inverse();
+    Eigen::AlignedBox3d box;
+    for (const auto& p : points[s]) box.extend(X_plane_camera * p);
+    const double segExtent = box.sizes().head<2>().norm();
+    const Eigen::Vector3d meanColour = colourSum[s] / static_cast<double>(points[s].size());
+
+    ObjectDetection best;
+    for (const ObjectPoseFitter& fitter : fitters_) {
+      const ObjectModel& model = fitter.model();
+      const double modelDiag = model.dimensions_m.head<2>().norm();
+      if (segExtent > 1.6 * modelDiag + 0.02 || segExtent < 0.25 * model.dimensions_m.head<2>().minCoeff()) continue;
+      const ObjectPoseFit fit = fitter.fit(points[s], plane, cloud, camera);
+      double confidence = fit.score;
+      if (model.useColour && hasColour) confidence *= colourAgreement(meanColour, model.rgb);
+      if (confidence > best.confidence) {
+        best.className = model.name;
+        best.classId = model.classId;
+        best.X_camera_object = fit.X_camera_object;
+        best.size_m = model.dimensions_m;
+        best.confidence = confidence;
+      }
+    }
+    if (best.confidence < options_.minConfidence) continue;
+    const core::Pose3 X_plane_object = X_plane_camera * best.X_camera_object;
+    best.yaw_rad = std::atan2(X_plane_object.linear()(1, 0), X_plane_object.linear()(0, 0));
+    best.segmentPixels = static_cast<int>(points[s].size());
+    const cv::RotatedRect rr = cv::minAreaRect(pixels[s]);
+    cv::Point2f corners[4];
+    rr.points(corners);
+    for (int c = 0; c < 4; ++c) best.obb_px[c] = {corners[c].x, corners[c].y};
+    for (int axis = 0; axis < 3; ++axis) {
+      std::vector<double> vals;
+      vals.reserve(points[s].size());
+      for (const auto& p : points[s]) vals.push_back(p[axis]);
+      std::nth_element(vals.begin(), vals.begin() + vals.size() / 2, vals.end());
+      best.p_camera_median_m[axis] = vals[vals.size() / 2];
+    }
+    out.push_back(best);
+  }
+  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.confidence > b.confidence; });
+  return out;
+}
+
+}  // namespace srp::perception

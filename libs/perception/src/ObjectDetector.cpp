@@ -39,26 +39,52 @@ std::vector<ObjectModel> ObjectDetector::modelsFromCatalogue(const core::ObjectC
 }
 
 int ObjectDetector::segment(const cv::Mat& cloud, const Plane& plane, cv::Mat& labels) const {
-  cv::Mat mask(cloud.size(), CV_8UC1, cv::Scalar(0));
-  for (int v = 0; v < cloud.rows; ++v) {
+  // Pixels above the plane, joined to their 4-neighbours when the depth step
+  // between them is small (union-find): flying pixels at depth edges break the chain.
+  const int W = cloud.cols, H = cloud.rows;
+  std::vector<int> parent(static_cast<std::size_t>(W) * H, -1);
+  auto find = [&parent](int i) {
+    while (parent[i] != i) {
+      parent[i] = parent[parent[i]];
+      i = parent[i];
+    }
+    return i;
+  };
+  auto unite = [&](int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  };
+  for (int v = 0; v < H; ++v) {
     const cv::Vec3f* row = cloud.ptr<cv::Vec3f>(v);
-    uchar* m = mask.ptr<uchar>(v);
-    for (int u = 0; u < cloud.cols; ++u) {
+    for (int u = 0; u < W; ++u) {
       if (row[u][2] <= 0.f) continue;
       const double h = plane.height({row[u][0], row[u][1], row[u][2]});
-      if (h < options_.minHeight_m || h > options_.maxHeight_m) continue;
-      // Depth edges separate touching-in-the-image objects.
-      bool edge = false;
-      if (u + 1 < cloud.cols && row[u + 1][2] > 0.f && std::abs(row[u + 1][2] - row[u][2]) > options_.depthEdge_m) edge = true;
-      if (v + 1 < cloud.rows) {
-        const float z = cloud.ptr<cv::Vec3f>(v + 1)[u][2];
-        if (z > 0.f && std::abs(z - row[u][2]) > options_.depthEdge_m) edge = true;
-      }
-      m[u] = edge ? 0 : 255;
+      if (h >= options_.minHeight_m && h <= options_.maxHeight_m) parent[v * W + u] = v * W + u;
     }
   }
-  cv::morphologyEx(mask, mask, cv::MORPH_OPEN, cv::getStructuringElement(cv::MORPH_RECT, {3, 3}));
-  return cv::connectedComponents(mask, labels, 8, CV_32S) - 1;
+  auto joinable = [&](int a, int b) {
+    if (parent[a] < 0 || parent[b] < 0) return false;
+    const float za = cloud.at<cv::Vec3f>(a / W, a % W)[2], zb = cloud.at<cv::Vec3f>(b / W, b % W)[2];
+    return std::abs(za - zb) < options_.depthEdge_m * std::max(1.0f, za);
+  };
+  for (int v = 0; v < H; ++v)
+    for (int u = 0; u < W; ++u) {
+      const int i = v * W + u;
+      if (parent[i] < 0) continue;
+      if (u + 1 < W && joinable(i, i + 1)) unite(i, i + 1);
+      if (v + 1 < H && joinable(i, i + W)) unite(i, i + W);
+    }
+  labels = cv::Mat(H, W, CV_32S, cv::Scalar(0));
+  std::vector<int> rootLabel(parent.size(), 0);
+  int n = 0;
+  for (int i = 0; i < W * H; ++i) {
+    if (parent[i] < 0) continue;
+    const int r = find(i);
+    if (rootLabel[r] == 0) rootLabel[r] = ++n;
+    labels.at<int>(i / W, i % W) = rootLabel[r];
+  }
+  return n;
 }
 
 std::vector<ObjectDetection> ObjectDetector::detect(const rawlog::RgbdFrame& frame, const Plane* support) const {

@@ -1,6 +1,8 @@
 #include "srp/perception/ObjectPoseFitter.h"
 
 #include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "RealData.h"
 #include "srp/core/Error.h"
@@ -95,9 +97,8 @@ TEST(ObjectDetector, RealCubeFromCadModelAlone) {
     EXPECT_GT(cube.confidence, 0.5) << "frame " << i;
     worstPos_m = std::max(worstPos_m, dp);
     worstAngle_rad = std::max(worstAngle_rad, da);
-    if (i == 0)
-      std::printf("[ figures  ] cube frame 0: %.2f mm, %.2f deg, confidence %.2f\n", dp * 1e3, da * 180 / M_PI,
-                  cube.confidence);
+    std::printf("[ figures  ] cube frame %zu: %.2f mm, %.2f deg, confidence %.2f\n", i, dp * 1e3, da * 180 / M_PI,
+                cube.confidence);
   }
   std::printf("[ figures  ] cube worst of 10 frames: %.2f mm, %.2f deg\n", worstPos_m * 1e3, worstAngle_rad * 180 / M_PI);
 }

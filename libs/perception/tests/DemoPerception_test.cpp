@@ -1,0 +1,109 @@
+#include "srp/perception/DemoPerception.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "SyntheticFrames.h"
+#include "srp/core/Error.h"
+#include "srp/rawlog/RawlogWriter.h"
+
+namespace srp::perception {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string tempPath(const std::string& name) {
+  return (fs::path(SRP_BINARY_DIR) / ("perception_test_" + name)).string();
+}
+
+PerceptionOptions markerFreeOptions() {
+  PerceptionOptions o;
+  o.hand = PerceptionOptions::HandMethod::MarkerFree;
+  o.plan = {{"cuboid", false}, {"gray box", true}};
+  return o;
+}
+
+const core::ObjectCatalogue& catalogue() {
+  static const auto c = core::ObjectCatalogue::load(core::ObjectCatalogue::defaultPath());
+  return c;
+}
+
+TEST(DemoPerception, ZeroFramesIsAClearError) {
+  EXPECT_THROW(perceiveFrames({}, catalogue(), markerFreeOptions()), core::InvalidInputError);
+}
+
+TEST(DemoPerception, FrameWithoutDepthIsAClearError) {
+  auto frames = testing::handFrames(3, 10);
+  frames[1].depth_m.release();
+  try {
+    perceiveFrames(frames, catalogue(), markerFreeOptions());
+    FAIL() << "no error";
+  } catch (const core::InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("frame 1 has no depth"), std::string::npos) << e.what();
+  }
+}
+
+TEST(DemoPerception, MismatchedSizesAreAClearError) {
+  auto frames = testing::handFrames(3, 10);
+  frames[2].intrinsics.width_px = 160;
+  cv::resize(frames[2].colour_bgr8, frames[2].colour_bgr8, {160, 240});
+  cv::resize(frames[2].depth_m, frames[2].depth_m, {160, 240});
+  EXPECT_THROW(perceiveFrames(frames, catalogue(), markerFreeOptions()), core::InvalidInputError);
+}
+
+TEST(DemoPerception, HandNeverSeenIsAnErrorSayingSo) {
+  const auto frames = testing::handFrames(15, 100);
+  try {
+    perceiveFrames(frames, catalogue(), markerFreeOptions());
+    FAIL() << "no error";
+  } catch (const core::InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("hand was never detected"), std::string::npos) << e.what();
+  }
+}
+
+TEST(DemoPerception, UnreadableRawlogIsAFileError) {
+  EXPECT_THROW(perceiveRawlog(tempPath("missing.rawlog"), catalogue(), markerFreeOptions()), core::FileError);
+  const std::string garbage = tempPath("garbage.rawlog");
+  std::ofstream(garbage) << "this is not a rawlog";
+  EXPECT_THROW(perceiveRawlog(garbage, catalogue(), markerFreeOptions()), core::FileError);
+}
+
+TEST(DemoPerception, RawlogToHandTrajectoryAndCsv) {
+  const std::string rawlogPath = tempPath("demo.rawlog");
+  {
+    rawlog::RawlogWriter writer(rawlogPath);
+    for (const auto& f : testing::handFrames(20, 10)) writer.write(f);
+  }
+  const PerceptionResult r = perceiveRawlog(rawlogPath, catalogue(), markerFreeOptions());
+  EXPECT_EQ(r.frames, 20);
+  EXPECT_EQ(r.handDetected, 10);
+  ASSERT_EQ(r.hand.size(), 20u);
+  EXPECT_FALSE(r.hand[5].valid);
+  ASSERT_TRUE(r.hand[15].valid);
+  EXPECT_NEAR(r.hand[15].p_m.z(), testing::kHandTopDepth_m + 0.015, 0.005);
+  ASSERT_EQ(r.objects.size(), 2u);  // the plan's objects, none in these frames
+  EXPECT_TRUE(r.objects[0].samples.empty());
+
+  const std::string csv = tempPath("demo.csv");
+  writeSegmentCsv(r, csv);
+  std::ifstream in(csv);
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_EQ(header, "frame,hand_x,hand_y,hand_z,cuboid_x,cuboid_y,cuboid_z,cuboid_rz,gray_box_x,gray_box_y,gray_box_z,gray_box_rz");
+  int rows = 0;
+  while (std::getline(in, line)) {
+    if (rows == 0) EXPECT_EQ(line.substr(0, 28), "0,0.000000,0.000000,0.000000");
+    ++rows;
+  }
+  EXPECT_EQ(rows, 20);
+}
+
+TEST(DemoPerception, CameraYawIsTheRotationAboutTheOpticalAxis) {
+  const core::Pose3 X = core::makePoseYPR({0, 0, 1}, 0.3, 0.0, 0.0);
+  EXPECT_NEAR(cameraYaw(X), 0.3, 1e-12);
+}
+
+}  // namespace
+}  // namespace srp::perception

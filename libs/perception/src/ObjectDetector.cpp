@@ -121,19 +121,38 @@ std::vector<ObjectDetection> ObjectDetector::detect(const rawlog::RgbdFrame& fra
     if (static_cast<int>(points[s].size()) < options_.minPixels) continue;
     // Segment extent along the plane, to skip models of the wrong size early.
     const core::Pose3 X_plane_camera = plane.X_camera_plane().inverse();
-    Eigen::AlignedBox3d box;
-    for (const auto& p : points[s]) box.extend(X_plane_camera * p);
-    const double segExtent = box.sizes().head<2>().norm();
+    // Robust extent (2nd to 98th percentile): flying pixels at the edges do not count.
+    Eigen::Vector3d lo, hi;
+    {
+      std::vector<double> c[3];
+      for (const auto& p : points[s]) {
+        const Eigen::Vector3d q = X_plane_camera * p;
+        for (int a = 0; a < 3; ++a) c[a].push_back(q[a]);
+      }
+      for (int a = 0; a < 3; ++a) {
+        const std::size_t n = c[a].size(), i0 = n / 50, i1 = n - 1 - n / 50;
+        std::nth_element(c[a].begin(), c[a].begin() + static_cast<long>(i0), c[a].end());
+        lo[a] = c[a][i0];
+        std::nth_element(c[a].begin(), c[a].begin() + static_cast<long>(i1), c[a].end());
+        hi[a] = c[a][i1];
+      }
+    }
+    const double segExtent = (hi - lo).head<2>().norm();
+    const double segTop_m = hi.z();
     const Eigen::Vector3d meanColour = colourSum[s] / static_cast<double>(points[s].size());
 
     ObjectDetection best;
     for (const ObjectPoseFitter& fitter : fitters_) {
       const ObjectModel& model = fitter.model();
       const double modelDiag = model.dimensions_m.head<2>().norm();
-      if (segExtent > 1.6 * modelDiag + 0.02 || segExtent < 0.25 * model.dimensions_m.head<2>().minCoeff()) continue;
+      // Cheap gates before the fit: footprint size, height above the plane, colour.
+      if (segExtent > 1.5 * modelDiag + 0.02 || segExtent < 0.25 * model.dimensions_m.head<2>().minCoeff()) continue;
+      if (segTop_m > model.dimensions_m.z() + options_.maxElevation_m + 0.02 || segTop_m < 0.4 * model.dimensions_m.z())
+        continue;
+      const double colourScore = model.useColour && hasColour ? colourAgreement(meanColour, model.rgb) : 1.0;
+      if (colourScore < 0.05) continue;
       const ObjectPoseFit fit = fitter.fit(points[s], plane, cloud, camera);
-      double confidence = fit.score;
-      if (model.useColour && hasColour) confidence *= colourAgreement(meanColour, model.rgb);
+      const double confidence = fit.score * colourScore;
       if (confidence > best.confidence) {
         best.className = model.name;
         best.classId = model.classId;

@@ -123,16 +123,18 @@ ObjectPoseFit ObjectPoseFitter::fit(const std::vector<Eigen::Vector3d>& points_c
   }
 
   const double tol = options_.inlierTol_m;
-  for (const Eigen::Vector4d& s : starts) {
+  // ICP from one start: iterations on every `stride`-th point; returns x, y, z, yaw.
+  auto icp = [&](Eigen::Vector4d s, int iterations, std::size_t stride) {
     Eigen::Vector3d t = s.head<3>();
     double yaw = s[3];
-    for (int it = 0; it < options_.iterations; ++it) {
+    for (int it = 0; it < iterations; ++it) {
       const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
       Eigen::Matrix4d H = Eigen::Matrix4d::Zero();
       Eigen::Vector4d g = Eigen::Vector4d::Zero();
       // Later iterations trust only close matches (outliers: other objects, the hand).
-      const double gate = it < options_.iterations / 2 ? 0.05 : 4 * tol;
-      for (const auto& p : q) {
+      const double gate = it < iterations / 2 ? 0.05 : 4 * tol;
+      for (std::size_t i = 0; i < q.size(); i += stride) {
+        const Eigen::Vector3d& p = q[i];
         const Eigen::Vector3d po = R.transpose() * (p - t);
         const Eigen::Vector3d m = R * model_.surface[static_cast<std::size_t>(impl_->lookup(po))].p_m;
         const Eigen::Vector3d e = p - (m + t);
@@ -151,8 +153,11 @@ ObjectPoseFit ObjectPoseFitter::fit(const std::vector<Eigen::Vector3d>& points_c
       yaw += std::clamp(delta[3], -0.3, 0.3);
       if (delta.head<3>().norm() < 1e-5 && std::abs(delta[3]) < 1e-5) break;
     }
-    // Score this start.
-    const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    return Eigen::Vector4d(t.x(), t.y(), t.z(), yaw);
+  };
+  auto evaluate = [&](const Eigen::Vector4d& x, bool withCoverage) {
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(x[3], Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    const Eigen::Vector3d t = x.head<3>();
     int inliers = 0;
     double sq = 0.0;
     for (const auto& p : q) {
@@ -170,8 +175,21 @@ ObjectPoseFit ObjectPoseFitter::fit(const std::vector<Eigen::Vector3d>& points_c
     f.X_camera_object = X_camera_plane * X_plane_object;
     f.inlierRatio = static_cast<double>(inliers) / static_cast<double>(q.size());
     f.rms_m = inliers > 0 ? std::sqrt(sq / inliers) : 0.0;
-    f.coverage = coverage(f.X_camera_object, cloud, camera);
+    f.coverage = withCoverage ? coverage(f.X_camera_object, cloud, camera) : 1.0;
     f.score = f.inlierRatio * f.coverage;
+    return f;
+  };
+  // Coarse: every start, a few iterations on a quarter of the points; fine:
+  // the two best starts, fully.
+  std::vector<std::pair<double, Eigen::Vector4d>> coarse;
+  const std::size_t coarseStride = starts.size() > 1 ? 4 : 1;
+  for (const Eigen::Vector4d& s : starts) {
+    const Eigen::Vector4d x = icp(s, starts.size() > 1 ? 8 : 0, coarseStride);
+    coarse.emplace_back(evaluate(x, true).score, x);
+  }
+  std::sort(coarse.begin(), coarse.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (std::size_t k = 0; k < std::min<std::size_t>(2, coarse.size()); ++k) {
+    const ObjectPoseFit f = evaluate(icp(coarse[k].second, options_.iterations, 1), true);
     if (f.score > best.score) best = f;
   }
   return best;

@@ -41,6 +41,7 @@ class ObjectDetector {
     double maxHeight_m = 0.40;
     double depthEdge_m = 0.015;   ///< neighbouring depths further apart split segments
     int minPixels = 80;
+    double maxElevation_m = 0.10;  ///< objects stand at most this high above the plane (in a box, on another part)
     double minConfidence = 0.35;
     PlaneFitOptions plane;
     ObjectPoseFitter::Options fit;

@@ -192,6 +192,59 @@ ObjectPoseFit ObjectPoseFitter::fit(const std::vector<Eigen::Vector3d>& points_c
     const ObjectPoseFit f = evaluate(icp(coarse[k].second, options_.iterations, 1), true);
     if (f.score > best.score) best = f;
   }
+  if (options_.refineTilt && best.score > 0.0) {
+    // 6-DOF refinement from the 4-DOF pose: the object may tilt a little
+    // against the fitted plane (a plane fit error, an uneven support).
+    // Rotation linearised about the object origin: X' = (exp(w) R, t + v).
+    core::Pose3 X = best.X_camera_object;
+    for (int it = 0; it < options_.iterations; ++it) {
+      const core::Pose3 Xinv = X.inverse();
+      Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
+      Eigen::Matrix<double, 6, 1> g = Eigen::Matrix<double, 6, 1>::Zero();
+      for (const auto& pp : q) {
+        const Eigen::Vector3d p = X_camera_plane * pp;
+        const Eigen::Vector3d m = X * model_.surface[static_cast<std::size_t>(impl_->lookup(Xinv * p))].p_m;
+        const Eigen::Vector3d e = p - m;
+        const double dist = e.norm();
+        if (dist > 3 * tol) continue;
+        const double w = dist < tol ? 1.0 : tol / dist;
+        const Eigen::Vector3d r = m - X.translation();
+        Eigen::Matrix<double, 3, 6> J;
+        J.leftCols<3>() << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;  // [r]x
+        J.rightCols<3>() = -Eigen::Matrix3d::Identity();
+        H += w * J.transpose() * J;
+        g += w * J.transpose() * e;
+      }
+      H.diagonal().array() += 1e-4;
+      const Eigen::Matrix<double, 6, 1> d = -H.ldlt().solve(g);
+      const Eigen::Vector3d wv = d.head<3>();
+      if (wv.norm() > 1e-12) X.linear() = Eigen::AngleAxisd(wv.norm(), wv.normalized()).toRotationMatrix() * X.linear();
+      X.translation() += d.tail<3>();
+      if (d.norm() < 1e-6) break;
+    }
+    // Keep the refinement when it explains the data at least as well and stays near the plane's normal.
+    const double tilt = std::acos(std::clamp((X.linear().col(2)).dot(X_camera_plane.linear().col(2)), -1.0, 1.0));
+    if (tilt < options_.maxTilt_rad) {
+      ObjectPoseFit f = best;
+      f.X_camera_object = X;
+      int inliers = 0;
+      double sq = 0.0;
+      const core::Pose3 Xinv = X.inverse();
+      for (const auto& pp : q) {
+        const Eigen::Vector3d po = Xinv * (X_camera_plane * pp);
+        const double dd = (po - model_.surface[static_cast<std::size_t>(impl_->lookup(po))].p_m).norm();
+        if (dd < tol) {
+          ++inliers;
+          sq += dd * dd;
+        }
+      }
+      f.inlierRatio = static_cast<double>(inliers) / static_cast<double>(q.size());
+      f.rms_m = inliers > 0 ? std::sqrt(sq / inliers) : 0.0;
+      f.coverage = coverage(X, cloud, camera);
+      f.score = f.inlierRatio * f.coverage;
+      if (f.score >= best.score - 0.01) best = f;
+    }
+  }
   return best;
 }
 

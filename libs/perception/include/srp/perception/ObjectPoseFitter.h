@@ -2,7 +2,8 @@
 /// \file ObjectPoseFitter.h
 /// \brief Fits one CAD model to a segment of the depth cloud: an object
 /// standing on a support plane, free in position and in yaw about the plane
-/// normal (4 DOF), by ICP from several yaw starts.
+/// normal (4 DOF), by ICP from several yaw starts, then a small 6-DOF
+/// refinement (tilt) of the best.
 
 #include <Eigen/Core>
 #include <memory>
@@ -35,6 +36,8 @@ class ObjectPoseFitter {
     double yawStep_rad = 15.0 * 3.14159265358979323846 / 180.0;  ///< start yaws within the model's symmetry
     int maxPoints = 800;     ///< segment points used (evenly subsampled)
     double gridCell_m = 0.002;
+    bool refineTilt = true;      ///< finish with a 6-DOF ICP (tilt against the plane up to maxTilt_rad)
+    double maxTilt_rad = 10.0 * 3.14159265358979323846 / 180.0;
   };
 
   ObjectPoseFitter(const ObjectModel& model, const Options& options);

@@ -53,6 +53,7 @@ struct DemoPerceiver::Impl {
   // Per class: per frame, the best detection (if any).
   std::map<std::string, std::vector<std::optional<ObjectDetection>>> perClass;
   PerceptionResult result;
+  std::map<std::string, core::Pose3> lastPose;  // last detection per class
   bool haveDepth = false;
   double lastZ_m = 0.0;
 
@@ -92,7 +93,14 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
   m.frameIndex.push_back(f.index);
   m.frameTime_s.push_back(f.t_s);
 
-  const auto detections = m.detector->detect(f, m.options.fixedSupportPlane && m.support ? &*m.support : nullptr);
+  // Track from the last detections of the moving objects (static ones are
+  // searched afresh: their best detection is what counts).
+  std::map<std::string, core::Pose3> previous;
+  for (const auto& p : m.plan)
+    if (!p.isStatic && m.lastPose.count(p.className)) previous[p.className] = m.lastPose.at(p.className);
+  const auto detections =
+      m.detector->detect(f, m.options.fixedSupportPlane && m.support ? &*m.support : nullptr, previous);
+  for (const auto& d : detections) m.lastPose[d.className] = d.X_camera_object;
   if (!m.support) m.support = m.detector->lastPlane();
   for (auto& [name, perFrame] : m.perClass) perFrame.emplace_back();
   for (const auto& d : detections) {

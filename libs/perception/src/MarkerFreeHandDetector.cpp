@@ -54,14 +54,14 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
     cv::cvtColor(frame.colour_bgr8, ycrcb, cv::COLOR_BGR2YCrCb);
     cv::inRange(ycrcb, cv::Scalar(0, 135, 80), cv::Scalar(255, 180, 130), skin);
   }
+  // Foreground by depth (the whole arm, sleeve included, reaches the border);
+  // the hand is its skin-coloured part.
   cv::Mat mask(depth.size(), CV_8UC1, cv::Scalar(0));
   for (int v = 0; v < depth.rows; ++v) {
     const float* z = depth.ptr<float>(v);
     const float* bg = backgroundDepth_m_.ptr<float>(v);
-    const uchar* s = skin.ptr<uchar>(v);
     uchar* m = mask.ptr<uchar>(v);
     for (int u = 0; u < depth.cols; ++u) {
-      if (!s[u]) continue;
       if (z[u] > 0.f && bg[u] > 0.f) m[u] = (bg[u] - z[u] > options_.minForeground_m) ? 255 : 0;
       else if (z[u] <= 0.f && hasColour) {
         // A hole (moving hand): foreground when the colour changed.
@@ -72,17 +72,16 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
     }
   }
   cv::morphologyEx(mask, mask, cv::MORPH_OPEN, cv::getStructuringElement(cv::MORPH_ELLIPSE, {5, 5}));
-  lastMask_ = mask;
   cv::Mat labels, stats, centroids;
   const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
   int bestLabel = -1, bestArea = 0;
   bool bestTouches = false;
   for (int l = 1; l < n; ++l) {
     const int x = stats.at<int>(l, cv::CC_STAT_LEFT), y = stats.at<int>(l, cv::CC_STAT_TOP);
-    const int w = stats.at<int>(l, cv::CC_STAT_WIDTH), h = stats.at<int>(l, cv::CC_STAT_HEIGHT);
+    const int w = stats.at<int>(l, cv::CC_STAT_WIDTH), hgt = stats.at<int>(l, cv::CC_STAT_HEIGHT);
     const int area = stats.at<int>(l, cv::CC_STAT_AREA);
     if (area < options_.minPixels) continue;
-    const bool touches = x <= 1 || y <= 1 || x + w >= mask.cols - 1 || y + h >= mask.rows - 1;
+    const bool touches = x <= 1 || y <= 1 || x + w >= mask.cols - 1 || y + hgt >= mask.rows - 1;
     // Prefer components the arm connects to the border; then size.
     if ((touches && !bestTouches) || (touches == bestTouches && area > bestArea)) {
       bestLabel = l;
@@ -91,13 +90,17 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
     }
   }
   if (bestLabel < 0) return std::nullopt;
-  cv::Mat hand = (labels == bestLabel);
-  // Entry point: mean of the component's border pixels (none: its centroid).
+  const cv::Mat arm = (labels == bestLabel);
+  cv::Mat hand = arm & skin;
+  cv::morphologyEx(hand, hand, cv::MORPH_OPEN, cv::getStructuringElement(cv::MORPH_ELLIPSE, {5, 5}));
+  if (cv::countNonZero(hand) < options_.minPixels / 2) return std::nullopt;
+  lastMask_ = hand;
+  // Entry point: mean of the arm's border pixels (none: the arm's centroid).
   Eigen::Vector2d entry = Eigen::Vector2d::Zero();
   int nBorder = 0;
-  for (int v = 0; v < hand.rows; ++v)
-    for (int u = 0; u < hand.cols; ++u)
-      if (hand.at<uchar>(v, u) && (u <= 1 || v <= 1 || u >= hand.cols - 2 || v >= hand.rows - 2)) {
+  for (int v = 0; v < arm.rows; ++v)
+    for (int u = 0; u < arm.cols; ++u)
+      if (arm.at<uchar>(v, u) && (u <= 1 || v <= 1 || u >= arm.cols - 2 || v >= arm.rows - 2)) {
         entry += Eigen::Vector2d(u, v);
         ++nBorder;
       }
@@ -109,13 +112,14 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   for (int v = 0; v < hand.rows; ++v)
     for (int u = 0; u < hand.cols; ++u)
       if (hand.at<uchar>(v, u)) farthest = std::max(farthest, (Eigen::Vector2d(u, v) - entry).norm());
-  // The palm: the thickest part in the outer half (away from the arm).
+  // The palm: the thickest part of the hand in the outer part of the arm
+  // (away from the border), so not the forearm.
   double bestDist = 0.0;
   Eigen::Vector2d palm(-1, -1);
   for (int v = 0; v < hand.rows; ++v) {
     const float* d = dist.ptr<float>(v);
     for (int u = 0; u < hand.cols; ++u)
-      if (d[u] > bestDist && (nBorder == 0 || (Eigen::Vector2d(u, v) - entry).norm() > 0.45 * farthest)) {
+      if (d[u] > bestDist && (Eigen::Vector2d(u, v) - entry).norm() > options_.palmFromEntry * farthest) {
         bestDist = d[u];
         palm = {u, v};
       }

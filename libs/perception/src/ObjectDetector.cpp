@@ -89,6 +89,11 @@ int ObjectDetector::segment(const cv::Mat& cloud, const Plane& plane, cv::Mat& l
 }
 
 std::vector<ObjectDetection> ObjectDetector::detect(const rawlog::RgbdFrame& frame, const Plane* support) const {
+  return detect(frame, support, {});
+}
+
+std::vector<ObjectDetection> ObjectDetector::detect(const rawlog::RgbdFrame& frame, const Plane* support,
+                                                    const std::map<std::string, core::Pose3>& previous) const {
   if (frame.depth_m.empty())
     throw core::InvalidInputError("frame " + std::to_string(frame.index) + " has no depth image: objects need depth");
   const CameraModel camera(frame.intrinsics);
@@ -143,7 +148,28 @@ std::vector<ObjectDetection> ObjectDetector::detect(const rawlog::RgbdFrame& fra
     const Eigen::Vector3d meanColour = colourSum[s] / static_cast<double>(points[s].size());
 
     ObjectDetection best;
+    // Tracking: a class whose previous pose lies on this segment is refined from it first.
+    const Eigen::Vector3d segCentre = 0.5 * (lo + hi);
     for (const ObjectPoseFitter& fitter : fitters_) {
+      const auto prev = previous.find(fitter.model().name);
+      if (prev == previous.end()) continue;
+      const Eigen::Vector3d p = X_plane_camera * prev->second.translation();
+      if ((p - segCentre).head<2>().norm() > options_.trackRadius_m + 0.5 * fitter.model().dimensions_m.head<2>().norm())
+        continue;
+      const ObjectPoseFit fit = fitter.fit(points[s], plane, cloud, camera, &prev->second);
+      const double colourScore =
+          fitter.model().useColour && hasColour ? colourAgreement(meanColour, fitter.model().rgb) : 1.0;
+      const double confidence = fit.score * colourScore;
+      if (confidence >= options_.trackConfidence && confidence > best.confidence) {
+        best.className = fitter.model().name;
+        best.classId = fitter.model().classId;
+        best.X_camera_object = fit.X_camera_object;
+        best.size_m = fitter.model().dimensions_m;
+        best.confidence = confidence;
+      }
+    }
+    for (const ObjectPoseFitter& fitter : fitters_) {
+      if (best.confidence >= options_.trackConfidence) break;  // tracked
       const ObjectModel& model = fitter.model();
       const double modelDiag = model.dimensions_m.head<2>().norm();
       // Cheap gates before the fit: footprint size, height above the plane, colour.

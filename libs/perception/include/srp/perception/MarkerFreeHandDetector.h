@@ -13,10 +13,11 @@ namespace srp::perception {
 /// Learns a background (per-pixel median depth and colour) from the first
 /// `backgroundFrames` frames it sees, which must show no hand (the demo's
 /// first second). Then, per frame: foreground = closer than the background by
-/// `minForeground_m` (or depth missing where the colour changed), and skin
-/// coloured (YCrCb box) when `useSkin`; the hand is the largest foreground
-/// component touching the image border; the palm centre is the innermost
-/// point (distance-transform maximum) of the part away from the border; its
+/// `minForeground_m` (or depth missing where the colour changed); the arm is
+/// the largest foreground component touching the image border (where it
+/// enters); the hand is its skin-coloured part (YCrCb box) when `useSkin`; the
+/// palm centre is the innermost point (distance-transform maximum) of the hand
+/// away from the arm's entry; its
 /// 3D point uses the median depth of the palm disc, pushed `palmDepth_m`
 /// below the visible surface (the palm centre is inside the hand).
 class MarkerFreeHandDetector : public HandDetector {
@@ -27,6 +28,9 @@ class MarkerFreeHandDetector : public HandDetector {
     bool useSkin = true;
     int minPixels = 300;
     double palmDepth_m = 0.015;
+    /// The palm is searched beyond this fraction of the hand's reach from the
+    /// arm's entry point on the border (excludes the forearm).
+    double palmFromEntry = 0.6;
   };
   explicit MarkerFreeHandDetector(const Options& options);
   std::optional<HandObservation> detect(const rawlog::RgbdFrame& frame) override;

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -43,6 +44,8 @@ class ObjectDetector {
     int minPixels = 80;
     double maxElevation_m = 0.10;  ///< objects stand at most this high above the plane (in a box, on another part)
     double minConfidence = 0.35;
+    double trackConfidence = 0.75;  ///< a tracked refinement this good skips the full search
+    double trackRadius_m = 0.04;    ///< previous pose to segment centre, along the plane
     PlaneFitOptions plane;
     ObjectPoseFitter::Options fit;
   };
@@ -58,6 +61,13 @@ class ObjectDetector {
   /// given (nullopt result -> no detections). Throws InvalidInputError for a
   /// frame without depth.
   std::vector<ObjectDetection> detect(const rawlog::RgbdFrame& frame, const Plane* support = nullptr) const;
+
+  /// As detect(), tracking: a segment near a class' previous pose (`previous`,
+  /// class name -> X_camera_object) is first refined from that pose alone and
+  /// kept when its confidence reaches `trackConfidence`; only the other
+  /// segments get the full search over classes and start yaws.
+  std::vector<ObjectDetection> detect(const rawlog::RgbdFrame& frame, const Plane* support,
+                                      const std::map<std::string, core::Pose3>& previous) const;
 
   /// The support plane of the last detect() call, if one was found.
   const std::optional<Plane>& lastPlane() const { return lastPlane_; }

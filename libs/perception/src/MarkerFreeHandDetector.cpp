@@ -94,6 +94,14 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   cv::Mat hand = arm & skin;
   cv::morphologyEx(hand, hand, cv::MORPH_OPEN, cv::getStructuringElement(cv::MORPH_ELLIPSE, {5, 5}));
   if (cv::countNonZero(hand) < options_.minPixels / 2) return std::nullopt;
+  {
+    // Fill holes (a glove tag, a held object on the back of the hand): the
+    // palm's distance transform must not see them as background.
+    std::vector<std::vector<cv::Point>> contours;
+    cv::findContours(hand.clone(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
+    cv::drawContours(hand, contours, -1, cv::Scalar(255), cv::FILLED);
+    hand &= arm;
+  }
   lastMask_ = hand;
   // Entry point: mean of the arm's border pixels (none: the arm's centroid).
   Eigen::Vector2d entry = Eigen::Vector2d::Zero();
@@ -106,6 +114,18 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
       }
   if (nBorder > 0) entry /= nBorder;
   else entry = {centroids.at<double>(bestLabel, 0), centroids.at<double>(bestLabel, 1)};
+  {
+    // A sleeve (non-skin arm) ends at the wrist: the hand enters there.
+    cv::Mat sleeve = arm & ~skin, cuff;
+    cv::morphologyEx(sleeve, sleeve, cv::MORPH_OPEN, cv::getStructuringElement(cv::MORPH_ELLIPSE, {5, 5}));
+    cv::dilate(sleeve, cuff, cv::getStructuringElement(cv::MORPH_ELLIPSE, {7, 7}));
+    cuff &= hand;
+    const cv::Moments mom = cv::moments(cuff, true);
+    if (mom.m00 > 20) {
+      entry = {mom.m10 / mom.m00, mom.m01 / mom.m00};
+      nBorder = 1;
+    }
+  }
   cv::Mat dist;
   cv::distanceTransform(hand, dist, cv::DIST_L2, 5);
   double farthest = 0.0;
@@ -133,7 +153,7 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   std::vector<float> depths;
   for (int v = std::max(0, static_cast<int>(palm.y()) - r); v <= std::min(hand.rows - 1, static_cast<int>(palm.y()) + r); ++v)
     for (int u = std::max(0, static_cast<int>(palm.x()) - r); u <= std::min(hand.cols - 1, static_cast<int>(palm.x()) + r); ++u)
-      if (hand.at<uchar>(v, u) && depth.at<float>(v, u) > 0.f &&
+      if (arm.at<uchar>(v, u) && depth.at<float>(v, u) > 0.f &&
           (Eigen::Vector2d(u, v) - palm).squaredNorm() <= static_cast<double>(r) * r)
         depths.push_back(depth.at<float>(v, u));
   if (depths.size() >= 5) {

@@ -30,7 +30,7 @@ class MarkerFreeHandDetector : public HandDetector {
     double palmDepth_m = 0.015;
     /// The palm is searched beyond this fraction of the hand's reach from the
     /// arm's entry point on the border (excludes the forearm).
-    double palmFromEntry = 0.6;
+    double palmFromEntry = 0.45;
   };
   explicit MarkerFreeHandDetector(const Options& options);
   std::optional<HandObservation> detect(const rawlog::RgbdFrame& frame) override;

@@ -114,18 +114,6 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
       }
   if (nBorder > 0) entry /= nBorder;
   else entry = {centroids.at<double>(bestLabel, 0), centroids.at<double>(bestLabel, 1)};
-  {
-    // A sleeve (non-skin arm) ends at the wrist: the hand enters there.
-    cv::Mat sleeve = arm & ~skin, cuff;
-    cv::morphologyEx(sleeve, sleeve, cv::MORPH_OPEN, cv::getStructuringElement(cv::MORPH_ELLIPSE, {5, 5}));
-    cv::dilate(sleeve, cuff, cv::getStructuringElement(cv::MORPH_ELLIPSE, {7, 7}));
-    cuff &= hand;
-    const cv::Moments mom = cv::moments(cuff, true);
-    if (mom.m00 > 20) {
-      entry = {mom.m10 / mom.m00, mom.m01 / mom.m00};
-      nBorder = 1;
-    }
-  }
   cv::Mat dist;
   cv::distanceTransform(hand, dist, cv::DIST_L2, 5);
   double farthest = 0.0;

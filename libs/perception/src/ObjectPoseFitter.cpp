@@ -122,11 +122,12 @@ ObjectPoseFit ObjectPoseFitter::fit(const std::vector<Eigen::Vector3d>& points_c
                         std::atan2(X.linear()(1, 0), X.linear()(0, 0)));
   } else {
     const double z0 = std::max(0.0, top - model_.dimensions_m.z());
-    const int nYaw = std::max(1, static_cast<int>(std::ceil(model_.yawSymmetry_rad / options_.yawStep_rad - 1e-9)));
+    const double step = options_.yawStep_rad;
+    const int nYaw = std::max(1, static_cast<int>(std::ceil(model_.yawSymmetry_rad / step - 1e-9)));
     for (int i = 0; i < nYaw; ++i) {
-      starts.emplace_back(centroid.x(), centroid.y(), z0, i * options_.yawStep_rad);
+      starts.emplace_back(centroid.x(), centroid.y(), z0, i * step);
       // Also standing on the plane itself, unless the top says otherwise by far.
-      if (z0 > 0.005) starts.emplace_back(centroid.x(), centroid.y(), 0.0, i * options_.yawStep_rad);
+      if (z0 > 0.005) starts.emplace_back(centroid.x(), centroid.y(), 0.0, i * step);
     }
   }
 

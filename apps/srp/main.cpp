@@ -13,7 +13,7 @@ int main(int argc, char** argv) {
       "srp"};
   app.set_version_flag("--version", std::string("srp ") + SRP_VERSION);
   app.require_subcommand(1);
-  app.footer("Run 'srp <command> --help' for the options of a command.");
+  app.footer("Run 'srp <command> --help' for the options of a command.\n");
 
   auto& registry = srp::app::commandRegistry();
   std::stable_sort(registry.begin(), registry.end(),
@@ -29,7 +29,10 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const std::exception& e) {
     std::string cmd;
-    for (const auto* sub : app.get_subcommands()) cmd += " " + sub->get_name();
+    for (const CLI::App* level = &app; !level->get_subcommands().empty();) {
+      level = level->get_subcommands().front();
+      cmd += " " + level->get_name();
+    }
     std::cerr << "srp" << cmd << ": error: " << e.what() << "\n";
     return 1;
   }

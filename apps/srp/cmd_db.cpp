@@ -1,0 +1,122 @@
+// srp db: create, inspect, import and export task databases (libs/taskdb).
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+
+#include "CommandRegistry.h"
+#include "srp/core/Error.h"
+#include "srp/core/Json.h"
+#include "srp/taskdb/TaskModelReport.h"
+#include "srp/taskdb/TaskModelStore.h"
+
+namespace {
+
+using namespace srp::taskdb;
+
+struct DbOptions {
+  std::string db = "task.db";
+  int id = 0;
+  bool json = false;
+  std::string format = "appendix-c";
+  std::string out;
+  std::string file;
+  int maxRows = 0;
+};
+
+void addDbOption(CLI::App& c, DbOptions& o) {
+  c.add_option("--db", o.db, "Task database file (SQLite)")->capture_default_str();
+}
+
+void setupDb(CLI::App& app) {
+  auto o = std::make_shared<DbOptions>();
+  app.require_subcommand(1);
+
+  auto* init = app.add_subcommand("init", "Create an empty task database (or migrate an older one)");
+  init->add_option("file", o->db, "Task database file to create")->required();
+  init->callback([o] {
+    auto db = TaskDatabase::open(o->db);
+    std::cout << "task database '" << o->db << "' ready (schema version " << db.schemaVersion() << ")\n";
+  });
+
+  auto* list = app.add_subcommand("list", "List the task models");
+  addDbOption(*list, *o);
+  list->add_flag("--json", o->json, "Print JSON");
+  list->callback([o] {
+    auto db = TaskDatabase::open(o->db, TaskDatabase::Mode::ReadOnly);
+    const auto models = TaskModelStore(db).list();
+    if (o->json) {
+      nlohmann::json j = nlohmann::json::array();
+      for (const auto& m : models) j.push_back(toJson(m));
+      std::cout << j.dump(2) << "\n";
+      return;
+    }
+    if (models.empty()) {
+      std::cout << "no task models in '" << o->db << "' (program one with 'srp program')\n";
+      return;
+    }
+    std::cout << std::left << std::setw(5) << "id" << std::setw(24) << "name" << std::setw(9) << "version"
+              << std::setw(22) << "created (UTC)" << "instruction\n";
+    for (const auto& m : models) {
+      std::string text = m.instruction.size() > 60 ? m.instruction.substr(0, 57) + "..." : m.instruction;
+      std::cout << std::setw(5) << m.id << std::setw(24) << m.name << std::setw(9) << m.version << std::setw(22)
+                << m.createdUtc << text << "\n";
+    }
+  });
+
+  auto* show = app.add_subcommand("show", "Show one task model: plan, grounded objects, skills");
+  show->add_option("id", o->id, "TaskModelId (see 'srp db list')")->required();
+  addDbOption(*show, *o);
+  show->add_flag("--json", o->json, "Print the whole task model as JSON (the form 'srp db import' reads)");
+  show->callback([o] {
+    auto db = TaskDatabase::open(o->db, TaskDatabase::Mode::ReadOnly);
+    const TaskModel m = TaskModelStore(db).read(o->id);
+    if (o->json) std::cout << toJson(m).dump(2) << "\n";
+    else printTaskModel(m, std::cout);
+  });
+
+  auto* exp = app.add_subcommand("export", "Export a task model in another layout");
+  exp->add_option("id", o->id, "TaskModelId")->required();
+  addDbOption(*exp, *o);
+  exp->add_option("--format", o->format, "Layout: appendix-c (the thesis' Appendix C tables) or json")
+      ->check(CLI::IsMember({"appendix-c", "json"}))
+      ->capture_default_str();
+  exp->add_option("--out", o->out, "Output file (default: standard output)");
+  exp->add_option("--max-rows", o->maxRows, "Abbreviate long tables to this many rows with '...' (0: all)");
+  exp->callback([o] {
+    auto db = TaskDatabase::open(o->db, TaskDatabase::Mode::ReadOnly);
+    const TaskModel m = TaskModelStore(db).read(o->id);
+    std::ofstream file;
+    if (!o->out.empty()) {
+      file.open(o->out);
+      if (!file) throw srp::core::FileError(o->out, "cannot write export");
+    }
+    std::ostream& out = o->out.empty() ? std::cout : file;
+    if (o->format == "json") out << toJson(m).dump(2) << "\n";
+    else writeAppendixC(m, out, o->maxRows);
+  });
+
+  auto* imp = app.add_subcommand("import", "Store a task model from its JSON form as a new task model");
+  imp->add_option("file", o->file, "Task model JSON (e.g. datasets/examples/appendix_c_instruction1.json)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  addDbOption(*imp, *o);
+  imp->callback([o] {
+    const TaskModel m = taskModelFromJson(srp::core::readJsonFile(o->file), o->file);
+    auto db = TaskDatabase::open(o->db);
+    const int id = TaskModelStore(db).write(m);
+    std::cout << "stored '" << m.info.name << "' as task model " << id << " in '" << o->db << "'\n";
+  });
+
+  auto* del = app.add_subcommand("delete", "Delete a task model and all its rows");
+  del->add_option("id", o->id, "TaskModelId")->required();
+  addDbOption(*del, *o);
+  del->callback([o] {
+    auto db = TaskDatabase::open(o->db);
+    TaskModelStore(db).remove(o->id);
+    std::cout << "deleted task model " << o->id << "\n";
+  });
+}
+
+const srp::app::CommandRegistrar kDb{"db", "Create, inspect, import and export task databases", 90, setupDb};
+
+}  // namespace

@@ -1,0 +1,70 @@
+#pragma once
+/// \file ObjectCatalogue.h
+/// \brief The knowledge base of object classes (thesis ch. 6.3): what the robot
+/// can recognise and handle, read from `datasets/kb/catalogue.json`.
+///
+/// Object frame of every class: origin at the centre of the bottom face of the
+/// bounding box, z up (so an object resting on a surface at height h has its
+/// origin at z = h), x along the longest horizontal side. Metres, kilograms.
+/// A user adds a part by adding a mesh and a catalogue entry.
+///
+/// \code{.json}
+/// {"schema_version": 1,
+///  "classes": [{"name": "blue box", "class_id": 1, "noun": "box", "color_name": "blue",
+///               "kind": "container", "rgb": [0.15, 0.3, 0.8], "dimensions_m": [0.2, 0.16, 0.06],
+///               "wall_thickness_m": 0.005, "mass_kg": 0.3, "mesh": "meshes/blue_box.stl",
+///               "grasp_axis": [0, 1, 0], "shape": "open_box"}]}
+/// \endcode
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace srp::core {
+
+enum class ObjectKind { Part, Container };
+
+/// One class of the knowledge base.
+struct ObjectClass {
+  std::string name;        ///< unique, e.g. "cuboid", "blue box"
+  int classId = -1;        ///< as in the task database (Appendix C: 0 gray box, 1 blue box, ...)
+  std::string noun;        ///< head noun in instructions, e.g. "box" for "blue box"
+  std::string colorName;   ///< e.g. "blue"; empty when the colour does not identify it
+  ObjectKind kind = ObjectKind::Part;
+  std::string shape;       ///< generator shape: "cuboid", "star", "parallelogram", "octagon", "open_box", ...
+  Eigen::Vector3d rgb = Eigen::Vector3d::Constant(0.5);      ///< linear RGB in [0, 1]
+  Eigen::Vector3d dimensions_m = Eigen::Vector3d::Zero();   ///< bounding box x, y, z
+  double wallThickness_m = 0.0;                             ///< containers only
+  double mass_kg = 0.0;
+  std::string meshPath;    ///< absolute (resolved against the catalogue's folder); may not exist yet
+  Eigen::Vector3d graspAxis_object = Eigen::Vector3d::UnitY();  ///< gripper closing direction
+};
+
+/// The catalogue: classes by name and id, loaded from JSON with errors naming the field.
+class ObjectCatalogue {
+ public:
+  ObjectCatalogue() = default;
+  explicit ObjectCatalogue(std::vector<ObjectClass> classes);
+
+  /// Loads a catalogue file; throws FileError/InvalidInputError naming the file and field.
+  static ObjectCatalogue load(const std::string& path);
+  /// The catalogue bundled with the repo (datasets/kb/catalogue.json).
+  static std::string defaultPath();
+
+  const std::vector<ObjectClass>& classes() const { return classes_; }
+  const ObjectClass* find(const std::string& name) const;
+  const ObjectClass* findById(int classId) const;
+  /// Grounds an instruction's noun phrase: exact name, then noun + colour, then
+  /// noun alone when exactly one class has it. nullptr when nothing fits.
+  const ObjectClass* ground(const std::string& noun, const std::string& color = "") const;
+  /// Like find() but throws InvalidInputError listing the known names.
+  const ObjectClass& at(const std::string& name) const;
+
+ private:
+  std::vector<ObjectClass> classes_;
+};
+
+std::string toString(ObjectKind kind);
+
+}  // namespace srp::core

@@ -1,0 +1,106 @@
+#include "srp/core/ObjectCatalogue.h"
+
+#include <filesystem>
+#include <set>
+
+#include "srp/core/Error.h"
+#include "srp/core/Json.h"
+
+namespace srp::core {
+namespace {
+
+Eigen::Vector3d vec3(const nlohmann::json& j, const std::string& context) {
+  if (!j.is_array() || j.size() != 3)
+    throw InvalidInputError(context + ": expected an array of 3 numbers");
+  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+}
+
+}  // namespace
+
+ObjectCatalogue::ObjectCatalogue(std::vector<ObjectClass> classes) : classes_(std::move(classes)) {
+  std::set<std::string> names;
+  std::set<int> ids;
+  for (const auto& c : classes_) {
+    if (!names.insert(c.name).second) throw InvalidInputError("catalogue: duplicate class name '" + c.name + "'");
+    if (!ids.insert(c.classId).second)
+      throw InvalidInputError("catalogue: duplicate class_id " + std::to_string(c.classId) + " ('" + c.name + "')");
+  }
+}
+
+std::string ObjectCatalogue::defaultPath() { return std::string(SRP_DATASETS_DIR) + "/kb/catalogue.json"; }
+
+ObjectCatalogue ObjectCatalogue::load(const std::string& path) {
+  const nlohmann::json j = readJsonFile(path);
+  const int version = requireField(j, "schema_version", path).get<int>();
+  if (version != 1)
+    throw FileError(path, "catalogue schema_version " + std::to_string(version) +
+                              " is not supported by this build (expected 1)");
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  std::vector<ObjectClass> classes;
+  try {
+    for (const auto& e : requireField(j, "classes", path)) {
+      ObjectClass c;
+      const std::string ctx0 = path + ": class";
+      c.name = requireField(e, "name", ctx0).get<std::string>();
+      const std::string ctx = path + ": class '" + c.name + "'";
+      c.classId = requireField(e, "class_id", ctx).get<int>();
+      c.noun = e.value("noun", c.name);
+      c.colorName = e.value("color_name", "");
+      const std::string kind = requireField(e, "kind", ctx).get<std::string>();
+      if (kind == "part") c.kind = ObjectKind::Part;
+      else if (kind == "container") c.kind = ObjectKind::Container;
+      else throw InvalidInputError(ctx + ": field 'kind' must be \"part\" or \"container\", not \"" + kind + "\"");
+      c.shape = requireField(e, "shape", ctx).get<std::string>();
+      c.rgb = vec3(requireField(e, "rgb", ctx), ctx + " field 'rgb'");
+      c.dimensions_m = vec3(requireField(e, "dimensions_m", ctx), ctx + " field 'dimensions_m'");
+      if ((c.dimensions_m.array() <= 0.0).any())
+        throw InvalidInputError(ctx + ": field 'dimensions_m' must be positive");
+      c.wallThickness_m = e.value("wall_thickness_m", 0.0);
+      c.mass_kg = requireField(e, "mass_kg", ctx).get<double>();
+      if (e.contains("mesh")) c.meshPath = (folder / e.at("mesh").get<std::string>()).lexically_normal().string();
+      if (e.contains("grasp_axis")) c.graspAxis_object = vec3(e.at("grasp_axis"), ctx + " field 'grasp_axis'").normalized();
+      classes.push_back(std::move(c));
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw FileError(path, std::string("bad catalogue entry: ") + e.what());
+  }
+  return ObjectCatalogue(std::move(classes));
+}
+
+const ObjectClass* ObjectCatalogue::find(const std::string& name) const {
+  for (const auto& c : classes_)
+    if (c.name == name) return &c;
+  return nullptr;
+}
+
+const ObjectClass* ObjectCatalogue::findById(int classId) const {
+  for (const auto& c : classes_)
+    if (c.classId == classId) return &c;
+  return nullptr;
+}
+
+const ObjectClass* ObjectCatalogue::ground(const std::string& noun, const std::string& color) const {
+  if (!color.empty())
+    if (const ObjectClass* c = find(color + " " + noun)) return c;
+  if (const ObjectClass* c = find(noun)) return c;
+  const ObjectClass* match = nullptr;
+  int count = 0;
+  for (const auto& c : classes_) {
+    if (c.noun != noun) continue;
+    if (!color.empty() && c.colorName == color) return &c;
+    match = &c;
+    ++count;
+  }
+  return (count == 1 && color.empty()) ? match : nullptr;
+}
+
+const ObjectClass& ObjectCatalogue::at(const std::string& name) const {
+  if (const ObjectClass* c = find(name)) return *c;
+  std::string known;
+  for (const auto& c : classes_) known += (known.empty() ? "" : ", ") + c.name;
+  throw InvalidInputError("unknown object class '" + name + "' (the catalogue knows: " + known + ")");
+}
+
+std::string toString(ObjectKind kind) { return kind == ObjectKind::Part ? "part" : "container"; }
+
+}  // namespace srp::core

@@ -1,0 +1,124 @@
+#include "srp/core/Scene.h"
+
+#include <filesystem>
+#include <set>
+
+#include "srp/core/Error.h"
+#include "srp/core/Json.h"
+
+namespace srp::core {
+namespace {
+
+Eigen::Vector3d vec3(const nlohmann::json& j, const std::string& context) {
+  if (!j.is_array() || j.size() != 3) throw InvalidInputError(context + ": expected 3 numbers");
+  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+}
+
+}  // namespace
+
+const SceneObject* Scene::findObject(const std::string& id) const {
+  for (const auto& o : objects)
+    if (o.id == id) return &o;
+  return nullptr;
+}
+
+Scene Scene::load(const std::string& path) {
+  const nlohmann::json j = readJsonFile(path);
+  return fromJson(j, path, std::filesystem::path(path).parent_path().string());
+}
+
+Scene Scene::fromJson(const nlohmann::json& j, const std::string& ctx, const std::string& baseFolder) {
+  Scene s;
+  try {
+    const int version = requireField(j, "schema_version", ctx).get<int>();
+    if (version != 1)
+      throw InvalidInputError(ctx + ": scene schema_version " + std::to_string(version) +
+                              " is not supported by this build (expected 1)");
+    s.name = j.value("name", s.name);
+    s.seed = j.value("seed", 0);
+    s.cataloguePath = j.contains("catalogue")
+                          ? (std::filesystem::path(baseFolder) / j.at("catalogue").get<std::string>())
+                                .lexically_normal()
+                                .string()
+                          : ObjectCatalogue::defaultPath();
+    const auto& table = requireField(j, "table", ctx);
+    const auto& size = requireField(table, "size_m", ctx + ": table");
+    if (!size.is_array() || size.size() != 2 || !(size[0].get<double>() > 0) || !(size[1].get<double>() > 0))
+      throw InvalidInputError(ctx + ": field 'table.size_m' must be two positive numbers");
+    s.tableSize_m = {size[0].get<double>(), size[1].get<double>()};
+    if (table.contains("rgb")) s.tableRgb = vec3(table.at("rgb"), ctx + ": field 'table.rgb'");
+
+    const auto& camera = requireField(j, "camera", ctx);
+    s.intrinsics = requireField(camera, "intrinsics", ctx + ": camera").get<CameraIntrinsics>();
+    s.intrinsics.validate(ctx + ": camera.intrinsics");
+    s.fps = camera.value("fps", 30.0);
+    if (!(s.fps > 0)) throw InvalidInputError(ctx + ": field 'camera.fps' must be positive");
+    s.X_world_camera = poseFromJson(requireField(camera, "X_world_camera", ctx + ": camera"),
+                                    ctx + ": camera.X_world_camera");
+    const auto& robot = requireField(j, "robot", ctx);
+    s.X_world_base = poseFromJson(requireField(robot, "X_world_base", ctx + ": robot"), ctx + ": robot.X_world_base");
+    if (j.contains("lighting")) {
+      const auto& l = j.at("lighting");
+      s.lighting.ambient = l.value("ambient", s.lighting.ambient);
+      s.lighting.diffuse = l.value("diffuse", s.lighting.diffuse);
+      if (l.contains("direction")) s.lighting.direction_world = vec3(l.at("direction"), ctx + ": field 'lighting.direction'");
+    }
+    const auto& objects = requireField(j, "objects", ctx);
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+      const std::string octx = ctx + ": objects[" + std::to_string(i) + "]";
+      SceneObject o;
+      o.id = requireField(objects[i], "id", octx).get<std::string>();
+      o.className = requireField(objects[i], "class", octx + " ('" + o.id + "')").get<std::string>();
+      o.X_world_object = poseFromJson(requireField(objects[i], "X_world_object", octx + " ('" + o.id + "')"),
+                                      octx + " ('" + o.id + "').X_world_object");
+      s.objects.push_back(std::move(o));
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw InvalidInputError(ctx + ": bad scene field (" + e.what() + ")");
+  }
+  return s;
+}
+
+nlohmann::json Scene::toJson() const {
+  nlohmann::json objs = nlohmann::json::array();
+  for (const auto& o : objects)
+    objs.push_back({{"id", o.id}, {"class", o.className}, {"X_world_object", poseToJson(o.X_world_object)}});
+  const auto& d = lighting.direction_world;
+  return {{"schema_version", 1},
+          {"name", name},
+          {"seed", seed},
+          {"catalogue", cataloguePath},
+          {"table", {{"size_m", {tableSize_m.x(), tableSize_m.y()}}, {"rgb", {tableRgb.x(), tableRgb.y(), tableRgb.z()}}}},
+          {"camera", {{"intrinsics", intrinsics}, {"fps", fps}, {"X_world_camera", poseToJson(X_world_camera)}}},
+          {"robot", {{"X_world_base", poseToJson(X_world_base)}}},
+          {"lighting", {{"ambient", lighting.ambient}, {"diffuse", lighting.diffuse}, {"direction", {d.x(), d.y(), d.z()}}}},
+          {"objects", objs}};
+}
+
+void Scene::validate(const ObjectCatalogue& catalogue) const {
+  std::set<std::string> ids;
+  for (const auto& o : objects) {
+    if (!ids.insert(o.id).second) throw InvalidInputError("scene '" + name + "': duplicate object id '" + o.id + "'");
+    const ObjectClass* cls = catalogue.find(o.className);
+    if (!cls) {
+      std::string known;
+      for (const auto& c : catalogue.classes()) known += (known.empty() ? "" : ", ") + c.name;
+      throw InvalidInputError("scene '" + name + "': object '" + o.id + "' has unknown class '" + o.className +
+                              "' (field 'class'; the catalogue knows: " + known + ")");
+    }
+    // Every corner of the footprint must lie on the table top.
+    const Eigen::Vector3d half(cls->dimensions_m.x() / 2, cls->dimensions_m.y() / 2, 0.0);
+    for (int sx : {-1, 1})
+      for (int sy : {-1, 1}) {
+        const Eigen::Vector3d corner = o.X_world_object * Eigen::Vector3d(sx * half.x(), sy * half.y(), 0.0);
+        if (std::abs(corner.x()) > tableSize_m.x() / 2 + 1e-9 || std::abs(corner.y()) > tableSize_m.y() / 2 + 1e-9)
+          throw InvalidInputError("scene '" + name + "': object '" + o.id +
+                                  "' lies outside the table (field 'X_world_object'; the table spans +-" +
+                                  std::to_string(tableSize_m.x() / 2) + " x +-" + std::to_string(tableSize_m.y() / 2) + " m)");
+      }
+    if (o.X_world_object.translation().z() < -1e-9)
+      throw InvalidInputError("scene '" + name + "': object '" + o.id + "' is below the table top (field 'X_world_object')");
+  }
+}
+
+}  // namespace srp::core

@@ -1,0 +1,54 @@
+#pragma once
+/// \file RawlogReader.h
+/// \brief Reads RGB-D frames from an MRPT rawlog (CObservation3DRangeScan),
+/// whatever wrote it: srp's writer, MRPT's grabbers, or MRPT's sample datasets.
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "srp/rawlog/RgbdFrame.h"
+
+namespace srp::rawlog {
+
+/// Streaming reader. Objects other than CObservation3DRangeScan (and scans
+/// without depth) are skipped and counted. A damaged file (truncated, corrupt)
+/// ends the stream early: next() returns nullopt and damage() says after which
+/// frame and why, so the frames before the damage stay usable.
+///
+/// Colour: the intensity image (grey images are converted to BGR); when the
+/// scan has no intensity image, colour is left empty. Depth: rangeImage times
+/// rangeUnits, registered to colour when both cameras have the same size (the
+/// usual case); otherwise the depth camera's intrinsics are reported and the
+/// colour image is resized to the depth size.
+class RawlogReader {
+ public:
+  /// Opens the file; throws FileError naming it when missing or unreadable.
+  explicit RawlogReader(const std::string& path);
+  ~RawlogReader();
+  RawlogReader(const RawlogReader&) = delete;
+  RawlogReader& operator=(const RawlogReader&) = delete;
+
+  /// The next RGB-D frame, or nullopt at the end of the file (or at damage).
+  std::optional<RgbdFrame> next();
+
+  /// Set when reading stopped at a damaged object: "after frame N: <reason>".
+  const std::optional<std::string>& damage() const { return damage_; }
+  int framesRead() const { return framesRead_; }
+  int objectsSkipped() const { return objectsSkipped_; }
+  const std::string& path() const { return path_; }
+
+  /// Reads all frames; throws FileError when the file is damaged, has no RGB-D
+  /// frames, or (requireDepth) a frame without depth.
+  static std::vector<RgbdFrame> readAll(const std::string& path);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::string path_;
+  std::optional<std::string> damage_;
+  int framesRead_ = 0;
+  int objectsSkipped_ = 0;
+};
+
+}  // namespace srp::rawlog

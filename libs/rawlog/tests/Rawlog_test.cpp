@@ -1,0 +1,112 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "srp/core/Error.h"
+#include "srp/rawlog/RawlogReader.h"
+#include "srp/rawlog/RawlogWriter.h"
+
+using namespace srp::rawlog;
+
+namespace {
+constexpr double kDepthUnit_m = 1e-4;
+constexpr double kDepthTol_m = kDepthUnit_m / 2 + 1e-7;  // quantisation to the stored unit
+const srp::core::CameraIntrinsics kK{525.0, 526.0, 159.5, 119.5, 320, 240};
+
+RgbdFrame makeFrame(int i) {
+  RgbdFrame f;
+  f.index = i;
+  f.t_s = 1700000000.0 + i / 30.0;
+  f.intrinsics = kK;
+  f.colour_bgr8 = cv::Mat(kK.height_px, kK.width_px, CV_8UC3);
+  cv::RNG rng(1234 + i);  // the same frame every call
+  rng.fill(f.colour_bgr8, cv::RNG::UNIFORM, cv::Scalar::all(0), cv::Scalar::all(256));
+  f.depth_m = cv::Mat(kK.height_px, kK.width_px, CV_32FC1);
+  for (int r = 0; r < f.depth_m.rows; ++r)
+    for (int c = 0; c < f.depth_m.cols; ++c)
+      f.depth_m.at<float>(r, c) = (c % 17 == 0) ? 0.0f : 0.4f + 0.001f * r + 0.0003f * c + 0.01f * i;
+  return f;
+}
+
+std::string tempPath(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("srp_rawlog_test_" + name)).string();
+}
+}  // namespace
+
+TEST(Rawlog, RoundTripKeepsIntrinsicsColourAndDepth) {
+  const std::string path = tempPath("roundtrip.rawlog");
+  {
+    RawlogWriter writer(path, kDepthUnit_m);
+    for (int i = 0; i < 3; ++i) writer.write(makeFrame(i));
+    EXPECT_EQ(writer.framesWritten(), 3);
+  }
+  const auto frames = RawlogReader::readAll(path);
+  ASSERT_EQ(frames.size(), 3u);
+  for (int i = 0; i < 3; ++i) {
+    const RgbdFrame expected = makeFrame(i);
+    const RgbdFrame& got = frames[i];
+    EXPECT_EQ(got.index, i);
+    EXPECT_EQ(got.intrinsics, kK);
+    EXPECT_NEAR(got.t_s, expected.t_s, 1e-6);
+    EXPECT_EQ(cv::norm(got.colour_bgr8, expected.colour_bgr8, cv::NORM_INF), 0.0) << "colour is lossless";
+    double maxErr = 0.0;
+    for (int r = 0; r < got.depth_m.rows; ++r)
+      for (int c = 0; c < got.depth_m.cols; ++c) {
+        const float e = expected.depth_m.at<float>(r, c), g = got.depth_m.at<float>(r, c);
+        if (e == 0.0f) ASSERT_EQ(g, 0.0f) << "invalid depth stays invalid";
+        maxErr = std::max(maxErr, static_cast<double>(std::abs(e - g)));
+      }
+    EXPECT_LT(maxErr, kDepthTol_m);
+  }
+  std::filesystem::remove(path);
+}
+
+TEST(Rawlog, TruncatedFileKeepsFramesBeforeTheDamage) {
+  const std::string path = tempPath("truncated.rawlog");
+  {
+    RawlogWriter writer(path, kDepthUnit_m, 0);
+    for (int i = 0; i < 4; ++i) writer.write(makeFrame(i));
+  }
+  const auto size = std::filesystem::file_size(path);
+  std::filesystem::resize_file(path, size * 5 / 8);  // inside the third frame
+  RawlogReader reader(path);
+  int n = 0;
+  while (reader.next()) ++n;
+  EXPECT_EQ(n, 2);
+  ASSERT_TRUE(reader.damage().has_value());
+  EXPECT_NE(reader.damage()->find("after frame 2"), std::string::npos) << *reader.damage();
+  EXPECT_THROW(RawlogReader::readAll(path), srp::core::FileError);
+  std::filesystem::remove(path);
+}
+
+TEST(Rawlog, BadInputGivesClearErrors) {
+  EXPECT_THROW(RawlogReader("/nonexistent/demo.rawlog"), srp::core::FileError);
+  const std::string junk = tempPath("junk.rawlog");
+  std::ofstream(junk) << "this is not a rawlog";
+  EXPECT_THROW(RawlogReader::readAll(junk), srp::core::FileError);
+  std::filesystem::remove(junk);
+  RgbdFrame f = makeFrame(0);
+  f.depth_m = cv::Mat(100, 100, CV_32FC1, cv::Scalar(1.0f));
+  const std::string path = tempPath("bad.rawlog");
+  RawlogWriter writer(path);
+  try {
+    writer.write(f);
+    ADD_FAILURE() << "mismatched depth size accepted";
+  } catch (const srp::core::InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("100x100"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(path);
+}
+
+TEST(Rawlog, ReadsMrptSampleDataset) {
+  const std::string path = "/usr/share/mrpt/datasets/tests_rgbd.rawlog";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "mrpt-common not installed";
+  RawlogReader reader(path);
+  auto f = reader.next();
+  ASSERT_TRUE(f.has_value());
+  EXPECT_EQ(f->depth_m.cols, 640);
+  EXPECT_NEAR(f->intrinsics.fx_px, 572.883, 0.01);  // depth camera, per the dataset README
+  const int valid = cv::countNonZero(f->depth_m > 0.0f);
+  EXPECT_EQ(valid, 273225);
+}

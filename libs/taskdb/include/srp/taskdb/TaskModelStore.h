@@ -1,0 +1,37 @@
+#pragma once
+/// \file TaskModelStore.h
+/// \brief Writes and reads whole task models atomically.
+
+#include <functional>
+#include <vector>
+
+#include "srp/taskdb/TaskDatabase.h"
+#include "srp/taskdb/TaskModel.h"
+
+namespace srp::taskdb {
+
+/// Whole task models in and out of a TaskDatabase, each write one transaction:
+/// a kill or an exception in the middle leaves the database exactly as it was.
+class TaskModelStore {
+ public:
+  /// Called during write() with (rows written, rows in total); may throw to abort.
+  using Progress = std::function<void(std::size_t done, std::size_t total)>;
+
+  explicit TaskModelStore(TaskDatabase& db) : db_(db) {}
+
+  /// Writes a new task model and returns its TaskModelId. The version is
+  /// 1 + the latest version of the same name (model.info.version is ignored).
+  int write(const TaskModel& model, const Progress& progress = {});
+  /// Throws InvalidInputError when there is no such task model.
+  TaskModel read(int taskModelId) const;
+  std::vector<TaskModelInfo> list() const;
+  /// Throws InvalidInputError when there is no such task model.
+  void remove(int taskModelId);
+  /// Replaces the Skills rows of a task model in one transaction.
+  void replaceSkills(int taskModelId, const std::vector<SkillRow>& skills);
+
+ private:
+  TaskDatabase& db_;
+};
+
+}  // namespace srp::taskdb

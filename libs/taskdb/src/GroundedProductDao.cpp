@@ -1,0 +1,72 @@
+#include "srp/taskdb/GroundedProductDao.h"
+
+#include "SqlUtil.h"
+
+namespace srp::taskdb {
+using namespace detail;
+
+namespace {
+constexpr const char* kSelect =
+    "SELECT ClassId, ObjectName, SourceLocationId, TargetLocationId, Color FROM GroundedProducts";
+
+GroundedProductRow readRow(const SQLite::Statement& st) {
+  GroundedProductRow r;
+  r.classId = st.getColumn(0).getInt();
+  r.objectName = st.getColumn(1).getString();
+  r.sourceLocationId = optionalInt(st.getColumn(2));
+  r.targetLocationId = optionalInt(st.getColumn(3));
+  r.color = optionalText(st.getColumn(4));
+  return r;
+}
+}  // namespace
+
+void GroundedProductDao::add(int tm, const GroundedProductRow& r) {
+  SQLite::Statement st(db_.connection(),
+                       "INSERT INTO GroundedProducts (TaskModelId, ClassId, ObjectName, SourceLocationId, "
+                       "TargetLocationId, Color) VALUES (?, ?, ?, ?, ?, ?)");
+  st.bind(1, tm);
+  st.bind(2, r.classId);
+  st.bind(3, r.objectName);
+  bindOptional(st, 4, r.sourceLocationId);
+  bindOptional(st, 5, r.targetLocationId);
+  bindOptional(st, 6, r.color);
+  st.exec();
+}
+
+std::optional<GroundedProductRow> GroundedProductDao::get(int tm, int classId) const {
+  SQLite::Statement st(db_.connection(), std::string(kSelect) + " WHERE TaskModelId = ? AND ClassId = ?");
+  st.bind(1, tm);
+  st.bind(2, classId);
+  if (!st.executeStep()) return std::nullopt;
+  return readRow(st);
+}
+
+void GroundedProductDao::update(int tm, const GroundedProductRow& r) {
+  SQLite::Statement st(db_.connection(),
+                       "UPDATE GroundedProducts SET ObjectName = ?, SourceLocationId = ?, TargetLocationId = ?, "
+                       "Color = ? WHERE TaskModelId = ? AND ClassId = ?");
+  st.bind(1, r.objectName);
+  bindOptional(st, 2, r.sourceLocationId);
+  bindOptional(st, 3, r.targetLocationId);
+  bindOptional(st, 4, r.color);
+  st.bind(5, tm);
+  st.bind(6, r.classId);
+  execExpectingRow(st, "no grounded product " + std::to_string(r.classId) + " in task model " + std::to_string(tm));
+}
+
+bool GroundedProductDao::remove(int tm, int classId) {
+  SQLite::Statement st(db_.connection(), "DELETE FROM GroundedProducts WHERE TaskModelId = ? AND ClassId = ?");
+  st.bind(1, tm);
+  st.bind(2, classId);
+  return st.exec() > 0;
+}
+
+std::vector<GroundedProductRow> GroundedProductDao::list(int tm) const {
+  SQLite::Statement st(db_.connection(), std::string(kSelect) + " WHERE TaskModelId = ? ORDER BY ClassId");
+  st.bind(1, tm);
+  std::vector<GroundedProductRow> rows;
+  while (st.executeStep()) rows.push_back(readRow(st));
+  return rows;
+}
+
+}  // namespace srp::taskdb

@@ -1,0 +1,89 @@
+#include "srp/taskdb/HandPositionDao.h"
+
+#include "SqlUtil.h"
+
+namespace srp::taskdb {
+using namespace detail;
+
+namespace {
+constexpr const char* kSelect = "SELECT TimeId, X, Y, Z, Detected FROM HandPositions";
+
+HandPositionRow readRow(const SQLite::Statement& st) {
+  return {st.getColumn(0).getInt(),
+          {st.getColumn(1).getDouble(), st.getColumn(2).getDouble(), st.getColumn(3).getDouble()},
+          st.getColumn(4).getInt() != 0};
+}
+
+void checkFinite(const HandPositionRow& r) {
+  if (!r.p_m.allFinite())
+    throw core::InvalidInputError("hand position at TimeId " + std::to_string(r.timeId) +
+                                  " has a non-finite value (NaN/inf)");
+}
+}  // namespace
+
+void HandPositionDao::add(int tm, const HandPositionRow& r) { addMany(tm, {r}); }
+
+void HandPositionDao::addMany(int tm, const std::vector<HandPositionRow>& rows) {
+  SQLite::Statement st(db_.connection(),
+                       "INSERT INTO HandPositions (TimeId, TaskModelId, X, Y, Z, Detected) VALUES (?, ?, ?, ?, ?, ?)");
+  for (const auto& r : rows) {
+    checkFinite(r);
+    st.reset();
+    st.bind(1, r.timeId);
+    st.bind(2, tm);
+    st.bind(3, r.p_m.x());
+    st.bind(4, r.p_m.y());
+    st.bind(5, r.p_m.z());
+    st.bind(6, r.detected ? 1 : 0);
+    st.exec();
+  }
+}
+
+std::optional<HandPositionRow> HandPositionDao::get(int tm, int timeId) const {
+  SQLite::Statement st(db_.connection(), std::string(kSelect) + " WHERE TaskModelId = ? AND TimeId = ?");
+  st.bind(1, tm);
+  st.bind(2, timeId);
+  if (!st.executeStep()) return std::nullopt;
+  return readRow(st);
+}
+
+void HandPositionDao::update(int tm, const HandPositionRow& r) {
+  checkFinite(r);
+  SQLite::Statement st(db_.connection(),
+                       "UPDATE HandPositions SET X = ?, Y = ?, Z = ?, Detected = ? WHERE TaskModelId = ? AND TimeId = ?");
+  st.bind(1, r.p_m.x());
+  st.bind(2, r.p_m.y());
+  st.bind(3, r.p_m.z());
+  st.bind(4, r.detected ? 1 : 0);
+  st.bind(5, tm);
+  st.bind(6, r.timeId);
+  execExpectingRow(st, "no hand position at TimeId " + std::to_string(r.timeId) + " in task model " + std::to_string(tm));
+}
+
+bool HandPositionDao::remove(int tm, int timeId) {
+  SQLite::Statement st(db_.connection(), "DELETE FROM HandPositions WHERE TaskModelId = ? AND TimeId = ?");
+  st.bind(1, tm);
+  st.bind(2, timeId);
+  return st.exec() > 0;
+}
+
+std::vector<HandPositionRow> HandPositionDao::inFrameRange(int tm, int first, int last) const {
+  SQLite::Statement st(db_.connection(),
+                       std::string(kSelect) + " WHERE TaskModelId = ? AND TimeId BETWEEN ? AND ? ORDER BY TimeId");
+  st.bind(1, tm);
+  st.bind(2, first);
+  st.bind(3, last);
+  std::vector<HandPositionRow> rows;
+  while (st.executeStep()) rows.push_back(readRow(st));
+  return rows;
+}
+
+std::vector<HandPositionRow> HandPositionDao::list(int tm) const {
+  SQLite::Statement st(db_.connection(), std::string(kSelect) + " WHERE TaskModelId = ? ORDER BY TimeId");
+  st.bind(1, tm);
+  std::vector<HandPositionRow> rows;
+  while (st.executeStep()) rows.push_back(readRow(st));
+  return rows;
+}
+
+}  // namespace srp::taskdb

@@ -1,0 +1,80 @@
+#include "srp/taskdb/ProductDao.h"
+
+#include "SqlUtil.h"
+
+namespace srp::taskdb {
+using namespace detail;
+
+namespace {
+constexpr const char* kColumns =
+    "ObjectId, ObjectName, SourceLocationId, TargetLocationId, Color, TokenId, SentenceId, ClassId";
+
+void bindRow(SQLite::Statement& st, int first, const ProductRow& r) {
+  st.bind(first, r.objectName);
+  bindOptional(st, first + 1, r.sourceLocationId);
+  bindOptional(st, first + 2, r.targetLocationId);
+  bindOptional(st, first + 3, r.color);
+  bindOptional(st, first + 4, r.tokenId);
+  bindOptional(st, first + 5, r.sentenceId);
+  bindOptional(st, first + 6, r.classId);
+}
+
+ProductRow readRow(const SQLite::Statement& st) {
+  ProductRow r;
+  r.objectId = st.getColumn(0).getInt();
+  r.objectName = st.getColumn(1).getString();
+  r.sourceLocationId = optionalInt(st.getColumn(2));
+  r.targetLocationId = optionalInt(st.getColumn(3));
+  r.color = optionalText(st.getColumn(4));
+  r.tokenId = optionalInt(st.getColumn(5));
+  r.sentenceId = optionalInt(st.getColumn(6));
+  r.classId = optionalInt(st.getColumn(7));
+  return r;
+}
+}  // namespace
+
+void ProductDao::add(int tm, const ProductRow& r) {
+  SQLite::Statement st(db_.connection(), std::string("INSERT INTO Products (TaskModelId, ") + kColumns +
+                                             ") VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  st.bind(1, tm);
+  st.bind(2, r.objectId);
+  bindRow(st, 3, r);
+  st.exec();
+}
+
+std::optional<ProductRow> ProductDao::get(int tm, int objectId) const {
+  SQLite::Statement st(db_.connection(), std::string("SELECT ") + kColumns +
+                                             " FROM Products WHERE TaskModelId = ? AND ObjectId = ?");
+  st.bind(1, tm);
+  st.bind(2, objectId);
+  if (!st.executeStep()) return std::nullopt;
+  return readRow(st);
+}
+
+void ProductDao::update(int tm, const ProductRow& r) {
+  SQLite::Statement st(db_.connection(),
+                       "UPDATE Products SET ObjectName = ?, SourceLocationId = ?, TargetLocationId = ?, Color = ?, "
+                       "TokenId = ?, SentenceId = ?, ClassId = ? WHERE TaskModelId = ? AND ObjectId = ?");
+  bindRow(st, 1, r);
+  st.bind(8, tm);
+  st.bind(9, r.objectId);
+  execExpectingRow(st, "no product " + std::to_string(r.objectId) + " in task model " + std::to_string(tm));
+}
+
+bool ProductDao::remove(int tm, int objectId) {
+  SQLite::Statement st(db_.connection(), "DELETE FROM Products WHERE TaskModelId = ? AND ObjectId = ?");
+  st.bind(1, tm);
+  st.bind(2, objectId);
+  return st.exec() > 0;
+}
+
+std::vector<ProductRow> ProductDao::list(int tm) const {
+  SQLite::Statement st(db_.connection(), std::string("SELECT ") + kColumns +
+                                             " FROM Products WHERE TaskModelId = ? ORDER BY ObjectId");
+  st.bind(1, tm);
+  std::vector<ProductRow> rows;
+  while (st.executeStep()) rows.push_back(readRow(st));
+  return rows;
+}
+
+}  // namespace srp::taskdb

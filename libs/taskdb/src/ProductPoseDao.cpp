@@ -1,0 +1,125 @@
+#include "srp/taskdb/ProductPoseDao.h"
+
+#include "SqlUtil.h"
+
+namespace srp::taskdb {
+using namespace detail;
+
+namespace {
+constexpr const char* kSelect =
+    "SELECT ClassId, TimeId, X, Y, Z, QW, QX, QY, QZ, Reach, Grasp, Move, Release, Detected, Confidence "
+    "FROM ProductPose";
+constexpr const char* kInsert =
+    "INSERT INTO ProductPose (TaskModelId, ClassId, TimeId, X, Y, Z, QW, QX, QY, QZ, Reach, Grasp, Move, Release, "
+    "Detected, Confidence) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)";
+
+// Binds the value columns X..Confidence starting at `first`.
+void bindValues(SQLite::Statement& st, int first, const ProductPoseRow& r) {
+  const double v[] = {r.p_m.x(), r.p_m.y(), r.p_m.z(), r.q.w(), r.q.x(), r.q.y(), r.q.z()};
+  for (int i = 0; i < 7; ++i) st.bind(first + i, v[i]);
+  const bool flags[] = {r.reach, r.grasp, r.move, r.release, r.detected};
+  for (int i = 0; i < 5; ++i) st.bind(first + 7 + i, flags[i] ? 1 : 0);
+  bindOptional(st, first + 12, r.confidence);
+}
+
+ProductPoseRow readRow(const SQLite::Statement& st) {
+  ProductPoseRow r;
+  r.classId = st.getColumn(0).getInt();
+  r.timeId = st.getColumn(1).getInt();
+  r.p_m = {st.getColumn(2).getDouble(), st.getColumn(3).getDouble(), st.getColumn(4).getDouble()};
+  r.q = Eigen::Quaterniond(st.getColumn(5).getDouble(), st.getColumn(6).getDouble(), st.getColumn(7).getDouble(),
+                           st.getColumn(8).getDouble());
+  r.reach = st.getColumn(9).getInt() != 0;
+  r.grasp = st.getColumn(10).getInt() != 0;
+  r.move = st.getColumn(11).getInt() != 0;
+  r.release = st.getColumn(12).getInt() != 0;
+  r.detected = st.getColumn(13).getInt() != 0;
+  r.confidence = optionalDouble(st.getColumn(14));
+  return r;
+}
+
+void checkFinite(const ProductPoseRow& r) {
+  if (!r.p_m.allFinite() || !r.q.coeffs().allFinite())
+    throw core::InvalidInputError("object pose of class " + std::to_string(r.classId) + " at TimeId " +
+                                  std::to_string(r.timeId) + " has a non-finite value (NaN/inf)");
+}
+}  // namespace
+
+void ProductPoseDao::add(int tm, const ProductPoseRow& r) { addMany(tm, {r}); }
+
+void ProductPoseDao::addMany(int tm, const std::vector<ProductPoseRow>& rows) {
+  SQLite::Statement st(db_.connection(), kInsert);
+  for (const auto& r : rows) {
+    checkFinite(r);
+    st.reset();
+    st.bind(1, tm);
+    st.bind(2, r.classId);
+    st.bind(3, r.timeId);
+    bindValues(st, 4, r);
+    st.exec();
+  }
+}
+
+std::optional<ProductPoseRow> ProductPoseDao::get(int tm, int classId, int timeId) const {
+  SQLite::Statement st(db_.connection(), std::string(kSelect) + " WHERE TaskModelId = ? AND ClassId = ? AND TimeId = ?");
+  st.bind(1, tm);
+  st.bind(2, classId);
+  st.bind(3, timeId);
+  if (!st.executeStep()) return std::nullopt;
+  return readRow(st);
+}
+
+void ProductPoseDao::update(int tm, const ProductPoseRow& r) {
+  checkFinite(r);
+  SQLite::Statement st(db_.connection(),
+                       "UPDATE ProductPose SET X = ?, Y = ?, Z = ?, QW = ?, QX = ?, QY = ?, QZ = ?, Reach = ?, "
+                       "Grasp = ?, Move = ?, Release = ?, Detected = ?, Confidence = ? "
+                       "WHERE TaskModelId = ? AND ClassId = ? AND TimeId = ?");
+  bindValues(st, 1, r);
+  st.bind(14, tm);
+  st.bind(15, r.classId);
+  st.bind(16, r.timeId);
+  execExpectingRow(st, "no pose of class " + std::to_string(r.classId) + " at TimeId " + std::to_string(r.timeId) +
+                           " in task model " + std::to_string(tm));
+}
+
+bool ProductPoseDao::remove(int tm, int classId, int timeId) {
+  SQLite::Statement st(db_.connection(), "DELETE FROM ProductPose WHERE TaskModelId = ? AND ClassId = ? AND TimeId = ?");
+  st.bind(1, tm);
+  st.bind(2, classId);
+  st.bind(3, timeId);
+  return st.exec() > 0;
+}
+
+std::vector<ProductPoseRow> ProductPoseDao::inFrameRange(int tm, int classId, int first, int last) const {
+  SQLite::Statement st(db_.connection(), std::string(kSelect) +
+                                             " WHERE TaskModelId = ? AND ClassId = ? AND TimeId BETWEEN ? AND ? "
+                                             "ORDER BY TimeId");
+  st.bind(1, tm);
+  st.bind(2, classId);
+  st.bind(3, first);
+  st.bind(4, last);
+  std::vector<ProductPoseRow> rows;
+  while (st.executeStep()) rows.push_back(readRow(st));
+  return rows;
+}
+
+std::vector<ProductPoseRow> ProductPoseDao::list(int tm) const {
+  SQLite::Statement st(db_.connection(), std::string(kSelect) + " WHERE TaskModelId = ? ORDER BY ClassId, TimeId");
+  st.bind(1, tm);
+  std::vector<ProductPoseRow> rows;
+  while (st.executeStep()) rows.push_back(readRow(st));
+  return rows;
+}
+
+GraspReleaseFrames ProductPoseDao::graspReleaseFrames(int tm, int classId) const {
+  SQLite::Statement st(db_.connection(),
+                       "SELECT (SELECT MIN(TimeId) FROM ProductPose WHERE TaskModelId = ?1 AND ClassId = ?2 AND Grasp = 1), "
+                       "(SELECT MIN(TimeId) FROM ProductPose WHERE TaskModelId = ?1 AND ClassId = ?2 AND Release = 1)");
+  st.bind(1, tm);
+  st.bind(2, classId);
+  st.executeStep();
+  return {optionalInt(st.getColumn(0)), optionalInt(st.getColumn(1))};
+}
+
+}  // namespace srp::taskdb

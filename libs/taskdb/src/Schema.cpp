@@ -1,0 +1,111 @@
+#include "Schema.h"
+
+namespace srp::taskdb::detail {
+
+// Version 1: the thesis' seven table types (Appendix C), normalised, plus
+// TaskModels and Skills. Ids are local to a task model, hence the composite
+// keys. The location <-> product references are circular, so those foreign
+// keys are deferred to the end of the writing transaction.
+static const char* kSchemaV1 = R"SQL(
+CREATE TABLE TaskModels (
+  TaskModelId   INTEGER PRIMARY KEY AUTOINCREMENT,
+  Name          TEXT    NOT NULL,
+  Version       INTEGER NOT NULL DEFAULT 1 CHECK (Version >= 1),
+  CreatedUtc    TEXT    NOT NULL,
+  Instruction   TEXT    NOT NULL DEFAULT '',
+  Frame         TEXT    NOT NULL DEFAULT 'camera',
+  Units         TEXT    NOT NULL DEFAULT 'm',
+  FrameRate_Hz  REAL    NOT NULL DEFAULT 30 CHECK (FrameRate_Hz > 0),
+  Intrinsics    TEXT    CHECK (Intrinsics IS NULL OR json_valid(Intrinsics)),
+  X_base_camera TEXT    CHECK (X_base_camera IS NULL OR json_valid(X_base_camera)),
+  UNIQUE (Name, Version)
+);
+CREATE TABLE Products (
+  TaskModelId      INTEGER NOT NULL REFERENCES TaskModels(TaskModelId) ON DELETE CASCADE,
+  ObjectId         INTEGER NOT NULL,
+  ObjectName       TEXT    NOT NULL,
+  SourceLocationId INTEGER,
+  TargetLocationId INTEGER,
+  Color            TEXT,
+  TokenId          INTEGER,
+  SentenceId       INTEGER,
+  ClassId          INTEGER,
+  PRIMARY KEY (TaskModelId, ObjectId),
+  FOREIGN KEY (TaskModelId, SourceLocationId) REFERENCES SourceLocations(TaskModelId, LocationId) DEFERRABLE INITIALLY DEFERRED,
+  FOREIGN KEY (TaskModelId, TargetLocationId) REFERENCES TargetLocations(TaskModelId, LocationId) DEFERRABLE INITIALLY DEFERRED,
+  FOREIGN KEY (TaskModelId, ClassId) REFERENCES GroundedProducts(TaskModelId, ClassId) DEFERRABLE INITIALLY DEFERRED
+);
+CREATE TABLE SourceLocations (
+  TaskModelId       INTEGER NOT NULL REFERENCES TaskModels(TaskModelId) ON DELETE CASCADE,
+  LocationId        INTEGER NOT NULL,
+  TrajectorObjectId INTEGER NOT NULL,
+  Description       TEXT    NOT NULL,
+  PRIMARY KEY (TaskModelId, LocationId),
+  FOREIGN KEY (TaskModelId, TrajectorObjectId) REFERENCES Products(TaskModelId, ObjectId) DEFERRABLE INITIALLY DEFERRED
+);
+CREATE TABLE TargetLocations (
+  TaskModelId       INTEGER NOT NULL REFERENCES TaskModels(TaskModelId) ON DELETE CASCADE,
+  LocationId        INTEGER NOT NULL,
+  IndicatorObjectId INTEGER NOT NULL,
+  Description       TEXT    NOT NULL,
+  PRIMARY KEY (TaskModelId, LocationId),
+  FOREIGN KEY (TaskModelId, IndicatorObjectId) REFERENCES Products(TaskModelId, ObjectId) DEFERRABLE INITIALLY DEFERRED
+);
+CREATE TABLE TaskModelTargetObjects (
+  TaskModelId    INTEGER NOT NULL REFERENCES TaskModels(TaskModelId) ON DELETE CASCADE,
+  StepIndex      INTEGER NOT NULL,
+  TargetObjectId INTEGER NOT NULL,
+  PRIMARY KEY (TaskModelId, StepIndex),
+  FOREIGN KEY (TaskModelId, TargetObjectId) REFERENCES Products(TaskModelId, ObjectId) DEFERRABLE INITIALLY DEFERRED
+);
+CREATE TABLE GroundedProducts (
+  TaskModelId      INTEGER NOT NULL REFERENCES TaskModels(TaskModelId) ON DELETE CASCADE,
+  ClassId          INTEGER NOT NULL,
+  ObjectName       TEXT    NOT NULL,
+  SourceLocationId INTEGER,
+  TargetLocationId INTEGER,
+  Color            TEXT,
+  PRIMARY KEY (TaskModelId, ClassId),
+  FOREIGN KEY (TaskModelId, SourceLocationId) REFERENCES SourceLocations(TaskModelId, LocationId) DEFERRABLE INITIALLY DEFERRED,
+  FOREIGN KEY (TaskModelId, TargetLocationId) REFERENCES TargetLocations(TaskModelId, LocationId) DEFERRABLE INITIALLY DEFERRED
+);
+CREATE TABLE ProductPose (
+  TaskModelId INTEGER NOT NULL REFERENCES TaskModels(TaskModelId) ON DELETE CASCADE,
+  ClassId     INTEGER NOT NULL,
+  TimeId      INTEGER NOT NULL,
+  X REAL NOT NULL, Y REAL NOT NULL, Z REAL NOT NULL,
+  QW REAL NOT NULL, QX REAL NOT NULL, QY REAL NOT NULL, QZ REAL NOT NULL,
+  Reach   INTEGER NOT NULL DEFAULT 0 CHECK (Reach IN (0, 1)),
+  Grasp   INTEGER NOT NULL DEFAULT 0 CHECK (Grasp IN (0, 1)),
+  Move    INTEGER NOT NULL DEFAULT 0 CHECK (Move IN (0, 1)),
+  Release INTEGER NOT NULL DEFAULT 0 CHECK (Release IN (0, 1)),
+  Detected   INTEGER NOT NULL DEFAULT 1 CHECK (Detected IN (0, 1)),
+  Confidence REAL,
+  PRIMARY KEY (TaskModelId, ClassId, TimeId),
+  FOREIGN KEY (TaskModelId, ClassId) REFERENCES GroundedProducts(TaskModelId, ClassId) DEFERRABLE INITIALLY DEFERRED
+) WITHOUT ROWID;
+CREATE TABLE HandPositions (
+  TimeId      INTEGER NOT NULL,
+  TaskModelId INTEGER NOT NULL REFERENCES TaskModels(TaskModelId) ON DELETE CASCADE,
+  X REAL NOT NULL, Y REAL NOT NULL, Z REAL NOT NULL,
+  Detected INTEGER NOT NULL DEFAULT 1 CHECK (Detected IN (0, 1)),
+  PRIMARY KEY (TaskModelId, TimeId)
+) WITHOUT ROWID;
+CREATE TABLE Skills (
+  TaskModelId INTEGER NOT NULL REFERENCES TaskModels(TaskModelId) ON DELETE CASCADE,
+  ClassId     INTEGER NOT NULL,
+  Skill       TEXT    NOT NULL CHECK (Skill IN ('Reach', 'Grasp', 'Move', 'Release')),
+  StartTimeId INTEGER NOT NULL,
+  EndTimeId   INTEGER NOT NULL CHECK (EndTimeId >= StartTimeId),
+  Parameters  TEXT    NOT NULL DEFAULT '{}' CHECK (json_valid(Parameters)),
+  PRIMARY KEY (TaskModelId, ClassId, Skill),
+  FOREIGN KEY (TaskModelId, ClassId) REFERENCES GroundedProducts(TaskModelId, ClassId) DEFERRABLE INITIALLY DEFERRED
+);
+)SQL";
+
+const std::vector<std::string>& migrations() {
+  static const std::vector<std::string> m = {kSchemaV1};
+  return m;
+}
+
+}  // namespace srp::taskdb::detail

@@ -1,0 +1,77 @@
+#include "srp/taskdb/SkillDao.h"
+
+#include "SqlUtil.h"
+
+namespace srp::taskdb {
+using namespace detail;
+
+namespace {
+constexpr const char* kSelect = "SELECT ClassId, Skill, StartTimeId, EndTimeId, Parameters FROM Skills";
+
+SkillRow readRow(const SQLite::Statement& st) {
+  SkillRow r;
+  r.classId = st.getColumn(0).getInt();
+  r.skill = core::skillTypeFromString(st.getColumn(1).getString());
+  r.startTimeId = st.getColumn(2).getInt();
+  r.endTimeId = st.getColumn(3).getInt();
+  r.parameters = nlohmann::json::parse(st.getColumn(4).getString());
+  return r;
+}
+}  // namespace
+
+void SkillDao::add(int tm, const SkillRow& r) {
+  SQLite::Statement st(db_.connection(),
+                       "INSERT INTO Skills (TaskModelId, ClassId, Skill, StartTimeId, EndTimeId, Parameters) "
+                       "VALUES (?, ?, ?, ?, ?, ?)");
+  st.bind(1, tm);
+  st.bind(2, r.classId);
+  st.bind(3, core::toString(r.skill));
+  st.bind(4, r.startTimeId);
+  st.bind(5, r.endTimeId);
+  st.bind(6, r.parameters.dump());
+  st.exec();
+}
+
+std::optional<SkillRow> SkillDao::get(int tm, int classId, core::SkillType skill) const {
+  SQLite::Statement st(db_.connection(), std::string(kSelect) + " WHERE TaskModelId = ? AND ClassId = ? AND Skill = ?");
+  st.bind(1, tm);
+  st.bind(2, classId);
+  st.bind(3, core::toString(skill));
+  if (!st.executeStep()) return std::nullopt;
+  return readRow(st);
+}
+
+void SkillDao::update(int tm, const SkillRow& r) {
+  SQLite::Statement st(db_.connection(),
+                       "UPDATE Skills SET StartTimeId = ?, EndTimeId = ?, Parameters = ? "
+                       "WHERE TaskModelId = ? AND ClassId = ? AND Skill = ?");
+  st.bind(1, r.startTimeId);
+  st.bind(2, r.endTimeId);
+  st.bind(3, r.parameters.dump());
+  st.bind(4, tm);
+  st.bind(5, r.classId);
+  st.bind(6, core::toString(r.skill));
+  execExpectingRow(st, "no " + core::toString(r.skill) + " skill of class " + std::to_string(r.classId) +
+                           " in task model " + std::to_string(tm));
+}
+
+bool SkillDao::remove(int tm, int classId, core::SkillType skill) {
+  SQLite::Statement st(db_.connection(), "DELETE FROM Skills WHERE TaskModelId = ? AND ClassId = ? AND Skill = ?");
+  st.bind(1, tm);
+  st.bind(2, classId);
+  st.bind(3, core::toString(skill));
+  return st.exec() > 0;
+}
+
+std::vector<SkillRow> SkillDao::list(int tm) const {
+  SQLite::Statement st(db_.connection(),
+                       std::string(kSelect) +
+                           " WHERE TaskModelId = ? ORDER BY ClassId, CASE Skill WHEN 'Reach' THEN 0 "
+                           "WHEN 'Grasp' THEN 1 WHEN 'Move' THEN 2 ELSE 3 END");
+  st.bind(1, tm);
+  std::vector<SkillRow> rows;
+  while (st.executeStep()) rows.push_back(readRow(st));
+  return rows;
+}
+
+}  // namespace srp::taskdb

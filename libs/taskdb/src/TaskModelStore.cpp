@@ -1,0 +1,117 @@
+#include "srp/taskdb/TaskModelStore.h"
+
+#include <SQLiteCpp/SQLiteCpp.h>
+
+#include "srp/core/Error.h"
+#include "srp/taskdb/GroundedProductDao.h"
+#include "srp/taskdb/HandPositionDao.h"
+#include "srp/taskdb/ProductDao.h"
+#include "srp/taskdb/ProductPoseDao.h"
+#include "srp/taskdb/SkillDao.h"
+#include "srp/taskdb/SourceLocationDao.h"
+#include "srp/taskdb/TargetLocationDao.h"
+#include "srp/taskdb/TaskModelDao.h"
+#include "srp/taskdb/TaskModelTargetObjectDao.h"
+
+namespace srp::taskdb {
+
+namespace {
+// Bulk rows are written in chunks so the progress callback (and a kill) can
+// land in the middle of a task model.
+constexpr std::size_t kChunkRows = 2000;
+
+template <typename Row, typename Dao>
+void writeChunked(Dao& dao, int id, const std::vector<Row>& rows, std::size_t& done, std::size_t total,
+                  const TaskModelStore::Progress& progress) {
+  for (std::size_t i = 0; i < rows.size(); i += kChunkRows) {
+    const auto end = rows.begin() + static_cast<std::ptrdiff_t>(std::min(rows.size(), i + kChunkRows));
+    dao.addMany(id, std::vector<Row>(rows.begin() + static_cast<std::ptrdiff_t>(i), end));
+    done += static_cast<std::size_t>(end - (rows.begin() + static_cast<std::ptrdiff_t>(i)));
+    if (progress) progress(done, total);
+  }
+}
+}  // namespace
+
+int TaskModelStore::write(const TaskModel& m, const Progress& progress) {
+  ScopedTransaction tx(db_);
+  try {
+    TaskModelDao models(db_);
+    TaskModelInfo info = m.info;
+    info.version = models.nextVersion(info.name);
+    const int id = models.add(info);
+    ProductDao products(db_);
+    for (const auto& r : m.products) products.add(id, r);
+    SourceLocationDao sources(db_);
+    for (const auto& r : m.sourceLocations) sources.add(id, r);
+    TargetLocationDao targets(db_);
+    for (const auto& r : m.targetLocations) targets.add(id, r);
+    TaskModelTargetObjectDao plan(db_);
+    for (std::size_t i = 0; i < m.targetObjectIds.size(); ++i) plan.add(id, static_cast<int>(i), m.targetObjectIds[i]);
+    GroundedProductDao grounded(db_);
+    for (const auto& r : m.groundedProducts) grounded.add(id, r);
+    SkillDao skills(db_);
+    for (const auto& r : m.skills) skills.add(id, r);
+
+    const std::size_t total = m.handPositions.size() + m.productPoses.size();
+    std::size_t done = 0;
+    HandPositionDao hands(db_);
+    writeChunked(hands, id, m.handPositions, done, total, progress);
+    ProductPoseDao poses(db_);
+    writeChunked(poses, id, m.productPoses, done, total, progress);
+    tx.commit();  // deferred foreign keys are checked here
+    return id;
+  } catch (const SQLite::Exception& e) {
+    throw core::InvalidInputError("task model '" + m.info.name + "' not written (database unchanged): " + e.what());
+  }
+}
+
+TaskModel TaskModelStore::read(int id) const {
+  TaskModel m;
+  auto info = TaskModelDao(db_).get(id);
+  if (!info)
+    throw core::InvalidInputError("no task model with id " + std::to_string(id) + " in '" + db_.path() +
+                                  "' (list them with 'srp db list')");
+  // One read transaction: a consistent snapshot even while a writer commits.
+  db_.connection().exec("BEGIN");
+  try {
+    m.info = *info;
+    m.products = ProductDao(db_).list(id);
+    m.sourceLocations = SourceLocationDao(db_).list(id);
+    m.targetLocations = TargetLocationDao(db_).list(id);
+    m.targetObjectIds = TaskModelTargetObjectDao(db_).list(id);
+    m.groundedProducts = GroundedProductDao(db_).list(id);
+    m.productPoses = ProductPoseDao(db_).list(id);
+    m.handPositions = HandPositionDao(db_).list(id);
+    m.skills = SkillDao(db_).list(id);
+  } catch (...) {
+    db_.connection().exec("ROLLBACK");
+    throw;
+  }
+  db_.connection().exec("COMMIT");
+  return m;
+}
+
+std::vector<TaskModelInfo> TaskModelStore::list() const { return TaskModelDao(db_).list(); }
+
+void TaskModelStore::remove(int id) {
+  ScopedTransaction tx(db_);
+  if (!TaskModelDao(db_).remove(id))
+    throw core::InvalidInputError("no task model with id " + std::to_string(id) + " in '" + db_.path() + "'");
+  tx.commit();
+}
+
+void TaskModelStore::replaceSkills(int id, const std::vector<SkillRow>& rows) {
+  ScopedTransaction tx(db_);
+  if (!TaskModelDao(db_).get(id))
+    throw core::InvalidInputError("no task model with id " + std::to_string(id) + " in '" + db_.path() + "'");
+  SkillDao skills(db_);
+  for (const auto& old : skills.list(id)) skills.remove(id, old.classId, old.skill);
+  try {
+    for (const auto& r : rows) skills.add(id, r);
+    tx.commit();
+  } catch (const SQLite::Exception& e) {
+    throw core::InvalidInputError("skills of task model " + std::to_string(id) + " not written (unchanged): " + e.what());
+  }
+}
+
+}  // namespace srp::taskdb

@@ -1,0 +1,51 @@
+#include "srp/taskdb/TaskModelTargetObjectDao.h"
+
+#include "SqlUtil.h"
+#include "srp/taskdb/ProductDao.h"
+
+namespace srp::taskdb {
+using namespace detail;
+
+void TaskModelTargetObjectDao::add(int tm, int step, int objectId) {
+  SQLite::Statement st(db_.connection(),
+                       "INSERT INTO TaskModelTargetObjects (TaskModelId, StepIndex, TargetObjectId) VALUES (?, ?, ?)");
+  st.bind(1, tm);
+  st.bind(2, step);
+  st.bind(3, objectId);
+  st.exec();
+}
+
+void TaskModelTargetObjectDao::update(int tm, int step, int objectId) {
+  SQLite::Statement st(db_.connection(),
+                       "UPDATE TaskModelTargetObjects SET TargetObjectId = ? WHERE TaskModelId = ? AND StepIndex = ?");
+  st.bind(1, objectId);
+  st.bind(2, tm);
+  st.bind(3, step);
+  execExpectingRow(st, "no step " + std::to_string(step) + " in task model " + std::to_string(tm));
+}
+
+bool TaskModelTargetObjectDao::remove(int tm, int step) {
+  SQLite::Statement st(db_.connection(), "DELETE FROM TaskModelTargetObjects WHERE TaskModelId = ? AND StepIndex = ?");
+  st.bind(1, tm);
+  st.bind(2, step);
+  return st.exec() > 0;
+}
+
+std::vector<int> TaskModelTargetObjectDao::list(int tm) const {
+  SQLite::Statement st(db_.connection(),
+                       "SELECT TargetObjectId FROM TaskModelTargetObjects WHERE TaskModelId = ? ORDER BY StepIndex");
+  st.bind(1, tm);
+  std::vector<int> ids;
+  while (st.executeStep()) ids.push_back(st.getColumn(0).getInt());
+  return ids;
+}
+
+std::vector<ProductRow> TaskModelTargetObjectDao::orderedTargetObjects(int tm) const {
+  ProductDao products(db_);
+  std::vector<ProductRow> rows;
+  for (int id : list(tm))
+    if (auto p = products.get(tm, id)) rows.push_back(*p);
+  return rows;
+}
+
+}  // namespace srp::taskdb

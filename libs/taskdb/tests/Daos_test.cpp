@@ -1,0 +1,107 @@
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "TestDb.h"
+#include "srp/core/Error.h"
+#include "srp/taskdb/GroundedProductDao.h"
+#include "srp/taskdb/HandPositionDao.h"
+#include "srp/taskdb/ProductDao.h"
+#include "srp/taskdb/ProductPoseDao.h"
+#include "srp/taskdb/SkillDao.h"
+#include "srp/taskdb/SourceLocationDao.h"
+#include "srp/taskdb/TaskModelDao.h"
+#include "srp/taskdb/TaskModelStore.h"
+
+using namespace srp::taskdb;
+using srp::core::InvalidInputError;
+
+TEST(Daos, AddGetUpdateRemove) {
+  test::TempDbPath path("crud");
+  auto db = TaskDatabase::open(path.str());
+  TaskModelInfo info;
+  info.name = "crud";
+  info.intrinsics = srp::core::CameraIntrinsics{607.178, 607.234, 321.391, 241.918, 640, 480};
+  info.X_base_camera = srp::core::makePoseYPR({0.1, -0.5, 0.9}, 0.3, 0.0, M_PI);
+  const int id = TaskModelDao(db).add(info);
+  const auto back = TaskModelDao(db).get(id);
+  ASSERT_TRUE(back);
+  EXPECT_EQ(*back->intrinsics, *info.intrinsics);
+  EXPECT_LT((back->X_base_camera->matrix() - info.X_base_camera->matrix()).norm(), 1e-12);
+  EXPECT_FALSE(back->createdUtc.empty());
+
+  ProductDao products(db);
+  products.add(id, {0, "cuboid", {}, {}, "red", 4, 0, {}});
+  ProductRow p = *products.get(id, 0);
+  EXPECT_EQ(p.color, "red");
+  p.color.reset();
+  p.classId = 3;
+  // Outside a transaction foreign keys are checked per statement: class 3 must be grounded first.
+  EXPECT_THROW(products.update(id, p), std::runtime_error);
+  GroundedProductDao(db).add(id, {3, "cuboid", {}, {}, {}});
+  products.update(id, p);
+  EXPECT_EQ(products.get(id, 0)->classId, 3);
+  EXPECT_FALSE(products.get(id, 0)->color.has_value());
+  EXPECT_THROW(products.update(id, {7, "ghost", {}, {}, {}, {}, {}, {}}), InvalidInputError);
+  EXPECT_TRUE(products.remove(id, 0));
+  EXPECT_FALSE(products.remove(id, 0));
+  EXPECT_FALSE(products.get(id, 0).has_value());
+
+  HandPositionDao hands(db);
+  hands.add(id, {10, {0.1, 0.2, 0.3}, true});
+  hands.update(id, {10, {0.4, 0.5, 0.6}, false});
+  EXPECT_EQ(hands.get(id, 10)->p_m.x(), 0.4);
+  EXPECT_FALSE(hands.get(id, 10)->detected);
+  EXPECT_THROW(hands.add(id, {11, {std::numeric_limits<double>::quiet_NaN(), 0, 0}, true}), InvalidInputError);
+}
+
+TEST(Daos, SkillParametersRoundTripExactly) {
+  test::TempDbPath path("skills");
+  auto db = TaskDatabase::open(path.str());
+  TaskModel m;
+  m.info.name = "skills";
+  m.groundedProducts = {{3, "cuboid", {}, {}, {}}};
+  nlohmann::json dmp = {{"class", "Dmp"}, {"schema_version", 1}, {"weights", {0.1, 1.0 / 3.0, -2.718281828459045e-7, 343.52}}};
+  m.skills = {{3, srp::core::SkillType::Reach, 0, 95, dmp}, {3, srp::core::SkillType::Grasp, 96, 96, {}}};
+  TaskModelStore store(db);
+  const int id = store.write(m);
+  const auto reach = SkillDao(db).get(id, 3, srp::core::SkillType::Reach);
+  ASSERT_TRUE(reach);
+  EXPECT_EQ(reach->parameters, dmp);
+  EXPECT_EQ(reach->parameters["weights"][1].get<double>(), 1.0 / 3.0);  // bit-exact
+  store.replaceSkills(id, {{3, srp::core::SkillType::Move, 96, 200, {{"class", "Dmp"}}}});
+  const auto skills = SkillDao(db).list(id);
+  ASSERT_EQ(skills.size(), 1u);
+  EXPECT_EQ(skills[0].skill, srp::core::SkillType::Move);
+  // A skill for an object that was never grounded violates a foreign key: nothing changes.
+  EXPECT_THROW(store.replaceSkills(id, {{9, srp::core::SkillType::Reach, 0, 1, {}}}), InvalidInputError);
+  EXPECT_EQ(SkillDao(db).list(id).size(), 1u);
+}
+
+TEST(Daos, DeletingATaskModelCascadesAndVersionsCount) {
+  test::TempDbPath path("cascade");
+  auto db = TaskDatabase::open(path.str());
+  TaskModelStore store(db);
+  const int a = store.write(test::bulkModel("demo", 50, 2));
+  const int b = store.write(test::bulkModel("demo", 30, 1));
+  EXPECT_EQ(store.read(a).info.version, 1);
+  EXPECT_EQ(store.read(b).info.version, 2);
+  EXPECT_EQ(TaskModelDao(db).latestByName("demo")->id, b);
+  store.remove(a);
+  EXPECT_THROW(store.read(a), InvalidInputError);
+  EXPECT_TRUE(ProductPoseDao(db).list(a).empty());
+  EXPECT_TRUE(HandPositionDao(db).list(a).empty());
+  EXPECT_EQ(ProductPoseDao(db).list(b).size(), 30u);
+  EXPECT_THROW(store.remove(a), InvalidInputError);
+}
+
+TEST(Daos, DanglingReferenceRejectsTheWholeModel) {
+  test::TempDbPath path("dangling");
+  auto db = TaskDatabase::open(path.str());
+  TaskModelStore store(db);
+  TaskModel m;
+  m.info.name = "dangling";
+  m.products = {{0, "cuboid", 5, {}, {}, {}, {}, {}}};  // source location 5 does not exist
+  EXPECT_THROW(store.write(m), InvalidInputError);
+  EXPECT_TRUE(store.list().empty());
+}

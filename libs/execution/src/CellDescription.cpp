@@ -36,6 +36,32 @@ std::vector<WorldBox> CellDescription::containerBoxes(const CellObject& c) {
           box({0, -s.y() / 2 + t / 2, s.z() / 2}, {s.x() / 2, t / 2, s.z() / 2})};
 }
 
+CellDescription CellDescription::fromScene(const srp::core::Scene& scene,
+                                           const srp::core::ObjectCatalogue& catalogue) {
+  scene.validate(catalogue);
+  CellDescription cell;
+  cell.X_world_base = scene.X_world_base;
+  cell.tableHalfExtents_m = scene.tableSize_m / 2;
+  cell.tableCentre_m.setZero();
+  for (const auto& so : scene.objects) {
+    const srp::core::ObjectClass& c = catalogue.at(so.className);
+    CellObject o;
+    o.name = so.id;
+    o.kind = c.kind == srp::core::ObjectKind::Container ? CellObjectKind::Container : CellObjectKind::Part;
+    o.size_m = c.dimensions_m;
+    o.mass_kg = c.mass_kg;
+    o.wallThickness_m = c.wallThickness_m;
+    o.X_world_object = so.X_world_object;
+    o.rgb = c.rgb;
+    o.color = c.colorName;
+    o.className = c.name;
+    o.noun = c.noun;
+    o.classId = c.classId;
+    cell.objects.push_back(o);
+  }
+  return cell;
+}
+
 std::vector<WorldBox> CellDescription::staticBoxes() const {
   constexpr double kTableThickness_m = 0.05;
   std::vector<WorldBox> boxes;

@@ -69,6 +69,9 @@ const CellObject* PlacementPlanner::find(const CellDescription& scene, const Obj
     const std::string n = normalise(o.name);
     if (n == full) return &o;
     if (n == name && (!color || normalise(o.color) == *color)) return &o;
+    // By knowledge-base class or noun (instances named "cuboid_2").
+    if (normalise(o.className) == full) return &o;
+    if (normalise(o.noun) == name && (!color || normalise(o.color) == *color)) return &o;
     // "the box" without a colour: any "<colour> box".
     if (!color && !weak && n.size() > name.size() && n.compare(n.size() - name.size(), name.size(), name) == 0 &&
         n[n.size() - name.size() - 1] == ' ')
@@ -138,7 +141,7 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
     const double ey = s * part.size_m.x() / 2 + c * part.size_m.y() / 2;
     const double ix = container->size_m.x() / 2 - container->wallThickness_m - options_.wallMargin_m;
     const double iy = container->size_m.y() / 2 - container->wallThickness_m - options_.wallMargin_m;
-    return std::abs(X_c.translation().x()) + ex <= ix && std::abs(X_c.translation().y()) + ey <= iy;
+    return std::abs(X_c.translation().x()) + ex <= ix + 1e-9 && std::abs(X_c.translation().y()) + ey <= iy + 1e-9;
   };
 
   if (neighbour) {
@@ -158,7 +161,27 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
     }
     for (const auto& d : directions) {
       const double distance = support(neighbour->size_m, yawN, d) + support(part.size_m, yaw, d) + options_.neighbourGap_m;
-      const Eigen::Vector2d p = c + distance * d;
+      Eigen::Vector2d p = c + distance * d;
+      if (container) {
+        // Slide along the neighbour's side to stay inside the walls, as long as the
+        // two footprints still face each other.
+        const Pose3& X_wc = container->X_world_object;
+        const Eigen::Vector2d perp(-d.y(), d.x());
+        const Eigen::Vector2d ax = X_wc.linear().col(0).head<2>(), ay = X_wc.linear().col(1).head<2>();
+        const Eigen::Vector2d centre_c = X_wc.translation().head<2>();
+        const double inner[2] = {container->size_m.x() / 2 - container->wallThickness_m - options_.wallMargin_m,
+                                 container->size_m.y() / 2 - container->wallThickness_m - options_.wallMargin_m};
+        const Eigen::Vector2d axes[2] = {ax, ay};
+        for (int k = 0; k < 2; ++k) {
+          if (std::abs(axes[k].dot(perp)) < 0.5) continue;  // only the coordinate along the side
+          const double limit = inner[k] - support(part.size_m, yaw, axes[k]);
+          const double coord = (p - centre_c).dot(axes[k]);
+          const double clamped = std::clamp(coord, -limit, limit);
+          p += (clamped - coord) * axes[k];
+        }
+        const double facing = support(neighbour->size_m, yawN, perp) + support(part.size_m, yaw, perp) - 0.01;
+        if (std::abs((p - c).dot(perp)) > facing) continue;
+      }
       const Pose3 X = uprightPose(Eigen::Vector3d(p.x(), p.y(), zSupport), yaw);
       if (fitsContainer(X) && isFree(scene, part, X)) {
         out.X_world_object = X;
@@ -177,7 +200,11 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
     out.reason = "the " + part.name + " does not fit in the " + container->name;
     return out;
   }
-  const Eigen::Vector2d preferred = step.demoPositionInContainer_m.value_or(Eigen::Vector2d::Zero());
+  // Without a demonstration: the inner corner nearest to where the part comes from,
+  // which leaves the rest of the container free for its neighbours.
+  const Eigen::Vector3d from_c = container->X_world_object.inverse() * part.X_world_object.translation();
+  const Eigen::Vector2d corner(from_c.x() < 0 ? -ix : ix, from_c.y() < 0 ? -iy : iy);
+  const Eigen::Vector2d preferred = step.demoPositionInContainer_m.value_or(corner);
   std::vector<Eigen::Vector2d> candidates;
   for (double x = -ix; x <= ix + 1e-9; x += options_.gridStep_m)
     for (double y = -iy; y <= iy + 1e-9; y += options_.gridStep_m) candidates.emplace_back(x, y);

@@ -1,6 +1,8 @@
 #include "srp/execution/TaskExecutor.h"
 
 #include <chrono>
+#include <fstream>
+#include <iomanip>
 #include <cmath>
 #include <sstream>
 
@@ -69,6 +71,21 @@ JointVector TaskExecutor::defaultHome(const RobotModel& model, const Pose3& X_wo
     throw srp::core::InvalidInputError("TaskExecutor::defaultHome: the home pose is out of the arm's reach; "
                                        "check X_world_base in the scene");
   return *q;
+}
+
+void TaskExecutor::writeJointLogCsv(const std::string& path) const {
+  std::ofstream out(path);
+  if (!out) throw srp::core::FileError(path, "cannot write the joint log CSV");
+  out << "t_s";
+  for (int i = 0; i < 6; ++i) out << "," << model_.joints()[i].name << "_rad";
+  for (int i = 0; i < 6; ++i) out << "," << model_.joints()[i].name << "_ref_rad";
+  out << ",grasped\n" << std::setprecision(8);
+  for (const auto& s : sim_->log()) {
+    out << s.t_s;
+    for (int i = 0; i < 6; ++i) out << "," << s.q_rad[i];
+    for (int i = 0; i < 6; ++i) out << "," << s.qRef_rad[i];
+    out << "," << s.graspedPart.value_or("") << "\n";
+  }
 }
 
 CellDescription TaskExecutor::perceive() const {
@@ -188,7 +205,6 @@ StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
     const TrackingResult t = sim_->track(seg.joints, options_.settle_s);
     r.minTableClearance_m = std::min(r.minTableClearance_m, t.minTableClearance_m);
     r.maxJointError_rad = std::max(r.maxJointError_rad, t.maxJointError_rad);
-    commanded_.append(seg.joints);
   };
   track(segments[0]);
   track(segments[1]);

@@ -13,7 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "srp/core/ObjectCatalogue.h"
 #include "srp/core/Pose.h"
+#include "srp/core/Scene.h"
 
 namespace srp::execution {
 
@@ -28,6 +30,9 @@ struct CellObject {
   srp::core::Pose3 X_world_object = srp::core::Pose3::Identity();
   Eigen::Vector3d rgb = Eigen::Vector3d(0.8, 0.5, 0.2);  ///< colour in [0, 1] for rendering
   std::string color;  ///< colour word from the knowledge base ("blue"), "" if none
+  std::string className;  ///< knowledge-base class ("blue box"), "" if unknown
+  std::string noun;       ///< head noun in instructions ("box"), "" if unknown
+  int classId = -1;       ///< knowledge-base class id
 };
 
 /// An oriented box (centre pose and half extents) in the world frame.
@@ -54,6 +59,11 @@ struct CellDescription {
 
   /// Floor and walls of one container, in its own object frame (centre pose, half extents).
   static std::vector<WorldBox> containerBoxes(const CellObject& container);
+
+  /// The cell of a scene file: robot base, table and every object with its
+  /// catalogue class (kind, size, wall, mass, colour). Throws InvalidInputError
+  /// (from Scene::validate) naming an object whose class is unknown.
+  static CellDescription fromScene(const srp::core::Scene& scene, const srp::core::ObjectCatalogue& catalogue);
 };
 
 }  // namespace srp::execution

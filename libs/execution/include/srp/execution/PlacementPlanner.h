@@ -5,7 +5,8 @@
 /// estimated from the landmark's pose and the spatial relation).
 ///
 /// "in X": inside X's inner footprint (walls and a margin excluded), clear of the
-/// parts already there, nearest to X's centre. "next to Y": beside Y, on the side
+/// parts already there, nearest to the demonstrated position in X when known, else
+/// to the inner corner nearest to where the part comes from (leaving room for neighbours). "next to Y": beside Y, on the side
 /// the demonstration used when known (else the side with the most room), with a
 /// gap, inside the container when an "in" relation is also given, clear of other
 /// parts. The placed pose has the container's (or table's) yaw and rests on the
@@ -22,7 +23,7 @@ namespace srp::execution {
 
 struct PlacementOptions {
   double neighbourGap_m = 0.015;  ///< gap between footprints of neighbours
-  double wallMargin_m = 0.012;    ///< free space between a placed part and a wall
+  double wallMargin_m = 0.008;    ///< free space between a placed part and a wall
   double clearance_m = 0.008;     ///< minimum gap to any other part
   double gridStep_m = 0.005;      ///< candidate spacing for "in X"
 };

@@ -54,8 +54,9 @@ class TaskExecutor {
 
   const CellSimulator& simulator() const { return *sim_; }
   CellSimulator& simulator() { return *sim_; }
-  /// Every commanded joint trajectory, concatenated (for the CSV output).
-  const JointTrajectory& commandedTrajectory() const { return commanded_; }
+  /// Writes the simulated joint log (every SimulationOptions::logPeriod_s): time,
+  /// measured and reference joint positions. Throws FileError.
+  void writeJointLogCsv(const std::string& path) const;
 
   /// A comfortable start configuration above the table for a base at X_world_base
   /// (tool pointing down, 0.35 m in front of the base).
@@ -72,7 +73,6 @@ class TaskExecutor {
   SafetyChecker safety_;
   PlacementPlanner placement_;
   std::unique_ptr<CellSimulator> sim_;
-  JointTrajectory commanded_;
 };
 
 }  // namespace srp::execution

@@ -143,15 +143,12 @@ StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
   if (!placement.X_world_object) return finish(StepStatus::Skipped, placement.reason);
   r.X_world_planned = placement.X_world_object;
 
-  // --- poses of the tool (grasp on the top face, tool z down)
+  // --- motion generation: Cartesian paths -> IK (nearest branch) -> safety check.
+  // The suction cup may take the part turned by 0 or pi about the tool axis (the
+  // part still ends at its planned yaw: the release turns by the same pi); both are
+  // planned and the one keeping the last wrist joint nearer zero is used, so wrist
+  // turns do not pile up over the steps until the joint limit forces a branch jump.
   const double h = part->size_m.z();
-  const Pose3 grasp = toolDownAt(part->X_world_object, h);
-  const Pose3 preGrasp = raised(grasp, options_.approachOffset_m);
-  const Pose3 release = toolDownAt(*placement.X_world_object, h + options_.releaseHeight_m);
-  const Pose3 preRelease = raised(release, options_.approachOffset_m);
-  const Pose3 postRelease = raised(release, options_.retreat_m);
-
-  // --- motion generation: Cartesian paths -> IK (nearest branch) -> safety check
   const MinimumJerkPathGenerator straight(MinimumJerkOptions{});
   const double dt = options_.sampleTime_s;
   struct Segment {
@@ -159,44 +156,58 @@ StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
     CartesianPath path;
     JointTrajectory joints;
   };
-  std::vector<Segment> segments;
-  try {
-    segments.push_back({"Reach", generator_->generate(srp::core::SkillType::Reach, index, sim_->X_world_tcp(), preGrasp, dt), {}});
-  } catch (const srp::core::Error& e) {
-    return finish(StepStatus::Refused, std::string("Reach path: ") + e.what());
-  }
-  segments.push_back({"approach", straight.straight(preGrasp, grasp, dt), {}});
-  segments.push_back({"lift", straight.straight(grasp, preGrasp, dt), {}});
-  try {
-    segments.push_back({"Move", generator_->generate(srp::core::SkillType::Move, index, preGrasp, preRelease, dt), {}});
-  } catch (const srp::core::Error& e) {
-    return finish(StepStatus::Refused, std::string("Move path: ") + e.what());
-  }
-  segments.push_back({"lower", straight.straight(preRelease, release, dt), {}});
-  segments.push_back({"retreat", straight.straight(release, postRelease, dt), {}});
-
-  JointVector q = sim_->jointPositions();
   const Pose3 X_base_world = scene.X_world_base.inverse();
-  for (auto& seg : segments) {
-    const std::string what = seg.what + " of the " + part->name;
-    std::vector<double> times;
-    std::vector<JointVector> qs;
-    for (const auto& s : seg.path) {
-      const auto sol = ik_.solveNearestTcp(X_base_world * s.X_world_tcp, q);
-      if (!sol) {
-        const Eigen::Vector3d p = s.X_world_tcp.translation();
-        std::ostringstream why;
-        why << what << ": tool pose at (" << p.x() << ", " << p.y() << ", " << p.z()
-            << ") m is out of the arm's reach (no inverse kinematics solution within the joint limits)";
-        return finish(StepStatus::Refused, why.str());
-      }
-      q = *sol;
-      times.push_back(s.t_s);
-      qs.push_back(q);
+  auto planVariant = [&](double turn_rad, std::vector<Segment>& segments) -> std::optional<std::string> {
+    const Eigen::AngleAxisd turn(turn_rad, Eigen::Vector3d::UnitZ());
+    const Pose3 grasp = toolDownAt(part->X_world_object, h) * turn;
+    const Pose3 preGrasp = raised(grasp, options_.approachOffset_m);
+    const Pose3 release = toolDownAt(*placement.X_world_object, h + options_.releaseHeight_m) * turn;
+    const Pose3 preRelease = raised(release, options_.approachOffset_m);
+    const Pose3 postRelease = raised(release, options_.retreat_m);
+    try {
+      segments.push_back({"Reach", generator_->generate(srp::core::SkillType::Reach, index, sim_->X_world_tcp(), preGrasp, dt), {}});
+      segments.push_back({"approach", straight.straight(preGrasp, grasp, dt), {}});
+      segments.push_back({"lift", straight.straight(grasp, preGrasp, dt), {}});
+      segments.push_back({"Move", generator_->generate(srp::core::SkillType::Move, index, preGrasp, preRelease, dt), {}});
+      segments.push_back({"lower", straight.straight(preRelease, release, dt), {}});
+      segments.push_back({"retreat", straight.straight(release, postRelease, dt), {}});
+    } catch (const srp::core::Error& e) {
+      return std::string("path generation: ") + e.what();
     }
-    seg.joints = JointTrajectory::fromPositions(times, qs);
-    if (auto v = safety_.check(seg.joints, what)) return finish(StepStatus::Refused, "safety: " + v->message);
-  }
+    JointVector q = sim_->jointPositions();
+    for (auto& seg : segments) {
+      const std::string what = seg.what + " of the " + part->name;
+      std::vector<double> times;
+      std::vector<JointVector> qs;
+      for (const auto& s : seg.path) {
+        const auto sol = ik_.solveNearestTcp(X_base_world * s.X_world_tcp, q);
+        if (!sol) {
+          const Eigen::Vector3d p = s.X_world_tcp.translation();
+          std::ostringstream why;
+          why << what << ": tool pose at (" << p.x() << ", " << p.y() << ", " << p.z()
+              << ") m is out of the arm's reach (no inverse kinematics solution within the joint limits)";
+          return why.str();
+        }
+        q = *sol;
+        times.push_back(s.t_s);
+        qs.push_back(q);
+      }
+      seg.joints = JointTrajectory::fromPositions(times, qs);
+      if (auto v = safety_.check(seg.joints, what)) return "safety: " + v->message;
+    }
+    return std::nullopt;
+  };
+  auto wristLoad = [](const std::vector<Segment>& segments) {
+    double m = 0.0;
+    for (const auto& seg : segments)
+      for (const auto& s : seg.joints.samples()) m = std::max(m, std::abs(s.q_rad[5]));
+    return m;
+  };
+  std::vector<Segment> segments, alternative;
+  const std::optional<std::string> failure = planVariant(0.0, segments);
+  const std::optional<std::string> failureTurned = planVariant(M_PI, alternative);
+  if (failure && failureTurned) return finish(StepStatus::Refused, *failure);
+  if (failure || (!failureTurned && wristLoad(alternative) < wristLoad(segments))) segments = std::move(alternative);
   r.planning_s = std::chrono::duration<double>(Clock::now() - planStart).count();
 
   // --- execution on the simulated UR5

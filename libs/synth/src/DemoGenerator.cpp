@@ -1,0 +1,441 @@
+#include "srp/synth/DemoGenerator.h"
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <filesystem>
+
+#include "srp/core/Error.h"
+#include "srp/kb/KnowledgeBase.h"
+#include "srp/kb/ShapeMeshes.h"
+#include "srp/rawlog/RawlogWriter.h"
+#include "srp/synth/SceneRenderer.h"
+
+namespace srp::synth {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+constexpr double kRawlogEpoch_s = 1.7e9;  // rawlog timestamps: a fixed epoch + t_s, reproducible
+constexpr double kMaskDepthMargin_m = 0.004;
+
+// Marks the pixels where a box (in its part frame, placed at X_camera_part) is
+// the visible surface: inside the projected hull and at a depth within the box's range.
+void markBox(const Eigen::AlignedBox3d& box, const srp::core::Pose3& X_camera_part,
+             const srp::core::CameraIntrinsics& K, const cv::Mat& depth, cv::Mat& mask) {
+  std::vector<cv::Point> pts;
+  double zMin = 1e9, zMax = -1e9;
+  for (int c = 0; c < 8; ++c) {
+    const Eigen::Vector3d p = X_camera_part * box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c));
+    if (p.z() <= 0.05) return;  // behind or at the camera: not drawn
+    zMin = std::min(zMin, p.z());
+    zMax = std::max(zMax, p.z());
+    const auto uv = K.project(p);
+    pts.emplace_back(static_cast<int>(std::lround(uv->x())), static_cast<int>(std::lround(uv->y())));
+  }
+  std::vector<cv::Point> hull;
+  cv::convexHull(pts, hull);
+  const cv::Rect bounds = cv::boundingRect(hull) & cv::Rect(0, 0, depth.cols, depth.rows);
+  if (bounds.empty()) return;
+  cv::Mat local(bounds.size(), CV_8UC1, cv::Scalar(0));
+  for (auto& p : hull) p -= bounds.tl();
+  cv::fillConvexPoly(local, hull, cv::Scalar(255));
+  for (int r = 0; r < bounds.height; ++r) {
+    const unsigned char* l = local.ptr<unsigned char>(r);
+    const float* d = depth.ptr<float>(bounds.y + r) + bounds.x;
+    unsigned char* m = mask.ptr<unsigned char>(bounds.y + r) + bounds.x;
+    for (int c = 0; c < bounds.width; ++c)
+      if (l[c] && d[c] >= zMin - kMaskDepthMargin_m && d[c] <= zMax + kMaskDepthMargin_m) m[c] = 255;
+  }
+}
+
+// Writes frames on a background thread so that serialisation and compression
+// (the costliest step with noisy images) overlap with rendering the next frames.
+class AsyncRawlogWriter {
+ public:
+  AsyncRawlogWriter(const std::string& path, double depthUnit_m) : writer_(path, depthUnit_m) {
+    thread_ = std::thread([this] { loop(); });
+  }
+  ~AsyncRawlogWriter() {
+    try {
+      close();
+    } catch (...) {
+    }
+  }
+  void write(srp::rawlog::RgbdFrame frame) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    spaceFree_.wait(lock, [this] { return queue_.size() < kMaxQueued || error_; });
+    rethrow();
+    queue_.push_back(std::move(frame));
+    frameQueued_.notify_one();
+  }
+  /// Waits for the queue to drain, closes the file; returns the seconds spent writing.
+  double close() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      done_ = true;
+      frameQueued_.notify_one();
+    }
+    if (thread_.joinable()) thread_.join();
+    writer_.close();
+    std::lock_guard<std::mutex> lock(mutex_);
+    rethrow();
+    return writeTime_s_;
+  }
+
+ private:
+  static constexpr std::size_t kMaxQueued = 4;
+  void rethrow() {
+    if (error_) {
+      auto e = error_;
+      error_ = nullptr;
+      std::rethrow_exception(e);
+    }
+  }
+  void loop() {
+    for (;;) {
+      srp::rawlog::RgbdFrame frame;
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        frameQueued_.wait(lock, [this] { return !queue_.empty() || done_; });
+        if (queue_.empty()) return;
+        frame = std::move(queue_.front());
+        queue_.pop_front();
+        spaceFree_.notify_one();
+      }
+      try {
+        const auto t0 = Clock::now();
+        writer_.write(frame);
+        const double dt = secondsSince(t0);
+        std::lock_guard<std::mutex> lock(mutex_);
+        writeTime_s_ += dt;
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        error_ = std::current_exception();
+        spaceFree_.notify_all();
+        return;
+      }
+    }
+  }
+  srp::rawlog::RawlogWriter writer_;
+  std::thread thread_;
+  std::mutex mutex_;
+  std::condition_variable frameQueued_, spaceFree_;
+  std::deque<srp::rawlog::RgbdFrame> queue_;
+  bool done_ = false;
+  std::exception_ptr error_;
+  double writeTime_s_ = 0.0;
+};
+
+cv::Mat colourMapDepth(const cv::Mat& depth_m, double near_m, double far_m) {
+  cv::Mat scaled;
+  depth_m.convertTo(scaled, CV_8UC1, -255.0 / (far_m - near_m), 255.0 * far_m / (far_m - near_m));
+  cv::Mat coloured;
+  cv::applyColorMap(scaled, coloured, cv::COLORMAP_JET);
+  coloured.setTo(cv::Scalar(0, 0, 0), depth_m <= 0.f);
+  return coloured;
+}
+
+}  // namespace
+
+std::string groundTruthPathFor(const std::string& rawlogPath) {
+  std::filesystem::path p(rawlogPath);
+  p.replace_extension(".gt.json");
+  return p.string();
+}
+
+srp::core::CameraIntrinsics scaleIntrinsics(const srp::core::CameraIntrinsics& K, int width_px, int height_px) {
+  if (width_px <= 0 || height_px <= 0 || (width_px == K.width_px && height_px == K.height_px)) return K;
+  const double sx = static_cast<double>(width_px) / K.width_px, sy = static_cast<double>(height_px) / K.height_px;
+  srp::core::CameraIntrinsics out = K;
+  out.fx_px = K.fx_px * sx;
+  out.fy_px = K.fy_px * sy;
+  out.cx_px = (K.cx_px + 0.5) * sx - 0.5;  // pixel centres at integers
+  out.cy_px = (K.cy_px + 0.5) * sy - 0.5;
+  out.width_px = width_px;
+  out.height_px = height_px;
+  return out;
+}
+
+SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp::core::ObjectCatalogue& catalogue,
+                                      const nlohmann::json& plan, const SynthDemoOptions& options,
+                                      const std::string& rawlogPath, const std::function<void(int, int)>& progress) {
+  const auto tStart = Clock::now();
+  sceneIn.validate(catalogue);
+  srp::core::Scene scene = sceneIn;
+  scene.intrinsics = scaleIntrinsics(sceneIn.intrinsics, options.width_px, options.height_px);
+  const HandModel hand(options.hand);
+  const auto steps = groundPlan(plan, scene, catalogue);
+  const DemoTimeline timeline = planDemonstration(scene, catalogue, steps, hand, options.demo);
+  const srp::core::Scene& world = timeline.scene;
+  const auto& K = world.intrinsics;
+
+  // ---- Renderer set-up ----------------------------------------------------------
+  // Two renderers with the same bodies: `layers.background` holds the table,
+  // floor and resting objects and is re-rendered only when that set changes;
+  // `layers.moving` draws the hand and the carried object on an empty
+  // background every frame; a per-pixel depth test composes them. Software
+  // rendering costs per covered pixel, so this skips re-shading the table.
+  std::vector<srp::kb::TriangleMesh> objectMeshes;
+  std::vector<Eigen::AlignedBox3d> objectBounds;
+  std::vector<bool> isPart;
+  for (const auto& o : world.objects) {
+    const auto& cls = catalogue.at(o.className);
+    objectMeshes.push_back(srp::kb::loadClassMesh(cls));
+    objectBounds.push_back(objectMeshes.back().bounds());
+    isPart.push_back(cls.kind == srp::core::ObjectKind::Part);
+  }
+  struct Layer {
+    std::unique_ptr<SceneRenderer> renderer;
+    std::vector<int> objectBodies, handBodies;
+  };
+  auto makeLayer = [&](bool withTable, bool withHand) {
+    Layer layer;
+    layer.renderer = std::make_unique<SceneRenderer>(K);
+    SceneRenderer& r = *layer.renderer;
+    r.setLighting(world.lighting);
+    r.setBackground({0.3, 0.3, 0.32});
+    if (withTable) {
+      const int table = r.addBody(
+          "table",
+          srp::kb::makeBoxMesh({-0.5 * world.tableSize_m.x(), -0.5 * world.tableSize_m.y(), -0.03},
+                               {0.5 * world.tableSize_m.x(), 0.5 * world.tableSize_m.y(), 0.0}),
+          world.tableRgb);
+      r.setBodyPose(table, srp::core::Pose3::Identity());
+      const int floor = r.addBody("floor", srp::kb::makeBoxMesh({-3, -3, -0.78}, {3, 3, -0.75}), {0.42, 0.4, 0.38});
+      r.setBodyPose(floor, srp::core::Pose3::Identity());
+    }
+    for (std::size_t i = 0; i < world.objects.size(); ++i)
+      layer.objectBodies.push_back(r.addBody(world.objects[i].id, objectMeshes[i], timeline.objectRgb.at(world.objects[i].id)));
+    if (withHand)
+      for (const auto& part : hand.parts()) layer.handBodies.push_back(r.addBody("hand:" + part.name, part.mesh_part, part.triangleRgb));
+    return layer;
+  };
+  const bool layered = options.layeredRendering;
+  Layer background = makeLayer(true, !layered);
+  Layer moving = layered ? makeLayer(false, true) : Layer{};
+  std::vector<int> backgroundState;  // per object: 0 hidden, 1 shown; with the poses below
+  std::vector<srp::core::Pose3> backgroundPoses;
+  srp::rawlog::RgbdFrame backgroundFrame;
+
+  // ---- Ground truth header -----------------------------------------------------
+  DemoGroundTruth gt;
+  gt.sceneName = world.name;
+  gt.rawlogFile = std::filesystem::path(rawlogPath).filename().string();
+  gt.seed = options.demo.seed;
+  gt.fps = world.fps;
+  gt.speedFactor = timeline.speedFactor;
+  gt.instruction = plan.value("instruction", std::string());
+  gt.intrinsics = K;
+  gt.X_world_camera = world.X_world_camera;
+  gt.X_world_base = world.X_world_base;
+  gt.tagId = options.hand.tagId;
+  gt.tagSize_m = options.hand.tagSize_m;
+  gt.X_hand_tag = hand.X_hand_tag();
+  gt.sensorRealism = options.sensor.enabled;
+  for (std::size_t i = 0; i < world.objects.size(); ++i) {
+    const auto& o = world.objects[i];
+    GroundTruthObject g{o.id, o.className, catalogue.at(o.className).classId, o.X_world_object,
+                        timeline.frames.back().X_world_objects[i]};
+    gt.objects.push_back(g);
+  }
+  for (const auto& e : timeline.events)
+    gt.events.push_back({e.objectId, e.step, e.graspFrame, e.releaseFrame, e.sourceId, e.targetId, e.referenceId,
+                         e.X_hand_object});
+
+  // Contact-sheet frames: evenly spread, first and last included.
+  const int frameCount = options.maxFrames >= 0 ? std::min<int>(options.maxFrames, static_cast<int>(timeline.frames.size()))
+                                                : static_cast<int>(timeline.frames.size());
+  std::vector<int> sheetFrames;
+  if (!options.contactSheetPath.empty()) {
+    const int n = std::max(2, options.contactSheetFrames);
+    for (int i = 0; i < n; ++i) sheetFrames.push_back(static_cast<int>(std::lround(i * (frameCount - 1.0) / (n - 1))));
+  }
+  std::vector<std::pair<int, srp::rawlog::RgbdFrame>> sheet;
+
+  // ---- Frames -------------------------------------------------------------------
+  SynthDemoResult result;
+  result.rawlogPath = rawlogPath;
+  // With realism on, depth is already quantised to depthStep_m: storing it finer adds only size.
+  const double depthUnit_m = options.sensor.enabled ? std::max(options.rawlogDepthUnit_m, options.sensor.depthStep_m)
+                                                    : options.rawlogDepthUnit_m;
+  AsyncRawlogWriter writer(rawlogPath, depthUnit_m);
+  SensorModel sensor(options.sensor, options.demo.seed);
+  const srp::core::Pose3 X_camera_world = world.X_world_camera.inverse();
+  cv::Mat previousColour;
+  double handValidSum = 0.0, objectValidSum = 0.0;
+  int handValidFrames = 0, objectValidFrames = 0;
+  const double dt = 1.0 / world.fps;
+  for (int k = 0; k < frameCount; ++k) {
+    const FrameState& f = timeline.frames[k];
+    const FrameState& prev = timeline.frames[std::max(k - 1, 0)];
+    auto t0 = Clock::now();
+    const auto partPoses = hand.partPoses(f.grip);
+    srp::rawlog::RgbdFrame frame;
+    if (!layered) {
+      for (std::size_t i = 0; i < world.objects.size(); ++i)
+        background.renderer->setBodyPose(background.objectBodies[i], f.X_world_objects[i]);
+      for (std::size_t i = 0; i < background.handBodies.size(); ++i)
+        background.renderer->setBodyPose(background.handBodies[i], f.X_world_hand * partPoses[i]);
+      frame = background.renderer->render(world.X_world_camera);
+    } else {
+      // Objects in motion (carried, or moved since the last frame) go to the moving layer.
+      std::vector<int> state(world.objects.size());
+      bool anyMoving = false;
+      for (std::size_t i = 0; i < world.objects.size(); ++i) {
+        const bool isMoving = static_cast<int>(i) == f.carriedObject ||
+                              !f.X_world_objects[i].matrix().isApprox(prev.X_world_objects[i].matrix(), 0.0);
+        state[i] = isMoving ? 0 : 1;
+        anyMoving = anyMoving || isMoving;
+      }
+      bool backgroundChanged = state != backgroundState;
+      for (std::size_t i = 0; i < world.objects.size() && !backgroundChanged; ++i)
+        backgroundChanged = state[i] && !f.X_world_objects[i].matrix().isApprox(backgroundPoses[i].matrix(), 0.0);
+      if (backgroundChanged) {
+        for (std::size_t i = 0; i < world.objects.size(); ++i) {
+          background.renderer->setBodyVisible(background.objectBodies[i], state[i] == 1);
+          background.renderer->setBodyPose(background.objectBodies[i], f.X_world_objects[i]);
+        }
+        backgroundFrame = background.renderer->render(world.X_world_camera);
+        backgroundState = state;
+        backgroundPoses = f.X_world_objects;
+      }
+      frame.intrinsics = K;
+      frame.colour_bgr8 = backgroundFrame.colour_bgr8.clone();
+      frame.depth_m = backgroundFrame.depth_m.clone();
+      // The hand is out of view while idle (the timeline guarantees it): nothing moves then.
+      if (f.phase != "idle" || anyMoving) {
+        for (std::size_t i = 0; i < world.objects.size(); ++i) {
+          moving.renderer->setBodyVisible(moving.objectBodies[i], state[i] == 0);
+          moving.renderer->setBodyPose(moving.objectBodies[i], f.X_world_objects[i]);
+        }
+        for (std::size_t i = 0; i < moving.handBodies.size(); ++i)
+          moving.renderer->setBodyPose(moving.handBodies[i], f.X_world_hand * partPoses[i]);
+        const auto front = moving.renderer->render(world.X_world_camera);
+        for (int r = 0; r < K.height_px; ++r) {
+          const float* dFront = front.depth_m.ptr<float>(r);
+          const cv::Vec3b* cFront = front.colour_bgr8.ptr<cv::Vec3b>(r);
+          float* d = frame.depth_m.ptr<float>(r);
+          cv::Vec3b* c = frame.colour_bgr8.ptr<cv::Vec3b>(r);
+          for (int col = 0; col < K.width_px; ++col)
+            if (dFront[col] > 0.f && (d[col] <= 0.f || dFront[col] < d[col])) {
+              d[col] = dFront[col];
+              c[col] = cFront[col];
+            }
+        }
+      }
+    }
+    result.renderTime_s += secondsSince(t0);
+
+    t0 = Clock::now();
+    frame.index = k;
+    frame.t_s = kRawlogEpoch_s + f.t_s;
+    cv::Mat handMask(K.height_px, K.width_px, CV_8UC1, cv::Scalar(0));
+    cv::Mat partMask(K.height_px, K.width_px, CV_8UC1, cv::Scalar(0));
+    cv::Mat movingMask(K.height_px, K.width_px, CV_8UC1, cv::Scalar(0));
+    for (std::size_t i = 0; i < hand.parts().size(); ++i)
+      markBox(hand.parts()[i].bounds_part, X_camera_world * f.X_world_hand * partPoses[i], K, frame.depth_m, handMask);
+    double movingSpeed = 0.0;
+    for (std::size_t i = 0; i < world.objects.size(); ++i) {
+      if (!isPart[i]) continue;
+      const double speed = (f.X_world_objects[i].translation() - prev.X_world_objects[i].translation()).norm() / dt;
+      markBox(objectBounds[i], X_camera_world * f.X_world_objects[i], K, frame.depth_m, speed > 0.0 ? movingMask : partMask);
+      movingSpeed = std::max(movingSpeed, speed);
+    }
+    partMask.setTo(0, handMask);
+    movingMask.setTo(0, handMask);
+    const double handSpeed = (f.X_world_hand.translation() - prev.X_world_hand.translation()).norm() / dt;
+    const cv::Mat cleanColour = options.sensor.motionBlur ? frame.colour_bgr8.clone() : cv::Mat();
+    sensor.apply(frame, handMask, handSpeed, partMask, movingMask, movingSpeed, previousColour);
+    previousColour = cleanColour;
+
+    GroundTruthFrame g;
+    g.index = k;
+    g.t_s = f.t_s;
+    g.phase = f.phase;
+    g.step = f.step;
+    g.grip = f.grip;
+    g.handPixels = cv::countNonZero(handMask);
+    g.handInView = g.handPixels > 0;
+    g.X_world_hand = f.X_world_hand;
+    g.p_camera_palm_m = X_camera_world * f.X_world_hand.translation();
+    g.X_camera_tag = X_camera_world * f.X_world_hand * hand.X_hand_tag();
+    const auto corners = hand.tagCorners_tag();
+    bool allIn = g.X_camera_tag.linear().col(2).dot(g.X_camera_tag.translation()) > 0.0;
+    for (int c = 0; c < 4; ++c) {
+      const auto uv = K.project(g.X_camera_tag * corners[c]);
+      g.tagCorners_px[c] = uv ? *uv : Eigen::Vector2d(-1, -1);
+      allIn = allIn && uv && K.contains(uv->x(), uv->y());
+    }
+    g.tagInView = allIn;
+    if (f.carriedObject >= 0) g.carriedObject = world.objects[f.carriedObject].id;
+    for (std::size_t i = 0; i < world.objects.size(); ++i) g.X_world_objects[world.objects[i].id] = f.X_world_objects[i];
+    auto validFraction = [&](const cv::Mat& mask) -> std::optional<double> {
+      const int n = cv::countNonZero(mask);
+      if (n == 0) return std::nullopt;
+      cv::Mat valid = (frame.depth_m > 0.f) & mask;
+      return static_cast<double>(cv::countNonZero(valid)) / n;
+    };
+    g.handValidDepthFraction = validFraction(handMask);
+    g.objectsValidDepthFraction = validFraction(partMask | movingMask);
+    if (g.handValidDepthFraction && g.handPixels > 200) {
+      handValidSum += *g.handValidDepthFraction;
+      ++handValidFrames;
+    }
+    if (g.objectsValidDepthFraction) {
+      objectValidSum += *g.objectsValidDepthFraction;
+      ++objectValidFrames;
+    }
+    gt.frames.push_back(std::move(g));
+    result.sensorTime_s += secondsSince(t0);
+
+    if (std::find(sheetFrames.begin(), sheetFrames.end(), k) != sheetFrames.end()) sheet.emplace_back(k, frame);
+    writer.write(std::move(frame));
+    if (progress) progress(k, frameCount);
+  }
+  result.writeTime_s = writer.close();
+  result.groundTruthPath = groundTruthPathFor(rawlogPath);
+  gt.save(result.groundTruthPath);
+  result.frameCount = frameCount;
+  result.duration_s = frameCount / world.fps;
+  result.meanHandValidDepth = handValidFrames ? handValidSum / handValidFrames : -1.0;
+  result.meanObjectValidDepth = objectValidFrames ? objectValidSum / objectValidFrames : -1.0;
+
+  // ---- Contact sheet: colour | depth per frame, two frames per row ----------------
+  if (!options.contactSheetPath.empty() && !sheet.empty()) {
+    const cv::Size tile(256, 192);
+    const int perRow = 2, rows = (static_cast<int>(sheet.size()) + perRow - 1) / perRow;
+    cv::Mat canvas(rows * tile.height, perRow * 2 * tile.width, CV_8UC3, cv::Scalar(255, 255, 255));
+    for (std::size_t i = 0; i < sheet.size(); ++i) {
+      const auto& [index, fr] = sheet[i];
+      const int r = static_cast<int>(i) / perRow, c = static_cast<int>(i) % perRow;
+      cv::Mat colour, depth;
+      cv::resize(fr.colour_bgr8, colour, tile, 0, 0, cv::INTER_AREA);
+      cv::resize(colourMapDepth(fr.depth_m, 0.55, 0.95), depth, tile, 0, 0, cv::INTER_NEAREST);
+      colour.copyTo(canvas(cv::Rect(2 * c * tile.width, r * tile.height, tile.width, tile.height)));
+      depth.copyTo(canvas(cv::Rect((2 * c + 1) * tile.width, r * tile.height, tile.width, tile.height)));
+      const std::string label = "frame " + std::to_string(index) + "  t=" +
+                                cv::format("%.1f", gt.frames[index].t_s) + " s  " + gt.frames[index].phase;
+      cv::putText(canvas, label, {2 * c * tile.width + 6, r * tile.height + 18}, cv::FONT_HERSHEY_SIMPLEX, 0.5,
+                  cv::Scalar(255, 255, 255), 2);
+      cv::putText(canvas, label, {2 * c * tile.width + 6, r * tile.height + 18}, cv::FONT_HERSHEY_SIMPLEX, 0.5,
+                  cv::Scalar(0, 0, 0), 1);
+    }
+    if (!cv::imwrite(options.contactSheetPath, canvas))
+      throw srp::core::FileError(options.contactSheetPath, "cannot write the contact sheet PNG");
+    result.contactSheetPath = options.contactSheetPath;
+  }
+  result.totalTime_s = secondsSince(tStart);
+  return result;
+}
+
+}  // namespace srp::synth

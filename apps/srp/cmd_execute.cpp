@@ -30,14 +30,11 @@ void setupExecute(CLI::App& app) {
       ->capture_default_str();
   app.add_flag("--json", o->json, "Print the report as JSON on stdout");
   app.callback([o] {
-    if (!o->instruction.empty())
-      throw srp::core::InvalidInputError(
-          "--instruction needs the Language Module, which is not part of this build yet; run without it to "
-          "execute the stored plan");
     srp::execution::ExecuteRequest request;
     request.databasePath = o->db;
     request.taskModelId = o->task;
     request.scenePath = o->scene;
+    request.instruction = o->instruction;
     request.outputFolder = o->out;
     request.framePeriod = o->framePeriod;
     request.progress = [](const std::string& line) { std::cerr << line << "\n"; };

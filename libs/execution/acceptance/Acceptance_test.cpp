@@ -6,6 +6,8 @@
 #include "srp/execution/RandomScene.h"
 #include "srp/execution/TaskExecutor.h"
 #include "srp/execution/ExecutionSession.h"
+#include "srp/execution/PlanConversion.h"
+#include "srp/language/InstructionParser.h"
 
 using namespace srp::execution;
 
@@ -73,6 +75,61 @@ TEST(Acceptance, AppendixAInstructionsOnTheDefaultScene) {
   }
   std::cout << "Appendix A: " << succeeded << "/5\n";
   EXPECT_EQ(succeeded, 5);
+}
+
+/// Appendix A of the thesis, verbatim.
+const char* kAppendixA[5] = {
+    "Begin by picking up the cuboid from the blue box and placing it in the gray box. Next, carefully lift the star "
+    "and position it next to the cuboid in the gray box. Then, move the parallelogram, placing it beside the star in "
+    "the gray box. Finally, pick up the octagon and place it adjacent to the parallelogram in the gray box.",
+    "Start by gently lifting the cuboid from the blue box and placing it precisely in the gray box. Then, grasp the "
+    "star and carefully set it near the cuboid in the gray box. Afterwards, pick up the parallelogram and position it "
+    "beside the star in the gray box. Conclude by placing the octagon next to the parallelogram in the gray box.",
+    "First, remove the cuboid from the blue box and place it in the gray box with precision. Following that, take "
+    "the star and gently place it alongside the cuboid in the gray box. Continue by moving the parallelogram, placing "
+    "it next to the star in the gray box. Finish by setting the octagon beside the parallelogram in the gray box.",
+    "Initially, pick up the cuboid from the blue box and carefully place it in the gray box. Next, take the star and "
+    "delicately place it next to the cuboid in the gray box. Then, transfer the parallelogram, positioning it beside "
+    "the star in the gray box. Finally, place the octagon adjacent to the parallelogram in the gray box.",
+    "Begin by lifting the cuboid from the blue box and placing it neatly in the gray box. Then, pick up the star and "
+    "position it carefully next to the cuboid in the gray box. Next, move the parallelogram and place it beside the "
+    "star in the gray box. Lastly, place the octagon next to the parallelogram, completing the sequence in the gray "
+    "box."};
+
+TEST(Acceptance, AppendixAInstructionsThroughTheLanguageModule) {
+  Runner run;
+  const srp::language::InstructionParser parser;
+  int succeeded = 0;
+  for (int k = 0; k < 5; ++k) {
+    const auto parsed = parser.parse(kAppendixA[k]);
+    std::cout << "instruction " << k + 1 << " parsed:\n" << srp::language::describe(parsed);
+    auto ex = run.make(defaultCell());
+    const auto r = ex->run(planFromLanguage(parsed));
+    std::cout << r.toText();
+    expectAllDone(r);
+    EXPECT_EQ(r.steps.size(), 4u);
+    succeeded += r.allSucceeded() && r.steps.size() == 4u;
+  }
+  std::cout << "Appendix A through the Language Module: " << succeeded << "/5\n";
+  EXPECT_EQ(succeeded, 5);
+}
+
+TEST(Acceptance, SubsetAndReversalInstructionsThroughTheLanguageModule) {
+  Runner run;
+  const srp::language::InstructionParser parser;
+  auto ex = run.make(defaultCell());
+  const auto subset = parser.parse("Pick up the cuboid from the blue box and place it in the gray box");
+  const auto r1 = ex->run(planFromLanguage(subset));
+  std::cout << r1.toText();
+  expectAllDone(r1);
+  EXPECT_EQ(r1.steps.size(), 1u);
+  const auto back = parser.parse("Move the cuboid from the gray box back to the blue box", subset.steps);
+  std::cout << srp::language::describe(back);
+  const auto r2 = ex->run(planFromLanguage(back));
+  std::cout << r2.toText();
+  expectAllDone(r2);
+  ASSERT_EQ(r2.steps.size(), 1u);
+  EXPECT_TRUE(r2.steps[0].insideContainer);
 }
 
 TEST(Acceptance, Subset) {

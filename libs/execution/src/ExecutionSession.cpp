@@ -11,6 +11,8 @@
 #include "srp/execution/CellRenderer.h"
 #include "srp/execution/MinimumJerkPathGenerator.h"
 #include "srp/execution/PlanConversion.h"
+#include "srp/language/InstructionParser.h"
+#include "srp/language/PlanTables.h"
 #include "srp/taskdb/TaskModelStore.h"
 
 namespace srp::execution {
@@ -43,7 +45,20 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
   // Demonstration offsets: the camera as stored with the task model, else the scene's.
   const srp::core::Pose3 X_world_camera =
       model.info.X_base_camera ? srp::core::Pose3(scene.X_world_base * *model.info.X_base_camera) : scene.X_world_camera;
-  result.plan = request.planOverride ? *request.planOverride : planFromTaskModel(model, X_world_camera);
+  if (request.planOverride) {
+    result.plan = *request.planOverride;
+  } else if (!request.instruction.empty()) {
+    const srp::language::InstructionParser parser;
+    const srp::language::TaskPlan parsed =
+        parser.parse(request.instruction, srp::language::planStepsFromTaskModel(model));
+    if (parsed.steps.empty())
+      throw srp::core::InvalidInputError("the instruction gives no pick & place step: " +
+                                         (parsed.warnings.empty() ? std::string("(no reason)") : parsed.warnings.front()));
+    result.plan = planFromLanguage(parsed);
+    attachDemoOffsets(result.plan, model, X_world_camera);
+  } else {
+    result.plan = planFromTaskModel(model, X_world_camera);
+  }
   if (result.plan.steps.empty())
     throw srp::core::InvalidInputError("task model " + std::to_string(request.taskModelId) +
                                        " has no target objects to execute");

@@ -86,8 +86,13 @@ ExecutionPlan planFromTaskModel(const srp::taskdb::TaskModel& model, const std::
   for (const auto& t : model.targetLocations)
     if (!usedTarget.count(t.locationId)) attachOrphan(t.description, t.indicatorObjectId);
 
-  // Demonstrated final offsets between neighbours (camera frame -> world).
-  if (X_world_camera && !model.productPoses.empty()) {
+  if (X_world_camera) attachDemoOffsets(plan, model, *X_world_camera);
+  return plan;
+}
+
+void attachDemoOffsets(ExecutionPlan& plan, const srp::taskdb::TaskModel& model, const srp::core::Pose3& X_world_camera) {
+  if (model.productPoses.empty()) return;
+  {
     auto classOf = [&](const ObjectReference& ref) -> std::optional<int> {
       for (const auto& g : model.groundedProducts)
         if (g.objectName == ref.name || g.objectName == (ref.color ? *ref.color + ref.name : ref.name) ||
@@ -111,12 +116,24 @@ ExecutionPlan planFromTaskModel(const srp::taskdb::TaskModel& model, const std::
         if (!a || !b) continue;
         const auto pa = finalPosition(*a), pb = finalPosition(*b);
         if (!pa || !pb) continue;
-        const Eigen::Vector3d d_world = X_world_camera->linear() * (*pa - *pb);
+        const Eigen::Vector3d d_world = X_world_camera.linear() * (*pa - *pb);
         if (d_world.head<2>().norm() > 1e-3) step.demoOffsetFromNeighbour_m = d_world.head<2>();
       }
     }
   }
-  return plan;
+}
+
+ExecutionPlan planFromLanguage(const srp::language::TaskPlan& plan) {
+  auto ref = [](const srp::language::ObjectRef& o) { return ObjectReference{o.name, o.color}; };
+  ExecutionPlan out;
+  for (const auto& s : plan.steps) {
+    ExecutionStep step;
+    step.object = ref(s.object);
+    for (const auto& l : s.source) step.source.push_back({l.relation, ref(l.landmark)});
+    for (const auto& l : s.target) step.target.push_back({l.relation, ref(l.landmark)});
+    out.steps.push_back(step);
+  }
+  return out;
 }
 
 }  // namespace srp::execution

@@ -21,7 +21,10 @@ struct ExecuteRequest {
   std::string scenePath;     ///< scene JSON; "" = sim/scenes/default.json
   std::string outputFolder;  ///< "" = write nothing
   int framePeriod = 10;      ///< render every n-th logged snapshot (0 = no frames)
-  /// Replaces the stored plan (e.g. a new instruction parsed by the Language Module).
+  /// A new instruction: parsed by the Language Module (with the stored plan as the
+  /// known steps, for "back to" and "only the star"), it replaces the stored plan.
+  std::string instruction;
+  /// Replaces the stored plan directly (tests, tools).
   std::optional<ExecutionPlan> planOverride;
   ExecutionOptions options;
   std::function<void(const std::string&)> progress;  ///< one line per step, may be empty

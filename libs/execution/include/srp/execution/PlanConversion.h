@@ -16,6 +16,7 @@
 
 #include "srp/core/Pose.h"
 #include "srp/execution/ExecutionPlan.h"
+#include "srp/language/TaskPlan.h"
 #include "srp/taskdb/TaskModel.h"
 
 namespace srp::execution {
@@ -23,5 +24,13 @@ namespace srp::execution {
 /// Throws InvalidInputError when a row references a missing product or location.
 ExecutionPlan planFromTaskModel(const srp::taskdb::TaskModel& model,
                                 const std::optional<srp::core::Pose3>& X_world_camera = std::nullopt);
+
+/// The plan of a new instruction (Language Module output), step for step.
+ExecutionPlan planFromLanguage(const srp::language::TaskPlan& plan);
+
+/// Sets each neighbour step's demonstrated side from the task model's final object
+/// poses (camera frame, rotated into the world by X_world_camera); steps whose
+/// objects the demonstration did not show are left as they are.
+void attachDemoOffsets(ExecutionPlan& plan, const srp::taskdb::TaskModel& model, const srp::core::Pose3& X_world_camera);
 
 }  // namespace srp::execution

@@ -14,10 +14,7 @@ using namespace srp::execution;
 
 namespace {
 
-CellDescription defaultCell() {
-  const auto scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-  return CellDescription::fromScene(scene, srp::core::ObjectCatalogue::load(scene.cataloguePath));
-}
+CellDescription defaultCell() { return CellDescription::loadScene(); }
 
 ExecutionPlan instruction1() {
   auto rel = [](const char* r, const char* n, std::optional<std::string> c = {}) { return SpatialRelation{r, {n, c}}; };

@@ -14,10 +14,7 @@ using namespace srp::execution;
 namespace {
 constexpr double kPlacementTol_m = 0.01;  // issue: within 1 cm of the planned pose
 
-CellDescription defaultCell() {
-  const auto scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-  return CellDescription::fromScene(scene, srp::core::ObjectCatalogue::load(scene.cataloguePath));
-}
+CellDescription defaultCell() { return CellDescription::loadScene(); }
 
 SpatialRelation rel(const std::string& r, const std::string& name, std::optional<std::string> color = {}) {
   return {r, {name, color}};

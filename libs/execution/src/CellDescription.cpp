@@ -62,6 +62,12 @@ CellDescription CellDescription::fromScene(const srp::core::Scene& scene,
   return cell;
 }
 
+CellDescription CellDescription::loadScene(const std::string& scenePath) {
+  const srp::core::Scene scene =
+      srp::core::Scene::load(scenePath.empty() ? std::string(SRP_SIM_DIR) + "/scenes/default.json" : scenePath);
+  return fromScene(scene, srp::core::ObjectCatalogue::load(scene.cataloguePath));
+}
+
 std::vector<WorldBox> CellDescription::staticBoxes() const {
   constexpr double kTableThickness_m = 0.05;
   std::vector<WorldBox> boxes;

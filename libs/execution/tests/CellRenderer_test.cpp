@@ -8,8 +8,7 @@
 using namespace srp::execution;
 
 TEST(CellRenderer, RendersTheDefaultCellToAPng) {
-  const auto scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-  const auto cell = CellDescription::fromScene(scene, srp::core::ObjectCatalogue::load(scene.cataloguePath));
+  const auto cell = CellDescription::loadScene();
   CellRenderer renderer(RobotModel::defaultUr5(), cell, CellRendererOptions{});
   CellSnapshot snap;
   snap.q_rad << -1.57, -1.6, 1.6, -1.57, -1.57, 0.0;

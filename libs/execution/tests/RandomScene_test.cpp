@@ -8,8 +8,7 @@
 using namespace srp::execution;
 
 TEST(RandomScene, SeededPartsInsideTheBoxAndApart) {
-  const auto scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-  const auto base = CellDescription::fromScene(scene, srp::core::ObjectCatalogue::load(scene.cataloguePath));
+  const auto base = CellDescription::loadScene();
   for (std::uint32_t seed = 1; seed <= 20; ++seed) {
     const CellDescription a = randomizeCell(base, "blue box", seed);
     const CellDescription b = randomizeCell(base, "blue box", seed);

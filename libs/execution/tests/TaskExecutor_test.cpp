@@ -12,10 +12,7 @@ using namespace srp::execution;
 namespace {
 constexpr double kPlacementTol_m = 0.01;  // issue: within 1 cm of the planned pose
 
-CellDescription defaultCell() {
-  const auto scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-  return CellDescription::fromScene(scene, srp::core::ObjectCatalogue::load(scene.cataloguePath));
-}
+CellDescription defaultCell() { return CellDescription::loadScene(); }
 
 Pose3 homeTcp() {
   Pose3 X = Pose3::Identity();

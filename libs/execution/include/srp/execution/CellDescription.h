@@ -64,6 +64,9 @@ struct CellDescription {
   /// catalogue class (kind, size, wall, mass, colour). Throws InvalidInputError
   /// (from Scene::validate) naming an object whose class is unknown.
   static CellDescription fromScene(const srp::core::Scene& scene, const srp::core::ObjectCatalogue& catalogue);
+
+  /// fromScene() of a scene file with the catalogue it names; "" = sim/scenes/default.json.
+  static CellDescription loadScene(const std::string& scenePath = "");
 };
 
 }  // namespace srp::execution

@@ -4,8 +4,6 @@
 
 #include <array>
 #include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 
 #include "srp/core/Error.h"
@@ -489,11 +487,6 @@ TrackingResult CellSimulator::track(const JointTrajectory& trajectory, double se
   r.simulated_s = m.state.getTime() - t0;
   r.finalJointError_rad = (m.q() - trajectory.samples().back().q_rad).cwiseAbs().maxCoeff();
   r.torqueSaturations = m.controller->saturations - saturationsBefore;
-  if (std::getenv("SRP_SIM_DEBUG")) {
-    int sleeping = 0;
-    for (bool a : m.asleep) sleeping += a;
-    std::fprintf(stderr, "track %.2f s: %ld steps, %d asleep\n", r.simulated_s, m.stepsSoFar, sleeping);
-  }
   return r;
 }
 

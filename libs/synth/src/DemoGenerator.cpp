@@ -27,6 +27,7 @@ double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>
 
 constexpr double kRawlogEpoch_s = 1.7e9;  // rawlog timestamps: a fixed epoch + t_s, reproducible
 constexpr double kMaskDepthMargin_m = 0.004;
+constexpr double kMaxTagViewAngle_rad = 60.0 * 3.14159265358979323846 / 180.0;
 
 // Marks the pixels where a box (in its part frame, placed at X_camera_part) is
 // the visible surface: inside the projected hull and at a depth within the box's range.
@@ -56,6 +57,44 @@ void markBox(const Eigen::AlignedBox3d& box, const srp::core::Pose3& X_camera_pa
     for (int c = 0; c < bounds.width; ++c)
       if (l[c] && d[c] >= zMin - kMaskDepthMargin_m && d[c] <= zMax + kMaskDepthMargin_m) m[c] = 255;
   }
+}
+
+// Fraction of the tag plate's pixels (black square and white margin, one cell
+// wide, less a rim of kTagRim_m for rasterisation at its edges) where the plate
+// is the visible surface of the rendered (clean) depth: each pixel centre's ray
+// is cut with the plate plane, and the pixel counts as visible when the
+// rendered depth there is that point's within kTagSurfaceTol_m (the palm top
+// lies 2 mm below the plate). Anything in front (a finger, a carried part) or showing
+// through (depth fighting with the palm) hides it; so does the image border.
+// 0 when the plate faces away from the camera.
+constexpr double kTagSurfaceTol_m = 0.001, kTagRim_m = 0.001;
+double tagVisibleFraction(const srp::core::Pose3& X_camera_tag, double plateHalf_m,
+                          const srp::core::CameraIntrinsics& K, const cv::Mat& depth) {
+  const Eigen::Vector3d n = X_camera_tag.linear().col(2), o = X_camera_tag.translation();
+  if (n.dot(o) <= 0.0) return 0.0;  // tag z points into the tag: it must point away from the camera
+  std::vector<cv::Point> pts;
+  for (const auto& [x, y] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
+    const Eigen::Vector3d p = X_camera_tag * Eigen::Vector3d(x * plateHalf_m, y * plateHalf_m, 0.0);
+    if (p.z() <= 0.05) return 0.0;
+    const auto uv = K.project(p);
+    pts.emplace_back(static_cast<int>(std::floor(uv->x())), static_cast<int>(std::floor(uv->y())));
+  }
+  const cv::Rect box = cv::boundingRect(pts) + cv::Size(2, 2);
+  const srp::core::Pose3 X_tag_camera = X_camera_tag.inverse();
+  int inside = 0, visible = 0;
+  for (int v = box.y; v < box.y + box.height; ++v)
+    for (int u = box.x; u < box.x + box.width; ++u) {
+      const Eigen::Vector3d ray = K.backProject(u, v, 1.0);
+      const double s = n.dot(o) / n.dot(ray);  // ray point on the plate plane
+      if (s <= 0.0) continue;
+      const Eigen::Vector3d p_tag = X_tag_camera * (s * ray);
+      if (std::abs(p_tag.x()) > plateHalf_m || std::abs(p_tag.y()) > plateHalf_m) continue;
+      ++inside;
+      if (u < 0 || v < 0 || u >= depth.cols || v >= depth.rows) continue;
+      const float d = depth.at<float>(v, u);
+      if (std::abs(d - s * ray.z()) <= kTagSurfaceTol_m) ++visible;
+    }
+  return inside ? static_cast<double>(visible) / inside : 0.0;
 }
 
 // Writes frames on a background thread so that serialisation and compression
@@ -353,6 +392,9 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
     }
     partMask.setTo(0, handMask);
     movingMask.setTo(0, handMask);
+    // Tag visibility from the clean rendered depth (before the sensor model punches holes).
+    const srp::core::Pose3 X_camera_tag = X_camera_world * f.X_world_hand * hand.X_hand_tag();
+    const double tagVisible = tagVisibleFraction(X_camera_tag, hand.tagPlateHalfSize_m() - kTagRim_m, K, frame.depth_m);
     const double handSpeed = (f.X_world_hand.translation() - prev.X_world_hand.translation()).norm() / dt;
     const cv::Mat cleanColour = options.sensor.motionBlur ? frame.colour_bgr8.clone() : cv::Mat();
     sensor.apply(frame, handMask, handSpeed, partMask, movingMask, movingSpeed, previousColour);
@@ -368,15 +410,18 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
     g.handInView = g.handPixels > 0;
     g.X_world_hand = f.X_world_hand;
     g.p_camera_palm_m = X_camera_world * f.X_world_hand.translation();
-    g.X_camera_tag = X_camera_world * f.X_world_hand * hand.X_hand_tag();
+    g.X_camera_tag = X_camera_tag;
     const auto corners = hand.tagCorners_tag();
-    bool allIn = g.X_camera_tag.linear().col(2).dot(g.X_camera_tag.translation()) > 0.0;
     for (int c = 0; c < 4; ++c) {
       const auto uv = K.project(g.X_camera_tag * corners[c]);
       g.tagCorners_px[c] = uv ? *uv : Eigen::Vector2d(-1, -1);
-      allIn = allIn && uv && K.contains(uv->x(), uv->y());
     }
-    g.tagInView = allIn;
+    // "In view" = a detector could read it: the whole plate (black square and
+    // white margin) is in the image, seen at most kMaxTagViewAngle_rad off its
+    // normal, and nothing hides any of its pixels.
+    const double cosView = X_camera_tag.linear().col(2).dot(X_camera_tag.translation().normalized());
+    g.tagVisibleFraction = tagVisible;
+    g.tagInView = tagVisible >= 1.0 && cosView >= std::cos(kMaxTagViewAngle_rad);
     if (f.carriedObject >= 0) g.carriedObject = world.objects[f.carriedObject].id;
     for (std::size_t i = 0; i < world.objects.size(); ++i) g.X_world_objects[world.objects[i].id] = f.X_world_objects[i];
     auto validFraction = [&](const cv::Mat& mask) -> std::optional<double> {

@@ -78,6 +78,7 @@ json DemoGroundTruth::toJson() const {
   for (const auto& f : frames) {
     json jf = {{"index", f.index}, {"t_s", f.t_s}, {"phase", f.phase}, {"step", f.step}, {"grip", f.grip},
                {"hand_in_view", f.handInView}, {"hand_pixels", f.handPixels}, {"tag_in_view", f.tagInView},
+               {"tag_visible_fraction", f.tagVisibleFraction},
                {"X_world_hand", poseToJson(f.X_world_hand)}, {"p_camera_palm_m", vec(f.p_camera_palm_m)},
                {"X_camera_tag", poseToJson(f.X_camera_tag)},
                {"carried", f.carriedObject.empty() ? json(nullptr) : json(f.carriedObject)}};
@@ -152,6 +153,7 @@ DemoGroundTruth DemoGroundTruth::fromJson(const json& j, const std::string& ctx)
     f.handInView = requireField(jf, "hand_in_view", fc).get<bool>();
     f.handPixels = jf.value("hand_pixels", 0);
     f.tagInView = jf.value("tag_in_view", false);
+    f.tagVisibleFraction = jf.value("tag_visible_fraction", 0.0);
     f.X_world_hand = poseFromJson(requireField(jf, "X_world_hand", fc), fc + ".X_world_hand");
     f.p_camera_palm_m = vec3(requireField(jf, "p_camera_palm_m", fc), fc + ".p_camera_palm_m");
     f.X_camera_tag = poseFromJson(requireField(jf, "X_camera_tag", fc), fc + ".X_camera_tag");

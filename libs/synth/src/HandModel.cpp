@@ -22,7 +22,7 @@ constexpr std::array<FingerSpec, 4> kFingers = {{{0.030, 0.045, 0.034},    // in
                                                  {0.010, 0.050, 0.036},    // middle
                                                  {-0.010, 0.047, 0.034},   // ring
                                                  {-0.030, 0.038, 0.028}}};  // little
-constexpr double kPalmHalfLength_m = 0.045, kPalmHalfWidth_m = 0.042, kPalmHalfThickness_m = 0.013;
+constexpr double kPalmHalfLength_m = 0.045, kPalmHalfWidth_m = 0.042, kPalmHalfThickness_m = 0.0115;  // 2 mm below the tag plate (no depth fighting)
 constexpr double kForearmPitch_rad = 15.0 * kDeg;  // forearm rises towards the elbow
 
 srp::core::Pose3 translation(double x, double y, double z) {
@@ -79,7 +79,9 @@ HandModel::HandModel(const HandModelOptions& options) : options_(options) {
   const Eigen::Vector3d skin = options.skinRgb;
   parts_.push_back(boxPart("palm", {-kPalmHalfLength_m, -kPalmHalfWidth_m, -kPalmHalfThickness_m},
                            {kPalmHalfLength_m, kPalmHalfWidth_m, kPalmHalfThickness_m}, skin));
-  parts_.push_back(boxPart("wrist", {-0.11, -0.031, -0.022}, {0.0, 0.031, 0.022}, skin));
+  // The wrist is thinner than the palm and starts behind the tag plate, so that
+  // it never rises over the plate (it is pitched up towards the elbow).
+  parts_.push_back(boxPart("wrist", {-0.11, -0.031, -0.018}, {-0.012, 0.031, 0.018}, skin));
   parts_.push_back(boxPart("sleeve", {-0.45, -0.038, -0.03}, {-0.1, 0.038, 0.03}, options.sleeveRgb));
   for (std::size_t i = 0; i < kFingers.size(); ++i) {
     const auto& f = kFingers[i];

@@ -73,6 +73,15 @@ TEST(DemoGenerator, RawlogAndGroundTruthReadBack) {
   EXPECT_TRUE(again.frames[e.graspFrame].X_camera_tag.isApprox(gt.frames[e.graspFrame].X_camera_tag, 1e-12));
   EXPECT_TRUE(again.X_base_camera().isApprox(f.scene.X_base_camera(), 0.05));
 
+  // Tag in view = readable: the whole plate is the visible surface; the glove
+  // keeps it readable from the slow final approach through grasp and lift.
+  for (const auto& g : gt.frames) {
+    if (g.tagInView) EXPECT_DOUBLE_EQ(g.tagVisibleFraction, 1.0) << "frame " << g.index;
+    if (!g.handInView) EXPECT_FALSE(g.tagInView) << "frame " << g.index;
+  }
+  for (int k = e.graspFrame - 10; k <= e.graspFrame + 10; ++k) EXPECT_TRUE(gt.frames[k].tagInView) << "frame " << k;
+  EXPECT_EQ(again.frames[e.graspFrame].tagVisibleFraction, gt.frames[e.graspFrame].tagVisibleFraction);
+
   // Sensor realism as in the thesis: < 50 % valid depth on the hand, > 70 % on objects.
   std::cout << "[measured] valid depth: hand " << 100 * result.meanHandValidDepth << " %, objects "
             << 100 * result.meanObjectValidDepth << " %\n";

@@ -139,3 +139,30 @@ TEST(HandModel, GripFlexesTheFingersTowardsThePalmSide) {
 }
 
 }  // namespace
+
+namespace {
+
+// Nothing of the hand rises over the tag plate at any grip: every corner of
+// every other part that lies above the plate's footprint (plus a margin for
+// oblique views) stays below the plate, and the palm's top a clear gap below
+// it (no depth fighting). This is what keeps the tag readable while grasping.
+TEST(HandModel, NoPartRisesOverTheTagPlateAtAnyGrip) {
+  constexpr double kFootprintMargin_m = 0.008, kMinGapBelowPlate_m = 0.0015;
+  srp::synth::HandModel hand;
+  const double half = hand.tagPlateHalfSize_m() + kFootprintMargin_m;
+  const double plateZ = hand.X_hand_tag().translation().z();
+  for (double grip : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+    const auto poses = hand.partPoses(grip);
+    for (std::size_t i = 0; i < hand.parts().size(); ++i) {
+      if (hand.parts()[i].name == "tag") continue;
+      const auto& box = hand.parts()[i].bounds_part;
+      for (int c = 0; c < 8; ++c) {
+        const Eigen::Vector3d p = poses[i] * box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c));
+        if (std::abs(p.x()) > half || std::abs(p.y()) > half) continue;
+        EXPECT_LT(p.z(), plateZ - kMinGapBelowPlate_m) << hand.parts()[i].name << " corner " << c << " grip " << grip;
+      }
+    }
+  }
+}
+
+}  // namespace

@@ -26,7 +26,11 @@ struct GroundTruthFrame {
   double grip = 0.0;             ///< finger closure [0, 1]
   bool handInView = false;       ///< some hand pixel is visible in the image
   int handPixels = 0;            ///< visible hand pixels (incl. forearm)
-  bool tagInView = false;        ///< all four tag corners inside the image and the tag faces the camera
+  /// A detector could read the tag: the whole plate (black square and white
+  /// margin) inside the image, seen within 60 deg of its normal, and no pixel
+  /// of it hidden by other geometry in the rendered depth.
+  bool tagInView = false;
+  double tagVisibleFraction = 0.0;  ///< fraction of the plate's pixels where the plate is the visible surface
   srp::core::Pose3 X_world_hand = srp::core::Pose3::Identity();
   Eigen::Vector3d p_camera_palm_m = Eigen::Vector3d::Zero();  ///< palm centre in the camera frame
   srp::core::Pose3 X_camera_tag = srp::core::Pose3::Identity();

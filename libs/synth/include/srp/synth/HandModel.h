@@ -52,6 +52,8 @@ class HandModel {
 
   srp::core::Pose3 X_hand_tag() const;
   std::array<Eigen::Vector3d, 4> tagCorners_tag() const;
+  /// Half side of the tag plate (black square plus its one-cell white margin) [m].
+  double tagPlateHalfSize_m() const { return 0.5 * options_.tagSize_m * static_cast<double>(tagCells_.size()) / (tagCells_.size() - 2.0); }
   const HandModelOptions& options() const { return options_; }
   /// The tag's cells (including the white border) as read: row-major,
   /// true = black. 10 x 10 for tag36h11.

@@ -17,9 +17,9 @@ double minimumJerk(double tau) {
 
 DmpPathGenerator::DmpPathGenerator(std::map<std::string, LearnedPathSkills> skillsByObject,
                                    const srp::core::Pose3& X_world_demo, MinimumJerkOptions fallback,
-                                   double moveEndHeight_m)
+                                   double endHeight_m)
     : skills_(std::move(skillsByObject)), X_world_demo_(X_world_demo), fallback_(fallback),
-      moveEndHeight_m_(moveEndHeight_m) {}
+      endHeight_m_(endHeight_m) {}
 
 DmpPathGenerator DmpPathGenerator::fromTaskModel(const srp::taskdb::TaskModel& model,
                                                  const srp::core::Pose3& X_world_camera, MinimumJerkOptions fallback) {
@@ -79,13 +79,13 @@ CartesianPath DmpPathGenerator::generate(srp::core::SkillType skill, const std::
   if (!(dt_s > 0.0)) throw srp::core::InvalidInputError("DmpPathGenerator: the sample time must be > 0 s");
   const srp::motion::Dmp* learned = find(skill, object);
   if (!learned) return fallback_.generate(skill, object, X_world_start, X_world_goal, dt_s);
-  if (skill == srp::core::SkillType::Move && moveEndHeight_m_ > 0.0) {
-    // The carried part leaves and enters a container vertically: a human hand
-    // approaches diagonally (so does the demo's DMP), which would sweep the part
-    // through a container wall. The DMP runs between the raised ends.
+  if (endHeight_m_ > 0.0) {
+    // The tool and the carried part leave and enter a container vertically: a human
+    // hand approaches diagonally (so does the demo's DMP), which would sweep the part
+    // or the tool through a container wall. The DMP runs between the raised ends.
     srp::core::Pose3 up = X_world_start, down = X_world_goal;
-    up.translation().z() = std::max(up.translation().z(), moveEndHeight_m_);
-    down.translation().z() = std::max(down.translation().z(), moveEndHeight_m_);
+    up.translation().z() = std::max(up.translation().z(), endHeight_m_);
+    down.translation().z() = std::max(down.translation().z(), endHeight_m_);
     CartesianPath path;
     const double kMinSegment_m = 1e-3;
     if ((up.translation() - X_world_start.translation()).norm() > kMinSegment_m)

@@ -117,7 +117,7 @@ TEST(DmpPathGenerator, ReplaysTheDemoInTheWorldAndRetargetsExactly) {
   EXPECT_LT((lifted.back().X_world_tcp.translation() - b.translation()).norm(), kEndpointTol_m);
   for (const auto& s : lifted) {
     const Eigen::Vector3d p = s.X_world_tcp.translation();
-    if (p.z() < DmpPathGenerator::kDefaultMoveEndHeight_m - 1e-6) {
+    if (p.z() < DmpPathGenerator::kDefaultEndHeight_m - 1e-6) {
       const Eigen::Vector2d nearEnd = (p - a.translation()).head<2>().norm() < (p - b.translation()).head<2>().norm()
                                           ? a.translation().head<2>()
                                           : b.translation().head<2>();

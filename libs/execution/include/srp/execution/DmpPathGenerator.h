@@ -14,11 +14,12 @@
 /// give the chord (its mean speeds), so a long re-targeted path is not rushed.
 /// The path starts and ends at rest (start and goal velocities 0).
 ///
-/// Move: a carried part must leave and enter a container vertically (the demo's
-/// hand, and so its DMP, approaches diagonally, which would sweep the part through a
-/// container wall): the tcp first rises straight to `moveEndHeight_m` (world z, 0.12
-/// m by default: a part's bottom clears the 6 cm walls), the DMP runs from there to
-/// above the pre-release, and a straight descent ends the path (minimum-jerk segments).
+/// Ends: the tool and a carried part must leave and enter a container vertically (the
+/// demo's hand, and so its DMP, approaches diagonally, which would sweep the part or
+/// the tool through a container wall): the tcp first rises straight to `endHeight_m`
+/// (world z, 0.12 m by default: a part's bottom clears the 6 cm walls), the DMP runs
+/// from there to above the goal (pre-grasp / pre-release), and a straight descent ends
+/// the path (minimum-jerk segments). Both Reach and Move.
 ///
 /// An object without a learned DMP for the skill gets the minimum-jerk fallback
 /// (sourceFor() says which). The path is not clipped: the SafetyChecker refuses a
@@ -43,14 +44,14 @@ struct LearnedPathSkills {
 
 class DmpPathGenerator : public CartesianPathGenerator {
  public:
-  /// Default tcp height [m, world z] of the Move DMP's ends (see the class comment).
-  static constexpr double kDefaultMoveEndHeight_m = 0.12;
+  /// Default tcp height [m, world z] of the DMP's ends (see the class comment).
+  static constexpr double kDefaultEndHeight_m = 0.12;
 
   /// `skillsByObject`: learned DMPs by object (scene) name, in the frame `X_world_demo`.
-  /// `moveEndHeight_m`: the Move DMP runs between the post-grasp and pre-release
-  /// raised vertically to this tcp height (0: exactly between them).
+  /// `endHeight_m`: the DMP runs between the start and the goal raised vertically
+  /// to this tcp height (0: exactly between them).
   DmpPathGenerator(std::map<std::string, LearnedPathSkills> skillsByObject, const srp::core::Pose3& X_world_demo,
-                   MinimumJerkOptions fallback = {}, double moveEndHeight_m = kDefaultMoveEndHeight_m);
+                   MinimumJerkOptions fallback = {}, double endHeight_m = kDefaultEndHeight_m);
 
   /// The Reach and Move rows of the task model's Skills table (parameters "dmp",
   /// "frame"; object names from GroundedProducts). Throws InvalidInputError naming
@@ -74,7 +75,7 @@ class DmpPathGenerator : public CartesianPathGenerator {
   std::map<std::string, LearnedPathSkills> skills_;
   srp::core::Pose3 X_world_demo_;
   MinimumJerkPathGenerator fallback_;
-  double moveEndHeight_m_ = kDefaultMoveEndHeight_m;
+  double endHeight_m_ = kDefaultEndHeight_m;
 };
 
 }  // namespace srp::execution

@@ -24,7 +24,7 @@ void setupExecute(CLI::App& app) {
   app.add_option("--task", o->task, "Task model id (see 'srp db list')")->required();
   app.add_option("--instruction", o->instruction, "A new instruction that re-plans the task (Language Module)");
   app.add_option("--scene", o->scene, "Current scene JSON (default: sim/scenes/default.json)");
-  app.add_option("--out", o->out, "Output folder: report.json, report.txt, joints.csv, frames/*.png")
+  app.add_option("--out", o->out, "Output folder: report.json, report.txt, joints.csv, final_scene.json (the scene after execution, for --scene of the next run), frames/*.png")
       ->capture_default_str();
   app.add_option("--frame-period", o->framePeriod, "Render every n-th 20 ms snapshot (0: no frames)")
       ->capture_default_str();

@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include "srp/execution/MinimumJerkPathGenerator.h"
+#include "srp/execution/DmpPathGenerator.h"
 #include "srp/execution/RandomScene.h"
+#include "srp/motion/SkillLearner.h"
+#include "srp/motion/TaskModelMapping.h"
 #include "srp/execution/TaskExecutor.h"
 #include "srp/execution/ExecutionSession.h"
 #include "srp/execution/PlanConversion.h"
@@ -221,4 +224,35 @@ TEST(Acceptance, FiftySeededRandomScenes) {
   std::cout << "random scenes: " << succeeded << "/50 succeeded (" << 2.0 * succeeded << " %), " << simulated
             << " s simulated in " << wall << " s\n";
   EXPECT_GE(succeeded, 49);  // >= 98 %
+}
+
+// The same 50 scenes with DMP paths: skills learned from a synthetic 4-object demo
+// (Segmenter + SkillLearner, Skills rows as `srp motion` stores them).
+TEST(Acceptance, FiftySeededRandomScenesWithLearnedDmps) {
+  const auto demo = srp::motion::SyntheticPickPlaceGenerator(srp::motion::SyntheticPickPlaceConfig{}).generate();
+  srp::taskdb::TaskModel model = srp::motion::taskModelFromSyntheticDemo(demo, "synthetic");
+  const auto inputs = srp::motion::motionInputsFromTaskModel(model);
+  const auto seg = srp::motion::Segmenter().segment(inputs.hand, inputs.objects, inputs.planOrder);
+  model.skills = srp::motion::skillRows(srp::motion::SkillLearner().learn(seg, inputs.objects), inputs);
+  const srp::core::Scene scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
+  const auto generator = std::make_shared<DmpPathGenerator>(DmpPathGenerator::fromTaskModel(model, scene.X_world_camera));
+  const RobotModel robot = RobotModel::defaultUr5();
+  const CellDescription base = defaultCell();
+  int succeeded = 0, dmpSteps = 0;
+  double simulated = 0, wall = 0;
+  for (std::uint32_t seed = 1; seed <= 50; ++seed) {
+    const CellDescription cell = randomizeCell(base, "blue box", seed);
+    TaskExecutor ex(robot, cell, TaskExecutor::defaultHome(robot, cell.X_world_base, defaultHomeTcp(cell)), generator);
+    const auto r = ex.run(appendixA(1));
+    simulated += r.simulated_s;
+    wall += r.simulationWall_s;
+    for (const auto& s : r.steps) dmpSteps += s.pathSource == "dmp";
+    if (r.allSucceeded())
+      ++succeeded;
+    else
+      std::cout << "seed " << seed << " failed:\n" << r.toText();
+  }
+  std::cout << "random scenes with DMP paths: " << succeeded << "/50 succeeded, " << dmpSteps << " steps on DMP paths, "
+            << simulated << " s simulated in " << wall << " s\n";
+  EXPECT_GE(succeeded, 45);  // >= 90 %: a refusal by the safety check is a correct outcome, not a crash
 }

@@ -59,6 +59,7 @@ nlohmann::json ExecutionReport::toJson() const {
       js["min_table_clearance_m"] = s.minTableClearance_m;
       js["max_joint_error_rad"] = s.maxJointError_rad;
     }
+    if (!s.pathSource.empty()) js["path_source"] = s.pathSource;
     js["planning_s"] = s.planning_s;
     js["simulated_s"] = s.simulated_s;
     j["steps"].push_back(js);
@@ -73,7 +74,7 @@ std::string ExecutionReport::toText() const {
     o << "step " << s.index + 1 << ": " << s.object << " -> " << s.relation << ": " << toString(s.status);
     if (s.status == StepStatus::Done) {
       o << std::setprecision(2) << " (placed " << s.placementError_m * 1000 << " mm from plan, "
-        << (s.relationsHold ? "relations hold" : "RELATION NOT MET") << ", planning " << std::setprecision(1)
+        << (s.relationsHold ? "relations hold" : "RELATION NOT MET") << ", " << s.pathSource << " paths, planning " << std::setprecision(1)
         << s.planning_s * 1000 << " ms, " << std::setprecision(2) << s.simulated_s << " s simulated)";
     } else {
       o << ": " << s.reason;

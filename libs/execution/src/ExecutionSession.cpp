@@ -9,7 +9,7 @@
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/execution/CellRenderer.h"
-#include "srp/execution/MinimumJerkPathGenerator.h"
+#include "srp/execution/DmpPathGenerator.h"
 #include "srp/execution/PlanConversion.h"
 #include "srp/language/InstructionParser.h"
 #include "srp/language/PlanTables.h"
@@ -27,6 +27,13 @@ srp::core::Pose3 defaultHomeTcp(const CellDescription& cell) {
   X.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
   X.translation() = Eigen::Vector3d(centre.x(), centre.y(), 0.3);
   return X;
+}
+
+srp::core::Scene sceneAfter(const srp::core::Scene& before, const CellDescription& perceived) {
+  srp::core::Scene after = before;
+  for (auto& o : after.objects)
+    if (const CellObject* now = perceived.find(o.id)) o.X_world_object = now->X_world_object;
+  return after;
 }
 
 ExecuteResult executeTask(const ExecuteRequest& request) {
@@ -65,7 +72,9 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
 
   const RobotModel robot = RobotModel::defaultUr5();
   const JointVector home = TaskExecutor::defaultHome(robot, cell.X_world_base, defaultHomeTcp(cell));
-  TaskExecutor executor(robot, cell, home, std::make_shared<MinimumJerkPathGenerator>(), request.options);
+  // Learned Reach/Move DMPs where the task model has Skills rows, minimum-jerk otherwise.
+  auto generator = std::make_shared<DmpPathGenerator>(DmpPathGenerator::fromTaskModel(model, X_world_camera));
+  TaskExecutor executor(robot, cell, home, generator, request.options);
 
   std::unique_ptr<CellRenderer> renderer;
   std::string framesFolder;
@@ -114,7 +123,8 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
     srp::core::writeJsonFile(request.outputFolder + "/report.json", j);
     std::ofstream(request.outputFolder + "/report.txt") << result.report.toText();
     executor.writeJointLogCsv(request.outputFolder + "/joints.csv");
-    for (const char* f : {"/report.json", "/report.txt", "/joints.csv"}) result.writtenFiles.push_back(request.outputFolder + f);
+    srp::core::writeJsonFile(request.outputFolder + "/final_scene.json", sceneAfter(scene, executor.perceive()).toJson());
+    for (const char* f : {"/report.json", "/report.txt", "/joints.csv", "/final_scene.json"}) result.writtenFiles.push_back(request.outputFolder + f);
   }
   return result;
 }

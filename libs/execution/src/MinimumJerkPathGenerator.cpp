@@ -40,7 +40,7 @@ CartesianPath MinimumJerkPathGenerator::straight(const srp::core::Pose3& a, cons
   return path;
 }
 
-CartesianPath MinimumJerkPathGenerator::generate(srp::core::SkillType skill, int, const srp::core::Pose3& a,
+CartesianPath MinimumJerkPathGenerator::generate(srp::core::SkillType skill, const std::string&, const srp::core::Pose3& a,
                                                  const srp::core::Pose3& b, double dt_s) const {
   if (skill != srp::core::SkillType::Reach && skill != srp::core::SkillType::Move)
     throw srp::core::InvalidInputError("MinimumJerkPathGenerator: paths exist for Reach and Move only, not " +

@@ -165,10 +165,10 @@ StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
     const Pose3 preRelease = raised(release, options_.approachOffset_m);
     const Pose3 postRelease = raised(release, options_.retreat_m);
     try {
-      segments.push_back({"Reach", generator_->generate(srp::core::SkillType::Reach, index, sim_->X_world_tcp(), preGrasp, dt), {}});
+      segments.push_back({"Reach", generator_->generate(srp::core::SkillType::Reach, part->name, sim_->X_world_tcp(), preGrasp, dt), {}});
       segments.push_back({"approach", straight.straight(preGrasp, grasp, dt), {}});
       segments.push_back({"lift", straight.straight(grasp, preGrasp, dt), {}});
-      segments.push_back({"Move", generator_->generate(srp::core::SkillType::Move, index, preGrasp, preRelease, dt), {}});
+      segments.push_back({"Move", generator_->generate(srp::core::SkillType::Move, part->name, preGrasp, preRelease, dt), {}});
       segments.push_back({"lower", straight.straight(preRelease, release, dt), {}});
       segments.push_back({"retreat", straight.straight(release, postRelease, dt), {}});
     } catch (const srp::core::Error& e) {
@@ -209,6 +209,9 @@ StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
   if (failure && failureTurned) return finish(StepStatus::Refused, *failure);
   if (failure || (!failureTurned && wristLoad(alternative) < wristLoad(segments))) segments = std::move(alternative);
   r.planning_s = std::chrono::duration<double>(Clock::now() - planStart).count();
+  const std::string reachSource = generator_->sourceFor(srp::core::SkillType::Reach, part->name);
+  const std::string moveSource = generator_->sourceFor(srp::core::SkillType::Move, part->name);
+  r.pathSource = reachSource == moveSource ? reachSource : "Reach " + reachSource + ", Move " + moveSource;
 
   // --- execution on the simulated UR5
   r.minTableClearance_m = std::numeric_limits<double>::infinity();

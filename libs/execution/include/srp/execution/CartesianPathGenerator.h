@@ -8,6 +8,7 @@
 /// from the start of the path; the path starts and ends at rest.
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "srp/core/Pose.h"
@@ -26,14 +27,21 @@ class CartesianPathGenerator {
  public:
   virtual ~CartesianPathGenerator() = default;
 
-  /// Path of the tcp for `skill` (Reach or Move) of target object number `stepIndex`
-  /// from X_world_start to X_world_goal, sampled every dt_s (first sample = start,
-  /// last = goal exactly). Throws InvalidInputError for other skills.
-  virtual CartesianPath generate(srp::core::SkillType skill, int stepIndex, const srp::core::Pose3& X_world_start,
-                                 const srp::core::Pose3& X_world_goal, double dt_s) const = 0;
+  /// Path of the tcp for `skill` (Reach or Move) of the part `object` (its scene
+  /// name) from X_world_start to X_world_goal, sampled every dt_s (first sample =
+  /// start, last = goal exactly). Throws InvalidInputError for other skills.
+  virtual CartesianPath generate(srp::core::SkillType skill, const std::string& object,
+                                 const srp::core::Pose3& X_world_start, const srp::core::Pose3& X_world_goal,
+                                 double dt_s) const = 0;
 
   /// Short name for reports ("minimum-jerk", "dmp").
   virtual std::string name() const = 0;
+
+  /// What generate() uses for `skill` of `object` ("dmp", "minimum-jerk"): a
+  /// generator may fall back per object (no learned skill).
+  virtual std::string sourceFor(srp::core::SkillType /*skill*/, const std::string& /*object*/) const {
+    return name();
+  }
 };
 
 }  // namespace srp::execution

@@ -30,6 +30,10 @@ struct StepReport {
   bool insideContainer = false;   ///< final pose inside the target container (when one is named)
   bool neighbourRelationHolds = false;  ///< footprints within the neighbour gap + tolerance
   bool relationsHold = false;     ///< every target relation verified on the final pose
+  /// Where the Reach and Move paths came from: "dmp" (the task model's learned
+  /// skills), "minimum-jerk" (no learned skill for this part), or
+  /// "Reach dmp, Move minimum-jerk" when they differ. Empty when not planned.
+  std::string pathSource;
   double planning_s = 0.0;        ///< wall-clock planning time (placement, paths, IK, safety)
   double simulated_s = 0.0;       ///< simulated duration of the step
   double minTableClearance_m = 0.0;  ///< smallest arm-table gap during the step

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "srp/core/Scene.h"
 #include "srp/execution/ExecutionPlan.h"
 #include "srp/execution/ExecutionReport.h"
 #include "srp/execution/TaskExecutor.h"
@@ -39,6 +40,11 @@ struct ExecuteResult {
 /// Throws FileError / InvalidInputError for a missing database, an unknown task id,
 /// a bad scene; expected outcomes (missing part, unreachable pose) are in the report.
 ExecuteResult executeTask(const ExecuteRequest& request);
+
+/// `before` with every object at its pose in `perceived` (the simulated cell after
+/// execution): what `srp execute --out DIR` writes as DIR/final_scene.json, so the
+/// next run (e.g. a reversal) starts from the scene this one left.
+srp::core::Scene sceneAfter(const srp::core::Scene& before, const CellDescription& perceived);
 
 /// The tcp pose the arm starts from: 0.3 m above the middle of the containers
 /// (the table centre when there are none), tool pointing down.

@@ -21,7 +21,7 @@ class MinimumJerkPathGenerator : public CartesianPathGenerator {
 
   /// Lift to max(clearance, start z, goal z), cross, lower; segments that would be
   /// shorter than 1 mm are dropped.
-  CartesianPath generate(srp::core::SkillType skill, int stepIndex, const srp::core::Pose3& X_world_start,
+  CartesianPath generate(srp::core::SkillType skill, const std::string& object, const srp::core::Pose3& X_world_start,
                          const srp::core::Pose3& X_world_goal, double dt_s) const override;
   std::string name() const override { return "minimum-jerk"; }
 

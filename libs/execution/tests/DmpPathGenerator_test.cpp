@@ -1,0 +1,180 @@
+#include "srp/execution/DmpPathGenerator.h"
+
+#include <gtest/gtest.h>
+
+#include "srp/core/Error.h"
+#include "srp/core/Json.h"
+#include "srp/core/Scene.h"
+#include "srp/execution/ExecutionSession.h"
+#include "srp/execution/TaskExecutor.h"
+#include "srp/motion/SkillLearner.h"
+#include "srp/motion/SyntheticPickPlace.h"
+#include "srp/motion/TaskModelMapping.h"
+
+using srp::core::Pose3;
+using srp::core::SkillType;
+using namespace srp::execution;
+
+namespace {
+constexpr double kPlacementTol_m = 0.01;   // issue 7: parts end within 1 cm of the planned pose
+constexpr double kEndpointTol_m = 1e-9;    // the path starts and ends exactly at the given poses
+constexpr double kShapeTol_m = 0.01;       // a DMP replayed with its own start/goal stays on the demo
+
+Pose3 toolDown(const Eigen::Vector3d& p_world_m, double yaw_rad = 0.0) {
+  Pose3 X = Pose3::Identity();
+  X.linear() = (Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  X.translation() = p_world_m;
+  return X;
+}
+
+/// A demo in a camera frame looking down from 0.85 m: lift 0.12 m towards the camera
+/// while crossing 0.3 m along camera x (a half sine), 2 s at 100 Hz.
+struct ArcDemo {
+  Pose3 X_world_camera = Pose3::Identity();
+  Eigen::VectorXd t_s;
+  Eigen::MatrixXd p_camera_m;
+  ArcDemo() {
+    X_world_camera.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
+    X_world_camera.translation() = Eigen::Vector3d(0.0, 0.05, 0.85);
+    const int n = 201;
+    t_s.resize(n);
+    p_camera_m.resize(n, 3);
+    for (int i = 0; i < n; ++i) {
+      const double s = i / double(n - 1);
+      const double m = s * s * s * (10 - 15 * s + 6 * s * s);
+      t_s(i) = 2.0 * s;
+      p_camera_m.row(i) << -0.15 + 0.3 * m, 0.1, 0.8 - 0.12 * std::sin(M_PI * m);
+    }
+  }
+  Eigen::Vector3d world(int i) const { return X_world_camera * Eigen::Vector3d(p_camera_m.row(i).transpose()); }
+};
+
+/// Task model of a synthetic 4-object demo with its skills learned and mapped to
+/// Skills rows, as `srp motion` stores them.
+srp::taskdb::TaskModel learnedTaskModel() {
+  const auto demo = srp::motion::SyntheticPickPlaceGenerator(srp::motion::SyntheticPickPlaceConfig{}).generate();
+  srp::taskdb::TaskModel model = srp::motion::taskModelFromSyntheticDemo(demo, "synthetic");
+  const auto inputs = srp::motion::motionInputsFromTaskModel(model);
+  const auto seg = srp::motion::Segmenter().segment(inputs.hand, inputs.objects, inputs.planOrder);
+  const auto skills = srp::motion::SkillLearner().learn(seg, inputs.objects);
+  model.skills = srp::motion::skillRows(skills, inputs);
+  return model;
+}
+
+SpatialRelation rel(const std::string& r, const std::string& name, std::optional<std::string> color = {}) {
+  return {r, {name, color}};
+}
+}  // namespace
+
+TEST(DmpPathGenerator, ReplaysTheDemoInTheWorldAndRetargetsExactly) {
+  const ArcDemo demo;
+  std::map<std::string, LearnedPathSkills> skills;
+  skills["cuboid"].move = srp::motion::Dmp::imitate(demo.t_s, demo.p_camera_m, srp::motion::DmpConfig{});
+  const DmpPathGenerator gen(skills, demo.X_world_camera, {}, 0.0);  // the Move DMP end to end
+  EXPECT_EQ(gen.name(), "dmp");
+  EXPECT_EQ(gen.sourceFor(SkillType::Move, "cuboid"), "dmp");
+  EXPECT_EQ(gen.sourceFor(SkillType::Reach, "cuboid"), "minimum-jerk");
+  EXPECT_EQ(gen.sourceFor(SkillType::Move, "star"), "minimum-jerk");
+
+  // Own start and goal (in the world): the path follows the demo's arc, lifted in world z.
+  const int last = static_cast<int>(demo.t_s.size()) - 1;
+  const Pose3 start = toolDown(demo.world(0)), goal = toolDown(demo.world(last), 0.5);
+  const CartesianPath path = gen.generate(SkillType::Move, "cuboid", start, goal, 0.01);
+  ASSERT_GE(path.size(), 3u);
+  EXPECT_LT((path.front().X_world_tcp.translation() - start.translation()).norm(), kEndpointTol_m);
+  EXPECT_LT((path.back().X_world_tcp.translation() - goal.translation()).norm(), kEndpointTol_m);
+  EXPECT_LT(srp::core::rotationAngleBetween(path.back().X_world_tcp.linear(), goal.linear()), 1e-9);
+  EXPECT_NEAR(path.back().t_s, demo.t_s(last), 0.011) << "the demo's duration is kept when it is long enough";
+  double maxDeviation_m = 0.0, peakZ_m = -1.0;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const int k = std::min(last, static_cast<int>(std::lround(path[i].t_s / 0.01)));
+    maxDeviation_m = std::max(maxDeviation_m, (path[i].X_world_tcp.translation() - demo.world(k)).norm());
+    peakZ_m = std::max(peakZ_m, path[i].X_world_tcp.translation().z());
+  }
+  EXPECT_LT(maxDeviation_m, kShapeTol_m);
+  EXPECT_NEAR(peakZ_m, demo.world(0).z() + 0.12, kShapeTol_m) << "the lift is world up (camera looks down)";
+
+  // A new start and goal: exact endpoints, a lift, and a longer duration for a longer chord.
+  const Pose3 a = toolDown({0.2, 0.1, 0.05}), b = toolDown({-0.35, 0.25, 0.08});
+  const CartesianPath moved = gen.generate(SkillType::Move, "cuboid", a, b, 0.01);
+  EXPECT_LT((moved.front().X_world_tcp.translation() - a.translation()).norm(), kEndpointTol_m);
+  EXPECT_LT((moved.back().X_world_tcp.translation() - b.translation()).norm(), kEndpointTol_m);
+  double top_m = 0.0;
+  for (const auto& s : moved) top_m = std::max(top_m, s.X_world_tcp.translation().z());
+  EXPECT_GT(top_m, 0.08 + 0.05) << "the re-targeted DMP keeps the demo's lift";
+  EXPECT_GE(moved.back().t_s, (b.translation() - a.translation()).norm() / MinimumJerkOptions{}.meanSpeed_mps - 0.011);
+
+  // No learned skill: the minimum-jerk fallback, sample for sample.
+  const CartesianPath fallback = gen.generate(SkillType::Reach, "cuboid", a, b, 0.01);
+  const CartesianPath expected = MinimumJerkPathGenerator().generate(SkillType::Reach, "cuboid", a, b, 0.01);
+  ASSERT_EQ(fallback.size(), expected.size());
+  EXPECT_LT((fallback[fallback.size() / 2].X_world_tcp.translation() -
+             expected[expected.size() / 2].X_world_tcp.translation()).norm(), 1e-12);
+  // With the default raised ends the carried part leaves and enters vertically.
+  const DmpPathGenerator raised(skills, demo.X_world_camera);
+  const CartesianPath lifted = raised.generate(SkillType::Move, "cuboid", a, b, 0.01);
+  EXPECT_LT((lifted.back().X_world_tcp.translation() - b.translation()).norm(), kEndpointTol_m);
+  for (const auto& s : lifted) {
+    const Eigen::Vector3d p = s.X_world_tcp.translation();
+    if (p.z() < DmpPathGenerator::kDefaultEndHeight_m - 1e-6) {
+      const Eigen::Vector2d nearEnd = (p - a.translation()).head<2>().norm() < (p - b.translation()).head<2>().norm()
+                                          ? a.translation().head<2>()
+                                          : b.translation().head<2>();
+      EXPECT_LT((p.head<2>() - nearEnd).norm(), 1e-6) << "below the end height only straight above an end, t = " << s.t_s;
+    }
+  }
+  EXPECT_THROW(gen.generate(SkillType::Grasp, "cuboid", a, b, 0.01), srp::core::InvalidInputError);
+}
+
+TEST(DmpPathGenerator, LearnedSkillsFromATaskModelExecuteWithDmpPaths) {
+  const srp::taskdb::TaskModel model = learnedTaskModel();
+  const CellDescription cell = CellDescription::loadScene();
+  const srp::core::Scene scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
+  const DmpPathGenerator gen = DmpPathGenerator::fromTaskModel(model, scene.X_world_camera);
+  for (const char* object : {"cuboid", "star", "parallelogram", "octagon"}) {
+    EXPECT_EQ(gen.sourceFor(SkillType::Reach, object), "dmp") << object;
+    EXPECT_EQ(gen.sourceFor(SkillType::Move, object), "dmp") << object;
+  }
+
+  const RobotModel robot = RobotModel::defaultUr5();
+  TaskExecutor executor(robot, cell, TaskExecutor::defaultHome(robot, cell.X_world_base, defaultHomeTcp(cell)),
+                        std::make_shared<DmpPathGenerator>(gen));
+  ExecutionPlan plan;
+  plan.steps.push_back({{"cuboid", {}}, {rel("from", "box", "blue")}, {rel("in", "box", "gray")}, {}, {}});
+  plan.steps.push_back({{"star", {}}, {}, {rel("next to", "cuboid"), rel("in", "box", "gray")}, {}, {}});
+  plan.steps.push_back({{"parallelogram", {}}, {}, {rel("beside", "star"), rel("in", "box", "gray")}, {}, {}});
+  plan.steps.push_back({{"octagon", {}}, {}, {rel("adjacent to", "parallelogram"), rel("in", "box", "gray")}, {}, {}});
+  const ExecutionReport report = executor.run(plan);
+  std::cout << report.toText();
+  EXPECT_EQ(report.pathGenerator, "dmp");
+  ASSERT_EQ(report.steps.size(), 4u);
+  for (const auto& s : report.steps) {
+    EXPECT_EQ(s.status, StepStatus::Done) << s.object << ": " << s.reason;
+    EXPECT_EQ(s.pathSource, "dmp") << s.object;
+    EXPECT_LT(s.placementError_m, kPlacementTol_m) << s.object;
+    EXPECT_TRUE(s.relationsHold) << s.object;
+  }
+  EXPECT_EQ(report.toJson()["steps"][0]["path_source"], "dmp");
+}
+
+TEST(DmpPathGenerator, BadSkillJsonNamesTheObject) {
+  srp::taskdb::TaskModel model = learnedTaskModel();
+  for (auto& row : model.skills)
+    if (row.skill == SkillType::Move) row.parameters["dmp"]["class"] = "not a dmp";
+  try {
+    (void)DmpPathGenerator::fromTaskModel(model, Pose3::Identity());
+    FAIL() << "a malformed DMP must be refused";
+  } catch (const srp::core::InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("Move of the cuboid"), std::string::npos) << e.what();
+  }
+}
+
+TEST(DmpPathGenerator, WithoutLearnedSkillsTheAppendixCModelFallsBackToMinimumJerk) {
+  const auto j = srp::core::readJsonFile(std::string(SRP_DATASETS_DIR) + "/examples/appendix_c_instruction1.json");
+  const auto model = srp::taskdb::taskModelFromJson(j, "appendix C");
+  const DmpPathGenerator gen = DmpPathGenerator::fromTaskModel(model, Pose3::Identity());
+  EXPECT_FALSE(gen.hasSkills());
+  EXPECT_EQ(gen.name(), "minimum-jerk");
+  EXPECT_EQ(gen.sourceFor(SkillType::Reach, "cuboid"), "minimum-jerk");
+}

@@ -1,0 +1,51 @@
+// srp parse: instruction text -> task plan (readable, or --json), optionally
+// stored in the task database.
+#include <iostream>
+
+#include "CommandRegistry.h"
+#include "srp/language/InstructionParser.h"
+#include "srp/language/PlanTables.h"
+
+namespace {
+void setupParse(CLI::App& app) {
+  auto text = std::make_shared<std::string>();
+  auto modelPath = std::make_shared<std::string>(srp::language::defaultModelPath());
+  auto json = std::make_shared<bool>(false);
+  auto showEntities = std::make_shared<bool>(false);
+  app.add_option("text", *text, "the instruction, e.g. \"Pick up the cuboid and place it in the gray box.\"")
+      ->required();
+  app.add_option("--model", *modelPath, "language model file")->capture_default_str();
+  app.add_flag("--json", *json, "print the plan as JSON ({\"steps\", \"sentences\", \"warnings\"})");
+  auto dbPath = std::make_shared<std::string>();
+  auto name = std::make_shared<std::string>("task");
+  app.add_option("--db", *dbPath, "store the plan in this task database (one transaction; nothing on an empty plan)");
+  app.add_option("--name", *name, "task model name for --db (re-using a name makes a new version)")->capture_default_str();
+  app.add_flag("--entities", *showEntities, "also print the recognised entities and relations");
+  app.callback([=] {
+    const srp::language::InstructionParser parser(*modelPath);
+    const auto plan = parser.parse(*text);
+    if (*json) {
+      std::cout << srp::language::toJson(plan).dump(2) << "\n";
+    } else {
+      std::cout << srp::language::describe(plan);
+      if (*showEntities)
+        for (const auto& s : plan.sentences) {
+          for (const auto& e : s.entities) {
+            std::cout << "  " << e.type << ":";
+            for (int k = e.start; k < e.end; ++k) std::cout << " " << s.tokens[k];
+            std::cout << "\n";
+          }
+          for (const auto& r : s.relations) std::cout << "  " << r.type << ": " << r.head << " -> " << r.tail << "\n";
+        }
+    }
+    if (plan.steps.empty()) {
+      if (!dbPath->empty()) std::cerr << "srp parse: nothing written to " << *dbPath << " (the plan has no steps)\n";
+      srp::app::commandExitCode() = 2;
+    } else if (!dbPath->empty()) {
+      const int id = srp::language::storePlan(plan, *dbPath, *name, *text);
+      std::cerr << "stored as task model " << id << " in " << *dbPath << "\n";
+    }
+  });
+}
+const srp::app::CommandRegistrar kReg{"parse", "Parse an instruction into a pick & place task plan", 20, setupParse};
+}  // namespace

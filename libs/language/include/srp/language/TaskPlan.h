@@ -1,0 +1,115 @@
+#pragma once
+/// \file TaskPlan.h
+/// \brief The Language Module's output: an ordered pick & place plan read from
+/// one instruction, plus the per-sentence entity/relation annotation it came from.
+///
+/// This is the contract other modules (synthetic demos, programming, execution)
+/// consume; its JSON form (toJson/taskPlanFromJson) is stable:
+/// \code{.json}
+/// {"steps": [{"object": {"name": "cuboid", "color": null},
+///             "source": [{"relation": "from", "landmark": {"name": "box", "color": "blue"}}],
+///             "target": [{"relation": "in",   "landmark": {"name": "box", "color": "gray"}}]}],
+///  "sentences": [{"tokens": [...], "entities": [...], "relations": [...]}],
+///  "warnings": []}
+/// \endcode
+/// `steps` are in execution order, one per target object; `source`/`target` are
+/// empty when the instruction does not say. `sentences` use the corpus' SpERT
+/// format (token indices, `end` exclusive). No geometry here: landmarks are names.
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace srp::language {
+
+/// A physical object named in the instruction: its name (multi-word names kept,
+/// e.g. "aluminum workpiece", "item A", "Location 2"; common nouns lower-cased)
+/// and its colour adjective when one is given ("blue").
+struct ObjectRef {
+  std::string name;
+  std::optional<std::string> color;
+  bool operator==(const ObjectRef& o) const { return name == o.name && color == o.color; }
+  bool operator!=(const ObjectRef& o) const { return !(*this == o); }
+};
+
+/// A location relative to a landmark object: `relation` is the indicator phrase
+/// as written, lower-cased ("from", "in", "next to", "on top of"), `landmark`
+/// the object after it.
+struct LocationRef {
+  std::string relation;
+  ObjectRef landmark;
+  bool operator==(const LocationRef& o) const { return relation == o.relation && landmark == o.landmark; }
+};
+
+/// Where a plan element came from in the text (0-based sentence and token index).
+struct TokenAnchor {
+  int sentenceId = -1;
+  int tokenId = -1;
+};
+
+/// One pick & place step: move `object` from `source` (all locations that
+/// describe where it is now, most specific first) to `target` (all that describe
+/// where it goes, most specific first, e.g. "next to the cuboid", "in the gray box").
+struct PlanStep {
+  ObjectRef object;
+  std::vector<LocationRef> source, target;
+  /// "back to ...": the step returns the object where a known move took it from.
+  bool isReturn = false;
+  /// First mention of the object and of each landmark (same order as source/target).
+  TokenAnchor objectAnchor;
+  std::vector<TokenAnchor> sourceAnchors, targetAnchors;
+};
+
+/// A SpERT entity: tokens [start, end) of one sentence, `type` one of Action,
+/// Trajector, SpatialIndicator, GoalIndicator, Color.
+struct EntitySpan {
+  int start = 0, end = 0;
+  std::string type;
+  bool operator==(const EntitySpan& o) const { return start == o.start && end == o.end && type == o.type; }
+};
+
+/// A SpERT relation: `type` Spatial (Trajector -> SpatialIndicator) or
+/// Transition (Action -> GoalIndicator); head/tail index `entities`.
+struct RelationLink {
+  int head = 0, tail = 0;
+  std::string type;
+};
+
+/// One tokenised sentence with its entities and relations (the corpus format).
+/// `charBegin/charEnd` give each token's byte offsets in the parsed text (empty
+/// for corpus sentences).
+struct AnnotatedSentence {
+  std::vector<std::string> tokens;
+  std::vector<EntitySpan> entities;
+  std::vector<RelationLink> relations;
+  std::vector<int> charBegin, charEnd;
+};
+
+/// The plan of one instruction. Zero steps with a warning saying why when the
+/// text is not a usable instruction (empty, too long, no action, not English).
+struct TaskPlan {
+  std::vector<PlanStep> steps;
+  std::vector<AnnotatedSentence> sentences;
+  std::vector<std::string> warnings;
+};
+
+nlohmann::json toJson(const ObjectRef& o);
+nlohmann::json toJson(const LocationRef& l);
+nlohmann::json toJson(const PlanStep& s);
+nlohmann::json toJson(const AnnotatedSentence& s);
+/// {"steps": [...], "sentences": [...], "warnings": [...]} as documented above.
+nlohmann::json toJson(const TaskPlan& plan);
+
+ObjectRef objectRefFromJson(const nlohmann::json& j);
+/// Reads the SpERT form; throws srp::core::InvalidInputError naming the bad field.
+AnnotatedSentence annotatedSentenceFromJson(const nlohmann::json& j);
+/// Inverse of toJson(TaskPlan) (anchors are not stored); throws InvalidInputError.
+TaskPlan taskPlanFromJson(const nlohmann::json& j);
+
+/// "the blue box" style text for people: "[color ]name".
+std::string describe(const ObjectRef& o);
+/// A readable multi-line rendering of the plan (steps, then warnings).
+std::string describe(const TaskPlan& plan);
+
+}  // namespace srp::language

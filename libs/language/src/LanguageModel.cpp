@@ -1,0 +1,598 @@
+#include "srp/language/LanguageModel.h"
+
+#include <dlib/svm.h>
+#include <dlib/svm_threaded.h>
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <set>
+#include <unordered_map>
+
+#include "srp/core/Error.h"
+#include "srp/core/Json.h"
+#include "srp/language/Tokenizer.h"
+#include "srp/language/WordNetLexicon.h"
+
+namespace srp::language {
+
+namespace {
+
+constexpr int kModelFormatVersion = 1;
+const std::vector<std::string> kEntityTypes{"Action", "Trajector", "SpatialIndicator", "GoalIndicator", "Color"};
+constexpr unsigned long kNumLabels = 11;  // O, then B-/I- for each of the five types
+
+// Label encoding: 0 = O, 1 + 2t = B-type t, 2 + 2t = I-type t.
+inline bool isInside(unsigned long label) { return label != 0 && label % 2 == 0; }
+inline unsigned long typeOfLabel(unsigned long label) { return (label - 1) / 2; }
+
+/// dlib sequence_labeler feature extractor: each token carries the ids of its
+/// (label-independent) features; weights are per (label, feature) plus label
+/// transitions and a start-label bias.
+class EntityFeatureExtractor {
+ public:
+  using sequence_type = std::vector<std::vector<unsigned long>>;
+  unsigned long numEmission = 0;
+
+  unsigned long num_features() const { return kNumLabels * numEmission + kNumLabels * kNumLabels + kNumLabels; }
+  unsigned long order() const { return 1; }
+  unsigned long num_labels() const { return kNumLabels; }
+
+  template <typename EXP>
+  bool reject_labeling(const sequence_type&, const dlib::matrix_exp<EXP>& y, unsigned long position) const {
+    if (!isInside(y(0))) return false;
+    if (position == 0) return true;  // I-X cannot start a sentence
+    const unsigned long prev = y(1);
+    return prev == 0 || typeOfLabel(prev) != typeOfLabel(y(0));  // I-X follows B-X or I-X only
+  }
+
+  template <typename feature_setter, typename EXP>
+  void get_features(feature_setter& set_feature, const sequence_type& x, const dlib::matrix_exp<EXP>& y,
+                    unsigned long position) const {
+    const unsigned long label = y(0);
+    for (unsigned long f : x[position]) set_feature(label * numEmission + f);
+    if (y.size() > 1)
+      set_feature(kNumLabels * numEmission + y(1) * kNumLabels + label);
+    else
+      set_feature(kNumLabels * numEmission + kNumLabels * kNumLabels + label);
+  }
+};
+
+void serialize(const EntityFeatureExtractor& fe, std::ostream& out) { dlib::serialize(fe.numEmission, out); }
+void deserialize(EntityFeatureExtractor& fe, std::istream& in) { dlib::deserialize(fe.numEmission, in); }
+
+using SparseVector = std::vector<std::pair<unsigned long, double>>;
+using RelationKernel = dlib::sparse_linear_kernel<SparseVector>;
+
+const std::set<std::string> kPronouns{"it", "them", "they", "this", "that", "these", "those", "one"};
+const std::set<std::string> kDeterminers{"the", "a", "an", "this", "that", "these", "those", "another", "each",
+                                         "every", "some", "any", "all", "both", "my", "your", "its", "their"};
+const std::set<std::string> kPrepositions{"on",   "in",    "into",   "onto",  "from",   "to",     "at",
+                                          "above", "below", "under", "over",  "near",   "next",   "beside",
+                                          "behind", "between", "of", "off",  "inside", "atop", "alongside",
+                                          "adjacent", "across", "toward", "towards", "out", "by", "with"};
+
+std::string lowerOf(const std::string& s) { return toLowerAscii(s); }
+
+bool isPunct(const std::string& w) {
+  return !w.empty() && std::all_of(w.begin(), w.end(), [](char c) { return std::ispunct(static_cast<unsigned char>(c)); });
+}
+
+std::string shapeOf(const std::string& w) {
+  std::string shape;
+  for (char c : w) {
+    char k = std::isupper(static_cast<unsigned char>(c))   ? 'A'
+             : std::islower(static_cast<unsigned char>(c)) ? 'a'
+             : std::isdigit(static_cast<unsigned char>(c)) ? '0'
+                                                            : c;
+    if (shape.empty() || shape.back() != k) shape.push_back(k);
+  }
+  return shape;
+}
+
+}  // namespace
+
+struct LanguageModel::Impl {
+  WordNetLexicon lexicon;
+  std::vector<std::string> actionLemmas;
+  std::set<std::string> actionLemmaSet;
+  std::vector<std::string> entityFeatureNames;
+  std::unordered_map<std::string, unsigned long> entityFeatureIds;
+  dlib::sequence_labeler<EntityFeatureExtractor> tagger;
+  std::vector<std::string> relationFeatureNames;
+  std::unordered_map<std::string, unsigned long> relationFeatureIds;
+  dlib::decision_function<RelationKernel> relationScorer;
+
+  std::string lemmaOf(const std::string& lower) const {
+    const WordInfo info = lexicon.lookup(lower);
+    if (!info.verbLemma.empty()) return info.verbLemma;
+    if (!info.nounLemma.empty()) return info.nounLemma;
+    return lower;
+  }
+
+  bool isActionWord(const std::string& lower) const {
+    return actionLemmaSet.count(lower) > 0 || actionLemmaSet.count(lemmaOf(lower)) > 0;
+  }
+
+  /// Feature strings of every token (label-independent).
+  std::vector<std::vector<std::string>> tokenFeatures(const std::vector<std::string>& tokens) const {
+    const int n = static_cast<int>(tokens.size());
+    std::vector<std::string> w(n);
+    std::vector<WordInfo> info(n);
+    for (int i = 0; i < n; ++i) {
+      w[i] = lowerOf(tokens[i]);
+      info[i] = lexicon.lookup(w[i]);
+    }
+    auto word = [&](int i) -> std::string { return i < 0 ? "<s>" : i >= n ? "</s>" : w[i]; };
+    auto wnClasses = [&](int i, const std::string& prefix, std::vector<std::string>& out) {
+      if (i < 0 || i >= n) return;
+      const WordInfo& k = info[i];
+      if (k.noun) out.push_back(prefix + "n");
+      if (k.verb) out.push_back(prefix + "v");
+      if (k.adjective) out.push_back(prefix + "a");
+      if (k.color) out.push_back(prefix + "color");
+      if (k.artifact) out.push_back(prefix + "artifact");
+      if (k.shape) out.push_back(prefix + "shape");
+      if (k.location) out.push_back(prefix + "loc");
+      if (kPrepositions.count(w[i])) out.push_back(prefix + "prep");
+      if (kPronouns.count(w[i])) out.push_back(prefix + "pron");
+    };
+
+    std::vector<std::vector<std::string>> feats(n);
+    int actionsBefore = 0, andsBefore = 0;
+    std::string prevAction = "<none>";
+    bool pronounSinceAction = false, nounSinceAction = false, prepSinceAction = false;
+    auto nounish = [&](int i) {
+      return info[i].noun && !info[i].color && !kPrepositions.count(w[i]) && !kPronouns.count(w[i]) &&
+             !kDeterminers.count(w[i]) && !isActionWord(w[i]);
+    };
+    // The next preposition after each token within its clause (up to the next action word or stop).
+    std::vector<std::string> nextPrep(n, "<none>");
+    {
+      std::string next = "<none>";
+      for (int i = n - 1; i >= 0; --i) {
+        nextPrep[i] = next;
+        if (isActionWord(w[i]) || w[i] == "." || w[i] == ";") next = "<none>";
+        if (kPrepositions.count(w[i])) next = w[i];
+      }
+    }
+    // Is there another prepositional phrase later in the clause (a preposition after a noun after i)?
+    std::vector<bool> laterPhrase(n, false);
+    {
+      bool prepSeen = false, phrase = false;
+      for (int i = n - 1; i >= 0; --i) {
+        laterPhrase[i] = phrase;
+        if (isActionWord(w[i]) || w[i] == "." || w[i] == ";") prepSeen = phrase = false;
+        if (kPrepositions.count(w[i])) prepSeen = true;
+        if (nounish(i) && prepSeen) phrase = true;
+      }
+    }
+    bool anyActionAhead = false;
+    std::vector<bool> actionAheadOf(n, false);
+    for (int i = n - 1; i >= 0; --i) {
+      actionAheadOf[i] = anyActionAhead;
+      anyActionAhead |= isActionWord(w[i]);
+    }
+    for (int i = 0; i < n; ++i) {
+      auto& f = feats[i];
+      const bool action = isActionWord(w[i]);
+      if (kPrepositions.count(w[i]) || info[i].noun) {
+        const std::string ctx = std::string(laterPhrase[i] ? "L" : "-") + (actionAheadOf[i] ? "A" : "-") +
+                                std::to_string(std::min(actionsBefore, 2)) + (pronounSinceAction ? "p" : "-") +
+                                (nounSinceAction ? "n" : "-");
+        f.push_back("ctx=" + ctx);
+        if (kPrepositions.count(w[i])) f.push_back("prep|ctx=" + ctx);
+        f.push_back("w|ctx=" + w[i] + "|" + ctx);
+      }
+      const bool firstNoun = actionsBefore > 0 && !nounSinceAction && nounish(i);
+      f.push_back("nextPrep=" + nextPrep[i]);
+      if (nextPrep[i] != "<none>") f.push_back("hasNextPrep");
+      if (firstNoun) {
+        f.push_back("firstNoun");
+        f.push_back("firstNoun|nextPrep=" + nextPrep[i]);
+        f.push_back("firstNoun|nact=" + std::to_string(std::min(actionsBefore, 2)) + (nextPrep[i] != "<none>" ? "p" : "-"));
+      }
+      if (kPrepositions.count(w[i])) {
+        f.push_back(std::string("prep|nounSinceAct=") + (nounSinceAction ? "1" : "0") + (prepSinceAction ? "1" : "0") +
+                    std::to_string(std::min(actionsBefore, 2)) + (pronounSinceAction ? "p" : "-"));
+      }
+      bool relativeAhead = false;
+      for (int k = i + 1; k <= i + 3 && k < n; ++k) relativeAhead |= w[k] == "that" || w[k] == "which" || w[k] == "who";
+      if (relativeAhead) f.push_back("relAhead3");
+      f.push_back("bias");
+      f.push_back("w=" + w[i]);
+      f.push_back("lem=" + lemmaOf(w[i]));
+      f.push_back("w-1=" + word(i - 1));
+      f.push_back("w+1=" + word(i + 1));
+      f.push_back("w-2=" + word(i - 2));
+      f.push_back("w+2=" + word(i + 2));
+      f.push_back("w-1w=" + word(i - 1) + "|" + w[i]);
+      f.push_back("ww+1=" + w[i] + "|" + word(i + 1));
+      f.push_back("w+1w+2=" + word(i + 1) + "|" + word(i + 2));
+      f.push_back("w-2w-1=" + word(i - 2) + "|" + word(i - 1));
+      if (w[i].size() > 3) f.push_back("suf3=" + w[i].substr(w[i].size() - 3));
+      f.push_back("shape=" + shapeOf(tokens[i]));
+      if (isPunct(w[i])) f.push_back("punct");
+      wnClasses(i, "wn:", f);
+      wnClasses(i - 1, "wn-1:", f);
+      wnClasses(i + 1, "wn+1:", f);
+      wnClasses(i + 2, "wn+2:", f);
+      if (action) f.push_back("actlex");
+      if (i > 0 && isActionWord(w[i - 1])) f.push_back("actlex-1");
+      f.push_back("nact=" + std::to_string(std::min(actionsBefore, 2)));
+      f.push_back("prevact=" + prevAction);
+      f.push_back("nand=" + std::to_string(std::min(andsBefore, 2)));
+      if (pronounSinceAction) f.push_back("pronSinceAct");
+      if (nounSinceAction) f.push_back("nounSinceAct");
+      if (prepSinceAction) f.push_back("prepSinceAct");
+      f.push_back("nact|pron=" + std::to_string(std::min(actionsBefore, 2)) + (pronounSinceAction ? "p" : "-") +
+                  (prepSinceAction ? "x" : "-"));
+      bool prepAhead = false;
+      for (int k = i + 1; k <= i + 3 && k < n; ++k) prepAhead |= kPrepositions.count(w[k]) > 0;
+      if (prepAhead) f.push_back("prepAhead3");
+      bool actionAhead = false;
+      for (int k = i + 1; k < n; ++k) actionAhead |= isActionWord(w[k]);
+      if (actionAhead) f.push_back("actionAhead");
+      f.push_back("pos=" + std::string(i == 0 ? "first" : i == n - 1 ? "last" : "mid"));
+
+      if (action) {
+        ++actionsBefore;
+        prevAction = lemmaOf(w[i]);
+        pronounSinceAction = nounSinceAction = prepSinceAction = false;
+      } else {
+        pronounSinceAction |= kPronouns.count(w[i]) > 0;
+        nounSinceAction |= nounish(i);
+        prepSinceAction |= kPrepositions.count(w[i]) > 0;
+      }
+      if (w[i] == "and" || w[i] == ",") ++andsBefore;
+    }
+    return feats;
+  }
+
+  EntityFeatureExtractor::sequence_type entitySequence(const std::vector<std::string>& tokens) const {
+    EntityFeatureExtractor::sequence_type seq;
+    for (const auto& names : tokenFeatures(tokens)) {
+      std::vector<unsigned long> ids;
+      for (const auto& name : names) {
+        auto it = entityFeatureIds.find(name);
+        if (it != entityFeatureIds.end()) ids.push_back(it->second);
+      }
+      std::sort(ids.begin(), ids.end());
+      ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+      seq.push_back(std::move(ids));
+    }
+    return seq;
+  }
+
+  /// Sparse features of a candidate relation head -> tail (both entity indices).
+  std::vector<std::string> relationFeatureNamesOf(const std::vector<std::string>& tokens,
+                                                  const std::vector<EntitySpan>& entities, int head,
+                                                  int tail) const {
+    const EntitySpan& h = entities[head];
+    const EntitySpan& t = entities[tail];
+    const bool headFirst = h.start < t.start;
+    const int lo = headFirst ? h.end : t.end;
+    const int hi = headFirst ? t.start : h.start;
+    const int distance = std::max(0, hi - lo);
+    int sameTypeBetween = 0, actionsBetween = 0, indicatorsBetween = 0;
+    for (size_t k = 0; k < entities.size(); ++k) {
+      const auto& e = entities[k];
+      if (static_cast<int>(k) == head || static_cast<int>(k) == tail) continue;
+      if (e.start >= lo && e.end <= hi) {
+        if (e.type == h.type) ++sameTypeBetween;
+        if (e.type == "Action") ++actionsBetween;
+        if (e.type == t.type) ++indicatorsBetween;
+      }
+    }
+    std::string headText, tailText;
+    for (int k = h.start; k < h.end; ++k) headText += (k > h.start ? " " : "") + lowerOf(tokens[k]);
+    for (int k = t.start; k < t.end; ++k) tailText += (k > t.start ? " " : "") + lowerOf(tokens[k]);
+    const std::string tp = h.type + ">" + t.type + ":";
+    std::vector<std::string> f{tp + "bias",
+                               tp + "dir=" + (headFirst ? "ht" : "th"),
+                               tp + "dist=" + std::to_string(std::min(distance, 8)),
+                               tp + "dir|same=" + (headFirst ? "ht" : "th") + std::to_string(std::min(sameTypeBetween, 3)),
+                               tp + "same=" + std::to_string(std::min(sameTypeBetween, 3)),
+                               tp + "act=" + std::to_string(std::min(actionsBetween, 2)),
+                               tp + "ind=" + std::to_string(std::min(indicatorsBetween, 2)),
+                               tp + "h=" + headText,
+                               tp + "t=" + tailText};
+    bool pronounBetween = false;
+    for (int k = lo; k < hi; ++k) {
+      const std::string w = lowerOf(tokens[k]);
+      f.push_back(tp + "bw=" + w);
+      pronounBetween |= kPronouns.count(w) > 0;
+    }
+    if (pronounBetween) f.push_back(tp + "pronBetween");
+    if (headFirst && h.end == t.start) f.push_back(tp + "adjacent");
+    return f;
+  }
+
+  SparseVector relationVector(const std::vector<std::string>& names) const {
+    SparseVector v;
+    for (const auto& name : names) {
+      auto it = relationFeatureIds.find(name);
+      if (it != relationFeatureIds.end()) v.push_back({it->second, 1.0});
+    }
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+    return v;
+  }
+
+  bool isNounish(const std::string& lower) const {
+    const WordInfo k = lexicon.lookup(lower);
+    return k.noun && !k.color && !kPrepositions.count(lower) && !kPronouns.count(lower) &&
+           !kDeterminers.count(lower) && !isActionWord(lower);
+  }
+
+  /// The corpus annotates a Trajector exactly when a SpatialIndicator locates it
+  /// (train: 344 of 352). Decoding enforces that: an indicator without a
+  /// trajector in its clause gets the head noun of the clause's first noun
+  /// phrase; a trajector with no indicator after it in its clause is dropped.
+  void enforceTrajectorConsistency(const std::vector<std::string>& tokens, std::vector<EntitySpan>& entities) const {
+    const int n = static_cast<int>(tokens.size());
+    std::vector<std::string> lower(n);
+    for (int i = 0; i < n; ++i) lower[i] = lowerOf(tokens[i]);
+    std::vector<int> owner(n, -1);  // token -> entity index
+    for (size_t e = 0; e < entities.size(); ++e)
+      for (int k = entities[e].start; k < entities[e].end; ++k) owner[k] = static_cast<int>(e);
+    auto typeAt = [&](int k) { return owner[k] < 0 ? std::string() : entities[owner[k]].type; };
+    auto clauseStart = [&](int pos) {
+      int k = pos - 1;
+      while (k >= 0 && typeAt(k) != "Action" && lower[k] != "." && lower[k] != ";") --k;
+      return k + 1;
+    };
+    std::vector<EntitySpan> added;
+    for (const auto& e : entities) {
+      if (e.type != "SpatialIndicator") continue;
+      const int from = clauseStart(e.start);
+      bool hasTrajector = false;
+      for (int k = from; k < e.start; ++k) hasTrajector |= typeAt(k) == "Trajector";
+      if (hasTrajector) continue;
+      int head = -1;
+      for (int k = from; k < e.start; ++k) {
+        if (owner[k] >= 0 && typeAt(k) != "Color") {
+          if (head >= 0) break;
+          continue;
+        }
+        if (isNounish(lower[k])) {
+          head = k;
+        } else if (head >= 0) {
+          break;
+        }
+      }
+      if (head >= 0 && owner[head] < 0) {
+        added.push_back({head, head + 1, "Trajector"});
+        owner[head] = -2;
+      }
+    }
+    std::vector<EntitySpan> kept;
+    for (const auto& e : entities) {
+      if (e.type == "Trajector") {
+        bool located = false;
+        for (int k = e.end; k < n && typeAt(k) != "Action" && lower[k] != "." && lower[k] != ";"; ++k)
+          located |= typeAt(k) == "SpatialIndicator";
+        if (!located) continue;
+      }
+      kept.push_back(e);
+    }
+    kept.insert(kept.end(), added.begin(), added.end());
+    std::sort(kept.begin(), kept.end(), [](const EntitySpan& a, const EntitySpan& b) { return a.start < b.start; });
+    entities = kept;
+  }
+
+  static std::string relationTypeFor(const std::string& headType, const std::string& tailType) {
+    if (headType == "Trajector" && tailType == "SpatialIndicator") return "Spatial";
+    if (headType == "Action" && tailType == "GoalIndicator") return "Transition";
+    return {};
+  }
+
+  std::vector<RelationLink> predictRelations(const std::vector<std::string>& tokens,
+                                             const std::vector<EntitySpan>& entities) const {
+    std::vector<RelationLink> out;
+    for (size_t tail = 0; tail < entities.size(); ++tail) {
+      double best = 0.0;
+      int bestHead = -1;
+      std::string bestType;
+      for (size_t head = 0; head < entities.size(); ++head) {
+        const std::string type = relationTypeFor(entities[head].type, entities[tail].type);
+        if (type.empty()) continue;
+        const double score = relationScorer(relationVector(
+            relationFeatureNamesOf(tokens, entities, static_cast<int>(head), static_cast<int>(tail))));
+        if (score > best) {
+          best = score;
+          bestHead = static_cast<int>(head);
+          bestType = type;
+        }
+      }
+      if (bestHead >= 0) out.push_back({bestHead, static_cast<int>(tail), bestType});
+    }
+    return out;
+  }
+};
+
+LanguageModel::LanguageModel() : impl_(std::make_unique<Impl>()) {}
+LanguageModel::~LanguageModel() = default;
+LanguageModel::LanguageModel(LanguageModel&&) noexcept = default;
+LanguageModel& LanguageModel::operator=(LanguageModel&&) noexcept = default;
+
+const std::vector<std::string>& LanguageModel::actionLemmas() const { return impl_->actionLemmas; }
+
+LanguageModel LanguageModel::train(const std::vector<AnnotatedSentence>& corpus,
+                                   const LanguageTrainingOptions& options) {
+  core::require(!corpus.empty(), "language training corpus is empty; pass datasets/language/train.json");
+  LanguageModel model;
+  Impl& m = *model.impl_;
+
+  // Action lexicon from the annotation.
+  for (const auto& s : corpus)
+    for (const auto& e : s.entities)
+      if (e.type == "Action" && e.end - e.start == 1) m.actionLemmaSet.insert(m.lemmaOf(lowerOf(s.tokens[e.start])));
+  m.actionLemmas.assign(m.actionLemmaSet.begin(), m.actionLemmaSet.end());
+
+  // Entity feature dictionary (sorted names, so ids do not depend on hashing).
+  std::map<std::string, int> counts;
+  std::vector<std::vector<std::vector<std::string>>> names;
+  for (const auto& s : corpus) {
+    names.push_back(m.tokenFeatures(s.tokens));
+    for (const auto& tok : names.back())
+      for (const auto& f : tok) ++counts[f];
+  }
+  for (const auto& [name, count] : counts)
+    if (count >= options.minFeatureCount) {
+      m.entityFeatureIds[name] = m.entityFeatureNames.size();
+      m.entityFeatureNames.push_back(name);
+    }
+
+  // BIO labels; overlapping gold spans (2 in train) keep the first-starting one.
+  std::vector<EntityFeatureExtractor::sequence_type> samples;
+  std::vector<std::vector<unsigned long>> labels;
+  for (size_t i = 0; i < corpus.size(); ++i) {
+    const auto& s = corpus[i];
+    if (s.tokens.empty()) continue;
+    std::vector<unsigned long> y(s.tokens.size(), 0);
+    auto sorted = s.entities;
+    std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.start < b.start; });
+    for (const auto& e : sorted) {
+      const auto t = std::find(kEntityTypes.begin(), kEntityTypes.end(), e.type) - kEntityTypes.begin();
+      if (t >= static_cast<long>(kEntityTypes.size())) continue;
+      bool free = true;
+      for (int k = e.start; k < e.end; ++k) free &= y[k] == 0;
+      if (!free) continue;
+      y[e.start] = 1 + 2 * t;
+      for (int k = e.start + 1; k < e.end; ++k) y[k] = 2 + 2 * t;
+    }
+    EntityFeatureExtractor::sequence_type seq;
+    for (const auto& tok : names[i]) {
+      std::vector<unsigned long> ids;
+      for (const auto& f : tok) {
+        auto it = m.entityFeatureIds.find(f);
+        if (it != m.entityFeatureIds.end()) ids.push_back(it->second);
+      }
+      std::sort(ids.begin(), ids.end());
+      ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+      seq.push_back(std::move(ids));
+    }
+    samples.push_back(std::move(seq));
+    labels.push_back(std::move(y));
+  }
+  EntityFeatureExtractor fe;
+  fe.numEmission = m.entityFeatureNames.size();
+  dlib::structural_sequence_labeling_trainer<EntityFeatureExtractor> trainer(fe);
+  trainer.set_c(options.entityC);
+  trainer.set_epsilon(options.entityEpsilon);
+  trainer.set_num_threads(static_cast<unsigned long>(std::max(1, options.threads)));
+  m.tagger = trainer.train(samples, labels);
+
+  // Relations: every type-compatible pair of gold entities is a sample.
+  std::vector<std::vector<std::string>> relNames;
+  std::vector<double> relLabels;
+  for (const auto& s : corpus) {
+    std::set<std::pair<int, int>> gold;
+    for (const auto& r : s.relations) gold.insert({r.head, r.tail});
+    for (size_t h = 0; h < s.entities.size(); ++h)
+      for (size_t t = 0; t < s.entities.size(); ++t) {
+        if (Impl::relationTypeFor(s.entities[h].type, s.entities[t].type).empty()) continue;
+        relNames.push_back(m.relationFeatureNamesOf(s.tokens, s.entities, static_cast<int>(h), static_cast<int>(t)));
+        relLabels.push_back(gold.count({static_cast<int>(h), static_cast<int>(t)}) ? +1.0 : -1.0);
+      }
+  }
+  std::set<std::string> relVocabulary;
+  for (const auto& v : relNames) relVocabulary.insert(v.begin(), v.end());
+  for (const auto& name : relVocabulary) {
+    m.relationFeatureIds[name] = m.relationFeatureNames.size();
+    m.relationFeatureNames.push_back(name);
+  }
+  std::vector<SparseVector> relSamples;
+  for (const auto& v : relNames) relSamples.push_back(m.relationVector(v));
+  core::require(std::count(relLabels.begin(), relLabels.end(), 1.0) > 0 &&
+                    std::count(relLabels.begin(), relLabels.end(), -1.0) > 0,
+                "language training corpus needs both related and unrelated entity pairs");
+  dlib::svm_c_linear_trainer<RelationKernel> relTrainer;
+  relTrainer.set_c(options.relationC);
+  m.relationScorer = relTrainer.train(relSamples, relLabels);
+  return model;
+}
+
+void LanguageModel::save(const std::string& path) const {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw core::FileError(path, "cannot be written (check the folder exists and is writable)");
+  const Impl& m = *impl_;
+  dlib::serialize(std::string("srp-language-model"), out);
+  dlib::serialize(kModelFormatVersion, out);
+  dlib::serialize(m.actionLemmas, out);
+  dlib::serialize(m.entityFeatureNames, out);
+  dlib::serialize(m.tagger, out);
+  dlib::serialize(m.relationFeatureNames, out);
+  dlib::serialize(m.relationScorer, out);
+  if (!out) throw core::FileError(path, "write failed (disk full?)");
+}
+
+LanguageModel LanguageModel::load(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw core::FileError(path, "language model not found; train it with `srp train-language` (see libs/language/README.md)");
+  LanguageModel model;
+  Impl& m = *model.impl_;
+  try {
+    std::string magic;
+    int version = 0;
+    dlib::deserialize(magic, in);
+    if (magic != "srp-language-model") throw core::FileError(path, "is not an srp language model");
+    dlib::deserialize(version, in);
+    if (version != kModelFormatVersion)
+      throw core::FileError(path, "has model format version " + std::to_string(version) + ", this build reads " +
+                                      std::to_string(kModelFormatVersion) + "; retrain with `srp train-language`");
+    dlib::deserialize(m.actionLemmas, in);
+    dlib::deserialize(m.entityFeatureNames, in);
+    dlib::deserialize(m.tagger, in);
+    dlib::deserialize(m.relationFeatureNames, in);
+    dlib::deserialize(m.relationScorer, in);
+  } catch (const dlib::serialization_error& e) {
+    throw core::FileError(path, std::string("is corrupt (") + e.what() + "); retrain with `srp train-language`");
+  }
+  m.actionLemmaSet.insert(m.actionLemmas.begin(), m.actionLemmas.end());
+  for (size_t i = 0; i < m.entityFeatureNames.size(); ++i) m.entityFeatureIds[m.entityFeatureNames[i]] = i;
+  for (size_t i = 0; i < m.relationFeatureNames.size(); ++i) m.relationFeatureIds[m.relationFeatureNames[i]] = i;
+  return model;
+}
+
+AnnotatedSentence LanguageModel::annotate(const std::vector<std::string>& tokens) const {
+  AnnotatedSentence out;
+  out.tokens = tokens;
+  if (tokens.empty()) return out;
+  const std::vector<unsigned long> y = impl_->tagger(impl_->entitySequence(tokens));
+  for (size_t i = 0; i < y.size();) {
+    if (y[i] == 0) {
+      ++i;
+      continue;
+    }
+    const unsigned long type = typeOfLabel(y[i]);
+    size_t j = i + 1;
+    while (j < y.size() && isInside(y[j]) && typeOfLabel(y[j]) == type) ++j;
+    out.entities.push_back({static_cast<int>(i), static_cast<int>(j), kEntityTypes[type]});
+    i = j;
+  }
+  impl_->enforceTrajectorConsistency(tokens, out.entities);
+  out.relations = impl_->predictRelations(tokens, out.entities);
+  return out;
+}
+
+std::string defaultModelPath() { return std::string(SRP_DATASETS_DIR) + "/language/model/language_model.dat"; }
+
+std::vector<AnnotatedSentence> readSpertCorpus(const std::string& path) {
+  const nlohmann::json j = core::readJsonFile(path);
+  if (!j.is_array()) throw core::FileError(path, "is not a SpERT corpus (expected a JSON array of sentences)");
+  std::vector<AnnotatedSentence> out;
+  out.reserve(j.size());
+  for (size_t i = 0; i < j.size(); ++i) {
+    try {
+      out.push_back(annotatedSentenceFromJson(j[i]));
+    } catch (const core::InvalidInputError& e) {
+      throw core::FileError(path, "sentence " + std::to_string(i) + ": " + e.what());
+    }
+  }
+  return out;
+}
+
+}  // namespace srp::language

@@ -1,0 +1,363 @@
+#include "srp/language/PlanBuilder.h"
+
+#include <algorithm>
+#include <cctype>
+#include <optional>
+#include <set>
+
+#include "srp/language/Tokenizer.h"
+
+namespace srp::language {
+
+namespace {
+
+const std::set<std::string> kPickVerbs{"pick", "take", "grab", "grasp", "lift", "get", "remove", "fetch", "collect",
+                                       "hold", "catch", "retrieve", "unload"};
+const std::set<std::string> kPlaceVerbs{"place", "put", "set", "position", "drop", "release", "lay", "deposit",
+                                        "insert", "stack", "load", "leave", "store", "arrange"};
+const std::set<std::string> kMoveVerbs{"move", "bring", "carry", "transfer", "relocate", "return", "push", "slide",
+                                       "give", "hand", "pass", "shift", "transport"};
+const std::set<std::string> kDeterminers{"the", "a", "an", "this", "these", "those", "another", "each", "every",
+                                         "some", "any", "all", "both", "my", "your", "its", "their", "other"};
+const std::set<std::string> kPronouns{"it", "them", "they", "that", "those", "these", "this", "both"};
+const std::set<std::string> kParticles{"up", "down", "away"};
+const std::set<std::string> kStopWords{"and", "or", "but", "then", "that", "which", "who", "while", "with", "by",
+                                       "of", "to", "for", "as", "so", "is", "are", "be", "was", "very", "not"};
+const std::set<std::string> kSourceWords{"from", "off", "out"};
+// Multi-word indicators first (longest match wins).
+const std::vector<std::vector<std::string>> kIndicatorPhrases{
+    {"in", "front", "of"}, {"on", "top", "of"}, {"to", "the", "left", "of"}, {"to", "the", "right", "of"},
+    {"out", "of"},         {"next", "to"},      {"adjacent", "to"},          {"close", "to"},
+    {"on", "to"},          {"inside", "of"},    {"in"},                      {"into"},
+    {"on"},                {"onto"},            {"at"},                      {"from"},
+    {"off"},               {"beside"},          {"alongside"},               {"near"},
+    {"behind"},            {"above"},           {"below"},                   {"under"},
+    {"over"},              {"between"},         {"inside"},                  {"atop"},
+    {"to"},                {"toward"},          {"towards"},                 {"underneath"}};
+
+enum class VerbKind { Pick, Place, Move };
+
+struct Mention {
+  ObjectRef object;
+  TokenAnchor anchor;
+};
+
+struct NounPhrase {
+  std::optional<Mention> mention;  // empty for a pronoun
+  bool pronoun = false;
+  bool plural = false;  // "them"/"they"/"those"
+  int end = 0;
+};
+
+struct Location {
+  LocationRef ref;
+  TokenAnchor anchor;
+  bool source = false;
+  bool back = false;
+};
+
+class SentenceView {
+ public:
+  SentenceView(const AnnotatedSentence& s, int sentenceId, const WordNetLexicon& lexicon)
+      : s_(s), id_(sentenceId), lexicon_(lexicon), n_(static_cast<int>(s.tokens.size())), owner_(n_, -1) {
+    for (const auto& t : s.tokens) lower_.push_back(toLowerAscii(t));
+    for (size_t e = 0; e < s.entities.size(); ++e)
+      for (int k = s.entities[e].start; k < s.entities[e].end && k < n_; ++k) owner_[k] = static_cast<int>(e);
+  }
+
+  int size() const { return n_; }
+  int id() const { return id_; }
+  const std::string& lower(int k) const { return lower_[k]; }
+  std::string typeAt(int k) const { return owner_[k] < 0 ? std::string() : s_.entities[owner_[k]].type; }
+  const EntitySpan* entityAt(int k) const { return owner_[k] < 0 ? nullptr : &s_.entities[owner_[k]]; }
+
+  std::string verbLemma(int k) const {
+    const WordInfo info = lexicon_.lookup(lower_[k]);
+    return info.verbLemma.empty() ? lower_[k] : info.verbLemma;
+  }
+
+  std::optional<VerbKind> verbKind(int k) const {
+    const std::string lemma = verbLemma(k);
+    if (kPickVerbs.count(lemma)) return VerbKind::Pick;
+    if (kPlaceVerbs.count(lemma)) return VerbKind::Place;
+    if (kMoveVerbs.count(lemma)) return VerbKind::Move;
+    return std::nullopt;
+  }
+
+  /// A recognised Action, or a known manipulation verb in verb position (not after a determiner).
+  bool isAction(int k) const {
+    const std::string type = typeAt(k);
+    if (type == "Action") {
+      // "Finish by setting ...", "Begin by picking ...": the real verb comes after "by".
+      return verbKind(k) || k + 1 >= n_ || (lower_[k + 1] != "by" && lower_[k + 1] != "with");
+    }
+    if (!(type.empty() || type == "Trajector") || !verbKind(k)) return false;
+    if (k > 0 && (kDeterminers.count(lower_[k - 1]) || lexicon_.lookup(lower_[k - 1]).color)) return false;
+    if (k + 1 < n_ && lower_[k + 1] == "of") return false;
+    // A verb needs something after it ("set"/"hand"/"leave" are nouns too).
+    return k + 1 < n_ && !std::ispunct(static_cast<unsigned char>(lower_[k + 1][0]));
+  }
+
+  bool isColorWord(int k) const {
+    if (typeAt(k) == "Color") return true;
+    return typeAt(k).empty() && lexicon_.lookup(lower_[k]).color && k + 1 < n_ && isNameWord(k + 1, false);
+  }
+
+  /// A word that can be part of an object name.
+  bool isNameWord(int k, bool allowColor = true) const {
+    const std::string& w = lower_[k];
+    const std::string& raw = s_.tokens[k];
+    if (raw.empty() || std::ispunct(static_cast<unsigned char>(raw[0]))) return false;
+    const std::string type = typeAt(k);
+    if (type == "Action" || type == "SpatialIndicator" || type == "GoalIndicator") return false;
+    if (type == "Color") return allowColor;
+    if (kStopWords.count(w) || kDeterminers.count(w) || kParticles.count(w)) return raw == "A";  // "item A"
+    if (w == "it" || w == "them" || w == "they") return false;
+    if (w == "back" && k + 1 < n_ && isIndicatorStart(k + 1)) return false;  // "back to the blue box"
+    if (isIndicatorStart(k)) return false;
+    if (std::isdigit(static_cast<unsigned char>(raw[0]))) return true;                         // "Location 2"
+    if (raw.size() == 1 && std::isupper(static_cast<unsigned char>(raw[0]))) return true;     // "item B"
+    if (std::isupper(static_cast<unsigned char>(raw[0])) && k > 0) return true;                // proper names
+    const WordInfo info = lexicon_.lookup(w);
+    if (info.noun || info.adjective) return !(info.adverb && !info.noun && !info.adjective);
+    return !info.verb && !info.adverb && w.find_first_not_of("abcdefghijklmnopqrstuvwxyz-") == std::string::npos;
+  }
+
+  /// Length of a known indicator phrase starting at k (0 if none).
+  int indicatorLength(int k) const {
+    if (const EntitySpan* e = entityAt(k))
+      if ((e->type == "SpatialIndicator" || e->type == "GoalIndicator") && e->start == k) return e->end - e->start;
+    for (const auto& phrase : kIndicatorPhrases) {
+      const int m = static_cast<int>(phrase.size());
+      if (k + m > n_) continue;
+      bool match = true;
+      for (int i = 0; i < m && match; ++i) match = lower_[k + i] == phrase[i] && typeAt(k + i).empty();
+      if (match) return m;
+    }
+    return 0;
+  }
+  bool isIndicatorStart(int k) const { return indicatorLength(k) > 0; }
+
+  /// Object name as written: common nouns lower-cased, names and letters kept.
+  std::string nameWord(int k) const {
+    const std::string& raw = s_.tokens[k];
+    const bool keep = (raw.size() == 1 && std::isupper(static_cast<unsigned char>(raw[0]))) ||
+                      (k > 0 && std::isupper(static_cast<unsigned char>(raw[0])) &&
+                       lower_[k - 1] != "." && lower_[k - 1] != ",");
+    return keep ? raw : lower_[k];
+  }
+
+  /// A noun phrase starting at k: determiners, colours, name words; or a pronoun.
+  std::optional<NounPhrase> nounPhrase(int k) const {
+    NounPhrase np;
+    if (k >= n_) return std::nullopt;
+    if (lower_[k] == "the" && k + 1 < n_ && lower_[k + 1] == "same") {
+      np.pronoun = true;
+      np.end = k + 2;
+      if (np.end < n_ && (lower_[np.end] == "one" || lower_[np.end] == "object" || lower_[np.end] == "objects")) ++np.end;
+      return np;
+    }
+    if (kPronouns.count(lower_[k]) && !(k + 1 < n_ && isNameWord(k + 1))) {
+      np.pronoun = true;
+      np.plural = lower_[k] != "it" && lower_[k] != "that" && lower_[k] != "this";
+      np.end = k + 1;
+      return np;
+    }
+    int i = k;
+    while (i < n_ && (kDeterminers.count(lower_[i]) && s_.tokens[i] != "A")) ++i;
+    Mention m;
+    std::vector<std::string> name, colors;
+    int lastNameToken = -1;
+    while (i < n_) {
+      if (isColorWord(i)) {
+        colors.push_back(lower_[i]);
+        ++i;
+      } else if (isNameWord(i, false)) {
+        name.push_back(nameWord(i));
+        lastNameToken = i;
+        ++i;
+      } else {
+        break;
+      }
+    }
+    if (name.empty()) return std::nullopt;
+    for (size_t j = 0; j < name.size(); ++j) m.object.name += (j ? " " : "") + name[j];
+    if (!colors.empty()) {
+      std::string c;
+      for (size_t j = 0; j < colors.size(); ++j) c += (j ? " " : "") + colors[j];
+      m.object.color = c;
+    }
+    m.anchor = {id_, lastNameToken};
+    np.mention = m;
+    np.end = i;
+    return np;
+  }
+
+ private:
+  const AnnotatedSentence& s_;
+  int id_;
+  const WordNetLexicon& lexicon_;
+  int n_;
+  std::vector<int> owner_;
+  std::vector<std::string> lower_;
+};
+
+struct Referent {
+  std::vector<int> stepIndices;
+};
+
+bool sameObject(const ObjectRef& a, const ObjectRef& b) {
+  return a.name == b.name && (!a.color || !b.color || *a.color == *b.color);
+}
+
+}  // namespace
+
+std::vector<PlanStep> buildPlanSteps(const std::vector<AnnotatedSentence>& sentences, const WordNetLexicon& lexicon,
+                                     const std::vector<PlanStep>& knownSteps, std::vector<std::string>& warnings) {
+  std::vector<PlanStep> steps;
+  Referent last;  // steps of the latest clause that named objects
+  for (size_t sid = 0; sid < sentences.size(); ++sid) {
+    const SentenceView v(sentences[sid], static_cast<int>(sid), lexicon);
+    std::vector<int> actions;
+    for (int k = 0; k < v.size(); ++k)
+      if (v.isAction(k) && (actions.empty() || actions.back() != k - 1 || v.typeAt(k) != "Action")) actions.push_back(k);
+    for (size_t a = 0; a < actions.size(); ++a) {
+      const int verb = actions[a];
+      const int clauseEnd = a + 1 < actions.size() ? actions[a + 1] : v.size();
+      const VerbKind kind = v.verbKind(verb).value_or(VerbKind::Move);
+      int k = verb + 1;
+      while (k < clauseEnd && (kParticles.count(v.lower(k)) || v.typeAt(k) == "Action")) ++k;
+
+      // Target objects: a noun phrase list right after the verb.
+      std::vector<int> clauseSteps;
+      bool namedObjects = false;
+      while (k < clauseEnd) {
+        const auto np = v.nounPhrase(k);
+        if (!np || np->end > clauseEnd) break;
+        if (np->pronoun) {
+          clauseSteps.insert(clauseSteps.end(), last.stepIndices.begin(), last.stepIndices.end());
+          if (last.stepIndices.empty())
+            warnings.push_back("sentence " + std::to_string(sid + 1) + ": '" + v.lower(k) +
+                               "' refers to no earlier object; ignored");
+        } else {
+          namedObjects = true;
+          // Reuse an open step of the same object (picked, not yet placed), else a new step.
+          int found = -1;
+          for (int s = static_cast<int>(steps.size()) - 1; s >= 0 && found < 0; --s)
+            if (sameObject(steps[s].object, np->mention->object) && steps[s].target.empty()) found = s;
+          if (found < 0) {
+            PlanStep step;
+            step.object = np->mention->object;
+            step.objectAnchor = np->mention->anchor;
+            steps.push_back(step);
+            found = static_cast<int>(steps.size()) - 1;
+          }
+          clauseSteps.push_back(found);
+        }
+        k = np->end;
+        // "X and Y", "X, Y and Z": more objects unless an action or indicator follows.
+        if (k < clauseEnd && (v.lower(k) == "and" || v.lower(k) == ",")) {
+          int j = k + 1;
+          if (j < clauseEnd && v.lower(j) == "and") ++j;
+          if (j < clauseEnd && !v.isIndicatorStart(j) && v.nounPhrase(j)) {
+            k = j;
+            continue;
+          }
+        }
+        break;
+      }
+      if (clauseSteps.empty()) clauseSteps = last.stepIndices;
+      if (!namedObjects && clauseSteps.empty()) continue;
+      std::sort(clauseSteps.begin(), clauseSteps.end());
+      clauseSteps.erase(std::unique(clauseSteps.begin(), clauseSteps.end()), clauseSteps.end());
+
+      // Locations: indicator + landmark phrases anywhere in the rest of the clause.
+      std::vector<Location> locations;
+      for (int i = k; i < clauseEnd;) {
+        int len = v.indicatorLength(i);
+        if (len == 0) {
+          ++i;
+          continue;
+        }
+        // A recognised "adjacent"/"close" without its "to": take the connecting word along.
+        if (i + len < clauseEnd && !v.nounPhrase(i + len) &&
+            (v.lower(i + len) == "to" || v.lower(i + len) == "of" || v.lower(i + len) == "from"))
+          ++len;
+        std::string relation;
+        for (int j = i; j < i + len; ++j) relation += (j > i ? " " : "") + v.lower(j);
+        const auto np = v.nounPhrase(i + len);
+        if (!np || np->pronoun || np->end > clauseEnd) {
+          i += len;
+          continue;
+        }
+        Location loc;
+        loc.ref = {relation, np->mention->object};
+        loc.anchor = np->mention->anchor;
+        loc.back = i > 0 && v.lower(i - 1) == "back";
+        const std::string type = v.typeAt(i);
+        if (kSourceWords.count(v.lower(i))) {
+          loc.source = true;
+        } else if (type == "GoalIndicator") {
+          loc.source = false;
+        } else if (type == "SpatialIndicator" || type.empty()) {
+          const bool targetSeen = std::any_of(locations.begin(), locations.end(), [](const Location& l) { return !l.source; });
+          if (kind == VerbKind::Pick) {
+            loc.source = !targetSeen;
+          } else if (kind == VerbKind::Place) {
+            loc.source = false;  // "place X next to Y in Z": every phrase says where X goes
+          } else {
+            // "move X on top of Y to Z": a spatial phrase before a directional goal is the source.
+            bool directionalGoalLater = false;
+            for (int j = np->end; j < clauseEnd; ++j) {
+              const std::string& w = v.lower(j);
+              directionalGoalLater |= v.typeAt(j) == "GoalIndicator" && (w == "to" || w == "onto" || w == "into" ||
+                                                                         w == "toward" || w == "towards");
+            }
+            loc.source = !targetSeen && directionalGoalLater;
+          }
+        }
+        locations.push_back(loc);
+        i = np->end;
+      }
+      for (int s : clauseSteps) {
+        for (const auto& loc : locations) {
+          auto& list = loc.source ? steps[s].source : steps[s].target;
+          auto& anchors = loc.source ? steps[s].sourceAnchors : steps[s].targetAnchors;
+          if (std::find(list.begin(), list.end(), loc.ref) == list.end()) {
+            list.push_back(loc.ref);
+            anchors.push_back(loc.anchor);
+          }
+          steps[s].isReturn |= loc.back;
+        }
+      }
+      last.stepIndices = clauseSteps;
+    }
+  }
+
+  // "back to": complete a return from the move it reverses.
+  for (size_t s = 0; s < steps.size(); ++s) {
+    auto& step = steps[s];
+    if (!step.isReturn || (!step.source.empty() && !step.target.empty())) continue;
+    const PlanStep* known = nullptr;
+    for (size_t j = 0; j < s; ++j)
+      if (sameObject(steps[j].object, step.object) && !steps[j].isReturn) known = &steps[j];
+    if (!known)
+      for (const auto& j : knownSteps)
+        if (sameObject(j.object, step.object)) known = &j;
+    if (!known) {
+      warnings.push_back("'back' for the " + describe(step.object) + ", but no earlier move of it is known");
+      continue;
+    }
+    if (step.source.empty()) {
+      step.source = known->target;
+      step.sourceAnchors.assign(step.source.size(), TokenAnchor{});
+    }
+    if (step.target.empty()) {
+      step.target = known->source;
+      step.targetAnchors.assign(step.target.size(), TokenAnchor{});
+    }
+  }
+  return steps;
+}
+
+}  // namespace srp::language

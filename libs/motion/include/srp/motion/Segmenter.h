@@ -1,0 +1,96 @@
+#pragma once
+/// \file Segmenter.h
+/// \brief Finds the grasp and release frame of every target object of a
+/// one-hand pick & place demonstration (thesis ch. 6.4.3, fig. 6.10; SPEC.md §3).
+///
+/// Per target object in plan order: fill and smooth the object's trajectory
+/// (detections that move the object with no hand near it dropped, since
+/// objects move only in the hand; detections far from their neighbours' median dropped, running median of
+/// the rest against detector flicker, carry-forward, KalmanSmoother), fit a
+/// 3-component Gaussian mixture (OpenCV cv::ml::EM, started at the initial
+/// position, the midpoint and the final position) to its positions, and take
+/// release = the first sample of the component the trajectory ends in, as the
+/// change point that the fewest labels contradict (components are ordered by
+/// time, components with means closer than minExcursion/2 are merged as one
+/// place; a few flickering or occluded samples after the release do not move
+/// it; the search starts mid-move, at the sample farthest from both rest positions). Grasp = the sample between the
+/// previous release and this release where the smoothed hand is closest to the
+/// object's initial position (the centre of the valley of near-closest samples,
+/// since the hand rests there while grasping). An object whose positions never leave its
+/// initial position by more than `minExcursion_m` is reported as not moved
+/// (no grasp/release, the search window is not advanced).
+///
+/// All trajectories are in one frame (e.g. "camera"), metres; the hand and
+/// every object sample the same frames (same count, same frame numbers).
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "srp/core/PositionTrajectory.h"
+#include "srp/motion/KalmanSmoother.h"
+
+namespace srp::motion {
+
+/// One object's detected trajectory: positions (invalid = not detected) and
+/// the yaw [rad] about the frame's z axis per sample (empty when unknown).
+struct ObjectTrack {
+  std::string name;
+  core::PositionTrajectory positions;
+  std::vector<double> yaw_rad;
+};
+
+/// Result for one object of the plan. Indices are sample indices (0-based)
+/// into the trajectories, frames are their frame numbers; -1 when not moved.
+struct ObjectSegmentation {
+  std::string name;
+  bool moved = false;
+  int searchStartIndex = 0;  ///< previous object's release (0 for the first)
+  int graspIndex = -1, releaseIndex = -1;
+  int graspFrame = -1, releaseFrame = -1;
+  Eigen::Vector3d p_initial_m = Eigen::Vector3d::Zero();  ///< object position before the grasp
+  Eigen::Vector3d p_final_m = Eigen::Vector3d::Zero();    ///< object position after the release
+  double maxExcursion_m = 0.0;       ///< largest distance of the smoothed object from p_initial
+  double graspHandDistance_m = 0.0;  ///< hand to p_initial at the grasp
+  std::vector<int> component;        ///< mixture component per sample, ordered by time: 0 first
+  core::PositionTrajectory smoothed; ///< the filled and smoothed object trajectory
+  std::string note;                  ///< what was unusual (not moved, order conflict), empty if nothing
+};
+
+struct Segmentation {
+  core::PositionTrajectory hand;              ///< filled and smoothed hand trajectory
+  std::vector<ObjectSegmentation> objects;    ///< in plan order
+  std::vector<std::string> warnings;          ///< one line per unusual object
+};
+
+class Segmenter {
+ public:
+  struct Config {
+    KalmanSmoother::Config handSmoother{std::nullopt, 1e-4, 2.0, KalmanSmoother::Missing::Predict};
+    /// Objects: gated against flicker; no measurement while occluded (the smoother bridges).
+    KalmanSmoother::Config objectSmoother{std::nullopt, 1e-4, 2.0, KalmanSmoother::Missing::Predict, 5.0, 0.03, 6};
+    int medianWindow = 9;              ///< samples; removes flicker of up to 4 samples
+    double flickerGate_m = 0.04;       ///< a detection this far from its neighbours' median is dropped
+    double handReach_m = 0.15;         ///< an object jumping this far from the hand is a false detection
+    double maxObjectSpeed_mps = 2.0;   ///< an object jumping faster is a false detection
+    double minExcursion_m = 0.03;      ///< below: the object did not move
+    double graspValleyDepth_m = 0.01;  ///< grasp = centre of the frames within this of the closest approach
+    int emMaxIterations = 30;
+  };
+
+  Segmenter() = default;
+  explicit Segmenter(Config config) : config_(config) {}
+
+  /// Segments the demo. Throws InvalidInputError (nothing is returned) when a
+  /// plan object has no track, a trajectory is empty, has a single sample, a
+  /// NaN/inf sample or no detection, or the frames of hand and objects differ.
+  Segmentation segment(const core::PositionTrajectory& hand, const std::vector<ObjectTrack>& objects,
+                       const std::vector<std::string>& planOrder) const;
+
+  const Config& config() const { return config_; }
+
+ private:
+  Config config_;
+};
+
+}  // namespace srp::motion

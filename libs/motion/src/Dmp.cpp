@@ -1,0 +1,343 @@
+#include "srp/motion/Dmp.h"
+
+#include <Eigen/Geometry>
+#include <Eigen/SVD>
+#include <cmath>
+
+#include "CubicSpline.h"
+#include "ForcingBasis.h"
+#include "JsonEigen.h"
+#include "LambdaSearch.h"
+#include "srp/core/Error.h"
+#include "srp/core/Json.h"
+
+namespace srp::motion {
+namespace {
+
+using core::InvalidInputError;
+using core::require;
+
+/// numpy.linalg.pinv (SVD, cut-off 1e-15 of the largest singular value).
+Eigen::MatrixXd numpyPinv(const Eigen::MatrixXd& M) {
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(M, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::VectorXd& s = svd.singularValues();
+  const double cutoff = 1e-15 * s.maxCoeff();
+  Eigen::VectorXd sInv = s;
+  for (Eigen::Index i = 0; i < s.size(); ++i) sInv(i) = s(i) > cutoff ? 1.0 / s(i) : 0.0;
+  return svd.matrixV() * sInv.asDiagonal() * svd.matrixU().transpose();
+}
+
+void validateDemo(const Eigen::VectorXd& t_s, const Eigen::MatrixXd& Y) {
+  require(t_s.size() == Y.rows(), "DMP demo: " + std::to_string(t_s.size()) + " times but " +
+                                      std::to_string(Y.rows()) + " samples; give one time per sample");
+  require(Y.rows() >= 3, "DMP demo has " + std::to_string(Y.rows()) +
+                             " samples; a DMP needs at least 3 (an empty or single-sample segment "
+                             "cannot be learned)");
+  require(Y.cols() >= 1, "DMP demo has no dimensions");
+  require(t_s.allFinite() && Y.allFinite(),
+          "DMP demo has a NaN or infinite sample; fill or drop missing samples first");
+  for (Eigen::Index i = 1; i < t_s.size(); ++i)
+    require(t_s(i) > t_s(i - 1), "DMP demo times must increase strictly (sample " +
+                                     std::to_string(i) + ")");
+}
+
+}  // namespace
+
+Dmp Dmp::imitate(const Eigen::VectorXd& t_s, const Eigen::MatrixXd& Y, const DmpConfig& config) {
+  config.validate();
+  validateDemo(t_s, Y);
+  const bool reference = config.mode == DmpConfig::Mode::Reference;
+  const Eigen::Index N = Y.rows(), D = Y.cols();
+  const double tau = t_s(N - 1) - t_s(0);
+  const detail::ForcingBasis basis(config.basisCount, config.alpha_z, config.overlap);
+
+  Dmp dmp;
+  dmp.config_ = config;
+  dmp.demoDuration_s_ = tau;
+  dmp.demoDt_s_ = tau / static_cast<double>(N - 1);
+  dmp.demoStart_ = Y.row(0).transpose();
+  dmp.demoGoal_ = Y.row(N - 1).transpose();
+
+  // Derivatives as movement_primitives' determine_forces: np.gradient(Y) / np.gradient(T).
+  const Eigen::MatrixXd DT = detail::numpyGradient(t_s);
+  Eigen::MatrixXd Yd = detail::numpyGradient(Y);
+  for (Eigen::Index d = 0; d < D; ++d) Yd.col(d) = Yd.col(d).cwiseQuotient(DT.col(0));
+  if (reference) Yd.row(N - 1).setZero();
+  Eigen::MatrixXd Ydd = detail::numpyGradient(Yd);
+  for (Eigen::Index d = 0; d < D; ++d) Ydd.col(d) = Ydd.col(d).cwiseQuotient(DT.col(0));
+  if (reference) Ydd.row(N - 1).setZero();
+
+  const Eigen::RowVectorXd g = Y.row(N - 1);
+  const double a = config.alpha_y, b = config.beta_y;
+  Eigen::MatrixXd F, A;  // forcing targets (M x D), design matrix (M x K)
+  Eigen::VectorXd Z, Tfit;
+  if (reference) {
+    F.resize(N, D), A.resize(N, config.basisCount), Z.resize(N);
+    Tfit = t_s;
+    for (Eigen::Index i = 0; i < N; ++i)
+      F.row(i) = tau * tau * Ydd.row(i) - a * (b * (g - Y.row(i)) - tau * Yd.row(i));
+  } else {
+    // Targets from a cubic spline through the demo, sampled densely: its
+    // derivatives are consistent with the positions, so integrating the
+    // fitted system reproduces the demo.
+    const detail::CubicSpline spline(t_s, Y);
+    const Eigen::Index M = std::max<Eigen::Index>(N, 10 * config.basisCount);
+    F.resize(M, D), A.resize(M, config.basisCount), Z.resize(M), Tfit.resize(M);
+    Yd.resize(M, D), Ydd.resize(M, D);
+    Eigen::RowVectorXd y(D);
+    for (Eigen::Index i = 0; i < M; ++i) {
+      Tfit(i) = t_s(0) + tau * static_cast<double>(i) / static_cast<double>(M - 1);
+      spline.evaluate(Tfit(i), y, Yd.row(i), Ydd.row(i));
+    }
+    const Eigen::RowVectorXd gd = Yd.row(M - 1);
+    for (Eigen::Index i = 0; i < M; ++i) {
+      spline.evaluate(Tfit(i), y, Yd.row(i), Ydd.row(i));
+      F.row(i) = tau * tau * Ydd.row(i) - a * (b * (g - y) + tau * (gd - Yd.row(i)));
+    }
+  }
+  for (Eigen::Index i = 0; i < F.rows(); ++i) {
+    Z(i) = basis.phase((Tfit(i) - t_s(0)) / tau);
+    basis.activations(Z(i), A.row(i).transpose());
+  }
+  dmp.targets_ = {Z, Yd, Ydd, F};
+
+  if (reference) {
+    // w = pinv(X X^T + lambda I) X F, as the library (X = A^T).
+    const Eigen::MatrixXd gram =
+        A.transpose() * A + *config.lambda * Eigen::MatrixXd::Identity(A.cols(), A.cols());
+    dmp.weights_ = (numpyPinv(gram) * A.transpose() * F).transpose();
+    dmp.lambda_ = *config.lambda;
+    dmp.demoStartVel_s_ = Eigen::VectorXd::Zero(D);
+    dmp.demoGoalVel_s_ = Eigen::VectorXd::Zero(D);
+  } else {
+    const detail::RidgeSolver solver(A, F);
+    if (config.lambda) {
+      dmp.lambda_ = *config.lambda;
+      dmp.gcv_ = solver.gcv(dmp.lambda_);
+    } else {
+      const auto choice = detail::chooseLambdaByGcv(solver, config.lambdaSearchMin, config.lambdaSearchMax);
+      dmp.lambda_ = choice.lambda;
+      dmp.gcv_ = choice.gcv;
+    }
+    dmp.weights_ = solver.weights(dmp.lambda_).transpose();
+    dmp.demoStartVel_s_ = tau * Yd.row(0).transpose();
+    dmp.demoGoalVel_s_ = tau * Yd.row(Yd.rows() - 1).transpose();
+  }
+  dmp.configure(dmp.demoStart_, dmp.demoGoal_, tau);
+  return dmp;
+}
+
+void Dmp::configure(const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
+                    std::optional<double> duration_s, std::optional<Eigen::VectorXd> startVelocity,
+                    std::optional<Eigen::VectorXd> goalVelocity) {
+  const Eigen::Index D = weights_.rows();
+  require(start.size() == D && goal.size() == D,
+          "DMP configure: start and goal need " + std::to_string(D) + " coordinates");
+  require(start.allFinite() && goal.allFinite(), "DMP configure: start or goal is NaN/infinite");
+  if (duration_s)
+    require(std::isfinite(*duration_s) && *duration_s > 0,
+            "DMP configure: duration must be positive (got " + std::to_string(*duration_s) + " s)");
+  start_ = start;
+  goal_ = goal;
+  if (duration_s) duration_s_ = *duration_s;
+  if (config_.mode == DmpConfig::Mode::Reference) {
+    startVel_s_ = goalVel_s_ = Eigen::VectorXd::Zero(D);
+    return;
+  }
+  const Eigen::MatrixXd S = forcingScale();
+  if (startVelocity) {
+    require(startVelocity->size() == D && startVelocity->allFinite(), "DMP configure: bad start velocity");
+    startVel_s_ = *startVelocity * duration_s_;
+  } else {
+    startVel_s_ = S * demoStartVel_s_;
+  }
+  if (goalVelocity) {
+    require(goalVelocity->size() == D && goalVelocity->allFinite(), "DMP configure: bad goal velocity");
+    goalVel_s_ = *goalVelocity * duration_s_;
+  } else {
+    goalVel_s_ = S * demoGoalVel_s_;
+  }
+}
+
+Eigen::MatrixXd Dmp::forcingScale() const {
+  const Eigen::Index D = weights_.rows();
+  const Eigen::VectorXd demoDiff = demoGoal_ - demoStart_, diff = goal_ - start_;
+  constexpr double kMinDisplacement_m = 1e-3;
+  switch (config_.scaling) {
+    case ForcingScaling::None: break;
+    case ForcingScaling::PerDimension: {
+      Eigen::VectorXd s = Eigen::VectorXd::Ones(D);
+      for (Eigen::Index d = 0; d < D; ++d)
+        if (std::abs(demoDiff(d)) >= kMinDisplacement_m) s(d) = diff(d) / demoDiff(d);
+      return s.asDiagonal();
+    }
+    case ForcingScaling::Spatial: {
+      if (demoDiff.norm() < kMinDisplacement_m || diff.norm() < kMinDisplacement_m) break;
+      const double ratio = diff.norm() / demoDiff.norm();
+      if (D != 3) return ratio * Eigen::MatrixXd::Identity(D, D);
+      const Eigen::Vector3d from = demoDiff, to = diff;
+      return ratio * Eigen::Quaterniond::FromTwoVectors(from, to).toRotationMatrix();
+    }
+  }
+  return Eigen::MatrixXd::Identity(D, D);
+}
+
+DmpRollout Dmp::rollout() const {
+  return rollout(config_.mode == DmpConfig::Mode::Reference ? config_.referenceDt_s
+                                                           : demoDt_s_ * duration_s_ / demoDuration_s_);
+}
+
+DmpRollout Dmp::rollout(double dt_s) const {
+  require(std::isfinite(dt_s) && dt_s > 0, "DMP rollout: dt must be positive (got " + std::to_string(dt_s) + ")");
+  const Eigen::Index D = weights_.rows();
+  const double tau = duration_s_;
+  const double a = config_.alpha_y, b = config_.beta_y;
+  const detail::ForcingBasis basis(config_.basisCount, config_.alpha_z, config_.overlap);
+  Eigen::VectorXd act(config_.basisCount);
+  auto forcing = [&](double t) -> Eigen::VectorXd {
+    basis.activations(basis.phase(t / tau), act);
+    return weights_ * act;
+  };
+
+  DmpRollout out;
+  if (config_.mode == DmpConfig::Mode::Reference) {
+    // movement_primitives dmp_open_loop + dmp_step_rk4: grid np.arange(0, tau + dt, dt),
+    // start at rest, forcing at [t, t + dt/2, t + dt] with t the *new* time.
+    const auto n = static_cast<Eigen::Index>(std::ceil((tau + dt_s) / dt_s));
+    out.t_s.resize(n);
+    for (Eigen::Index i = 0; i < n; ++i) out.t_s(i) = static_cast<double>(i) * dt_s;
+    out.y.resize(n, D);
+    out.yd.resize(n, D);
+    Eigen::VectorXd y = start_, yd = Eigen::VectorXd::Zero(D);
+    out.y.row(0) = y.transpose();
+    out.yd.row(0) = yd.transpose();
+    const double tau2 = tau * tau;
+    auto acc = [&](const Eigen::VectorXd& Y, const Eigen::VectorXd& V, const Eigen::VectorXd& f) {
+      return Eigen::VectorXd((a * (b * (goal_ - Y) - tau * V) + f) / tau2);
+    };
+    for (Eigen::Index i = 1; i < n; ++i) {
+      const double t = out.t_s(i), dt = t - out.t_s(i - 1), dt2 = 0.5 * dt;
+      const Eigen::VectorXd F0 = forcing(t), F1 = forcing(t + dt2), F2 = forcing(t + dt);
+      const Eigen::VectorXd C0 = yd;
+      const Eigen::VectorXd K0 = acc(y, C0, F0);
+      const Eigen::VectorXd C1 = yd + dt2 * K0;
+      const Eigen::VectorXd K1 = acc(y + dt2 * C0, C1, F1);
+      const Eigen::VectorXd C2 = yd + dt2 * K1;
+      const Eigen::VectorXd K2 = acc(y + dt2 * C1, C2, F1);
+      const Eigen::VectorXd C3 = yd + dt * K2;
+      const Eigen::VectorXd K3 = acc(y + dt * C2, C3, F2);
+      y += dt * (yd + dt / 6.0 * (K0 + K1 + K2));
+      yd += dt / 6.0 * (K0 + 2 * K1 + 2 * K2 + K3);
+      out.y.row(i) = y.transpose();
+      out.yd.row(i) = yd.transpose();
+    }
+    return out;
+  }
+
+  // Default mode: classical RK4 in normalised time s = t / tau with the forcing
+  // term at the stage times and sub-steps of at most maxStepFraction / (alpha / 2).
+  const Eigen::MatrixXd S = forcingScale();
+  const Eigen::MatrixXd SW = S * weights_;
+  auto forcingS = [&](double s) -> Eigen::VectorXd {
+    basis.activations(basis.phase(s), act);
+    return SW * act;
+  };
+  const auto intervals = static_cast<Eigen::Index>(std::max(1.0, std::ceil(tau / dt_s - 1e-9)));
+  const Eigen::Index n = intervals + 1;
+  out.t_s.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i) out.t_s(i) = std::min(static_cast<double>(i) * dt_s, tau);
+  out.y.resize(n, D);
+  out.yd.resize(n, D);
+  Eigen::VectorXd y = start_, v = startVel_s_;  // v = dy/ds
+  out.y.row(0) = y.transpose();
+  out.yd.row(0) = (v / tau).transpose();
+  auto acc = [&](const Eigen::VectorXd& Y, const Eigen::VectorXd& V, const Eigen::VectorXd& f) {
+    return Eigen::VectorXd(a * (b * (goal_ - Y) + (goalVel_s_ - V)) + f);
+  };
+  const double maxStep_s = config_.maxStepFraction / (0.5 * a);
+  Eigen::VectorXd fA = forcingS(0.0);
+  for (Eigen::Index i = 1; i < n; ++i) {
+    const double s0 = out.t_s(i - 1) / tau, s1 = out.t_s(i) / tau;
+    const int m = static_cast<int>(std::ceil((s1 - s0) / maxStep_s - 1e-12));
+    const double h = (s1 - s0) / std::max(m, 1);
+    for (int k = 0; k < m; ++k) {
+      const double s = s0 + k * h;
+      const Eigen::VectorXd fM = forcingS(s + 0.5 * h), fB = forcingS(s + h);
+      const Eigen::VectorXd k1v = acc(y, v, fA), k1y = v;
+      const Eigen::VectorXd k2y = v + 0.5 * h * k1v, k2v = acc(y + 0.5 * h * k1y, k2y, fM);
+      const Eigen::VectorXd k3y = v + 0.5 * h * k2v, k3v = acc(y + 0.5 * h * k2y, k3y, fM);
+      const Eigen::VectorXd k4y = v + h * k3v, k4v = acc(y + h * k3y, k4y, fB);
+      y += h / 6.0 * (k1y + 2 * k2y + 2 * k3y + k4y);
+      v += h / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
+      fA = fB;
+    }
+    out.y.row(i) = y.transpose();
+    out.yd.row(i) = (v / tau).transpose();
+  }
+  return out;
+}
+
+Eigen::VectorXd Dmp::basisCenters() const {
+  return detail::ForcingBasis(config_.basisCount, config_.alpha_z, config_.overlap).centers();
+}
+Eigen::VectorXd Dmp::basisWidths() const {
+  return detail::ForcingBasis(config_.basisCount, config_.alpha_z, config_.overlap).widths();
+}
+
+nlohmann::json Dmp::toJson() const {
+  using detail::toJson;
+  return {{"class", "srp::motion::Dmp"},
+          {"schema_version", 1},
+          {"config", config_},
+          {"weights", toJson(weights_)},
+          {"lambda", lambda_},
+          {"gcv_error", gcv_},
+          {"demo", {{"start", toJson(demoStart_)}, {"goal", toJson(demoGoal_)},
+                    {"start_velocity_normalised", toJson(demoStartVel_s_)},
+                    {"goal_velocity_normalised", toJson(demoGoalVel_s_)},
+                    {"duration_s", demoDuration_s_}, {"sample_period_s", demoDt_s_}}},
+          {"configured", {{"start", toJson(start_)}, {"goal", toJson(goal_)},
+                          {"start_velocity_normalised", toJson(startVel_s_)},
+                          {"goal_velocity_normalised", toJson(goalVel_s_)},
+                          {"duration_s", duration_s_}}}};
+}
+
+Dmp Dmp::fromJson(const nlohmann::json& j) {
+  using core::requireField;
+  using detail::matrixFromJson;
+  using detail::vectorFromJson;
+  const std::string ctx = "DMP JSON";
+  require(j.is_object(), ctx + ": expected an object");
+  const auto cls = requireField(j, "class", ctx).get<std::string>();
+  require(cls == "srp::motion::Dmp", ctx + ": class is '" + cls + "', expected srp::motion::Dmp");
+  const int version = requireField(j, "schema_version", ctx).get<int>();
+  require(version == 1, ctx + ": schema_version " + std::to_string(version) +
+                            " is not known to this build (knows 1); update srp");
+  Dmp dmp;
+  dmp.config_ = requireField(j, "config", ctx).get<DmpConfig>();
+  dmp.weights_ = matrixFromJson(requireField(j, "weights", ctx), ctx + " weights");
+  require(dmp.weights_.cols() == dmp.config_.basisCount && dmp.weights_.rows() >= 1,
+          ctx + ": weights must be D x basis_count");
+  const Eigen::Index D = dmp.weights_.rows();
+  dmp.lambda_ = requireField(j, "lambda", ctx).get<double>();
+  dmp.gcv_ = requireField(j, "gcv_error", ctx).get<double>();
+  const auto& demo = requireField(j, "demo", ctx);
+  dmp.demoStart_ = vectorFromJson(requireField(demo, "start", ctx), D, ctx + " demo.start");
+  dmp.demoGoal_ = vectorFromJson(requireField(demo, "goal", ctx), D, ctx + " demo.goal");
+  dmp.demoStartVel_s_ = vectorFromJson(requireField(demo, "start_velocity_normalised", ctx), D, ctx);
+  dmp.demoGoalVel_s_ = vectorFromJson(requireField(demo, "goal_velocity_normalised", ctx), D, ctx);
+  dmp.demoDuration_s_ = requireField(demo, "duration_s", ctx).get<double>();
+  dmp.demoDt_s_ = requireField(demo, "sample_period_s", ctx).get<double>();
+  const auto& c = requireField(j, "configured", ctx);
+  dmp.start_ = vectorFromJson(requireField(c, "start", ctx), D, ctx + " configured.start");
+  dmp.goal_ = vectorFromJson(requireField(c, "goal", ctx), D, ctx + " configured.goal");
+  dmp.startVel_s_ = vectorFromJson(requireField(c, "start_velocity_normalised", ctx), D, ctx);
+  dmp.goalVel_s_ = vectorFromJson(requireField(c, "goal_velocity_normalised", ctx), D, ctx);
+  dmp.duration_s_ = requireField(c, "duration_s", ctx).get<double>();
+  require(dmp.duration_s_ > 0 && dmp.demoDuration_s_ > 0 && dmp.demoDt_s_ > 0,
+          ctx + ": durations must be positive");
+  require(dmp.weights_.allFinite(), ctx + ": weights contain NaN/inf");
+  return dmp;
+}
+
+}  // namespace srp::motion

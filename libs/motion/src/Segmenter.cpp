@@ -1,0 +1,370 @@
+#include "srp/motion/Segmenter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <opencv2/core.hpp>
+#include <opencv2/ml.hpp>
+#include <sstream>
+
+#include "srp/core/Error.h"
+
+namespace srp::motion {
+namespace {
+
+using core::InvalidInputError;
+
+constexpr int kComponents = 3;
+
+void validateTrajectory(const core::PositionTrajectory& t, const std::string& what) {
+  if (t.size() < 2)
+    throw InvalidInputError(what + " has " + std::to_string(t.size()) +
+                            " samples; segmentation needs a whole demo (at least 2 samples)");
+  for (const auto& s : t.samples())
+    if (s.valid && !s.p_m.allFinite())
+      throw InvalidInputError(what + ": sample at frame " + std::to_string(s.frame) +
+                              " is NaN/infinite; mark it not detected (zeros) instead");
+}
+
+bool detected(const core::PositionSample& s) { return s.valid && !(s.p_m.array() == 0.0).all(); }
+
+/// Per-axis median of the detected samples in [i - half, i + half]; false when
+/// fewer than `minCount` are detected.
+bool windowMedian(const core::PositionTrajectory& in, int i, int half, int minCount, Eigen::Vector3d& m) {
+  const int n = static_cast<int>(in.size());
+  thread_local std::vector<double> buf;
+  for (int k = 0; k < 3; ++k) {
+    buf.clear();
+    for (int j = std::max(0, i - half); j <= std::min(n - 1, i + half); ++j)
+      if (detected(in[static_cast<std::size_t>(j)])) buf.push_back(in[static_cast<std::size_t>(j)].p_m(k));
+    if (static_cast<int>(buf.size()) < minCount) return false;
+    std::sort(buf.begin(), buf.end());
+    const std::size_t c = buf.size();
+    m(k) = c % 2 ? buf[c / 2] : 0.5 * (buf[c / 2 - 1] + buf[c / 2]);
+  }
+  return true;
+}
+
+/// Detector flicker: drops a detection farther than `gate_m` from the median of
+/// the detections around it (a wrong object's position for a few frames), then
+/// replaces each sample by the median of the detections in `window` (missing
+/// where fewer than 3 are left; the carry-forward fills those).
+core::PositionTrajectory removeFlicker(const core::PositionTrajectory& in, int window, double gate_m) {
+  const int n = static_cast<int>(in.size());
+  core::PositionTrajectory gated = in;
+  Eigen::Vector3d m;
+  for (int i = 0; i < n; ++i) {
+    auto& s = gated.samples()[static_cast<std::size_t>(i)];
+    if (detected(s) && windowMedian(in, i, window, 5, m) && (s.p_m - m).norm() > gate_m) s.valid = false;
+  }
+  core::PositionTrajectory out = gated;
+  for (int i = 0; i < n; ++i) {
+    auto& o = out.samples()[static_cast<std::size_t>(i)];
+    o.valid = windowMedian(gated, i, 1, 2, m);
+    o.p_m = o.valid ? m : Eigen::Vector3d::Zero();
+  }
+  return out;
+}
+
+/// Objects move only in the hand, and not faster than a hand: a detection
+/// away from the object's last accepted position with no hand near it, or
+/// farther than maxSpeed allows, is another object or a false detection
+/// (flicker), and is dropped.
+core::PositionTrajectory dropMovesWithoutHand(const core::PositionTrajectory& in, const core::PositionTrajectory& hand,
+                                              double gate_m, double handReach_m, double maxSpeed_mps) {
+  core::PositionTrajectory out = in;
+  Eigen::Vector3d last;
+  double lastTime_s = in.empty() ? 0.0 : in[0].t_s;
+  bool haveLast = false;
+  const int n = static_cast<int>(in.size());
+  // Start from the median of the first detections (the object at rest before the demo).
+  {
+    core::PositionTrajectory head(in.frame());
+    for (int i = 0; i < n && head.size() < 15; ++i)
+      if (detected(in[static_cast<std::size_t>(i)])) head.append(in[static_cast<std::size_t>(i)]);
+    Eigen::Vector3d m;
+    if (!head.empty() && windowMedian(head, 0, static_cast<int>(head.size()), 1, m)) last = m, haveLast = true;
+  }
+  // A run of rejected detections that agree with each other for kReacquire
+  // detections means the object is really there (it was moved unseen): accept.
+  constexpr int kReacquire = 8;
+  Eigen::Vector3d candidate = Eigen::Vector3d::Zero();
+  int candidateCount = 0;
+  for (int i = 0; i < n; ++i) {
+    auto& s = out.samples()[static_cast<std::size_t>(i)];
+    if (!detected(s)) continue;
+    const Eigen::Vector3d& h = hand[static_cast<std::size_t>(i)].p_m;
+    const double jump = haveLast ? (s.p_m - last).norm() : 0.0;
+    const bool tooFast = jump > gate_m + maxSpeed_mps * (s.t_s - lastTime_s);
+    const bool noHand = jump > gate_m && (h - s.p_m).norm() > handReach_m && (h - last).norm() > handReach_m;
+    if (haveLast && (tooFast || noHand)) {
+      if (candidateCount > 0 && (s.p_m - candidate).norm() <= gate_m) ++candidateCount;
+      else candidate = s.p_m, candidateCount = 1;
+      if (candidateCount < kReacquire) {
+        s.valid = false;
+        s.p_m.setZero();
+        continue;
+      }
+    }
+    candidateCount = 0;
+    last = s.p_m;
+    lastTime_s = s.t_s;
+  }
+  return out;
+}
+
+Eigen::Vector3d medianPosition(const core::PositionTrajectory& t, int from, int to) {
+  Eigen::Vector3d m;
+  std::vector<double> buf;
+  for (int k = 0; k < 3; ++k) {
+    buf.clear();
+    for (int i = from; i < to; ++i) buf.push_back(t[i].p_m(k));
+    std::nth_element(buf.begin(), buf.begin() + static_cast<long>(buf.size() / 2), buf.end());
+    m(k) = buf[buf.size() / 2];
+  }
+  return m;
+}
+
+/// EM labels per sample, components renumbered by the median time of their samples.
+std::vector<int> mixtureLabels(const core::PositionTrajectory& t, const Eigen::Vector3d& p0,
+                               const Eigen::Vector3d& p1, int maxIterations, double mergeDistance_m) {
+  const int n = static_cast<int>(t.size());
+  cv::Mat samples(n, 3, CV_64F);
+  Eigen::Vector3d far = p0;
+  double farDist = -1;
+  for (int i = 0; i < n; ++i) {
+    for (int k = 0; k < 3; ++k) samples.at<double>(i, k) = t[i].p_m(k) * 1e3;  // mm
+    const double d = std::min((t[i].p_m - p0).norm(), (t[i].p_m - p1).norm());
+    if (d > farDist) farDist = d, far = t[i].p_m;
+  }
+  // Start at: static before, the moving part (its farthest point), static after.
+  cv::Mat means0(kComponents, 3, CV_64F);
+  const Eigen::Vector3d mid = 0.5 * (0.5 * (p0 + p1) + far);
+  for (int k = 0; k < 3; ++k) {
+    means0.at<double>(0, k) = p0(k) * 1e3;
+    means0.at<double>(1, k) = mid(k) * 1e3;
+    means0.at<double>(2, k) = p1(k) * 1e3;
+  }
+  cv::Mat var;
+  {
+    cv::Mat mean;
+    cv::reduce(samples, mean, 0, cv::REDUCE_AVG);
+    cv::Mat centred = samples - cv::repeat(mean, n, 1);
+    cv::reduce(centred.mul(centred), var, 0, cv::REDUCE_AVG);
+  }
+  std::vector<cv::Mat> covs0(kComponents);
+  for (int c = 0; c < kComponents; ++c) {
+    covs0[c] = cv::Mat::eye(3, 3, CV_64F);
+    for (int k = 0; k < 3; ++k)
+      covs0[c].at<double>(k, k) = c == 1 ? std::max(var.at<double>(0, k), 1.0) : 25.0;  // 5 mm static spread
+  }
+  cv::Mat weights0(1, kComponents, CV_64F, cv::Scalar(1.0 / kComponents));
+  cv::Ptr<cv::ml::EM> em = cv::ml::EM::create();
+  em->setClustersNumber(kComponents);
+  em->setCovarianceMatrixType(cv::ml::EM::COV_MAT_DIAGONAL);
+  em->setTermCriteria(cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, maxIterations, 1e-5));
+  // EM on at most kMaxTrainSamples evenly strided samples (a 60 s demo has
+  // 1800; the rests and the move are all still represented), then every
+  // sample is labelled with the fitted mixture.
+  constexpr int kMaxTrainSamples = 300;
+  const int stride = std::max(1, (n + kMaxTrainSamples - 1) / kMaxTrainSamples);
+  cv::Mat train;
+  for (int i = 0; i < n; i += stride) train.push_back(samples.row(i));
+  bool ok = false;
+  try {
+    ok = em->trainE(train, means0, covs0, weights0, cv::noArray(), cv::noArray(), cv::noArray());
+  } catch (const cv::Exception&) {
+    ok = false;
+  }
+  cv::Mat labels(n, 1, CV_32S, cv::Scalar(0));
+  if (ok) {
+    // Diagonal Gaussians: log pi_k - 0.5 sum_d (log var_kd + (x_d - mu_kd)^2 / var_kd).
+    const cv::Mat mu = em->getMeans(), w = em->getWeights();
+    std::vector<cv::Mat> covs;
+    em->getCovs(covs);
+    for (int i = 0; i < n; ++i) {
+      double bestLog = -std::numeric_limits<double>::infinity();
+      for (int c = 0; c < kComponents; ++c) {
+        double logp = std::log(std::max(w.at<double>(c), 1e-300));
+        for (int k = 0; k < 3; ++k) {
+          const double var = std::max(covs[static_cast<std::size_t>(c)].at<double>(k, k), 1e-12);
+          const double d = samples.at<double>(i, k) - mu.at<double>(c, k);
+          logp -= 0.5 * (std::log(var) + d * d / var);
+        }
+        if (logp > bestLog) bestLog = logp, labels.at<int>(i) = c;
+      }
+    }
+  }
+  std::vector<int> out(static_cast<std::size_t>(n), 0);
+  if (!ok) {
+    // EM degenerate (e.g. a perfectly static object): nearest of the start means.
+    for (int i = 0; i < n; ++i) {
+      const double d0 = (t[i].p_m - p0).norm(), d2 = (t[i].p_m - p1).norm();
+      out[static_cast<std::size_t>(i)] = d2 < d0 ? 2 : 0;
+    }
+    return out;
+  }
+  // Components whose means are closer than mergeDistance are one place (EM
+  // splits a long rest, e.g. of an object put back where it was, into two).
+  const cv::Mat means = em->getMeans();
+  std::vector<int> parent(kComponents);
+  std::iota(parent.begin(), parent.end(), 0);
+  for (int a = 0; a < kComponents; ++a)
+    for (int b = a + 1; b < kComponents; ++b)
+      if (cv::norm(means.row(a), means.row(b)) < mergeDistance_m * 1e3) parent[static_cast<std::size_t>(b)] = parent[static_cast<std::size_t>(a)];
+  for (int i = 0; i < n; ++i) labels.at<int>(i) = parent[static_cast<std::size_t>(labels.at<int>(i))];
+  // Order the components by the median index of their samples.
+  std::vector<std::vector<int>> members(kComponents);
+  for (int i = 0; i < n; ++i) members[static_cast<std::size_t>(labels.at<int>(i))].push_back(i);
+  std::vector<std::pair<double, int>> order;
+  for (int c = 0; c < kComponents; ++c) {
+    const auto& m = members[static_cast<std::size_t>(c)];
+    order.emplace_back(m.empty() ? 1e18 : m[m.size() / 2], c);
+  }
+  std::sort(order.begin(), order.end());
+  std::vector<int> rank(kComponents);
+  for (int r = 0; r < kComponents; ++r) rank[static_cast<std::size_t>(order[static_cast<std::size_t>(r)].second)] = r;
+  for (int i = 0; i < n; ++i) out[static_cast<std::size_t>(i)] = rank[static_cast<std::size_t>(labels.at<int>(i))];
+  return out;
+}
+
+}  // namespace
+
+Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std::vector<ObjectTrack>& objects,
+                                const std::vector<std::string>& planOrder) const {
+  core::require(!planOrder.empty(), "segmentation: the plan has no target object; give the ordered object names");
+  validateTrajectory(hand, "hand trajectory");
+  std::map<std::string, const ObjectTrack*> byName;
+  for (const auto& o : objects) byName[o.name] = &o;
+  for (const auto& name : planOrder) {
+    const auto it = byName.find(name);
+    if (it == byName.end())
+      throw InvalidInputError("plan object '" + name + "' has no trajectory; give its track or remove it from the plan");
+    const auto& track = it->second->positions;
+    validateTrajectory(track, "trajectory of '" + name + "'");
+    if (track.size() != hand.size())
+      throw InvalidInputError("trajectory of '" + name + "' has " + std::to_string(track.size()) +
+                              " samples, the hand " + std::to_string(hand.size()) + "; sample the same frames");
+    for (std::size_t i = 0; i < track.size(); ++i)
+      if (track[i].frame != hand[i].frame)
+        throw InvalidInputError("trajectory of '" + name + "' sample " + std::to_string(i) + " is frame " +
+                                std::to_string(track[i].frame) + ", the hand's is " + std::to_string(hand[i].frame));
+  }
+
+  Segmentation result;
+  result.hand = KalmanSmoother(config_.handSmoother).smooth(hand);
+  const int n = static_cast<int>(hand.size());
+  const int w = std::max(1, std::min(15, n / 10));
+  int start = 0;
+  for (const auto& name : planOrder) {
+    const ObjectTrack& track = *byName.at(name);
+    ObjectSegmentation seg;
+    seg.name = name;
+    seg.searchStartIndex = start;
+    const core::PositionTrajectory filtered =
+        removeFlicker(dropMovesWithoutHand(track.positions, result.hand, config_.flickerGate_m, config_.handReach_m,
+                                           config_.maxObjectSpeed_mps),
+                      config_.medianWindow, config_.flickerGate_m);
+    core::require(filtered.validCount() > 0, "trajectory of '" + name + "' has no detection");
+    seg.smoothed = KalmanSmoother(config_.objectSmoother).smooth(filtered);
+    seg.p_initial_m = medianPosition(seg.smoothed, 0, w);
+    seg.p_final_m = medianPosition(seg.smoothed, n - w, n);
+    for (const auto& s : seg.smoothed.samples())
+      seg.maxExcursion_m = std::max(seg.maxExcursion_m, (s.p_m - seg.p_initial_m).norm());
+    if (seg.maxExcursion_m < config_.minExcursion_m) {
+      std::ostringstream msg;
+      msg << "object '" << name << "' never moves (largest excursion " << seg.maxExcursion_m * 1e3
+          << " mm < " << config_.minExcursion_m * 1e3 << " mm): no grasp or release";
+      seg.note = msg.str();
+      seg.component.assign(static_cast<std::size_t>(n), 0);
+      result.warnings.push_back(seg.note);
+      result.objects.push_back(std::move(seg));
+      continue;
+    }
+    seg.moved = true;
+    seg.component = mixtureLabels(seg.smoothed, seg.p_initial_m, seg.p_final_m, config_.emMaxIterations,
+                                  0.5 * config_.minExcursion_m);
+
+    // Release: the change point after which the object is in the final
+    // component (the one the trajectory ends in), placed where the fewest
+    // labels disagree: samples before it in the final component plus samples
+    // after it outside. Unlike "the first sample of the last run" this is not
+    // broken by a few flickering or occluded samples after the release.
+    std::vector<int> tailCount(kComponents, 0);
+    for (int i = n - w; i < n; ++i) ++tailCount[static_cast<std::size_t>(seg.component[static_cast<std::size_t>(i)])];
+    const int finalComponent = static_cast<int>(std::max_element(tailCount.begin(), tailCount.end()) - tailCount.begin());
+    auto inFinal = [&](int i) { return seg.component[static_cast<std::size_t>(i)] == finalComponent; };
+    // The release comes after the moving part: search from the sample farthest
+    // from both rest positions (mid-move, or the top of the lift when the
+    // object is put back where it was and the components are out of temporal order).
+    int searchFrom = start;
+    {
+      double farthest = -1.0;
+      for (int i = start; i < n; ++i) {
+        const Eigen::Vector3d& p = seg.smoothed[static_cast<std::size_t>(i)].p_m;
+        const double d = std::min((p - seg.p_initial_m).norm(), (p - seg.p_final_m).norm());
+        if (d > farthest) farthest = d, searchFrom = i;
+      }
+    }
+    int release = n - 1;
+    {
+      int outsideAfter = 0;
+      for (int i = searchFrom; i < n; ++i) outsideAfter += inFinal(i) ? 0 : 1;
+      int insideBefore = 0, bestCost = std::numeric_limits<int>::max();
+      for (int r = searchFrom; r < n; ++r) {
+        const int cost = insideBefore + outsideAfter;
+        if (cost < bestCost) bestCost = cost, release = r;
+        insideBefore += inFinal(r) ? 1 : 0;
+        outsideAfter -= inFinal(r) ? 0 : 1;
+      }
+      // The change point lands on the first final-component sample of its run.
+      while (release < n - 1 && !inFinal(release)) ++release;
+    }
+    int from = start;
+    if (release <= start) {
+      seg.note = "object '" + name + "' comes to rest (sample " + std::to_string(release) +
+                 ") before the previous plan object's release (sample " + std::to_string(start) +
+                 "): the plan order and the demo disagree; grasp searched from the demo start";
+      result.warnings.push_back(seg.note);
+      from = 0;
+    }
+    // Grasp: where the hand is closest to the object's initial position. The
+    // hand stops there, so the distance has a flat valley; its centre is less
+    // noise-sensitive than the bare minimum.
+    // Before the middle of the move (an object put back where it was has the
+    // hand near its initial position at the release too).
+    const int to = std::max(std::min(release, searchFrom), from + 1);
+    std::vector<double> dist(static_cast<std::size_t>(to - from));
+    int grasp = from;
+    double best = std::numeric_limits<double>::infinity();
+    for (int i = from; i < to; ++i) {
+      dist[static_cast<std::size_t>(i - from)] = (result.hand[static_cast<std::size_t>(i)].p_m - seg.p_initial_m).norm();
+      if (dist[static_cast<std::size_t>(i - from)] < best) best = dist[static_cast<std::size_t>(i - from)], grasp = i;
+    }
+    // The valley: samples within graspValleyDepth of the minimum, extended
+    // across noise bumps of up to kBump samples; the grasp is its median sample.
+    constexpr int kBump = 3;
+    auto inValley = [&](int i) { return dist[static_cast<std::size_t>(i - from)] < best + config_.graspValleyDepth_m; };
+    std::vector<int> valley{grasp};
+    for (int dir : {-1, 1}) {
+      int outside = 0;
+      for (int i = grasp + dir; i >= from && i < to && outside <= kBump; i += dir) {
+        if (inValley(i)) valley.push_back(i), outside = 0;
+        else ++outside;
+      }
+    }
+    std::sort(valley.begin(), valley.end());
+    grasp = valley[valley.size() / 2];
+    seg.graspIndex = grasp;
+    seg.releaseIndex = release;
+    seg.graspFrame = hand[static_cast<std::size_t>(grasp)].frame;
+    seg.releaseFrame = hand[static_cast<std::size_t>(release)].frame;
+    seg.graspHandDistance_m = dist[static_cast<std::size_t>(grasp - from)];
+    start = std::max(start, release);
+    result.objects.push_back(std::move(seg));
+  }
+  return result;
+}
+
+}  // namespace srp::motion

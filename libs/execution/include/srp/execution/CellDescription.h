@@ -1,0 +1,69 @@
+#pragma once
+/// \file CellDescription.h
+/// \brief What is in the simulated cell besides the arm: the table, the containers
+/// and the parts, as box-shaped collision geometry.
+///
+/// Frames: `world` is the table frame (origin on the table top, z up), as in the
+/// scene files. An object's frame has its origin at the centre of its bottom face,
+/// z up; `size_m` is its bounding box (x, y, z) in that frame. A container is an
+/// open box of outer size `size_m` with walls and floor `wallThickness_m` thick.
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "srp/core/ObjectCatalogue.h"
+#include "srp/core/Pose.h"
+#include "srp/core/Scene.h"
+
+namespace srp::execution {
+
+enum class CellObjectKind { Part, Container };
+
+struct CellObject {
+  std::string name;  ///< instance name used by the planner ("cuboid", "gray box")
+  CellObjectKind kind = CellObjectKind::Part;
+  Eigen::Vector3d size_m = Eigen::Vector3d::Constant(0.04);
+  double mass_kg = 0.05;
+  double wallThickness_m = 0.006;  ///< containers only
+  srp::core::Pose3 X_world_object = srp::core::Pose3::Identity();
+  Eigen::Vector3d rgb = Eigen::Vector3d(0.8, 0.5, 0.2);  ///< colour in [0, 1] for rendering
+  std::string color;  ///< colour word from the knowledge base ("blue"), "" if none
+  std::string className;  ///< knowledge-base class ("blue box"), "" if unknown
+  std::string noun;       ///< head noun in instructions ("box"), "" if unknown
+  int classId = -1;       ///< knowledge-base class id
+};
+
+/// An oriented box (centre pose and half extents) in the world frame.
+struct WorldBox {
+  std::string owner;  ///< object name ("table", "gray box")
+  srp::core::Pose3 X_world_box = srp::core::Pose3::Identity();
+  Eigen::Vector3d halfExtents_m = Eigen::Vector3d::Zero();
+  /// Distance [m] from p to the box surface, negative inside.
+  double signedDistance(const Eigen::Vector3d& p_world_m) const;
+};
+
+struct CellDescription {
+  srp::core::Pose3 X_world_base = srp::core::Pose3::Identity();  ///< robot base in the table frame
+  Eigen::Vector2d tableHalfExtents_m = Eigen::Vector2d(1.0, 0.8);
+  Eigen::Vector2d tableCentre_m = Eigen::Vector2d::Zero();
+  std::vector<CellObject> objects;
+
+  /// The object called `name`, nullptr if absent.
+  const CellObject* find(const std::string& name) const;
+
+  /// The fixed collision boxes: the table slab (top face at z = 0) and every container's
+  /// floor and four walls.
+  std::vector<WorldBox> staticBoxes() const;
+
+  /// Floor and walls of one container, in its own object frame (centre pose, half extents).
+  static std::vector<WorldBox> containerBoxes(const CellObject& container);
+
+  /// The cell of a scene file: robot base, table and every object with its
+  /// catalogue class (kind, size, wall, mass, colour). Throws InvalidInputError
+  /// (from Scene::validate) naming an object whose class is unknown.
+  static CellDescription fromScene(const srp::core::Scene& scene, const srp::core::ObjectCatalogue& catalogue);
+};
+
+}  // namespace srp::execution

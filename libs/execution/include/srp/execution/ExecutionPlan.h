@@ -1,0 +1,51 @@
+#pragma once
+/// \file ExecutionPlan.h
+/// \brief The ordered pick & place plan the Execution Module runs: per target
+/// object its name and colour, its source and target spatial relations, and what
+/// the demonstration showed about where it ended up.
+///
+/// Built from the Language Module's TaskPlan (a new instruction) or from a stored
+/// task model (Products / SourceLocations / TargetLocations); see PlanConversion.h.
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace srp::execution {
+
+/// An object named in the instruction ("box" + colour "blue"; "cuboid").
+struct ObjectReference {
+  std::string name;
+  std::optional<std::string> color;
+  std::string describe() const { return color ? *color + " " + name : name; }
+};
+
+/// A spatial relation: "in" / "into" / "from" / "next to" / "beside" / "adjacent to" / "near" ...
+struct SpatialRelation {
+  std::string relation;
+  ObjectReference landmark;
+};
+
+struct ExecutionStep {
+  ObjectReference object;
+  std::vector<SpatialRelation> source;  ///< where it is now (may be empty: anywhere)
+  std::vector<SpatialRelation> target;  ///< where it must go (must not be empty)
+  /// Demonstrated final offset of the object from its neighbour landmark (world x, y
+  /// [m]), used to choose the side for "next to"; nullopt: no demonstration.
+  std::optional<Eigen::Vector2d> demoOffsetFromNeighbour_m;
+  /// Demonstrated final position of the object in its container's frame (x, y [m]),
+  /// preferred for "in X"; nullopt: the container's centre is preferred.
+  std::optional<Eigen::Vector2d> demoPositionInContainer_m;
+};
+
+struct ExecutionPlan {
+  std::vector<ExecutionStep> steps;
+};
+
+/// True for relations that mean "beside" (next to, beside, adjacent to, near, alongside, by).
+bool isNeighbourRelation(const std::string& relation);
+/// True for relations that mean "inside" (in, into, inside, on, onto, to, back to, at).
+bool isContainmentRelation(const std::string& relation);
+
+}  // namespace srp::execution

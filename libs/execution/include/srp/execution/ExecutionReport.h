@@ -1,0 +1,52 @@
+#pragma once
+/// \file ExecutionReport.h
+/// \brief What happened in each step of an execution: done / skipped / refused /
+/// failed with the reason, the planned and reached object poses, placement
+/// errors, relation checks, timing. Serialised as JSON and as readable text.
+
+#include <nlohmann/json_fwd.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "srp/core/Pose.h"
+
+namespace srp::execution {
+
+enum class StepStatus { Done, Skipped, Refused, Failed };
+std::string toString(StepStatus s);
+
+struct StepReport {
+  int index = 0;            ///< 0-based position in the plan
+  std::string object;       ///< scene name of the part (or the instruction's name if not found)
+  StepStatus status = StepStatus::Skipped;
+  std::string reason;       ///< for every status but Done
+  std::string relation;     ///< the target relations as text ("next to star, in gray box")
+  std::optional<srp::core::Pose3> X_world_start;    ///< where the part was
+  std::optional<srp::core::Pose3> X_world_planned;  ///< where it was to go
+  std::optional<srp::core::Pose3> X_world_final;    ///< where it came to rest
+  double placementError_m = 0.0;  ///< |final - planned| (translation)
+  double yawError_rad = 0.0;
+  bool insideContainer = false;   ///< final pose inside the target container (when one is named)
+  bool neighbourRelationHolds = false;  ///< footprints within the neighbour gap + tolerance
+  bool relationsHold = false;     ///< every target relation verified on the final pose
+  double planning_s = 0.0;        ///< wall-clock planning time (placement, paths, IK, safety)
+  double simulated_s = 0.0;       ///< simulated duration of the step
+  double minTableClearance_m = 0.0;  ///< smallest arm-table gap during the step
+  double maxJointError_rad = 0.0;    ///< largest joint tracking error during the step
+};
+
+struct ExecutionReport {
+  std::string pathGenerator;  ///< "minimum-jerk" or "dmp"
+  std::vector<StepReport> steps;
+  double simulated_s = 0.0;
+  double simulationWall_s = 0.0;  ///< wall-clock time spent integrating
+  double minTableClearance_m = 0.0;
+  int done() const;
+  /// True when every step is Done and its relations hold.
+  bool allSucceeded() const;
+  nlohmann::json toJson() const;
+  std::string toText() const;
+};
+
+}  // namespace srp::execution

@@ -1,0 +1,74 @@
+#pragma once
+/// \file SafetyChecker.h
+/// \brief Checks a joint trajectory before the arm moves: joint position limits,
+/// joint velocity limits, the tool centre point inside a workspace box, the arm
+/// above the table plane and clear of the containers. A violation refuses the
+/// whole trajectory with a message naming the check, the joint or link, the time
+/// and the values; nothing is ever clipped silently.
+///
+/// The arm is approximated by spheres along its links (radii from the UR5's
+/// published link radii, 0.045-0.06 m) and the tool by spheres on its axis.
+/// Frames: `world` = table frame (z up, table top at z = 0); the robot base pose
+/// X_world_base comes from the scene.
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "srp/execution/CellDescription.h"
+#include "srp/execution/JointTrajectory.h"
+#include "srp/execution/RobotModel.h"
+
+namespace srp::execution {
+
+struct SafetyLimits {
+  /// Allowed region of the tool centre point in the world frame.
+  Eigen::AlignedBox3d workspace_world_m{Eigen::Vector3d(-1.5, -1.5, 0.0), Eigen::Vector3d(1.5, 1.5, 1.2)};
+  double tableClearance_m = 0.005;     ///< minimum gap between any arm sphere and the table top
+  double obstacleClearance_m = 0.002;  ///< minimum gap between arm spheres and container walls
+  double velocityFraction = 1.0;       ///< fraction of the URDF velocity limits allowed
+};
+
+struct SafetyViolation {
+  std::string check;  ///< "joint limit", "velocity limit", "workspace", "table", "collision"
+  std::size_t sampleIndex = 0;
+  double t_s = 0.0;
+  std::string message;  ///< full sentence naming the step, values and limits
+};
+
+/// A sphere of the arm's collision approximation, in the world frame.
+struct ArmSphere {
+  std::string link;
+  Eigen::Vector3d centre_world_m;
+  double radius_m = 0.0;
+};
+
+class SafetyChecker {
+ public:
+  SafetyChecker(RobotModel model, const srp::core::Pose3& X_world_base, SafetyLimits limits,
+                std::vector<WorldBox> obstacles);
+
+  /// First violation along the trajectory, or nullopt when it is safe. `what` names
+  /// the motion in the message ("Reach of cuboid").
+  std::optional<SafetyViolation> check(const JointTrajectory& trajectory, const std::string& what) const;
+
+  /// First violation of one configuration (limits, workspace, table, obstacles).
+  std::optional<SafetyViolation> checkConfiguration(const JointVector& q, const std::string& what) const;
+
+  /// The arm's collision spheres at q (links below the shoulder excluded: they stand on the table).
+  std::vector<ArmSphere> armSpheres(const JointVector& q) const;
+
+  /// Smallest gap [m] between the arm spheres and the table top at q (negative: penetration).
+  double tableClearance_m(const JointVector& q) const;
+
+  const SafetyLimits& limits() const { return limits_; }
+
+ private:
+  RobotModel model_;
+  srp::core::Pose3 X_world_base_;
+  SafetyLimits limits_;
+  std::vector<WorldBox> obstacles_;
+};
+
+}  // namespace srp::execution

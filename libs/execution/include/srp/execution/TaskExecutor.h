@@ -1,0 +1,78 @@
+#pragma once
+/// \file TaskExecutor.h
+/// \brief The task planner of thesis fig. 7.11 running on the simulated cell.
+///
+/// For each target object in plan order: perceive the current scene (the cell's
+/// ground truth), find the object and its source location; find the target
+/// location and compute the target pose (PlacementPlanner); if any is missing the
+/// step is skipped with the reason. Otherwise plan, then execute:
+///   Reach (path generator, current tcp pose -> pre-grasp = grasp + approach offset
+///   along world z), approach down, Grasp (weld), lift to post-grasp, Move (path
+///   generator, post-grasp -> pre-release), lower, Release, retreat up.
+/// The whole step is planned (IK, nearest branch) and checked by the SafetyChecker
+/// before the arm moves; a violation refuses the step and the arm stays put.
+
+#include <functional>
+#include <memory>
+
+#include "srp/execution/CartesianPathGenerator.h"
+#include "srp/execution/CellSimulator.h"
+#include "srp/execution/ExecutionPlan.h"
+#include "srp/execution/ExecutionReport.h"
+#include "srp/execution/PlacementPlanner.h"
+#include "srp/execution/SafetyChecker.h"
+#include "srp/execution/UrInverseKinematics.h"
+
+namespace srp::execution {
+
+struct ExecutionOptions {
+  double approachOffset_m = 0.02;   ///< pre-/post-grasp and -release offset (thesis: 2 cm)
+  double releaseHeight_m = 0.003;   ///< part bottom above its support when released
+  double retreat_m = 0.06;          ///< tool lift after release
+  double sampleTime_s = 0.01;       ///< Cartesian path and joint trajectory sampling
+  double settle_s = 0.15;           ///< hold time after each segment
+  double placementTolerance_m = 0.01;  ///< "within 1 cm of the planned pose"
+  double neighbourTolerance_m = 0.015; ///< extra gap allowed for "next to"
+  SafetyLimits safety;
+  PlacementOptions placement;
+  SimulationOptions simulation;
+};
+
+class TaskExecutor {
+ public:
+  /// The arm starts at rest at q_home. `generator` provides the Reach/Move paths.
+  TaskExecutor(const RobotModel& model, const CellDescription& scene, const JointVector& q_home,
+               std::shared_ptr<const CartesianPathGenerator> generator, ExecutionOptions options = {});
+  ~TaskExecutor();
+
+  /// Runs the plan step by step; never throws for expected outcomes (a missing part,
+  /// an unreachable pose): those are reported per step.
+  ExecutionReport run(const ExecutionPlan& plan);
+
+  /// The scene as perceived now: parts at their simulated poses.
+  CellDescription perceive() const;
+
+  const CellSimulator& simulator() const { return *sim_; }
+  CellSimulator& simulator() { return *sim_; }
+  /// Writes the simulated joint log (every SimulationOptions::logPeriod_s): time,
+  /// measured and reference joint positions. Throws FileError.
+  void writeJointLogCsv(const std::string& path) const;
+
+  /// A comfortable start configuration above the table for a base at X_world_base
+  /// (tool pointing down, 0.35 m in front of the base).
+  static JointVector defaultHome(const RobotModel& model, const srp::core::Pose3& X_world_base,
+                                 const srp::core::Pose3& X_world_target);
+
+ private:
+  StepReport runStep(int index, const ExecutionStep& step);
+  RobotModel model_;
+  UrInverseKinematics ik_;
+  CellDescription scene_;
+  std::shared_ptr<const CartesianPathGenerator> generator_;
+  ExecutionOptions options_;
+  SafetyChecker safety_;
+  PlacementPlanner placement_;
+  std::unique_ptr<CellSimulator> sim_;
+};
+
+}  // namespace srp::execution

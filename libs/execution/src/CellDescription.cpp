@@ -1,0 +1,83 @@
+#include "srp/execution/CellDescription.h"
+
+#include <algorithm>
+
+namespace srp::execution {
+
+double WorldBox::signedDistance(const Eigen::Vector3d& p_world_m) const {
+  const Eigen::Vector3d p = X_world_box.inverse() * p_world_m;
+  const Eigen::Vector3d d = p.cwiseAbs() - halfExtents_m;
+  const double outside = d.cwiseMax(0.0).norm();
+  const double inside = std::min(d.maxCoeff(), 0.0);
+  return outside + inside;
+}
+
+const CellObject* CellDescription::find(const std::string& name) const {
+  for (const auto& o : objects)
+    if (o.name == name) return &o;
+  return nullptr;
+}
+
+std::vector<WorldBox> CellDescription::containerBoxes(const CellObject& c) {
+  const double t = c.wallThickness_m;
+  const Eigen::Vector3d s = c.size_m;
+  auto box = [&](const Eigen::Vector3d& centre, const Eigen::Vector3d& half) {
+    WorldBox b;
+    b.owner = c.name;
+    b.X_world_box = srp::core::Pose3::Identity();
+    b.X_world_box.translation() = centre;
+    b.halfExtents_m = half;
+    return b;
+  };
+  return {box({0, 0, t / 2}, {s.x() / 2, s.y() / 2, t / 2}),
+          box({s.x() / 2 - t / 2, 0, s.z() / 2}, {t / 2, s.y() / 2, s.z() / 2}),
+          box({-s.x() / 2 + t / 2, 0, s.z() / 2}, {t / 2, s.y() / 2, s.z() / 2}),
+          box({0, s.y() / 2 - t / 2, s.z() / 2}, {s.x() / 2, t / 2, s.z() / 2}),
+          box({0, -s.y() / 2 + t / 2, s.z() / 2}, {s.x() / 2, t / 2, s.z() / 2})};
+}
+
+CellDescription CellDescription::fromScene(const srp::core::Scene& scene,
+                                           const srp::core::ObjectCatalogue& catalogue) {
+  scene.validate(catalogue);
+  CellDescription cell;
+  cell.X_world_base = scene.X_world_base;
+  cell.tableHalfExtents_m = scene.tableSize_m / 2;
+  cell.tableCentre_m.setZero();
+  for (const auto& so : scene.objects) {
+    const srp::core::ObjectClass& c = catalogue.at(so.className);
+    CellObject o;
+    o.name = so.id;
+    o.kind = c.kind == srp::core::ObjectKind::Container ? CellObjectKind::Container : CellObjectKind::Part;
+    o.size_m = c.dimensions_m;
+    o.mass_kg = c.mass_kg;
+    o.wallThickness_m = c.wallThickness_m;
+    o.X_world_object = so.X_world_object;
+    o.rgb = c.rgb;
+    o.color = c.colorName;
+    o.className = c.name;
+    o.noun = c.noun;
+    o.classId = c.classId;
+    cell.objects.push_back(o);
+  }
+  return cell;
+}
+
+std::vector<WorldBox> CellDescription::staticBoxes() const {
+  constexpr double kTableThickness_m = 0.05;
+  std::vector<WorldBox> boxes;
+  WorldBox table;
+  table.owner = "table";
+  table.X_world_box.translation() = Eigen::Vector3d(tableCentre_m.x(), tableCentre_m.y(), -kTableThickness_m / 2);
+  table.halfExtents_m = Eigen::Vector3d(tableHalfExtents_m.x(), tableHalfExtents_m.y(), kTableThickness_m / 2);
+  boxes.push_back(table);
+  for (const auto& o : objects) {
+    if (o.kind != CellObjectKind::Container) continue;
+    for (WorldBox b : containerBoxes(o)) {
+      b.X_world_box = o.X_world_object * b.X_world_box;
+      boxes.push_back(b);
+    }
+  }
+  return boxes;
+}
+
+}  // namespace srp::execution

@@ -1,0 +1,249 @@
+#include "srp/execution/TaskExecutor.h"
+
+#include <chrono>
+#include <fstream>
+#include <iomanip>
+#include <cmath>
+#include <sstream>
+
+#include "srp/core/Error.h"
+#include "srp/execution/MinimumJerkPathGenerator.h"
+
+namespace srp::execution {
+namespace {
+
+using srp::core::Pose3;
+using Clock = std::chrono::steady_clock;
+
+std::vector<WorldBox> containerWalls(const CellDescription& scene) {
+  std::vector<WorldBox> walls;
+  for (const auto& b : scene.staticBoxes())
+    if (b.owner != "table") walls.push_back(b);
+  return walls;
+}
+
+std::string describeRelations(const std::vector<SpatialRelation>& relations) {
+  std::string s;
+  for (const auto& r : relations) s += (s.empty() ? "" : ", ") + r.relation + " " + r.landmark.describe();
+  return s.empty() ? "(no target)" : s;
+}
+
+Pose3 toolDownAt(const Pose3& X_world_object, double height_m) {
+  Pose3 X = X_world_object * Eigen::Translation3d(0, 0, height_m);
+  X.linear() = X.linear() * Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  return X;
+}
+
+Pose3 raised(Pose3 X, double dz_m) {
+  X.translation().z() += dz_m;
+  return X;
+}
+
+double wrap(double a) { return std::remainder(a, 2.0 * M_PI); }
+
+}  // namespace
+
+TaskExecutor::TaskExecutor(const RobotModel& model, const CellDescription& scene, const JointVector& q_home,
+                           std::shared_ptr<const CartesianPathGenerator> generator, ExecutionOptions options)
+    : model_(model),
+      ik_(model),
+      scene_(scene),
+      generator_(std::move(generator)),
+      options_(options),
+      safety_(model, scene.X_world_base, options.safety, containerWalls(scene)),
+      placement_(options.placement),
+      sim_(std::make_unique<CellSimulator>(model, scene, q_home, options.simulation)) {
+  if (!generator_) throw srp::core::InvalidInputError("TaskExecutor: a Cartesian path generator is required");
+  if (auto v = safety_.checkConfiguration(q_home, "home configuration"))
+    throw srp::core::InvalidInputError("TaskExecutor: the start configuration is unsafe: " + v->message);
+}
+
+TaskExecutor::~TaskExecutor() = default;
+
+JointVector TaskExecutor::defaultHome(const RobotModel& model, const Pose3& X_world_base, const Pose3& X_world_target) {
+  const UrInverseKinematics ik(model);
+  const Eigen::Vector3d p_base = X_world_base.inverse() * X_world_target.translation();
+  JointVector seed;
+  // At q1 = 0 the UR arm reaches along -x of its base: turn it towards the target.
+  seed << wrap(std::atan2(p_base.y(), p_base.x()) - M_PI), -1.6, 1.6, -1.57, -1.57, 0.0;
+  const auto q = ik.solveNearestTcp(X_world_base.inverse() * X_world_target, seed);
+  if (!q)
+    throw srp::core::InvalidInputError("TaskExecutor::defaultHome: the home pose is out of the arm's reach; "
+                                       "check X_world_base in the scene");
+  return *q;
+}
+
+void TaskExecutor::writeJointLogCsv(const std::string& path) const {
+  std::ofstream out(path);
+  if (!out) throw srp::core::FileError(path, "cannot write the joint log CSV");
+  out << "t_s";
+  for (int i = 0; i < 6; ++i) out << "," << model_.joints()[i].name << "_rad";
+  for (int i = 0; i < 6; ++i) out << "," << model_.joints()[i].name << "_ref_rad";
+  out << ",grasped\n" << std::setprecision(8);
+  for (const auto& s : sim_->log()) {
+    out << s.t_s;
+    for (int i = 0; i < 6; ++i) out << "," << s.q_rad[i];
+    for (int i = 0; i < 6; ++i) out << "," << s.qRef_rad[i];
+    out << "," << s.graspedPart.value_or("") << "\n";
+  }
+}
+
+CellDescription TaskExecutor::perceive() const {
+  CellDescription scene = scene_;
+  for (auto& o : scene.objects)
+    if (o.kind == CellObjectKind::Part) o.X_world_object = sim_->X_world_part(o.name);
+  return scene;
+}
+
+ExecutionReport TaskExecutor::run(const ExecutionPlan& plan) {
+  ExecutionReport report;
+  report.pathGenerator = generator_->name();
+  report.minTableClearance_m = std::numeric_limits<double>::infinity();
+  const double t0 = sim_->time_s(), wall0 = sim_->wallSeconds();
+  for (std::size_t i = 0; i < plan.steps.size(); ++i) {
+    report.steps.push_back(runStep(static_cast<int>(i), plan.steps[i]));
+    if (report.steps.back().status == StepStatus::Done)
+      report.minTableClearance_m = std::min(report.minTableClearance_m, report.steps.back().minTableClearance_m);
+  }
+  report.simulated_s = sim_->time_s() - t0;
+  report.simulationWall_s = sim_->wallSeconds() - wall0;
+  return report;
+}
+
+StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
+  StepReport r;
+  r.index = index;
+  r.object = step.object.describe();
+  r.relation = describeRelations(step.target);
+  const auto planStart = Clock::now();
+  const double simStart = sim_->time_s();
+  auto finish = [&](StepStatus status, std::string reason) {
+    r.status = status;
+    r.reason = std::move(reason);
+    if (r.planning_s == 0.0) r.planning_s = std::chrono::duration<double>(Clock::now() - planStart).count();
+    r.simulated_s = sim_->time_s() - simStart;
+    return r;
+  };
+
+  // --- perceive and find the source and target locations (fig. 7.11, lines 3-5)
+  const CellDescription scene = perceive();
+  const CellObject* part = PlacementPlanner::find(scene, step.object, CellObjectKind::Part);
+  if (!part) return finish(StepStatus::Skipped, "no " + step.object.describe() + " in the current scene");
+  r.object = part->name;
+  r.X_world_start = part->X_world_object;
+  for (const auto& rel : step.source) {
+    const CellObject* landmark = PlacementPlanner::find(scene, rel.landmark);
+    if (!landmark)
+      return finish(StepStatus::Skipped, "source location '" + rel.landmark.describe() + "' is not in the scene");
+    if (landmark->kind == CellObjectKind::Container && !PlacementPlanner::isInside(*part, *landmark))
+      return finish(StepStatus::Skipped, "the " + part->name + " is not " + rel.relation + " the " + landmark->name +
+                                             " (source location of the instruction)");
+  }
+  const Placement placement = placement_.place(scene, *part, step);
+  if (!placement.X_world_object) return finish(StepStatus::Skipped, placement.reason);
+  r.X_world_planned = placement.X_world_object;
+
+  // --- poses of the tool (grasp on the top face, tool z down)
+  const double h = part->size_m.z();
+  const Pose3 grasp = toolDownAt(part->X_world_object, h);
+  const Pose3 preGrasp = raised(grasp, options_.approachOffset_m);
+  const Pose3 release = toolDownAt(*placement.X_world_object, h + options_.releaseHeight_m);
+  const Pose3 preRelease = raised(release, options_.approachOffset_m);
+  const Pose3 postRelease = raised(release, options_.retreat_m);
+
+  // --- motion generation: Cartesian paths -> IK (nearest branch) -> safety check
+  const MinimumJerkPathGenerator straight(MinimumJerkOptions{});
+  const double dt = options_.sampleTime_s;
+  struct Segment {
+    std::string what;
+    CartesianPath path;
+    JointTrajectory joints;
+  };
+  std::vector<Segment> segments;
+  try {
+    segments.push_back({"Reach", generator_->generate(srp::core::SkillType::Reach, index, sim_->X_world_tcp(), preGrasp, dt), {}});
+  } catch (const srp::core::Error& e) {
+    return finish(StepStatus::Refused, std::string("Reach path: ") + e.what());
+  }
+  segments.push_back({"approach", straight.straight(preGrasp, grasp, dt), {}});
+  segments.push_back({"lift", straight.straight(grasp, preGrasp, dt), {}});
+  try {
+    segments.push_back({"Move", generator_->generate(srp::core::SkillType::Move, index, preGrasp, preRelease, dt), {}});
+  } catch (const srp::core::Error& e) {
+    return finish(StepStatus::Refused, std::string("Move path: ") + e.what());
+  }
+  segments.push_back({"lower", straight.straight(preRelease, release, dt), {}});
+  segments.push_back({"retreat", straight.straight(release, postRelease, dt), {}});
+
+  JointVector q = sim_->jointPositions();
+  const Pose3 X_base_world = scene.X_world_base.inverse();
+  for (auto& seg : segments) {
+    const std::string what = seg.what + " of the " + part->name;
+    std::vector<double> times;
+    std::vector<JointVector> qs;
+    for (const auto& s : seg.path) {
+      const auto sol = ik_.solveNearestTcp(X_base_world * s.X_world_tcp, q);
+      if (!sol) {
+        const Eigen::Vector3d p = s.X_world_tcp.translation();
+        std::ostringstream why;
+        why << what << ": tool pose at (" << p.x() << ", " << p.y() << ", " << p.z()
+            << ") m is out of the arm's reach (no inverse kinematics solution within the joint limits)";
+        return finish(StepStatus::Refused, why.str());
+      }
+      q = *sol;
+      times.push_back(s.t_s);
+      qs.push_back(q);
+    }
+    seg.joints = JointTrajectory::fromPositions(times, qs);
+    if (auto v = safety_.check(seg.joints, what)) return finish(StepStatus::Refused, "safety: " + v->message);
+  }
+  r.planning_s = std::chrono::duration<double>(Clock::now() - planStart).count();
+
+  // --- execution on the simulated UR5
+  r.minTableClearance_m = std::numeric_limits<double>::infinity();
+  auto track = [&](const Segment& seg) {
+    const TrackingResult t = sim_->track(seg.joints, options_.settle_s);
+    r.minTableClearance_m = std::min(r.minTableClearance_m, t.minTableClearance_m);
+    r.maxJointError_rad = std::max(r.maxJointError_rad, t.maxJointError_rad);
+  };
+  track(segments[0]);
+  track(segments[1]);
+  if (auto failure = sim_->grasp(part->name)) return finish(StepStatus::Failed, "Grasp: " + *failure);
+  track(segments[2]);
+  track(segments[3]);
+  track(segments[4]);
+  sim_->release();
+  track(segments[5]);
+
+  // --- check the outcome
+  const Pose3 X_final = sim_->X_world_part(part->name);
+  r.X_world_final = X_final;
+  r.placementError_m = (X_final.translation() - placement.X_world_object->translation()).norm();
+  r.yawError_rad = srp::core::angleDifference(srp::core::yawOf(X_final.linear()),
+                                              srp::core::yawOf(placement.X_world_object->linear()));
+  const bool upright = X_final.linear().col(2).z() > std::cos(10.0 * M_PI / 180.0);
+  CellObject placed = *part;
+  placed.X_world_object = X_final;
+  bool holds = r.placementError_m <= options_.placementTolerance_m && upright;
+  if (!placement.container.empty()) {
+    r.insideContainer = PlacementPlanner::isInside(placed, *scene.find(placement.container));
+    holds = holds && r.insideContainer;
+  }
+  if (!placement.neighbour.empty()) {
+    const CellObject& n = *scene.find(placement.neighbour);
+    const Pose3 X_n = sim_->X_world_part(n.name);
+    const Eigen::Vector2d d = X_final.translation().head<2>() - X_n.translation().head<2>();
+    const Eigen::Vector2d dir = d.normalized();
+    auto extent = [&](const Eigen::Vector3d& size, const Pose3& X) {
+      const Eigen::Vector2d ax = X.linear().col(0).head<2>().normalized(), ay = X.linear().col(1).head<2>().normalized();
+      return std::abs(dir.dot(ax)) * size.x() / 2 + std::abs(dir.dot(ay)) * size.y() / 2;
+    };
+    const double gap = d.norm() - extent(n.size_m, X_n) - extent(part->size_m, X_final);
+    r.neighbourRelationHolds = gap > -1e-3 && gap <= placement_.options().neighbourGap_m + options_.neighbourTolerance_m;
+    holds = holds && r.neighbourRelationHolds;
+  }
+  r.relationsHold = holds && r.minTableClearance_m > 0.0;
+  return finish(StepStatus::Done, holds ? "" : "placed, but a target relation does not hold");
+}
+
+}  // namespace srp::execution

@@ -23,6 +23,8 @@ PACKAGES=(
   libdlib-dev liblink-grammar-dev link-grammar-dictionaries-en wordnet-dev wordnet-base
   # motion and execution
   libnlopt-cxx-dev libsimbody-dev liburdfdom-dev liburdfdom-headers-dev
+  # synthetic demos: the hand's AprilTag (tag36h11 bit patterns)
+  libapriltag-dev
   # test data shipped by Debian
   visp-images-data
 )

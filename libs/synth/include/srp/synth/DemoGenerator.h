@@ -1,0 +1,61 @@
+#pragma once
+/// \file DemoGenerator.h
+/// \brief `srp synth-demo`: a scene and an instruction's plan in, a synthetic
+/// RGB-D demonstration (MRPT rawlog) and its ground truth out.
+
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "srp/core/CameraIntrinsics.h"
+#include "srp/core/ObjectCatalogue.h"
+#include "srp/core/Scene.h"
+#include "srp/synth/DemoGroundTruth.h"
+#include "srp/synth/DemoTimeline.h"
+#include "srp/synth/HandModel.h"
+#include "srp/synth/SensorModel.h"
+
+namespace srp::synth {
+
+struct SynthDemoOptions {
+  DemoOptions demo;
+  SensorRealismOptions sensor;
+  HandModelOptions hand;
+  int width_px = 0;   ///< 0: the scene camera's; otherwise the intrinsics are scaled
+  int height_px = 0;
+  double rawlogDepthUnit_m = 1e-4;   ///< depth step stored in the rawlog
+  int maxFrames = -1;                ///< stop after this many frames (tests); -1: all
+  std::string contactSheetPath;      ///< PNG of a few frames (colour + depth) when set
+  int contactSheetFrames = 6;
+};
+
+/// What a generation produced, with timing.
+struct SynthDemoResult {
+  std::string rawlogPath, groundTruthPath, contactSheetPath;
+  int frameCount = 0;
+  double duration_s = 0.0;
+  double renderTime_s = 0.0;   ///< rendering (MRPT/EGL)
+  double sensorTime_s = 0.0;   ///< masks and sensor realism
+  double writeTime_s = 0.0;    ///< rawlog serialisation and compression
+  double totalTime_s = 0.0;
+  double meanHandValidDepth = -1.0;    ///< over frames with a visible hand
+  double meanObjectValidDepth = -1.0;  ///< over frames with visible parts
+};
+
+/// Ground-truth path belonging to a rawlog path: `demo.rawlog` -> `demo.gt.json`.
+std::string groundTruthPathFor(const std::string& rawlogPath);
+
+/// Intrinsics scaled to another image size (same field of view).
+srp::core::CameraIntrinsics scaleIntrinsics(const srp::core::CameraIntrinsics& K, int width_px, int height_px);
+
+/// Generates the demonstration of `plan` (srp parse --json step format; see
+/// PickPlacePlan.h) in `scene`: validates the scene against the catalogue
+/// (errors name the field), plans the hand motion (DemoTimeline.h), renders
+/// every frame, degrades it (SensorModel.h) and writes `rawlogPath` plus the
+/// ground truth next to it. `progress(frame, frameCount)` is called per frame.
+SynthDemoResult generateSyntheticDemo(const srp::core::Scene& scene, const srp::core::ObjectCatalogue& catalogue,
+                                      const nlohmann::json& plan, const SynthDemoOptions& options,
+                                      const std::string& rawlogPath,
+                                      const std::function<void(int, int)>& progress = {});
+
+}  // namespace srp::synth

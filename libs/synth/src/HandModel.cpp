@@ -1,0 +1,146 @@
+#include "srp/synth/HandModel.h"
+
+#include <apriltag/apriltag.h>
+#include <apriltag/tag36h11.h>
+
+#include <cmath>
+#include <cstdlib>
+
+#include "srp/core/Error.h"
+#include "srp/kb/ShapeMeshes.h"
+
+namespace srp::synth {
+namespace {
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+// Finger layout: lateral offset y of the knuckle [m], proximal and distal lengths [m].
+struct FingerSpec {
+  double y_m, proximal_m, distal_m;
+};
+constexpr std::array<FingerSpec, 4> kFingers = {{{0.030, 0.045, 0.034},    // index
+                                                 {0.010, 0.050, 0.036},    // middle
+                                                 {-0.010, 0.047, 0.034},   // ring
+                                                 {-0.030, 0.038, 0.028}}};  // little
+constexpr double kPalmHalfLength_m = 0.045, kPalmHalfWidth_m = 0.042, kPalmHalfThickness_m = 0.013;
+constexpr double kForearmPitch_rad = 15.0 * kDeg;  // forearm rises towards the elbow
+
+srp::core::Pose3 translation(double x, double y, double z) {
+  srp::core::Pose3 X = srp::core::Pose3::Identity();
+  X.translation() = Eigen::Vector3d(x, y, z);
+  return X;
+}
+srp::core::Pose3 rotY(double a) {
+  srp::core::Pose3 X = srp::core::Pose3::Identity();
+  X.linear() = Eigen::AngleAxisd(a, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  return X;
+}
+srp::core::Pose3 rotZ(double a) {
+  srp::core::Pose3 X = srp::core::Pose3::Identity();
+  X.linear() = Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  return X;
+}
+
+HandPart boxPart(const std::string& name, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                 const Eigen::Vector3d& rgb) {
+  HandPart p;
+  p.name = name;
+  p.mesh_part = srp::kb::makeBoxMesh(lo, hi);
+  p.triangleRgb.assign(p.mesh_part.size(), rgb);
+  p.bounds_part = p.mesh_part.bounds();
+  return p;
+}
+
+std::vector<std::vector<bool>> tag36h11Cells(int id) {
+  apriltag_family_t* family = tag36h11_create();
+  if (id < 0 || id >= static_cast<int>(family->ncodes)) {
+    const int n = static_cast<int>(family->ncodes);
+    tag36h11_destroy(family);
+    throw srp::core::InvalidInputError("HandModel: tag id " + std::to_string(id) + " is not a tag36h11 id (0.." +
+                                       std::to_string(n - 1) + ")");
+  }
+  image_u8_t* image = apriltag_to_image(family, id);
+  std::vector<std::vector<bool>> cells(image->height, std::vector<bool>(image->width));
+  for (int r = 0; r < image->height; ++r)
+    for (int c = 0; c < image->width; ++c) cells[r][c] = image->buf[r * image->stride + c] < 128;
+  // image_u8_destroy is not exported by Debian's libapriltag; it frees exactly these two blocks.
+  std::free(image->buf);
+  std::free(image);
+  tag36h11_destroy(family);
+  return cells;
+}
+
+}  // namespace
+
+HandModel::HandModel(const HandModelOptions& options) : options_(options) {
+  srp::core::require(options.tagSize_m > 0.0 && options.tagSize_m <= 0.06,
+                     "HandModel: tagSize_m must be in (0, 0.06] m to fit on the back of the hand");
+  tagCells_ = tag36h11Cells(options.tagId);
+  const Eigen::Vector3d skin = options.skinRgb;
+  parts_.push_back(boxPart("palm", {-kPalmHalfLength_m, -kPalmHalfWidth_m, -kPalmHalfThickness_m},
+                           {kPalmHalfLength_m, kPalmHalfWidth_m, kPalmHalfThickness_m}, skin));
+  parts_.push_back(boxPart("wrist", {-0.11, -0.031, -0.022}, {0.0, 0.031, 0.022}, skin));
+  parts_.push_back(boxPart("sleeve", {-0.45, -0.038, -0.03}, {-0.1, 0.038, 0.03}, options.sleeveRgb));
+  for (std::size_t i = 0; i < kFingers.size(); ++i) {
+    const auto& f = kFingers[i];
+    parts_.push_back(boxPart("finger" + std::to_string(i) + "_proximal", {-0.004, -0.0085, -0.0075},
+                             {f.proximal_m, 0.0085, 0.0075}, skin));
+    parts_.push_back(boxPart("finger" + std::to_string(i) + "_distal", {-0.003, -0.008, -0.007},
+                             {f.distal_m, 0.008, 0.007}, skin));
+  }
+  parts_.push_back(boxPart("thumb_proximal", {-0.005, -0.010, -0.009}, {0.042, 0.010, 0.009}, skin));
+  parts_.push_back(boxPart("thumb_distal", {-0.003, -0.009, -0.008}, {0.032, 0.009, 0.008}, skin));
+
+  // Tag plate: one quad per cell (white border included), in the hand frame's
+  // xy plane seen from +z; tag row r grows along -y_hand, column c along +x_hand.
+  HandPart tag;
+  tag.name = "tag";
+  const int n = static_cast<int>(tagCells_.size());
+  const double cell = options.tagSize_m / (n - 2);
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c) {
+      const double x0 = (c - 0.5 * n) * cell, x1 = x0 + cell;
+      const double yTag0 = (r - 0.5 * n) * cell, yTag1 = yTag0 + cell;
+      const double y0 = -yTag1, y1 = -yTag0;
+      tag.mesh_part.addQuad({x0, y0, 0.0}, {x1, y0, 0.0}, {x1, y1, 0.0}, {x0, y1, 0.0});
+      const Eigen::Vector3d rgb = tagCells_[r][c] ? Eigen::Vector3d(0.02, 0.02, 0.02) : Eigen::Vector3d(0.97, 0.97, 0.97);
+      tag.triangleRgb.push_back(rgb);
+      tag.triangleRgb.push_back(rgb);
+    }
+  tag.bounds_part = tag.mesh_part.bounds();
+  parts_.push_back(tag);
+}
+
+std::vector<srp::core::Pose3> HandModel::partPoses(double grip) const {
+  const double g = std::clamp(grip, 0.0, 1.0);
+  std::vector<srp::core::Pose3> poses;
+  poses.reserve(parts_.size());
+  poses.push_back(srp::core::Pose3::Identity());                                      // palm
+  const srp::core::Pose3 X_hand_wrist = translation(-kPalmHalfLength_m + 0.01, 0, 0) * rotY(kForearmPitch_rad);
+  poses.push_back(X_hand_wrist);                                                      // wrist
+  poses.push_back(X_hand_wrist);                                                      // sleeve
+  for (const auto& f : kFingers) {
+    const srp::core::Pose3 X_hand_proximal = translation(kPalmHalfLength_m, f.y_m, -0.002) * rotY((12.0 + 38.0 * g) * kDeg);
+    poses.push_back(X_hand_proximal);
+    poses.push_back(X_hand_proximal * translation(f.proximal_m, 0, 0) * rotY((12.0 + 48.0 * g) * kDeg));
+  }
+  const srp::core::Pose3 X_hand_thumb =
+      translation(-0.005, kPalmHalfWidth_m - 0.004, -0.006) * rotZ(50.0 * kDeg) * rotY((28.0 + 18.0 * g) * kDeg);
+  poses.push_back(X_hand_thumb);
+  poses.push_back(X_hand_thumb * translation(0.042, 0, 0) * rotZ(-25.0 * kDeg) * rotY((10.0 + 30.0 * g) * kDeg));
+  poses.push_back(translation(0, 0, kTagHeight_m));                                    // tag plate
+  return poses;
+}
+
+srp::core::Pose3 HandModel::X_hand_tag() const {
+  srp::core::Pose3 X = translation(0, 0, kTagHeight_m);
+  X.linear() = Eigen::Vector3d(1, -1, -1).asDiagonal();
+  return X;
+}
+
+std::array<Eigen::Vector3d, 4> HandModel::tagCorners_tag() const {
+  const double h = 0.5 * options_.tagSize_m;
+  return {Eigen::Vector3d(-h, -h, 0), Eigen::Vector3d(h, -h, 0), Eigen::Vector3d(h, h, 0), Eigen::Vector3d(-h, h, 0)};
+}
+
+}  // namespace srp::synth

@@ -1,0 +1,141 @@
+#include "srp/synth/SceneRenderer.h"
+
+#include <mrpt/img/TCamera.h>
+#include <mrpt/opengl/CFBORender.h>
+#include <mrpt/opengl/COpenGLScene.h>
+#include <mrpt/opengl/CSetOfTriangles.h>
+#include <mrpt/poses/CPose3D.h>
+
+#include <cstdlib>
+#include <opencv2/imgproc.hpp>
+
+#include "srp/core/Error.h"
+#include "srp/core/PoseConversions.h"
+
+namespace srp::synth {
+namespace {
+
+std::uint8_t toU8(double v) { return static_cast<std::uint8_t>(std::lround(255.0 * std::clamp(v, 0.0, 1.0))); }
+
+// Headless by default: EGL's surfaceless platform on Mesa needs no display.
+// Variables the user already set win (setenv with overwrite = 0).
+void prepareHeadlessEnvironment() {
+  if (std::getenv("DISPLAY") == nullptr && std::getenv("WAYLAND_DISPLAY") == nullptr)
+    setenv("EGL_PLATFORM", "surfaceless", 0);
+}
+
+}  // namespace
+
+struct SceneRenderer::Impl {
+  std::unique_ptr<mrpt::opengl::CFBORender> fbo;
+  mrpt::opengl::COpenGLScene scene;
+  std::vector<mrpt::opengl::CSetOfTriangles::Ptr> bodies;
+  mrpt::img::CImage rgb;
+  mrpt::math::CMatrixFloat depth;
+};
+
+SceneRenderer::SceneRenderer(const srp::core::CameraIntrinsics& K, double minDepth_m, double maxDepth_m)
+    : impl_(std::make_unique<Impl>()), K_(K) {
+  K.validate("SceneRenderer intrinsics");
+  prepareHeadlessEnvironment();
+  try {
+    impl_->fbo = std::make_unique<mrpt::opengl::CFBORender>(K.width_px, K.height_px);
+  } catch (const std::exception& e) {
+    throw srp::core::Error(std::string("SceneRenderer: cannot create the off-screen EGL renderer (EGL_PLATFORM=") +
+                           (std::getenv("EGL_PLATFORM") ? std::getenv("EGL_PLATFORM") : "") +
+                           "; is libegl-mesa0 installed?): " + e.what());
+  }
+  auto vp = impl_->scene.getViewport();
+  vp->setViewportClipDistances(minDepth_m, maxDepth_m);
+  vp->setCustomBackgroundColor(mrpt::img::TColorf(0.f, 0.f, 0.f, 1.f));
+
+  // MRPT's pinhole projection puts pixel centres at +0.5 (OpenGL window
+  // coordinates); shifting the principal point by half a pixel makes the
+  // rendered pixel (u, v) see exactly the ray of CameraIntrinsics::backProject(u, v).
+  mrpt::img::TCamera cam;
+  cam.ncols = K.width_px;
+  cam.nrows = K.height_px;
+  cam.fx(K.fx_px);
+  cam.fy(K.fy_px);
+  cam.cx(K.cx_px + 0.5);
+  cam.cy(K.cy_px + 0.5);
+  auto& camera = impl_->fbo->getCamera(impl_->scene);
+  camera.setProjectiveFromPinhole(cam);
+  camera.set6DOFMode(true);
+}
+
+SceneRenderer::~SceneRenderer() = default;
+
+int SceneRenderer::addBody(const std::string& name, const srp::kb::TriangleMesh& mesh,
+                           const Eigen::Vector3d& rgb) {
+  return addBody(name, mesh, std::vector<Eigen::Vector3d>(mesh.size(), rgb));
+}
+
+int SceneRenderer::addBody(const std::string& name, const srp::kb::TriangleMesh& mesh,
+                           const std::vector<Eigen::Vector3d>& triangleRgb) {
+  srp::core::require(triangleRgb.size() == mesh.size(),
+                     "SceneRenderer::addBody '" + name + "': one colour per triangle needed");
+  auto body = mrpt::opengl::CSetOfTriangles::Create();
+  body->setName(name);
+  std::vector<mrpt::opengl::TTriangle> tris;
+  tris.reserve(mesh.size());
+  for (std::size_t i = 0; i < mesh.size(); ++i) {
+    const auto& t = mesh.triangles()[i];
+    const Eigen::Vector3d n = mesh.normal(i);
+    mrpt::opengl::TTriangle tri;
+    for (int v = 0; v < 3; ++v) {
+      tri.vertex(v) = mrpt::math::TPoint3Df(static_cast<float>(t[v].x()), static_cast<float>(t[v].y()),
+                                            static_cast<float>(t[v].z()));
+      tri.vertices[v].normal = mrpt::math::TVector3Df(static_cast<float>(n.x()), static_cast<float>(n.y()),
+                                                      static_cast<float>(n.z()));
+    }
+    const Eigen::Vector3d& c = triangleRgb[i];
+    tri.setColor(mrpt::img::TColor(toU8(c.x()), toU8(c.y()), toU8(c.z()), 255));
+    tris.push_back(tri);
+  }
+  body->insertTriangles(tris.begin(), tris.end());
+  impl_->scene.insert(body);
+  impl_->bodies.push_back(body);
+  return static_cast<int>(impl_->bodies.size()) - 1;
+}
+
+void SceneRenderer::setBodyPose(int body, const srp::core::Pose3& X_world_body) {
+  impl_->bodies.at(body)->setPose(srp::core::toMrpt(X_world_body));
+}
+
+void SceneRenderer::setBodyVisible(int body, bool visible) { impl_->bodies.at(body)->setVisibility(visible); }
+
+int SceneRenderer::bodyCount() const { return static_cast<int>(impl_->bodies.size()); }
+
+void SceneRenderer::setLighting(const srp::core::SceneLighting& lighting) {
+  auto& light = impl_->scene.getViewport()->lightParameters();
+  const auto a = static_cast<float>(lighting.ambient), d = static_cast<float>(lighting.diffuse);
+  light.ambient = mrpt::img::TColorf(a, a, a, 1.f);
+  light.diffuse = mrpt::img::TColorf(d, d, d, 1.f);
+  light.specular = mrpt::img::TColorf(0.f, 0.f, 0.f, 1.f);
+  const Eigen::Vector3d dir = lighting.direction_world.normalized();
+  light.direction = mrpt::math::TVector3Df(static_cast<float>(dir.x()), static_cast<float>(dir.y()),
+                                           static_cast<float>(dir.z()));
+}
+
+void SceneRenderer::setBackground(const Eigen::Vector3d& rgb) {
+  impl_->scene.getViewport()->setCustomBackgroundColor(mrpt::img::TColorf(
+      static_cast<float>(rgb.x()), static_cast<float>(rgb.y()), static_cast<float>(rgb.z()), 1.f));
+}
+
+srp::rawlog::RgbdFrame SceneRenderer::render(const srp::core::Pose3& X_world_camera) {
+  impl_->fbo->getCamera(impl_->scene).setPose(srp::core::toMrpt(X_world_camera));
+  impl_->fbo->render_RGBD(impl_->scene, impl_->rgb, impl_->depth);
+  srp::rawlog::RgbdFrame frame;
+  frame.intrinsics = K_;
+  frame.colour_bgr8 = impl_->rgb.asCvMat<cv::Mat>(mrpt::img::DEEP_COPY);
+  if (frame.colour_bgr8.channels() == 1) cv::cvtColor(frame.colour_bgr8, frame.colour_bgr8, cv::COLOR_GRAY2BGR);
+  frame.depth_m.create(K_.height_px, K_.width_px, CV_32FC1);
+  for (int r = 0; r < K_.height_px; ++r) {
+    float* row = frame.depth_m.ptr<float>(r);
+    for (int c = 0; c < K_.width_px; ++c) row[c] = impl_->depth(r, c);
+  }
+  return frame;
+}
+
+}  // namespace srp::synth

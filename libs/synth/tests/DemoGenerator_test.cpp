@@ -1,0 +1,129 @@
+#include "srp/synth/DemoGenerator.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <iostream>
+
+#include "srp/core/Error.h"
+#include "srp/core/Json.h"
+#include "srp/rawlog/RawlogReader.h"
+
+namespace {
+
+std::string tempPath(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("srp_synth_test_" + name)).string();
+}
+
+struct Fixture {
+  srp::core::Scene scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
+  srp::core::ObjectCatalogue catalogue = srp::core::ObjectCatalogue::load(scene.cataloguePath);
+};
+
+// A one-step plan, fast demonstrator, short idles and small images keep it quick.
+nlohmann::json oneStepPlan() {
+  auto plan = srp::synth::defaultPlanJson();
+  plan["steps"] = nlohmann::json::array({plan["steps"][0]});
+  return plan;
+}
+
+srp::synth::SynthDemoOptions quickOptions() {
+  srp::synth::SynthDemoOptions o;
+  o.demo.speedFactor = 2.0;
+  o.demo.idleStart_s = 0.3;
+  o.demo.idleEnd_s = 0.3;
+  o.width_px = 320;
+  o.height_px = 240;
+  return o;
+}
+
+TEST(DemoGenerator, RawlogAndGroundTruthReadBack) {
+  Fixture f;
+  const std::string rawlog = tempPath("demo.rawlog");
+  auto options = quickOptions();
+  options.contactSheetPath = tempPath("sheet.png");
+  const auto result = srp::synth::generateSyntheticDemo(f.scene, f.catalogue, oneStepPlan(), options, rawlog);
+  ASSERT_GT(result.frameCount, 30);
+  EXPECT_TRUE(std::filesystem::exists(options.contactSheetPath));
+
+  const auto frames = srp::rawlog::RawlogReader::readAll(rawlog);
+  const auto gt = srp::synth::DemoGroundTruth::load(result.groundTruthPath);
+  ASSERT_EQ(static_cast<int>(frames.size()), result.frameCount);
+  ASSERT_EQ(gt.frames.size(), frames.size());
+  const auto K = srp::synth::scaleIntrinsics(f.scene.intrinsics, 320, 240);
+  for (const auto& fr : frames) ASSERT_EQ(fr.intrinsics, K);
+  EXPECT_EQ(gt.intrinsics, K);
+  EXPECT_NEAR(frames[1].t_s - frames[0].t_s, 1.0 / f.scene.fps, 1e-6);
+  ASSERT_EQ(gt.events.size(), 1u);
+  EXPECT_EQ(gt.events[0].objectId, "cuboid");
+  EXPECT_EQ(gt.frames[gt.events[0].graspFrame].carriedObject, "cuboid");
+  EXPECT_TRUE(gt.frames[gt.events[0].releaseFrame + 1].carriedObject.empty());
+  EXPECT_FALSE(gt.frames.front().handInView);
+  EXPECT_FALSE(gt.frames.back().handInView);
+  // Carried object: constant hand-relative pose in the file too.
+  const auto& e = gt.events[0];
+  for (int k = e.graspFrame; k <= e.releaseFrame; ++k) {
+    const auto X_hand_object = gt.frames[k].X_world_hand.inverse() * gt.frames[k].X_world_objects.at("cuboid");
+    ASSERT_LT((X_hand_object.translation() - e.X_hand_object.translation()).norm(), 1e-6) << "frame " << k;
+  }
+  // Ground truth round trip through JSON.
+  const auto again = srp::synth::DemoGroundTruth::fromJson(gt.toJson(), "round trip");
+  EXPECT_TRUE(again.frames[e.graspFrame].X_camera_tag.isApprox(gt.frames[e.graspFrame].X_camera_tag, 1e-12));
+  EXPECT_TRUE(again.X_base_camera().isApprox(f.scene.X_base_camera(), 0.05));
+
+  // Sensor realism as in the thesis: < 50 % valid depth on the hand, > 70 % on objects.
+  std::cout << "[measured] valid depth: hand " << 100 * result.meanHandValidDepth << " %, objects "
+            << 100 * result.meanObjectValidDepth << " %\n";
+  EXPECT_LT(result.meanHandValidDepth, 0.5);
+  EXPECT_GT(result.meanHandValidDepth, 0.05);
+  EXPECT_GT(result.meanObjectValidDepth, 0.7);
+}
+
+TEST(DemoGenerator, CleanDepthMatchesTheObjectPoses) {
+  Fixture f;
+  auto options = quickOptions();
+  options.sensor.enabled = false;
+  options.maxFrames = 1;
+  const std::string rawlog = tempPath("clean.rawlog");
+  srp::synth::generateSyntheticDemo(f.scene, f.catalogue, oneStepPlan(), options, rawlog);
+  const auto frames = srp::rawlog::RawlogReader::readAll(rawlog);
+  const auto gt = srp::synth::DemoGroundTruth::load(srp::synth::groundTruthPathFor(rawlog));
+  ASSERT_EQ(frames.size(), 1u);
+  // The pixel at the centre of the star's top face sees it at the true depth.
+  const srp::core::Pose3 X_camera_star = gt.X_camera_object(0, "star");
+  const Eigen::Vector3d p_top = X_camera_star * Eigen::Vector3d(0, 0, 0.025);
+  const auto uv = gt.intrinsics.project(p_top);
+  ASSERT_TRUE(uv);
+  const float d = frames[0].depth_m.at<float>(std::lround(uv->y()), std::lround(uv->x()));
+  EXPECT_NEAR(d, p_top.z(), 2e-3);
+}
+
+TEST(DemoGenerator, BadSceneFailsNamingTheField) {
+  Fixture f;
+  const std::string rawlog = tempPath("bad.rawlog");
+  auto expectMessage = [&](const srp::core::Scene& scene, const std::string& needle) {
+    try {
+      srp::synth::generateSyntheticDemo(scene, f.catalogue, oneStepPlan(), quickOptions(), rawlog);
+      FAIL() << "accepted a bad scene; expected a message naming " << needle;
+    } catch (const srp::core::Error& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  };
+  auto unknown = f.scene;
+  unknown.objects[2].className = "teapot";
+  expectMessage(unknown, "teapot");
+  auto outside = f.scene;
+  outside.objects[3].X_world_object.translation().x() = 2.0;
+  expectMessage(outside, outside.objects[3].id);
+  // Missing field: parsing the scene file names it.
+  nlohmann::json j = srp::core::readJsonFile(std::string(SRP_SIM_DIR) + "/scenes/default.json");
+  j["camera"].erase("intrinsics");
+  try {
+    srp::core::Scene::fromJson(j, "scene.json", std::string(SRP_SIM_DIR) + "/scenes");
+    FAIL();
+  } catch (const srp::core::InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("intrinsics"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace

@@ -1,0 +1,141 @@
+#include "srp/synth/HandModel.h"
+
+#include <gtest/gtest.h>
+#include <visp3/core/vpImage.h>
+#include <visp3/detection/vpDetectorAprilTag.h>
+
+#include <iostream>
+#include <opencv2/imgproc.hpp>
+
+#include "srp/core/Error.h"
+#include "srp/core/Scene.h"
+#include "srp/kb/ShapeMeshes.h"
+#include "srp/synth/SceneRenderer.h"
+
+namespace {
+
+constexpr double kCornerTol_px = 1.0;  // acceptance: projected tag corners on the rendered tag
+// The AprilTag library (inside ViSP's detector) puts pixel centres at +0.5;
+// srp (CameraIntrinsics) at integers. Corrected for that, the fit is much tighter.
+constexpr double kAprilTagPixelOffset_px = 0.5;
+constexpr double kCorrectedCornerTol_px = 0.4;
+constexpr int kBlackMax = 80, kWhiteMin = 150;  // 8-bit grey levels of lit black / white cells
+
+// Renders the hand with its tag at a given pose over a table, like the demo camera sees it.
+struct HandScene {
+  srp::core::Scene scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
+  srp::synth::HandModel hand;
+  srp::synth::SceneRenderer renderer{scene.intrinsics};
+  std::vector<int> bodies;
+  HandScene() {
+    renderer.setLighting(scene.lighting);
+    renderer.addBody("table", srp::kb::makeBoxMesh({-0.8, -0.6, -0.02}, {0.8, 0.6, 0.0}), {0.76, 0.7, 0.6});
+    for (const auto& p : hand.parts()) bodies.push_back(renderer.addBody(p.name, p.mesh_part, p.triangleRgb));
+  }
+  srp::rawlog::RgbdFrame render(const srp::core::Pose3& X_world_hand, double grip) {
+    const auto poses = hand.partPoses(grip);
+    for (std::size_t i = 0; i < bodies.size(); ++i) renderer.setBodyPose(bodies[i], X_world_hand * poses[i]);
+    return renderer.render(scene.X_world_camera);
+  }
+  std::array<Eigen::Vector2d, 4> projectedCorners(const srp::core::Pose3& X_world_hand) const {
+    std::array<Eigen::Vector2d, 4> px;
+    const auto corners = hand.tagCorners_tag();
+    const srp::core::Pose3 X_camera_tag = scene.X_world_camera.inverse() * X_world_hand * hand.X_hand_tag();
+    for (int c = 0; c < 4; ++c) px[c] = *scene.intrinsics.project(X_camera_tag * corners[c]);
+    return px;
+  }
+};
+
+vpImage<unsigned char> toVisp(const cv::Mat& bgr) {
+  cv::Mat grey;
+  cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
+  vpImage<unsigned char> I(grey.rows, grey.cols);
+  for (int r = 0; r < grey.rows; ++r)
+    for (int c = 0; c < grey.cols; ++c) I[r][c] = grey.at<unsigned char>(r, c);
+  return I;
+}
+
+TEST(HandModel, TagIsTag36h11Id0WithBlackBorderAndWhiteMargin) {
+  srp::synth::HandModel hand;
+  const auto& cells = hand.tagCells();
+  ASSERT_EQ(cells.size(), 10u);
+  for (int i = 0; i < 10; ++i) {
+    EXPECT_FALSE(cells[0][i]);  // white margin
+    EXPECT_FALSE(cells[9][i]);
+    if (i >= 1 && i <= 8) {
+      EXPECT_TRUE(cells[1][i]);  // black border
+      EXPECT_TRUE(cells[8][i]);
+    }
+  }
+  srp::synth::HandModelOptions badId;
+  badId.tagId = -1;
+  EXPECT_THROW(srp::synth::HandModel{badId}, srp::core::InvalidInputError);
+}
+
+// The projected ground-truth corners land on the rendered tag: ViSP's AprilTag
+// detector finds id 0 with corners within 1 px of them, and the pixels just
+// inside / outside each corner are black / white.
+TEST(HandModel, ProjectedTagCornersLandOnTheRenderedTag) {
+  HandScene s;
+  vpDetectorAprilTag detector(vpDetectorAprilTag::TAG_36h11);
+  const std::vector<srp::core::Pose3> poses = {
+      srp::core::makePoseYPR({0.02, 0.15, 0.18}, -1.7, 0.14, 0.0),
+      srp::core::makePoseYPR({-0.12, 0.05, 0.25}, -1.2, 0.05, 0.1),
+      srp::core::makePoseYPR({0.15, 0.22, 0.12}, -2.3, 0.2, -0.05)};
+  double worst_px = 0.0;
+  Eigen::Vector2d meanOffset_px = Eigen::Vector2d::Zero();
+  double worstCorrected_px = 0.0;
+  for (const auto& X_world_hand : poses) {
+    const auto frame = s.render(X_world_hand, 0.5);
+    const auto expected = s.projectedCorners(X_world_hand);
+    vpImage<unsigned char> I = toVisp(frame.colour_bgr8);
+    ASSERT_TRUE(detector.detect(I));
+    ASSERT_EQ(detector.getNbObjects(), 1u);
+    EXPECT_NE(detector.getMessage(0).find("id: 0"), std::string::npos) << detector.getMessage(0);
+    const auto polygon = detector.getPolygon(0);
+    ASSERT_EQ(polygon.size(), 4u);
+    for (const auto& e : expected) {
+      double best = 1e9;
+      Eigen::Vector2d bestOffset = Eigen::Vector2d::Zero();
+      for (const auto& p : polygon) {
+        const Eigen::Vector2d offset = Eigen::Vector2d(p.get_u(), p.get_v()) - e;
+        if (offset.norm() < best) {
+          best = offset.norm();
+          bestOffset = offset;
+        }
+      }
+      meanOffset_px += bestOffset / 12.0;
+      worst_px = std::max(worst_px, best);
+      EXPECT_LT(best, kCornerTol_px) << "corner " << e.transpose();
+      const double corrected = (bestOffset - Eigen::Vector2d::Constant(kAprilTagPixelOffset_px)).norm();
+      worstCorrected_px = std::max(worstCorrected_px, corrected);
+      EXPECT_LT(corrected, kCorrectedCornerTol_px) << "corner " << e.transpose();
+    }
+    // Pixel check on both sides of each corner, along the diagonal.
+    cv::Mat grey;
+    cv::cvtColor(frame.colour_bgr8, grey, cv::COLOR_BGR2GRAY);
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    for (const auto& e : expected) centre += e / 4.0;
+    for (const auto& e : expected) {
+      const Eigen::Vector2d in = e + 2.0 * (centre - e).normalized(), out = e - 2.0 * (centre - e).normalized();
+      EXPECT_LT(grey.at<unsigned char>(std::lround(in.y()), std::lround(in.x())), kBlackMax);
+      EXPECT_GT(grey.at<unsigned char>(std::lround(out.y()), std::lround(out.x())), kWhiteMin);
+    }
+  }
+  std::cout << "[measured] worst tag corner distance (ViSP detection vs ground truth): " << worst_px
+            << " px, mean offset (" << meanOffset_px.transpose() << ") px, worst after removing AprilTag's +0.5 px: "
+            << worstCorrected_px << " px\n";
+}
+
+TEST(HandModel, GripFlexesTheFingersTowardsThePalmSide) {
+  srp::synth::HandModel hand;
+  const auto open = hand.partPoses(0.0), closed = hand.partPoses(1.0);
+  for (std::size_t i = 0; i < hand.parts().size(); ++i) {
+    if (hand.parts()[i].name.find("distal") == std::string::npos) continue;
+    const Eigen::Vector3d tipOpen = open[i] * Eigen::Vector3d(0.03, 0, 0);
+    const Eigen::Vector3d tipClosed = closed[i] * Eigen::Vector3d(0.03, 0, 0);
+    EXPECT_LT(tipClosed.z(), tipOpen.z() - 0.01) << hand.parts()[i].name;  // curls down, under the palm
+  }
+}
+
+}  // namespace

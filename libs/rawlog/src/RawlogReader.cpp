@@ -6,9 +6,9 @@
 #include <mrpt/serialization/CSerializable.h>
 
 #include <filesystem>
-#include <opencv2/imgproc.hpp>
 
 #include "srp/core/Error.h"
+#include "srp/rawlog/ObservationToFrame.h"
 
 namespace srp::rawlog {
 
@@ -25,39 +25,6 @@ RawlogReader::RawlogReader(const std::string& path) : impl_(std::make_unique<Imp
 
 RawlogReader::~RawlogReader() = default;
 
-namespace {
-
-RgbdFrame toFrame(const mrpt::obs::CObservation3DRangeScan& obs, int index) {
-  RgbdFrame f;
-  f.index = index;
-  f.t_s = mrpt::Clock::toDouble(obs.timestamp);
-  const auto& cam = obs.cameraParams;
-  f.intrinsics = {cam.fx(), cam.fy(), cam.cx(), cam.cy(), static_cast<int>(cam.ncols), static_cast<int>(cam.nrows)};
-  const int rows = static_cast<int>(obs.rangeImage.rows());
-  const int cols = static_cast<int>(obs.rangeImage.cols());
-  if (f.intrinsics.width_px != cols || f.intrinsics.height_px != rows) {
-    // Some grabbers leave ncols/nrows unset: trust the image size.
-    f.intrinsics.width_px = cols;
-    f.intrinsics.height_px = rows;
-  }
-  f.depth_m = cv::Mat(rows, cols, CV_32FC1);
-  const float units = obs.rangeUnits;
-  for (int r = 0; r < rows; ++r) {
-    float* d = f.depth_m.ptr<float>(r);
-    for (int c = 0; c < cols; ++c) d[c] = static_cast<float>(obs.rangeImage(r, c)) * units;
-  }
-  if (obs.hasIntensityImage && !obs.intensityImage.isEmpty()) {
-    cv::Mat img = obs.intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
-    cv::Mat bgr;
-    if (img.channels() == 1) cv::cvtColor(img, bgr, cv::COLOR_GRAY2BGR);
-    else bgr = img.clone();
-    if (bgr.cols != cols || bgr.rows != rows) cv::resize(bgr, bgr, cv::Size(cols, rows), 0, 0, cv::INTER_LINEAR);
-    f.colour_bgr8 = bgr;
-  }
-  return f;
-}
-
-}  // namespace
 
 std::optional<RgbdFrame> RawlogReader::next() {
   while (!impl_->ended) {
@@ -71,6 +38,9 @@ std::optional<RgbdFrame> RawlogReader::next() {
     } catch (const std::exception& e) {
       impl_->ended = true;
       std::string reason = e.what();
+      // MRPT exceptions start with a banner line; the reason is on "Message:".
+      if (const auto m = reason.find("Message:"); m != std::string::npos) reason = reason.substr(m + 8);
+      reason.erase(0, reason.find_first_not_of(" \t"));
       if (const auto nl = reason.find('\n'); nl != std::string::npos) reason = reason.substr(0, nl);
       damage_ = "damaged after frame " + std::to_string(framesRead_) + " (" + std::to_string(framesRead_) +
                 " frames readable): " + reason;
@@ -86,7 +56,8 @@ std::optional<RgbdFrame> RawlogReader::next() {
       ++objectsSkipped_;
       continue;
     }
-    return toFrame(*obs, framesRead_++);
+    depthUnit_m_ = static_cast<double>(obs->rangeUnits);
+    return frameFromObservation(*obs, framesRead_++);
   }
   return std::nullopt;
 }

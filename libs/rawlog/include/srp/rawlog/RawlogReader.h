@@ -35,6 +35,9 @@ class RawlogReader {
   /// Set when reading stopped at a damaged object: "after frame N: <reason>".
   const std::optional<std::string>& damage() const { return damage_; }
   int framesRead() const { return framesRead_; }
+  /// Depth quantisation step [m] of the last frame read (its rangeUnits), 0
+  /// before the first frame: writing depth PNGs in this unit is lossless.
+  double depthUnit_m() const { return depthUnit_m_; }
   int objectsSkipped() const { return objectsSkipped_; }
   const std::string& path() const { return path_; }
 
@@ -49,6 +52,7 @@ class RawlogReader {
   std::optional<std::string> damage_;
   int framesRead_ = 0;
   int objectsSkipped_ = 0;
+  double depthUnit_m_ = 0.0;
 };
 
 }  // namespace srp::rawlog

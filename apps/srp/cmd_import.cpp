@@ -1,0 +1,67 @@
+// srp import: an image folder or a TUM RGB-D sequence to a rawlog.
+#include <cstdio>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "CommandRegistry.h"
+#include "srp/calib/RgbdImporter.h"
+
+namespace {
+
+struct Args {
+  std::string folder, out, layout = "auto";
+  std::string intrinsics;
+  double depthScale_m = 0.0;
+  double fps = 30.0;
+  double maxDt_s = 0.02;
+  bool json = false;
+};
+
+void setupImport(CLI::App& cmd) {
+  auto a = std::make_shared<Args>();
+  cmd.add_option("folder", a->folder, "image folder (color_N + depth_N images) or TUM RGB-D sequence")->required();
+  cmd.add_option("out", a->out, "rawlog to write")->required();
+  cmd.add_option("--layout", a->layout, "auto (TUM when rgb.txt is there), folder or tum")
+      ->check(CLI::IsMember({"auto", "folder", "tum"}))
+      ->capture_default_str();
+  cmd.add_option("--intrinsics", a->intrinsics,
+                 "camera file: ViSP XML or JSON (default: the folder's camera.xml, cam.json or intrinsics.json)");
+  cmd.add_option("--depth-scale", a->depthScale_m,
+                 "metres per depth PNG unit (default: the camera JSON's depthScale, else 0.001; TUM 0.0002)");
+  cmd.add_option("--fps", a->fps, "frame rate of an image folder (timestamps i / fps)")->capture_default_str();
+  cmd.add_option("--max-dt", a->maxDt_s, "TUM: max colour/depth timestamp difference [s]")->capture_default_str();
+  cmd.add_flag("--json", a->json, "print the summary as JSON");
+  cmd.footer("Example: srp import datasets/real/visp-rbt-cube cube.rawlog");
+  cmd.callback([a] {
+    srp::calib::ImportOptions o;
+    o.cameraPath = a->intrinsics;
+    if (a->depthScale_m > 0.0) o.depthScale_m = a->depthScale_m;
+    o.fps = a->fps;
+    o.maxTimeDifference_s = a->maxDt_s;
+    o.progress = [](int done, int total) {
+      std::cerr << "\rimporting " << done << "/" << total << std::flush;
+      if (done == total) std::cerr << "\n";
+    };
+    const auto s = a->layout == "tum"      ? srp::calib::importTum(a->folder, a->out, o)
+                   : a->layout == "folder" ? srp::calib::importImageFolder(a->folder, a->out, o)
+                                           : srp::calib::importRecording(a->folder, a->out, o);
+    const auto& K = s.intrinsics;
+    if (a->json) {
+      std::cout << nlohmann::json{{"rawlog", a->out},         {"layout", s.layout},
+                                  {"frames", s.frames},       {"depth_scale_m", s.depthScale_m},
+                                  {"intrinsics", K},          {"unpaired_depth", s.unpairedDepth}}
+                       .dump(2)
+                << "\n";
+      return;
+    }
+    std::printf("%s -> %s: %d frames (%s layout), depth scale %g m/unit, %dx%d fx %.3f fy %.3f cx %.3f cy %.3f\n",
+                a->folder.c_str(), a->out.c_str(), s.frames, s.layout.c_str(), s.depthScale_m, K.width_px, K.height_px,
+                K.fx_px, K.fy_px, K.cx_px, K.cy_px);
+    if (s.unpairedDepth > 0) std::printf("  %d depth images without a colour partner were left out\n", s.unpairedDepth);
+  });
+}
+
+const srp::app::CommandRegistrar kReg{"import", "convert an image folder or TUM RGB-D sequence to a rawlog", 21,
+                                      setupImport};
+
+}  // namespace

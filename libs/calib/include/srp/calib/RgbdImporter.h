@@ -1,0 +1,60 @@
+#pragma once
+/// \file RgbdImporter.h
+/// \brief Imports RGB-D recordings stored as image files into an MRPT rawlog
+/// (through srp::rawlog::RawlogWriter): an image folder (colour PNG/JPG +
+/// 16-bit depth PNG) or the TUM RGB-D benchmark layout.
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "srp/core/CameraIntrinsics.h"
+
+namespace srp::calib {
+
+struct ImportOptions {
+  /// Camera file (ViSP XML, or JSON: cam.json / srp intrinsics). Empty: the
+  /// folder's camera.xml, cam.json or intrinsics.json, in that order.
+  std::string cameraPath;
+  /// Metres per depth PNG unit. Unset: the camera JSON's depthScale, else
+  /// 0.001 for a folder (millimetres) and 1/5000 for TUM. The rawlog stores
+  /// depth in this same unit, so depth round-trips bit-exactly.
+  std::optional<double> depthScale_m;
+  double fps = 30.0;                   ///< image folders: frame i at t = i / fps [s]
+  double maxTimeDifference_s = 0.02;   ///< TUM: colour/depth association window
+  std::function<void(int done, int total)> progress;
+};
+
+/// What an import produced.
+struct ImportSummary {
+  std::string layout;                  ///< "folder" or "tum"
+  int frames = 0;
+  double depthScale_m = 0.0;
+  srp::core::CameraIntrinsics intrinsics;
+  std::vector<std::string> colourFiles;  ///< in frame order
+  std::vector<std::string> depthFiles;   ///< paired with colourFiles
+  int unpairedDepth = 0;               ///< depth images without a colour partner (ignored)
+};
+
+/// Image folder: colour files `color_N`, `colour_N` or `rgb_N` (.png/.jpg,
+/// any zero padding, optional separator) or any `N.png/.jpg` inside a `color/`,
+/// `colour/` or `rgb/` subfolder; depth files `depth_N.png` or `depth/N.png`,
+/// 16-bit single channel, registered to colour; paired by the number N.
+/// Errors (FileError naming the file): no colour images, a colour image
+/// without depth, an unreadable image, a depth image that is not 16-bit
+/// single-channel, sizes that differ from each other or from the intrinsics.
+ImportSummary importImageFolder(const std::string& folder, const std::string& rawlogPath,
+                                const ImportOptions& options = {});
+
+/// TUM RGB-D layout: `rgb.txt` and `depth.txt` ("timestamp path" lines, '#'
+/// comments) with the images they name; colour and depth associated by
+/// nearest timestamp within maxTimeDifference_s (each image used once, as the
+/// benchmark's associate.py does). Frame times are the colour timestamps.
+ImportSummary importTum(const std::string& folder, const std::string& rawlogPath, const ImportOptions& options = {});
+
+/// importTum when the folder has rgb.txt, importImageFolder otherwise.
+ImportSummary importRecording(const std::string& folder, const std::string& rawlogPath,
+                              const ImportOptions& options = {});
+
+}  // namespace srp::calib

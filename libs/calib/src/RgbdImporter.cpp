@@ -1,0 +1,240 @@
+#include "srp/calib/RgbdImporter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <regex>
+#include <sstream>
+
+#include "srp/calib/CameraFiles.h"
+#include "srp/core/Error.h"
+#include "srp/rawlog/RawlogWriter.h"
+
+namespace srp::calib {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string typeName(const cv::Mat& m) {
+  const char* depth[] = {"8-bit", "8-bit signed", "16-bit", "16-bit signed", "32-bit int", "32-bit float", "64-bit float", "16-bit float"};
+  return std::string(depth[m.depth()]) + " " + std::to_string(m.channels()) + "-channel";
+}
+
+std::string sizeName(const cv::Mat& m) { return std::to_string(m.cols) + "x" + std::to_string(m.rows); }
+
+CameraFile findCamera(const std::string& folder, const ImportOptions& options) {
+  if (!options.cameraPath.empty()) return loadCameraFile(options.cameraPath);
+  for (const char* name : {"camera.xml", "cam.json", "intrinsics.json"}) {
+    const fs::path p = fs::path(folder) / name;
+    if (fs::is_regular_file(p)) return loadCameraFile(p.string());
+  }
+  throw core::FileError(folder, "no camera file: put camera.xml, cam.json or intrinsics.json in the folder or pass "
+                                "--intrinsics FILE (ViSP XML or JSON)");
+}
+
+cv::Mat readColour(const std::string& path) {
+  cv::Mat img = cv::imread(path, cv::IMREAD_UNCHANGED);
+  if (img.empty()) throw core::FileError(path, "cannot read this colour image (missing, truncated or not PNG/JPG)");
+  if (img.depth() != CV_8U)
+    throw core::FileError(path, "colour image is " + typeName(img) + "; expected 8-bit colour or grey");
+  if (img.channels() == 1) cv::cvtColor(img, img, cv::COLOR_GRAY2BGR);
+  else if (img.channels() == 4) cv::cvtColor(img, img, cv::COLOR_BGRA2BGR);
+  return img;
+}
+
+cv::Mat readDepth(const std::string& path, double scale_m) {
+  cv::Mat raw = cv::imread(path, cv::IMREAD_UNCHANGED);
+  if (raw.empty()) throw core::FileError(path, "cannot read this depth image (missing, truncated or not PNG)");
+  if (raw.type() != CV_16UC1)
+    throw core::FileError(path, "depth image is " + typeName(raw) +
+                                    "; expected a 16-bit single-channel PNG (depth units x depth scale = metres)");
+  cv::Mat depth(raw.size(), CV_32FC1);
+  const float scale = static_cast<float>(scale_m);  // the rawlog stores float units: same product on both sides
+  for (int r = 0; r < raw.rows; ++r) {
+    const uint16_t* s = raw.ptr<uint16_t>(r);
+    float* d = depth.ptr<float>(r);
+    for (int c = 0; c < raw.cols; ++c) d[c] = static_cast<float>(s[c]) * scale;
+  }
+  return depth;
+}
+
+/// Reads, checks and writes all pairs.
+ImportSummary writePairs(ImportSummary summary, const std::vector<double>& times_s, const CameraFile& camera,
+                         const std::string& rawlogPath, const ImportOptions& options) {
+  const auto& K = camera.camera.intrinsics;
+  summary.intrinsics = K;
+  if (camera.camera.hasDistortion())
+    throw core::InvalidInputError("camera '" + camera.camera.name +
+                                  "' has lens distortion; import expects undistorted (rectified) images and "
+                                  "intrinsics without distortion");
+  if (!(summary.depthScale_m > 0.0)) throw core::InvalidInputError("depth scale must be positive (metres per unit)");
+  rawlog::RawlogWriter writer(rawlogPath, summary.depthScale_m);
+  const int n = static_cast<int>(summary.colourFiles.size());
+  for (int i = 0; i < n; ++i) {
+    if (options.progress) options.progress(i, n);
+    rawlog::RgbdFrame f;
+    f.index = i;
+    f.t_s = times_s[i];
+    f.intrinsics = K;
+    f.colour_bgr8 = readColour(summary.colourFiles[i]);
+    f.depth_m = readDepth(summary.depthFiles[i], summary.depthScale_m);
+    if (f.colour_bgr8.cols != K.width_px || f.colour_bgr8.rows != K.height_px)
+      throw core::FileError(summary.colourFiles[i], "colour image is " + sizeName(f.colour_bgr8) +
+                                                        " but the camera file says " + std::to_string(K.width_px) +
+                                                        "x" + std::to_string(K.height_px));
+    if (f.depth_m.size() != f.colour_bgr8.size())
+      throw core::FileError(summary.depthFiles[i], "depth image is " + sizeName(f.depth_m) + " but its colour image '" +
+                                                       summary.colourFiles[i] + "' is " + sizeName(f.colour_bgr8) +
+                                                       " (depth must be registered to colour)");
+    writer.write(f);
+  }
+  writer.close();
+  summary.frames = n;
+  if (options.progress) options.progress(n, n);
+  return summary;
+}
+
+bool isImage(const fs::path& p, bool depth) {
+  std::string ext = p.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  return ext == ".png" || (!depth && (ext == ".jpg" || ext == ".jpeg"));
+}
+
+/// number -> file for files named <prefix>N in `dir` (prefix from `prefixes`,
+/// optional '_' or '-'), or any N in the subfolders named like the prefixes.
+std::map<long, std::string> numberedFiles(const fs::path& dir, const std::vector<std::string>& prefixes, bool depth) {
+  std::map<long, std::string> files;
+  std::string alternatives;
+  for (const auto& p : prefixes) alternatives += (alternatives.empty() ? "" : "|") + p;
+  const std::regex inFolder("^(?:" + alternatives + ")[_-]?(\\d+)$", std::regex::icase);
+  const std::regex inSub("^(?:\\D*?)(\\d+)$");
+  const auto add = [&](const fs::path& file, const std::regex& re) {
+    std::smatch m;
+    const std::string stem = file.stem().string();
+    if (isImage(file, depth) && std::regex_match(stem, m, re)) {
+      const long number = std::stol(m[1]);
+      if (files.count(number))
+        throw core::FileError(file.string(), "two images with number " + std::to_string(number) + " (also '" +
+                                                 files[number] + "'); keep one");
+      files[number] = file.string();
+    }
+  };
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.is_regular_file()) add(e.path(), inFolder);
+  for (const auto& prefix : prefixes) {
+    const fs::path sub = dir / prefix;
+    if (fs::is_directory(sub))
+      for (const auto& e : fs::directory_iterator(sub))
+        if (e.is_regular_file()) add(e.path(), inSub);
+  }
+  return files;
+}
+
+struct TumEntry {
+  double t_s;
+  std::string path;
+};
+
+std::vector<TumEntry> readTumList(const fs::path& folder, const std::string& name) {
+  const fs::path list = folder / name;
+  std::ifstream in(list);
+  if (!in) throw core::FileError(list.string(), "cannot open (a TUM RGB-D folder has rgb.txt and depth.txt)");
+  std::vector<TumEntry> entries;
+  std::string line;
+  int lineNo = 0;
+  while (std::getline(in, line)) {
+    ++lineNo;
+    if (line.empty() || line[0] == '#' || line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    std::istringstream ss(line);
+    TumEntry e;
+    if (!(ss >> e.t_s >> e.path))
+      throw core::FileError(list.string(), "line " + std::to_string(lineNo) + " is not 'timestamp path': " + line);
+    e.path = (folder / e.path).string();
+    entries.push_back(e);
+  }
+  return entries;
+}
+
+}  // namespace
+
+ImportSummary importImageFolder(const std::string& folder, const std::string& rawlogPath,
+                                const ImportOptions& options) {
+  if (!fs::is_directory(folder)) throw core::FileError(folder, "not a folder");
+  const auto colour = numberedFiles(folder, {"color", "colour", "rgb"}, false);
+  const auto depth = numberedFiles(folder, {"depth"}, true);
+  if (colour.empty())
+    throw core::FileError(folder, "no colour images (expected color_0000.png ... or rgb/0000.png with depth_0000.png)");
+  const CameraFile camera = findCamera(folder, options);
+  ImportSummary s;
+  s.layout = "folder";
+  s.depthScale_m = options.depthScale_m.value_or(camera.depthScale_m.value_or(0.001));
+  std::vector<double> times;
+  for (const auto& [number, path] : colour) {
+    const auto d = depth.find(number);
+    if (d == depth.end())
+      throw core::FileError(path, "no depth image with number " + std::to_string(number) +
+                                      " (expected depth_" + std::to_string(number) + ".png, any zero padding)");
+    s.colourFiles.push_back(path);
+    s.depthFiles.push_back(d->second);
+    times.push_back(static_cast<double>(times.size()) / options.fps);
+  }
+  s.unpairedDepth = static_cast<int>(depth.size()) - static_cast<int>(colour.size());
+  if (s.unpairedDepth < 0) s.unpairedDepth = 0;
+  return writePairs(s, times, camera, rawlogPath, options);
+}
+
+ImportSummary importTum(const std::string& folder, const std::string& rawlogPath, const ImportOptions& options) {
+  if (!fs::is_directory(folder)) throw core::FileError(folder, "not a folder");
+  const auto rgb = readTumList(folder, "rgb.txt");
+  const auto depth = readTumList(folder, "depth.txt");
+  if (rgb.empty()) throw core::FileError((fs::path(folder) / "rgb.txt").string(), "lists no images");
+  // associate.py: all pairs within the window, closest first, each image once.
+  struct Candidate {
+    double diff;
+    size_t rgb, depth;
+  };
+  std::vector<Candidate> candidates;
+  for (size_t i = 0; i < rgb.size(); ++i)
+    for (size_t j = 0; j < depth.size(); ++j) {
+      const double diff = std::abs(rgb[i].t_s - depth[j].t_s);
+      if (diff < options.maxTimeDifference_s) candidates.push_back({diff, i, j});
+    }
+  std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) {
+    return a.diff < b.diff || (a.diff == b.diff && a.rgb < b.rgb);
+  });
+  std::vector<long> depthOf(rgb.size(), -1);
+  std::vector<bool> depthUsed(depth.size(), false);
+  for (const auto& c : candidates)
+    if (depthOf[c.rgb] < 0 && !depthUsed[c.depth]) {
+      depthOf[c.rgb] = static_cast<long>(c.depth);
+      depthUsed[c.depth] = true;
+    }
+  ImportSummary s;
+  s.layout = "tum";
+  const CameraFile camera = findCamera(folder, options);
+  s.depthScale_m = options.depthScale_m.value_or(camera.depthScale_m.value_or(1.0 / 5000.0));
+  std::vector<double> times;
+  for (size_t i = 0; i < rgb.size(); ++i)
+    if (depthOf[i] >= 0) {
+      s.colourFiles.push_back(rgb[i].path);
+      s.depthFiles.push_back(depth[depthOf[i]].path);
+      times.push_back(rgb[i].t_s);
+    }
+  if (s.colourFiles.empty())
+    throw core::FileError(folder, "no colour/depth pair within " + std::to_string(options.maxTimeDifference_s) +
+                                      " s of each other in rgb.txt and depth.txt");
+  s.unpairedDepth = static_cast<int>(depth.size() - s.depthFiles.size());
+  return writePairs(s, times, camera, rawlogPath, options);
+}
+
+ImportSummary importRecording(const std::string& folder, const std::string& rawlogPath, const ImportOptions& options) {
+  if (fs::is_regular_file(fs::path(folder) / "rgb.txt")) return importTum(folder, rawlogPath, options);
+  return importImageFolder(folder, rawlogPath, options);
+}
+
+}  // namespace srp::calib

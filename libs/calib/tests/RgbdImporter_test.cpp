@@ -1,0 +1,191 @@
+#include "srp/calib/RgbdImporter.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+
+#include "srp/calib/CameraFiles.h"
+#include "srp/calib/RawlogReplay.h"
+#include "srp/core/Error.h"
+#include "srp/rawlog/RawlogReader.h"
+
+using namespace srp::calib;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kCubeFolder = std::string(SRP_DATASETS_DIR) + "/real/visp-rbt-cube";
+
+fs::path freshDir(const std::string& name) {
+  const fs::path p = fs::temp_directory_path() / ("srp_calib_import_" + name);
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p;
+}
+
+/// Expects `fn` to throw FileError whose message names `needle`.
+template <typename Fn>
+void expectFileErrorNaming(Fn fn, const std::string& needle) {
+  try {
+    fn();
+    FAIL() << "expected a FileError naming " << needle;
+  } catch (const srp::core::FileError& e) {
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+  }
+}
+
+void writeIntrinsicsJson(const fs::path& dir, int w, int h) {
+  std::ofstream(dir / "intrinsics.json") << R"({"fx": 300, "fy": 301, "cx": )" << (w - 1) / 2.0 << R"(, "cy": )"
+                                         << (h - 1) / 2.0 << R"(, "width": )" << w << R"(, "height": )" << h << "}";
+}
+
+}  // namespace
+
+TEST(RgbdImporter, VispRbtCubeFolderImportsWithItsIntrinsicsAndDepthScale) {
+  const std::string out = (fs::temp_directory_path() / "srp_calib_cube.rawlog").string();
+  const auto s = importRecording(kCubeFolder, out);
+  EXPECT_EQ(s.layout, "folder");
+  EXPECT_EQ(s.frames, 10);
+  EXPECT_DOUBLE_EQ(s.depthScale_m, 0.001) << "from cam.json's depthScale";
+  const auto cam = loadCameraFile(kCubeFolder + "/cam.json").camera.intrinsics;
+  const auto frames = srp::rawlog::RawlogReader::readAll(out);
+  ASSERT_EQ(frames.size(), 10u);
+  EXPECT_EQ(frames[3].intrinsics, cam);
+  EXPECT_NEAR(frames[9].t_s - frames[0].t_s, 9.0 / 30.0, 1e-6);
+  // Depth checked against the PNG: millimetres x 0.001 = metres, every pixel.
+  const cv::Mat raw = cv::imread(kCubeFolder + "/depth_0004.png", cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(raw.type(), CV_16UC1);
+  cv::Mat expected_m;
+  raw.convertTo(expected_m, CV_32FC1, 0.001f);
+  EXPECT_EQ(cv::norm(frames[4].depth_m, expected_m, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::countNonZero(raw), raw.total() / 2) << "a real depth image, mostly valid";
+  const auto replay = replayRawlog(out);
+  EXPECT_EQ(replay.frames, 10);
+  EXPECT_EQ(replay.intrinsics, cam);
+  EXPECT_DOUBLE_EQ(static_cast<float>(replay.depthUnit_m), 0.001f);
+  EXPECT_NEAR(replay.fps, 30.0, 1e-3);
+}
+
+TEST(RgbdImporter, ImportReplayExportRoundTripsPixelsAndDepthBitExactly) {
+  const std::string out = (fs::temp_directory_path() / "srp_calib_roundtrip.rawlog").string();
+  importImageFolder(kCubeFolder, out);
+  const fs::path exported = freshDir("export");
+  ReplayOptions options;
+  options.exportDir = exported.string();
+  const auto s = replayRawlog(out, options);
+  ASSERT_EQ(s.frames, 10);
+  EXPECT_EQ(s.depthClipped, 0);
+  for (int i = 0; i < 10; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "_%04d.png", i);
+    for (const char* kind : {"color", "depth"}) {
+      const cv::Mat a = cv::imread(kCubeFolder + "/" + kind + name, cv::IMREAD_UNCHANGED);
+      const cv::Mat b = cv::imread((exported / (std::string(kind) + name)).string(), cv::IMREAD_UNCHANGED);
+      ASSERT_EQ(a.type(), b.type()) << kind << name;
+      ASSERT_EQ(a.size(), b.size()) << kind << name;
+      EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0) << kind << name << " differs";
+    }
+  }
+  // The export folder (with its cam.json) imports again to the same frames.
+  const std::string again = (fs::temp_directory_path() / "srp_calib_roundtrip2.rawlog").string();
+  const auto s2 = importImageFolder(exported.string(), again);
+  EXPECT_EQ(s2.intrinsics, s.intrinsics);
+  EXPECT_DOUBLE_EQ(s2.depthScale_m, 0.001);
+  const auto f1 = srp::rawlog::RawlogReader::readAll(out), f2 = srp::rawlog::RawlogReader::readAll(again);
+  ASSERT_EQ(f1.size(), f2.size());
+  for (size_t i = 0; i < f1.size(); ++i) {
+    EXPECT_EQ(cv::norm(f1[i].depth_m, f2[i].depth_m, cv::NORM_INF), 0.0);
+    EXPECT_EQ(cv::norm(f1[i].colour_bgr8, f2[i].colour_bgr8, cv::NORM_INF), 0.0);
+  }
+}
+
+TEST(RgbdImporter, TumLayoutAssociatesByTimestamp) {
+  const fs::path dir = freshDir("tum");
+  fs::create_directories(dir / "rgb");
+  fs::create_directories(dir / "depth");
+  constexpr int kW = 64, kH = 48;
+  writeIntrinsicsJson(dir, kW, kH);
+  std::ofstream rgbTxt(dir / "rgb.txt"), depthTxt(dir / "depth.txt");
+  rgbTxt << "# color images\n# file: 'test'\n# timestamp filename\n";
+  depthTxt << "# depth maps\n# timestamp filename\n";
+  const double t0 = 1305031102.175304;
+  for (int i = 0; i < 5; ++i) {
+    const double tRgb = t0 + i / 30.0, tDepth = tRgb + 0.004 * (i % 2 ? 1 : -1);  // jitter, within 20 ms
+    char rgbName[64], depthName[64];
+    std::snprintf(rgbName, sizeof rgbName, "rgb/%.6f.png", tRgb);
+    std::snprintf(depthName, sizeof depthName, "depth/%.6f.png", tDepth);
+    cv::imwrite((dir / rgbName).string(), cv::Mat(kH, kW, CV_8UC3, cv::Scalar(10 * i, 20, 30)));
+    cv::imwrite((dir / depthName).string(), cv::Mat(kH, kW, CV_16UC1, cv::Scalar(5000 + 100 * i)));  // (1 + 0.02 i) m
+    rgbTxt << std::fixed << tRgb << " " << rgbName << "\n";
+    depthTxt << std::fixed << tDepth << " " << depthName << "\n";
+  }
+  depthTxt << std::fixed << t0 + 10.0 << " depth/orphan.png\n";  // no colour near it: ignored
+  rgbTxt.close();
+  depthTxt.close();
+  const std::string out = (dir / "tum.rawlog").string();
+  const auto s = importRecording(dir.string(), out);
+  EXPECT_EQ(s.layout, "tum");
+  EXPECT_EQ(s.frames, 5);
+  EXPECT_EQ(s.unpairedDepth, 1);
+  EXPECT_DOUBLE_EQ(s.depthScale_m, 1.0 / 5000.0) << "TUM's factor 5000";
+  const auto frames = srp::rawlog::RawlogReader::readAll(out);
+  ASSERT_EQ(frames.size(), 5u);
+  constexpr double kTimeTol_s = 1e-5;
+  constexpr double kDepthTol_m = 1e-6;
+  for (int i = 0; i < 5; ++i) {
+    EXPECT_NEAR(frames[i].t_s, t0 + i / 30.0, kTimeTol_s) << "colour timestamp";
+    EXPECT_NEAR(frames[i].depth_m.at<float>(10, 10), 1.0 + 0.02 * i, kDepthTol_m) << "paired with its own depth";
+    EXPECT_EQ(frames[i].colour_bgr8.at<cv::Vec3b>(5, 5)[0], 10 * i);
+  }
+}
+
+TEST(RgbdImporter, BadInputNamesTheFile) {
+  constexpr int kW = 32, kH = 24;
+  const std::string out = (fs::temp_directory_path() / "srp_calib_bad.rawlog").string();
+  {  // no images at all
+    const fs::path dir = freshDir("empty");
+    writeIntrinsicsJson(dir, kW, kH);
+    expectFileErrorNaming([&] { importImageFolder(dir.string(), out); }, dir.string());
+  }
+  {  // colour without depth
+    const fs::path dir = freshDir("nodepth");
+    writeIntrinsicsJson(dir, kW, kH);
+    cv::imwrite((dir / "color_0000.png").string(), cv::Mat(kH, kW, CV_8UC3, cv::Scalar::all(0)));
+    expectFileErrorNaming([&] { importImageFolder(dir.string(), out); }, "color_0000.png");
+  }
+  {  // depth of the wrong type (8-bit)
+    const fs::path dir = freshDir("depth8");
+    writeIntrinsicsJson(dir, kW, kH);
+    cv::imwrite((dir / "color_0.png").string(), cv::Mat(kH, kW, CV_8UC3, cv::Scalar::all(0)));
+    cv::imwrite((dir / "depth_0.png").string(), cv::Mat(kH, kW, CV_8UC1, cv::Scalar::all(9)));
+    expectFileErrorNaming([&] { importImageFolder(dir.string(), out); }, "depth_0.png");
+  }
+  {  // mismatched sizes: depth smaller than colour
+    const fs::path dir = freshDir("size");
+    writeIntrinsicsJson(dir, kW, kH);
+    cv::imwrite((dir / "color_1.png").string(), cv::Mat(kH, kW, CV_8UC3, cv::Scalar::all(0)));
+    cv::imwrite((dir / "depth_1.png").string(), cv::Mat(kH / 2, kW / 2, CV_16UC1, cv::Scalar::all(9)));
+    expectFileErrorNaming([&] { importImageFolder(dir.string(), out); }, "depth_1.png");
+  }
+  {  // colour size differs from the intrinsics
+    const fs::path dir = freshDir("intr");
+    writeIntrinsicsJson(dir, kW * 2, kH * 2);
+    cv::imwrite((dir / "color_1.png").string(), cv::Mat(kH, kW, CV_8UC3, cv::Scalar::all(0)));
+    cv::imwrite((dir / "depth_1.png").string(), cv::Mat(kH, kW, CV_16UC1, cv::Scalar::all(9)));
+    expectFileErrorNaming([&] { importImageFolder(dir.string(), out); }, "color_1.png");
+  }
+  {  // unreadable colour image
+    const fs::path dir = freshDir("junk");
+    writeIntrinsicsJson(dir, kW, kH);
+    std::ofstream(dir / "color_2.png") << "this is not a PNG";
+    cv::imwrite((dir / "depth_2.png").string(), cv::Mat(kH, kW, CV_16UC1, cv::Scalar::all(9)));
+    expectFileErrorNaming([&] { importImageFolder(dir.string(), out); }, "color_2.png");
+  }
+  {  // no camera file
+    const fs::path dir = freshDir("nocam");
+    cv::imwrite((dir / "color_0.png").string(), cv::Mat(kH, kW, CV_8UC3, cv::Scalar::all(0)));
+    expectFileErrorNaming([&] { importImageFolder(dir.string(), out); }, "--intrinsics");
+  }
+}

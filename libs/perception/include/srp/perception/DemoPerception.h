@@ -1,0 +1,92 @@
+#pragma once
+/// \file DemoPerception.h
+/// \brief The Environment module end to end: a demo's RGB-D frames -> the
+/// hand trajectory and every object of interest's pose per frame, in the
+/// camera optical frame (metres, radians, seconds).
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "srp/core/ObjectCatalogue.h"
+#include "srp/core/PositionTrajectory.h"
+#include "srp/perception/MarkerFreeHandDetector.h"
+#include "srp/perception/MarkerHandDetector.h"
+#include "srp/perception/ObjectDetector.h"
+#include "srp/rawlog/RgbdFrame.h"
+
+namespace srp::perception {
+
+/// An object the task plan names, and whether the instruction moves it.
+/// Static objects (containers, landmarks) are fixed at their most confident
+/// detection; moving ones are tracked frame by frame.
+struct PlanObject {
+  std::string className;
+  bool isStatic = false;
+};
+
+/// One object's pose in one frame.
+struct ObjectPoseSample {
+  int frame = 0;
+  double t_s = 0.0;
+  core::Pose3 X_camera_object = core::Pose3::Identity();
+  bool detected = false;     ///< false: carried from the nearest detection
+  double confidence = 0.0;
+};
+
+/// One object's pose trajectory (one sample per frame once it was seen).
+struct ObjectTrajectory {
+  std::string className;
+  int classId = -1;
+  bool isStatic = false;
+  std::vector<ObjectPoseSample> samples;
+  int detectedFrames() const;
+};
+
+struct PerceptionOptions {
+  enum class HandMethod { Marker, MarkerFree };
+  HandMethod hand = HandMethod::Marker;
+  MarkerHandDetector::Options marker;
+  MarkerFreeHandDetector::Options markerFree;
+  ObjectDetector::Options objects;
+  /// Objects of interest (from the task plan); empty = every catalogue class, all moving.
+  std::vector<PlanObject> plan;
+  /// Fit the support plane once on the first frame (the camera is fixed).
+  bool fixedSupportPlane = true;
+};
+
+struct PerceptionResult {
+  /// Palm centre per frame; valid = the hand was detected (depth holes are
+  /// filled by carrying the last valid depth forward along the pixel's ray).
+  core::PositionTrajectory hand{"camera"};
+  std::vector<ObjectTrajectory> objects;
+  core::CameraIntrinsics intrinsics;
+  int frames = 0;
+  int handDetected = 0;        ///< frames with a hand detection
+  int handDepthCarried = 0;    ///< of those, frames whose depth was carried forward
+};
+
+/// Runs the module on frames (in time order). Throws InvalidInputError when
+/// there are no frames, a frame lacks depth or colour, the sizes or
+/// intrinsics change between frames, or the hand is never detected.
+/// `progress(frameIndex, frameCount)` is called after each frame when given.
+PerceptionResult perceiveFrames(const std::vector<rawlog::RgbdFrame>& frames, const core::ObjectCatalogue& catalogue,
+                                const PerceptionOptions& options,
+                                const std::function<void(int, int)>& progress = {});
+
+/// Reads the demo rawlog (RawlogReader) and runs perceiveFrames. Throws
+/// FileError for an unreadable or damaged rawlog or one without RGB-D frames.
+PerceptionResult perceiveRawlog(const std::string& rawlogPath, const core::ObjectCatalogue& catalogue,
+                                const PerceptionOptions& options,
+                                const std::function<void(int, int)>& progress = {});
+
+/// Writes the `srp segment` CSV: frame,hand_x,hand_y,hand_z,<name>_x,<name>_y,
+/// <name>_z,<name>_rz,... (camera frame, metres, radians; names with spaces
+/// written with '_'); a hand of exact zeros = not detected; rz = yaw of the
+/// object about the camera's z axis. Atomic (temporary file renamed).
+void writeSegmentCsv(const PerceptionResult& result, const std::string& path);
+
+/// Rotation of an object about the camera z axis [rad] (the `_rz` column).
+double cameraYaw(const core::Pose3& X_camera_object);
+
+}  // namespace srp::perception

@@ -1,0 +1,34 @@
+#pragma once
+/// \file MarkerHandDetector.h
+/// \brief The hand from an AprilTag (tag36h11) on the back of a glove.
+
+#include "srp/perception/AprilTagDetector.h"
+#include "srp/perception/HandDetector.h"
+
+namespace srp::perception {
+
+/// Palm centre = X_camera_tag * p_tag_palm. The tag pose comes from the tag's
+/// size alone, so the hand has a 3D position even where the depth image has a
+/// hole (ToF motion blur on the moving hand); where the depth inside the tag is
+/// valid, its median replaces the tag's (less precise) distance along the ray.
+class MarkerHandDetector : public HandDetector {
+ public:
+  struct Options {
+    double tagSize_m = 0.04;   ///< black square side on the glove
+    int tagId = -1;            ///< -1: any tag36h11 tag
+    /// Palm centre in the tag frame (tag z points into the back of the hand).
+    Eigen::Vector3d p_tag_palm_m = Eigen::Vector3d(0.0, 0.0, 0.015);
+    bool useDepth = true;      ///< refine the distance with the depth image
+    double maxDepthDisagreement_m = 0.03;
+    float quadDecimate = 1.0f;
+  };
+  explicit MarkerHandDetector(const Options& options);
+  std::optional<HandObservation> detect(const rawlog::RgbdFrame& frame) override;
+  std::string name() const override { return "marker"; }
+
+ private:
+  Options options_;
+  AprilTagDetector tags_;
+};
+
+}  // namespace srp::perception

@@ -1,0 +1,29 @@
+#pragma once
+/// \file TaskDbMapping.h
+/// \brief The Environment module's output as task-database rows
+/// (HandPositions, GroundedProducts, ProductPose; libs/taskdb Rows.h).
+
+#include <vector>
+
+#include "srp/core/ObjectCatalogue.h"
+#include "srp/perception/DemoPerception.h"
+#include "srp/taskdb/Rows.h"
+
+namespace srp::perception {
+
+struct PerceptionRows {
+  std::vector<taskdb::HandPositionRow> handPositions;
+  std::vector<taskdb::GroundedProductRow> groundedProducts;
+  std::vector<taskdb::ProductPoseRow> productPoses;
+};
+
+/// One HandPositions row per frame (TimeId = frame index; frames without a
+/// detection carry the previous position forward, before the first one the
+/// first, with detected = false); one GroundedProducts row per object seen
+/// (colour from the catalogue; source/target locations are the programming
+/// module's to fill); one ProductPose row per object and frame (skill flags
+/// false: the motion module sets them). Camera frame, metres. Throws
+/// InvalidInputError when the hand has no valid sample.
+PerceptionRows toTaskDbRows(const PerceptionResult& result, const core::ObjectCatalogue& catalogue);
+
+}  // namespace srp::perception

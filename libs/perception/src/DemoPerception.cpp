@@ -1,0 +1,206 @@
+#include "srp/perception/DemoPerception.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <optional>
+
+#include "srp/core/Error.h"
+#include "srp/perception/DepthCloud.h"
+#include "srp/rawlog/RawlogReader.h"
+
+namespace srp::perception {
+
+int ObjectTrajectory::detectedFrames() const {
+  return static_cast<int>(std::count_if(samples.begin(), samples.end(), [](const auto& s) { return s.detected; }));
+}
+
+double cameraYaw(const core::Pose3& X_camera_object) {
+  const Eigen::Vector3d x = X_camera_object.linear().col(0);
+  return std::atan2(x.y(), x.x());
+}
+
+namespace {
+
+void checkFrame(const rawlog::RgbdFrame& f, const rawlog::RgbdFrame& first, int i) {
+  const std::string what = "frame " + std::to_string(i);
+  if (f.depth_m.empty())
+    throw core::InvalidInputError(what + " has no depth image: record the demo with an RGB-D camera (depth registered to colour)");
+  if (f.colour_bgr8.empty()) throw core::InvalidInputError(what + " has no colour image: the hand and tag detectors need colour");
+  f.validate(what);
+  if (f.depth_m.size() != first.depth_m.size() || f.intrinsics != first.intrinsics)
+    throw core::InvalidInputError(what + ": image size or intrinsics differ from frame 0 (" +
+                                  std::to_string(f.depth_m.cols) + "x" + std::to_string(f.depth_m.rows) + " vs " +
+                                  std::to_string(first.depth_m.cols) + "x" + std::to_string(first.depth_m.rows) +
+                                  "); a demo must come from one camera setting");
+}
+
+}  // namespace
+
+PerceptionResult perceiveFrames(const std::vector<rawlog::RgbdFrame>& frames, const core::ObjectCatalogue& catalogue,
+                                const PerceptionOptions& options, const std::function<void(int, int)>& progress) {
+  if (frames.empty()) throw core::InvalidInputError("the demo has zero frames: nothing to perceive");
+  for (std::size_t i = 0; i < frames.size(); ++i) checkFrame(frames[i], frames[0], static_cast<int>(i));
+
+  // Objects of interest: the plan's, else every class (moving).
+  std::vector<PlanObject> plan = options.plan;
+  if (plan.empty())
+    for (const auto& c : catalogue.classes()) plan.push_back({c.name, false});
+  std::vector<std::string> names;
+  for (const auto& p : plan) names.push_back(p.className);
+  const ObjectDetector detector(ObjectDetector::modelsFromCatalogue(catalogue, names), options.objects);
+
+  std::unique_ptr<HandDetector> hand;
+  if (options.hand == PerceptionOptions::HandMethod::Marker) hand = std::make_unique<MarkerHandDetector>(options.marker);
+  else hand = std::make_unique<MarkerFreeHandDetector>(options.markerFree);
+
+  PerceptionResult result;
+  result.intrinsics = frames[0].intrinsics;
+  result.frames = static_cast<int>(frames.size());
+  // Per class: per frame, the best detection (if any).
+  std::map<std::string, std::vector<std::optional<ObjectDetection>>> perClass;
+  for (const auto& p : plan) perClass[p.className].assign(frames.size(), std::nullopt);
+
+  std::optional<Plane> support;
+  std::optional<double> lastDepthScale;  // carried hand depth: z of the last valid palm / ray
+  double lastZ_m = 0.0;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const rawlog::RgbdFrame& f = frames[i];
+    const auto detections = detector.detect(f, options.fixedSupportPlane && support ? &*support : nullptr);
+    if (!support) support = detector.lastPlane();
+    for (const auto& d : detections) {
+      auto& slot = perClass[d.className][i];
+      if (!slot || d.confidence > slot->confidence) slot = d;
+    }
+
+    core::PositionSample s;
+    s.frame = f.index;
+    s.t_s = f.t_s;
+    s.valid = false;
+    if (const auto h = hand->detect(f)) {
+      if (h->hasDepth) {
+        s.p_m = h->p_camera_palm_m;
+        lastZ_m = h->p_camera_palm_m.z();
+        lastDepthScale = 1.0;
+        s.valid = true;
+      } else if (lastDepthScale) {
+        // Depth hole: the palm's pixel is known, its depth is carried forward.
+        const auto& k = f.intrinsics;
+        s.p_m = {(h->palm_px.x() - k.cx_px) * lastZ_m / k.fx_px, (h->palm_px.y() - k.cy_px) * lastZ_m / k.fy_px, lastZ_m};
+        s.valid = true;
+        ++result.handDepthCarried;
+      }
+      if (s.valid) ++result.handDetected;
+    }
+    // Timestamps must increase; rawlogs from a folder may repeat them.
+    if (!result.hand.empty() && s.t_s <= result.hand.samples().back().t_s) s.t_s = result.hand.samples().back().t_s + 1e-6;
+    result.hand.append(s);
+    if (progress) progress(static_cast<int>(i), static_cast<int>(frames.size()));
+  }
+  if (result.handDetected == 0)
+    throw core::InvalidInputError("the hand was never detected in the " + std::to_string(frames.size()) +
+                                  " frames of the demo (" +
+                                  (options.hand == PerceptionOptions::HandMethod::Marker
+                                       ? std::string("no tag36h11 tag of the glove seen: check the tag size/id, or use the marker-free detector")
+                                       : std::string("no foreground hand: do the first frames show the scene without the hand?")) +
+                                  "); nothing written");
+
+  // Language-guided refinement: static objects fixed at their most confident
+  // detection; moving objects follow their detections, gaps carried from the
+  // nearest earlier detection (before the first: the first).
+  for (const auto& p : plan) {
+    const auto& dets = perClass[p.className];
+    const core::ObjectClass& cls = catalogue.at(p.className);
+    ObjectTrajectory traj;
+    traj.className = p.className;
+    traj.classId = cls.classId;
+    traj.isStatic = p.isStatic;
+    int bestFrame = -1, firstFrame = -1;
+    for (std::size_t i = 0; i < dets.size(); ++i)
+      if (dets[i]) {
+        if (firstFrame < 0) firstFrame = static_cast<int>(i);
+        if (bestFrame < 0 || dets[i]->confidence > dets[static_cast<std::size_t>(bestFrame)]->confidence)
+          bestFrame = static_cast<int>(i);
+      }
+    if (bestFrame < 0) {
+      result.objects.push_back(traj);  // never seen: empty trajectory
+      continue;
+    }
+    const ObjectDetection* carried = &*dets[static_cast<std::size_t>(firstFrame)];
+    for (std::size_t i = 0; i < dets.size(); ++i) {
+      ObjectPoseSample s;
+      s.frame = frames[i].index;
+      s.t_s = frames[i].t_s;
+      if (p.isStatic) {
+        const auto& best = *dets[static_cast<std::size_t>(bestFrame)];
+        s.X_camera_object = best.X_camera_object;
+        s.detected = dets[i].has_value();
+        s.confidence = best.confidence;
+      } else {
+        if (dets[i]) carried = &*dets[i];
+        s.X_camera_object = carried->X_camera_object;
+        s.detected = dets[i].has_value();
+        s.confidence = dets[i] ? dets[i]->confidence : 0.0;
+      }
+      traj.samples.push_back(s);
+    }
+    result.objects.push_back(traj);
+  }
+  return result;
+}
+
+PerceptionResult perceiveRawlog(const std::string& rawlogPath, const core::ObjectCatalogue& catalogue,
+                                const PerceptionOptions& options, const std::function<void(int, int)>& progress) {
+  rawlog::RawlogReader reader(rawlogPath);
+  std::vector<rawlog::RgbdFrame> frames;
+  while (auto f = reader.next()) frames.push_back(std::move(*f));
+  if (reader.damage()) throw core::FileError(rawlogPath, "unreadable rawlog, " + *reader.damage());
+  if (frames.empty())
+    throw core::FileError(rawlogPath, "no RGB-D frames with depth in this rawlog (" +
+                                          std::to_string(reader.objectsSkipped()) +
+                                          " other objects skipped): record CObservation3DRangeScan with depth");
+  return perceiveFrames(frames, catalogue, options, progress);
+}
+
+void writeSegmentCsv(const PerceptionResult& result, const std::string& path) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    if (!out) throw core::FileError(path, "cannot write the CSV (folder missing or read-only?)");
+    out << "frame,hand_x,hand_y,hand_z";
+    for (const auto& o : result.objects) {
+      std::string n = o.className;
+      std::replace(n.begin(), n.end(), ' ', '_');
+      out << ',' << n << "_x," << n << "_y," << n << "_z," << n << "_rz";
+    }
+    out << '\n';
+    char buf[64];
+    for (std::size_t i = 0; i < result.hand.size(); ++i) {
+      const auto& h = result.hand[i];
+      out << h.frame;
+      const Eigen::Vector3d p = h.valid ? h.p_m : Eigen::Vector3d::Zero();
+      for (int k = 0; k < 3; ++k) {
+        std::snprintf(buf, sizeof(buf), ",%.6f", p[k]);
+        out << buf;
+      }
+      for (const auto& o : result.objects) {
+        if (o.samples.empty()) {
+          out << ",,,,";
+          continue;
+        }
+        const auto& s = o.samples[std::min(i, o.samples.size() - 1)];
+        const Eigen::Vector3d t = s.X_camera_object.translation();
+        std::snprintf(buf, sizeof(buf), ",%.6f,%.6f,%.6f,%.6f", t.x(), t.y(), t.z(), cameraYaw(s.X_camera_object));
+        out << buf;
+      }
+      out << '\n';
+    }
+    if (!out) throw core::FileError(path, "write failed (disk full?)");
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+}  // namespace srp::perception

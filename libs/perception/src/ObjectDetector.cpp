@@ -1,0 +1,185 @@
+#include "srp/perception/ObjectDetector.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "srp/core/Error.h"
+#include "srp/perception/DepthCloud.h"
+
+namespace srp::perception {
+namespace {
+
+double srgbToLinear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
+/// Agreement [0, 1] of two linear-RGB colours by chromaticity and brightness.
+double colourAgreement(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d ca = a / std::max(1e-6, a.sum()), cb = b / std::max(1e-6, b.sum());
+  const double dChroma = (ca - cb).norm();
+  return std::exp(-0.5 * std::pow(dChroma / 0.08, 2));
+}
+
+}  // namespace
+
+ObjectDetector::ObjectDetector(std::vector<ObjectModel> models) : ObjectDetector(std::move(models), Options{}) {}
+
+ObjectDetector::ObjectDetector(std::vector<ObjectModel> models, const Options& options) : options_(options) {
+  core::require(!models.empty(), "ObjectDetector: no object models (is the knowledge base empty?)");
+  for (const auto& m : models) fitters_.emplace_back(m, options.fit);
+}
+
+std::vector<ObjectModel> ObjectDetector::modelsFromCatalogue(const core::ObjectCatalogue& catalogue,
+                                                             const std::vector<std::string>& classNames) {
+  std::vector<ObjectModel> models;
+  if (classNames.empty())
+    for (const auto& c : catalogue.classes()) models.push_back(ObjectModel::fromCatalogue(c));
+  else
+    for (const auto& n : classNames) models.push_back(ObjectModel::fromCatalogue(catalogue.at(n)));
+  return models;
+}
+
+int ObjectDetector::segment(const cv::Mat& cloud, const Plane& plane, cv::Mat& labels) const {
+  // Pixels above the plane, joined to their 4-neighbours when the depth step
+  // between them is small (union-find): flying pixels at depth edges break the chain.
+  const int W = cloud.cols, H = cloud.rows;
+  std::vector<int> parent(static_cast<std::size_t>(W) * H, -1);
+  auto find = [&parent](int i) {
+    while (parent[i] != i) {
+      parent[i] = parent[parent[i]];
+      i = parent[i];
+    }
+    return i;
+  };
+  auto unite = [&](int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  };
+  for (int v = 0; v < H; ++v) {
+    const cv::Vec3f* row = cloud.ptr<cv::Vec3f>(v);
+    for (int u = 0; u < W; ++u) {
+      if (row[u][2] <= 0.f) continue;
+      const double h = plane.height({row[u][0], row[u][1], row[u][2]});
+      if (h >= options_.minHeight_m && h <= options_.maxHeight_m) parent[v * W + u] = v * W + u;
+    }
+  }
+  auto joinable = [&](int a, int b) {
+    if (parent[a] < 0 || parent[b] < 0) return false;
+    const float za = cloud.at<cv::Vec3f>(a / W, a % W)[2], zb = cloud.at<cv::Vec3f>(b / W, b % W)[2];
+    return std::abs(za - zb) < options_.depthEdge_m * std::max(1.0f, za);
+  };
+  for (int v = 0; v < H; ++v)
+    for (int u = 0; u < W; ++u) {
+      const int i = v * W + u;
+      if (parent[i] < 0) continue;
+      if (u + 1 < W && joinable(i, i + 1)) unite(i, i + 1);
+      if (v + 1 < H && joinable(i, i + W)) unite(i, i + W);
+    }
+  labels = cv::Mat(H, W, CV_32S, cv::Scalar(0));
+  std::vector<int> rootLabel(parent.size(), 0);
+  int n = 0;
+  for (int i = 0; i < W * H; ++i) {
+    if (parent[i] < 0) continue;
+    const int r = find(i);
+    if (rootLabel[r] == 0) rootLabel[r] = ++n;
+    labels.at<int>(i / W, i % W) = rootLabel[r];
+  }
+  return n;
+}
+
+std::vector<ObjectDetection> ObjectDetector::detect(const rawlog::RgbdFrame& frame, const Plane* support) const {
+  if (frame.depth_m.empty())
+    throw core::InvalidInputError("frame " + std::to_string(frame.index) + " has no depth image: objects need depth");
+  const CameraModel camera(frame.intrinsics);
+  const cv::Mat cloud = depthToCloud(frame.depth_m, camera);
+  lastPlane_ = support ? std::optional<Plane>(*support) : fitDominantPlane(cloud, options_.plane);
+  if (!lastPlane_) return {};
+  const Plane& plane = *lastPlane_;
+
+  cv::Mat labels;
+  const int nSegments = segment(cloud, plane, labels);
+  std::vector<std::vector<Eigen::Vector3d>> points(static_cast<std::size_t>(nSegments));
+  std::vector<std::vector<cv::Point>> pixels(static_cast<std::size_t>(nSegments));
+  std::vector<Eigen::Vector3d> colourSum(static_cast<std::size_t>(nSegments), Eigen::Vector3d::Zero());
+  const bool hasColour = !frame.colour_bgr8.empty();
+  for (int v = 0; v < labels.rows; ++v) {
+    const int* l = labels.ptr<int>(v);
+    for (int u = 0; u < labels.cols; ++u) {
+      if (l[u] <= 0) continue;
+      const std::size_t s = static_cast<std::size_t>(l[u] - 1);
+      points[s].push_back(cloudAt(cloud, u, v));
+      pixels[s].emplace_back(u, v);
+      if (hasColour) {
+        const cv::Vec3b c = frame.colour_bgr8.at<cv::Vec3b>(v, u);
+        colourSum[s] += Eigen::Vector3d(srgbToLinear(c[2] / 255.0), srgbToLinear(c[1] / 255.0), srgbToLinear(c[0] / 255.0));
+      }
+    }
+  }
+
+  std::vector<ObjectDetection> out;
+  for (std::size_t s = 0; s < points.size(); ++s) {
+    if (static_cast<int>(points[s].size()) < options_.minPixels) continue;
+    // Segment extent along the plane, to skip models of the wrong size early.
+    const core::Pose3 X_plane_camera = plane.X_camera_plane().inverse();
+    // Robust extent (2nd to 98th percentile): flying pixels at the edges do not count.
+    Eigen::Vector3d lo, hi;
+    {
+      std::vector<double> c[3];
+      for (const auto& p : points[s]) {
+        const Eigen::Vector3d q = X_plane_camera * p;
+        for (int a = 0; a < 3; ++a) c[a].push_back(q[a]);
+      }
+      for (int a = 0; a < 3; ++a) {
+        const std::size_t n = c[a].size(), i0 = n / 50, i1 = n - 1 - n / 50;
+        std::nth_element(c[a].begin(), c[a].begin() + static_cast<long>(i0), c[a].end());
+        lo[a] = c[a][i0];
+        std::nth_element(c[a].begin(), c[a].begin() + static_cast<long>(i1), c[a].end());
+        hi[a] = c[a][i1];
+      }
+    }
+    const double segExtent = (hi - lo).head<2>().norm();
+    const double segTop_m = hi.z();
+    const Eigen::Vector3d meanColour = colourSum[s] / static_cast<double>(points[s].size());
+
+    ObjectDetection best;
+    for (const ObjectPoseFitter& fitter : fitters_) {
+      const ObjectModel& model = fitter.model();
+      const double modelDiag = model.dimensions_m.head<2>().norm();
+      // Cheap gates before the fit: footprint size, height above the plane, colour.
+      if (segExtent > 1.5 * modelDiag + 0.02 || segExtent < 0.25 * model.dimensions_m.head<2>().minCoeff()) continue;
+      if (segTop_m > model.dimensions_m.z() + options_.maxElevation_m + 0.02 || segTop_m < 0.4 * model.dimensions_m.z())
+        continue;
+      const double colourScore = model.useColour && hasColour ? colourAgreement(meanColour, model.rgb) : 1.0;
+      if (colourScore < 0.05) continue;
+      const ObjectPoseFit fit = fitter.fit(points[s], plane, cloud, camera);
+      const double confidence = fit.score * colourScore;
+      if (confidence > best.confidence) {
+        best.className = model.name;
+        best.classId = model.classId;
+        best.X_camera_object = fit.X_camera_object;
+        best.size_m = model.dimensions_m;
+        best.confidence = confidence;
+      }
+    }
+    if (best.confidence < options_.minConfidence) continue;
+    const core::Pose3 X_plane_object = X_plane_camera * best.X_camera_object;
+    best.yaw_rad = std::atan2(X_plane_object.linear()(1, 0), X_plane_object.linear()(0, 0));
+    best.segmentPixels = static_cast<int>(points[s].size());
+    const cv::RotatedRect rr = cv::minAreaRect(pixels[s]);
+    cv::Point2f corners[4];
+    rr.points(corners);
+    for (int c = 0; c < 4; ++c) best.obb_px[c] = {corners[c].x, corners[c].y};
+    for (int axis = 0; axis < 3; ++axis) {
+      std::vector<double> vals;
+      vals.reserve(points[s].size());
+      for (const auto& p : points[s]) vals.push_back(p[axis]);
+      std::nth_element(vals.begin(), vals.begin() + vals.size() / 2, vals.end());
+      best.p_camera_median_m[axis] = vals[vals.size() / 2];
+    }
+    out.push_back(best);
+  }
+  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.confidence > b.confidence; });
+  return out;
+}
+
+}  // namespace srp::perception

@@ -1,0 +1,251 @@
+#include "srp/perception/ObjectPoseFitter.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <deque>
+
+#include "srp/core/Error.h"
+
+namespace srp::perception {
+
+/// Nearest model sample per cell of a grid around the model (object frame),
+/// filled by a multi-source breadth-first search (approximate Voronoi).
+struct ObjectPoseFitter::Impl {
+  Eigen::Vector3d origin;
+  Eigen::Vector3i size;
+  double cell = 0.002;
+  std::vector<int> nearest;
+
+  int lookup(const Eigen::Vector3d& p_object) const {
+    Eigen::Vector3i c = ((p_object - origin) / cell).array().floor().cast<int>();
+    for (int k = 0; k < 3; ++k) c[k] = std::clamp(c[k], 0, size[k] - 1);
+    return nearest[(static_cast<std::size_t>(c.z()) * size.y() + c.y()) * size.x() + c.x()];
+  }
+};
+
+ObjectPoseFitter::ObjectPoseFitter(const ObjectModel& model) : ObjectPoseFitter(model, Options{}) {}
+
+ObjectPoseFitter::ObjectPoseFitter(const ObjectModel& model, const Options& options)
+    : model_(model), options_(options), impl_(std::make_unique<Impl>()) {
+  core::require(!model.surface.empty(), "ObjectPoseFitter: model '" + model.name + "' has no surface samples");
+  Eigen::AlignedBox3d box;
+  for (const auto& s : model.surface) box.extend(s.p_m);
+  const double margin = 0.03;
+  impl_->cell = options.gridCell_m;
+  impl_->origin = box.min() - Eigen::Vector3d::Constant(margin);
+  impl_->size = ((box.sizes() + Eigen::Vector3d::Constant(2 * margin)) / impl_->cell).array().ceil().cast<int>() + 1;
+  const std::size_t n = static_cast<std::size_t>(impl_->size.prod());
+  impl_->nearest.assign(n, -1);
+  std::deque<std::size_t> queue;
+  auto index = [this](const Eigen::Vector3i& c) {
+    return (static_cast<std::size_t>(c.z()) * impl_->size.y() + c.y()) * impl_->size.x() + c.x();
+  };
+  for (std::size_t i = 0; i < model.surface.size(); ++i) {
+    const Eigen::Vector3i c = ((model.surface[i].p_m - impl_->origin) / impl_->cell).array().floor().cast<int>();
+    const std::size_t k = index(c);
+    if (impl_->nearest[k] < 0) {
+      impl_->nearest[k] = static_cast<int>(i);
+      queue.push_back(k);
+    }
+  }
+  const int sx = impl_->size.x(), sy = impl_->size.y(), sz = impl_->size.z();
+  while (!queue.empty()) {
+    const std::size_t k = queue.front();
+    queue.pop_front();
+    const int x = static_cast<int>(k % sx), y = static_cast<int>((k / sx) % sy), z = static_cast<int>(k / (static_cast<std::size_t>(sx) * sy));
+    const int dirs[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    for (const auto& d : dirs) {
+      const int nx = x + d[0], ny = y + d[1], nz = z + d[2];
+      if (nx < 0 || ny < 0 || nz < 0 || nx >= sx || ny >= sy || nz >= sz) continue;
+      const std::size_t kk = index({nx, ny, nz});
+      if (impl_->nearest[kk] >= 0) continue;
+      impl_->nearest[kk] = impl_->nearest[k];
+      queue.push_back(kk);
+    }
+  }
+}
+
+ObjectPoseFitter::~ObjectPoseFitter() = default;
+ObjectPoseFitter::ObjectPoseFitter(ObjectPoseFitter&&) noexcept = default;
+ObjectPoseFitter& ObjectPoseFitter::operator=(ObjectPoseFitter&&) noexcept = default;
+
+double ObjectPoseFitter::coverage(const core::Pose3& X_camera_object, const cv::Mat& cloud,
+                                  const CameraModel& camera) const {
+  const auto& k = camera.intrinsics();
+  int supported = 0, contradicted = 0;
+  const std::size_t step = std::max<std::size_t>(1, model_.surface.size() / 2000);
+  for (std::size_t i = 0; i < model_.surface.size(); i += step) {
+    const Eigen::Vector3d p = X_camera_object * model_.surface[i].p_m;
+    const Eigen::Vector3d n = X_camera_object.linear() * model_.surface[i].n;
+    if (p.z() <= 0 || n.dot(p.normalized()) > -0.15) continue;  // back-facing or grazing
+    const int u = static_cast<int>(std::lround(k.fx_px * p.x() / p.z() + k.cx_px));
+    const int v = static_cast<int>(std::lround(k.fy_px * p.y() / p.z() + k.cy_px));
+    if (u < 0 || v < 0 || u >= cloud.cols || v >= cloud.rows) continue;
+    const float zObs = cloud.at<cv::Vec3f>(v, u)[2];
+    if (zObs <= 0.f) continue;  // no depth: no evidence
+    const double dz = zObs - p.z();
+    if (std::abs(dz) < options_.inlierTol_m) ++supported;
+    else if (dz > 0) ++contradicted;  // the camera sees through where the model should be
+    // dz < 0: something in front (occlusion), no evidence
+  }
+  return supported + contradicted > 0 ? static_cast<double>(supported) / (supported + contradicted) : 0.0;
+}
+
+ObjectPoseFit ObjectPoseFitter::fit(const std::vector<Eigen::Vector3d>& points_camera, const Plane& support,
+                                    const cv::Mat& cloud, const CameraModel& camera,
+                                    const core::Pose3* initial) const {
+  ObjectPoseFit best;
+  if (points_camera.size() < 10) return best;
+  const core::Pose3 X_camera_plane = support.X_camera_plane();
+  const core::Pose3 X_plane_camera = X_camera_plane.inverse();
+  std::vector<Eigen::Vector3d> q;
+  const std::size_t step = std::max<std::size_t>(1, points_camera.size() / static_cast<std::size_t>(options_.maxPoints));
+  for (std::size_t i = 0; i < points_camera.size(); i += step) q.push_back(X_plane_camera * points_camera[i]);
+
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  double top = -1e9;
+  for (const auto& p : q) {
+    centroid += p;
+    top = std::max(top, p.z());
+  }
+  centroid /= static_cast<double>(q.size());
+
+  std::vector<Eigen::Vector4d> starts;  // x, y, z, yaw in the plane frame
+  if (initial) {
+    const core::Pose3 X = X_plane_camera * *initial;
+    starts.emplace_back(X.translation().x(), X.translation().y(), X.translation().z(),
+                        std::atan2(X.linear()(1, 0), X.linear()(0, 0)));
+  } else {
+    const double z0 = std::max(0.0, top - model_.dimensions_m.z());
+    const int nYaw = std::max(1, static_cast<int>(std::ceil(model_.yawSymmetry_rad / options_.yawStep_rad - 1e-9)));
+    for (int i = 0; i < nYaw; ++i) starts.emplace_back(centroid.x(), centroid.y(), z0, i * options_.yawStep_rad);
+  }
+
+  const double tol = options_.inlierTol_m;
+  // ICP from one start: iterations on every `stride`-th point; returns x, y, z, yaw.
+  auto icp = [&](Eigen::Vector4d s, int iterations, std::size_t stride) {
+    Eigen::Vector3d t = s.head<3>();
+    double yaw = s[3];
+    for (int it = 0; it < iterations; ++it) {
+      const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      Eigen::Matrix4d H = Eigen::Matrix4d::Zero();
+      Eigen::Vector4d g = Eigen::Vector4d::Zero();
+      // Later iterations trust only close matches (outliers: other objects, the hand).
+      const double gate = it < iterations / 2 ? 0.05 : 4 * tol;
+      for (std::size_t i = 0; i < q.size(); i += stride) {
+        const Eigen::Vector3d& p = q[i];
+        const Eigen::Vector3d po = R.transpose() * (p - t);
+        const Eigen::Vector3d m = R * model_.surface[static_cast<std::size_t>(impl_->lookup(po))].p_m;
+        const Eigen::Vector3d e = p - (m + t);
+        const double dist = e.norm();
+        if (dist > gate) continue;
+        const double w = dist < tol ? 1.0 : tol / dist;  // Huber
+        Eigen::Matrix<double, 3, 4> J;
+        J.leftCols<3>() = -Eigen::Matrix3d::Identity();
+        J.col(3) = -Eigen::Vector3d(-m.y(), m.x(), 0.0);
+        H += w * J.transpose() * J;
+        g += w * J.transpose() * e;
+      }
+      H.diagonal() += Eigen::Vector4d(1e-6, 1e-6, 1e-6, 1e-6);
+      const Eigen::Vector4d delta = -H.ldlt().solve(g);
+      t += delta.head<3>();
+      yaw += std::clamp(delta[3], -0.3, 0.3);
+      if (delta.head<3>().norm() < 1e-5 && std::abs(delta[3]) < 1e-5) break;
+    }
+    return Eigen::Vector4d(t.x(), t.y(), t.z(), yaw);
+  };
+  auto evaluate = [&](const Eigen::Vector4d& x, bool withCoverage) {
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(x[3], Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    const Eigen::Vector3d t = x.head<3>();
+    int inliers = 0;
+    double sq = 0.0;
+    for (const auto& p : q) {
+      const Eigen::Vector3d po = R.transpose() * (p - t);
+      const double d = (po - model_.surface[static_cast<std::size_t>(impl_->lookup(po))].p_m).norm();
+      if (d < tol) {
+        ++inliers;
+        sq += d * d;
+      }
+    }
+    core::Pose3 X_plane_object = core::Pose3::Identity();
+    X_plane_object.linear() = R;
+    X_plane_object.translation() = t;
+    ObjectPoseFit f;
+    f.X_camera_object = X_camera_plane * X_plane_object;
+    f.inlierRatio = static_cast<double>(inliers) / static_cast<double>(q.size());
+    f.rms_m = inliers > 0 ? std::sqrt(sq / inliers) : 0.0;
+    f.coverage = withCoverage ? coverage(f.X_camera_object, cloud, camera) : 1.0;
+    f.score = f.inlierRatio * f.coverage;
+    return f;
+  };
+  // Coarse: every start, a few iterations on a quarter of the points; fine:
+  // the two best starts, fully.
+  std::vector<std::pair<double, Eigen::Vector4d>> coarse;
+  const std::size_t coarseStride = starts.size() > 1 ? 4 : 1;
+  for (const Eigen::Vector4d& s : starts) {
+    const Eigen::Vector4d x = icp(s, starts.size() > 1 ? 8 : 0, coarseStride);
+    coarse.emplace_back(evaluate(x, true).score, x);
+  }
+  std::sort(coarse.begin(), coarse.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (std::size_t k = 0; k < std::min<std::size_t>(2, coarse.size()); ++k) {
+    const ObjectPoseFit f = evaluate(icp(coarse[k].second, options_.iterations, 1), true);
+    if (f.score > best.score) best = f;
+  }
+  if (options_.refineTilt && best.score > 0.0) {
+    // 6-DOF refinement from the 4-DOF pose: the object may tilt a little
+    // against the fitted plane (a plane fit error, an uneven support).
+    // Rotation linearised about the object origin: X' = (exp(w) R, t + v).
+    core::Pose3 X = best.X_camera_object;
+    for (int it = 0; it < options_.iterations; ++it) {
+      const core::Pose3 Xinv = X.inverse();
+      Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
+      Eigen::Matrix<double, 6, 1> g = Eigen::Matrix<double, 6, 1>::Zero();
+      for (const auto& pp : q) {
+        const Eigen::Vector3d p = X_camera_plane * pp;
+        const Eigen::Vector3d m = X * model_.surface[static_cast<std::size_t>(impl_->lookup(Xinv * p))].p_m;
+        const Eigen::Vector3d e = p - m;
+        const double dist = e.norm();
+        if (dist > 3 * tol) continue;
+        const double w = dist < tol ? 1.0 : tol / dist;
+        const Eigen::Vector3d r = m - X.translation();
+        Eigen::Matrix<double, 3, 6> J;
+        J.leftCols<3>() << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;  // [r]x
+        J.rightCols<3>() = -Eigen::Matrix3d::Identity();
+        H += w * J.transpose() * J;
+        g += w * J.transpose() * e;
+      }
+      H.diagonal().array() += 1e-4;
+      const Eigen::Matrix<double, 6, 1> d = -H.ldlt().solve(g);
+      const Eigen::Vector3d wv = d.head<3>();
+      if (wv.norm() > 1e-12) X.linear() = Eigen::AngleAxisd(wv.norm(), wv.normalized()).toRotationMatrix() * X.linear();
+      X.translation() += d.tail<3>();
+      if (d.norm() < 1e-6) break;
+    }
+    // Keep the refinement when it explains the data at least as well and stays near the plane's normal.
+    const double tilt = std::acos(std::clamp((X.linear().col(2)).dot(X_camera_plane.linear().col(2)), -1.0, 1.0));
+    if (tilt < options_.maxTilt_rad) {
+      ObjectPoseFit f = best;
+      f.X_camera_object = X;
+      int inliers = 0;
+      double sq = 0.0;
+      const core::Pose3 Xinv = X.inverse();
+      for (const auto& pp : q) {
+        const Eigen::Vector3d po = Xinv * (X_camera_plane * pp);
+        const double dd = (po - model_.surface[static_cast<std::size_t>(impl_->lookup(po))].p_m).norm();
+        if (dd < tol) {
+          ++inliers;
+          sq += dd * dd;
+        }
+      }
+      f.inlierRatio = static_cast<double>(inliers) / static_cast<double>(q.size());
+      f.rms_m = inliers > 0 ? std::sqrt(sq / inliers) : 0.0;
+      f.coverage = coverage(X, cloud, camera);
+      f.score = f.inlierRatio * f.coverage;
+      if (f.score >= best.score - 0.01) best = f;
+    }
+  }
+  return best;
+}
+
+}  // namespace srp::perception

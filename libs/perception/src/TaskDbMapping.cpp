@@ -1,0 +1,40 @@
+#include "srp/perception/TaskDbMapping.h"
+
+#include "srp/core/Error.h"
+
+namespace srp::perception {
+
+PerceptionRows toTaskDbRows(const PerceptionResult& result, const core::ObjectCatalogue& catalogue) {
+  PerceptionRows rows;
+  const auto& samples = result.hand.samples();
+  std::size_t first = 0;
+  while (first < samples.size() && !samples[first].valid) ++first;
+  if (first == samples.size())
+    throw core::InvalidInputError("perception result has no detected hand sample: nothing to write to HandPositions");
+  Eigen::Vector3d carried = samples[first].p_m;
+  for (const auto& s : samples) {
+    if (s.valid) carried = s.p_m;
+    rows.handPositions.push_back({s.frame, carried, s.valid});
+  }
+  for (const auto& o : result.objects) {
+    if (o.samples.empty()) continue;
+    taskdb::GroundedProductRow g;
+    g.classId = o.classId;
+    g.objectName = o.className;
+    if (const auto* cls = catalogue.find(o.className); cls && !cls->colorName.empty()) g.color = cls->colorName;
+    rows.groundedProducts.push_back(g);
+    for (const auto& s : o.samples) {
+      taskdb::ProductPoseRow p;
+      p.classId = o.classId;
+      p.timeId = s.frame;
+      p.p_m = s.X_camera_object.translation();
+      p.q = Eigen::Quaterniond(s.X_camera_object.linear()).normalized();
+      p.detected = s.detected;
+      p.confidence = s.confidence;
+      rows.productPoses.push_back(p);
+    }
+  }
+  return rows;
+}
+
+}  // namespace srp::perception

@@ -1,0 +1,144 @@
+#include "srp/perception/DemoPerception.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "SyntheticFrames.h"
+#include "srp/core/Error.h"
+#include "srp/rawlog/RawlogWriter.h"
+
+namespace srp::perception {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string tempPath(const std::string& name) {
+  return (fs::path(SRP_BINARY_DIR) / ("perception_test_" + name)).string();
+}
+
+PerceptionOptions markerFreeOptions() {
+  PerceptionOptions o;
+  o.hand = PerceptionOptions::HandMethod::MarkerFree;
+  o.plan = {{"cuboid", false}, {"gray box", true}};
+  return o;
+}
+
+const core::ObjectCatalogue& catalogue() {
+  static const auto c = core::ObjectCatalogue::load(core::ObjectCatalogue::defaultPath());
+  return c;
+}
+
+TEST(DemoPerception, ZeroFramesIsAClearError) {
+  EXPECT_THROW(perceiveFrames({}, catalogue(), markerFreeOptions()), core::InvalidInputError);
+}
+
+TEST(DemoPerception, FrameWithoutDepthIsAClearError) {
+  auto frames = testing::handFrames(3, 10);
+  frames[1].depth_m.release();
+  try {
+    perceiveFrames(frames, catalogue(), markerFreeOptions());
+    FAIL() << "no error";
+  } catch (const core::InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("frame 1 has no depth"), std::string::npos) << e.what();
+  }
+}
+
+TEST(DemoPerception, MismatchedSizesAreAClearError) {
+  auto frames = testing::handFrames(3, 10);
+  frames[2].intrinsics.width_px = 160;
+  cv::resize(frames[2].colour_bgr8, frames[2].colour_bgr8, {160, 240});
+  cv::resize(frames[2].depth_m, frames[2].depth_m, {160, 240});
+  EXPECT_THROW(perceiveFrames(frames, catalogue(), markerFreeOptions()), core::InvalidInputError);
+}
+
+TEST(DemoPerception, HandNeverSeenIsAnErrorSayingSo) {
+  const auto frames = testing::handFrames(15, 100);
+  try {
+    perceiveFrames(frames, catalogue(), markerFreeOptions());
+    FAIL() << "no error";
+  } catch (const core::InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("hand was never detected"), std::string::npos) << e.what();
+  }
+}
+
+TEST(DemoPerception, UnreadableRawlogIsAFileError) {
+  EXPECT_THROW(perceiveRawlog(tempPath("missing.rawlog"), catalogue(), markerFreeOptions()), core::FileError);
+  const std::string garbage = tempPath("garbage.rawlog");
+  std::ofstream(garbage) << "this is not a rawlog";
+  EXPECT_THROW(perceiveRawlog(garbage, catalogue(), markerFreeOptions()), core::FileError);
+}
+
+TEST(DemoPerception, RawlogToHandTrajectoryAndCsv) {
+  const std::string rawlogPath = tempPath("demo.rawlog");
+  {
+    rawlog::RawlogWriter writer(rawlogPath);
+    for (const auto& f : testing::handFrames(20, 10)) writer.write(f);
+  }
+  const PerceptionResult r = perceiveRawlog(rawlogPath, catalogue(), markerFreeOptions());
+  EXPECT_EQ(r.frames, 20);
+  EXPECT_EQ(r.handDetected, 10);
+  ASSERT_EQ(r.hand.size(), 20u);
+  EXPECT_FALSE(r.hand[5].valid);
+  ASSERT_TRUE(r.hand[15].valid);
+  EXPECT_NEAR(r.hand[15].p_m.z(), testing::kHandTopDepth_m + 0.015, 0.005);
+  ASSERT_EQ(r.objects.size(), 2u);  // the plan's objects, none in these frames
+  EXPECT_TRUE(r.objects[0].samples.empty());
+
+  const std::string csv = tempPath("demo.csv");
+  writeSegmentCsv(r, csv);
+  std::ifstream in(csv);
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_EQ(header, "frame,hand_x,hand_y,hand_z,cuboid_x,cuboid_y,cuboid_z,cuboid_rz,gray_box_x,gray_box_y,gray_box_z,gray_box_rz");
+  int rows = 0;
+  while (std::getline(in, line)) {
+    if (rows == 0) EXPECT_EQ(line.substr(0, 28), "0,0.000000,0.000000,0.000000");
+    ++rows;
+  }
+  EXPECT_EQ(rows, 20);
+}
+
+TEST(DemoPerception, CameraYawIsTheRotationAboutTheOpticalAxis) {
+  const core::Pose3 X = core::makePoseYPR({0, 0, 1}, 0.3, 0.0, 0.0);
+  EXPECT_NEAR(cameraYaw(X), 0.3, 1e-12);
+}
+
+}  // namespace
+}  // namespace srp::perception
+
+#include "srp/perception/TaskDbMapping.h"
+
+namespace srp::perception {
+namespace {
+
+TEST(TaskDbMapping, HandCarriedForwardAndObjectRows) {
+  PerceptionResult r;
+  for (int i = 0; i < 4; ++i) r.hand.append({i, i / 30.0, Eigen::Vector3d(0.1 * i, 0, 0.8), i == 1 || i == 2});
+  ObjectTrajectory box;
+  box.className = "gray box";
+  box.classId = 0;
+  box.isStatic = true;
+  for (int i = 0; i < 4; ++i) box.samples.push_back({i, i / 30.0, core::makePoseYPR({0.1, 0.2, 0.85}, 0.5, 0, 0), i == 0, 0.9});
+  r.objects.push_back(box);
+  r.objects.push_back(ObjectTrajectory{"star", 5, false, {}});  // never seen: no rows
+  const PerceptionRows rows = toTaskDbRows(r, catalogue());
+  ASSERT_EQ(rows.handPositions.size(), 4u);
+  EXPECT_FALSE(rows.handPositions[0].detected);
+  EXPECT_NEAR(rows.handPositions[0].p_m.x(), 0.1, 1e-12);  // before the first: the first
+  EXPECT_NEAR(rows.handPositions[3].p_m.x(), 0.2, 1e-12);  // after the last: the last
+  EXPECT_TRUE(rows.handPositions[2].detected);
+  ASSERT_EQ(rows.groundedProducts.size(), 1u);
+  EXPECT_EQ(rows.groundedProducts[0].objectName, "gray box");
+  EXPECT_EQ(rows.groundedProducts[0].color.value_or(""), "gray");
+  ASSERT_EQ(rows.productPoses.size(), 4u);
+  EXPECT_NEAR(rows.productPoses[2].yaw_rad(), 0.5, 1e-9);
+  EXPECT_FALSE(rows.productPoses[2].detected);
+  PerceptionResult none;
+  none.hand.append({0, 0.0, Eigen::Vector3d::Zero(), false});
+  EXPECT_THROW(toTaskDbRows(none, catalogue()), core::InvalidInputError);
+}
+
+}  // namespace
+}  // namespace srp::perception

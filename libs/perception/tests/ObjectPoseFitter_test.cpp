@@ -1,0 +1,107 @@
+#include "srp/perception/ObjectPoseFitter.h"
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "RealData.h"
+#include "srp/core/Error.h"
+#include "srp/perception/AprilTagDetector.h"
+#include "srp/perception/DepthCloud.h"
+#include "srp/perception/ObjectDetector.h"
+#include "srp/perception/RgbdFolder.h"
+#include "srp/perception/TagBoard.h"
+
+namespace srp::perception {
+namespace {
+
+// Issue 5 acceptance on the real recording: cube within 1 cm and 5 deg.
+constexpr double kCubePositionTol_m = 0.01;
+constexpr double kCubeAngleTol_rad = 5.0 * M_PI / 180.0;
+constexpr double kCubeHalfSide_m = 0.0425;
+
+/// The 24 rotations of a cube: a CAD model alone cannot tell its faces apart.
+std::vector<Eigen::Matrix3d> cubeSymmetries() {
+  std::vector<Eigen::Matrix3d> out;
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) {
+      if (a == b) continue;
+      for (int sa : {-1, 1})
+        for (int sb : {-1, 1}) {
+          Eigen::Matrix3d R;
+          R.col(0) = sa * I.col(a);
+          R.col(1) = sb * I.col(b);
+          R.col(2) = R.col(0).cross(R.col(1));
+          out.push_back(R);
+        }
+    }
+  return out;
+}
+
+double cubeAngleError(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  double best = 1e9;
+  for (const auto& S : cubeSymmetries()) best = std::min(best, core::rotationAngleBetween(a * S, b));
+  return best;
+}
+
+ObjectModel cubeModel() {
+  const TriangleMesh mesh = TriangleMesh::load(testing::rbtFolder() + "/cube.obj");
+  // cube.obj is centred; the object frame is the bottom-face centre.
+  Eigen::Isometry3d X_object_mesh = Eigen::Isometry3d::Identity();
+  X_object_mesh.translation().z() = kCubeHalfSide_m;
+  return ObjectModel::fromMesh("cube", mesh, X_object_mesh);
+}
+
+TEST(ObjectModel, CubeFromObjHasSizeAndFourFoldSymmetry) {
+  const ObjectModel m = cubeModel();
+  EXPECT_NEAR(m.dimensions_m.x(), 0.085, 1e-6);
+  EXPECT_NEAR(m.dimensions_m.z(), 0.085, 1e-6);
+  EXPECT_NEAR(m.yawSymmetry_rad, M_PI / 2, 1e-9);
+  EXPECT_GT(m.surface.size(), 500u);
+}
+
+TEST(ObjectModel, CatalogueShapesHaveTheirSymmetry) {
+  const auto cat = core::ObjectCatalogue::load(core::ObjectCatalogue::defaultPath());
+  EXPECT_NEAR(ObjectModel::fromCatalogue(cat.at("cuboid")).yawSymmetry_rad, M_PI, 1e-9);
+  EXPECT_NEAR(ObjectModel::fromCatalogue(cat.at("star")).yawSymmetry_rad, 2 * M_PI / 5, 1e-9);
+  EXPECT_NEAR(ObjectModel::fromCatalogue(cat.at("octagon")).yawSymmetry_rad, M_PI / 4, 1e-9);
+  const ObjectModel box = ObjectModel::fromCatalogue(cat.at("gray box"));
+  EXPECT_NEAR(box.dimensions_m.x(), 0.22, 1e-9);
+  EXPECT_NEAR(box.dimensions_m.z(), 0.06, 1e-9);
+  EXPECT_THROW(ObjectModel::shapeMesh("torus", {0.1, 0.1, 0.1}, 0.0), core::InvalidInputError);
+}
+
+// Acceptance (issue 5): the cube found from its CAD model alone on frame 0
+// within 1 cm and 5 deg of the stored pose, and in frames 1-9 consistently:
+// there the reference is the frame-0 pose carried by the board's motion
+// (X_ck_cube = X_ck_board X_c0_board^-1 X_c0_cube), since the camera moves a little.
+TEST(ObjectDetector, RealCubeFromCadModelAlone) {
+  const auto frames = readRgbdFolder(testing::rbtFolder());
+  const auto boards = testing::storedBoardPoses();
+  const core::Pose3 X_c0_cube = testing::storedCubePoseFrame0();
+  ObjectDetector detector({cubeModel()});
+  core::Pose3 X_centre_offset = core::Pose3::Identity();
+  X_centre_offset.translation().z() = kCubeHalfSide_m;
+  double worstPos_m = 0.0, worstAngle_rad = 0.0;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const auto detections = detector.detect(frames[i]);
+    ASSERT_FALSE(detections.empty()) << "frame " << i;
+    const ObjectDetection& cube = detections.front();
+    const core::Pose3 X_camera_cube = cube.X_camera_object * X_centre_offset;
+    const core::Pose3 expected = boards[i] * boards[0].inverse() * X_c0_cube;
+    const double dp = core::translationDistance(X_camera_cube, expected);
+    const double da = cubeAngleError(X_camera_cube.linear(), expected.linear());
+    EXPECT_LT(dp, kCubePositionTol_m) << "frame " << i;
+    EXPECT_LT(da, kCubeAngleTol_rad) << "frame " << i;
+    EXPECT_GT(cube.confidence, 0.5) << "frame " << i;
+    worstPos_m = std::max(worstPos_m, dp);
+    worstAngle_rad = std::max(worstAngle_rad, da);
+    std::printf("[ figures  ] cube frame %zu: %.2f mm, %.2f deg, confidence %.2f\n", i, dp * 1e3, da * 180 / M_PI,
+                cube.confidence);
+  }
+  std::printf("[ figures  ] cube worst of 10 frames: %.2f mm, %.2f deg\n", worstPos_m * 1e3, worstAngle_rad * 180 / M_PI);
+}
+
+}  // namespace
+}  // namespace srp::perception

@@ -4,6 +4,7 @@
 
 #include "CommandRegistry.h"
 #include "srp/language/InstructionParser.h"
+#include "srp/core/Json.h"
 #include "srp/language/PlanTables.h"
 
 namespace {
@@ -16,6 +17,10 @@ void setupParse(CLI::App& app) {
       ->required();
   app.add_option("--model", *modelPath, "language model file")->capture_default_str();
   app.add_flag("--json", *json, "print the plan as JSON ({\"steps\", \"sentences\", \"warnings\"})");
+  auto knownPath = std::make_shared<std::string>();
+  app.add_option("--known", *knownPath,
+                 "plan JSON of an earlier instruction (srp parse --json), for \"back to\" and \"only the star\"")
+      ->check(CLI::ExistingFile);
   auto dbPath = std::make_shared<std::string>();
   auto name = std::make_shared<std::string>("task");
   app.add_option("--db", *dbPath, "store the plan in this task database (one transaction; nothing on an empty plan)");
@@ -23,7 +28,9 @@ void setupParse(CLI::App& app) {
   app.add_flag("--entities", *showEntities, "also print the recognised entities and relations");
   app.callback([=] {
     const srp::language::InstructionParser parser(*modelPath);
-    const auto plan = parser.parse(*text);
+    std::vector<srp::language::PlanStep> known;
+    if (!knownPath->empty()) known = srp::language::taskPlanFromJson(srp::core::readJsonFile(*knownPath)).steps;
+    const auto plan = parser.parse(*text, known);
     if (*json) {
       std::cout << srp::language::toJson(plan).dump(2) << "\n";
     } else {

@@ -216,6 +216,28 @@ std::vector<PlanStep> buildPlanSteps(const std::vector<AnnotatedSentence>& sente
                                      const std::vector<PlanStep>& knownSteps, std::vector<std::string>& warnings) {
   std::vector<PlanStep> steps;
   Referent last;  // steps of the latest clause that named objects
+  // Reuse an open step of the same object (picked, not yet placed), else a new step.
+  auto stepFor = [&steps](const Mention& m) {
+    for (int s = static_cast<int>(steps.size()) - 1; s >= 0; --s)
+      if (sameObject(steps[s].object, m.object) && steps[s].target.empty()) return s;
+    PlanStep step;
+    step.object = m.object;
+    step.objectAnchor = m.anchor;
+    steps.push_back(step);
+    return static_cast<int>(steps.size()) - 1;
+  };
+  auto applyLocations = [&steps](const std::vector<int>& stepIndices, const std::vector<Location>& locations) {
+    for (int s : stepIndices)
+      for (const auto& loc : locations) {
+        auto& list = loc.source ? steps[s].source : steps[s].target;
+        auto& anchors = loc.source ? steps[s].sourceAnchors : steps[s].targetAnchors;
+        if (std::find(list.begin(), list.end(), loc.ref) == list.end()) {
+          list.push_back(loc.ref);
+          anchors.push_back(loc.anchor);
+        }
+        steps[s].isReturn |= loc.back;
+      }
+  };
   for (size_t sid = 0; sid < sentences.size(); ++sid) {
     const SentenceView v(sentences[sid], static_cast<int>(sid), lexicon);
     std::vector<int> actions;
@@ -241,18 +263,7 @@ std::vector<PlanStep> buildPlanSteps(const std::vector<AnnotatedSentence>& sente
                                "' refers to no earlier object; ignored");
         } else {
           namedObjects = true;
-          // Reuse an open step of the same object (picked, not yet placed), else a new step.
-          int found = -1;
-          for (int s = static_cast<int>(steps.size()) - 1; s >= 0 && found < 0; --s)
-            if (sameObject(steps[s].object, np->mention->object) && steps[s].target.empty()) found = s;
-          if (found < 0) {
-            PlanStep step;
-            step.object = np->mention->object;
-            step.objectAnchor = np->mention->anchor;
-            steps.push_back(step);
-            found = static_cast<int>(steps.size()) - 1;
-          }
-          clauseSteps.push_back(found);
+          clauseSteps.push_back(stepFor(*np->mention));
         }
         k = np->end;
         // "X and Y", "X, Y and Z": more objects unless an action or indicator follows.
@@ -276,6 +287,19 @@ std::vector<PlanStep> buildPlanSteps(const std::vector<AnnotatedSentence>& sente
       for (int i = k; i < clauseEnd;) {
         int len = v.indicatorLength(i);
         if (len == 0) {
+          // Gapping: "place the cuboid in the gray box and the star next to the cuboid".
+          if (v.lower(i) == "and" || v.lower(i) == ",") {
+            int j = i + 1;
+            if (j < clauseEnd && v.lower(j) == "and") ++j;
+            const auto np = v.nounPhrase(j);
+            if (np && !np->pronoun && np->end < clauseEnd && v.isIndicatorStart(np->end)) {
+              applyLocations(clauseSteps, locations);
+              locations.clear();
+              clauseSteps = {stepFor(*np->mention)};
+              i = np->end;
+              continue;
+            }
+          }
           ++i;
           continue;
         }
@@ -285,8 +309,14 @@ std::vector<PlanStep> buildPlanSteps(const std::vector<AnnotatedSentence>& sente
           ++len;
         std::string relation;
         for (int j = i; j < i + len; ++j) relation += (j > i ? " " : "") + v.lower(j);
-        const auto np = v.nounPhrase(i + len);
-        if (!np || np->pronoun || np->end > clauseEnd) {
+        auto np = v.nounPhrase(i + len);
+        if (np && np->pronoun && np->end <= clauseEnd) {
+          // "next to it": the latest object that is not the one being moved.
+          for (int s : last.stepIndices)
+            if (std::find(clauseSteps.begin(), clauseSteps.end(), s) == clauseSteps.end() && !np->mention)
+              np->mention = Mention{steps[s].object, steps[s].objectAnchor};
+        }
+        if (!np || !np->mention || np->end > clauseEnd) {
           i += len;
           continue;
         }
@@ -319,18 +349,26 @@ std::vector<PlanStep> buildPlanSteps(const std::vector<AnnotatedSentence>& sente
         locations.push_back(loc);
         i = np->end;
       }
-      for (int s : clauseSteps) {
-        for (const auto& loc : locations) {
-          auto& list = loc.source ? steps[s].source : steps[s].target;
-          auto& anchors = loc.source ? steps[s].sourceAnchors : steps[s].targetAnchors;
-          if (std::find(list.begin(), list.end(), loc.ref) == list.end()) {
-            list.push_back(loc.ref);
-            anchors.push_back(loc.anchor);
-          }
-          steps[s].isReturn |= loc.back;
-        }
-      }
+      applyLocations(clauseSteps, locations);
       last.stepIndices = clauseSteps;
+    }
+  }
+
+  // "Only the star this time": no action, but objects of the known plan -> those known steps.
+  if (steps.empty() && !knownSteps.empty()) {
+    for (size_t sid = 0; sid < sentences.size(); ++sid) {
+      const SentenceView v(sentences[sid], static_cast<int>(sid), lexicon);
+      for (int k = 0; k < v.size(); ++k) {
+        const auto np = v.nounPhrase(k);
+        if (!np || !np->mention) continue;
+        for (const auto& known : knownSteps)
+          if (sameObject(known.object, np->mention->object) &&
+              std::none_of(steps.begin(), steps.end(), [&](const PlanStep& s) { return s.object == known.object; })) {
+            steps.push_back(known);
+            steps.back().objectAnchor = np->mention->anchor;
+          }
+        k = np->end - 1;
+      }
     }
   }
 

@@ -171,3 +171,31 @@ TEST(InstructionParser, JsonRoundTripKeepsTheSteps) {
   }
   EXPECT_EQ(back.sentences.size(), plan.sentences.size());
 }
+
+TEST(InstructionParser, PronounLandmarkAndGappedSecondObject) {
+  const TaskPlan a = parser().parse("Move the cuboid to the gray box. Then move the star next to it.");
+  ASSERT_EQ(a.steps.size(), 2u) << show(a);
+  EXPECT_EQ(a.steps[1].target, (std::vector<LocationRef>{at("next to", obj("cuboid"))})) << show(a);
+
+  const TaskPlan b = parser().parse(
+      "Pick up the cuboid and the star from the blue box, place the cuboid in the gray box and the star next to the cuboid");
+  ASSERT_EQ(b.steps.size(), 2u) << show(b);
+  EXPECT_EQ(b.steps[0].target, (std::vector<LocationRef>{at("in", obj("box", "gray"))})) << show(b);
+  EXPECT_EQ(b.steps[1].object, obj("star"));
+  EXPECT_EQ(b.steps[1].source, (std::vector<LocationRef>{at("from", obj("box", "blue"))})) << show(b);
+  EXPECT_EQ(b.steps[1].target, (std::vector<LocationRef>{at("next to", obj("cuboid"))})) << show(b);
+}
+
+TEST(InstructionParser, ObjectsOnlyTextSelectsKnownSteps) {
+  const TaskPlan demo = parser().parse(
+      "Pick up the cuboid from the blue box and place it in the gray box. Then place the star next to the cuboid.");
+  ASSERT_EQ(demo.steps.size(), 2u) << show(demo);
+  const TaskPlan subset = parser().parse("Only the star this time.", demo.steps);
+  ASSERT_EQ(subset.steps.size(), 1u) << show(subset);
+  EXPECT_EQ(subset.steps[0].object, obj("star"));
+  EXPECT_EQ(subset.steps[0].target, demo.steps[1].target);
+  // Without a known plan the same text has no action: zero steps and a reason.
+  const TaskPlan alone = parser().parse("Only the star this time.");
+  EXPECT_TRUE(alone.steps.empty());
+  ASSERT_FALSE(alone.warnings.empty());
+}

@@ -29,7 +29,7 @@ struct LanguageTrainingOptions {
   double entityC = 30.0;         ///< structural SVM C of the entity tagger
   double entityEpsilon = 0.01;   ///< its stopping tolerance (risk gap)
   double relationC = 1.0;        ///< linear SVM C of the relation classifier
-  int minFeatureCount = 1;       ///< entity features seen fewer times in training are dropped
+  int minFeatureCount = 2;       ///< entity features seen fewer times in training are dropped
   int threads = 2;
 };
 

@@ -20,7 +20,9 @@
 ///   to the parallelogram" is a step without a pick clause (implicit pick);
 ///   a clause without objects ("and place in the box") applies to the latest ones;
 /// - "back to"/"back in" marks the step a return: missing source/target are
-///   taken from the reversed known move (this plan's earlier steps or `knownSteps`).
+///   taken from the reversed known move (this plan's earlier steps or `knownSteps`);
+/// - text without any action that names objects of `knownSteps` ("only the star
+///   this time") gives those known steps, in the order named.
 
 #include <string>
 #include <vector>

@@ -74,7 +74,7 @@ core::PositionTrajectory removeFlicker(const core::PositionTrajectory& in, int w
 core::PositionTrajectory dropMovesWithoutHand(const core::PositionTrajectory& in, const core::PositionTrajectory& hand,
                                               double gate_m, double handReach_m, double maxSpeed_mps) {
   core::PositionTrajectory out = in;
-  Eigen::Vector3d last;
+  Eigen::Vector3d last = Eigen::Vector3d::Zero();
   double lastTime_s = in.empty() ? 0.0 : in[0].t_s;
   bool haveLast = false;
   const int n = static_cast<int>(in.size());
@@ -255,6 +255,10 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
   Segmentation result;
   result.hand = KalmanSmoother(config_.handSmoother).smooth(hand);
   const int n = static_cast<int>(hand.size());
+  result.firstHandIndex = 0;
+  while (result.firstHandIndex < n - 1 && !detected(hand[static_cast<std::size_t>(result.firstHandIndex)])) ++result.firstHandIndex;
+  result.lastHandIndex = n - 1;
+  while (result.lastHandIndex > 0 && !detected(hand[static_cast<std::size_t>(result.lastHandIndex)])) --result.lastHandIndex;
   const int w = std::max(1, std::min(15, n / 10));
   int start = 0;
   for (const auto& name : planOrder) {

@@ -59,6 +59,7 @@ struct ObjectSegmentation {
 
 struct Segmentation {
   core::PositionTrajectory hand;              ///< filled and smoothed hand trajectory
+  int firstHandIndex = 0, lastHandIndex = 0;  ///< first/last sample with a hand detection
   std::vector<ObjectSegmentation> objects;    ///< in plan order
   std::vector<std::string> warnings;          ///< one line per unusual object
 };
@@ -66,7 +67,7 @@ struct Segmentation {
 class Segmenter {
  public:
   struct Config {
-    KalmanSmoother::Config handSmoother{std::nullopt, 1e-4, 2.0, KalmanSmoother::Missing::Predict};
+    KalmanSmoother::Config handSmoother{std::nullopt, 1e-4, 2.0, KalmanSmoother::Missing::Predict, std::nullopt, 0.03, 6};
     /// Objects: gated against flicker; no measurement while occluded (the smoother bridges).
     KalmanSmoother::Config objectSmoother{std::nullopt, 1e-4, 2.0, KalmanSmoother::Missing::Predict, 5.0, 0.03, 6};
     int medianWindow = 9;              ///< samples; removes flicker of up to 4 samples

@@ -2,7 +2,10 @@
 
 #include <Simbody.h>
 
+#include <array>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 
 #include "srp/core/Error.h"
@@ -74,21 +77,27 @@ class JointController : public stk::Force::Custom::Implementation {
   void calcForce(const stk::State& s, stk::Vector_<stk::SpatialVec>&, stk::Vector_<stk::Vec3>&,
                  stk::Vector& mobilityForces) const override {
     const JointTrajectorySample ref = reference_->at(s.getTime());
-    stk::Vector udot(s.getNU(), 0.0);
-    for (int i = 0; i < 6; ++i) {
-      const double q = arm_[i].getOneQ(s, stk::QIndex(0)), u = arm_[i].getOneU(s, stk::MobilizerUIndex(0));
-      udot[arm_[i].getFirstUIndex(s)] =
-          ref.qdd_radps2[i] + kp_ * (ref.q_rad[i] - q) + kd_ * (ref.qd_radps[i] - u);
+    if (udot_.size() != s.getNU()) {  // buffers and indices once: the layout never changes
+      udot_.resize(s.getNU());
+      gravity_.resize(matter_.getNumBodies());
+      for (int i = 0; i < 6; ++i) uIndex_[i] = arm_[i].getFirstUIndex(s);
     }
-    stk::Vector_<stk::SpatialVec> gravity(matter_.getNumBodies(), stk::SpatialVec(stk::Vec3(0), stk::Vec3(0)));
-    const stk::Vec3 g(0, 0, -9.81);
-    for (int i = 0; i < 6; ++i) arm_[i].applyForceToBodyPoint(s, coms_[i], masses_[i] * g, gravity);
-    if (payloadMass_kg > 0.0) arm_[5].applyForceToBodyPoint(s, payloadCom_B, payloadMass_kg * g, gravity);
-    stk::Vector residual;
-    matter_.calcResidualForceIgnoringConstraints(s, stk::Vector(), gravity, udot, residual);
+    udot_ = 0.0;
+    const stk::Vector& q = s.getQ();
+    const stk::Vector& u = s.getU();
     for (int i = 0; i < 6; ++i) {
-      const stk::UIndex ui = arm_[i].getFirstUIndex(s);
-      double tau = residual[ui];
+      const int ui = uIndex_[i];  // a Pin has one q and one u, in the same order as u
+      const double qi = q[arm_[i].getFirstQIndex(s)], uu = u[ui];
+      udot_[ui] = ref.qdd_radps2[i] + kp_ * (ref.q_rad[i] - qi) + kd_ * (ref.qd_radps[i] - uu);
+    }
+    gravity_ = stk::SpatialVec(stk::Vec3(0), stk::Vec3(0));
+    const stk::Vec3 g(0, 0, -9.81);
+    for (int i = 0; i < 6; ++i) arm_[i].applyForceToBodyPoint(s, coms_[i], masses_[i] * g, gravity_);
+    if (payloadMass_kg > 0.0) arm_[5].applyForceToBodyPoint(s, payloadCom_B, payloadMass_kg * g, gravity_);
+    matter_.calcResidualForceIgnoringConstraints(s, stk::Vector(), gravity_, udot_, residual_);
+    for (int i = 0; i < 6; ++i) {
+      const int ui = uIndex_[i];
+      double tau = residual_[ui];
       if (std::abs(tau) > maxEffort_[i]) {
         tau = std::copysign(maxEffort_[i], tau);
         ++saturations;
@@ -109,6 +118,9 @@ class JointController : public stk::Force::Custom::Implementation {
   std::vector<stk::Vec3> coms_;
   double kp_, kd_;
   const Reference* reference_;
+  mutable stk::Vector udot_, residual_;
+  mutable stk::Vector_<stk::SpatialVec> gravity_;
+  mutable std::array<int, 6> uIndex_{};
 };
 
 /// Penalty contact between part box corners and every other box.
@@ -122,19 +134,32 @@ class BoxContact : public stk::Force::Custom::Implementation {
                  stk::Vector&) const override {
     // Per-corner spring and damper scaled with the part's mass, so every part sinks
     // g / omega^2 into its support and rings at the same frequency.
-    constexpr double kOmega_radps = 600.0, kZeta = 0.7, kFrictionRate_1ps = 300.0;
+    const double kOmega_radps = o_.contactFrequency_radps, kZeta = o_.contactDampingRatio,
+                 kFrictionRate_1ps = o_.frictionRate_1ps;
+    // Body poses and velocities once per evaluation (Simbody's accessors are not free).
+    const int nb = matter_.getNumBodies();
+    X_GB_.resize(nb);
+    V_GB_.resize(nb);
+    for (stk::MobilizedBodyIndex b(0); b < nb; ++b) {
+      const stk::MobilizedBody& B = matter_.getMobilizedBody(b);
+      X_GB_[b] = B.getBodyTransform(s);
+      V_GB_[b] = B.getBodyVelocity(s);
+    }
+    auto stationVelocity = [&](stk::MobilizedBodyIndex b, const stk::Vec3& p_G) {
+      const stk::SpatialVec& V = V_GB_[b];
+      return V[1] + stk::cross(V[0], p_G - X_GB_[b].p());
+    };
     for (std::size_t p = 0; p < parts_.size(); ++p) {
       const PartGeometry& part = parts_[p];
       const stk::MobilizedBody& P = matter_.getMobilizedBody(part.body);
-      const stk::Transform& X_GP = P.getBodyTransform(s);
+      const stk::Transform& X_GP = X_GB_[part.body];
       const stk::Vec3 centre_G = X_GP * part.centre_B;
       const double mCorner = part.mass_kg / 4.0;
       const double k = mCorner * kOmega_radps * kOmega_radps, c = 2.0 * kZeta * kOmega_radps * mCorner;
       const double cFriction = mCorner * kFrictionRate_1ps;
       for (const ContactBox& box : boxes_) {
         if (box.part == static_cast<int>(p)) continue;
-        const stk::MobilizedBody& B = matter_.getMobilizedBody(box.body);
-        const stk::Transform X_Gbox = B.getBodyTransform(s) * box.X_B_box;
+        const stk::Transform X_Gbox = X_GB_[box.body] * box.X_B_box;
         if ((X_Gbox.p() - centre_G).norm() > part.boundRadius + box.boundRadius) continue;
         for (const stk::Vec3& corner : part.corners_B) {
           const stk::Vec3 p_G = X_GP * corner;
@@ -156,14 +181,7 @@ class BoxContact : public stk::Force::Custom::Implementation {
           stk::Vec3 n_box(0);
           n_box[axis] = p_box[axis] >= 0 ? 1.0 : -1.0;
           const stk::Vec3 n = X_Gbox.R() * n_box;
-          const stk::Vec3 vP = P.findStationVelocityInGround(s, corner);
-          stk::Vec3 vB(0);
-          stk::Vec3 station_B(0);
-          if (box.body != 0) {
-            station_B = ~B.getBodyTransform(s) * p_G;
-            vB = B.findStationVelocityInGround(s, station_B);
-          }
-          const stk::Vec3 vRel = vP - vB;
+          const stk::Vec3 vRel = stationVelocity(part.body, p_G) - stationVelocity(box.body, p_G);
           const double vn = stk::dot(vRel, n);
           const double fn = k * depth - c * vn;
           if (fn <= 0.0) continue;
@@ -173,7 +191,10 @@ class BoxContact : public stk::Force::Custom::Implementation {
           if (slip > 1e-12) ft = -vt * std::min(cFriction, o_.frictionCoefficient * fn / slip);
           const stk::Vec3 F = fn * n + ft;
           P.applyForceToBodyPoint(s, corner, F, bodyForces);
-          if (box.body != 0) B.applyForceToBodyPoint(s, station_B, -F, bodyForces);
+          if (box.body != 0) {
+            const stk::MobilizedBody& B = matter_.getMobilizedBody(box.body);
+            B.applyForceToBodyPoint(s, ~X_GB_[box.body] * p_G, -F, bodyForces);
+          }
         }
       }
     }
@@ -185,6 +206,8 @@ class BoxContact : public stk::Force::Custom::Implementation {
   std::vector<PartGeometry> parts_;
   std::vector<ContactBox> boxes_;
   SimulationOptions o_;
+  mutable std::vector<stk::Transform> X_GB_;
+  mutable std::vector<stk::SpatialVec> V_GB_;
 };
 
 }  // namespace
@@ -208,11 +231,46 @@ struct CellSimulator::Impl {
   std::vector<CellSnapshot> log;
   std::function<void(const CellSnapshot&)> callback;
   SafetyChecker monitor;
+  std::vector<bool> asleep;
+  std::vector<double> wokeAt_s;
   double wall_s = 0.0;
+  long stepsBefore = 0, stepsSoFar = 0;
   double nextLog_s = 0.0;
 
   Impl(const RobotModel& m, const CellDescription& c, SimulationOptions o)
       : model(m), cell(c), options(o), monitor(m, c.X_world_base, SafetyLimits{}, {}) {}
+
+  /// Parts at rest (and not held) are locked in place until grasped, like the
+  /// "sleeping" bodies of game physics engines: a resting part has no dynamics
+  /// worth integrating, and its stiff contact would otherwise limit the step size.
+  /// A locked part still supports and blocks other parts through its contact box.
+  bool sleepRestingParts() {
+    if (!options.sleepRestingParts) return false;
+    system.realize(state, stk::Stage::Velocity);
+    bool changed = false;
+    for (std::size_t i = 0; i < partBodies.size(); ++i) {
+      if (asleep[i] || (grasped && *grasped == static_cast<int>(i))) continue;
+      const stk::SpatialVec V = partBodies[i].getBodyVelocity(state);
+      if (V[0].norm() < 0.1 && V[1].norm() < 0.01 && state.getTime() - wokeAt_s[i] > 0.1) {
+        asleep[i] = true;
+        changed = true;
+      }
+    }
+    if (changed) applyLocks();
+    return changed;
+  }
+
+  void applyLocks() {
+    for (std::size_t i = 0; i < partBodies.size(); ++i) {
+      if (asleep[i] && !partBodies[i].isLocked(state)) {
+        partBodies[i].lock(state, stk::Motion::Position);
+        partBodies[i].setU(state, stk::Vec6(0));
+      } else if (!asleep[i] && partBodies[i].isLocked(state)) {
+        partBodies[i].unlock(state);
+      }
+    }
+    system.realize(state, stk::Stage::Instance);
+  }
 
   void restartIntegrator() {
     integrator = std::make_unique<stk::RungeKuttaMersonIntegrator>(system);
@@ -220,6 +278,8 @@ struct CellSimulator::Impl {
     integrator->setMaximumStepSize(options.maxStep_s);
     integrator->setReturnEveryInternalStep(false);
     integrator->initialize(state);
+    stepsBefore += stepsSoFar;
+    stepsSoFar = 0;
     state = integrator->getState();
   }
 
@@ -246,6 +306,7 @@ struct CellSimulator::Impl {
     while (state.getTime() < tEnd_s - 1e-12) {
       const double target = std::min(tEnd_s, std::max(nextLog_s, state.getTime() + 1e-9));
       integrator->stepTo(target);
+      stepsSoFar = integrator->getNumStepsTaken();
       state = integrator->getState();
       if (state.getTime() >= nextLog_s - 1e-12) {
         nextLog_s += options.logPeriod_s;
@@ -257,6 +318,7 @@ struct CellSimulator::Impl {
           result->minTableClearance_m = std::min(result->minTableClearance_m, monitor.tableClearance_m(log.back().q_rad));
         }
         if (callback) callback(log.back());
+        if (sleepRestingParts()) restartIntegrator();
       }
     }
     wall_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -278,6 +340,7 @@ struct CellSimulator::Impl {
         grasps[i].disable(state);
     }
     system.realizeModel(state);
+    applyLocks();
     restartIntegrator();
   }
 };
@@ -366,8 +429,12 @@ CellSimulator::CellSimulator(const RobotModel& model, const CellDescription& cel
   std::size_t k = 0;
   for (const CellObject& o : cell.objects)
     if (o.kind == CellObjectKind::Part) m.partBodies[k++].setQToFitTransform(m.state, toTransform(o.X_world_object));
+  m.asleep.assign(m.partBodies.size(), false);
+  m.wokeAt_s.assign(m.partBodies.size(), 0.0);
   m.restartIntegrator();
   m.nextLog_s = 0.0;
+  // Let the parts settle onto their supports before the first motion.
+  if (!m.partBodies.empty()) settle(0.1);
 }
 
 CellSimulator::~CellSimulator() = default;
@@ -406,6 +473,7 @@ TrackingResult CellSimulator::track(const JointTrajectory& trajectory, double se
   if (trajectory.empty()) throw srp::core::InvalidInputError("CellSimulator::track: empty trajectory");
   m.reference.trajectory = trajectory;
   m.reference.tStart_s = m.state.getTime();
+  m.sleepRestingParts();
   m.restartIntegrator();  // the reference changed: forces cached in the integrator are stale
   TrackingResult r;
   r.minTableClearance_m = std::numeric_limits<double>::infinity();
@@ -415,6 +483,11 @@ TrackingResult CellSimulator::track(const JointTrajectory& trajectory, double se
   r.simulated_s = m.state.getTime() - t0;
   r.finalJointError_rad = (m.q() - trajectory.samples().back().q_rad).cwiseAbs().maxCoeff();
   r.torqueSaturations = m.controller->saturations - saturationsBefore;
+  if (std::getenv("SRP_SIM_DEBUG")) {
+    int sleeping = 0;
+    for (bool a : m.asleep) sleeping += a;
+    std::fprintf(stderr, "track %.2f s: %ld steps, %d asleep\n", r.simulated_s, m.stepsSoFar, sleeping);
+  }
   return r;
 }
 
@@ -423,6 +496,7 @@ void CellSimulator::settle(double duration_s) {
   const JointVector qRef = m.reference.at(m.state.getTime()).q_rad;
   m.reference.trajectory = JointTrajectory::hold(qRef, duration_s);
   m.reference.tStart_s = m.state.getTime();
+  m.sleepRestingParts();
   m.restartIntegrator();
   m.advance(m.state.getTime() + duration_s, nullptr);
 }
@@ -454,6 +528,8 @@ std::optional<std::string> CellSimulator::grasp(const std::string& part, double 
   m.controller->payloadMass_kg = spec->mass_kg;
   m.controller->payloadCom_B = X_wrist3_part * stk::Vec3(0, 0, spec->size_m.z() / 2);
   m.grasped = index;
+  m.asleep[index] = false;
+  m.wokeAt_s[index] = m.state.getTime();
   m.rebuildKeepingState(index);
   return std::nullopt;
 }
@@ -461,6 +537,7 @@ std::optional<std::string> CellSimulator::grasp(const std::string& part, double 
 void CellSimulator::release() {
   Impl& m = *impl_;
   if (!m.grasped) return;
+  m.wokeAt_s[*m.grasped] = m.state.getTime();
   m.grasped.reset();
   m.controller->payloadMass_kg = 0.0;
   m.rebuildKeepingState(std::nullopt);
@@ -473,5 +550,7 @@ void CellSimulator::setSnapshotCallback(std::function<void(const CellSnapshot&)>
 }
 
 double CellSimulator::wallSeconds() const { return impl_->wall_s; }
+
+long CellSimulator::integratorSteps() const { return impl_->stepsBefore + impl_->stepsSoFar; }
 
 }  // namespace srp::execution

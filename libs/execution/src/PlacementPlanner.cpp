@@ -123,6 +123,11 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
       return out;
     }
   }
+  if (!container && neighbour) {
+    // "beside the star" with the star in a container: the part goes in there too.
+    for (const auto& o : scene.objects)
+      if (o.kind == CellObjectKind::Container && isInside(*neighbour, o)) container = &o;
+  }
   if (!container && !neighbour) {
     out.reason = "the instruction gives no target location for the " + part.name;
     return out;

@@ -34,11 +34,16 @@ namespace srp::execution {
 struct SimulationOptions {
   double integratorAccuracy = 1e-2;    ///< Simbody RK-Merson relative accuracy
   double maxStep_s = 1e-2;             ///< integrator step cap
-  double contactStiffness_Npm = 2.0e4;  ///< per contact corner
-  double contactDamping_Nspm = 40.0;    ///< per contact corner
+  /// Per-corner contact spring and damper are scaled with the part's mass so every
+  /// part sinks g / omega^2 into its support (27 um at 600 rad/s) and rings alike.
+  double contactFrequency_radps = 600.0;
+  double contactDampingRatio = 0.7;
   double frictionCoefficient = 0.6;
-  double frictionViscosity_Nspm = 200.0;  ///< slope of the regularised friction near zero slip
+  double frictionRate_1ps = 300.0;  ///< viscous slope of the regularised friction, per unit corner mass
   double controllerBandwidth_radps = 25.0;  ///< closed-loop natural frequency of every joint
+  /// Lock parts that came to rest (checked between trajectories) until they are
+  /// grasped: same resting poses, several times faster (see CellSimulator.cpp).
+  bool sleepRestingParts = true;
   double logPeriod_s = 0.02;              ///< period of the state log and the snapshot callback
 };
 
@@ -99,6 +104,9 @@ class CellSimulator {
 
   /// Total wall-clock seconds spent integrating.
   double wallSeconds() const;
+
+  /// Total number of integrator steps taken.
+  long integratorSteps() const;
 
  private:
   struct Impl;

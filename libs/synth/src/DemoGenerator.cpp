@@ -5,6 +5,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <thread>
 #include <filesystem>
 
 #include "srp/core/Error.h"
@@ -52,6 +58,84 @@ void markBox(const Eigen::AlignedBox3d& box, const srp::core::Pose3& X_camera_pa
   }
 }
 
+// Writes frames on a background thread so that serialisation and compression
+// (the costliest step with noisy images) overlap with rendering the next frames.
+class AsyncRawlogWriter {
+ public:
+  AsyncRawlogWriter(const std::string& path, double depthUnit_m) : writer_(path, depthUnit_m) {
+    thread_ = std::thread([this] { loop(); });
+  }
+  ~AsyncRawlogWriter() {
+    try {
+      close();
+    } catch (...) {
+    }
+  }
+  void write(srp::rawlog::RgbdFrame frame) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    spaceFree_.wait(lock, [this] { return queue_.size() < kMaxQueued || error_; });
+    rethrow();
+    queue_.push_back(std::move(frame));
+    frameQueued_.notify_one();
+  }
+  /// Waits for the queue to drain, closes the file; returns the seconds spent writing.
+  double close() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      done_ = true;
+      frameQueued_.notify_one();
+    }
+    if (thread_.joinable()) thread_.join();
+    writer_.close();
+    std::lock_guard<std::mutex> lock(mutex_);
+    rethrow();
+    return writeTime_s_;
+  }
+
+ private:
+  static constexpr std::size_t kMaxQueued = 4;
+  void rethrow() {
+    if (error_) {
+      auto e = error_;
+      error_ = nullptr;
+      std::rethrow_exception(e);
+    }
+  }
+  void loop() {
+    for (;;) {
+      srp::rawlog::RgbdFrame frame;
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        frameQueued_.wait(lock, [this] { return !queue_.empty() || done_; });
+        if (queue_.empty()) return;
+        frame = std::move(queue_.front());
+        queue_.pop_front();
+        spaceFree_.notify_one();
+      }
+      try {
+        const auto t0 = Clock::now();
+        writer_.write(frame);
+        const double dt = secondsSince(t0);
+        std::lock_guard<std::mutex> lock(mutex_);
+        writeTime_s_ += dt;
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        error_ = std::current_exception();
+        spaceFree_.notify_all();
+        return;
+      }
+    }
+  }
+  srp::rawlog::RawlogWriter writer_;
+  std::thread thread_;
+  std::mutex mutex_;
+  std::condition_variable frameQueued_, spaceFree_;
+  std::deque<srp::rawlog::RgbdFrame> queue_;
+  bool done_ = false;
+  std::exception_ptr error_;
+  double writeTime_s_ = 0.0;
+};
+
 cv::Mat colourMapDepth(const cv::Mat& depth_m, double near_m, double far_m) {
   cv::Mat scaled;
   depth_m.convertTo(scaled, CV_8UC1, -255.0 / (far_m - near_m), 255.0 * far_m / (far_m - near_m));
@@ -96,29 +180,52 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
   const auto& K = world.intrinsics;
 
   // ---- Renderer set-up ----------------------------------------------------------
-  SceneRenderer renderer(K);
-  renderer.setLighting(world.lighting);
-  renderer.setBackground({0.3, 0.3, 0.32});
-  const int table = renderer.addBody(
-      "table",
-      srp::kb::makeBoxMesh({-0.5 * world.tableSize_m.x(), -0.5 * world.tableSize_m.y(), -0.03},
-                           {0.5 * world.tableSize_m.x(), 0.5 * world.tableSize_m.y(), 0.0}),
-      world.tableRgb);
-  renderer.setBodyPose(table, srp::core::Pose3::Identity());
-  const int floor = renderer.addBody("floor", srp::kb::makeBoxMesh({-3, -3, -0.78}, {3, 3, -0.75}), {0.42, 0.4, 0.38});
-  renderer.setBodyPose(floor, srp::core::Pose3::Identity());
-  std::vector<int> objectBodies;
+  // Two renderers with the same bodies: `layers.background` holds the table,
+  // floor and resting objects and is re-rendered only when that set changes;
+  // `layers.moving` draws the hand and the carried object on an empty
+  // background every frame; a per-pixel depth test composes them. Software
+  // rendering costs per covered pixel, so this skips re-shading the table.
+  std::vector<srp::kb::TriangleMesh> objectMeshes;
   std::vector<Eigen::AlignedBox3d> objectBounds;
   std::vector<bool> isPart;
   for (const auto& o : world.objects) {
     const auto& cls = catalogue.at(o.className);
-    const auto mesh = srp::kb::loadClassMesh(cls);
-    objectBodies.push_back(renderer.addBody(o.id, mesh, timeline.objectRgb.at(o.id)));
-    objectBounds.push_back(mesh.bounds());
+    objectMeshes.push_back(srp::kb::loadClassMesh(cls));
+    objectBounds.push_back(objectMeshes.back().bounds());
     isPart.push_back(cls.kind == srp::core::ObjectKind::Part);
   }
-  std::vector<int> handBodies;
-  for (const auto& part : hand.parts()) handBodies.push_back(renderer.addBody("hand:" + part.name, part.mesh_part, part.triangleRgb));
+  struct Layer {
+    std::unique_ptr<SceneRenderer> renderer;
+    std::vector<int> objectBodies, handBodies;
+  };
+  auto makeLayer = [&](bool withTable, bool withHand) {
+    Layer layer;
+    layer.renderer = std::make_unique<SceneRenderer>(K);
+    SceneRenderer& r = *layer.renderer;
+    r.setLighting(world.lighting);
+    r.setBackground({0.3, 0.3, 0.32});
+    if (withTable) {
+      const int table = r.addBody(
+          "table",
+          srp::kb::makeBoxMesh({-0.5 * world.tableSize_m.x(), -0.5 * world.tableSize_m.y(), -0.03},
+                               {0.5 * world.tableSize_m.x(), 0.5 * world.tableSize_m.y(), 0.0}),
+          world.tableRgb);
+      r.setBodyPose(table, srp::core::Pose3::Identity());
+      const int floor = r.addBody("floor", srp::kb::makeBoxMesh({-3, -3, -0.78}, {3, 3, -0.75}), {0.42, 0.4, 0.38});
+      r.setBodyPose(floor, srp::core::Pose3::Identity());
+    }
+    for (std::size_t i = 0; i < world.objects.size(); ++i)
+      layer.objectBodies.push_back(r.addBody(world.objects[i].id, objectMeshes[i], timeline.objectRgb.at(world.objects[i].id)));
+    if (withHand)
+      for (const auto& part : hand.parts()) layer.handBodies.push_back(r.addBody("hand:" + part.name, part.mesh_part, part.triangleRgb));
+    return layer;
+  };
+  const bool layered = options.layeredRendering;
+  Layer background = makeLayer(true, !layered);
+  Layer moving = layered ? makeLayer(false, true) : Layer{};
+  std::vector<int> backgroundState;  // per object: 0 hidden, 1 shown; with the poses below
+  std::vector<srp::core::Pose3> backgroundPoses;
+  srp::rawlog::RgbdFrame backgroundFrame;
 
   // ---- Ground truth header -----------------------------------------------------
   DemoGroundTruth gt;
@@ -161,7 +268,7 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
   // With realism on, depth is already quantised to depthStep_m: storing it finer adds only size.
   const double depthUnit_m = options.sensor.enabled ? std::max(options.rawlogDepthUnit_m, options.sensor.depthStep_m)
                                                     : options.rawlogDepthUnit_m;
-  srp::rawlog::RawlogWriter writer(rawlogPath, depthUnit_m);
+  AsyncRawlogWriter writer(rawlogPath, depthUnit_m);
   SensorModel sensor(options.sensor, options.demo.seed);
   const srp::core::Pose3 X_camera_world = world.X_world_camera.inverse();
   cv::Mat previousColour;
@@ -172,10 +279,61 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
     const FrameState& f = timeline.frames[k];
     const FrameState& prev = timeline.frames[std::max(k - 1, 0)];
     auto t0 = Clock::now();
-    for (std::size_t i = 0; i < objectBodies.size(); ++i) renderer.setBodyPose(objectBodies[i], f.X_world_objects[i]);
     const auto partPoses = hand.partPoses(f.grip);
-    for (std::size_t i = 0; i < handBodies.size(); ++i) renderer.setBodyPose(handBodies[i], f.X_world_hand * partPoses[i]);
-    srp::rawlog::RgbdFrame frame = renderer.render(world.X_world_camera);
+    srp::rawlog::RgbdFrame frame;
+    if (!layered) {
+      for (std::size_t i = 0; i < world.objects.size(); ++i)
+        background.renderer->setBodyPose(background.objectBodies[i], f.X_world_objects[i]);
+      for (std::size_t i = 0; i < background.handBodies.size(); ++i)
+        background.renderer->setBodyPose(background.handBodies[i], f.X_world_hand * partPoses[i]);
+      frame = background.renderer->render(world.X_world_camera);
+    } else {
+      // Objects in motion (carried, or moved since the last frame) go to the moving layer.
+      std::vector<int> state(world.objects.size());
+      bool anyMoving = false;
+      for (std::size_t i = 0; i < world.objects.size(); ++i) {
+        const bool isMoving = static_cast<int>(i) == f.carriedObject ||
+                              !f.X_world_objects[i].matrix().isApprox(prev.X_world_objects[i].matrix(), 0.0);
+        state[i] = isMoving ? 0 : 1;
+        anyMoving = anyMoving || isMoving;
+      }
+      bool backgroundChanged = state != backgroundState;
+      for (std::size_t i = 0; i < world.objects.size() && !backgroundChanged; ++i)
+        backgroundChanged = state[i] && !f.X_world_objects[i].matrix().isApprox(backgroundPoses[i].matrix(), 0.0);
+      if (backgroundChanged) {
+        for (std::size_t i = 0; i < world.objects.size(); ++i) {
+          background.renderer->setBodyVisible(background.objectBodies[i], state[i] == 1);
+          background.renderer->setBodyPose(background.objectBodies[i], f.X_world_objects[i]);
+        }
+        backgroundFrame = background.renderer->render(world.X_world_camera);
+        backgroundState = state;
+        backgroundPoses = f.X_world_objects;
+      }
+      frame.intrinsics = K;
+      frame.colour_bgr8 = backgroundFrame.colour_bgr8.clone();
+      frame.depth_m = backgroundFrame.depth_m.clone();
+      // The hand is out of view while idle (the timeline guarantees it): nothing moves then.
+      if (f.phase != "idle" || anyMoving) {
+        for (std::size_t i = 0; i < world.objects.size(); ++i) {
+          moving.renderer->setBodyVisible(moving.objectBodies[i], state[i] == 0);
+          moving.renderer->setBodyPose(moving.objectBodies[i], f.X_world_objects[i]);
+        }
+        for (std::size_t i = 0; i < moving.handBodies.size(); ++i)
+          moving.renderer->setBodyPose(moving.handBodies[i], f.X_world_hand * partPoses[i]);
+        const auto front = moving.renderer->render(world.X_world_camera);
+        for (int r = 0; r < K.height_px; ++r) {
+          const float* dFront = front.depth_m.ptr<float>(r);
+          const cv::Vec3b* cFront = front.colour_bgr8.ptr<cv::Vec3b>(r);
+          float* d = frame.depth_m.ptr<float>(r);
+          cv::Vec3b* c = frame.colour_bgr8.ptr<cv::Vec3b>(r);
+          for (int col = 0; col < K.width_px; ++col)
+            if (dFront[col] > 0.f && (d[col] <= 0.f || dFront[col] < d[col])) {
+              d[col] = dFront[col];
+              c[col] = cFront[col];
+            }
+        }
+      }
+    }
     result.renderTime_s += secondsSince(t0);
 
     t0 = Clock::now();
@@ -184,10 +342,10 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
     cv::Mat handMask(K.height_px, K.width_px, CV_8UC1, cv::Scalar(0));
     cv::Mat partMask(K.height_px, K.width_px, CV_8UC1, cv::Scalar(0));
     cv::Mat movingMask(K.height_px, K.width_px, CV_8UC1, cv::Scalar(0));
-    for (std::size_t i = 0; i < handBodies.size(); ++i)
+    for (std::size_t i = 0; i < hand.parts().size(); ++i)
       markBox(hand.parts()[i].bounds_part, X_camera_world * f.X_world_hand * partPoses[i], K, frame.depth_m, handMask);
     double movingSpeed = 0.0;
-    for (std::size_t i = 0; i < objectBodies.size(); ++i) {
+    for (std::size_t i = 0; i < world.objects.size(); ++i) {
       if (!isPart[i]) continue;
       const double speed = (f.X_world_objects[i].translation() - prev.X_world_objects[i].translation()).norm() / dt;
       markBox(objectBounds[i], X_camera_world * f.X_world_objects[i], K, frame.depth_m, speed > 0.0 ? movingMask : partMask);
@@ -240,13 +398,11 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
     gt.frames.push_back(std::move(g));
     result.sensorTime_s += secondsSince(t0);
 
-    t0 = Clock::now();
-    writer.write(frame);
-    result.writeTime_s += secondsSince(t0);
     if (std::find(sheetFrames.begin(), sheetFrames.end(), k) != sheetFrames.end()) sheet.emplace_back(k, frame);
+    writer.write(std::move(frame));
     if (progress) progress(k, frameCount);
   }
-  writer.close();
+  result.writeTime_s = writer.close();
   result.groundTruthPath = groundTruthPathFor(rawlogPath);
   gt.save(result.groundTruthPath);
   result.frameCount = frameCount;
@@ -256,7 +412,7 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
 
   // ---- Contact sheet: colour | depth per frame, two frames per row ----------------
   if (!options.contactSheetPath.empty() && !sheet.empty()) {
-    const cv::Size tile(320, 240);
+    const cv::Size tile(256, 192);
     const int perRow = 2, rows = (static_cast<int>(sheet.size()) + perRow - 1) / perRow;
     cv::Mat canvas(rows * tile.height, perRow * 2 * tile.width, CV_8UC3, cv::Scalar(255, 255, 255));
     for (std::size_t i = 0; i < sheet.size(); ++i) {

@@ -24,7 +24,8 @@ bool isBesideRelation(const std::string& r) {
 std::vector<PickPlaceStep> groundPlan(const nlohmann::json& plan, const srp::core::Scene& scene,
                                       const srp::core::ObjectCatalogue& catalogue, const std::string& context) {
   using srp::core::InvalidInputError;
-  const auto& steps = srp::core::requireField(plan, "steps", context);
+  // Accept a bare array of steps as well as {"steps": [...]}.
+  const auto& steps = plan.is_array() ? plan : srp::core::requireField(plan, "steps", context);
   if (!steps.is_array() || steps.empty()) throw InvalidInputError(context + ": 'steps' must be a non-empty array");
 
   // Which container each part is in, tracked as steps move them.

@@ -9,6 +9,8 @@
 #include "srp/core/Json.h"
 #include "srp/rawlog/RawlogReader.h"
 
+#include <opencv2/imgproc.hpp>
+
 namespace {
 
 std::string tempPath(const std::string& name) {
@@ -96,6 +98,60 @@ TEST(DemoGenerator, CleanDepthMatchesTheObjectPoses) {
   ASSERT_TRUE(uv);
   const float d = frames[0].depth_m.at<float>(std::lround(uv->y()), std::lround(uv->x()));
   EXPECT_NEAR(d, p_top.z(), 2e-3);
+}
+
+// Layered rendering (static background once, moving bodies per frame) gives
+// the same images as rendering everything every frame.
+TEST(DemoGenerator, LayeredRenderingMatchesFullRendering) {
+  Fixture f;
+  auto options = quickOptions();
+  options.sensor.enabled = false;
+  options.width_px = 160;
+  options.height_px = 120;
+  const std::string layeredPath = tempPath("layered.rawlog"), fullPath = tempPath("full.rawlog");
+  options.layeredRendering = true;
+  srp::synth::generateSyntheticDemo(f.scene, f.catalogue, oneStepPlan(), options, layeredPath);
+  options.layeredRendering = false;
+  srp::synth::generateSyntheticDemo(f.scene, f.catalogue, oneStepPlan(), options, fullPath);
+  const auto layered = srp::rawlog::RawlogReader::readAll(layeredPath);
+  const auto full = srp::rawlog::RawlogReader::readAll(fullPath);
+  ASSERT_EQ(layered.size(), full.size());
+  constexpr double kMaxDifferentPixels = 1e-3;  // fraction; coplanar faces may tie differently
+  long long different = 0, total = 0;
+  for (std::size_t k = 0; k < full.size(); ++k) {
+    cv::Mat depthDiff = cv::abs(layered[k].depth_m - full[k].depth_m) > 1e-4f;
+    cv::Mat colourDiff;
+    cv::absdiff(layered[k].colour_bgr8, full[k].colour_bgr8, colourDiff);
+    cv::Mat colourDiffGrey;
+    cv::cvtColor(colourDiff, colourDiffGrey, cv::COLOR_BGR2GRAY);
+    different += cv::countNonZero(depthDiff | (colourDiffGrey > 2));
+    total += depthDiff.total();
+  }
+  EXPECT_LT(static_cast<double>(different) / total, kMaxDifferentPixels) << different << " of " << total;
+}
+
+TEST(DemoGroundTruth, LoadNamesTheFileAndMissingField) {
+  Fixture f;
+  auto options = quickOptions();
+  options.maxFrames = 2;
+  options.sensor.enabled = false;
+  const std::string rawlog = tempPath("gtfields.rawlog");
+  srp::synth::generateSyntheticDemo(f.scene, f.catalogue, oneStepPlan(), options, rawlog);
+  auto j = srp::core::readJsonFile(srp::synth::groundTruthPathFor(rawlog));
+  j.erase("camera");
+  const std::string broken = tempPath("broken.gt.json");
+  srp::core::writeJsonFile(broken, j);
+  try {
+    srp::synth::DemoGroundTruth::load(broken);
+    FAIL();
+  } catch (const srp::core::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("broken.gt.json"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("camera"), std::string::npos) << e.what();
+  }
+  j = srp::core::readJsonFile(srp::synth::groundTruthPathFor(rawlog));
+  j["schema_version"] = srp::synth::DemoGroundTruth::kSchemaVersion + 1;
+  srp::core::writeJsonFile(broken, j);
+  EXPECT_THROW(srp::synth::DemoGroundTruth::load(broken), srp::core::Error);
 }
 
 TEST(DemoGenerator, BadSceneFailsNamingTheField) {

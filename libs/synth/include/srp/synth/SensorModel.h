@@ -22,10 +22,10 @@ struct SensorRealismOptions {
   double depthStep_m = 1e-3;
   double edgeJump_m = 0.01;                 ///< neighbour depth jump that marks an edge
   double edgeDropProbability = 0.7;
-  double handDropProbability = 0.4;         ///< blob dropout on the hand at rest
+  double handDropProbability = 0.45;        ///< blob dropout on the hand at rest
   double objectDropProbability = 0.08;      ///< blob dropout on parts at rest
   double motionDropPerSpeed_s_per_m = 0.4;  ///< extra dropout per m/s of surface speed
-  double colourNoiseSigma = 2.0;            ///< 8-bit levels
+  double colourNoiseSigma = 2.0;            ///< 8-bit levels, on 2x2 pixel blocks
   bool motionBlur = false;                  ///< average with the previous frame's colour
 };
 

@@ -4,11 +4,17 @@
 
 #include "CommandRegistry.h"
 #include "srp/calib/RawlogReplay.h"
+#include "srp/calib/TaskModelOverlay.h"
+#include "srp/core/Error.h"
+#include "srp/taskdb/TaskDatabase.h"
+#include "srp/taskdb/TaskModelStore.h"
 
 namespace {
 
 struct Args {
-  std::string rawlog, exportDir, video;
+  std::string rawlog, exportDir, video, overlayDb;
+  int taskId = 0;  // 0: the newest task model
+  int firstTimeId = 0;
   double depthScale_m = 0.0;
   double fps = 0.0;
   bool json = false;
@@ -23,14 +29,35 @@ void setupReplay(CLI::App& cmd) {
                  "metres per exported depth unit (default: the rawlog's own unit, lossless)");
   cmd.add_option("--video", a->video, "write an MJPG video of the colour frames (.avi)");
   cmd.add_option("--fps", a->fps, "video frame rate (default: the recording's)");
+  cmd.add_option("--overlay", a->overlayDb,
+                 "task database: draw a task model's trajectories, detections and skills on the video and as "
+                 "overlay_NNNN.png in --export");
+  cmd.add_option("--task-id", a->taskId, "task model to draw (default: the newest)");
+  cmd.add_option("--first-time-id", a->firstTimeId, "TimeId of the rawlog's first frame")->capture_default_str();
   cmd.add_flag("--json", a->json, "print the summary as JSON");
-  cmd.footer("Example: srp replay demo.rawlog --export frames/ --video demo.avi");
+  cmd.footer("Example: srp replay demo.rawlog --export frames/ --video demo.avi --overlay task.db");
   cmd.callback([a] {
     srp::calib::ReplayOptions o;
     o.exportDir = a->exportDir;
     if (a->depthScale_m > 0.0) o.exportDepthScale_m = a->depthScale_m;
     o.videoPath = a->video;
     o.videoFps = a->fps;
+    std::shared_ptr<srp::calib::TaskModelOverlay> overlay;
+    if (!a->overlayDb.empty()) {
+      if (a->exportDir.empty() && a->video.empty())
+        throw srp::core::InvalidInputError("--overlay draws into --video and/or --export: give one of them");
+      auto db = srp::taskdb::TaskDatabase::open(a->overlayDb, srp::taskdb::TaskDatabase::Mode::ReadOnly);
+      srp::taskdb::TaskModelStore store(db);
+      int id = a->taskId;
+      if (id == 0) {
+        const auto models = store.list();
+        if (models.empty()) throw srp::core::FileError(a->overlayDb, "holds no task model to draw");
+        id = models.back().id;
+      }
+      overlay = std::make_shared<srp::calib::TaskModelOverlay>(store.read(id), a->firstTimeId);
+      o.overlay = [overlay](cv::Mat& img, const srp::rawlog::RgbdFrame& f) { overlay->draw(img, f); };
+      o.exportOverlay = true;
+    }
     const bool slow = !o.exportDir.empty() || !o.videoPath.empty();
     o.progress = [slow](int frames) {
       if (slow && frames % 10 == 0) std::cerr << "\rreplayed " << frames << " frames" << std::flush;

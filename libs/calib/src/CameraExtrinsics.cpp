@@ -8,6 +8,7 @@
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "OpenCvPose.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/core/PoseConversions.h"
@@ -124,15 +125,8 @@ std::optional<CameraExtrinsics> extrinsicsFromTags(const cv::Mat& image, const C
   cv::projectPoints(p_base, rvec, tvec, Kcv, cv::noArray(), projected);
   double sumSq = 0.0;
   for (size_t i = 0; i < uv.size(); ++i) sumSq += std::pow(cv::norm(projected[i] - uv[i]), 2);
-  cv::Mat R;
-  cv::Rodrigues(rvec, R);
-  core::Pose3 X_camera_base = core::Pose3::Identity();
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) X_camera_base.matrix()(r, c) = R.at<double>(r, c);
-    X_camera_base.matrix()(r, 3) = tvec.at<double>(r);
-  }
   CameraExtrinsics e;
-  e.X_base_camera = X_camera_base.inverse();
+  e.X_base_camera = detail::poseFromRvecTvec(rvec, tvec).inverse();
   e.method = "apriltag";
   e.residual = std::sqrt(sumSq / uv.size());
   e.residualUnit = "px";

@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 #include <regex>
 
+#include "OpenCvPose.h"
 #include "srp/core/Error.h"
 
 namespace srp::calib {
@@ -26,17 +27,6 @@ std::vector<std::string> IntrinsicCalibrationResult::rejectedNames() const {
 }
 
 namespace {
-
-core::Pose3 poseFromRvecTvec(const cv::Mat& rvec, const cv::Mat& tvec) {
-  cv::Mat R;
-  cv::Rodrigues(rvec, R);
-  core::Pose3 X = core::Pose3::Identity();
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) X.matrix()(r, c) = R.at<double>(r, c);
-    X.matrix()(r, 3) = tvec.at<double>(r);
-  }
-  return X;
-}
 
 std::string joinNames(const std::vector<std::string>& names) {
   std::string s;
@@ -116,7 +106,7 @@ IntrinsicCalibrationResult calibrateIntrinsics(const std::vector<cv::Mat>& image
     }
     CalibrationView& view = result.views[usedIndex[k]];
     view.rms_px = std::sqrt(viewSq / projected.size());
-    view.X_camera_board = poseFromRvecTvec(rvecs[k], tvecs[k]);
+    view.X_camera_board = detail::poseFromRvecTvec(rvecs[k], tvecs[k]);
     sumSq += viewSq;
     count += projected.size();
   }

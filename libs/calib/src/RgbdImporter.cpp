@@ -183,8 +183,8 @@ ImportSummary importImageFolder(const std::string& folder, const std::string& ra
     s.depthFiles.push_back(d->second);
     times.push_back(static_cast<double>(times.size()) / options.fps);
   }
-  s.unpairedDepth = static_cast<int>(depth.size()) - static_cast<int>(colour.size());
-  if (s.unpairedDepth < 0) s.unpairedDepth = 0;
+  for (const auto& entry : depth)
+    if (!colour.count(entry.first)) ++s.unpairedDepth;
   return writePairs(s, times, camera, rawlogPath, options);
 }
 

@@ -31,6 +31,7 @@ CameraCalibration trueCamera() {
 std::vector<cv::Mat> renderViews(const CalibrationPattern& pattern, const CameraCalibration& cam,
                                  const Eigen::Vector3d& centre_m, int count = 20) {
   const auto board = pattern.renderBoard(4000.0, 0.02);
+  const auto rays = test::pixelRays(cam);
   std::vector<cv::Mat> images;
   for (int i = 0; i < count; ++i) {
     const double a = 2.0 * M_PI * i / count;
@@ -38,7 +39,7 @@ std::vector<cv::Mat> renderViews(const CalibrationPattern& pattern, const Camera
     const double roll = 0.3 * std::sin(2.3 * a);
     const double distance = 0.40 + 0.08 * std::sin(3.1 * a);
     const Eigen::Vector2d offset(0.04 * std::cos(a * 2.0), 0.03 * std::sin(a * 1.3));
-    images.push_back(test::renderBoardView(board, cam, test::viewOfBoard(centre_m, distance, tiltX, tiltY, roll, offset)));
+    images.push_back(test::renderBoardView(board, cam, rays, test::viewOfBoard(centre_m, distance, tiltX, tiltY, roll, offset)));
   }
   return images;
 }

@@ -5,6 +5,7 @@
 // pre-blurred, finer board image (a cheap anti-aliasing).
 
 #include <opencv2/imgproc.hpp>
+#include <vector>
 
 #include "srp/calib/CalibrationPattern.h"
 #include "srp/calib/CameraCalibration.h"
@@ -12,8 +13,23 @@
 
 namespace srp::calib::test {
 
+/// The viewing ray (x, y, 1) of every pixel of a distorted camera, row-major:
+/// the same for every view, so computed once per camera.
+inline std::vector<Eigen::Vector3d> pixelRays(const CameraCalibration& cam) {
+  const auto& K = cam.intrinsics;
+  std::vector<Eigen::Vector3d> rays;
+  rays.reserve(static_cast<size_t>(K.width_px) * K.height_px);
+  for (int v = 0; v < K.height_px; ++v)
+    for (int u = 0; u < K.width_px; ++u) {
+      const Eigen::Vector2d pu = cam.undistortPixel({double(u), double(v)});
+      rays.emplace_back((pu.x() - K.cx_px) / K.fx_px, (pu.y() - K.cy_px) / K.fy_px, 1.0);
+    }
+  return rays;
+}
+
 inline cv::Mat renderBoardView(const CalibrationPattern::BoardImage& board, const CameraCalibration& cam,
-                               const srp::core::Pose3& X_camera_board, unsigned char background = 140) {
+                               const std::vector<Eigen::Vector3d>& rays, const srp::core::Pose3& X_camera_board,
+                               unsigned char background = 140) {
   const auto& K = cam.intrinsics;
   cv::Mat blurred;
   cv::GaussianBlur(board.grey8, blurred, cv::Size(0, 0), 0.8);
@@ -24,8 +40,7 @@ inline cv::Mat renderBoardView(const CalibrationPattern::BoardImage& board, cons
   const double d = n.dot(t);
   for (int v = 0; v < K.height_px; ++v)
     for (int u = 0; u < K.width_px; ++u) {
-      const Eigen::Vector2d pu = cam.undistortPixel({double(u), double(v)});
-      const Eigen::Vector3d ray((pu.x() - K.cx_px) / K.fx_px, (pu.y() - K.cy_px) / K.fy_px, 1.0);
+      const Eigen::Vector3d& ray = rays[static_cast<size_t>(v) * K.width_px + u];
       const double s = d / n.dot(ray);
       float bx = -1e6f, by = -1e6f;
       if (s > 0) {
@@ -39,6 +54,11 @@ inline cv::Mat renderBoardView(const CalibrationPattern::BoardImage& board, cons
   cv::Mat out;
   cv::remap(blurred, out, mapX, mapY, cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(background));
   return out;
+}
+
+inline cv::Mat renderBoardView(const CalibrationPattern::BoardImage& board, const CameraCalibration& cam,
+                               const srp::core::Pose3& X_camera_board, unsigned char background = 140) {
+  return renderBoardView(board, cam, pixelRays(cam), X_camera_board, background);
 }
 
 /// Camera pose looking at the board centre from `distance_m`, tilted by

@@ -24,8 +24,8 @@ std::vector<std::string> splitList(const std::string& s) {
 struct PerceiveOptions {
   std::string demo, kb = srp::core::ObjectCatalogue::defaultPath(), csv, hand = "marker";
   std::string objects, staticObjects;
-  double tagSize_m = 0.04;
-  int tagId = -1;
+  double tagSize_m = 0.05;
+  int tagId = 0;
   bool json = false;
 };
 
@@ -39,9 +39,10 @@ void run(const PerceiveOptions& o) {
   for (const auto& n : splitList(o.objects)) p.plan.push_back({n, false});
   for (const auto& n : statics) p.plan.push_back({n, true});
   const PerceptionResult r = perceiveRawlog(o.demo, catalogue, p, [](int i, int n) {
-    if ((i + 1) % 30 == 0 || i + 1 == n) std::fprintf(stderr, "\rperceive: frame %d/%d", i + 1, n);
-    if (i + 1 == n) std::fprintf(stderr, "\n");
+    (void)n;
+    if ((i + 1) % 30 == 0) std::fprintf(stderr, "\rperceive: frame %d", i + 1);
   });
+  std::fprintf(stderr, "\rperceive: %d frames done\n", r.frames);
   if (!o.csv.empty()) writeSegmentCsv(r, o.csv);
 
   if (o.json) {

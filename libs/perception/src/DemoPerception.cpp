@@ -40,80 +40,111 @@ void checkFrame(const rawlog::RgbdFrame& f, const rawlog::RgbdFrame& first, int 
 
 }  // namespace
 
-PerceptionResult perceiveFrames(const std::vector<rawlog::RgbdFrame>& frames, const core::ObjectCatalogue& catalogue,
-                                const PerceptionOptions& options, const std::function<void(int, int)>& progress) {
-  if (frames.empty()) throw core::InvalidInputError("the demo has zero frames: nothing to perceive");
-  for (std::size_t i = 0; i < frames.size(); ++i) checkFrame(frames[i], frames[0], static_cast<int>(i));
-
-  // Objects of interest: the plan's, else every class (moving).
-  std::vector<PlanObject> plan = options.plan;
-  if (plan.empty())
-    for (const auto& c : catalogue.classes()) plan.push_back({c.name, false});
-  std::vector<std::string> names;
-  for (const auto& p : plan) names.push_back(p.className);
-  const ObjectDetector detector(ObjectDetector::modelsFromCatalogue(catalogue, names), options.objects);
-
+struct DemoPerceiver::Impl {
+  const core::ObjectCatalogue& catalogue;
+  PerceptionOptions options;
+  std::vector<PlanObject> plan;
+  std::unique_ptr<ObjectDetector> detector;
   std::unique_ptr<HandDetector> hand;
-  if (options.hand == PerceptionOptions::HandMethod::Marker) hand = std::make_unique<MarkerHandDetector>(options.marker);
-  else hand = std::make_unique<MarkerFreeHandDetector>(options.markerFree);
-
-  PerceptionResult result;
-  result.intrinsics = frames[0].intrinsics;
-  result.frames = static_cast<int>(frames.size());
+  std::optional<rawlog::RgbdFrame> first;  // images released: only size and intrinsics are kept
+  std::optional<Plane> support;
+  std::vector<int> frameIndex;
+  std::vector<double> frameTime_s;
   // Per class: per frame, the best detection (if any).
   std::map<std::string, std::vector<std::optional<ObjectDetection>>> perClass;
-  for (const auto& p : plan) perClass[p.className].assign(frames.size(), std::nullopt);
-
-  std::optional<Plane> support;
-  std::optional<double> lastDepthScale;  // carried hand depth: z of the last valid palm / ray
+  PerceptionResult result;
+  bool haveDepth = false;
   double lastZ_m = 0.0;
-  for (std::size_t i = 0; i < frames.size(); ++i) {
-    const rawlog::RgbdFrame& f = frames[i];
-    const auto detections = detector.detect(f, options.fixedSupportPlane && support ? &*support : nullptr);
-    if (!support) support = detector.lastPlane();
-    for (const auto& d : detections) {
-      auto& slot = perClass[d.className][i];
-      if (!slot || d.confidence > slot->confidence) slot = d;
-    }
 
-    core::PositionSample s;
-    s.frame = f.index;
-    s.t_s = f.t_s;
-    s.valid = false;
-    if (const auto h = hand->detect(f)) {
-      if (h->hasDepth) {
-        s.p_m = h->p_camera_palm_m;
-        lastZ_m = h->p_camera_palm_m.z();
-        lastDepthScale = 1.0;
-        s.valid = true;
-      } else if (lastDepthScale) {
-        // Depth hole: the palm's pixel is known, its depth is carried forward.
-        const auto& k = f.intrinsics;
-        s.p_m = {(h->palm_px.x() - k.cx_px) * lastZ_m / k.fx_px, (h->palm_px.y() - k.cy_px) * lastZ_m / k.fy_px, lastZ_m};
-        s.valid = true;
-        ++result.handDepthCarried;
-      }
-      if (s.valid) ++result.handDetected;
-    }
-    // Timestamps must increase; rawlogs from a folder may repeat them.
-    if (!result.hand.empty() && s.t_s <= result.hand.samples().back().t_s) s.t_s = result.hand.samples().back().t_s + 1e-6;
-    result.hand.append(s);
-    if (progress) progress(static_cast<int>(i), static_cast<int>(frames.size()));
+  Impl(const core::ObjectCatalogue& c, const PerceptionOptions& o) : catalogue(c), options(o) {}
+};
+
+DemoPerceiver::DemoPerceiver(const core::ObjectCatalogue& catalogue, const PerceptionOptions& options)
+    : impl_(std::make_unique<Impl>(catalogue, options)) {
+  // Objects of interest: the plan's, else every class (moving).
+  impl_->plan = options.plan;
+  if (impl_->plan.empty())
+    for (const auto& c : catalogue.classes()) impl_->plan.push_back({c.name, false});
+  std::vector<std::string> names;
+  for (const auto& p : impl_->plan) names.push_back(p.className);
+  impl_->detector = std::make_unique<ObjectDetector>(ObjectDetector::modelsFromCatalogue(catalogue, names), options.objects);
+  if (options.hand == PerceptionOptions::HandMethod::Marker) impl_->hand = std::make_unique<MarkerHandDetector>(options.marker);
+  else impl_->hand = std::make_unique<MarkerFreeHandDetector>(options.markerFree);
+  for (const auto& p : impl_->plan) impl_->perClass[p.className];
+}
+
+DemoPerceiver::~DemoPerceiver() = default;
+
+int DemoPerceiver::framesAdded() const { return static_cast<int>(impl_->frameIndex.size()); }
+
+void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
+  Impl& m = *impl_;
+  const int i = framesAdded();
+  if (!m.first) {
+    checkFrame(f, f, i);
+    rawlog::RgbdFrame header;
+    header.intrinsics = f.intrinsics;
+    header.depth_m = cv::Mat(f.depth_m.size(), CV_32FC1);
+    m.first = header;
+    m.result.intrinsics = f.intrinsics;
   }
-  if (result.handDetected == 0)
-    throw core::InvalidInputError("the hand was never detected in the " + std::to_string(frames.size()) +
+  checkFrame(f, *m.first, i);
+  m.frameIndex.push_back(f.index);
+  m.frameTime_s.push_back(f.t_s);
+
+  const auto detections = m.detector->detect(f, m.options.fixedSupportPlane && m.support ? &*m.support : nullptr);
+  if (!m.support) m.support = m.detector->lastPlane();
+  for (auto& [name, perFrame] : m.perClass) perFrame.emplace_back();
+  for (const auto& d : detections) {
+    auto& slot = m.perClass[d.className].back();
+    if (!slot || d.confidence > slot->confidence) slot = d;
+  }
+
+  core::PositionSample s;
+  s.frame = f.index;
+  s.t_s = f.t_s;
+  s.valid = false;
+  if (const auto h = m.hand->detect(f)) {
+    if (h->hasDepth) {
+      s.p_m = h->p_camera_palm_m;
+      m.lastZ_m = h->p_camera_palm_m.z();
+      m.haveDepth = true;
+      s.valid = true;
+    } else if (m.haveDepth) {
+      // Depth hole: the palm's pixel is known, its depth is carried forward.
+      const auto& k = f.intrinsics;
+      s.p_m = {(h->palm_px.x() - k.cx_px) * m.lastZ_m / k.fx_px, (h->palm_px.y() - k.cy_px) * m.lastZ_m / k.fy_px,
+               m.lastZ_m};
+      s.valid = true;
+      ++m.result.handDepthCarried;
+    }
+    if (s.valid) ++m.result.handDetected;
+  }
+  // Timestamps must increase; folders without timestamps may repeat them.
+  if (!m.result.hand.empty() && s.t_s <= m.result.hand.samples().back().t_s)
+    s.t_s = m.result.hand.samples().back().t_s + 1e-6;
+  m.result.hand.append(s);
+}
+
+PerceptionResult DemoPerceiver::finish() const {
+  const Impl& m = *impl_;
+  if (m.frameIndex.empty()) throw core::InvalidInputError("the demo has zero frames: nothing to perceive");
+  if (m.result.handDetected == 0)
+    throw core::InvalidInputError("the hand was never detected in the " + std::to_string(m.frameIndex.size()) +
                                   " frames of the demo (" +
-                                  (options.hand == PerceptionOptions::HandMethod::Marker
+                                  (m.options.hand == PerceptionOptions::HandMethod::Marker
                                        ? std::string("no tag36h11 tag of the glove seen: check the tag size/id, or use the marker-free detector")
                                        : std::string("no foreground hand: do the first frames show the scene without the hand?")) +
                                   "); nothing written");
+  PerceptionResult result = m.result;
+  result.frames = static_cast<int>(m.frameIndex.size());
 
   // Language-guided refinement: static objects fixed at their most confident
   // detection; moving objects follow their detections, gaps carried from the
   // nearest earlier detection (before the first: the first).
-  for (const auto& p : plan) {
-    const auto& dets = perClass[p.className];
-    const core::ObjectClass& cls = catalogue.at(p.className);
+  for (const auto& p : m.plan) {
+    const auto& dets = m.perClass.at(p.className);
+    const core::ObjectClass& cls = m.catalogue.at(p.className);
     ObjectTrajectory traj;
     traj.className = p.className;
     traj.classId = cls.classId;
@@ -132,8 +163,8 @@ PerceptionResult perceiveFrames(const std::vector<rawlog::RgbdFrame>& frames, co
     const ObjectDetection* carried = &*dets[static_cast<std::size_t>(firstFrame)];
     for (std::size_t i = 0; i < dets.size(); ++i) {
       ObjectPoseSample s;
-      s.frame = frames[i].index;
-      s.t_s = frames[i].t_s;
+      s.frame = m.frameIndex[i];
+      s.t_s = m.frameTime_s[i];
       if (p.isStatic) {
         const auto& best = *dets[static_cast<std::size_t>(bestFrame)];
         s.X_camera_object = best.X_camera_object;
@@ -152,17 +183,31 @@ PerceptionResult perceiveFrames(const std::vector<rawlog::RgbdFrame>& frames, co
   return result;
 }
 
+PerceptionResult perceiveFrames(const std::vector<rawlog::RgbdFrame>& frames, const core::ObjectCatalogue& catalogue,
+                                const PerceptionOptions& options, const std::function<void(int, int)>& progress) {
+  if (frames.empty()) throw core::InvalidInputError("the demo has zero frames: nothing to perceive");
+  DemoPerceiver perceiver(catalogue, options);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    perceiver.add(frames[i]);
+    if (progress) progress(static_cast<int>(i), static_cast<int>(frames.size()));
+  }
+  return perceiver.finish();
+}
+
 PerceptionResult perceiveRawlog(const std::string& rawlogPath, const core::ObjectCatalogue& catalogue,
                                 const PerceptionOptions& options, const std::function<void(int, int)>& progress) {
   rawlog::RawlogReader reader(rawlogPath);
-  std::vector<rawlog::RgbdFrame> frames;
-  while (auto f = reader.next()) frames.push_back(std::move(*f));
+  DemoPerceiver perceiver(catalogue, options);
+  while (auto f = reader.next()) {
+    perceiver.add(*f);
+    if (progress) progress(perceiver.framesAdded() - 1, -1);
+  }
   if (reader.damage()) throw core::FileError(rawlogPath, "unreadable rawlog, " + *reader.damage());
-  if (frames.empty())
+  if (perceiver.framesAdded() == 0)
     throw core::FileError(rawlogPath, "no RGB-D frames with depth in this rawlog (" +
                                           std::to_string(reader.objectsSkipped()) +
                                           " other objects skipped): record CObservation3DRangeScan with depth");
-  return perceiveFrames(frames, catalogue, options, progress);
+  return perceiver.finish();
 }
 
 void writeSegmentCsv(const PerceptionResult& result, const std::string& path) {

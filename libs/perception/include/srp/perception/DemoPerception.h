@@ -5,6 +5,7 @@
 /// camera optical frame (metres, radians, seconds).
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -46,7 +47,7 @@ struct ObjectTrajectory {
 struct PerceptionOptions {
   enum class HandMethod { Marker, MarkerFree };
   HandMethod hand = HandMethod::Marker;
-  MarkerHandDetector::Options marker;
+  MarkerHandDetector::Options marker;  ///< defaults: srp synth-demo's glove (tag 0, 5 cm, palm 13.6 mm under the tag)
   MarkerFreeHandDetector::Options markerFree;
   ObjectDetector::Options objects;
   /// Objects of interest (from the task plan); empty = every catalogue class, all moving.
@@ -66,10 +67,34 @@ struct PerceptionResult {
   int handDepthCarried = 0;    ///< of those, frames whose depth was carried forward
 };
 
+/// The module as a stream: add() frames in time order (each is checked
+/// against the first), then finish(). Keeps per frame only the detections, so
+/// long demos need little memory. Models are built once, at construction.
+class DemoPerceiver {
+ public:
+  DemoPerceiver(const core::ObjectCatalogue& catalogue, const PerceptionOptions& options);
+  ~DemoPerceiver();
+  DemoPerceiver(const DemoPerceiver&) = delete;
+  DemoPerceiver& operator=(const DemoPerceiver&) = delete;
+
+  /// Throws InvalidInputError when the frame lacks depth or colour, or its
+  /// size or intrinsics differ from the first frame's.
+  void add(const rawlog::RgbdFrame& frame);
+  int framesAdded() const;
+  /// Refinement and the result. Throws InvalidInputError for zero frames or
+  /// when the hand was never detected.
+  PerceptionResult finish() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 /// Runs the module on frames (in time order). Throws InvalidInputError when
 /// there are no frames, a frame lacks depth or colour, the sizes or
 /// intrinsics change between frames, or the hand is never detected.
-/// `progress(frameIndex, frameCount)` is called after each frame when given.
+/// `progress(frameIndex, frameCount)` is called after each frame when given
+/// (frameCount -1 when unknown, as for a rawlog read as a stream).
 PerceptionResult perceiveFrames(const std::vector<rawlog::RgbdFrame>& frames, const core::ObjectCatalogue& catalogue,
                                 const PerceptionOptions& options,
                                 const std::function<void(int, int)>& progress = {});

@@ -14,10 +14,10 @@ namespace srp::perception {
 class MarkerHandDetector : public HandDetector {
  public:
   struct Options {
-    double tagSize_m = 0.04;   ///< black square side on the glove
-    int tagId = -1;            ///< -1: any tag36h11 tag
+    double tagSize_m = 0.05;   ///< black square side on the glove
+    int tagId = 0;             ///< -1: any tag36h11 tag
     /// Palm centre in the tag frame (tag z points into the back of the hand).
-    Eigen::Vector3d p_tag_palm_m = Eigen::Vector3d(0.0, 0.0, 0.015);
+    Eigen::Vector3d p_tag_palm_m = Eigen::Vector3d(0.0, 0.0, 0.0136);
     bool useDepth = true;      ///< refine the distance with the depth image
     double maxDepthDisagreement_m = 0.03;
     float quadDecimate = 1.0f;

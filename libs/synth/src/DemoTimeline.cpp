@@ -143,10 +143,13 @@ DemoTimeline planDemonstration(const srp::core::Scene& sceneIn, const srp::core:
     scene.tableRgb = (scene.tableRgb * (1.0 + 0.06 * unit(rng))).cwiseMin(1.0);
     for (auto& [id, rgb] : out.objectRgb) rgb = (rgb * (1.0 + 0.1 * unit(rng))).cwiseMin(1.0).cwiseMax(0.0);
     // Re-place the moved parts at random free spots of their source container.
-    std::vector<int> placed;
+    std::vector<int> placed, seen;
     for (const auto& s : steps) {
       if (s.sourceId.empty()) continue;
       const int oi = indexOf(s.objectId);
+      // Only where an object starts: a later step moving it again starts where the previous one put it.
+      if (std::find(seen.begin(), seen.end(), oi) != seen.end()) continue;
+      seen.push_back(oi);
       const auto& box = *scene.findObject(s.sourceId);
       const auto& boxClass = classOf(box);
       const double r = footprintRadius(classOf(scene.objects[oi]));

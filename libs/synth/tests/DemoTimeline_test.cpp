@@ -119,6 +119,25 @@ TEST(DemoTimeline, DefaultDemoIsPhysicallyConsistent) {
   }
 }
 
+// "Move the cuboid to the gray box, then back to the blue box": the second
+// step starts where the first ended.
+TEST(DemoTimeline, ObjectMovedTwiceStartsWhereItWasPut) {
+  Fixture f;
+  auto plan = srp::synth::defaultPlanJson();
+  auto back = plan["steps"][0];
+  back["source"][0]["landmark"]["color"] = "gray";
+  back["target"] = nlohmann::json::array({{{"relation", "in"}, {"landmark", {{"name", "box"}, {"color", "blue"}}}}});
+  plan["steps"] = nlohmann::json::array({plan["steps"][0], back});
+  const auto steps = srp::synth::groundPlan(plan, f.scene, f.catalogue);
+  ASSERT_EQ(steps.size(), 2u);
+  EXPECT_EQ(steps[1].sourceId, "gray box");
+  EXPECT_EQ(steps[1].targetId, "blue box");
+  const auto timeline = srp::synth::planDemonstration(f.scene, f.catalogue, steps, f.hand, {});
+  ASSERT_EQ(timeline.events.size(), 2u);
+  EXPECT_LT((timeline.events[1].X_world_object_start.translation() - timeline.events[0].X_world_object_end.translation())
+                .norm(), 1e-9);
+}
+
 TEST(DemoTimeline, SeedRandomisesPlacementsAndRepeats) {
   Fixture f;
   const auto steps = srp::synth::groundPlan(srp::synth::defaultPlanJson(), f.scene, f.catalogue);

@@ -30,7 +30,7 @@ struct LanguageTrainingOptions {
   double entityEpsilon = 0.01;   ///< its stopping tolerance (risk gap)
   double relationC = 1.0;        ///< linear SVM C of the relation classifier
   int minFeatureCount = 2;       ///< entity features seen fewer times in training are dropped
-  int threads = 2;
+  int threads = 1;  ///< 1 keeps the loss sums in one order: bit-identical models everywhere
 };
 
 class LanguageModel {

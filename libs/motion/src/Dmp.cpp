@@ -41,6 +41,51 @@ void validateDemo(const Eigen::VectorXd& t_s, const Eigen::MatrixXd& Y) {
                                      std::to_string(i) + ")");
 }
 
+struct DefaultIntegration {
+  const detail::ForcingBasis& basis;
+  const Eigen::MatrixXd& SW;  // scaled weights, D x N
+  const Eigen::VectorXd &goal, &goalVel_s, &start, &startVel_s;
+  double a, b, tau, maxStep_s;
+};
+
+/// Classical RK4 in s with the forcing term at the stage times; Dim = 3 keeps
+/// every vector on the stack (a rollout then allocates nothing but its output).
+template <int Dim>
+void integrateDefault(const DefaultIntegration& in, DmpRollout& out) {
+  using Vec = Eigen::Matrix<double, Dim, 1>;
+  const Eigen::Index D = in.SW.rows(), n = out.t_s.size();
+  Eigen::VectorXd act(in.SW.cols());
+  auto forcing = [&](double s, Vec& f) {
+    in.basis.activations(in.basis.phase(s), act);
+    f.noalias() = in.SW * act;
+  };
+  const Vec goal = in.goal, goalVel = in.goalVel_s;
+  Vec y = in.start, v = in.startVel_s, fA(D), fM(D), fB(D);
+  auto acc = [&](const Vec& Y, const Vec& V, const Vec& f) -> Vec { return in.a * (in.b * (goal - Y) + (goalVel - V)) + f; };
+  out.y.row(0) = y.transpose();
+  out.yd.row(0) = (v / in.tau).transpose();
+  forcing(0.0, fA);
+  for (Eigen::Index i = 1; i < n; ++i) {
+    const double s0 = out.t_s(i - 1) / in.tau, s1 = out.t_s(i) / in.tau;
+    const int m = std::max(1, static_cast<int>(std::ceil((s1 - s0) / in.maxStep_s - 1e-12)));
+    const double h = (s1 - s0) / m;
+    for (int k = 0; k < m; ++k) {
+      const double s = s0 + k * h;
+      forcing(s + 0.5 * h, fM);
+      forcing(s + h, fB);
+      const Vec k1v = acc(y, v, fA), k1y = v;
+      const Vec k2y = v + 0.5 * h * k1v, k2v = acc(y + 0.5 * h * k1y, k2y, fM);
+      const Vec k3y = v + 0.5 * h * k2v, k3v = acc(y + 0.5 * h * k2y, k3y, fM);
+      const Vec k4y = v + h * k3v, k4v = acc(y + h * k3y, k4y, fB);
+      y += h / 6.0 * (k1y + 2 * k2y + 2 * k3y + k4y);
+      v += h / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
+      fA = fB;
+    }
+    out.y.row(i) = y.transpose();
+    out.yd.row(i) = (v / in.tau).transpose();
+  }
+}
+
 }  // namespace
 
 Dmp Dmp::imitate(const Eigen::VectorXd& t_s, const Eigen::MatrixXd& Y, const DmpConfig& config) {
@@ -84,16 +129,14 @@ Dmp Dmp::imitate(const Eigen::VectorXd& t_s, const Eigen::MatrixXd& Y, const Dmp
     const Eigen::Index M = std::max<Eigen::Index>(N, 10 * config.basisCount);
     F.resize(M, D), A.resize(M, config.basisCount), Z.resize(M), Tfit.resize(M);
     Yd.resize(M, D), Ydd.resize(M, D);
-    Eigen::RowVectorXd y(D);
+    Eigen::MatrixXd Ys(M, D);
     for (Eigen::Index i = 0; i < M; ++i) {
       Tfit(i) = t_s(0) + tau * static_cast<double>(i) / static_cast<double>(M - 1);
-      spline.evaluate(Tfit(i), y, Yd.row(i), Ydd.row(i));
+      spline.evaluate(Tfit(i), Ys.row(i), Yd.row(i), Ydd.row(i));
     }
     const Eigen::RowVectorXd gd = Yd.row(M - 1);
-    for (Eigen::Index i = 0; i < M; ++i) {
-      spline.evaluate(Tfit(i), y, Yd.row(i), Ydd.row(i));
-      F.row(i) = tau * tau * Ydd.row(i) - a * (b * (g - y) + tau * (gd - Yd.row(i)));
-    }
+    for (Eigen::Index i = 0; i < M; ++i)
+      F.row(i) = tau * tau * Ydd.row(i) - a * (b * (g - Ys.row(i)) + tau * (gd - Yd.row(i)));
   }
   for (Eigen::Index i = 0; i < F.rows(); ++i) {
     Z(i) = basis.phase((Tfit(i) - t_s(0)) / tau);
@@ -236,44 +279,17 @@ DmpRollout Dmp::rollout(double dt_s) const {
 
   // Default mode: classical RK4 in normalised time s = t / tau with the forcing
   // term at the stage times and sub-steps of at most maxStepFraction / (alpha / 2).
-  const Eigen::MatrixXd S = forcingScale();
-  const Eigen::MatrixXd SW = S * weights_;
-  auto forcingS = [&](double s) -> Eigen::VectorXd {
-    basis.activations(basis.phase(s), act);
-    return SW * act;
-  };
+  const Eigen::MatrixXd SW = forcingScale() * weights_;
   const auto intervals = static_cast<Eigen::Index>(std::max(1.0, std::ceil(tau / dt_s - 1e-9)));
   const Eigen::Index n = intervals + 1;
   out.t_s.resize(n);
   for (Eigen::Index i = 0; i < n; ++i) out.t_s(i) = std::min(static_cast<double>(i) * dt_s, tau);
   out.y.resize(n, D);
   out.yd.resize(n, D);
-  Eigen::VectorXd y = start_, v = startVel_s_;  // v = dy/ds
-  out.y.row(0) = y.transpose();
-  out.yd.row(0) = (v / tau).transpose();
-  auto acc = [&](const Eigen::VectorXd& Y, const Eigen::VectorXd& V, const Eigen::VectorXd& f) {
-    return Eigen::VectorXd(a * (b * (goal_ - Y) + (goalVel_s_ - V)) + f);
-  };
-  const double maxStep_s = config_.maxStepFraction / (0.5 * a);
-  Eigen::VectorXd fA = forcingS(0.0);
-  for (Eigen::Index i = 1; i < n; ++i) {
-    const double s0 = out.t_s(i - 1) / tau, s1 = out.t_s(i) / tau;
-    const int m = static_cast<int>(std::ceil((s1 - s0) / maxStep_s - 1e-12));
-    const double h = (s1 - s0) / std::max(m, 1);
-    for (int k = 0; k < m; ++k) {
-      const double s = s0 + k * h;
-      const Eigen::VectorXd fM = forcingS(s + 0.5 * h), fB = forcingS(s + h);
-      const Eigen::VectorXd k1v = acc(y, v, fA), k1y = v;
-      const Eigen::VectorXd k2y = v + 0.5 * h * k1v, k2v = acc(y + 0.5 * h * k1y, k2y, fM);
-      const Eigen::VectorXd k3y = v + 0.5 * h * k2v, k3v = acc(y + 0.5 * h * k2y, k3y, fM);
-      const Eigen::VectorXd k4y = v + h * k3v, k4v = acc(y + h * k3y, k4y, fB);
-      y += h / 6.0 * (k1y + 2 * k2y + 2 * k3y + k4y);
-      v += h / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
-      fA = fB;
-    }
-    out.y.row(i) = y.transpose();
-    out.yd.row(i) = (v / tau).transpose();
-  }
+  const DefaultIntegration in{basis, SW, goal_, goalVel_s_, start_, startVel_s_, a, b, tau,
+                              config_.maxStepFraction / (0.5 * a)};
+  if (D == 3) integrateDefault<3>(in, out);
+  else integrateDefault<Eigen::Dynamic>(in, out);
   return out;
 }
 
@@ -307,12 +323,7 @@ Dmp Dmp::fromJson(const nlohmann::json& j) {
   using detail::matrixFromJson;
   using detail::vectorFromJson;
   const std::string ctx = "DMP JSON";
-  require(j.is_object(), ctx + ": expected an object");
-  const auto cls = requireField(j, "class", ctx).get<std::string>();
-  require(cls == "srp::motion::Dmp", ctx + ": class is '" + cls + "', expected srp::motion::Dmp");
-  const int version = requireField(j, "schema_version", ctx).get<int>();
-  require(version == 1, ctx + ": schema_version " + std::to_string(version) +
-                            " is not known to this build (knows 1); update srp");
+  detail::requireClassAndVersion(j, "srp::motion::Dmp", 1, ctx);
   Dmp dmp;
   dmp.config_ = requireField(j, "config", ctx).get<DmpConfig>();
   dmp.weights_ = matrixFromJson(requireField(j, "weights", ctx), ctx + " weights");

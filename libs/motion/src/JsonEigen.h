@@ -40,4 +40,19 @@ inline Eigen::MatrixXd matrixFromJson(const nlohmann::json& j, const std::string
   return M;
 }
 
+/// Checks the "class" and "schema_version" fields of a serialised object.
+inline void requireClassAndVersion(const nlohmann::json& j, const std::string& expectedClass, int knownVersion,
+                                   const std::string& ctx) {
+  if (!j.is_object()) throw core::InvalidInputError(ctx + ": expected an object");
+  if (!j.contains("class") || !j.contains("schema_version"))
+    throw core::InvalidInputError(ctx + ": missing field 'class' or 'schema_version'");
+  const auto cls = j.at("class").get<std::string>();
+  if (cls != expectedClass) throw core::InvalidInputError(ctx + ": class is '" + cls + "', expected " + expectedClass);
+  const int version = j.at("schema_version").get<int>();
+  if (version != knownVersion)
+    throw core::InvalidInputError(ctx + ": schema_version " + std::to_string(version) +
+                                  " is not known to this build (knows " + std::to_string(knownVersion) +
+                                  "); update srp");
+}
+
 }  // namespace srp::motion::detail

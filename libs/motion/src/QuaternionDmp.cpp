@@ -159,11 +159,7 @@ nlohmann::json QuaternionDmp::toJson() const {
 QuaternionDmp QuaternionDmp::fromJson(const nlohmann::json& j) {
   using core::requireField;
   const std::string ctx = "QuaternionDmp JSON";
-  require(j.is_object(), ctx + ": expected an object");
-  const auto cls = requireField(j, "class", ctx).get<std::string>();
-  require(cls == "srp::motion::QuaternionDmp", ctx + ": class is '" + cls + "', expected srp::motion::QuaternionDmp");
-  const int version = requireField(j, "schema_version", ctx).get<int>();
-  require(version == 1, ctx + ": schema_version " + std::to_string(version) + " is not known (knows 1); update srp");
+  detail::requireClassAndVersion(j, "srp::motion::QuaternionDmp", 1, ctx);
   QuaternionDmp dmp;
   dmp.config_ = requireField(j, "config", ctx).get<DmpConfig>();
   dmp.weights_ = detail::matrixFromJson(requireField(j, "weights", ctx), ctx + " weights");

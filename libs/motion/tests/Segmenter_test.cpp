@@ -20,6 +20,12 @@ constexpr int kPutBackGraspTol = 8;  // the hand lingers near the object before 
 void expectWithinTolerance(const SyntheticPickPlace& demo, const Segmentation& seg, const std::string& tag,
                            int graspTol = kFrameTol, int releaseTol = kFrameTol) {
   ASSERT_EQ(seg.objects.size(), demo.planOrder.size()) << tag;
+  int worstGrasp = 0, worstRelease = 0;
+  for (std::size_t i = 0; i < demo.planOrder.size(); ++i) {
+    worstGrasp = std::max(worstGrasp, std::abs(seg.objects[i].graspIndex - demo.graspIndex[i]));
+    worstRelease = std::max(worstRelease, std::abs(seg.objects[i].releaseIndex - demo.releaseIndex[i]));
+  }
+  std::cout << tag << ": worst grasp error " << worstGrasp << ", release " << worstRelease << " frames\n";
   for (std::size_t i = 0; i < demo.planOrder.size(); ++i) {
     const auto& o = seg.objects[i];
     EXPECT_TRUE(o.moved) << tag << " " << o.name;

@@ -1,0 +1,108 @@
+// srp motion: segment a stored task model's demo into skills, learn the Reach
+// and Move DMPs, store them in its Skills table, and plot each object (libs/motion).
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "CommandRegistry.h"
+#include "srp/core/Error.h"
+#include "srp/motion/SkillLearner.h"
+#include "srp/motion/SkillPlots.h"
+#include "srp/motion/TaskModelMapping.h"
+#include "srp/taskdb/TaskModelStore.h"
+
+namespace {
+
+struct MotionOptions {
+  int id = 0;
+  std::string db = "task.db";
+  std::string outDir;
+  bool json = false;
+  bool noPlots = false;
+  bool syntheticDemo = false;
+};
+
+void runMotion(const MotionOptions& o) {
+  using namespace srp;
+  auto db = taskdb::TaskDatabase::open(o.db);
+  taskdb::TaskModelStore store(db);
+  int id = o.id;
+  if (o.syntheticDemo) {
+    const auto demo = motion::SyntheticPickPlaceGenerator(motion::SyntheticPickPlaceConfig{}).generate();
+    id = store.write(motion::taskModelFromSyntheticDemo(demo, "synthetic-demo"));
+    std::cerr << "srp motion: stored a synthetic 4-object demo as task model " << id << "\n";
+  } else if (id <= 0) {
+    throw core::InvalidInputError("give a TaskModelId (see 'srp db list') or --synthetic-demo");
+  }
+  const taskdb::TaskModel model = store.read(id);
+  std::cerr << "srp motion: task model " << id << " '" << model.info.name << "': segmenting "
+            << model.handPositions.size() << " hand positions\n";
+  const motion::MotionInputs inputs = motion::motionInputsFromTaskModel(model);
+  const motion::Segmentation seg = motion::Segmenter().segment(inputs.hand, inputs.objects, inputs.planOrder);
+  std::cerr << "srp motion: learning DMPs\n";
+  const auto skills = motion::SkillLearner().learn(seg, inputs.objects);
+  const auto rows = motion::skillRows(skills, inputs);
+  store.replaceSkills(id, rows);  // one transaction, after everything above succeeded
+
+  std::vector<std::string> pngs;
+  if (!o.noPlots) {
+    const std::string dir = o.outDir.empty() ? "motion_" + std::to_string(id) : o.outDir;
+    std::filesystem::create_directories(dir);
+    for (const auto& s : skills)
+      for (const auto& obj : seg.objects)
+        if (obj.name == s.objectName) {
+          pngs.push_back(dir + "/" + s.objectName + ".png");
+          motion::writeSkillFigure(pngs.back(), seg, obj, s);
+        }
+  }
+  if (o.json) {
+    nlohmann::json objects = nlohmann::json::array();
+    for (const auto& obj : seg.objects) {
+      nlohmann::json j{{"name", obj.name}, {"moved", obj.moved}};
+      if (obj.moved) j["grasp_frame"] = obj.graspFrame, j["release_frame"] = obj.releaseFrame;
+      for (const auto& s : skills)
+        if (s.objectName == obj.name) j["reach_lambda"] = s.reach->lambda(), j["move_lambda"] = s.move->lambda();
+      if (!obj.note.empty()) j["note"] = obj.note;
+      objects.push_back(j);
+    }
+    std::cout << nlohmann::json{{"task_model_id", id}, {"skills_stored", rows.size()}, {"objects", objects},
+                                {"plots", pngs}}
+                     .dump(2)
+              << "\n";
+    return;
+  }
+  std::cout << std::left << std::setw(16) << "object" << std::setw(8) << "grasp" << std::setw(9) << "release"
+            << std::setw(14) << "reach lambda" << "move lambda\n";
+  for (const auto& obj : seg.objects) {
+    std::cout << std::setw(16) << obj.name;
+    if (!obj.moved) {
+      std::cout << "not moved (" << obj.note << ")\n";
+      continue;
+    }
+    std::cout << std::setw(8) << obj.graspFrame << std::setw(9) << obj.releaseFrame;
+    for (const auto& s : skills)
+      if (s.objectName == obj.name) std::cout << std::setw(14) << s.reach->lambda() << s.move->lambda();
+    std::cout << "\n";
+  }
+  std::cout << rows.size() << " skills stored in task model " << id << " of '" << o.db << "'\n";
+  for (const auto& p : pngs) std::cout << "wrote " << p << "\n";
+}
+
+void setupMotion(CLI::App& app) {
+  auto o = std::make_shared<MotionOptions>();
+  app.add_option("id", o->id, "TaskModelId (see 'srp db list')");
+  app.add_flag("--synthetic-demo", o->syntheticDemo,
+               "First store a synthetic 4-object demo (noise, dropouts, flicker) as a new task model, then process it");
+  app.add_option("--db", o->db, "Task database file (SQLite)")->capture_default_str();
+  app.add_option("--out-dir", o->outDir, "Directory for the PNG per object (default: motion_<id>)");
+  app.add_flag("--no-plots", o->noPlots, "Do not write PNGs");
+  app.add_flag("--json", o->json, "Print the result as JSON");
+  app.callback([o] { runMotion(*o); });
+}
+
+const srp::app::CommandRegistrar kReg{
+    "motion", "Segment a task model's demo into Reach/Grasp/Move/Release, learn and store the DMPs, plot them", 45,
+    setupMotion};
+
+}  // namespace

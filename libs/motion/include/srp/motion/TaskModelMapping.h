@@ -1,0 +1,42 @@
+#pragma once
+/// \file TaskModelMapping.h
+/// \brief The mapping between a stored task model (srp::taskdb rows) and the
+/// motion module's types: trajectories and plan order in, Skills rows out.
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "srp/motion/Segmenter.h"
+#include "srp/motion/SyntheticPickPlace.h"
+#include "srp/motion/SkillSet.h"
+#include "srp/taskdb/TaskModel.h"
+
+namespace srp::motion {
+
+/// What segmentation needs from a task model. Samples are the union of the
+/// TimeIds of HandPositions and of the plan objects' ProductPose rows (frame =
+/// TimeId, t = TimeId / frame rate); a TimeId without a row is "not detected".
+struct MotionInputs {
+  core::PositionTrajectory hand;
+  std::vector<ObjectTrack> objects;          ///< one per plan object with ProductPose rows
+  std::vector<std::string> planOrder;        ///< grounded object names, TaskModelTargetObjects order
+  std::map<std::string, int> classIdByName;  ///< GroundedProducts
+};
+
+/// Throws InvalidInputError naming the object when a plan object is not
+/// grounded (Products.ClassId missing) or the model has no hand positions.
+/// A plan object without ProductPose rows has no track (Segmenter then
+/// reports it).
+MotionInputs motionInputsFromTaskModel(const taskdb::TaskModel& model);
+
+/// Skills rows of the learned skill sets (TimeIds = the demo's frame numbers).
+std::vector<taskdb::SkillRow> skillRows(const std::vector<SkillSet>& skills, const MotionInputs& inputs);
+
+/// A task model holding a synthetic demo (SyntheticPickPlaceGenerator): one
+/// Product and GroundedProduct per object (ObjectId = ClassId = index), the
+/// moved objects as the plan, their poses and the hand positions (undetected
+/// samples stored with Detected = false), no skills. For examples and tests.
+taskdb::TaskModel taskModelFromSyntheticDemo(const SyntheticPickPlace& demo, const std::string& name);
+
+}  // namespace srp::motion

@@ -1,0 +1,115 @@
+#include "srp/motion/TaskModelMapping.h"
+
+#include <set>
+
+#include "srp/core/Error.h"
+
+namespace srp::motion {
+
+MotionInputs motionInputsFromTaskModel(const taskdb::TaskModel& model) {
+  using core::InvalidInputError;
+  MotionInputs in;
+  core::require(model.info.frameRate_hz > 0, "task model " + std::to_string(model.info.id) + ": frame rate must be positive");
+  core::require(!model.handPositions.empty(), "task model " + std::to_string(model.info.id) +
+                                                  " has no hand positions; program it from a demo first");
+  core::require(!model.targetObjectIds.empty(), "task model " + std::to_string(model.info.id) + " has an empty plan");
+  for (const auto& g : model.groundedProducts) in.classIdByName[g.objectName] = g.classId;
+  std::set<int> planClasses;
+  for (int objectId : model.targetObjectIds) {
+    const auto* p = model.findProduct(objectId);
+    if (!p) throw InvalidInputError("plan object id " + std::to_string(objectId) + " is not in Products");
+    if (!p->classId) throw InvalidInputError("plan object '" + p->objectName + "' (ObjectId " + std::to_string(objectId) +
+                                             ") is not grounded to a class; it has no trajectory");
+    const auto* g = model.findGrounded(*p->classId);
+    in.planOrder.push_back(g ? g->objectName : p->objectName);
+    in.classIdByName[in.planOrder.back()] = *p->classId;
+    planClasses.insert(*p->classId);
+  }
+  std::set<int> times;
+  for (const auto& h : model.handPositions) times.insert(h.timeId);
+  for (const auto& r : model.productPoses)
+    if (planClasses.count(r.classId)) times.insert(r.timeId);
+  std::map<int, const taskdb::HandPositionRow*> handAt;
+  for (const auto& h : model.handPositions) handAt[h.timeId] = &h;
+  const std::string frame = model.info.frame;
+  in.hand = core::PositionTrajectory(frame);
+  for (int t : times) {
+    const auto it = handAt.find(t);
+    const bool ok = it != handAt.end() && it->second->detected;
+    in.hand.append({t, t / model.info.frameRate_hz, ok ? it->second->p_m : Eigen::Vector3d::Zero(), ok});
+  }
+  for (const auto& [name, classId] : in.classIdByName) {
+    if (!planClasses.count(classId)) continue;
+    std::map<int, const taskdb::ProductPoseRow*> at;
+    for (const auto& r : model.productPoses)
+      if (r.classId == classId) at[r.timeId] = &r;
+    if (at.empty()) continue;
+    ObjectTrack track;
+    track.name = name;
+    track.positions = core::PositionTrajectory(frame);
+    for (int t : times) {
+      const auto it = at.find(t);
+      const bool ok = it != at.end() && it->second->detected;
+      track.positions.append({t, t / model.info.frameRate_hz, ok ? it->second->p_m : Eigen::Vector3d::Zero(), ok});
+      track.yaw_rad.push_back(it != at.end() ? it->second->yaw_rad() : (track.yaw_rad.empty() ? 0.0 : track.yaw_rad.back()));
+    }
+    in.objects.push_back(std::move(track));
+  }
+  return in;
+}
+
+std::vector<taskdb::SkillRow> skillRows(const std::vector<SkillSet>& skills, const MotionInputs& inputs) {
+  std::vector<taskdb::SkillRow> rows;
+  for (const auto& s : skills) {
+    const auto it = inputs.classIdByName.find(s.objectName);
+    if (it == inputs.classIdByName.end())
+      throw core::InvalidInputError("skill object '" + s.objectName + "' is not a grounded product");
+    for (const auto& r : skillRecords(s)) {
+      taskdb::SkillRow row;
+      row.classId = it->second;
+      row.skill = r.skill;
+      row.startTimeId = inputs.hand[static_cast<std::size_t>(r.startIndex)].frame;
+      row.endTimeId = inputs.hand[static_cast<std::size_t>(r.endIndex)].frame;
+      row.parameters = r.parameters;
+      rows.push_back(std::move(row));
+    }
+  }
+  return rows;
+}
+
+taskdb::TaskModel taskModelFromSyntheticDemo(const SyntheticPickPlace& demo, const std::string& name) {
+  taskdb::TaskModel m;
+  m.info.name = name;
+  m.info.instruction = "Synthetic demo: pick and place";
+  for (std::size_t i = 0; i < demo.planOrder.size(); ++i)
+    m.info.instruction += std::string(i ? ", then " : " ") + "the " + demo.planOrder[i];
+  m.info.frame = demo.hand.frame();
+  m.info.frameRate_hz = demo.hand.size() > 1 ? 1.0 / (demo.hand[1].t_s - demo.hand[0].t_s) : 30.0;
+  for (std::size_t k = 0; k < demo.objects.size(); ++k) {
+    const int id = static_cast<int>(k);
+    taskdb::ProductRow p;
+    p.objectId = id;
+    p.objectName = demo.objects[k].name;
+    p.classId = id;
+    m.products.push_back(p);
+    m.groundedProducts.push_back({id, demo.objects[k].name, std::nullopt, std::nullopt, std::nullopt});
+    for (std::size_t i = 0; i < demo.objects[k].positions.size(); ++i) {
+      const auto& s = demo.objects[k].positions[i];
+      taskdb::ProductPoseRow r;
+      r.classId = id;
+      r.timeId = s.frame;
+      r.p_m = s.valid ? s.p_m : Eigen::Vector3d::Zero();
+      r.detected = s.valid;
+      r.q = Eigen::Quaterniond(Eigen::AngleAxisd(demo.objects[k].yaw_rad[i], Eigen::Vector3d::UnitZ()));
+      m.productPoses.push_back(r);
+    }
+  }
+  for (const auto& planName : demo.planOrder)
+    for (const auto& p : m.products)
+      if (p.objectName == planName) m.targetObjectIds.push_back(p.objectId);
+  for (const auto& s : demo.hand.samples())
+    m.handPositions.push_back({s.frame, s.valid ? s.p_m : Eigen::Vector3d::Zero(), s.valid});
+  return m;
+}
+
+}  // namespace srp::motion

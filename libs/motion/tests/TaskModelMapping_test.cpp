@@ -1,0 +1,109 @@
+#include "srp/motion/TaskModelMapping.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include "srp/core/Error.h"
+#include "srp/motion/SkillLearner.h"
+#include "srp/taskdb/TaskModelStore.h"
+
+namespace srp::motion {
+namespace {
+
+constexpr int kFrameTol = 3;
+
+std::string tempPath(const std::string& name) { return std::string(SRP_BINARY_DIR) + "/motion_test_" + name; }
+
+void removeDb(const std::string& path) {
+  for (const char* suffix : {"", "-wal", "-shm"}) std::remove((path + suffix).c_str());
+}
+
+TEST(TaskModelMapping, StoredDemoSegmentsLearnsAndStoresSkillsThatRollOutIdentically) {
+  const auto demo = SyntheticPickPlaceGenerator(SyntheticPickPlaceConfig{}).generate();
+  const std::string path = tempPath("mapping.db");
+  removeDb(path);
+  auto db = taskdb::TaskDatabase::open(path);
+  taskdb::TaskModelStore store(db);
+  const int id = store.write(taskModelFromSyntheticDemo(demo, "synthetic"));
+  const taskdb::TaskModel model = store.read(id);
+
+  const MotionInputs in = motionInputsFromTaskModel(model);
+  ASSERT_EQ(in.planOrder, demo.planOrder);
+  ASSERT_EQ(in.hand.size(), demo.hand.size());
+  const auto seg = Segmenter().segment(in.hand, in.objects, in.planOrder);
+  for (std::size_t i = 0; i < seg.objects.size(); ++i) {
+    EXPECT_LE(std::abs(seg.objects[i].graspIndex - demo.graspIndex[i]), kFrameTol);
+    EXPECT_LE(std::abs(seg.objects[i].releaseIndex - demo.releaseIndex[i]), kFrameTol);
+  }
+  const auto skills = SkillLearner().learn(seg, in.objects);
+  const auto rows = skillRows(skills, in);
+  ASSERT_EQ(rows.size(), 16u);
+  store.replaceSkills(id, rows);
+
+  const taskdb::TaskModel back = store.read(id);
+  ASSERT_EQ(back.skills.size(), 16u);
+  int moves = 0;
+  for (const auto& row : back.skills) {
+    if (row.skill != core::SkillType::Move) continue;
+    const auto& s = skills[static_cast<std::size_t>(moves++)];
+    EXPECT_EQ(row.startTimeId, in.hand[s.graspIndex].frame);
+    EXPECT_EQ(row.endTimeId, in.hand[s.releaseIndex].frame);
+    const Dmp stored = Dmp::fromJson(row.parameters.at("dmp"));
+    EXPECT_TRUE(stored.rollout(0.01).y == s.move->rollout(0.01).y) << s.objectName;
+  }
+  EXPECT_EQ(moves, 4);
+  removeDb(path);
+}
+
+TEST(TaskModelMapping, PlanObjectWithoutPosesIsAnErrorAndNothingIsStored) {
+  const auto demo = SyntheticPickPlaceGenerator(SyntheticPickPlaceConfig{}).generate();
+  taskdb::TaskModel model = taskModelFromSyntheticDemo(demo, "broken");
+  // The star has no ProductPose rows.
+  std::vector<taskdb::ProductPoseRow> kept;
+  for (const auto& r : model.productPoses)
+    if (r.classId != 1) kept.push_back(r);
+  model.productPoses = kept;
+  const MotionInputs in = motionInputsFromTaskModel(model);
+  EXPECT_THROW(Segmenter().segment(in.hand, in.objects, in.planOrder), core::InvalidInputError);
+
+  taskdb::TaskModel ungrounded = taskModelFromSyntheticDemo(demo, "ungrounded");
+  ungrounded.products[2].classId.reset();
+  EXPECT_THROW(motionInputsFromTaskModel(ungrounded), core::InvalidInputError);
+}
+
+// End-to-end: the `srp motion` command on a stored synthetic demo (skipped
+// when the srp executable has not been built).
+TEST(TaskModelMapping, SrpMotionCommandStoresSkillsAndWritesPlots) {
+  const std::string srp = std::string(SRP_BINARY_DIR) + "/apps/srp";
+  if (!std::filesystem::exists(srp)) GTEST_SKIP() << "build the srp target to run this test";
+  const auto demo = SyntheticPickPlaceGenerator(SyntheticPickPlaceConfig{}).generate();
+  const std::string path = tempPath("cmd.db"), outDir = tempPath("cmd_plots");
+  removeDb(path);
+  std::filesystem::remove_all(outDir);
+  int id = 0;
+  {
+    auto db = taskdb::TaskDatabase::open(path);
+    id = taskdb::TaskModelStore(db).write(taskModelFromSyntheticDemo(demo, "synthetic"));
+  }
+  const std::string cmd = srp + " motion " + std::to_string(id) + " --db " + path + " --out-dir " + outDir + " > /dev/null 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  {
+    auto db = taskdb::TaskDatabase::open(path, taskdb::TaskDatabase::Mode::ReadOnly);
+    EXPECT_EQ(taskdb::TaskModelStore(db).read(id).skills.size(), 16u);
+  }
+  for (const auto& name : demo.planOrder) {
+    const std::string png = outDir + "/" + name + ".png";
+    ASSERT_TRUE(std::filesystem::exists(png)) << png;
+    EXPECT_GT(std::filesystem::file_size(png), 10000u);
+  }
+  // A missing task model: non-zero exit.
+  EXPECT_NE(std::system((srp + " motion 999 --db " + path + " > /dev/null 2>&1").c_str()), 0);
+  removeDb(path);
+  std::filesystem::remove_all(outDir);
+}
+
+}  // namespace
+}  // namespace srp::motion

@@ -72,7 +72,7 @@ std::string ExecutionReport::toText() const {
   for (const auto& s : steps) {
     o << "step " << s.index + 1 << ": " << s.object << " -> " << s.relation << ": " << toString(s.status);
     if (s.status == StepStatus::Done) {
-      o << std::setprecision(1) << " (placed " << s.placementError_m * 1000 << " mm from plan, "
+      o << std::setprecision(2) << " (placed " << s.placementError_m * 1000 << " mm from plan, "
         << (s.relationsHold ? "relations hold" : "RELATION NOT MET") << ", planning " << std::setprecision(1)
         << s.planning_s * 1000 << " ms, " << std::setprecision(2) << s.simulated_s << " s simulated)";
     } else {

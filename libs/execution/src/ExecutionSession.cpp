@@ -1,0 +1,107 @@
+#include "srp/execution/ExecutionSession.h"
+
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "srp/core/Error.h"
+#include "srp/core/Json.h"
+#include "srp/execution/CellRenderer.h"
+#include "srp/execution/MinimumJerkPathGenerator.h"
+#include "srp/execution/PlanConversion.h"
+#include "srp/taskdb/TaskModelStore.h"
+
+namespace srp::execution {
+
+srp::core::Pose3 defaultHomeTcp(const CellDescription& cell) {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  int n = 0;
+  for (const auto& o : cell.objects)
+    if (o.kind == CellObjectKind::Container) centre += o.X_world_object.translation(), ++n;
+  if (n > 0) centre /= n;
+  srp::core::Pose3 X = srp::core::Pose3::Identity();
+  X.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  X.translation() = Eigen::Vector3d(centre.x(), centre.y(), 0.3);
+  return X;
+}
+
+ExecuteResult executeTask(const ExecuteRequest& request) {
+  ExecuteResult result;
+  const std::string scenePath =
+      request.scenePath.empty() ? std::string(SRP_SIM_DIR) + "/scenes/default.json" : request.scenePath;
+  const srp::core::Scene scene = srp::core::Scene::load(scenePath);
+  const srp::core::ObjectCatalogue catalogue = srp::core::ObjectCatalogue::load(scene.cataloguePath);
+  const CellDescription cell = CellDescription::fromScene(scene, catalogue);
+
+  if (!std::filesystem::exists(request.databasePath))
+    throw srp::core::FileError(request.databasePath, "no such task database (create one with 'srp program' or 'srp db')");
+  auto db = srp::taskdb::TaskDatabase::open(request.databasePath, srp::taskdb::TaskDatabase::Mode::ReadOnly);
+  const srp::taskdb::TaskModelStore store(db);
+  const srp::taskdb::TaskModel model = store.read(request.taskModelId);
+  // Demonstration offsets: the camera as stored with the task model, else the scene's.
+  const srp::core::Pose3 X_world_camera =
+      model.info.X_base_camera ? srp::core::Pose3(scene.X_world_base * *model.info.X_base_camera) : scene.X_world_camera;
+  result.plan = request.planOverride ? *request.planOverride : planFromTaskModel(model, X_world_camera);
+  if (result.plan.steps.empty())
+    throw srp::core::InvalidInputError("task model " + std::to_string(request.taskModelId) +
+                                       " has no target objects to execute");
+
+  const RobotModel robot = RobotModel::defaultUr5();
+  const JointVector home = TaskExecutor::defaultHome(robot, cell.X_world_base, defaultHomeTcp(cell));
+  TaskExecutor executor(robot, cell, home, std::make_shared<MinimumJerkPathGenerator>(), request.options);
+
+  std::unique_ptr<CellRenderer> renderer;
+  std::string framesFolder;
+  int snapshotCount = 0;
+  if (!request.outputFolder.empty()) {
+    std::filesystem::create_directories(request.outputFolder);
+    if (request.framePeriod > 0) {
+      framesFolder = request.outputFolder + "/frames";
+      std::filesystem::create_directories(framesFolder);
+      renderer = std::make_unique<CellRenderer>(robot, cell);
+      executor.simulator().setSnapshotCallback([&](const CellSnapshot& s) {
+        if (snapshotCount++ % request.framePeriod != 0) return;
+        std::ostringstream name;
+        name << framesFolder << "/frame_" << std::setw(5) << std::setfill('0') << snapshotCount / request.framePeriod
+             << ".png";
+        renderer->renderPng(s, name.str());
+        result.writtenFiles.push_back(name.str());
+      });
+    }
+  }
+
+  ExecutionPlan remaining;
+  for (std::size_t i = 0; i < result.plan.steps.size(); ++i) {
+    ExecutionPlan one;
+    one.steps.push_back(result.plan.steps[i]);
+    ExecutionReport part = executor.run(one);
+    part.steps[0].index = static_cast<int>(i);
+    if (request.progress) {
+      std::string text = part.toText();
+      request.progress(text.substr(0, text.find('\n')));
+    }
+    result.report.steps.push_back(part.steps[0]);
+    result.report.pathGenerator = part.pathGenerator;
+    result.report.simulated_s += part.simulated_s;
+    result.report.simulationWall_s += part.simulationWall_s;
+  }
+  result.report.minTableClearance_m = std::numeric_limits<double>::infinity();
+  for (const auto& s : result.report.steps)
+    if (s.status == StepStatus::Done)
+      result.report.minTableClearance_m = std::min(result.report.minTableClearance_m, s.minTableClearance_m);
+
+  if (!request.outputFolder.empty()) {
+    nlohmann::json j = result.report.toJson();
+    j["task_model_id"] = request.taskModelId;
+    j["scene"] = scenePath;
+    srp::core::writeJsonFile(request.outputFolder + "/report.json", j);
+    std::ofstream(request.outputFolder + "/report.txt") << result.report.toText();
+    executor.writeJointLogCsv(request.outputFolder + "/joints.csv");
+    for (const char* f : {"/report.json", "/report.txt", "/joints.csv"}) result.writtenFiles.push_back(request.outputFolder + f);
+  }
+  return result;
+}
+
+}  // namespace srp::execution

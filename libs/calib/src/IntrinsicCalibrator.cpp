@@ -152,16 +152,34 @@ IntrinsicCalibrationResult calibrateIntrinsicsFromFiles(const std::vector<std::s
 std::vector<std::string> expandImageGlob(const std::string& pattern) {
   const fs::path p(pattern);
   const std::string name = p.filename().string();
-  if (name.find_first_of("*?") == std::string::npos) {
+  if (name.find_first_of("*?[") == std::string::npos) {
     if (!fs::is_regular_file(p)) throw core::FileError(pattern, "no such image file");
     return {pattern};
   }
   std::string re;
-  for (char c : name) {
-    if (c == '*') re += ".*";
-    else if (c == '?') re += '.';
-    else if (std::string("\\^$.|+()[]{}").find(c) != std::string::npos) re += std::string("\\") + c;
-    else re += c;
+  bool inClass = false;  // inside [...]: passed through as a regex class ([!..] -> [^..])
+  for (size_t i = 0; i < name.size(); ++i) {
+    const char c = name[i];
+    if (inClass) {
+      if (c == ']') inClass = false;
+      if (c == '\\') re += '\\';
+      re += c;
+    } else if (c == '[' && name.find(']', i + 1) != std::string::npos) {
+      inClass = true;
+      re += '[';
+      if (i + 1 < name.size() && name[i + 1] == '!') {
+        re += '^';
+        ++i;
+      }
+    } else if (c == '*') {
+      re += ".*";
+    } else if (c == '?') {
+      re += '.';
+    } else if (std::string("\\^$.|+()[]{}").find(c) != std::string::npos) {
+      re += std::string("\\") + c;
+    } else {
+      re += c;
+    }
   }
   const std::regex fileRe(re);
   const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "ExpectError.h"
 #include "srp/core/Error.h"
 #include "srp/core/Scene.h"
 
@@ -62,25 +63,12 @@ TEST(CameraFiles, DefaultCalibrationMatchesTheDefaultSyntheticScene) {
 TEST(CameraFiles, BadFilesAreNamed) {
   const std::string missing = tempPath("missing.xml");
   fs::remove(missing);
-  try {
-    loadCameraXml(missing);
-    FAIL();
-  } catch (const srp::core::FileError& e) {
-    EXPECT_NE(std::string(e.what()).find(missing), std::string::npos);
-  }
+  test::expectErrorNaming<srp::core::FileError>([&] { loadCameraXml(missing); }, missing);
   const std::string folder = std::string(SRP_DATASETS_DIR) + "/real/visp-rbt-cube/";
-  try {
-    loadCameraXml(folder + "camera.xml", "no_such_camera");
-    FAIL();
-  } catch (const srp::core::FileError& e) {
-    EXPECT_NE(std::string(e.what()).find("color_camera"), std::string::npos) << "lists the cameras: " << e.what();
-  }
+  // The error lists the cameras the file has.
+  test::expectErrorNaming<srp::core::FileError>([&] { loadCameraXml(folder + "camera.xml", "no_such_camera"); },
+                                                "color_camera");
   const std::string bad = tempPath("bad.json");
   { std::ofstream(bad) << R"({"px": 500, "py": 500, "u0": 320})"; }
-  try {
-    loadCameraFile(bad);
-    FAIL();
-  } catch (const srp::core::InvalidInputError& e) {
-    EXPECT_NE(std::string(e.what()).find("v0"), std::string::npos) << e.what();
-  }
+  test::expectErrorNaming<srp::core::InvalidInputError>([&] { loadCameraFile(bad); }, "v0");
 }

@@ -131,6 +131,8 @@ TEST(IntrinsicCalibrator, RealVispChessboardMatchesVispsDocumentedResult) {
   constexpr double kRealRmsMax_px = 0.5; // issue 9 acceptance
   const auto files = expandImageGlob(std::string(SRP_DATASETS_DIR) + "/real/visp-calib-chessboard/chessboard-*.jpg");
   ASSERT_EQ(files.size(), 13u);
+  EXPECT_EQ(expandImageGlob(std::string(SRP_DATASETS_DIR) + "/real/visp-calib-chessboard/chessboard-0[1-3].jpg").size(), 3u);
+  EXPECT_EQ(expandImageGlob(std::string(SRP_DATASETS_DIR) + "/real/visp-calib-chessboard/chessboard-1?.jpg").size(), 4u);
   const auto r = calibrateIntrinsicsFromFiles(files, CalibrationPattern::parse("chessboard:9x6:0.025"));
   EXPECT_EQ(r.viewsUsed(), 13) << "all 13 images show the pattern";
   const auto& K = r.camera.intrinsics;

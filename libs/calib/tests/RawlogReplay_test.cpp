@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "ExpectError.h"
 #include "srp/core/Error.h"
 #include "srp/rawlog/RawlogWriter.h"
 
@@ -114,18 +115,8 @@ TEST(RawlogReplay, MrptSampleRgbdRawlogReplaysAndExports) {
 TEST(RawlogReplay, MissingOrEmptyFilesAreNamed) {
   const std::string missing = (fs::temp_directory_path() / "srp_calib_no_such.rawlog").string();
   fs::remove(missing);
-  try {
-    replayRawlog(missing);
-    FAIL();
-  } catch (const srp::core::FileError& e) {
-    EXPECT_NE(std::string(e.what()).find(missing), std::string::npos);
-  }
+  test::expectErrorNaming<srp::core::FileError>([&] { replayRawlog(missing); }, missing);
   const auto path = writeRecording("cut.rawlog", 2);
   fs::resize_file(path, 40);  // not even one frame left
-  try {
-    replayRawlog(path);
-    FAIL();
-  } catch (const srp::core::FileError& e) {
-    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
-  }
+  test::expectErrorNaming<srp::core::FileError>([&] { replayRawlog(path); }, path);
 }

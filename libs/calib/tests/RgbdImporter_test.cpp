@@ -6,6 +6,7 @@
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 
+#include "ExpectError.h"
 #include "srp/calib/CameraFiles.h"
 #include "srp/calib/RawlogReplay.h"
 #include "srp/core/Error.h"
@@ -28,12 +29,7 @@ fs::path freshDir(const std::string& name) {
 /// Expects `fn` to throw FileError whose message names `needle`.
 template <typename Fn>
 void expectFileErrorNaming(Fn fn, const std::string& needle) {
-  try {
-    fn();
-    FAIL() << "expected a FileError naming " << needle;
-  } catch (const srp::core::FileError& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-  }
+  test::expectErrorNaming<srp::core::FileError>(fn, needle);
 }
 
 void writeIntrinsicsJson(const fs::path& dir, int w, int h) {

@@ -55,8 +55,8 @@ IntrinsicCalibrationResult calibrateIntrinsicsFromFiles(const std::vector<std::s
                                                         const CalibrationPattern& pattern,
                                                         const IntrinsicCalibrationOptions& options = {});
 
-/// Expands a shell-style file pattern (`calib/*.png`, `?` and `*` in the file
-/// name only) to the sorted list of matching files; a plain path is returned
+/// Expands a shell-style file pattern (`calib/*.png`; `*`, `?` and `[...]` in
+/// the file name only) to the sorted list of matching files; a plain path is returned
 /// as is. Throws FileError naming the pattern when nothing matches.
 std::vector<std::string> expandImageGlob(const std::string& pattern);
 

@@ -57,11 +57,15 @@ std::vector<TagDetection> AprilTagDetector::detect(const cv::Mat& image, const c
     if (corners[i].size() != 4 || points3d[i].size() != 4) continue;
     TagDetection t;
     t.id = ids[i];
+    // ViSP's tag frame has y up and z out of the tag (towards the camera);
+    // AprilTag's, used here: y down as read, z into the tag.
+    const Eigen::Matrix3d F = Eigen::Vector3d(1, -1, -1).asDiagonal();
     t.X_camera_tag = core::fromVisp(cMo[i]);
+    t.X_camera_tag.linear() = t.X_camera_tag.linear() * F;
     double sq = 0.0;
     for (int c = 0; c < 4; ++c) {
       t.corners_px[c] = {corners[i][c].get_u(), corners[i][c].get_v()};
-      t.corners_tag_m[c] = {points3d[i][c].get_oX(), points3d[i][c].get_oY(), points3d[i][c].get_oZ()};
+      t.corners_tag_m[c] = F * Eigen::Vector3d(points3d[i][c].get_oX(), points3d[i][c].get_oY(), points3d[i][c].get_oZ());
       t.centre_px += t.corners_px[c] / 4.0;
       const Eigen::Vector3d p = t.X_camera_tag * t.corners_tag_m[c];
       if (p.z() > 0) {

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <opencv2/imgproc.hpp>
 
 #include "srp/core/Error.h"
@@ -10,13 +12,12 @@
 namespace srp::perception {
 namespace {
 
-double srgbToLinear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
-
-/// Agreement [0, 1] of two linear-RGB colours by chromaticity and brightness.
+/// Agreement [0, 1] of two RGB colours by chromaticity (brightness, i.e.
+/// shading, does not count).
 double colourAgreement(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   const Eigen::Vector3d ca = a / std::max(1e-6, a.sum()), cb = b / std::max(1e-6, b.sum());
   const double dChroma = (ca - cb).norm();
-  return std::exp(-0.5 * std::pow(dChroma / 0.08, 2));
+  return std::exp(-0.5 * std::pow(dChroma / 0.1, 2));
 }
 
 }  // namespace
@@ -111,7 +112,7 @@ std::vector<ObjectDetection> ObjectDetector::detect(const rawlog::RgbdFrame& fra
       pixels[s].emplace_back(u, v);
       if (hasColour) {
         const cv::Vec3b c = frame.colour_bgr8.at<cv::Vec3b>(v, u);
-        colourSum[s] += Eigen::Vector3d(srgbToLinear(c[2] / 255.0), srgbToLinear(c[1] / 255.0), srgbToLinear(c[0] / 255.0));
+        colourSum[s] += Eigen::Vector3d(c[2], c[1], c[0]) / 255.0;
       }
     }
   }
@@ -153,6 +154,11 @@ std::vector<ObjectDetection> ObjectDetector::detect(const rawlog::RgbdFrame& fra
       if (colourScore < 0.05) continue;
       const ObjectPoseFit fit = fitter.fit(points[s], plane, cloud, camera);
       const double confidence = fit.score * colourScore;
+      if (std::getenv("SRP_PERCEPTION_DEBUG"))
+        std::fprintf(stderr, "segment %zu (%zu px) %s: inliers %.2f coverage %.2f colour %.2f at %.3f %.3f %.3f\n", s,
+                     points[s].size(), model.name.c_str(), fit.inlierRatio, fit.coverage, colourScore,
+                     fit.X_camera_object.translation().x(), fit.X_camera_object.translation().y(),
+                     fit.X_camera_object.translation().z());
       if (confidence > best.confidence) {
         best.className = model.name;
         best.classId = model.classId;

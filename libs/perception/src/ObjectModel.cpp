@@ -10,16 +10,19 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-/// Closed prism: a convex-or-star-shaped footprint polygon (CCW, around the
-/// origin) extruded from z0 to z1.
+/// Closed prism: a convex or star-shaped footprint polygon (CCW) extruded
+/// from z0 to z1.
 void addPrism(TriangleMesh& m, const std::vector<Eigen::Vector2d>& poly, double z0, double z1) {
   const int n = static_cast<int>(poly.size());
   const int base = static_cast<int>(m.vertices_m.size());
   for (const auto& p : poly) m.vertices_m.emplace_back(p.x(), p.y(), z0);
   for (const auto& p : poly) m.vertices_m.emplace_back(p.x(), p.y(), z1);
+  // Caps fan out from the vertices' centroid (inside convex and star-shaped outlines).
+  Eigen::Vector2d c = Eigen::Vector2d::Zero();
+  for (const auto& p : poly) c += p / static_cast<double>(n);
   const int cBottom = static_cast<int>(m.vertices_m.size());
-  m.vertices_m.emplace_back(0, 0, z0);
-  m.vertices_m.emplace_back(0, 0, z1);
+  m.vertices_m.emplace_back(c.x(), c.y(), z0);
+  m.vertices_m.emplace_back(c.x(), c.y(), z1);
   for (int i = 0; i < n; ++i) {
     const int j = (i + 1) % n;
     m.triangles.emplace_back(cBottom, base + j, base + i);              // bottom, facing -z
@@ -27,6 +30,18 @@ void addPrism(TriangleMesh& m, const std::vector<Eigen::Vector2d>& poly, double 
     m.triangles.emplace_back(base + i, base + j, base + n + j);         // side
     m.triangles.emplace_back(base + i, base + n + j, base + n + i);
   }
+}
+
+/// Scales a polygon to span exactly size (x, y), centred on its bounding box.
+std::vector<Eigen::Vector2d> fitToBox(std::vector<Eigen::Vector2d> poly, const Eigen::Vector2d& size) {
+  Eigen::Vector2d lo = poly.front(), hi = poly.front();
+  for (const auto& p : poly) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const Eigen::Vector2d centre = 0.5 * (lo + hi), scale = size.cwiseQuotient(hi - lo);
+  for (auto& p : poly) p = (p - centre).cwiseProduct(scale);
+  return poly;
 }
 
 std::vector<Eigen::Vector2d> rectangle(double sx, double sy, double cx = 0, double cy = 0) {
@@ -72,18 +87,15 @@ TriangleMesh ObjectModel::shapeMesh(const std::string& shape, const Eigen::Vecto
     for (int i = 0; i < 32; ++i) poly.emplace_back(0.5 * d.x() * std::cos(i * kPi / 16), 0.5 * d.y() * std::sin(i * kPi / 16));
     addPrism(m, poly, 0, h);
   } else if (shape == "star") {
+    // Five points, one along +x, inner radius half the outer, stretched to the box (as srp kb build).
     std::vector<Eigen::Vector2d> poly;
-    const double ro = 0.5 * d.x(), ri = 0.45 * ro;
     for (int i = 0; i < 10; ++i) {
-      const double a = kPi / 2 + i * kPi / 5, r = (i % 2 == 0) ? ro : ri;
-      poly.emplace_back(r * std::cos(a), r * std::sin(a));
+      const double r = (i % 2 == 0) ? 1.0 : 0.5;
+      poly.emplace_back(r * std::cos(i * kPi / 5), r * std::sin(i * kPi / 5));
     }
-    addPrism(m, poly, 0, h);
+    addPrism(m, fitToBox(poly, d.head<2>()), 0, h);
   } else if (shape == "parallelogram") {
-    const double skew = 0.5 * d.y();  // top edge shifted by half the depth
-    const double base = d.x() - skew;
-    addPrism(m, {{-d.x() / 2, -d.y() / 2}, {-d.x() / 2 + base, -d.y() / 2}, {d.x() / 2, d.y() / 2}, {d.x() / 2 - base, d.y() / 2}},
-             0, h);
+    addPrism(m, fitToBox({{-1.0, -1.0}, {0.5, -1.0}, {1.0, 1.0}, {-0.5, 1.0}}, d.head<2>()), 0, h);
   } else if (shape == "open_box") {
     const double t = wall_m > 0 ? wall_m : 0.005;
     addPrism(m, rectangle(d.x(), d.y()), 0, t);  // floor

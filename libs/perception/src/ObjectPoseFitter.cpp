@@ -104,12 +104,16 @@ ObjectPoseFit ObjectPoseFitter::fit(const std::vector<Eigen::Vector3d>& points_c
   for (std::size_t i = 0; i < points_camera.size(); i += step) q.push_back(X_plane_camera * points_camera[i]);
 
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  double top = -1e9;
+  std::vector<double> heights;
   for (const auto& p : q) {
     centroid += p;
-    top = std::max(top, p.z());
+    heights.push_back(p.z());
   }
   centroid /= static_cast<double>(q.size());
+  // Robust top (98th percentile): flying pixels above edges do not count.
+  const std::size_t iTop = heights.size() - 1 - heights.size() / 50;
+  std::nth_element(heights.begin(), heights.begin() + static_cast<long>(iTop), heights.end());
+  const double top = heights[iTop];
 
   std::vector<Eigen::Vector4d> starts;  // x, y, z, yaw in the plane frame
   if (initial) {
@@ -119,7 +123,11 @@ ObjectPoseFit ObjectPoseFitter::fit(const std::vector<Eigen::Vector3d>& points_c
   } else {
     const double z0 = std::max(0.0, top - model_.dimensions_m.z());
     const int nYaw = std::max(1, static_cast<int>(std::ceil(model_.yawSymmetry_rad / options_.yawStep_rad - 1e-9)));
-    for (int i = 0; i < nYaw; ++i) starts.emplace_back(centroid.x(), centroid.y(), z0, i * options_.yawStep_rad);
+    for (int i = 0; i < nYaw; ++i) {
+      starts.emplace_back(centroid.x(), centroid.y(), z0, i * options_.yawStep_rad);
+      // Also standing on the plane itself, unless the top says otherwise by far.
+      if (z0 > 0.005) starts.emplace_back(centroid.x(), centroid.y(), 0.0, i * options_.yawStep_rad);
+    }
   }
 
   const double tol = options_.inlierTol_m;
@@ -136,7 +144,8 @@ ObjectPoseFit ObjectPoseFitter::fit(const std::vector<Eigen::Vector3d>& points_c
       for (std::size_t i = 0; i < q.size(); i += stride) {
         const Eigen::Vector3d& p = q[i];
         const Eigen::Vector3d po = R.transpose() * (p - t);
-        const Eigen::Vector3d m = R * model_.surface[static_cast<std::size_t>(impl_->lookup(po))].p_m;
+        const SurfacePoint& sp = model_.surface[static_cast<std::size_t>(impl_->lookup(po))];
+        const Eigen::Vector3d m = R * sp.p_m;
         const Eigen::Vector3d e = p - (m + t);
         const double dist = e.norm();
         if (dist > gate) continue;
@@ -144,9 +153,20 @@ ObjectPoseFit ObjectPoseFitter::fit(const std::vector<Eigen::Vector3d>& points_c
         Eigen::Matrix<double, 3, 4> J;
         J.leftCols<3>() = -Eigen::Matrix3d::Identity();
         J.col(3) = -Eigen::Vector3d(-m.y(), m.x(), 0.0);
-        H += w * J.transpose() * J;
-        g += w * J.transpose() * e;
+        // Point-to-plane (along the model normal; free of the sampling's
+        // spacing) plus a weak point-to-point term that keeps faces from sliding.
+        const Eigen::Vector3d n = R * sp.n;
+        const Eigen::Matrix<double, 1, 4> Jn = n.transpose() * J;
+        constexpr double kPointWeight = 0.1;
+        H += w * (Jn.transpose() * Jn + kPointWeight * J.transpose() * J);
+        g += w * (Jn.transpose() * n.dot(e) + kPointWeight * J.transpose() * e);
       }
+      // Weak prior keeping the start's height: side faces alone cannot tell
+      // the height (an open box's walls fit raised as well); the starts try both
+      // "on the plane" and "top at the data's top", and coverage picks.
+      const double zPrior = 0.05 * H(0, 0);
+      H(2, 2) += zPrior;
+      g(2) += zPrior * (t.z() - s[2]);
       H.diagonal() += Eigen::Vector4d(1e-6, 1e-6, 1e-6, 1e-6);
       const Eigen::Vector4d delta = -H.ldlt().solve(g);
       t += delta.head<3>();
@@ -184,13 +204,22 @@ ObjectPoseFit ObjectPoseFitter::fit(const std::vector<Eigen::Vector3d>& points_c
   std::vector<std::pair<double, Eigen::Vector4d>> coarse;
   const std::size_t coarseStride = starts.size() > 1 ? 4 : 1;
   for (const Eigen::Vector4d& s : starts) {
-    const Eigen::Vector4d x = icp(s, starts.size() > 1 ? 8 : 0, coarseStride);
+    const Eigen::Vector4d x = icp(s, starts.size() > 1 ? 12 : 0, coarseStride);
     coarse.emplace_back(evaluate(x, true).score, x);
   }
   std::sort(coarse.begin(), coarse.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-  for (std::size_t k = 0; k < std::min<std::size_t>(2, coarse.size()); ++k) {
-    const ObjectPoseFit f = evaluate(icp(coarse[k].second, options_.iterations, 1), true);
+  for (std::size_t k = 0; k < std::min<std::size_t>(4, coarse.size()); ++k) {
+    const Eigen::Vector4d x = icp(coarse[k].second, options_.iterations, 1);
+    const ObjectPoseFit f = evaluate(x, true);
     if (f.score > best.score) best = f;
+    // Height check: the same footprint standing on the plane (side faces do
+    // not fix the height; the coverage of what is below does).
+    if (!initial && std::abs(x[2]) > 0.003) {
+      Eigen::Vector4d onPlane = x;
+      onPlane[2] = 0.0;
+      const ObjectPoseFit g = evaluate(icp(onPlane, options_.iterations / 2, 1), true);
+      if (g.score > best.score) best = g;
+    }
   }
   if (options_.refineTilt && best.score > 0.0) {
     // 6-DOF refinement from the 4-DOF pose: the object may tilt a little

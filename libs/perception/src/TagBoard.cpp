@@ -28,9 +28,10 @@ TagBoardLayout TagBoardLayout::grid(double tagSize_m, double spacing_m, int tags
 }
 
 TagBoardLayout TagBoardLayout::vispRbtBoard() {
-  // Measured from the recording: tag x axis along board y, tag y along -board x.
+  // Measured from the recording: tag x along board y, tag y along board x,
+  // tag z along -board z (the board's z comes out of its face).
   Eigen::Matrix3d R;
-  R << 0, -1, 0, 1, 0, 0, 0, 0, 1;
+  R << 0, 1, 0, 1, 0, 0, 0, 0, -1;
   constexpr double kTagSize_m = 0.0955;
   return grid(kTagSize_m, 1.25 * kTagSize_m, 3, 4, 0, R);
 }

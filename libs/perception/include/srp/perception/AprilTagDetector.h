@@ -14,9 +14,9 @@
 
 namespace srp::perception {
 
-/// One detected tag. Tag frame (ViSP's): origin at the tag centre, z out of
-/// the tag's back (into the surface it is printed on, away from the camera
-/// when the tag faces it), metres. `corners_px[i]` is the image of
+/// One detected tag. Tag frame (AprilTag's; ViSP's default is this one turned
+/// half a turn about x): origin at the tag centre, x right and y down as the
+/// tag is read, z into the tag (away from a camera that faces it), metres. `corners_px[i]` is the image of
 /// `corners_tag_m[i]`.
 struct TagDetection {
   int id = -1;

@@ -18,25 +18,24 @@ void writeHandFigure(const std::string& pngPath, const perception::PerceptionRes
               std::to_string(seen.frames) + " frames detected";
   const char* axisName[3] = {"x", "y", "z"};
   const auto& smoothed = segmentation.hand;
+  const double fps = frameRateOf(seen.hand);
   for (int k = 0; k < 3; ++k) {
     auto& ax = fig.axes(k / 2, k % 2);
     ax.title = std::string("hand ") + axisName[k];
     ax.xLabel = "t [s]";
     ax.yLabel = std::string(axisName[k]) + " [m]";
+    // Time from frame numbers: the rawlog's clock and the smoother's differ in origin.
     std::vector<double> td, pd, ts, ps;
-    const double t0 = seen.hand.empty() ? 0.0 : seen.hand[0].t_s;
     for (const auto& s : seen.hand.samples())
-      if (s.valid) { td.push_back(s.t_s - t0); pd.push_back(s.p_m[k]); }
-    for (const auto& s : smoothed.samples()) { ts.push_back(s.t_s - t0); ps.push_back(s.p_m[k]); }
+      if (s.valid) { td.push_back(s.frame / fps); pd.push_back(s.p_m[k]); }
+    for (const auto& s : smoothed.samples()) { ts.push_back(s.frame / fps); ps.push_back(s.p_m[k]); }
     ax.scatter(td, pd, "detected", plot::Color::tab(0), plot::Marker::Circle, 2);
     ax.line(ts, ps, "smoothed", plot::Color::tab(1), 2);
     for (std::size_t i = 0; i < segmentation.objects.size(); ++i) {
       const auto& o = segmentation.objects[i];
       if (!o.moved) continue;
-      ax.verticalLine(smoothed[static_cast<std::size_t>(o.graspIndex)].t_s - t0, k == 0 ? "grasp " + o.name : "",
-                      plot::Color::tab(2 + static_cast<int>(i)));
-      ax.verticalLine(smoothed[static_cast<std::size_t>(o.releaseIndex)].t_s - t0, k == 0 ? "release" : "",
-                      plot::Color::tab(2 + static_cast<int>(i)));
+      ax.verticalLine(o.graspFrame / fps, k == 0 ? "grasp " + o.name : "", plot::Color::tab(2 + static_cast<int>(i)));
+      ax.verticalLine(o.releaseFrame / fps, k == 0 ? "release" : "", plot::Color::tab(2 + static_cast<int>(i)));
     }
   }
   auto& top = fig.axes(1, 1);

@@ -82,6 +82,17 @@ void setSkillFlags(taskdb::TaskModel& model, const std::vector<motion::SkillSet>
 
 }  // namespace
 
+double frameRateOf(const core::PositionTrajectory& samples) {
+  std::vector<double> dt;
+  for (std::size_t i = 1; i < samples.size(); ++i)
+    if (samples[i].frame > samples[i - 1].frame)
+      dt.push_back((samples[i].t_s - samples[i - 1].t_s) / (samples[i].frame - samples[i - 1].frame));
+  if (dt.empty()) return 30.0;
+  std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
+  const double median = dt[dt.size() / 2];
+  return median > 0.0 ? 1.0 / median : 30.0;
+}
+
 ProgramResult programTask(const ProgrammingOptions& o) {
   ProgramResult result;
   StageClock clock(result);
@@ -161,7 +172,7 @@ ProgramResult programTask(const ProgrammingOptions& o) {
   // 4. The task model: instruction tables + perception rows, ids linked.
   clock.start("motion");
   taskdb::TaskModel model = language::planToTaskModel(plan, o.name, o.instruction);
-  model.info.frameRate_hz = 30.0;
+  model.info.frameRate_hz = frameRateOf(seen.hand);
   model.info.intrinsics = seen.intrinsics;
   const perception::PerceptionRows rows = perception::toTaskDbRows(seen, kb);
   model.handPositions = rows.handPositions;

@@ -41,6 +41,7 @@ const std::string& demoPath() {
     opt.demo.seed = 7;
     opt.demo.idleStart_s = 0.7;
     opt.demo.idleEnd_s = 0.7;
+    opt.demo.speedFactor = 1.4;
     const nlohmann::json plan = {{"steps",
                                   {{{"object", {{"name", "cuboid"}, {"color", nullptr}}},
                                     {"source", {{{"relation", "from"}, {"landmark", {{"name", "box"}, {"color", "blue"}}}}}},
@@ -97,11 +98,6 @@ TEST(ProgrammingPipeline, LearnsTheCuboidStepFromTheDemo) {
   for (const auto& p : m.productPoses) graspRows += p.grasp;
   EXPECT_EQ(graspRows, 1);
   for (const auto& f : r.reportFiles) EXPECT_TRUE(std::filesystem::exists(f)) << f;
-
-  // Re-programming the same name makes version 2; version 1 stays.
-  const auto again = programming::programTask(options(db));
-  EXPECT_EQ(again.version, 2);
-  EXPECT_EQ(modelCount(db), 2u);
 }
 
 TEST(ProgrammingPipeline, BadInputWritesNothing) {
@@ -129,7 +125,12 @@ TEST(ProgrammingPipeline, BadInputWritesNothing) {
 
 TEST(ProgrammingPipeline, KilledAtAnyStageLeavesTheDatabaseAsBefore) {
   const std::string db = freshDb("killed");
-  programming::programTask(options(db));  // one model already there
+  {  // one model already there
+    auto d = taskdb::TaskDatabase::open(db);
+    taskdb::TaskModel m;
+    m.info.name = "previous";
+    taskdb::TaskModelStore(d).write(m);
+  }
   for (const std::string stage : {"environment", "store"}) {
     int fd[2];
     ASSERT_EQ(pipe(fd), 0);

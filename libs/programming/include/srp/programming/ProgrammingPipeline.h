@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "srp/core/CameraIntrinsics.h"
+#include "srp/core/PositionTrajectory.h"
 
 namespace srp::programming {
 
@@ -78,6 +79,9 @@ struct ProgramResult {
 /// never shows, or the hand is never seen; FileError for a bad rawlog or
 /// database.
 ProgramResult programTask(const ProgrammingOptions& options);
+
+/// Frame rate [Hz] of a recording from its timestamps (median frame period; 30 when unknown).
+double frameRateOf(const core::PositionTrajectory& samples);
 
 /// The result as JSON (`srp program --json`).
 std::string toJsonText(const ProgramResult& result);

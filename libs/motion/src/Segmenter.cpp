@@ -473,15 +473,17 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
       // Release: the hand's rest at the object's final position starts where
       // the object stops moving with it (searched from the grasp on: the
       // object's detections, hence the mid-move sample, are unreliable while
-      // it is in the hand). The object is rigid in the hand, so
-      // the hand is as far from p_final at the release as from p_initial at
-      // the grasp (this excludes stops of the hand above the place).
-      const double reach_m = (result.hand[static_cast<std::size_t>(grasp)].p_m - seg.p_initial_m).norm();
-      auto reachFits = [&](int i) {
-        return std::abs((result.hand[static_cast<std::size_t>(i)].p_m - seg.p_final_m).norm() - reach_m) <=
-               config_.releaseReachTolerance_m;
-      };
+      // it is in the hand). The hand releases where it is closest to the
+      // object's final position (measured after the hand has left): this
+      // excludes its stops above the place (lift top, end of the retract).
       const int lo = grasp + 1, hi = std::min(n - 1, release + config_.moveSamples);
+      double closest_m = std::numeric_limits<double>::infinity();
+      for (int i = lo; i <= hi; ++i)
+        closest_m = std::min(closest_m, (result.hand[static_cast<std::size_t>(i)].p_m - seg.p_final_m).norm());
+      auto reachFits = [&](int i) {
+        return (result.hand[static_cast<std::size_t>(i)].p_m - seg.p_final_m).norm() <=
+               closest_m + config_.releaseReachTolerance_m;
+      };
       int r = restMoveBoundary(hand, lo, hi, -1, config_.restSamples, config_.moveSamples, reachFits);
       if (r < 0) r = restMoveBoundary(hand, lo, hi, -1, config_.restSamples, config_.moveSamples, [](int) { return true; });
       if (r >= 0) release = restEnd(hand, r, -1, config_.restSamples, lo, n - 1);

@@ -28,9 +28,9 @@
 /// the last sample of the hand's rest at the object (searched over the valley
 /// and a little after it), release = the first sample of the hand's rest at
 /// the object's final position (searched from the grasp to just after the
-/// mixture's release, among samples where the hand is as far from the
-/// object's final position as it was from the initial one at the grasp, since
-/// the object is rigid in the hand). The boundary is the change point that best
+/// mixture's release, among samples where the hand is within
+/// releaseReachTolerance_m of its closest approach to the object's final
+/// position, which excludes the hand's stops above the place). The boundary is the change point that best
 /// fits the raw hand detections as a rest (their mean) on one side and a
 /// smooth start from rest (p = p_rest + b dt^2 + c dt^3 per axis) on the other;
 /// it needs only the hand, which the glove tag detects reliably, not the
@@ -106,7 +106,7 @@ class Segmenter {
     EventEstimator events = EventEstimator::HandDwellBoundary;
     int restSamples = 6;               ///< hand detections fitted as the rest beside a boundary (>= 3)
     int moveSamples = 8;               ///< hand detections fitted as the smooth start beside a boundary (>= 3)
-    double releaseReachTolerance_m = 0.025;  ///< release: |hand - p_final| within this of |hand - p_initial| at the grasp
+    double releaseReachTolerance_m = 0.02;  ///< release: |hand - p_final| within this of its minimum over the search
   };
 
   Segmenter() = default;

@@ -28,6 +28,18 @@ std::filesystem::path workDir() {
   return dir;
 }
 
+// A small, fast synthetic demo: 320x240, short idles, a brisk demonstrator.
+synth::SynthDemoOptions smallDemoOptions(std::uint32_t seed) {
+  synth::SynthDemoOptions opt;
+  opt.width_px = 320;
+  opt.height_px = 240;
+  opt.demo.seed = seed;
+  opt.demo.idleStart_s = 0.7;
+  opt.demo.idleEnd_s = 0.7;
+  opt.demo.speedFactor = 1.4;
+  return opt;
+}
+
 // One small demo (the cuboid step of instruction 1) shared by the tests; the
 // octagon is taken out of the scene so an instruction can name a part it never shows.
 const std::string& demoPath() {
@@ -37,13 +49,7 @@ const std::string& demoPath() {
                                        [](const auto& o) { return o.className == "octagon"; }),
                         scene.objects.end());
     const auto kb = core::ObjectCatalogue::load(scene.cataloguePath);
-    synth::SynthDemoOptions opt;
-    opt.width_px = 320;
-    opt.height_px = 240;
-    opt.demo.seed = 7;
-    opt.demo.idleStart_s = 0.7;
-    opt.demo.idleEnd_s = 0.7;
-    opt.demo.speedFactor = 1.4;
+    const synth::SynthDemoOptions opt = smallDemoOptions(7);
     const nlohmann::json plan = {{"steps",
                                   {{{"object", {{"name", "cuboid"}, {"color", nullptr}}},
                                     {"source", {{{"relation", "from"}, {"landmark", {{"name", "box"}, {"color", "blue"}}}}}},
@@ -109,13 +115,8 @@ TEST(ProgrammingPipeline, LearnsTheCuboidStepFromTheDemo) {
 TEST(ProgrammingPipeline, GraspAndReleaseOfEveryObjectMatchTheGroundTruth) {
   const core::Scene scene = core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
   const auto kb = core::ObjectCatalogue::load(scene.cataloguePath);
-  synth::SynthDemoOptions opt;
-  opt.width_px = 320;
-  opt.height_px = 240;
-  opt.demo.seed = 11;
-  opt.demo.idleStart_s = 0.5;
-  opt.demo.idleEnd_s = 0.5;
-  opt.demo.speedFactor = 1.4;
+  synth::SynthDemoOptions opt = smallDemoOptions(11);
+  opt.demo.idleStart_s = opt.demo.idleEnd_s = 0.5;
   nlohmann::json plan = synth::defaultPlanJson();
   plan["steps"].erase(plan["steps"].begin() + 2, plan["steps"].end());  // cuboid, then the star next to it
   const std::string rawlog = (workDir() / "two_steps.rawlog").string();

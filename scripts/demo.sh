@@ -1,20 +1,52 @@
 #!/usr/bin/env bash
-# The main job on the bundled default (README command one, after the build).
-# Runs what the project has: each stage is used when its command exists.
+# README command one, after the build: the thesis scenario end to end on the
+# bundled default (SPEC.md §4). Synthesise the demonstration of instruction 1,
+# program the task from it, execute it and two adaptations in simulation.
 set -euo pipefail
 build=${1:-build}
 srp="$build/apps/srp"
 out=${SRP_DEMO_OUT:-out/demo}
+scene=sim/scenes/default.json
 mkdir -p "$out"
 db="$out/task.db"
 rm -f "$db" "$db-wal" "$db-shm"
 
-has() { "$srp" "$1" --help >/dev/null 2>&1; }
+instruction="Begin by picking up the cuboid from the blue box and placing it in the gray box. Next, carefully lift \
+the star and position it next to the cuboid in the gray box. Then, move the parallelogram, placing it beside the \
+star in the gray box. Finally, pick up the octagon and place it adjacent to the parallelogram in the gray box."
+subset="Pick up the cuboid from the blue box and place it in the gray box."
+reversal="Move the cuboid from the gray box back to the blue box."
 
-echo "== srp demo: the thesis scenario (SPEC.md §4), output in $out"
-"$srp" db init "$db"
-"$srp" db import datasets/examples/appendix_c_instruction1.json --db "$db"
-"$srp" db show 1 --db "$db"
-"$srp" db export 1 --db "$db" --format appendix-c --out "$out/appendix_c.tsv"
+step() { printf '\n== %s\n' "$*"; }
+started=$(date +%s)
+
+step "1/5 synthesise the demonstration of instruction 1 ($scene)"
+"$srp" synth-demo --scene "$scene" -o "$out/demo.rawlog" --contact-sheet "$out/contact_sheet.png"
+
+step "2/5 program the task: instruction + demonstration -> task model"
+"$srp" program --instruction "$instruction" --demo "$out/demo.rawlog" --db "$db" --name thesis \
+  --report "$out/report"
+
+run_execute() {  # name, extra args...
+  local name=$1; shift
+  set +e
+  "$srp" execute --db "$db" --task 1 --out "$out/$name" "$@"
+  local rc=$?
+  set -e
+  [ $rc -le 2 ] || exit $rc   # 2 = done with skipped or failed steps: reported, keep going
+}
+step "3/5 execute the learned task on the simulated UR5"
+run_execute execute --scene "$scene"
+step "4/5 adaptation without a new demonstration: subset"
+run_execute subset --scene "$scene" --instruction "$subset"
+step "5/5 adaptation without a new demonstration: reversal (from the scene the first run left)"
+run_execute reversal --scene "$out/execute/final_scene.json" --instruction "$reversal"
+
+step "summary ($(( $(date +%s) - started )) s)"
+"$srp" db list --db "$db"
+for run in execute subset reversal; do
+  if [ -f "$out/$run/report.txt" ]; then echo "-- $run"; tail -n 4 "$out/$run/report.txt"; fi
+done
 echo
-echo "Task model stored in $db; Appendix C layout written to $out/appendix_c.tsv"
+echo "Report of the programming run: $out/report/summary.md"
+echo "Execution reports and frames: $out/execute/ $out/subset/ $out/reversal/"

@@ -19,6 +19,7 @@ struct SegmentOptions {
   bool json = false;
   std::string writeExample;
   unsigned seed = 1;
+  std::string events = "dwell";
 };
 
 void writeExample(const SegmentOptions& o) {
@@ -44,7 +45,10 @@ void runSegment(const SegmentOptions& o) {
   if (o.trajectories.empty()) throw srp::core::InvalidInputError("give --trajectories <csv> (or --write-example <csv>)");
   if (o.order.empty()) throw srp::core::InvalidInputError("give --order with the objects in plan order, e.g. --order cuboid,star");
   const auto table = srp::motion::TrajectoryTable::readCsv(o.trajectories, o.fps);
-  const auto seg = srp::motion::Segmenter().segment(table.hand, table.objects, o.order);
+  srp::motion::Segmenter::Config config;
+  config.events = o.events == "thesis" ? srp::motion::Segmenter::EventEstimator::Thesis
+                                       : srp::motion::Segmenter::EventEstimator::HandDwellBoundary;
+  const auto seg = srp::motion::Segmenter(config).segment(table.hand, table.objects, o.order);
   if (o.json) {
     nlohmann::json objects = nlohmann::json::array();
     for (const auto& s : seg.objects) {
@@ -76,6 +80,11 @@ void setupSegment(CLI::App& app) {
   app.add_option("--fps", o->fps, "Frame rate of the table [Hz]")->capture_default_str();
   app.add_flag("--json", o->json, R"(Print {"objects":[{"name","grasp_frame","release_frame"}]})");
   app.add_option("--write-example", o->writeExample, "Write a synthetic 4-object demo table to this CSV and exit");
+  app.add_option("--events", o->events,
+                 "Grasp/release estimator: dwell (ends of the hand's rests at the object) or thesis "
+                 "(hand closest to the initial position; first sample of the final mixture component)")
+      ->check(CLI::IsMember({"dwell", "thesis"}))
+      ->capture_default_str();
   app.add_option("--seed", o->seed, "Random seed of --write-example")->capture_default_str();
   app.callback([o] { runSegment(*o); });
 }

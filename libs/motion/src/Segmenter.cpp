@@ -229,6 +229,110 @@ std::vector<int> mixtureLabels(const core::PositionTrajectory& t, const Eigen::V
   return out;
 }
 
+/// Boundary between the hand at rest and the hand moving off smoothly from
+/// rest. For each detected candidate b in [lo, hi] (sample indices): the rest =
+/// the `restCount` detections b, b - dir, ... (fitted by their mean p_rest),
+/// the move = the `moveCount` detections b + dir, b + 2 dir, ... (fitted per
+/// axis by p_rest + β dt² + γ dt³, dt = |t - t_b|: continuous position, zero
+/// velocity at b); gaps (hand not detected) are skipped, up to 3x the count.
+/// Returns the candidate with the least mean squared residual, or -1 when no
+/// candidate has enough detections. dir = +1: rest before, move after (the
+/// hand leaves: grasp); dir = -1: move before, rest after (the hand arrives:
+/// release). `allowed(b)` filters candidates.
+template <class Allowed>
+int restMoveBoundary(const core::PositionTrajectory& hand, int lo, int hi, int dir, int restCount, int moveCount,
+                     Allowed allowed) {
+  const int n = static_cast<int>(hand.size());
+  lo = std::max(lo, 0);
+  hi = std::min(hi, n - 1);
+  auto at = [&](int i) -> const core::PositionSample& { return hand[static_cast<std::size_t>(i)]; };
+  // The first `count` detections from b (included when `fromB`) stepping by `step`.
+  auto gather = [&](int b, int step, int count, bool fromB, std::vector<int>& out) {
+    out.clear();
+    for (int k = fromB ? 0 : 1; k <= 3 * count && static_cast<int>(out.size()) < count; ++k) {
+      const int i = b + step * k;
+      if (i < 0 || i >= n) break;
+      if (detected(at(i))) out.push_back(i);
+    }
+  };
+  std::vector<int> rest, move;
+  int best = -1;
+  double bestCost = std::numeric_limits<double>::infinity();
+  for (int b = lo; b <= hi; ++b) {
+    if (!detected(at(b)) || !allowed(b)) continue;
+    gather(b, -dir, restCount, true, rest);
+    gather(b, dir, moveCount, false, move);
+    if (static_cast<int>(rest.size()) < std::max(2, restCount / 2) || move.size() < 3) continue;
+    Eigen::Vector3d p_rest = Eigen::Vector3d::Zero();
+    for (int i : rest) p_rest += at(i).p_m;
+    p_rest /= static_cast<double>(rest.size());
+    double sse = 0.0;
+    for (int i : rest) sse += (at(i).p_m - p_rest).squaredNorm();
+    // Move: least squares of y = β u2 + γ u3 per axis (u in tenths of a second for conditioning).
+    double s22 = 0, s23 = 0, s33 = 0, syy = 0;
+    Eigen::Vector3d s2y = Eigen::Vector3d::Zero(), s3y = Eigen::Vector3d::Zero();
+    for (int i : move) {
+      const double dt = 10.0 * std::abs(at(i).t_s - at(b).t_s);
+      const double u2 = dt * dt, u3 = u2 * dt;
+      const Eigen::Vector3d y = at(i).p_m - p_rest;
+      s22 += u2 * u2, s23 += u2 * u3, s33 += u3 * u3;
+      s2y += u2 * y, s3y += u3 * y;
+      syy += y.squaredNorm();
+    }
+    const double det = s22 * s33 - s23 * s23;
+    double fitted = 0.0;  // explained sum of squares over the axes: s2y·β + s3y·γ
+    if (det > 1e-12 * s22 * s33) {
+      for (int a = 0; a < 3; ++a) {
+        const double beta = (s33 * s2y(a) - s23 * s3y(a)) / det, gamma = (s22 * s3y(a) - s23 * s2y(a)) / det;
+        fitted += beta * s2y(a) + gamma * s3y(a);
+      }
+    }
+    const double cost = (sse + std::max(0.0, syy - fitted)) / static_cast<double>(rest.size() + move.size());
+    if (cost < bestCost) bestCost = cost, best = b;
+  }
+  return best;
+}
+
+/// Extends a sample b inside a rest of the hand to the rest's end: p_rest =
+/// the per-axis median of the `restCount` detections from b against `dir`
+/// (the rest side), tolerance δ = 3x their RMS spread (2 mm to 10 mm); then
+/// walks from b along `dir` while the detections stay within δ of p_rest (two
+/// consecutive detections outside end the rest) and returns the last sample
+/// within. dir = +1: the rest's last sample (grasp), -1: its first (release).
+/// Samples outside [lo, hi] are not visited.
+int restEnd(const core::PositionTrajectory& hand, int b, int dir, int restCount, int lo, int hi) {
+  const int n = static_cast<int>(hand.size());
+  auto at = [&](int i) -> const core::PositionSample& { return hand[static_cast<std::size_t>(i)]; };
+  std::vector<Eigen::Vector3d> rest;
+  for (int k = 0; k <= 3 * restCount && static_cast<int>(rest.size()) < restCount; ++k) {
+    const int i = b - dir * k;
+    if (i < 0 || i >= n) break;
+    if (detected(at(i))) rest.push_back(at(i).p_m);
+  }
+  if (rest.size() < 2) return b;
+  Eigen::Vector3d p_rest;
+  std::vector<double> axis(rest.size());
+  for (int a = 0; a < 3; ++a) {
+    for (std::size_t k = 0; k < rest.size(); ++k) axis[k] = rest[k](a);
+    std::nth_element(axis.begin(), axis.begin() + static_cast<long>(axis.size() / 2), axis.end());
+    p_rest(a) = axis[axis.size() / 2];
+  }
+  double ss = 0.0;
+  for (const auto& p : rest) ss += (p - p_rest).squaredNorm();
+  const double tol_m = std::clamp(2.0 * std::sqrt(ss / static_cast<double>(rest.size())), 0.0015, 0.004);
+  auto within = [&](int i) { return (at(i).p_m - p_rest).norm() <= tol_m; };
+  int end = b;
+  // b itself past the rest (in the move): step back into it.
+  while (end - dir >= lo && end - dir <= hi && (!detected(at(end)) || !within(end)) && std::abs(end - b) < restCount) end -= dir;
+  int outside = 0;
+  for (int i = end + dir; i >= lo && i <= hi && outside < 2; i += dir) {
+    if (!detected(at(i))) continue;
+    if (within(i)) end = i, outside = 0;
+    else ++outside;
+  }
+  return end;
+}
+
 }  // namespace
 
 Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std::vector<ObjectTrack>& objects,
@@ -360,6 +464,30 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
     }
     std::sort(valley.begin(), valley.end());
     grasp = valley[valley.size() / 2];
+    if (config_.events == EventEstimator::HandDwellBoundary) {
+      // Grasp: the hand's rest at the object ends where the object starts to
+      // move with it; the valley covers the rest and the start of the lift.
+      const int g = restMoveBoundary(hand, std::max(from, valley.front()), std::min(to - 1, valley.back() + config_.moveSamples),
+                                     +1, config_.restSamples, config_.moveSamples, [](int) { return true; });
+      if (g >= 0) grasp = restEnd(hand, g, +1, config_.restSamples, from, to - 1);
+      // Release: the hand's rest at the object's final position starts where
+      // the object stops moving with it (searched from the grasp on: the
+      // object's detections, hence the mid-move sample, are unreliable while
+      // it is in the hand). The hand releases where it is closest to the
+      // object's final position (measured after the hand has left): this
+      // excludes its stops above the place (lift top, end of the retract).
+      const int lo = grasp + 1, hi = std::min(n - 1, release + config_.moveSamples);
+      double closest_m = std::numeric_limits<double>::infinity();
+      for (int i = lo; i <= hi; ++i)
+        closest_m = std::min(closest_m, (result.hand[static_cast<std::size_t>(i)].p_m - seg.p_final_m).norm());
+      auto reachFits = [&](int i) {
+        return (result.hand[static_cast<std::size_t>(i)].p_m - seg.p_final_m).norm() <=
+               closest_m + config_.releaseReachTolerance_m;
+      };
+      int r = restMoveBoundary(hand, lo, hi, -1, config_.restSamples, config_.moveSamples, reachFits);
+      if (r < 0) r = restMoveBoundary(hand, lo, hi, -1, config_.restSamples, config_.moveSamples, [](int) { return true; });
+      if (r >= 0) release = restEnd(hand, r, -1, config_.restSamples, lo, n - 1);
+    }
     seg.graspIndex = grasp;
     seg.releaseIndex = release;
     seg.graspFrame = hand[static_cast<std::size_t>(grasp)].frame;

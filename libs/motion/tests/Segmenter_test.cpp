@@ -13,6 +13,16 @@ namespace {
 
 constexpr int kFrameTol = 3;  // issue 6: grasp and release within +-3 frames of the truth
 
+// SyntheticPickPlaceGenerator's truth is the thesis' definition (grasp in the
+// middle of the hand's hold at the object), so these tests run the thesis'
+// estimator; the default (hand-dwell boundaries) is checked against
+// srp::synth's ground truth (grasp = end of the hold) in the programming tests.
+Segmenter thesisSegmenter() {
+  Segmenter::Config c;
+  c.events = Segmenter::EventEstimator::Thesis;
+  return Segmenter(c);
+}
+
 // Harder cases than the issue's acceptance (measured worst errors, see README):
 constexpr int kHeavyFlickerTol = 8;  // 8 % of frames flicker for 1-3 frames
 constexpr int kPutBackGraspTol = 8;  // the hand lingers near the object before a short reach
@@ -42,7 +52,7 @@ TEST(Segmenter, FindsGraspAndReleaseOnNoisyDemosWithFlicker) {
     SyntheticPickPlaceConfig c;
     c.seed = seed;
     const auto demo = SyntheticPickPlaceGenerator(c).generate();
-    const auto seg = Segmenter().segment(demo.hand, demo.objects, demo.planOrder);
+    const auto seg = thesisSegmenter().segment(demo.hand, demo.objects, demo.planOrder);
     expectWithinTolerance(demo, seg, "seed " + std::to_string(seed));
     for (std::size_t i = 0; i < seg.objects.size(); ++i) {
       worstGrasp = std::max(worstGrasp, std::abs(seg.objects[i].graspIndex - demo.graspIndex[i]));
@@ -59,7 +69,7 @@ TEST(Segmenter, ToleratesHeavyFlickerBetweenTwoPositions) {
   for (std::uint32_t seed = 20; seed < 24; ++seed) {
     c.seed = seed;
     const auto demo = SyntheticPickPlaceGenerator(c).generate();
-    expectWithinTolerance(demo, Segmenter().segment(demo.hand, demo.objects, demo.planOrder),
+    expectWithinTolerance(demo, thesisSegmenter().segment(demo.hand, demo.objects, demo.planOrder),
                           "heavy flicker seed " + std::to_string(seed), kHeavyFlickerTol, kHeavyFlickerTol);
   }
 }
@@ -70,7 +80,7 @@ TEST(Segmenter, ReportsAnObjectThatNeverMoves) {
   c.staticObjects = {"octagon"};
   const auto demo = SyntheticPickPlaceGenerator(c).generate();
   const std::vector<std::string> plan = {"cuboid", "octagon", "star"};
-  const auto seg = Segmenter().segment(demo.hand, demo.objects, plan);
+  const auto seg = thesisSegmenter().segment(demo.hand, demo.objects, plan);
   ASSERT_EQ(seg.objects.size(), 3u);
   EXPECT_FALSE(seg.objects[1].moved);
   EXPECT_EQ(seg.objects[1].graspIndex, -1);
@@ -91,7 +101,7 @@ TEST(Segmenter, ObjectsPutBackWhereTheyWereAreSegmented) {
   for (std::uint32_t seed = 30; seed < 34; ++seed) {
     c.seed = seed;
     const auto demo = SyntheticPickPlaceGenerator(c).generate();
-    expectWithinTolerance(demo, Segmenter().segment(demo.hand, demo.objects, demo.planOrder),
+    expectWithinTolerance(demo, thesisSegmenter().segment(demo.hand, demo.objects, demo.planOrder),
                           "put back, seed " + std::to_string(seed), kPutBackGraspTol, kFrameTol);
   }
 }

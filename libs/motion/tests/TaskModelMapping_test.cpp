@@ -34,7 +34,9 @@ TEST(TaskModelMapping, StoredDemoSegmentsLearnsAndStoresSkillsThatRollOutIdentic
   const MotionInputs in = motionInputsFromTaskModel(model);
   ASSERT_EQ(in.planOrder, demo.planOrder);
   ASSERT_EQ(in.hand.size(), demo.hand.size());
-  const auto seg = Segmenter().segment(in.hand, in.objects, in.planOrder);
+  Segmenter::Config thesis;  // the generator's truth is the thesis' grasp definition (mid-hold)
+  thesis.events = Segmenter::EventEstimator::Thesis;
+  const auto seg = Segmenter(thesis).segment(in.hand, in.objects, in.planOrder);
   for (std::size_t i = 0; i < seg.objects.size(); ++i) {
     EXPECT_LE(std::abs(seg.objects[i].graspIndex - demo.graspIndex[i]), kFrameTol);
     EXPECT_LE(std::abs(seg.objects[i].releaseIndex - demo.releaseIndex[i]), kFrameTol);

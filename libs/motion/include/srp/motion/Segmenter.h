@@ -13,10 +13,30 @@
 /// change point that the fewest labels contradict (components are ordered by
 /// time, components with means closer than minExcursion/2 are merged as one
 /// place; a few flickering or occluded samples after the release do not move
-/// it; the search starts mid-move, at the sample farthest from both rest positions). Grasp = the sample between the
-/// previous release and this release where the smoothed hand is closest to the
-/// object's initial position (the centre of the valley of near-closest samples,
-/// since the hand rests there while grasping). An object whose positions never leave its
+/// it; the search starts mid-move, at the sample farthest from both rest positions). The thesis' grasp
+/// (EventEstimator::Thesis) is the sample between the previous release and this
+/// release where the smoothed hand is closest to the object's initial position
+/// (the centre of the valley of near-closest samples, since the hand rests
+/// there while grasping): it lands mid-pause, and the mixture's release lands
+/// late when the object's detection drifts while the open hand still covers it.
+///
+/// The default (EventEstimator::HandDwellBoundary) keeps the mixture and the
+/// valley as the coarse search and refines both events to the boundaries of
+/// the hand's rests, which is where the object starts and stops moving with
+/// the hand (the synthetic ground truth's definition: grasp = first frame the
+/// object moves rigidly with the hand, release = last frame it does): grasp =
+/// the last sample of the hand's rest at the object (searched over the valley
+/// and a little after it), release = the first sample of the hand's rest at
+/// the object's final position (searched from the grasp to just after the
+/// mixture's release, among samples where the hand is within
+/// releaseReachTolerance_m of its closest approach to the object's final
+/// position, which excludes the hand's stops above the place). The boundary is the change point that best
+/// fits the raw hand detections as a rest (their mean) on one side and a
+/// smooth start from rest (p = p_rest + b dt^2 + c dt^3 per axis) on the other;
+/// it needs only the hand, which the glove tag detects reliably, not the
+/// object, whose detection is unreliable while the hand covers it.
+///
+/// An object whose positions never leave its
 /// initial position by more than `minExcursion_m` is reported as not moved
 /// (no grasp/release, the search window is not advanced).
 ///
@@ -66,6 +86,12 @@ struct Segmentation {
 
 class Segmenter {
  public:
+  /// How grasp and release are placed (see the file comment).
+  enum class EventEstimator {
+    HandDwellBoundary,  ///< default: the ends of the hand's rests at the object
+    Thesis,             ///< thesis ch. 6.4.3: hand closest to the initial position; first sample of the final component
+  };
+
   struct Config {
     KalmanSmoother::Config handSmoother{std::nullopt, 1e-4, 2.0, KalmanSmoother::Missing::Predict, std::nullopt, 0.03, 6};
     /// Objects: gated against flicker; no measurement while occluded (the smoother bridges).
@@ -77,6 +103,10 @@ class Segmenter {
     double minExcursion_m = 0.03;      ///< below: the object did not move
     double graspValleyDepth_m = 0.01;  ///< grasp = centre of the frames within this of the closest approach
     int emMaxIterations = 30;
+    EventEstimator events = EventEstimator::HandDwellBoundary;
+    int restSamples = 6;               ///< hand detections fitted as the rest beside a boundary (>= 3)
+    int moveSamples = 8;               ///< hand detections fitted as the smooth start beside a boundary (>= 3)
+    double releaseReachTolerance_m = 0.02;  ///< release: |hand - p_final| within this of its minimum over the search
   };
 
   Segmenter() = default;

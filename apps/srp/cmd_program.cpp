@@ -1,0 +1,111 @@
+// srp program: instruction + demonstration -> task model (libs/programming).
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <iomanip>
+#include <iostream>
+
+#include "CommandRegistry.h"
+#include "srp/calib/CameraFiles.h"
+#include "srp/core/Error.h"
+#include "srp/programming/ProgrammingPipeline.h"
+
+namespace {
+
+struct ProgramArgs {
+  std::string instruction, demo, camera, kb, calib, db = "task.db", name = "task", report, hand = "marker";
+  bool json = false, quiet = false;
+};
+
+// One progress line per stage on a terminal, redrawn in place; silent otherwise.
+class ProgressBar {
+ public:
+  explicit ProgressBar(bool enabled) : enabled_(enabled && isatty(STDERR_FILENO)) {}
+  void operator()(const std::string& stage, std::size_t done, std::size_t total) {
+    if (!enabled_) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (stage == stage_ && now - last_ < std::chrono::milliseconds(100) && done != total) return;
+    if (stage != stage_ && !stage_.empty()) std::fputc('\n', stderr);
+    stage_ = stage;
+    last_ = now;
+    if (total > 0) {
+      const int width = 30, filled = static_cast<int>(width * done / total);
+      std::fprintf(stderr, "\r%-12s [%s%s] %3d%%", stage.c_str(), std::string(filled, '#').c_str(),
+                   std::string(width - filled, '-').c_str(), static_cast<int>(100 * done / total));
+    } else {
+      std::fprintf(stderr, "\r%-12s %zu frames", stage.c_str(), done);
+    }
+    std::fflush(stderr);
+  }
+  ~ProgressBar() {
+    if (enabled_ && !stage_.empty()) std::fputc('\n', stderr);
+  }
+
+ private:
+  bool enabled_;
+  std::string stage_;
+  std::chrono::steady_clock::time_point last_;
+};
+
+void setupProgram(CLI::App& cmd) {
+  auto a = std::make_shared<ProgramArgs>();
+  cmd.add_option("-i,--instruction", a->instruction, "The instruction, e.g. \"Pick up the cuboid from the blue box "
+                                                     "and place it in the gray box.\"")->required();
+  auto* demo = cmd.add_option("--demo", a->demo, "Demonstration rawlog (srp record / srp import / srp synth-demo)");
+  auto* cam = cmd.add_option("--camera", a->camera,
+                             "Record the demonstration from an RGB-D camera first (OpenNI2 device URI or 'default')");
+  demo->excludes(cam);
+  cmd.add_option("--kb", a->kb, "Knowledge base catalogue (default: datasets/kb/catalogue.json)");
+  cmd.add_option("--calib", a->calib, "Camera intrinsics (ViSP XML, e.g. calib/camera.xml) overriding the rawlog's");
+  cmd.add_option("--db", a->db, "Task database to store the task model in")->capture_default_str();
+  cmd.add_option("--name", a->name, "Task model name; an existing name gets a new version")->capture_default_str();
+  cmd.add_option("--report", a->report, "Folder for the report (PNG figures + summary.md)");
+  cmd.add_option("--hand", a->hand, "Hand detector: marker (AprilTag on the glove) or marker-free")
+      ->check(CLI::IsMember({"marker", "marker-free"}))
+      ->capture_default_str();
+  cmd.add_flag("--json", a->json, "Print the result as JSON");
+  cmd.add_flag("-q,--quiet", a->quiet, "No progress bar");
+  cmd.callback([a] {
+    if (a->demo.empty() && a->camera.empty())
+      throw srp::core::InvalidInputError("give the demonstration: --demo demo.rawlog (or --camera to record one)");
+    if (!a->camera.empty())
+      throw srp::core::InvalidInputError(
+          "--camera: record the demonstration with 'srp record --out demo.rawlog' first, then pass --demo demo.rawlog");
+    srp::programming::ProgrammingOptions o;
+    o.instruction = a->instruction;
+    o.demoPath = a->demo;
+    o.cataloguePath = a->kb;
+    if (!a->calib.empty()) o.intrinsics = srp::calib::loadCameraFile(a->calib).camera.intrinsics;
+    o.dbPath = a->db;
+    o.name = a->name;
+    o.reportDir = a->report;
+    o.markerFreeHand = a->hand == "marker-free";
+    ProgressBar bar(!a->quiet && !a->json);
+    o.progress = [&bar](const std::string& s, std::size_t d, std::size_t t) { bar(s, d, t); };
+    const srp::programming::ProgramResult r = srp::programming::programTask(o);
+    if (a->json) {
+      std::cout << srp::programming::toJsonText(r) << "\n";
+      return;
+    }
+    std::cout << "Stored task model " << r.taskModelId << " ('" << r.name << "' version " << r.version << ") in "
+              << a->db << "\n\nPlan:\n";
+    for (std::size_t i = 0; i < r.planLines.size(); ++i) std::cout << "  " << i + 1 << ". " << r.planLines[i] << "\n";
+    std::cout << "\nDemonstration: " << r.frames << " frames, hand detected in " << r.handDetectedFrames << "\n\n";
+    std::cout << std::left << std::setw(16) << "object" << std::setw(8) << "grasp" << std::setw(9) << "release"
+              << std::setw(12) << "reach λ" << std::setw(12) << "move λ" << "note\n";
+    for (const auto& ob : r.objects)
+      std::cout << std::setw(16) << ob.name << std::setw(8) << ob.graspFrame << std::setw(9) << ob.releaseFrame
+                << std::setw(11) << ob.reachLambda << std::setw(11) << ob.moveLambda << ob.note << "\n";
+    std::cout << "\n" << r.skillCount << " skills learned (Reach/Move as DMPs). Timing:";
+    for (const auto& t : r.timings) std::cout << " " << t.stage << " " << std::setprecision(3) << t.wall_s << " s;";
+    std::cout << "\n";
+    for (const auto& w : r.warnings) std::cout << "warning: " << w << "\n";
+    if (!r.reportFiles.empty()) std::cout << "Report: " << a->report << "/summary.md\n";
+  });
+}
+
+const srp::app::CommandRegistrar kProgram{
+    "program", "Program a task: instruction + RGB-D demonstration -> task model in the database", 40, setupProgram};
+
+}  // namespace

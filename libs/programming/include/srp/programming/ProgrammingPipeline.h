@@ -1,0 +1,89 @@
+#pragma once
+/// \file ProgrammingPipeline.h
+/// \brief The Programming Module (thesis ch. 7.3, fig. 7.7/7.8): one
+/// instruction + one RGB-D demonstration -> one task model in the database.
+///
+/// Stages: Language (instruction -> plan) -> grounding of the plan's objects
+/// in the knowledge base -> Environment (hand and object trajectories, guided
+/// by the plan: step objects move, landmarks are static) -> Motion
+/// (segmentation into Reach/Grasp/Move/Release, DMPs) -> one task model
+/// written in a single transaction. Every check happens before the write, so a
+/// bad input or a kill at any point leaves the database as it was.
+///
+/// \code
+///   srp::programming::ProgrammingOptions o;
+///   o.instruction = "Pick up the cuboid from the blue box and place it in the gray box.";
+///   o.demoPath = "demo.rawlog";  o.dbPath = "task.db";  o.name = "cuboid";
+///   srp::programming::ProgramResult r = srp::programming::programTask(o);
+///   // r.taskModelId, r.objects[i].graspFrame / releaseFrame, r.skills
+/// \endcode
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "srp/core/CameraIntrinsics.h"
+#include "srp/core/PositionTrajectory.h"
+
+namespace srp::programming {
+
+/// Progress of one stage: (stage name, done, total); total 0 = unknown.
+using StageProgress = std::function<void(const std::string& stage, std::size_t done, std::size_t total)>;
+
+struct ProgrammingOptions {
+  std::string instruction;
+  std::string demoPath;           ///< MRPT rawlog of the demonstration
+  std::string cataloguePath;      ///< empty: the bundled knowledge base
+  std::optional<core::CameraIntrinsics> intrinsics;  ///< overrides the rawlog's (e.g. from calib/*.xml)
+  std::string dbPath = "task.db";
+  std::string name = "task";      ///< re-using a name makes a new version
+  bool markerFreeHand = false;    ///< hand detector: AprilTag on the glove (default) or marker-free
+  std::string reportDir;          ///< empty: no report; else PNG figures + summary.md
+  StageProgress progress;
+};
+
+/// What was learned for one object of the plan.
+struct ObjectOutcome {
+  std::string name;        ///< knowledge-base class
+  int classId = -1;
+  bool moved = false;
+  int graspFrame = -1, releaseFrame = -1;
+  int detectedFrames = 0;
+  double reachLambda = 0.0, moveLambda = 0.0;  ///< ridge coefficients chosen for the DMPs
+  std::string note;
+};
+
+struct StageTiming {
+  std::string stage;
+  double wall_s = 0.0;
+};
+
+struct ProgramResult {
+  int taskModelId = 0;
+  int version = 0;
+  std::string name;
+  std::vector<std::string> planLines;  ///< the plan, one readable line per step
+  std::vector<ObjectOutcome> objects;  ///< plan order
+  int frames = 0;
+  int handDetectedFrames = 0;
+  std::size_t skillCount = 0;
+  std::vector<StageTiming> timings;
+  std::vector<std::string> warnings;
+  std::vector<std::string> reportFiles;
+};
+
+/// Runs the whole pipeline and stores the task model. Throws (writing
+/// nothing) InvalidInputError when the instruction has no steps (the message
+/// says why), names an object the knowledge base does not know or the demo
+/// never shows, or the hand is never seen; FileError for a bad rawlog or
+/// database.
+ProgramResult programTask(const ProgrammingOptions& options);
+
+/// Frame rate [Hz] of a recording from its timestamps (median frame period; 30 when unknown).
+double frameRateOf(const core::PositionTrajectory& samples);
+
+/// The result as JSON (`srp program --json`).
+std::string toJsonText(const ProgramResult& result);
+
+}  // namespace srp::programming

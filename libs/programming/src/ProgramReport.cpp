@@ -1,0 +1,111 @@
+#include "srp/programming/ProgramReport.h"
+
+#include <filesystem>
+#include <fstream>
+#include <algorithm>
+#include <iomanip>
+
+#include "srp/core/Error.h"
+#include "srp/motion/SkillPlots.h"
+#include "srp/plot/Figure.h"
+
+namespace srp::programming {
+
+void writeHandFigure(const std::string& pngPath, const perception::PerceptionResult& seen,
+                     const motion::Segmentation& segmentation) {
+  plot::Figure fig(1100, 800, 2, 2);
+  fig.title = "Hand trajectory (camera frame), " + std::to_string(seen.handDetected) + " of " +
+              std::to_string(seen.frames) + " frames detected";
+  const char* axisName[3] = {"x", "y", "z"};
+  const auto& smoothed = segmentation.hand;
+  const double fps = frameRateOf(seen.hand);
+  for (int k = 0; k < 3; ++k) {
+    auto& ax = fig.axes(k / 2, k % 2);
+    ax.title = std::string("hand ") + axisName[k];
+    ax.xLabel = "t [s]";
+    ax.yLabel = std::string(axisName[k]) + " [m]";
+    // Time from frame numbers: the rawlog's clock and the smoother's differ in origin.
+    std::vector<double> td, pd, ts, ps;
+    for (const auto& s : seen.hand.samples())
+      if (s.valid) { td.push_back(s.frame / fps); pd.push_back(s.p_m[k]); }
+    for (const auto& s : smoothed.samples()) { ts.push_back(s.frame / fps); ps.push_back(s.p_m[k]); }
+    ax.scatter(td, pd, "detected", plot::Color::tab(0), plot::Marker::Circle, 2);
+    ax.line(ts, ps, "smoothed", plot::Color::tab(1), 2);
+    for (std::size_t i = 0; i < segmentation.objects.size(); ++i) {
+      const auto& o = segmentation.objects[i];
+      if (!o.moved) continue;
+      ax.verticalLine(o.graspFrame / fps, k == 0 ? "grasp " + o.name : "", plot::Color::tab(2 + static_cast<int>(i)));
+      ax.verticalLine(o.releaseFrame / fps, k == 0 ? "release" : "", plot::Color::tab(2 + static_cast<int>(i)));
+    }
+  }
+  auto& top = fig.axes(1, 1);
+  top.title = "top view (image x right, y down)";
+  top.xLabel = "x [m]";
+  top.yLabel = "-y [m]";
+  top.equalAspect = true;
+  std::vector<double> x, y;
+  for (const auto& s : smoothed.samples()) { x.push_back(s.p_m.x()); y.push_back(-s.p_m.y()); }
+  top.line(x, y, "hand", plot::Color::tab(1), 1.5);
+  for (std::size_t i = 0; i < segmentation.objects.size(); ++i) {
+    const auto& o = segmentation.objects[i];
+    if (!o.moved) continue;
+    const auto color = plot::Color::tab(2 + static_cast<int>(i));
+    top.scatter({o.p_initial_m.x()}, {-o.p_initial_m.y()}, o.name + " grasp", color, plot::Marker::Circle, 6);
+    top.scatter({o.p_final_m.x()}, {-o.p_final_m.y()}, "", color, plot::Marker::Cross, 6);
+  }
+  fig.save(pngPath);
+}
+
+std::vector<std::string> writeProgramReport(const std::string& dir, const ProgramResult& r,
+                                            const perception::PerceptionResult& seen,
+                                            const motion::Segmentation& segmentation,
+                                            const std::vector<motion::SkillSet>& skills) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw core::FileError(dir, "cannot create the report folder (" + ec.message() + ")");
+  std::vector<std::string> files;
+  const std::string hand = dir + "/hand_trajectory.png";
+  writeHandFigure(hand, seen, segmentation);
+  files.push_back(hand);
+  for (const auto& s : skills)
+    for (const auto& o : segmentation.objects)
+      if (o.name == s.objectName && o.moved) {
+        std::string file = o.name;
+        std::replace(file.begin(), file.end(), ' ', '_');
+        const std::string path = dir + "/" + file + "_skills.png";
+        motion::writeSkillFigure(path, segmentation, o, s);
+        files.push_back(path);
+      }
+
+  const std::string md = dir + "/summary.md";
+  std::ofstream out(md);
+  if (!out) throw core::FileError(md, "cannot write the summary");
+  out << "# Task model " << r.taskModelId << ": " << r.name << " (version " << r.version << ")\n\n";
+  out << "## Plan\n\n";
+  for (std::size_t i = 0; i < r.planLines.size(); ++i) out << i + 1 << ". " << r.planLines[i] << "\n";
+  out << "\n## Demonstration\n\n" << r.frames << " frames; hand detected in " << r.handDetectedFrames << " ("
+      << std::fixed << std::setprecision(1) << (r.frames ? 100.0 * r.handDetectedFrames / r.frames : 0.0)
+      << " %).\n\n![hand trajectory](hand_trajectory.png)\n\n";
+  out << "## Segmentation and skills\n\n| object | detected frames | grasp frame | release frame | reach λ | move λ | note |\n"
+         "|---|---|---|---|---|---|---|\n";
+  out << std::setprecision(3) << std::defaultfloat;
+  for (const auto& o : r.objects)
+    out << "| " << o.name << " | " << o.detectedFrames << " | " << o.graspFrame << " | " << o.releaseFrame << " | "
+        << o.reachLambda << " | " << o.moveLambda << " | " << o.note << " |\n";
+  out << "\n";
+  for (const auto& f : files)
+    if (f.find("_skills.png") != std::string::npos) {
+      const std::string name = std::filesystem::path(f).filename().string();
+      out << "![" << name << "](" << name << ")\n\n";
+    }
+  out << "## Timing\n\n";
+  for (const auto& t : r.timings) out << "- " << t.stage << ": " << t.wall_s << " s\n";
+  if (!r.warnings.empty()) {
+    out << "\n## Warnings\n\n";
+    for (const auto& w : r.warnings) out << "- " << w << "\n";
+  }
+  files.push_back(md);
+  return files;
+}
+
+}  // namespace srp::programming

@@ -36,8 +36,10 @@ Scene Scene::fromJson(const nlohmann::json& j, const std::string& ctx, const std
                               " is not supported by this build (expected 1)");
     s.name = j.value("name", s.name);
     s.seed = j.value("seed", 0);
+    // Absolute, so a scene written elsewhere (toJson) still finds its catalogue.
     s.cataloguePath = j.contains("catalogue")
-                          ? (std::filesystem::path(baseFolder) / j.at("catalogue").get<std::string>())
+                          ? std::filesystem::absolute(std::filesystem::path(baseFolder) /
+                                                      j.at("catalogue").get<std::string>())
                                 .lexically_normal()
                                 .string()
                           : ObjectCatalogue::defaultPath();

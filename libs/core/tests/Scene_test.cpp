@@ -48,7 +48,8 @@ TEST(Scene, DefaultSceneLoadsValidatesAndRoundTrips) {
   // X_base_camera is derived from the two world poses.
   const Pose3 X_world_camera_again = s.X_world_base * s.X_base_camera();
   EXPECT_LT((X_world_camera_again.matrix() - s.X_world_camera.matrix()).norm(), kExact_m);
-  const Scene back = Scene::fromJson(s.toJson(), "roundtrip", ".");
+  const Scene back = Scene::fromJson(s.toJson(), "roundtrip", "/some/other/folder");
+  EXPECT_EQ(back.cataloguePath, s.cataloguePath);  // written elsewhere, the catalogue is still found
   ASSERT_EQ(back.objects.size(), s.objects.size());
   EXPECT_LT((back.objects[3].X_world_object.matrix() - s.objects[3].X_world_object.matrix()).norm(), 1e-12);
   EXPECT_EQ(back.intrinsics, s.intrinsics);

@@ -96,7 +96,8 @@ void setupProgram(CLI::App& cmd) {
               << std::setw(12) << "reach λ" << std::setw(12) << "move λ" << "note\n";
     for (const auto& ob : r.objects)
       std::cout << std::setw(16) << ob.name << std::setw(8) << ob.graspFrame << std::setw(9) << ob.releaseFrame
-                << std::setw(11) << ob.reachLambda << std::setw(11) << ob.moveLambda << ob.note << "\n";
+                << std::setw(12) << std::setprecision(3) << ob.reachLambda << std::setw(12) << ob.moveLambda << ob.note
+                << "\n";
     std::cout << "\n" << r.skillCount << " skills learned (Reach/Move as DMPs). Timing:";
     for (const auto& t : r.timings) std::cout << " " << t.stage << " " << std::setprecision(3) << t.wall_s << " s;";
     std::cout << "\n";

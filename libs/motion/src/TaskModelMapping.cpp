@@ -80,6 +80,15 @@ std::vector<taskdb::SkillRow> skillRows(const std::vector<SkillSet>& skills, con
   return rows;
 }
 
+bool setSkillFlags(taskdb::ProductPoseRow& row, const SkillSet& s) {
+  const bool reach = row.timeId >= s.reachStartFrame && row.timeId < s.graspFrame;
+  const bool grasp = row.timeId == s.graspFrame, release = row.timeId == s.releaseFrame;
+  const bool move = row.timeId > s.graspFrame && row.timeId < s.releaseFrame;
+  if (row.reach == reach && row.grasp == grasp && row.move == move && row.release == release) return false;
+  row.reach = reach, row.grasp = grasp, row.move = move, row.release = release;
+  return true;
+}
+
 void storeSkills(taskdb::TaskDatabase& db, int taskModelId, const std::vector<SkillSet>& skills,
                  const MotionInputs& inputs) {
   const std::vector<taskdb::SkillRow> rows = skillRows(skills, inputs);
@@ -93,15 +102,8 @@ void storeSkills(taskdb::TaskDatabase& db, int taskModelId, const std::vector<Sk
   const std::vector<taskdb::ProductPoseRow> allPoses = poses.list(taskModelId);
   for (const auto& s : skills) {
     const int classId = inputs.classIdByName.at(s.objectName);
-    for (auto row : allPoses) {
-      if (row.classId != classId) continue;
-      const bool reach = row.timeId >= s.reachStartFrame && row.timeId < s.graspFrame;
-      const bool grasp = row.timeId == s.graspFrame, release = row.timeId == s.releaseFrame;
-      const bool move = row.timeId > s.graspFrame && row.timeId < s.releaseFrame;
-      if (row.reach == reach && row.grasp == grasp && row.move == move && row.release == release) continue;
-      row.reach = reach, row.grasp = grasp, row.move = move, row.release = release;
-      poses.update(taskModelId, row);
-    }
+    for (auto row : allPoses)
+      if (row.classId == classId && setSkillFlags(row, s)) poses.update(taskModelId, row);
   }
   tx.commit();
 }

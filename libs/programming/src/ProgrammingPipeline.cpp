@@ -70,13 +70,8 @@ void setSkillFlags(taskdb::TaskModel& model, const std::vector<motion::SkillSet>
   for (const auto& s : skills) {
     const auto it = classIdByName.find(s.objectName);
     if (it == classIdByName.end()) continue;
-    for (auto& row : model.productPoses) {
-      if (row.classId != it->second) continue;
-      row.reach = row.timeId >= s.reachStartFrame && row.timeId < s.graspFrame;
-      row.grasp = row.timeId == s.graspFrame;
-      row.move = row.timeId > s.graspFrame && row.timeId < s.releaseFrame;
-      row.release = row.timeId == s.releaseFrame;
-    }
+    for (auto& row : model.productPoses)
+      if (row.classId == it->second) motion::setSkillFlags(row, s);
   }
 }
 

@@ -34,6 +34,12 @@ MotionInputs motionInputsFromTaskModel(const taskdb::TaskModel& model);
 /// Skills rows of the learned skill sets (TimeIds = the demo's frame numbers).
 std::vector<taskdb::SkillRow> skillRows(const std::vector<SkillSet>& skills, const MotionInputs& inputs);
 
+/// Sets the Reach/Grasp/Move/Release flags of one ProductPose row of the
+/// skill set's object (Reach: reach start <= TimeId < grasp, Grasp: the grasp
+/// frame, Move: between, Release: the release frame; other flags cleared).
+/// Returns true when a flag changed.
+bool setSkillFlags(taskdb::ProductPoseRow& row, const SkillSet& skills);
+
 /// Stores learned skills in one transaction: replaces the task model's Skills
 /// rows and sets the Reach/Grasp/Move/Release flags of the moved objects'
 /// ProductPose rows (Reach: reach start <= TimeId < grasp, Grasp: the grasp

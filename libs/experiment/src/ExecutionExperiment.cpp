@@ -1,0 +1,13 @@
+#include "srp/experiment/Experiments.h"
+
+#include "srp/core/Error.h"
+
+namespace srp::experiment {
+
+// Placeholder while the experiment is written on its branch; replaced before it lands.
+ExperimentResult runExecutionExperiment(const ExperimentOptions&)
+{
+  throw core::Error("experiment 'Execution' is not written yet");
+}
+
+}  // namespace srp::experiment

@@ -6,7 +6,7 @@ set -euo pipefail
 PACKAGES=(
   # toolchain and test tools
   build-essential cmake pkg-config
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev time
   # core utilities
   libeigen3-dev nlohmann-json3-dev libcli11-dev
   # taskdb

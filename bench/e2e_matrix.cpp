@@ -296,8 +296,9 @@ int main(int argc, char** argv) {
       const language::InstructionParser parser;
       const size_t total = instructions.size() * seeds;
       size_t done = 0;
-      for (int k : instructions)
-        for (unsigned seed = firstSeed; seed < firstSeed + seeds; ++seed) {
+      // Seeds outer: an interrupted matrix still covers every instruction.
+      for (unsigned seed = firstSeed; seed < firstSeed + seeds; ++seed)
+        for (int k : instructions) {
           ++done;
           const fs::path result = outDir / "runs" / ("i" + std::to_string(k) + "_s" + std::to_string(seed) + ".json");
           if (fs::exists(result)) continue;

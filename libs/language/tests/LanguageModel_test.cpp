@@ -56,6 +56,17 @@ TEST(LanguageModel, AnnotatesAPickAndPlaceSentence) {
   EXPECT_TRUE(model.annotate({}).entities.empty());
 }
 
+// "take / get X on Y" locates X (the corpus' convention for these actions), and
+// the trajector is the object, not the person it is fetched for.
+TEST(LanguageModel, IndicatorOfAFetchVerbIsSpatial) {
+  const auto model = LanguageModel::load(defaultModelPath());
+  const auto s = model.annotate({"get", "me", "the", "wallet", "on", "the", "pillow"});
+  const std::vector<EntitySpan> expected{{0, 1, "Action"}, {3, 4, "Trajector"}, {4, 5, "SpatialIndicator"}};
+  EXPECT_EQ(s.entities, expected);
+  ASSERT_EQ(s.relations.size(), 1u);
+  EXPECT_EQ(s.relations[0].type, "Spatial");
+}
+
 TEST(LanguageModel, MissingOrCorruptModelFileNamesThePath) {
   try {
     LanguageModel::load("/nonexistent/language_model.dat");

@@ -50,6 +50,21 @@ std::string IndicatorConventions::longestPhraseAt(const std::vector<std::string>
   return longest;
 }
 
+bool IndicatorConventions::inRelativeClause(const std::vector<std::string>& lowerTokens, int start) {
+  static const std::set<std::string> kRelativePronouns{"which", "that", "who"};
+  static const std::set<std::string> kCopulas{"is", "are", "'s", "was", "were"};
+  static const std::set<std::string> kParticiples{"sitting", "standing", "lying", "resting", "kept", "put", "set"};
+  if (start <= 0 || start > static_cast<int>(lowerTokens.size())) return false;
+  const std::string& prev = lowerTokens[start - 1];
+  if (kParticiples.count(prev) || (prev.size() >= 5 && prev.compare(prev.size() - 2, 2, "ed") == 0)) return true;
+  bool relative = false, copula = false;
+  for (int k = std::max(0, start - 4); k < start; ++k) {
+    relative |= kRelativePronouns.count(lowerTokens[k]) > 0;
+    copula |= kCopulas.count(lowerTokens[k]) > 0;
+  }
+  return relative && copula;
+}
+
 IndicatorConventions IndicatorConventions::learn(const std::vector<AnnotatedSentence>& corpus,
                                                  const LemmaFunction& lemmaOf) {
   IndicatorConventions c;
@@ -77,6 +92,7 @@ IndicatorConventions IndicatorConventions::learn(const std::vector<AnnotatedSent
       }
       if (!isIndicator(e.type)) continue;
       ++lengths[c.longestPhraseAt(lower, e.start)][e.end - e.start];
+      if (inRelativeClause(lower, e.start)) continue;
       bool actionAfter = false;
       for (size_t j = i + 1; j < sorted.size(); ++j) actionAfter |= sorted[j].type == "Action";
       if (!actionAfter && !verb.empty()) ++types[typeKey(verb, lower[e.start], firstInClause)][e.type];

@@ -343,6 +343,8 @@ struct LanguageModel::Impl {
   /// consistent (IndicatorConventions: every indicator of "pick" is spatial, the
   /// first of "put / place" a goal, "take / bring ... on" spatial, "... to" a goal).
   void relabelIndicators(const std::vector<std::string>& tokens, std::vector<EntitySpan>& entities) const {
+    std::vector<std::string> lower(tokens.size());
+    std::transform(tokens.begin(), tokens.end(), lower.begin(), lowerOf);
     std::sort(entities.begin(), entities.end(), [](const EntitySpan& a, const EntitySpan& b) { return a.start < b.start; });
     std::string verb;
     bool firstInClause = true;
@@ -356,6 +358,10 @@ struct LanguageModel::Impl {
       if (e.type != "GoalIndicator" && e.type != "SpatialIndicator") continue;
       bool actionAfter = false;
       for (size_t j = i + 1; j < entities.size(); ++j) actionAfter |= entities[j].type == "Action";
+      if (IndicatorConventions::inRelativeClause(lower, e.start)) {
+        e.type = "SpatialIndicator";
+        continue;  // locates an object: the clause's first goal may still follow
+      }
       if (actionAfter) {
         e.type = "SpatialIndicator";
       } else {

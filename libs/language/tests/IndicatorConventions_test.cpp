@@ -107,3 +107,15 @@ TEST(IndicatorConventions, TrainCorpusConventions) {
   EXPECT_EQ(c.indicatorType("pick", "on", true), "SpatialIndicator");
   EXPECT_FALSE(c.indicatorType("move", "on", true).has_value());  // goal 61 of 70: below 90 %
 }
+
+TEST(IndicatorConventions, RelativeClausesAndParticiplesLocateAnObject) {
+  const std::vector<std::string> placed{"pick", "the", "cube", "placed", "on", "a", "red", "cube"};
+  EXPECT_TRUE(IndicatorConventions::inRelativeClause(placed, 4));
+  const std::vector<std::string> which{"put", "the", "pyramid", "which", "is", "on", "the", "box", "on", "the", "table"};
+  EXPECT_TRUE(IndicatorConventions::inRelativeClause(which, 5));
+  EXPECT_FALSE(IndicatorConventions::inRelativeClause(which, 8));  // four words on: the clause's goal
+  const std::vector<std::string> object{"put", "that", "on", "the", "red", "on", "the", "box"};
+  EXPECT_FALSE(IndicatorConventions::inRelativeClause(object, 2));  // "that" is the object, no copula
+  EXPECT_FALSE(IndicatorConventions::inRelativeClause(object, 5));  // "red" is a colour, not a participle
+  EXPECT_FALSE(IndicatorConventions::inRelativeClause(object, 0));
+}

@@ -67,6 +67,17 @@ TEST(LanguageModel, IndicatorOfAFetchVerbIsSpatial) {
   EXPECT_EQ(s.relations[0].type, "Spatial");
 }
 
+// A participle phrase locates the object; the clause's goal is the next phrase.
+TEST(LanguageModel, ParticiplePhraseIsSpatialAndTheNextIsTheGoal) {
+  const auto model = LanguageModel::load(defaultModelPath());
+  const auto s = model.annotate({"put", "the", "grey", "pyramid", "which", "is", "putted", "on", "a", "green", "box",
+                                 "on", "another", "green", "box"});
+  std::vector<std::string> indicatorTypes;
+  for (const auto& e : s.entities)
+    if (e.type == "SpatialIndicator" || e.type == "GoalIndicator") indicatorTypes.push_back(e.type);
+  EXPECT_EQ(indicatorTypes, (std::vector<std::string>{"SpatialIndicator", "GoalIndicator"}));
+}
+
 TEST(LanguageModel, MissingOrCorruptModelFileNamesThePath) {
   try {
     LanguageModel::load("/nonexistent/language_model.dat");

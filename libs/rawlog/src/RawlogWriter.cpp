@@ -80,7 +80,8 @@ class FrameEncoder {
       std::uint16_t* out = &obs->rangeImage(r, 0);  // row-major
       for (int c = 0; c < K.width_px; ++c) {
         const float steps = d[c] * scale;  // NaN fails both comparisons below
-        out[c] = (steps > 0.0f && steps <= 65535.0f) ? static_cast<std::uint16_t>(std::lrint(steps)) : std::uint16_t(0);
+        // Round half up by truncation (steps > 0): no libm call in the per-pixel loop.
+        out[c] = (steps > 0.0f && steps <= 65535.0f) ? static_cast<std::uint16_t>(steps + 0.5f) : std::uint16_t(0);
       }
     }
     // Colour must round-trip bit-exactly: raw, not JPEG (set once in the writer's constructor).

@@ -101,6 +101,7 @@ void SensorModel::apply(srp::rawlog::RgbdFrame& frame, const cv::Mat& handMask, 
 
   // Edges: a depth jump to a neighbour (flying pixels get discarded by real sensors).
   cv::Mat edge(rows, cols, CV_8UC1, cv::Scalar(0));
+  const float edgeJump = static_cast<float>(options_.edgeJump_m);
   for (int r = 0; r < rows; ++r) {
     const float* d = depth.ptr<float>(r);
     const float* below = depth.ptr<float>(std::min(r + 1, rows - 1));
@@ -108,12 +109,16 @@ void SensorModel::apply(srp::rawlog::RgbdFrame& frame, const cv::Mat& handMask, 
     unsigned char* eBelow = edge.ptr<unsigned char>(std::min(r + 1, rows - 1));
     for (int c = 0; c < cols; ++c) {
       const int cr = std::min(c + 1, cols - 1);
-      if (std::abs(d[c] - d[cr]) > options_.edgeJump_m) e[c] = e[cr] = 255;  // both sides of the jump
-      if (std::abs(d[c] - below[c]) > options_.edgeJump_m) e[c] = eBelow[c] = 255;
+      if (std::abs(d[c] - d[cr]) > edgeJump) e[c] = e[cr] = 255;  // both sides of the jump
+      if (std::abs(d[c] - below[c]) > edgeJump) e[c] = eBelow[c] = 255;
     }
   }
 
-  const cv::Mat blobs = blobField(rows, cols);
+  // The blob field is read only under a mask: frames without hand or parts skip it.
+  const bool anyMasked = (!handMask.empty() && cv::countNonZero(handMask) > 0) ||
+                         (!partMask.empty() && cv::countNonZero(partMask) > 0) ||
+                         (!movingMask.empty() && cv::countNonZero(movingMask) > 0);
+  const cv::Mat blobs = anyMasked ? blobField(rows, cols) : cv::Mat();
   const cv::Mat uniform = noiseWindow(uniformTable_, rows, cols);
   const cv::Mat gauss = noiseWindow(gaussTable_, rows, cols);
 
@@ -142,7 +147,7 @@ void SensorModel::apply(srp::rawlog::RgbdFrame& frame, const cv::Mat& handMask, 
   for (int r = 0; r < rows; ++r) {
     float* d = depth.ptr<float>(r);
     const unsigned char* e = edge.ptr<unsigned char>(r);
-    const float* b = blobs.ptr<float>(r - r % block);
+    const float* b = anyMasked ? blobs.ptr<float>(r - r % block) : nullptr;  // read only under a mask
     const float* u = uniform.ptr<float>(r);
     const float* g = gauss.ptr<float>(r - r % block);
     const unsigned char* hm = haveHand ? handMask.ptr<unsigned char>(r) : nullptr;

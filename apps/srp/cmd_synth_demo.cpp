@@ -101,7 +101,7 @@ void setupSynthDemo(CLI::App& cmd) {
                  "colour noise drawn per block of N x N pixels (default 4; smaller: larger rawlog)")
       ->check(CLI::PositiveNumber);
   cmd.add_option("--depth-noise-block", args->depthNoiseBlock,
-                 "depth noise and dropout drawn per block of N x N pixels (default 2; 1: per pixel)")
+                 "depth noise and dropout drawn per block of N x N pixels (default 1: per pixel; 2: smaller rawlog)")
       ->check(CLI::PositiveNumber);
   cmd.add_option("--width", args->width, "image width (default: the scene camera's)");
   cmd.add_option("--height", args->height, "image height (default: the scene camera's)");

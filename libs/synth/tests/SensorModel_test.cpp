@@ -191,10 +191,11 @@ TEST(SensorModel, NoiseIsFreshPerFrameAndReproducible) {
 }
 
 // Depth noise is drawn per depthNoiseBlock_px block: on a flat surface the
-// pixels of a block read the same; with blocks of 1 px neighbours are independent.
+// pixels of a 2x2 block read the same; with blocks of 1 px (the default)
+// neighbours are independent.
 TEST(SensorModel, DepthNoiseBlocksAreUniformOnFlatSurfaces) {
   SensorRealismOptions options;
-  ASSERT_EQ(options.depthNoiseBlock_px, 2);
+  options.depthNoiseBlock_px = 2;
   SensorModel blocky(options, 31);
   auto f = flatFrame(0.85);
   blocky.apply(f, cv::Mat(), 0.0, cv::Mat(), cv::Mat(), 0.0, cv::Mat());

@@ -25,6 +25,8 @@ PACKAGES=(
   libnlopt-cxx-dev libsimbody-dev liburdfdom-dev liburdfdom-headers-dev
   # synthetic demos: the hand's AprilTag (tag36h11 bit patterns)
   libapriltag-dev
+  # rawlog: gzip members compressed with libdeflate (fast, in parallel)
+  libdeflate-dev
   # test data shipped by Debian
   visp-images-data
 )

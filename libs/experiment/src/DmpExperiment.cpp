@@ -263,16 +263,16 @@ ExperimentResult runDmpExperiment(const ExperimentOptions& options)
   const size_t reach = firstOf("reach"), move = firstOf("move");
   if (reach < segments.size()) {
     const auto p6 = dir / "fig8_6_reach_lambda0.png", p7 = dir / "fig8_7_reach_lambda0.1.png";
-    writeDmpFigure(p6.string(), "Reach DMP, λ = 0, N = 20 (like thesis fig. 8.6): " + segments[reach].label, segments[reach],
+    writeDmpFigure(p6.string(), "Reach DMP, lambda = 0, N = 20 (like thesis fig. 8.6): " + segments[reach].label, segments[reach],
                    outcomes[0][reach], outcomes[4][reach], shift);
-    writeDmpFigure(p7.string(), "Reach DMP, λ = 0.1, N = 20 (like thesis fig. 8.7): " + segments[reach].label,
+    writeDmpFigure(p7.string(), "Reach DMP, lambda = 0.1, N = 20 (like thesis fig. 8.7): " + segments[reach].label,
                    segments[reach], outcomes[1][reach], outcomes[4][reach], shift);
     result.figures.push_back(p6);
     result.figures.push_back(p7);
   }
   if (move < segments.size()) {
     const auto p8 = dir / "fig8_8_move_lambda0.1.png";
-    writeDmpFigure(p8.string(), "Move DMP, λ = 0.1, N = 20 (like thesis fig. 8.8): " + segments[move].label,
+    writeDmpFigure(p8.string(), "Move DMP, lambda = 0.1, N = 20 (like thesis fig. 8.8): " + segments[move].label,
                    segments[move], outcomes[1][move], outcomes[4][move], shift);
     result.figures.push_back(p8);
   }

@@ -149,7 +149,8 @@ ExperimentResult runExecutionExperiment(const ExperimentOptions& options)
   const auto known = language::planStepsFromTaskModel(cell.model);
 
   std::vector<std::string> appendix;
-  for (const auto& item : core::readJsonFile(appendixPath.string()).at("instructions"))
+  const nlohmann::json appendixJson = core::readJsonFile(appendixPath.string());
+  for (const auto& item : core::requireField(appendixJson, "instructions", appendixPath.string()))
     appendix.push_back(item.at("instruction").get<std::string>());
   if (options.quick) appendix.resize(1);
 

@@ -1,6 +1,7 @@
 // `srp experiment language`: the Language Module against SpERT (thesis tables
 // 5.7, D.1-D.3) on the validation split, per source corpus, and the plans of the
 // five Appendix A test instructions (section 8.2).
+#include <algorithm>
 #include <map>
 
 #include "srp/core/Error.h"
@@ -148,6 +149,7 @@ ExperimentResult runLanguageExperiment(const ExperimentOptions& options)
       {"SemEval", {&kTableD1SemEval, "Table D.1: SemEval-2014 Task 6"}},
       {"HuRIC", {&kTableD2HuRIC, "Table D.2: HuRIC"}},
       {"HuRCM", {&kTableD3HuRCM, "Table D.3: HuRCM"}}};
+  const auto firstCorpusTable = result.tables.size();
   for (const auto& [corpus, range] : corpusRanges(originPath, gold)) {
     const auto first = gold.begin() + range.first, last = gold.begin() + range.second + 1;
     const std::vector<language::AnnotatedSentence> g(first, last);
@@ -163,6 +165,9 @@ ExperimentResult runLanguageExperiment(const ExperimentOptions& options)
     result.metrics["per_corpus"][corpus] = scoresJson(scores);
     result.metrics["per_corpus"][corpus]["sentences"] = g.size();
   }
+  // In the thesis' order: D.1 SemEval, D.2 HuRIC, D.3 HuRCM.
+  std::sort(result.tables.begin() + static_cast<std::ptrdiff_t>(firstCorpusTable), result.tables.end(),
+            [](const ResultTable& a, const ResultTable& b) { return a.title < b.title; });
   reportProgress(options, "language: Appendix A plans", 0.8);
 
   // Section 8.2: the syntactic stage on the five test instructions of Appendix A.

@@ -89,6 +89,11 @@ void writeSegmentationFigure(const std::string& path, const AnalysedDemo& demo, 
         dh.push_back((hand[i].p_m - o.p_initial_m).norm());
       }
     }
+    // Scaled to the object's excursion: the hand's far approach would flatten it.
+    double maxObject_m = 0.0;
+    for (const auto& c : dc)
+      for (double v : c) maxObject_m = std::max(maxObject_m, v);
+    ax.yLimits = std::make_pair(0.0, std::max(0.1, 1.4 * maxObject_m));
     ax.line(th, dh, "hand", plot::Color::gray(), 1.0);
     const char* names[3] = {"object: component 1 (before)", "component 2 (moving)", "component 3 (after)"};
     for (int c = 0; c < 3; ++c)

@@ -105,13 +105,6 @@ Outcome evaluate(const Segment& s, const motion::DmpConfig& config, const motion
   return o;
 }
 
-double median(std::vector<double> v)
-{
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
 double worst(const std::vector<double>& v) { return v.empty() ? NAN : *std::max_element(v.begin(), v.end()); }
 
 std::vector<double> column(const Eigen::MatrixXd& m, int c)
@@ -224,15 +217,15 @@ ExperimentResult runDmpExperiment(const ExperimentOptions& options)
       std::string thesis = "—";
       if (v == 0 && skill == "reach") thesis = "fig. 8.6 (no number)";
       if (v == 1) thesis = skill == "reach" ? "fig. 8.7 (no number)" : "fig. 8.8 (no number)";
-      table.rows.push_back({vs[v].name, thesis, mm(median(repMax)) + " / " + mm(worst(repMax)), mm(median(repRms)),
-                            mm(median(goal)) + " / " + mm(worst(goal)), mm(median(shape)),
-                            v == 4 ? formatNumber(median(lambda) * 1e6, 2) + "e-6" : formatNumber(median(lambda), 1)});
+      table.rows.push_back({vs[v].name, thesis, mm(medianOf(repMax)) + " / " + mm(worst(repMax)), mm(medianOf(repRms)),
+                            mm(medianOf(goal)) + " / " + mm(worst(goal)), mm(medianOf(shape)),
+                            v == 4 ? formatNumber(medianOf(lambda) * 1e6, 2) + "e-6" : formatNumber(medianOf(lambda), 1)});
       result.metrics[skill][vs[v].name] = {{"segments", repMax.size()},
-                                           {"reproduction_max_error_m", {{"median", median(repMax)}, {"worst", worst(repMax)}}},
-                                           {"reproduction_rms_error_m", {{"median", median(repRms)}}},
-                                           {"adapted_goal_error_m", {{"median", median(goal)}, {"worst", worst(goal)}}},
-                                           {"adapted_shape_deviation_m", {{"median", median(shape)}}},
-                                           {"lambda_median", median(lambda)}};
+                                           {"reproduction_max_error_m", {{"median", medianOf(repMax)}, {"worst", worst(repMax)}}},
+                                           {"reproduction_rms_error_m", {{"median", medianOf(repRms)}}},
+                                           {"adapted_goal_error_m", {{"median", medianOf(goal)}, {"worst", worst(goal)}}},
+                                           {"adapted_shape_deviation_m", {{"median", medianOf(shape)}}},
+                                           {"lambda_median", medianOf(lambda)}};
     }
     table.note = "Thesis section 8.4 shows these DMPs in figs. 8.6-8.8 without numbers. Thesis formulation = "
                  "dfki-ric movement_primitives as the thesis used it (start at rest, forcing term unscaled), "
@@ -283,8 +276,8 @@ ExperimentResult runDmpExperiment(const ExperimentOptions& options)
     oursRep.push_back(outcomes[4][k].reproductionMax_m);
   }
   result.summary = std::to_string(segments.size()) + " Reach/Move segments from " + std::to_string(count) +
-                   " demos: reproduction max error median " + mm(median(oursRep)) + " mm with ours (GCV) vs " +
-                   mm(median(thesisRep)) + " mm with the thesis formulation (λ = 0.1).";
+                   " demos: reproduction max error median " + mm(medianOf(oursRep)) + " mm with ours (GCV) vs " +
+                   mm(medianOf(thesisRep)) + " mm with the thesis formulation (λ = 0.1).";
   result.wallTime_s = clock.seconds();
   return result;
 }

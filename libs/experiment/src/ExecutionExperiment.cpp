@@ -112,13 +112,6 @@ execution::CellDescription withPartsMoved(execution::CellDescription cell, int s
   return cell;
 }
 
-double median(std::vector<double> v)
-{
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
 }  // namespace
 
 ExperimentResult runExecutionExperiment(const ExperimentOptions& options)
@@ -240,7 +233,7 @@ ExperimentResult runExecutionExperiment(const ExperimentOptions& options)
     table.rows.push_back({c.name, c.thesis, std::to_string(c.succeeded) + "/" + std::to_string(c.runs),
                           std::to_string(c.stepsDone) + "/" + std::to_string(c.steps),
                           std::to_string(c.dmpSteps) + "/" + std::to_string(c.steps),
-                          formatNumber(1e3 * median(c.placement_m), 2),
+                          formatNumber(1e3 * medianOf(c.placement_m), 2),
                           c.placement_m.empty()
                               ? "—"
                               : formatNumber(1e3 * *std::max_element(c.placement_m.begin(), c.placement_m.end()), 2)});
@@ -253,7 +246,7 @@ ExperimentResult runExecutionExperiment(const ExperimentOptions& options)
                                        {"steps", c.steps},
                                        {"steps_done", c.stepsDone},
                                        {"dmp_steps", c.dmpSteps},
-                                       {"placement_error_median_m", median(c.placement_m)},
+                                       {"placement_error_median_m", medianOf(c.placement_m)},
                                        {"failures", c.failures}});
   }
   table.note = "Task model: demo seed " + std::to_string(demo.groundTruth.seed) +

@@ -1,5 +1,8 @@
 #include "srp/experiment/ExperimentSupport.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "srp/core/Error.h"
 
 namespace srp::experiment {
@@ -30,6 +33,14 @@ void requireDataset(const std::filesystem::path& path, const std::string& howToM
 void reportProgress(const ExperimentOptions& options, const std::string& what, double fraction)
 {
   if (options.progress) options.progress(what, fraction);
+}
+
+double medianOf(std::vector<double> values)
+{
+  if (values.empty()) return NAN;
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 }  // namespace srp::experiment

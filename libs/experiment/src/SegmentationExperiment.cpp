@@ -43,17 +43,14 @@ struct ErrorStats
 ErrorStats statsOf(const std::vector<int>& errors)
 {
   ErrorStats s;
-  std::vector<int> a;
+  std::vector<double> a;
   for (int e : errors) {
     a.push_back(std::abs(e));
     s.within += std::abs(e) <= kToleranceFrames;
     s.worst = std::max(s.worst, std::abs(e));
   }
   s.count = static_cast<int>(errors.size());
-  if (!a.empty()) {
-    std::sort(a.begin(), a.end());
-    s.medianAbs = a.size() % 2 ? a[a.size() / 2] : 0.5 * (a[a.size() / 2 - 1] + a[a.size() / 2]);
-  }
+  s.medianAbs = medianOf(a);
   return s;
 }
 

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "srp/experiment/ExperimentResult.h"
 
@@ -23,6 +24,9 @@ void requireDataset(const std::filesystem::path& path, const std::string& howToM
 
 /// Calls `options.progress(what, fraction)` when a callback is set.
 void reportProgress(const ExperimentOptions& options, const std::string& what, double fraction);
+
+/// Median of `values` (mean of the middle two for an even count); NaN when empty.
+double medianOf(std::vector<double> values);
 
 /// Wall-clock seconds since construction.
 class WallClock

@@ -1,0 +1,46 @@
+#include "srp/experiment/ExperimentSupport.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "srp/core/Error.h"
+
+namespace srp::experiment {
+
+std::filesystem::path datasetsDirOf(const ExperimentOptions& options)
+{
+  return options.datasetsDir.empty() ? std::filesystem::path(SRP_DATASETS_DIR) : options.datasetsDir;
+}
+
+std::filesystem::path simDirOf(const ExperimentOptions& options)
+{
+  return options.simDir.empty() ? std::filesystem::path(SRP_SIM_DIR) : options.simDir;
+}
+
+std::filesystem::path experimentDirOf(const ExperimentOptions& options, const std::string& name)
+{
+  const auto dir = options.outDir / name;
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+void requireDataset(const std::filesystem::path& path, const std::string& howToMake)
+{
+  if (!std::filesystem::exists(path))
+    throw core::FileError(path.string(), "missing dataset; " + howToMake);
+}
+
+void reportProgress(const ExperimentOptions& options, const std::string& what, double fraction)
+{
+  if (options.progress) options.progress(what, fraction);
+}
+
+double medianOf(std::vector<double> values)
+{
+  if (values.empty()) return NAN;
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+}  // namespace srp::experiment

@@ -1,0 +1,38 @@
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+
+#include "srp/experiment/ExperimentResult.h"
+
+namespace srp::experiment {
+
+/// The repo's datasets/ of a run: `options.datasetsDir`, else the build's SRP_DATASETS_DIR.
+std::filesystem::path datasetsDirOf(const ExperimentOptions& options);
+
+/// The repo's sim/ of a run: `options.simDir`, else the build's SRP_SIM_DIR.
+std::filesystem::path simDirOf(const ExperimentOptions& options);
+
+/// `<options.outDir>/<name>`, created.
+std::filesystem::path experimentDirOf(const ExperimentOptions& options, const std::string& name);
+
+/// Throws core::FileError naming `path` and saying how to make it (`howToMake`,
+/// e.g. "run 'srp train-language'") when the file does not exist.
+void requireDataset(const std::filesystem::path& path, const std::string& howToMake);
+
+/// Calls `options.progress(what, fraction)` when a callback is set.
+void reportProgress(const ExperimentOptions& options, const std::string& what, double fraction);
+
+/// Wall-clock seconds since construction.
+class WallClock
+{
+public:
+  WallClock() : start_(std::chrono::steady_clock::now()) {}
+  double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+
+private:
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace srp::experiment

@@ -107,8 +107,8 @@ ExperimentResult runHandExperiment(const ExperimentOptions& options)
                        "Ours: marker (AprilTag glove)", "Ours: marker-free", "Ours: marker, tag-readable frames"};
   detection.note =
       "Thesis: table 8.2, its five recorded videos (video k beside demo k; 3601 frames, 2631 with the hand). "
-      "Ours: seeded synthetic demos (" + size.describe() +
-      "); hand-visible = some hand pixel in the ground truth; tag-readable = the whole tag plate visible "
+      "Ours: " + size.describe() +
+      "; hand-visible = some hand pixel in the ground truth; tag-readable = the whole tag plate visible "
       "(issue 5's denominator for the marker). Both detectors see the same frames.";
 
   DetectorCounts total;

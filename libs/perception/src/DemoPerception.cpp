@@ -100,6 +100,7 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
     if (!p.isStatic && m.lastPose.count(p.className)) previous[p.className] = m.lastPose.at(p.className);
   const auto detections =
       m.detector->detect(f, m.options.fixedSupportPlane && m.support ? &*m.support : nullptr, previous);
+  if (m.options.onFrameDetections) m.options.onFrameDetections(f.index, detections);
   for (const auto& d : detections) m.lastPose[d.className] = d.X_camera_object;
   if (!m.support) m.support = m.detector->lastPlane();
   for (auto& [name, perFrame] : m.perClass) perFrame.emplace_back();

@@ -54,6 +54,9 @@ struct PerceptionOptions {
   std::vector<PlanObject> plan;
   /// Fit the support plane once on the first frame (the camera is fixed).
   bool fixedSupportPlane = true;
+  /// Called with each frame's index and its detections before any refinement
+  /// (the detector alone, e.g. for `srp experiment objects`); may be empty.
+  std::function<void(int, const std::vector<ObjectDetection>&)> onFrameDetections;
 };
 
 struct PerceptionResult {

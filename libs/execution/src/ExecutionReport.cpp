@@ -58,6 +58,7 @@ nlohmann::json ExecutionReport::toJson() const {
       js["relations_hold"] = s.relationsHold;
       js["min_table_clearance_m"] = s.minTableClearance_m;
       js["max_joint_error_rad"] = s.maxJointError_rad;
+      js["slow_down"] = s.slowDown;
     }
     if (!s.pathSource.empty()) js["path_source"] = s.pathSource;
     js["planning_s"] = s.planning_s;

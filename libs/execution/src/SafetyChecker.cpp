@@ -87,6 +87,26 @@ std::optional<SafetyViolation> SafetyChecker::checkConfiguration(const JointVect
   return std::nullopt;
 }
 
+namespace {
+// Both the spline velocity and the chord between samples (catches IK branch jumps).
+double jointSpeedAt(const std::vector<JointTrajectorySample>& samples, std::size_t k, int i) {
+  double speed = std::abs(samples[k].qd_radps[i]);
+  if (k > 0)
+    speed = std::max(speed, std::abs(samples[k].q_rad[i] - samples[k - 1].q_rad[i]) /
+                                (samples[k].t_s - samples[k - 1].t_s));
+  return speed;
+}
+}  // namespace
+
+double SafetyChecker::peakVelocityRatio(const JointTrajectory& trajectory) const {
+  const auto& samples = trajectory.samples();
+  const JointVector vmax = model_.maxVelocities_radps() * limits_.velocityFraction;
+  double ratio = 0.0;
+  for (std::size_t k = 0; k < samples.size(); ++k)
+    for (int i = 0; i < 6; ++i) ratio = std::max(ratio, jointSpeedAt(samples, k, i) / vmax[i]);
+  return ratio;
+}
+
 std::optional<SafetyViolation> SafetyChecker::check(const JointTrajectory& trajectory,
                                                     const std::string& what) const {
   const auto& samples = trajectory.samples();
@@ -100,10 +120,7 @@ std::optional<SafetyViolation> SafetyChecker::check(const JointTrajectory& traje
       return v;
     }
     for (int i = 0; i < 6; ++i) {
-      // Both the spline velocity and the chord between samples (catches IK branch jumps).
-      double speed = std::abs(s.qd_radps[i]);
-      if (k > 0) speed = std::max(speed, std::abs(s.q_rad[i] - samples[k - 1].q_rad[i]) /
-                                             (s.t_s - samples[k - 1].t_s));
+      const double speed = jointSpeedAt(samples, k, i);
       if (speed > vmax[i])
         return SafetyViolation{"velocity limit", k, s.t_s,
                                at + ": joint " + model_.joints()[i].name + " would move at " + fmt(speed) +

@@ -155,6 +155,7 @@ StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
     std::string what;
     CartesianPath path;
     JointTrajectory joints;
+    double slowDown = 1.0;  ///< > 1: retimed to respect the joint speed limits
   };
   const Pose3 X_base_world = scene.X_world_base.inverse();
   auto planVariant = [&](double turn_rad, std::vector<Segment>& segments) -> std::optional<std::string> {
@@ -193,6 +194,13 @@ StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
         qs.push_back(q);
       }
       seg.joints = JointTrajectory::fromPositions(times, qs);
+      // Same path, slower: retime a path that is too fast for the joints.
+      const double ratio = safety_.peakVelocityRatio(seg.joints) / options_.velocityMargin;
+      if (ratio > 1.0 && ratio <= options_.maxSlowDown) {
+        for (double& t : times) t = times.front() + (t - times.front()) * ratio;
+        seg.joints = JointTrajectory::fromPositions(times, qs);
+        seg.slowDown = ratio;
+      }
       if (auto v = safety_.check(seg.joints, what)) return "safety: " + v->message;
     }
     return std::nullopt;
@@ -209,6 +217,7 @@ StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
   if (failure && failureTurned) return finish(StepStatus::Refused, *failure);
   if (failure || (!failureTurned && wristLoad(alternative) < wristLoad(segments))) segments = std::move(alternative);
   r.planning_s = std::chrono::duration<double>(Clock::now() - planStart).count();
+  for (const auto& seg : segments) r.slowDown = std::max(r.slowDown, seg.slowDown);
   const std::string reachSource = generator_->sourceFor(srp::core::SkillType::Reach, part->name);
   const std::string moveSource = generator_->sourceFor(srp::core::SkillType::Move, part->name);
   r.pathSource = reachSource == moveSource ? reachSource : "Reach " + reachSource + ", Move " + moveSource;

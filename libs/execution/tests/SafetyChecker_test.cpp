@@ -54,6 +54,15 @@ TEST(SafetyChecker, RefusesVelocityLimitViolation) {
   EXPECT_NE(v->message.find("shoulder_pan_joint"), std::string::npos) << v->message;
 }
 
+TEST(SafetyChecker, PeakVelocityRatioIsTheFastestJointOverItsLimit) {
+  JointVector b = home();
+  b[0] += 1.0;  // 1 rad in 0.2 s: a 5 rad/s chord against the shoulder's pi rad/s
+  const double fast = checker().peakVelocityRatio(linear(home(), b, 0.2));
+  EXPECT_GE(fast, 5.0 / M_PI - 1e-9);
+  EXPECT_LT(fast, 1.1 * 5.0 / M_PI);
+  EXPECT_LT(checker().peakVelocityRatio(linear(home(), b, 2.0)), 1.0);
+}
+
 TEST(SafetyChecker, RefusesTablePenetration) {
   const SafetyChecker c = checker();
   JointVector down = home();

@@ -95,3 +95,31 @@ TEST(TaskExecutor, UnreachableTargetIsRefusedAndTheArmStaysPut) {
   EXPECT_NE(report.steps[0].reason.find("out of the arm's reach"), std::string::npos) << report.steps[0].reason;
   EXPECT_LT((ex->simulator().jointPositions() - q0).norm(), 1e-9);
 }
+
+// A path too fast for the joints (here: a generator three times faster than the
+// default; in practice a learned DMP near a wrist singularity) is followed more
+// slowly, not refused; with no slow-down allowed it is refused.
+TEST(TaskExecutor, TooFastPathIsSlowedDownToTheJointSpeedLimits) {
+  Cell c;
+  MinimumJerkOptions fast;
+  fast.meanSpeed_mps = 0.75;
+  fast.meanAngularSpeed_radps = 2.4;
+  fast.minSegmentDuration_s = 0.1;
+  ExecutionPlan plan;
+  plan.steps.push_back(instruction1().steps[0]);
+
+  TaskExecutor slowed(c.model, c.cell, c.home, std::make_shared<MinimumJerkPathGenerator>(fast));
+  const ExecutionReport done = slowed.run(plan);
+  ASSERT_EQ(done.steps.size(), 1u);
+  EXPECT_EQ(done.steps[0].status, StepStatus::Done) << done.steps[0].reason;
+  EXPECT_GT(done.steps[0].slowDown, 1.0);
+  EXPECT_LT(done.steps[0].placementError_m, kPlacementTol_m);
+
+  ExecutionOptions noSlowDown;
+  noSlowDown.maxSlowDown = 1.0;
+  TaskExecutor strict(c.model, c.cell, c.home, std::make_shared<MinimumJerkPathGenerator>(fast), noSlowDown);
+  const ExecutionReport refused = strict.run(plan);
+  ASSERT_EQ(refused.steps.size(), 1u);
+  EXPECT_EQ(refused.steps[0].status, StepStatus::Refused);
+  EXPECT_NE(refused.steps[0].reason.find("above its limit"), std::string::npos) << refused.steps[0].reason;
+}

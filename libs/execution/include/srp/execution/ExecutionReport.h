@@ -38,6 +38,7 @@ struct StepReport {
   double simulated_s = 0.0;       ///< simulated duration of the step
   double minTableClearance_m = 0.0;  ///< smallest arm-table gap during the step
   double maxJointError_rad = 0.0;    ///< largest joint tracking error during the step
+  double slowDown = 1.0;             ///< largest retiming factor of the step's paths (1: as planned)
 };
 
 struct ExecutionReport {

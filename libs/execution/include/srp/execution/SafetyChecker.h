@@ -53,6 +53,11 @@ class SafetyChecker {
   /// the motion in the message ("Reach of cuboid").
   std::optional<SafetyViolation> check(const JointTrajectory& trajectory, const std::string& what) const;
 
+  /// Largest ratio of a joint's speed to its allowed speed along the trajectory
+  /// (spline velocity and chord between samples, as check() measures them);
+  /// above 1 the trajectory breaks the velocity limit.
+  double peakVelocityRatio(const JointTrajectory& trajectory) const;
+
   /// First violation of one configuration (limits, workspace, table, obstacles).
   std::optional<SafetyViolation> checkConfiguration(const JointVector& q, const std::string& what) const;
 

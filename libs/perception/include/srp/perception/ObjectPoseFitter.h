@@ -53,6 +53,12 @@ class ObjectPoseFitter {
   ObjectPoseFit fit(const std::vector<Eigen::Vector3d>& points_camera, const Plane& support, const cv::Mat& cloud,
                     const CameraModel& camera, const core::Pose3* initial = nullptr) const;
 
+  /// The score of the model at X_camera_object without moving it (no ICP):
+  /// verifies a known pose (a fixed static object, an unchanged segment) at
+  /// a fraction of a fit's cost.
+  ObjectPoseFit evaluate(const std::vector<Eigen::Vector3d>& points_camera, const core::Pose3& X_camera_object,
+                         const cv::Mat& cloud, const CameraModel& camera) const;
+
   /// Fraction of the model surface facing the camera at X_camera_object and
   /// inside the image that the cloud confirms (depth within inlierTol).
   double coverage(const core::Pose3& X_camera_object, const cv::Mat& cloud, const CameraModel& camera) const;

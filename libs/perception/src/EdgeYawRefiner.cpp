@@ -1,6 +1,8 @@
 #include "srp/perception/EdgeYawRefiner.h"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <complex>
 #include <opencv2/imgproc.hpp>
 
@@ -59,8 +61,8 @@ std::optional<core::Pose3> EdgeYawRefiner::refine(const core::Pose3& X_camera_ob
 
   cv::Mat gx, gy;
   const cv::Mat patch = colour_bgr8(roi);
-  cv::Sobel(patch, gx, CV_32F, 1, 0, 3);
-  cv::Sobel(patch, gy, CV_32F, 0, 1, 3);
+  cv::Sobel(patch, gx, CV_32F, 1, 0, 5);
+  cv::Sobel(patch, gy, CV_32F, 0, 1, 5);
 
   // Plane-frame direction of an image tangent at pixel (u, v), on the plane
   // parallel to the support at the model's top height.
@@ -95,7 +97,7 @@ std::optional<core::Pose3> EdgeYawRefiner::refine(const core::Pose3& X_camera_ob
         jxy += ax[x][c] * ay[x][c];
       }
       const double strength = std::sqrt((jxx - jyy) * (jxx - jyy) + 4 * jxy * jxy);
-      if (strength < 1e3) continue;  // flat (Sobel of 8-bit values: a 10-level step gives ~1.6e3)
+      if (strength < 1e5) continue;  // flat (5x5 Sobel of 8-bit values: a 10-level step gives ~2.6e4 per channel)
       const double theta = 0.5 * std::atan2(2 * jxy, jxx - jyy);  // gradient direction, mod pi
       const Eigen::Vector3d t = -std::sin(theta) * ex + std::cos(theta) * ey;  // tangent on the plane
       sum += strength * std::polar(1.0, order_ * std::atan2(t.y(), t.x()));
@@ -103,6 +105,8 @@ std::optional<core::Pose3> EdgeYawRefiner::refine(const core::Pose3& X_camera_ob
       ++edgePixels;
     }
   }
+  if (std::getenv("SRP_PERCEPTION_DEBUG"))
+    std::fprintf(stderr, "edges: %d px, coherence %.2f\n", edgePixels, std::abs(sum) / std::max(1e-9, weight));
   if (edgePixels < options_.minEdgePixels || std::abs(sum) < options_.minCoherence * weight) return std::nullopt;
 
   const core::Pose3 X_plane_object = X_plane_camera * X_camera_object;
@@ -110,6 +114,9 @@ std::optional<core::Pose3> EdgeYawRefiner::refine(const core::Pose3& X_camera_ob
   const double yawEdges = (std::arg(sum) - modelPhase_rad_) / order_;
   const double period = 2 * kPi / order_;
   double delta = std::remainder(yawEdges - yawFit, period);  // the branch nearest the fit
+  if (std::getenv("SRP_PERCEPTION_DEBUG"))
+    std::fprintf(stderr, "edges: fit yaw %.2f deg, edge yaw %.2f deg, correction %.2f deg\n", yawFit * 180 / kPi,
+                 yawEdges * 180 / kPi, delta * 180 / kPi);
   if (std::abs(delta) > options_.maxCorrection_rad) return std::nullopt;
   core::Pose3 X = X_camera_object;
   X.linear() = X_camera_object.linear() * Eigen::AngleAxisd(delta, Eigen::Vector3d::UnitZ()).toRotationMatrix();

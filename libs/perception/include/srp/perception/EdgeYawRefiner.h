@@ -32,7 +32,7 @@ class EdgeYawRefiner {
  public:
   struct Options {
     double maxCorrection_rad = 12.0 * 3.14159265358979323846 / 180.0;  ///< larger: distrusted
-    double minCoherence = 0.4;  ///< |mean exp(i m angle)| of the edge pixels, [0, 1]
+    double minCoherence = 0.25; ///< |mean exp(i m angle)| of the edge pixels, [0, 1]
     int ringWidth_px = 2;
     int minEdgePixels = 20;
   };

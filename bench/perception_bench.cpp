@@ -53,15 +53,14 @@ const std::string& synthRawlog() {
   static const std::string path = [] {
     const auto file = std::filesystem::temp_directory_path() /
                       ("srp_perception_bench_demo_" + std::to_string(kSynthFrames) + ".rawlog");
-    if (!std::filesystem::exists(file)) {
+    // The ground truth is written last: without it the rawlog may be partial.
+    if (!std::filesystem::exists(std::filesystem::path(file).replace_extension(".gt.json"))) {
       const auto scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
       srp::synth::SynthDemoOptions o;
       o.demo.seed = static_cast<std::uint32_t>(scene.seed);
       o.maxFrames = kSynthFrames;
-      const auto tmp = file.string() + ".part.rawlog";
       srp::synth::generateSyntheticDemo(scene, srp::core::ObjectCatalogue::load(scene.cataloguePath),
-                                        srp::synth::defaultPlanJson(), o, tmp);
-      std::filesystem::rename(tmp, file);
+                                        srp::synth::defaultPlanJson(), o, file.string());
     }
     return file.string();
   }();

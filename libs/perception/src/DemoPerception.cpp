@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -56,6 +57,7 @@ struct DemoPerceiver::Impl {
   PerceptionResult result;
   bool haveDepth = false;
   double lastZ_m = 0.0;
+  const bool debug = std::getenv("SRP_PERCEPTION_DEBUG") != nullptr;
 
   Impl(const core::ObjectCatalogue& c, const PerceptionOptions& o) : catalogue(c), options(o) {}
 };
@@ -97,19 +99,12 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
   m.frameIndex.push_back(f.index);
   m.frameTime_s.push_back(f.t_s);
 
-  const auto detections = m.tracker->update(f, m.options.fixedSupportPlane && m.support ? &*m.support : nullptr);
-  if (!m.support) m.support = m.tracker->lastPlane();
-  for (auto& [name, perFrame] : m.perClass) perFrame.emplace_back();
-  for (const auto& d : detections) {
-    auto& slot = m.perClass[d.className].back();
-    if (!slot || d.confidence > slot->confidence) slot = d;
-  }
-
   core::PositionSample s;
   s.frame = f.index;
   s.t_s = f.t_s;
   s.valid = false;
-  if (const auto h = m.hand->detect(f)) {
+  const auto h = m.hand->detect(f);
+  if (h) {
     if (h->hasDepth) {
       s.p_m = h->p_camera_palm_m;
       m.lastZ_m = h->p_camera_palm_m.z();
@@ -125,6 +120,21 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
     }
     if (s.valid) ++m.result.handDetected;
   }
+  // Objects after the hand: the hand's segment (and a part it holds) explains no object.
+  const auto detections = m.tracker->update(f, m.options.fixedSupportPlane && m.support ? &*m.support : nullptr,
+                                             h ? std::vector<Eigen::Vector2d>{h->palm_px} : std::vector<Eigen::Vector2d>{});
+  if (!m.support) m.support = m.tracker->lastPlane();
+  if (m.debug) {
+    const auto& st = m.tracker->lastStats();
+    std::fprintf(stderr, "frame %d: %d segments: %d hand, %d unchanged, %d static verified, %d explained\n", f.index,
+                 st.segments, st.hand, st.unchanged, st.staticVerified, st.explained);
+  }
+  for (auto& [name, perFrame] : m.perClass) perFrame.emplace_back();
+  for (const auto& d : detections) {
+    auto& slot = m.perClass[d.className].back();
+    if (!slot || d.confidence > slot->confidence) slot = d;
+  }
+
   // Timestamps must increase; folders without timestamps may repeat them.
   if (!m.result.hand.empty() && s.t_s <= m.result.hand.samples().back().t_s)
     s.t_s = m.result.hand.samples().back().t_s + 1e-6;

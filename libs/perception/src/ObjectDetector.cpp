@@ -223,7 +223,10 @@ std::optional<ObjectDetection> ObjectDetector::explain(const ObjectSegment& seg,
       continue;
     const double colour = colourScore(seg, model);
     if (colour < 0.05) continue;
-    const ObjectPoseFit fit = fitter.fit(seg.points_camera_m, plane, cloud, camera);
+    // A coarse score that even a perfect fine stage could not lift to half
+    // the acceptance is not worth the fine stage.
+    const ObjectPoseFit fit = fitter.fit(seg.points_camera_m, plane, cloud, camera, nullptr,
+                                         0.5 * std::max(options_.minConfidence, bestConfidence) / colour);
     const double confidence = fit.score * colour;
     if (std::getenv("SRP_PERCEPTION_DEBUG"))
       std::fprintf(stderr, "segment (%zu px) %s: inliers %.2f coverage %.2f colour %.2f at %.3f %.3f %.3f\n",

@@ -119,7 +119,7 @@ ObjectPoseFit ObjectPoseFitter::evaluate(const std::vector<Eigen::Vector3d>& poi
 
 ObjectPoseFit ObjectPoseFitter::fit(const std::vector<Eigen::Vector3d>& points_camera, const Plane& support,
                                     const cv::Mat& cloud, const CameraModel& camera,
-                                    const core::Pose3* initial) const {
+                                    const core::Pose3* initial, double giveUpBelow) const {
   ObjectPoseFit best;
   if (points_camera.size() < 10) return best;
   const core::Pose3 X_camera_plane = support.X_camera_plane();
@@ -234,6 +234,7 @@ ObjectPoseFit ObjectPoseFitter::fit(const std::vector<Eigen::Vector3d>& points_c
     coarse.emplace_back(evaluate(x, true).score, x);
   }
   std::sort(coarse.begin(), coarse.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  if (coarse.front().first < giveUpBelow) return evaluate(coarse.front().second, true);
   for (std::size_t k = 0; k < std::min<std::size_t>(4, coarse.size()); ++k) {
     const Eigen::Vector4d x = icp(coarse[k].second, options_.iterations, 1);
     const ObjectPoseFit f = evaluate(x, true);

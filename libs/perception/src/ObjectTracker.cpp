@@ -28,7 +28,8 @@ std::optional<ObjectDetection> ObjectTracker::fixedStatic(const std::string& cla
   return it->second;
 }
 
-std::vector<ObjectDetection> ObjectTracker::update(const rawlog::RgbdFrame& frame, const Plane* support) {
+std::vector<ObjectDetection> ObjectTracker::update(const rawlog::RgbdFrame& frame, const Plane* support,
+                                                  const std::vector<Eigen::Vector2d>& hand_px) {
   if (frame.depth_m.empty())
     throw core::InvalidInputError("frame " + std::to_string(frame.index) + " has no depth image: objects need depth");
   const int now = frame_++;
@@ -57,9 +58,22 @@ std::vector<ObjectDetection> ObjectTracker::update(const rawlog::RgbdFrame& fram
     out.push_back(det);
   };
 
+  // 0. The hand's segment (with what it holds) explains no object.
+  const double r2 = options_.handRadius_px * options_.handRadius_px;
+  auto isHand = [&](const ObjectSegment& seg) {
+    for (const Eigen::Vector2d& h : hand_px)
+      for (const cv::Point& p : seg.pixels)
+        if ((Eigen::Vector2d(p.x, p.y) - h).squaredNorm() <= r2) return true;
+    return false;
+  };
+
   // 1. Unchanged segments keep their answer.
   std::vector<std::size_t> pending;
   for (std::size_t i = 0; i < segs.size(); ++i) {
+    if (isHand(segs[i])) {
+      ++stats_.hand;
+      continue;
+    }
     const auto a = std::find_if(answers_.begin(), answers_.end(), [&](const Answer& x) {
       return now - x.frame < options_.refreshFrames && same(x, segs[i]) &&
              !(x.detection && assigned.count(x.detection->className));

@@ -19,6 +19,7 @@ namespace srp::perception {
 /// demo (fixed camera, time order). Poses in the camera optical frame, metres.
 ///
 /// Per frame, each depth segment above the support plane is, in order:
+/// 0. the *hand* (near the given hand points): no object;
 /// 1. *unchanged*: its pixel count, plane-frame extent and centre match (within
 ///    Options tolerances) those of a segment answered in an earlier frame, less
 ///    than `refreshFrames` ago -> the same answer (the same class and pose, or
@@ -42,6 +43,7 @@ class ObjectTracker {
     double sameExtent_m = 0.004;          ///< ... extents per axis this close ...
     double samePixels = 0.06;             ///< ... and pixel counts within this fraction
     double noObjectSlack = 3.0;           ///< tolerances x this for a segment that was no object
+    double handRadius_px = 6.0;           ///< a segment this close to a hand point is the hand
   };
 
   /// `detector` must outlive the tracker.
@@ -51,7 +53,12 @@ class ObjectTracker {
   /// class. `support`: the support plane (e.g. fitted once for a fixed
   /// camera); fitted on this frame when null (no plane -> no detections).
   /// Throws InvalidInputError for a frame without depth.
-  std::vector<ObjectDetection> update(const rawlog::RgbdFrame& frame, const Plane* support = nullptr);
+  /// `hand_px`: the hand's image points in this frame (e.g. the palm pixel)
+  /// when known: a segment within Options::handRadius_px of one of them is
+  /// the hand, with whatever it holds, and explains no object (a part in the
+  /// hand is "not detected", never fitted to the hand's depth).
+  std::vector<ObjectDetection> update(const rawlog::RgbdFrame& frame, const Plane* support = nullptr,
+                                      const std::vector<Eigen::Vector2d>& hand_px = {});
 
   /// The support plane of the last update, if one was found.
   const std::optional<Plane>& lastPlane() const { return lastPlane_; }
@@ -61,7 +68,7 @@ class ObjectTracker {
 
   /// Per-frame counters of the last update (how the segments were answered).
   struct Stats {
-    int segments = 0, unchanged = 0, staticVerified = 0, explained = 0;
+    int segments = 0, unchanged = 0, staticVerified = 0, explained = 0, hand = 0;
   };
   const Stats& lastStats() const { return stats_; }
 

@@ -17,8 +17,12 @@ bool ObjectTracker::same(const Answer& a, const ObjectSegment& s) const {
   const double slack = a.detection ? 1.0 : options_.noObjectSlack;
   const int pixels = static_cast<int>(s.points_camera_m.size());
   if (std::abs(pixels - a.pixels) > slack * options_.samePixels * std::max(pixels, a.pixels)) return false;
-  if ((0.5 * (a.lo_plane_m + a.hi_plane_m) - s.centre_plane_m()).norm() > slack * options_.sameCentre_m) return false;
-  const Eigen::Vector3d dExtent = (a.hi_plane_m - a.lo_plane_m) - (s.hi_plane_m - s.lo_plane_m);
+  // Along the plane only, and the top: a part's low edge (the bottom of its
+  // visible sides) comes and goes with the depth noise.
+  if ((0.5 * (a.lo_plane_m + a.hi_plane_m) - s.centre_plane_m()).head<2>().norm() > slack * options_.sameCentre_m)
+    return false;
+  if (std::abs(a.hi_plane_m.z() - s.hi_plane_m.z()) > slack * options_.sameExtent_m) return false;
+  const Eigen::Vector2d dExtent = (a.hi_plane_m - a.lo_plane_m).head<2>() - (s.hi_plane_m - s.lo_plane_m).head<2>();
   return dExtent.cwiseAbs().maxCoeff() <= slack * options_.sameExtent_m;
 }
 

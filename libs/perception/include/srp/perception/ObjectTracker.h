@@ -20,8 +20,9 @@ namespace srp::perception {
 ///
 /// Per frame, each depth segment above the support plane is, in order:
 /// 0. the *hand* (near the given hand points): no object;
-/// 1. *unchanged*: its pixel count, plane-frame extent and centre match (within
-///    Options tolerances) those of a segment answered in an earlier frame, less
+/// 1. *unchanged*: its pixel count, extent and centre along the plane and its
+///    top height match (within Options tolerances) those of a segment
+///    answered in an earlier frame, less
 ///    than `refreshFrames` ago -> the same answer (the same class and pose, or
 ///    "no object"), no fit;
 /// 2. a *fixed static object* (after `staticFixDetections` detections a static
@@ -39,8 +40,8 @@ class ObjectTracker {
     int staticFixDetections = 10;         ///< detections before a static object is fixed
     double staticVerifyInliers = 0.5;     ///< segment points on the fixed model to count as seen
     int refreshFrames = 30;               ///< an unchanged segment is re-explained after this many frames
-    double sameCentre_m = 0.003;          ///< unchanged: centres this close (plane frame) ...
-    double sameExtent_m = 0.004;          ///< ... extents per axis this close ...
+    double sameCentre_m = 0.003;          ///< unchanged: centres this close (along the plane) ...
+    double sameExtent_m = 0.004;          ///< ... extents along the plane and tops this close ...
     double samePixels = 0.06;             ///< ... and pixel counts within this fraction
     double noObjectSlack = 3.0;           ///< tolerances x this for a segment that was no object
     double handRadius_px = 6.0;           ///< a segment this close to a hand point is the hand

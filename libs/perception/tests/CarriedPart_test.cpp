@@ -5,36 +5,21 @@
 // the demonstrator twice as fast (~100 frames, a few seconds).
 #include <gtest/gtest.h>
 
-#include <filesystem>
-
-#include "srp/core/Scene.h"
+#include "RenderedDemo.h"
 #include "srp/perception/DemoPerception.h"
-#include "srp/synth/DemoGenerator.h"
-#include "srp/synth/PickPlacePlan.h"
 
 namespace srp::perception {
 namespace {
 
-struct ShortDemo {
-  std::string rawlog;
-  synth::DemoGroundTruth gt;
-  core::ObjectCatalogue catalogue;
-};
+using ShortDemo = testing::RenderedDemo;
 
 const ShortDemo& shortDemo() {
   static const ShortDemo d = [] {
-    const auto scene = core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-    ShortDemo out;
-    out.catalogue = core::ObjectCatalogue::load(scene.cataloguePath);
     synth::SynthDemoOptions o;
-    o.demo.seed = static_cast<std::uint32_t>(scene.seed);
     o.demo.speedFactor = 2.0;
     o.demo.idleStart_s = 0.5;
     o.maxFrames = 100;
-    out.rawlog = (std::filesystem::path(SRP_BINARY_DIR) / "perception_carried_demo.rawlog").string();
-    const auto r = synth::generateSyntheticDemo(scene, out.catalogue, synth::defaultPlanJson(), o, out.rawlog);
-    out.gt = synth::DemoGroundTruth::load(r.groundTruthPath);
-    return out;
+    return testing::renderDefaultDemo("perception_carried_demo.rawlog", o);
   }();
   return d;
 }

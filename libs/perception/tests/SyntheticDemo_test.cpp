@@ -8,10 +8,8 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "srp/core/Scene.h"
+#include "RenderedDemo.h"
 #include "srp/perception/DemoPerception.h"
-#include "srp/synth/DemoGenerator.h"
-#include "srp/synth/PickPlacePlan.h"
 
 namespace srp::perception {
 namespace {
@@ -24,33 +22,16 @@ double percentile(std::vector<double> v, double p) {
   return v[std::min(v.size() - 1, static_cast<std::size_t>(p * static_cast<double>(v.size())))];
 }
 
-struct Demo {
-  std::string rawlog;
-  synth::DemoGroundTruth gt;
-  core::ObjectCatalogue catalogue;
-};
+using Demo = testing::RenderedDemo;
 
 /// The first kFrames frames of the default demo, rendered; or, when the
 /// environment names one (SRP_PERCEPTION_DEMO=demo.rawlog, its ground truth
 /// demo.gt.json next to it, e.g. the whole demo of `make demo`), that demo.
 const Demo& demo() {
   static const Demo d = [] {
-    const auto scene = core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-    Demo out;
-    out.catalogue = core::ObjectCatalogue::load(scene.cataloguePath);
-    if (const char* given = std::getenv("SRP_PERCEPTION_DEMO")) {
-      out.rawlog = given;
-      out.gt = synth::DemoGroundTruth::load(
-          std::filesystem::path(given).replace_extension(".gt.json").string());
-      return out;
-    }
     synth::SynthDemoOptions o;
-    o.demo.seed = static_cast<std::uint32_t>(scene.seed);
     o.maxFrames = kFrames;
-    out.rawlog = (std::filesystem::path(SRP_BINARY_DIR) / "perception_synthetic_demo.rawlog").string();
-    const auto r = synth::generateSyntheticDemo(scene, out.catalogue, synth::defaultPlanJson(), o, out.rawlog);
-    out.gt = synth::DemoGroundTruth::load(r.groundTruthPath);
-    return out;
+    return testing::renderDefaultDemo("perception_synthetic_demo.rawlog", o, std::getenv("SRP_PERCEPTION_DEMO"));
   }();
   return d;
 }

@@ -27,13 +27,7 @@ const ShortDemo& shortDemo() {
 TEST(CarriedPart, FollowsTheHandOrIsNotDetectedAndNothingIsSwapped) {
   constexpr double kCorrect_m = 0.02;  // a detection this close to the truth is of the right object
   const ShortDemo& d = shortDemo();
-  PerceptionOptions o;
-  o.marker.tagSize_m = d.gt.tagSize_m;
-  o.marker.tagId = d.gt.tagId;
-  o.marker.p_tag_palm_m = d.gt.X_hand_tag.inverse().translation();
-  o.plan = {{"cuboid", false}, {"star", false}, {"parallelogram", false}, {"octagon", false},
-            {"blue box", true}, {"gray box", true}};
-  const PerceptionResult r = perceiveRawlog(d.rawlog, d.catalogue, o);
+  const PerceptionResult r = perceiveRawlog(d.rawlog, d.catalogue, testing::instruction1Options(d.gt));
   ASSERT_EQ(r.frames, static_cast<int>(d.gt.frames.size()));
 
   // The demo must hold a carry and the release after it, else it tests nothing.

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "srp/core/Scene.h"
+#include "srp/perception/DemoPerception.h"
 #include "srp/synth/DemoGenerator.h"
 #include "srp/synth/PickPlacePlan.h"
 
@@ -34,6 +35,18 @@ inline RenderedDemo renderDefaultDemo(const std::string& fileName, synth::SynthD
   const auto r = synth::generateSyntheticDemo(scene, out.catalogue, synth::defaultPlanJson(), options, out.rawlog);
   out.gt = synth::DemoGroundTruth::load(r.groundTruthPath);
   return out;
+}
+
+/// Perception options for a rendered demo: its glove's tag, and the objects
+/// `srp program` grounds for instruction 1 (four parts moving, two boxes static).
+inline PerceptionOptions instruction1Options(const synth::DemoGroundTruth& gt) {
+  PerceptionOptions o;
+  o.marker.tagSize_m = gt.tagSize_m;
+  o.marker.tagId = gt.tagId;
+  o.marker.p_tag_palm_m = gt.X_hand_tag.inverse().translation();
+  o.plan = {{"cuboid", false}, {"star", false}, {"parallelogram", false}, {"octagon", false},
+            {"blue box", true}, {"gray box", true}};
+  return o;
 }
 
 }  // namespace srp::perception::testing

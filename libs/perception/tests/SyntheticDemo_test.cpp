@@ -38,13 +38,7 @@ const Demo& demo() {
 
 TEST(SyntheticDemo, MarkerHandAndObjects) {
   const Demo& d = demo();
-  PerceptionOptions o;
-  o.marker.tagSize_m = d.gt.tagSize_m;
-  o.marker.tagId = d.gt.tagId;
-  o.marker.p_tag_palm_m = d.gt.X_hand_tag.inverse().translation();
-  o.plan = {{"cuboid", false}, {"star", false}, {"parallelogram", false}, {"octagon", false},
-            {"blue box", true}, {"gray box", true}};
-  const PerceptionResult r = perceiveRawlog(d.rawlog, d.catalogue, o);
+  const PerceptionResult r = perceiveRawlog(d.rawlog, d.catalogue, testing::instruction1Options(d.gt));
   ASSERT_EQ(r.frames, static_cast<int>(d.gt.frames.size()));
 
   std::vector<double> handErr_m;

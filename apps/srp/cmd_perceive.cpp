@@ -102,7 +102,9 @@ void setupPerceive(CLI::App& app) {
   app.add_option("--objects", o->objects, "Moving objects of interest, comma-separated class names (default: all classes)");
   app.add_option("--static", o->staticObjects, "Static objects (containers, landmarks), comma-separated class names");
   app.add_flag("--json", o->json, "Print JSON");
-  app.add_option("--csv", o->csv, "Write the per-frame CSV in the 'srp segment' format");
+  app.add_option("--csv", o->csv,
+                 "Write the per-frame CSV in the 'srp segment' format (a sample not detected in its frame, "
+                 "e.g. a part in the hand, is written as 0,0,0,0)");
   app.callback([o] { run(*o); });
 }
 

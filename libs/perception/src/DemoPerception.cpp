@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -45,6 +46,7 @@ struct DemoPerceiver::Impl {
   PerceptionOptions options;
   std::vector<PlanObject> plan;
   std::unique_ptr<ObjectDetector> detector;
+  std::unique_ptr<ObjectTracker> tracker;
   std::unique_ptr<HandDetector> hand;
   std::optional<rawlog::RgbdFrame> first;  // images released: only size and intrinsics are kept
   std::optional<Plane> support;
@@ -53,9 +55,9 @@ struct DemoPerceiver::Impl {
   // Per class: per frame, the best detection (if any).
   std::map<std::string, std::vector<std::optional<ObjectDetection>>> perClass;
   PerceptionResult result;
-  std::map<std::string, core::Pose3> lastPose;  // last detection per class
   bool haveDepth = false;
   double lastZ_m = 0.0;
+  const bool debug = std::getenv("SRP_PERCEPTION_DEBUG") != nullptr;
 
   Impl(const core::ObjectCatalogue& c, const PerceptionOptions& o) : catalogue(c), options(o) {}
 };
@@ -69,6 +71,10 @@ DemoPerceiver::DemoPerceiver(const core::ObjectCatalogue& catalogue, const Perce
   std::vector<std::string> names;
   for (const auto& p : impl_->plan) names.push_back(p.className);
   impl_->detector = std::make_unique<ObjectDetector>(ObjectDetector::modelsFromCatalogue(catalogue, names), options.objects);
+  ObjectTracker::Options tracking = options.tracking;
+  for (const auto& p : impl_->plan)
+    if (p.isStatic) tracking.staticClasses.insert(p.className);
+  impl_->tracker = std::make_unique<ObjectTracker>(*impl_->detector, tracking);
   if (options.hand == PerceptionOptions::HandMethod::Marker) impl_->hand = std::make_unique<MarkerHandDetector>(options.marker);
   else impl_->hand = std::make_unique<MarkerFreeHandDetector>(options.markerFree);
   for (const auto& p : impl_->plan) impl_->perClass[p.className];
@@ -93,27 +99,12 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
   m.frameIndex.push_back(f.index);
   m.frameTime_s.push_back(f.t_s);
 
-  // Track from the last detections of the moving objects (static ones are
-  // searched afresh: their best detection is what counts).
-  std::map<std::string, core::Pose3> previous;
-  for (const auto& p : m.plan)
-    if (!p.isStatic && m.lastPose.count(p.className)) previous[p.className] = m.lastPose.at(p.className);
-  const auto detections =
-      m.detector->detect(f, m.options.fixedSupportPlane && m.support ? &*m.support : nullptr, previous);
-  if (m.options.onFrameDetections) m.options.onFrameDetections(f.index, detections);
-  for (const auto& d : detections) m.lastPose[d.className] = d.X_camera_object;
-  if (!m.support) m.support = m.detector->lastPlane();
-  for (auto& [name, perFrame] : m.perClass) perFrame.emplace_back();
-  for (const auto& d : detections) {
-    auto& slot = m.perClass[d.className].back();
-    if (!slot || d.confidence > slot->confidence) slot = d;
-  }
-
   core::PositionSample s;
   s.frame = f.index;
   s.t_s = f.t_s;
   s.valid = false;
-  if (const auto h = m.hand->detect(f)) {
+  const auto h = m.hand->detect(f);
+  if (h) {
     if (h->hasDepth) {
       s.p_m = h->p_camera_palm_m;
       m.lastZ_m = h->p_camera_palm_m.z();
@@ -129,6 +120,22 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
     }
     if (s.valid) ++m.result.handDetected;
   }
+  // Objects after the hand: the hand's segment (and a part it holds) explains no object.
+  const auto detections = m.tracker->update(f, m.options.fixedSupportPlane && m.support ? &*m.support : nullptr,
+                                             h ? std::vector<Eigen::Vector2d>{h->palm_px} : std::vector<Eigen::Vector2d>{});
+  if (m.options.onFrameDetections) m.options.onFrameDetections(f.index, detections);
+  if (!m.support) m.support = m.tracker->lastPlane();
+  if (m.debug) {
+    const auto& st = m.tracker->lastStats();
+    std::fprintf(stderr, "frame %d: %d segments: %d hand, %d unchanged, %d static verified, %d explained\n", f.index,
+                 st.segments, st.hand, st.unchanged, st.staticVerified, st.explained);
+  }
+  for (auto& [name, perFrame] : m.perClass) perFrame.emplace_back();
+  for (const auto& d : detections) {
+    auto& slot = m.perClass[d.className].back();
+    if (!slot || d.confidence > slot->confidence) slot = d;
+  }
+
   // Timestamps must increase; folders without timestamps may repeat them.
   if (!m.result.hand.empty() && s.t_s <= m.result.hand.samples().back().t_s)
     s.t_s = m.result.hand.samples().back().t_s + 1e-6;
@@ -241,13 +248,16 @@ void writeSegmentCsv(const PerceptionResult& result, const std::string& path) {
         out << buf;
       }
       for (const auto& o : result.objects) {
-        if (o.samples.empty()) {
-          out << ",,,,";
+        // Not detected in this frame (carried forward, in the hand, hidden,
+        // never seen): exact zeros, as `srp segment` (motion::TrajectoryTable)
+        // and the ProductPose rows' `detected` flag have it.
+        const ObjectPoseSample* s = i < o.samples.size() ? &o.samples[i] : nullptr;
+        if (!s || !s->detected) {
+          out << ",0,0,0,0";
           continue;
         }
-        const auto& s = o.samples[std::min(i, o.samples.size() - 1)];
-        const Eigen::Vector3d t = s.X_camera_object.translation();
-        std::snprintf(buf, sizeof(buf), ",%.6f,%.6f,%.6f,%.6f", t.x(), t.y(), t.z(), cameraYaw(s.X_camera_object));
+        const Eigen::Vector3d t = s->X_camera_object.translation();
+        std::snprintf(buf, sizeof(buf), ",%.6f,%.6f,%.6f,%.6f", t.x(), t.y(), t.z(), cameraYaw(s->X_camera_object));
         out << buf;
       }
       out << '\n';

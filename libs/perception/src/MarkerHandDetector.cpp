@@ -10,12 +10,48 @@ MarkerHandDetector::MarkerHandDetector(const Options& options)
     : options_(options), tags_({options.tagSize_m, options.quadDecimate, 1}) {}
 
 std::optional<HandObservation> MarkerHandDetector::detect(const rawlog::RgbdFrame& frame) {
-  const auto tags = tags_.detect(frame.colour_bgr8, frame.intrinsics);
+  auto best = [this](const std::vector<TagDetection>& tags) {
+    const TagDetection* tag = nullptr;
+    for (const auto& t : tags)
+      if ((options_.tagId < 0 || t.id == options_.tagId) && (!tag || t.reprojectionError_px < tag->reprojectionError_px))
+        tag = &t;
+    return tag;
+  };
+  std::vector<TagDetection> tags;
   const TagDetection* tag = nullptr;
-  for (const auto& t : tags)
-    if ((options_.tagId < 0 || t.id == options_.tagId) && (!tag || t.reprojectionError_px < tag->reprojectionError_px))
-      tag = &t;
+  if (lastTagBox_px_ && options_.trackWindowTagSides > 0) {
+    // The window around the last tag, detected as an image of its own (principal point shifted).
+    const cv::Rect& b = *lastTagBox_px_;
+    const int side = static_cast<int>(options_.trackWindowTagSides * std::max(b.width, b.height)) + 16;
+    const cv::Rect window =
+        cv::Rect(b.x + b.width / 2 - side / 2, b.y + b.height / 2 - side / 2, side, side) &
+        cv::Rect(0, 0, frame.colour_bgr8.cols, frame.colour_bgr8.rows);
+    core::CameraIntrinsics k = frame.intrinsics;
+    k.cx_px -= window.x;
+    k.cy_px -= window.y;
+    k.width_px = window.width;
+    k.height_px = window.height;
+    if (window.width >= 32 && window.height >= 32) {
+      tags = tags_.detect(frame.colour_bgr8(window), k);
+      const Eigen::Vector2d offset(window.x, window.y);
+      for (auto& t : tags) {
+        for (auto& c : t.corners_px) c += offset;
+        t.centre_px += offset;
+      }
+      tag = best(tags);
+    }
+  }
+  if (!tag) {
+    tags = tags_.detect(frame.colour_bgr8, frame.intrinsics);
+    tag = best(tags);
+  }
+  lastTagBox_px_.reset();
   if (!tag) return std::nullopt;
+  {
+    std::vector<cv::Point2f> corners;
+    for (const auto& c : tag->corners_px) corners.emplace_back(static_cast<float>(c.x()), static_cast<float>(c.y()));
+    lastTagBox_px_ = cv::boundingRect(corners);
+  }
   core::Pose3 X_camera_tag = tag->X_camera_tag;
   if (options_.useDepth && !frame.depth_m.empty()) {
     // Median depth of the valid pixels inside the tag (shrunk to stay off its edge).

@@ -26,7 +26,10 @@ ObjectDetector::ObjectDetector(std::vector<ObjectModel> models) : ObjectDetector
 
 ObjectDetector::ObjectDetector(std::vector<ObjectModel> models, const Options& options) : options_(options) {
   core::require(!models.empty(), "ObjectDetector: no object models (is the knowledge base empty?)");
-  for (const auto& m : models) fitters_.emplace_back(m, options.fit);
+  for (const auto& m : models) {
+    fitters_.emplace_back(m, options.fit);
+    refiners_.emplace_back(m, options.edges);
+  }
 }
 
 std::vector<ObjectModel> ObjectDetector::modelsFromCatalogue(const core::ObjectCatalogue& catalogue,
@@ -100,118 +103,148 @@ std::vector<ObjectDetection> ObjectDetector::detect(const rawlog::RgbdFrame& fra
   const cv::Mat cloud = depthToCloud(frame.depth_m, camera);
   lastPlane_ = support ? std::optional<Plane>(*support) : fitDominantPlane(cloud, options_.plane);
   if (!lastPlane_) return {};
-  const Plane& plane = *lastPlane_;
+  std::vector<ObjectDetection> out;
+  for (const ObjectSegment& seg : segments(frame, cloud, *lastPlane_))
+    if (auto d = explain(seg, *lastPlane_, cloud, camera, previous)) out.push_back(std::move(*d));
+  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.confidence > b.confidence; });
+  return out;
+}
 
+std::vector<ObjectSegment> ObjectDetector::segments(const rawlog::RgbdFrame& frame, const cv::Mat& cloud,
+                                                    const Plane& plane) const {
   cv::Mat labels;
   const int nSegments = segment(cloud, plane, labels);
-  std::vector<std::vector<Eigen::Vector3d>> points(static_cast<std::size_t>(nSegments));
-  std::vector<std::vector<cv::Point>> pixels(static_cast<std::size_t>(nSegments));
-  std::vector<Eigen::Vector3d> colourSum(static_cast<std::size_t>(nSegments), Eigen::Vector3d::Zero());
+  std::vector<ObjectSegment> segs(static_cast<std::size_t>(nSegments));
   const bool hasColour = !frame.colour_bgr8.empty();
   for (int v = 0; v < labels.rows; ++v) {
     const int* l = labels.ptr<int>(v);
     for (int u = 0; u < labels.cols; ++u) {
       if (l[u] <= 0) continue;
-      const std::size_t s = static_cast<std::size_t>(l[u] - 1);
-      points[s].push_back(cloudAt(cloud, u, v));
-      pixels[s].emplace_back(u, v);
+      ObjectSegment& seg = segs[static_cast<std::size_t>(l[u] - 1)];
+      seg.points_camera_m.push_back(cloudAt(cloud, u, v));
+      seg.pixels.emplace_back(u, v);
       if (hasColour) {
         const cv::Vec3b c = frame.colour_bgr8.at<cv::Vec3b>(v, u);
-        colourSum[s] += Eigen::Vector3d(c[2], c[1], c[0]) / 255.0;
+        seg.meanRgb += Eigen::Vector3d(c[2], c[1], c[0]) / 255.0;
       }
     }
   }
-
-  std::vector<ObjectDetection> out;
-  for (std::size_t s = 0; s < points.size(); ++s) {
-    if (static_cast<int>(points[s].size()) < options_.minPixels) continue;
-    // Segment extent along the plane, to skip models of the wrong size early.
-    const core::Pose3 X_plane_camera = plane.X_camera_plane().inverse();
-    // Robust extent (2nd to 98th percentile): flying pixels at the edges do not count.
-    Eigen::Vector3d lo, hi;
-    {
-      std::vector<double> c[3];
-      for (const auto& p : points[s]) {
-        const Eigen::Vector3d q = X_plane_camera * p;
-        for (int a = 0; a < 3; ++a) c[a].push_back(q[a]);
-      }
-      for (int a = 0; a < 3; ++a) {
-        const std::size_t n = c[a].size(), i0 = n / 50, i1 = n - 1 - n / 50;
-        std::nth_element(c[a].begin(), c[a].begin() + static_cast<long>(i0), c[a].end());
-        lo[a] = c[a][i0];
-        std::nth_element(c[a].begin(), c[a].begin() + static_cast<long>(i1), c[a].end());
-        hi[a] = c[a][i1];
-      }
+  const core::Pose3 X_plane_camera = plane.X_camera_plane().inverse();
+  std::vector<ObjectSegment> out;
+  for (ObjectSegment& seg : segs) {
+    if (static_cast<int>(seg.points_camera_m.size()) < options_.minPixels) continue;
+    seg.hasColour = hasColour;
+    seg.colour_bgr8 = frame.colour_bgr8;
+    seg.meanRgb /= static_cast<double>(seg.points_camera_m.size());
+    std::vector<double> c[3];
+    for (auto& v : c) v.reserve(seg.points_camera_m.size());
+    for (const auto& p : seg.points_camera_m) {
+      const Eigen::Vector3d q = X_plane_camera * p;
+      for (int a = 0; a < 3; ++a) c[a].push_back(q[a]);
     }
-    const double segExtent = (hi - lo).head<2>().norm();
-    const double segTop_m = hi.z();
-    const Eigen::Vector3d meanColour = colourSum[s] / static_cast<double>(points[s].size());
-
-    ObjectDetection best;
-    // Tracking: a class whose previous pose lies on this segment is refined from it first.
-    const Eigen::Vector3d segCentre = 0.5 * (lo + hi);
-    for (const ObjectPoseFitter& fitter : fitters_) {
-      const auto prev = previous.find(fitter.model().name);
-      if (prev == previous.end()) continue;
-      const Eigen::Vector3d p = X_plane_camera * prev->second.translation();
-      if ((p - segCentre).head<2>().norm() > options_.trackRadius_m + 0.5 * fitter.model().dimensions_m.head<2>().norm())
-        continue;
-      const ObjectPoseFit fit = fitter.fit(points[s], plane, cloud, camera, &prev->second);
-      const double colourScore =
-          fitter.model().useColour && hasColour ? colourAgreement(meanColour, fitter.model().rgb) : 1.0;
-      const double confidence = fit.score * colourScore;
-      if (confidence >= options_.trackConfidence && confidence > best.confidence) {
-        best.className = fitter.model().name;
-        best.classId = fitter.model().classId;
-        best.X_camera_object = fit.X_camera_object;
-        best.size_m = fitter.model().dimensions_m;
-        best.confidence = confidence;
-      }
+    for (int a = 0; a < 3; ++a) {
+      const std::size_t n = c[a].size(), i0 = n / 50, i1 = n - 1 - n / 50;
+      std::nth_element(c[a].begin(), c[a].begin() + static_cast<long>(i0), c[a].end());
+      seg.lo_plane_m[a] = c[a][i0];
+      std::nth_element(c[a].begin(), c[a].begin() + static_cast<long>(i1), c[a].end());
+      seg.hi_plane_m[a] = c[a][i1];
     }
-    for (const ObjectPoseFitter& fitter : fitters_) {
-      if (best.confidence >= options_.trackConfidence) break;  // tracked
-      const ObjectModel& model = fitter.model();
-      const double modelDiag = model.dimensions_m.head<2>().norm();
-      // Cheap gates before the fit: footprint size, height above the plane, colour.
-      if (segExtent > 1.5 * modelDiag + 0.02 || segExtent < 0.25 * model.dimensions_m.head<2>().minCoeff()) continue;
-      if (segTop_m > model.dimensions_m.z() + options_.maxElevation_m + 0.02 || segTop_m < 0.4 * model.dimensions_m.z())
-        continue;
-      const double colourScore = model.useColour && hasColour ? colourAgreement(meanColour, model.rgb) : 1.0;
-      if (colourScore < 0.05) continue;
-      const ObjectPoseFit fit = fitter.fit(points[s], plane, cloud, camera);
-      const double confidence = fit.score * colourScore;
-      if (std::getenv("SRP_PERCEPTION_DEBUG"))
-        std::fprintf(stderr, "segment %zu (%zu px) %s: inliers %.2f coverage %.2f colour %.2f at %.3f %.3f %.3f\n", s,
-                     points[s].size(), model.name.c_str(), fit.inlierRatio, fit.coverage, colourScore,
-                     fit.X_camera_object.translation().x(), fit.X_camera_object.translation().y(),
-                     fit.X_camera_object.translation().z());
-      if (confidence > best.confidence) {
-        best.className = model.name;
-        best.classId = model.classId;
-        best.X_camera_object = fit.X_camera_object;
-        best.size_m = model.dimensions_m;
-        best.confidence = confidence;
-      }
-    }
-    if (best.confidence < options_.minConfidence) continue;
-    const core::Pose3 X_plane_object = X_plane_camera * best.X_camera_object;
-    best.yaw_rad = std::atan2(X_plane_object.linear()(1, 0), X_plane_object.linear()(0, 0));
-    best.segmentPixels = static_cast<int>(points[s].size());
-    const cv::RotatedRect rr = cv::minAreaRect(pixels[s]);
-    cv::Point2f corners[4];
-    rr.points(corners);
-    for (int c = 0; c < 4; ++c) best.obb_px[c] = {corners[c].x, corners[c].y};
-    for (int axis = 0; axis < 3; ++axis) {
-      std::vector<double> vals;
-      vals.reserve(points[s].size());
-      for (const auto& p : points[s]) vals.push_back(p[axis]);
-      std::nth_element(vals.begin(), vals.begin() + vals.size() / 2, vals.end());
-      best.p_camera_median_m[axis] = vals[vals.size() / 2];
-    }
-    out.push_back(best);
+    out.push_back(std::move(seg));
   }
-  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.confidence > b.confidence; });
   return out;
+}
+
+double ObjectDetector::colourScore(const ObjectSegment& segment, const ObjectModel& model) const {
+  return model.useColour && segment.hasColour ? colourAgreement(segment.meanRgb, model.rgb) : 1.0;
+}
+
+ObjectDetection ObjectDetector::makeDetection(const ObjectPoseFitter& fitter, const core::Pose3& X_camera_object,
+                                              double confidence, const ObjectSegment& segment,
+                                              const Plane& plane) const {
+  ObjectDetection d;
+  d.className = fitter.model().name;
+  d.classId = fitter.model().classId;
+  d.X_camera_object = X_camera_object;
+  d.size_m = fitter.model().dimensions_m;
+  d.confidence = confidence;
+  const core::Pose3 X_plane_object = plane.X_camera_plane().inverse() * X_camera_object;
+  d.yaw_rad = std::atan2(X_plane_object.linear()(1, 0), X_plane_object.linear()(0, 0));
+  d.segmentPixels = static_cast<int>(segment.points_camera_m.size());
+  const cv::RotatedRect rr = cv::minAreaRect(segment.pixels);
+  cv::Point2f corners[4];
+  rr.points(corners);
+  for (int c = 0; c < 4; ++c) d.obb_px[c] = {corners[c].x, corners[c].y};
+  for (int axis = 0; axis < 3; ++axis) {
+    std::vector<double> vals;
+    vals.reserve(segment.points_camera_m.size());
+    for (const auto& p : segment.points_camera_m) vals.push_back(p[axis]);
+    std::nth_element(vals.begin(), vals.begin() + static_cast<long>(vals.size() / 2), vals.end());
+    d.p_camera_median_m[axis] = vals[vals.size() / 2];
+  }
+  return d;
+}
+
+std::optional<ObjectDetection> ObjectDetector::explain(const ObjectSegment& seg, const Plane& plane,
+                                                       const cv::Mat& cloud, const CameraModel& camera,
+                                                       const std::map<std::string, core::Pose3>& previous,
+                                                       const std::set<std::string>& excluded) const {
+  const core::Pose3 X_plane_camera = plane.X_camera_plane().inverse();
+  const double segExtent = (seg.hi_plane_m - seg.lo_plane_m).head<2>().norm();
+  const double segTop_m = seg.hi_plane_m.z();
+  const Eigen::Vector3d segCentre = seg.centre_plane_m();
+
+  const ObjectPoseFitter* bestFitter = nullptr;
+  core::Pose3 bestPose = core::Pose3::Identity();
+  double bestConfidence = 0.0;
+  // Tracking: a class whose previous pose lies on this segment is refined from it first.
+  for (const ObjectPoseFitter& fitter : fitters_) {
+    if (excluded.count(fitter.model().name)) continue;
+    const auto prev = previous.find(fitter.model().name);
+    if (prev == previous.end()) continue;
+    const Eigen::Vector3d p = X_plane_camera * prev->second.translation();
+    if ((p - segCentre).head<2>().norm() > options_.trackRadius_m + 0.5 * fitter.model().dimensions_m.head<2>().norm())
+      continue;
+    const ObjectPoseFit fit = fitter.fit(seg.points_camera_m, plane, cloud, camera, &prev->second);
+    const double confidence = fit.score * colourScore(seg, fitter.model());
+    if (confidence >= options_.trackConfidence && confidence > bestConfidence) {
+      bestFitter = &fitter;
+      bestPose = fit.X_camera_object;
+      bestConfidence = confidence;
+    }
+  }
+  for (const ObjectPoseFitter& fitter : fitters_) {
+    if (bestConfidence >= options_.trackConfidence) break;  // tracked
+    const ObjectModel& model = fitter.model();
+    if (excluded.count(model.name)) continue;
+    const double modelDiag = model.dimensions_m.head<2>().norm();
+    // Cheap gates before the fit: footprint size, height above the plane, colour.
+    if (segExtent > 1.5 * modelDiag + 0.02 || segExtent < 0.25 * model.dimensions_m.head<2>().minCoeff()) continue;
+    if (segTop_m > model.dimensions_m.z() + options_.maxElevation_m + 0.02 || segTop_m < 0.4 * model.dimensions_m.z())
+      continue;
+    const double colour = colourScore(seg, model);
+    if (colour < 0.05) continue;
+    // A coarse score that even a perfect fine stage could not lift to half
+    // the acceptance is not worth the fine stage.
+    const ObjectPoseFit fit = fitter.fit(seg.points_camera_m, plane, cloud, camera, nullptr,
+                                         0.5 * std::max(options_.minConfidence, bestConfidence) / colour);
+    const double confidence = fit.score * colour;
+    if (std::getenv("SRP_PERCEPTION_DEBUG"))
+      std::fprintf(stderr, "segment (%zu px) %s: inliers %.2f coverage %.2f colour %.2f at %.3f %.3f %.3f\n",
+                   seg.points_camera_m.size(), model.name.c_str(), fit.inlierRatio, fit.coverage, colour,
+                   fit.X_camera_object.translation().x(), fit.X_camera_object.translation().y(),
+                   fit.X_camera_object.translation().z());
+    if (confidence > bestConfidence) {
+      bestFitter = &fitter;
+      bestPose = fit.X_camera_object;
+      bestConfidence = confidence;
+    }
+  }
+  if (!bestFitter || bestConfidence < options_.minConfidence) return std::nullopt;
+  if (options_.refineYawByEdges && bestFitter->model().kind == core::ObjectKind::Part) {
+    const EdgeYawRefiner& refiner = refiners_[static_cast<std::size_t>(bestFitter - fitters_.data())];
+    if (const auto X = refiner.refine(bestPose, seg.pixels, seg.colour_bgr8, camera, plane)) bestPose = *X;
+  }
+  return makeDetection(*bestFitter, bestPose, bestConfidence, seg, plane);
 }
 
 }  // namespace srp::perception

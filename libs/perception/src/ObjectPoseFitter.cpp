@@ -92,9 +92,34 @@ double ObjectPoseFitter::coverage(const core::Pose3& X_camera_object, const cv::
   return supported + contradicted > 0 ? static_cast<double>(supported) / (supported + contradicted) : 0.0;
 }
 
+ObjectPoseFit ObjectPoseFitter::evaluate(const std::vector<Eigen::Vector3d>& points_camera,
+                                         const core::Pose3& X_camera_object, const cv::Mat& cloud,
+                                         const CameraModel& camera) const {
+  ObjectPoseFit f;
+  f.X_camera_object = X_camera_object;
+  if (points_camera.empty()) return f;
+  const core::Pose3 X_object_camera = X_camera_object.inverse();
+  const std::size_t step = std::max<std::size_t>(1, points_camera.size() / static_cast<std::size_t>(options_.maxPoints));
+  int used = 0, inliers = 0;
+  double sq = 0.0;
+  for (std::size_t i = 0; i < points_camera.size(); i += step, ++used) {
+    const Eigen::Vector3d po = X_object_camera * points_camera[i];
+    const double d = (po - model_.surface[static_cast<std::size_t>(impl_->lookup(po))].p_m).norm();
+    if (d < options_.inlierTol_m) {
+      ++inliers;
+      sq += d * d;
+    }
+  }
+  f.inlierRatio = static_cast<double>(inliers) / used;
+  f.rms_m = inliers > 0 ? std::sqrt(sq / inliers) : 0.0;
+  f.coverage = coverage(X_camera_object, cloud, camera);
+  f.score = f.inlierRatio * f.coverage;
+  return f;
+}
+
 ObjectPoseFit ObjectPoseFitter::fit(const std::vector<Eigen::Vector3d>& points_camera, const Plane& support,
                                     const cv::Mat& cloud, const CameraModel& camera,
-                                    const core::Pose3* initial) const {
+                                    const core::Pose3* initial, double giveUpBelow) const {
   ObjectPoseFit best;
   if (points_camera.size() < 10) return best;
   const core::Pose3 X_camera_plane = support.X_camera_plane();
@@ -209,6 +234,7 @@ ObjectPoseFit ObjectPoseFitter::fit(const std::vector<Eigen::Vector3d>& points_c
     coarse.emplace_back(evaluate(x, true).score, x);
   }
   std::sort(coarse.begin(), coarse.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  if (coarse.front().first < giveUpBelow) return evaluate(coarse.front().second, true);
   for (std::size_t k = 0; k < std::min<std::size_t>(4, coarse.size()); ++k) {
     const Eigen::Vector4d x = icp(coarse[k].second, options_.iterations, 1);
     const ObjectPoseFit f = evaluate(x, true);

@@ -7,6 +7,7 @@
 
 #include "SyntheticFrames.h"
 #include "srp/core/Error.h"
+#include "srp/motion/TrajectoryTable.h"
 #include "srp/rawlog/RawlogWriter.h"
 
 namespace srp::perception {
@@ -98,6 +99,39 @@ TEST(DemoPerception, RawlogToHandTrajectoryAndCsv) {
     ++rows;
   }
   EXPECT_EQ(rows, 20);
+}
+
+// `srp perceive --csv` -> `srp segment --trajectories`: the same samples are
+// detected on both sides (a carried, i.e. not-detected, object pose is "not
+// detected" in the CSV, not a detection at the carried pose).
+TEST(DemoPerception, CsvCarriedSamplesAreNotDetectedForSrpSegment) {
+  constexpr double kPositionTol_m = 1e-6, kYawTol_rad = 1e-5;
+  PerceptionResult r;
+  ObjectTrajectory cuboid{"cuboid", 3, false, {}}, box{"gray box", 0, true, {}};
+  for (int i = 0; i < 5; ++i) {
+    r.hand.append({i, i / 30.0, Eigen::Vector3d(0.01 * i, -0.02, 0.8), i != 3});
+    const core::Pose3 X = core::makePoseYPR({0.1, 0.05, 0.84}, 0.4, 0, 0);
+    cuboid.samples.push_back({i, i / 30.0, X, i == 0 || i == 4, 0.9});  // 1-3: carried (pose of frame 0)
+    box.samples.push_back({i, i / 30.0, core::makePoseYPR({-0.1, 0.0, 0.86}, 0.1, 0, 0), i != 2, 0.8});
+  }
+  r.objects = {cuboid, box, ObjectTrajectory{"star", 5, false, {}}};  // the star never seen
+  const std::string csv = tempPath("carried.csv");
+  writeSegmentCsv(r, csv);
+  const motion::TrajectoryTable table = motion::TrajectoryTable::readCsv(csv);
+  ASSERT_EQ(table.hand.size(), 5u);
+  ASSERT_EQ(table.objects.size(), 3u);
+  for (std::size_t i = 0; i < 5; ++i) {
+    EXPECT_EQ(table.hand[i].valid, r.hand[i].valid) << "frame " << i;
+    for (std::size_t k = 0; k < 2; ++k) {
+      const ObjectPoseSample& s = r.objects[k].samples[i];
+      const core::PositionSample& read = table.objects[k].positions[i];
+      EXPECT_EQ(read.valid, s.detected) << r.objects[k].className << " frame " << i;
+      if (!s.detected) continue;
+      EXPECT_LT((read.p_m - s.X_camera_object.translation()).norm(), kPositionTol_m);
+      EXPECT_NEAR(table.objects[k].yaw_rad[i], cameraYaw(s.X_camera_object), kYawTol_rad);
+    }
+    EXPECT_FALSE(table.objects[2].positions[i].valid);
+  }
 }
 
 TEST(DemoPerception, CameraYawIsTheRotationAboutTheOpticalAxis) {

@@ -14,6 +14,7 @@
 #include "srp/perception/MarkerFreeHandDetector.h"
 #include "srp/perception/MarkerHandDetector.h"
 #include "srp/perception/ObjectDetector.h"
+#include "srp/perception/ObjectTracker.h"
 #include "srp/rawlog/RgbdFrame.h"
 
 namespace srp::perception {
@@ -50,6 +51,8 @@ struct PerceptionOptions {
   MarkerHandDetector::Options marker;  ///< defaults: srp synth-demo's glove (tag 0, 5 cm, palm 13.6 mm under the tag)
   MarkerFreeHandDetector::Options markerFree;
   ObjectDetector::Options objects;
+  /// Frame-to-frame reuse (static classes are taken from `plan`).
+  ObjectTracker::Options tracking;
   /// Objects of interest (from the task plan); empty = every catalogue class, all moving.
   std::vector<PlanObject> plan;
   /// Fit the support plane once on the first frame (the camera is fixed).
@@ -110,8 +113,13 @@ PerceptionResult perceiveRawlog(const std::string& rawlogPath, const core::Objec
 
 /// Writes the `srp segment` CSV: frame,hand_x,hand_y,hand_z,<name>_x,<name>_y,
 /// <name>_z,<name>_rz,... (camera frame, metres, radians; names with spaces
-/// written with '_'); a hand of exact zeros = not detected; rz = yaw of the
-/// object about the camera's z axis. Atomic (temporary file renamed).
+/// written with '_'; rz = yaw of the object about the camera's z axis). A
+/// sample not detected in its frame is written as exact zeros (0,0,0 and rz 0,
+/// motion::TrajectoryTable's "not detected"): the hand when it was not seen,
+/// an object when it was not detected in that frame (carried in the hand,
+/// hidden, not yet seen; also a static object between its detections), so
+/// `srp segment --trajectories` sees the same samples as the ProductPose
+/// rows' `detected` flag. Atomic (temporary file renamed).
 void writeSegmentCsv(const PerceptionResult& result, const std::string& path);
 
 /// Rotation of an object about the camera z axis [rad] (the `_rz` column).

@@ -2,6 +2,8 @@
 /// \file MarkerHandDetector.h
 /// \brief The hand from an AprilTag (tag36h11) on the back of a glove.
 
+#include <optional>
+
 #include "srp/perception/AprilTagDetector.h"
 #include "srp/perception/HandDetector.h"
 
@@ -11,6 +13,8 @@ namespace srp::perception {
 /// size alone, so the hand has a 3D position even where the depth image has a
 /// hole (ToF motion blur on the moving hand); where the depth inside the tag is
 /// valid, its median replaces the tag's (less precise) distance along the ray.
+/// Frames are expected in time order: the tag is looked for first near where
+/// it was in the previous frame.
 class MarkerHandDetector : public HandDetector {
  public:
   struct Options {
@@ -21,6 +25,10 @@ class MarkerHandDetector : public HandDetector {
     bool useDepth = true;      ///< refine the distance with the depth image
     double maxDepthDisagreement_m = 0.03;
     float quadDecimate = 1.0f;
+    /// Search first a window this many tag sides wide around the tag of the
+    /// previous frame (a few times cheaper than the whole image); the whole
+    /// image when the tag is not there. 0: always the whole image.
+    double trackWindowTagSides = 4.0;
   };
   explicit MarkerHandDetector(const Options& options);
   std::optional<HandObservation> detect(const rawlog::RgbdFrame& frame) override;
@@ -29,6 +37,7 @@ class MarkerHandDetector : public HandDetector {
  private:
   Options options_;
   AprilTagDetector tags_;
+  std::optional<cv::Rect> lastTagBox_px_;  ///< the tag's image box in the previous frame
 };
 
 }  // namespace srp::perception

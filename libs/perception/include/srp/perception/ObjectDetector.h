@@ -8,12 +8,14 @@
 #include <array>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "srp/core/ObjectCatalogue.h"
 #include "srp/core/Pose.h"
 #include "srp/perception/CameraModel.h"
+#include "srp/perception/EdgeYawRefiner.h"
 #include "srp/perception/ObjectModel.h"
 #include "srp/perception/ObjectPoseFitter.h"
 #include "srp/perception/PlaneFit.h"
@@ -34,6 +36,19 @@ struct ObjectDetection {
   int segmentPixels = 0;
 };
 
+/// One depth segment above the support plane (a candidate object). Points in
+/// the camera optical frame; extent in the plane frame (Plane::X_camera_plane),
+/// 2nd to 98th percentile so flying pixels at the edges do not count.
+struct ObjectSegment {
+  std::vector<Eigen::Vector3d> points_camera_m;
+  std::vector<cv::Point> pixels;
+  Eigen::Vector3d meanRgb = Eigen::Vector3d::Zero();  ///< [0, 1]; zero without colour
+  bool hasColour = false;
+  cv::Mat colour_bgr8;  ///< the frame's colour image (shared, not copied); empty without colour
+  Eigen::Vector3d lo_plane_m = Eigen::Vector3d::Zero(), hi_plane_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d centre_plane_m() const { return 0.5 * (lo_plane_m + hi_plane_m); }
+};
+
 /// Detector over a fixed set of class models (built once).
 class ObjectDetector {
  public:
@@ -48,6 +63,10 @@ class ObjectDetector {
     double trackRadius_m = 0.04;    ///< previous pose to segment centre, along the plane
     PlaneFitOptions plane;
     ObjectPoseFitter::Options fit;
+    /// Parts with an m-fold outline (cuboid, octagon): yaw from the colour
+    /// edges (EdgeYawRefiner), which depth alone barely shows.
+    bool refineYawByEdges = true;
+    EdgeYawRefiner::Options edges;
   };
 
   ObjectDetector(std::vector<ObjectModel> models, const Options& options);
@@ -69,6 +88,27 @@ class ObjectDetector {
   std::vector<ObjectDetection> detect(const rawlog::RgbdFrame& frame, const Plane* support,
                                       const std::map<std::string, core::Pose3>& previous) const;
 
+  /// The segments of a frame: `cloud` = depthToCloud(frame.depth_m), segments
+  /// with fewer than Options::minPixels pixels left out.
+  std::vector<ObjectSegment> segments(const rawlog::RgbdFrame& frame, const cv::Mat& cloud, const Plane& plane) const;
+
+  /// The best class for one segment (nullopt below Options::minConfidence):
+  /// classes with a `previous` pose near the segment are refined from it first
+  /// (tracking), the full search over start yaws runs only when that fails.
+  /// Classes in `excluded` are not tried (already assigned, or fixed).
+  std::optional<ObjectDetection> explain(const ObjectSegment& segment, const Plane& plane, const cv::Mat& cloud,
+                                         const CameraModel& camera, const std::map<std::string, core::Pose3>& previous,
+                                         const std::set<std::string>& excluded = {}) const;
+
+  /// A detection of `fitter`'s class at a fitted pose, with the segment's
+  /// yaw, image box and median filled in.
+  ObjectDetection makeDetection(const ObjectPoseFitter& fitter, const core::Pose3& X_camera_object, double confidence,
+                                const ObjectSegment& segment, const Plane& plane) const;
+
+  /// Colour agreement [0, 1] of the segment with the class (1 when the class'
+  /// colour is not discriminative or the frame has none).
+  double colourScore(const ObjectSegment& segment, const ObjectModel& model) const;
+
   /// The support plane of the last detect() call, if one was found.
   const std::optional<Plane>& lastPlane() const { return lastPlane_; }
   const std::vector<ObjectPoseFitter>& fitters() const { return fitters_; }
@@ -79,6 +119,7 @@ class ObjectDetector {
 
  private:
   std::vector<ObjectPoseFitter> fitters_;
+  std::vector<EdgeYawRefiner> refiners_;  ///< one per fitter
   Options options_;
   mutable std::optional<Plane> lastPlane_;
 };

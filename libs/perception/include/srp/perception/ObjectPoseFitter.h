@@ -50,8 +50,17 @@ class ObjectPoseFitter {
   /// resting on or above `support`. `cloud` (organised, depthToCloud) and
   /// `camera` score the coverage. From all start yaws when `initial` is not
   /// given, else refined from `initial` only (tracking).
+  /// `giveUpBelow`: when even the best coarse start scores below it, that
+  /// start's coarse pose and score are returned without the fine stage (a
+  /// segment no pose of this model explains costs a fraction of a full fit).
   ObjectPoseFit fit(const std::vector<Eigen::Vector3d>& points_camera, const Plane& support, const cv::Mat& cloud,
-                    const CameraModel& camera, const core::Pose3* initial = nullptr) const;
+                    const CameraModel& camera, const core::Pose3* initial = nullptr, double giveUpBelow = 0.0) const;
+
+  /// The score of the model at X_camera_object without moving it (no ICP):
+  /// verifies a known pose (a fixed static object, an unchanged segment) at
+  /// a fraction of a fit's cost.
+  ObjectPoseFit evaluate(const std::vector<Eigen::Vector3d>& points_camera, const core::Pose3& X_camera_object,
+                         const cv::Mat& cloud, const CameraModel& camera) const;
 
   /// Fraction of the model surface facing the camera at X_camera_object and
   /// inside the image that the cloud confirms (depth within inlierTol).

@@ -1,0 +1,60 @@
+#pragma once
+/// \file EdgeYawRefiner.h
+/// \brief A part's yaw from the orientations of its outline's colour edges,
+/// for shapes whose yaw depth barely shows (an octagon's corners move ~1 px
+/// over 10 deg at 0.85 m) but whose straight outline edges the colour image
+/// shows sharply.
+
+#include <optional>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "srp/core/Pose.h"
+#include "srp/perception/CameraModel.h"
+#include "srp/perception/ObjectModel.h"
+#include "srp/perception/PlaneFit.h"
+
+namespace srp::perception {
+
+/// Refines the yaw (about the support-plane normal) of a fitted pose with the
+/// colour image. Applies to models whose side faces' horizontal normals are
+/// m-fold regular (m = 4: cuboids, boxes; m = 8: octagons; `order()` 0
+/// otherwise): the outline's edges then have orientations yaw + k 2pi/m, and
+/// the circular mean of exp(i m angle) over the edge pixels gives the yaw
+/// modulo 2pi/m, the fitted pose picking the branch.
+///
+/// Edge pixels: a ring of +-ringWidth_px around the depth segment's outline,
+/// each weighted by its colour structure-tensor strength (Sobel on the three
+/// channels: edges between colours of equal brightness count). The edge
+/// tangent is mapped to the plane through the camera (perspective-correct, at
+/// the model's top height).
+class EdgeYawRefiner {
+ public:
+  struct Options {
+    double maxCorrection_rad = 12.0 * 3.14159265358979323846 / 180.0;  ///< larger: distrusted
+    double minCoherence = 0.25; ///< |mean exp(i m angle)| of the edge pixels, [0, 1]
+    int ringWidth_px = 2;
+    int minEdgePixels = 20;
+  };
+
+  explicit EdgeYawRefiner(const ObjectModel& model);
+  EdgeYawRefiner(const ObjectModel& model, const Options& options);
+
+  /// m (4 or 8), or 0 when the model's outline is not m-fold regular.
+  int order() const { return order_; }
+
+  /// X_camera_object turned about its z axis to the edges' yaw; nullopt when
+  /// the model has no order, the image shows too few or too incoherent edges,
+  /// or the correction exceeds maxCorrection_rad. `segmentPixels`: the
+  /// object's depth segment (image coordinates).
+  std::optional<core::Pose3> refine(const core::Pose3& X_camera_object, const std::vector<cv::Point>& segmentPixels,
+                                    const cv::Mat& colour_bgr8, const CameraModel& camera, const Plane& plane) const;
+
+ private:
+  Options options_;
+  int order_ = 0;
+  double modelPhase_rad_ = 0.0;  ///< arg of sum exp(i m beta) over the side normals, object frame
+  double top_m_ = 0.0;
+};
+
+}  // namespace srp::perception

@@ -1,0 +1,97 @@
+#pragma once
+/// \file ObjectTracker.h
+/// \brief Objects over a frame sequence from a fixed camera, at a fraction of
+/// per-frame detection's cost: a segment that has not changed keeps its last
+/// answer, static objects are fixed once seen, moving objects are refined from
+/// their last pose, and only new or changed segments get the full class search.
+
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "srp/perception/ObjectDetector.h"
+
+namespace srp::perception {
+
+/// Tracks the objects of an ObjectDetector's classes through the frames of one
+/// demo (fixed camera, time order). Poses in the camera optical frame, metres.
+///
+/// Per frame, each depth segment above the support plane is, in order:
+/// 0. the *hand* (near the given hand points): no object;
+/// 1. *unchanged*: its pixel count, extent and centre along the plane and its
+///    top height match (within Options tolerances) those of a segment
+///    answered in an earlier frame, less
+///    than `refreshFrames` ago -> the same answer (the same class and pose, or
+///    "no object"), no fit;
+/// 2. a *fixed static object* (after `staticFixDetections` detections a static
+///    class is fixed at its most confident one): verified at the fixed pose
+///    (no ICP), never searched again;
+/// 3. else explained by ObjectDetector::explain (tracking from the last pose of
+///    the moving classes, else the full search).
+/// Each class is given to at most one segment per frame, the most confident
+/// first (a part is never reported at another part's segment because it is
+/// missing from its own, e.g. while it is carried).
+class ObjectTracker {
+ public:
+  struct Options {
+    std::set<std::string> staticClasses;  ///< containers, landmarks (from the task plan)
+    int staticFixDetections = 10;         ///< detections before a static object is fixed
+    double staticVerifyInliers = 0.5;     ///< segment points on the fixed model to count as seen
+    int refreshFrames = 30;               ///< an unchanged segment is re-explained after this many frames
+    double sameCentre_m = 0.003;          ///< unchanged: centres this close (along the plane) ...
+    double sameExtent_m = 0.004;          ///< ... extents along the plane and tops this close ...
+    double samePixels = 0.06;             ///< ... and pixel counts within this fraction
+    double noObjectSlack = 3.0;           ///< tolerances x this for a segment that was no object
+    double handRadius_px = 6.0;           ///< a segment this close to a hand point is the hand
+  };
+
+  /// `detector` must outlive the tracker.
+  ObjectTracker(const ObjectDetector& detector, const Options& options);
+
+  /// Detections in the next frame, most confident first, at most one per
+  /// class. `support`: the support plane (e.g. fitted once for a fixed
+  /// camera); fitted on this frame when null (no plane -> no detections).
+  /// Throws InvalidInputError for a frame without depth.
+  /// `hand_px`: the hand's image points in this frame (e.g. the palm pixel)
+  /// when known: a segment within Options::handRadius_px of one of them is
+  /// the hand, with whatever it holds, and explains no object (a part in the
+  /// hand is "not detected", never fitted to the hand's depth).
+  std::vector<ObjectDetection> update(const rawlog::RgbdFrame& frame, const Plane* support = nullptr,
+                                      const std::vector<Eigen::Vector2d>& hand_px = {});
+
+  /// The support plane of the last update, if one was found.
+  const std::optional<Plane>& lastPlane() const { return lastPlane_; }
+
+  /// The fixed pose of a static class, once fixed.
+  std::optional<ObjectDetection> fixedStatic(const std::string& className) const;
+
+  /// Per-frame counters of the last update (how the segments were answered).
+  struct Stats {
+    int segments = 0, unchanged = 0, staticVerified = 0, explained = 0, hand = 0;
+  };
+  const Stats& lastStats() const { return stats_; }
+
+ private:
+  /// A segment answered in some frame, and the answer.
+  struct Answer {
+    Eigen::Vector3d lo_plane_m, hi_plane_m;
+    int pixels = 0;
+    int frame = 0;  ///< when it was explained
+    std::optional<ObjectDetection> detection;
+  };
+  bool same(const Answer& a, const ObjectSegment& s) const;
+
+  const ObjectDetector& detector_;
+  Options options_;
+  int frame_ = 0;
+  std::vector<Answer> answers_;  ///< of the last frame
+  std::map<std::string, core::Pose3> lastPose_;
+  std::map<std::string, std::vector<ObjectDetection>> staticDetections_;
+  std::map<std::string, ObjectDetection> fixed_;
+  Stats stats_;
+  std::optional<Plane> lastPlane_;
+};
+
+}  // namespace srp::perception

@@ -1,0 +1,126 @@
+#include "srp/perception/EdgeYawRefiner.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <complex>
+#include <opencv2/imgproc.hpp>
+
+namespace srp::perception {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+}  // namespace
+
+EdgeYawRefiner::EdgeYawRefiner(const ObjectModel& model) : EdgeYawRefiner(model, Options{}) {}
+
+EdgeYawRefiner::EdgeYawRefiner(const ObjectModel& model, const Options& options)
+    : options_(options), top_m_(model.dimensions_m.z()) {
+  // Orders 4 and 8 only: for them an edge's tangent and its normal give the
+  // same exp(i m angle), so the image's edge tangents compare with the model's normals.
+  for (int m : {4, 8}) {
+    std::complex<double> sum = 0.0;
+    double weight = 0.0;
+    for (const SurfacePoint& s : model.surface) {
+      if (std::abs(s.n.z()) > 0.1) continue;  // side faces only
+      sum += std::polar(1.0, m * std::atan2(s.n.y(), s.n.x()));
+      weight += 1.0;
+    }
+    if (weight > 0 && std::abs(sum) / weight > 0.95) {
+      order_ = m;
+      modelPhase_rad_ = std::arg(sum);
+      break;
+    }
+  }
+}
+
+std::optional<core::Pose3> EdgeYawRefiner::refine(const core::Pose3& X_camera_object,
+                                                  const std::vector<cv::Point>& segmentPixels,
+                                                  const cv::Mat& colour_bgr8, const CameraModel& camera,
+                                                  const Plane& plane) const {
+  if (order_ == 0 || colour_bgr8.empty() || segmentPixels.size() < 10) return std::nullopt;
+  const int margin = options_.ringWidth_px + 3;
+  cv::Rect roi = cv::boundingRect(segmentPixels);
+  roi.x -= margin;
+  roi.y -= margin;
+  roi.width += 2 * margin;
+  roi.height += 2 * margin;
+  roi &= cv::Rect(0, 0, colour_bgr8.cols, colour_bgr8.rows);
+  if (roi.width < 5 || roi.height < 5) return std::nullopt;
+
+  // Ring around the segment's outline.
+  cv::Mat mask(roi.size(), CV_8U, cv::Scalar(0));
+  for (const cv::Point& p : segmentPixels) mask.at<std::uint8_t>(p.y - roi.y, p.x - roi.x) = 255;
+  const cv::Mat kernel = cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * options_.ringWidth_px + 1, 2 * options_.ringWidth_px + 1});
+  cv::Mat dilated, eroded;
+  cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, kernel);  // depth holes inside the segment are no outline
+  cv::dilate(mask, dilated, kernel);
+  cv::erode(mask, eroded, kernel);
+  const cv::Mat ring = dilated - eroded;
+
+  cv::Mat gx, gy;
+  const cv::Mat patch = colour_bgr8(roi);
+  cv::Sobel(patch, gx, CV_32F, 1, 0, 5);
+  cv::Sobel(patch, gy, CV_32F, 0, 1, 5);
+
+  // Plane-frame direction of an image tangent at pixel (u, v), on the plane
+  // parallel to the support at the model's top height.
+  const core::Pose3 X_camera_plane = plane.X_camera_plane();
+  const core::Pose3 X_plane_camera = X_camera_plane.inverse();
+  const auto& k = camera.intrinsics();
+  auto onTop = [&](double u, double v) {
+    const Eigen::Vector3d ray((u - k.cx_px) / k.fx_px, (v - k.cy_px) / k.fy_px, 1.0);
+    const double s = (top_m_ - plane.d) / plane.n.dot(ray);
+    return Eigen::Vector3d(s * ray);
+  };
+  const Eigen::Vector2d centre_px = camera.cameraToPixel(X_camera_object * Eigen::Vector3d(0, 0, top_m_));
+  const Eigen::Vector3d P0 = onTop(centre_px.x(), centre_px.y());
+  const Eigen::Vector3d ex = X_plane_camera.linear() * (onTop(centre_px.x() + 1, centre_px.y()) - P0);
+  const Eigen::Vector3d ey = X_plane_camera.linear() * (onTop(centre_px.x(), centre_px.y() + 1) - P0);
+  // The image-to-plane map is nearly affine over a part's few dozen pixels:
+  // its Jacobian at the part's centre maps every tangent.
+
+  std::complex<double> sum = 0.0;
+  double weight = 0.0;
+  int edgePixels = 0;
+  for (int y = 0; y < roi.height; ++y) {
+    const std::uint8_t* r = ring.ptr<std::uint8_t>(y);
+    const cv::Vec3f* ax = gx.ptr<cv::Vec3f>(y);
+    const cv::Vec3f* ay = gy.ptr<cv::Vec3f>(y);
+    for (int x = 0; x < roi.width; ++x) {
+      if (!r[x]) continue;
+      double jxx = 0, jyy = 0, jxy = 0;
+      for (int c = 0; c < 3; ++c) {
+        jxx += ax[x][c] * ax[x][c];
+        jyy += ay[x][c] * ay[x][c];
+        jxy += ax[x][c] * ay[x][c];
+      }
+      const double strength = std::sqrt((jxx - jyy) * (jxx - jyy) + 4 * jxy * jxy);
+      if (strength < 1e5) continue;  // flat (5x5 Sobel of 8-bit values: a 10-level step gives ~2.6e4 per channel)
+      const double theta = 0.5 * std::atan2(2 * jxy, jxx - jyy);  // gradient direction, mod pi
+      const Eigen::Vector3d t = -std::sin(theta) * ex + std::cos(theta) * ey;  // tangent on the plane
+      sum += strength * std::polar(1.0, order_ * std::atan2(t.y(), t.x()));
+      weight += strength;
+      ++edgePixels;
+    }
+  }
+  if (std::getenv("SRP_PERCEPTION_DEBUG"))
+    std::fprintf(stderr, "edges: %d px, coherence %.2f\n", edgePixels, std::abs(sum) / std::max(1e-9, weight));
+  if (edgePixels < options_.minEdgePixels || std::abs(sum) < options_.minCoherence * weight) return std::nullopt;
+
+  const core::Pose3 X_plane_object = X_plane_camera * X_camera_object;
+  const double yawFit = std::atan2(X_plane_object.linear()(1, 0), X_plane_object.linear()(0, 0));
+  const double yawEdges = (std::arg(sum) - modelPhase_rad_) / order_;
+  const double period = 2 * kPi / order_;
+  double delta = std::remainder(yawEdges - yawFit, period);  // the branch nearest the fit
+  if (std::getenv("SRP_PERCEPTION_DEBUG"))
+    std::fprintf(stderr, "edges: fit yaw %.2f deg, edge yaw %.2f deg, correction %.2f deg\n", yawFit * 180 / kPi,
+                 yawEdges * 180 / kPi, delta * 180 / kPi);
+  if (std::abs(delta) > options_.maxCorrection_rad) return std::nullopt;
+  core::Pose3 X = X_camera_object;
+  X.linear() = X_camera_object.linear() * Eigen::AngleAxisd(delta, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  return X;
+}
+
+}  // namespace srp::perception

@@ -1,0 +1,160 @@
+#include "srp/perception/ObjectTracker.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "srp/core/Error.h"
+#include "srp/perception/DepthCloud.h"
+
+namespace srp::perception {
+
+ObjectTracker::ObjectTracker(const ObjectDetector& detector, const Options& options)
+    : detector_(detector), options_(options) {}
+
+bool ObjectTracker::same(const Answer& a, const ObjectSegment& s) const {
+  // "No object here" may be kept on a looser match: being wrong costs a few
+  // frames of a missed detection (refreshFrames), not a wrong pose.
+  const double slack = a.detection ? 1.0 : options_.noObjectSlack;
+  const int pixels = static_cast<int>(s.points_camera_m.size());
+  if (std::abs(pixels - a.pixels) > slack * options_.samePixels * std::max(pixels, a.pixels)) return false;
+  // Along the plane only, and the top: a part's low edge (the bottom of its
+  // visible sides) comes and goes with the depth noise.
+  if ((0.5 * (a.lo_plane_m + a.hi_plane_m) - s.centre_plane_m()).head<2>().norm() > slack * options_.sameCentre_m)
+    return false;
+  if (std::abs(a.hi_plane_m.z() - s.hi_plane_m.z()) > slack * options_.sameExtent_m) return false;
+  const Eigen::Vector2d dExtent = (a.hi_plane_m - a.lo_plane_m).head<2>() - (s.hi_plane_m - s.lo_plane_m).head<2>();
+  return dExtent.cwiseAbs().maxCoeff() <= slack * options_.sameExtent_m;
+}
+
+std::optional<ObjectDetection> ObjectTracker::fixedStatic(const std::string& className) const {
+  const auto it = fixed_.find(className);
+  if (it == fixed_.end()) return std::nullopt;
+  return it->second;
+}
+
+std::vector<ObjectDetection> ObjectTracker::update(const rawlog::RgbdFrame& frame, const Plane* support,
+                                                  const std::vector<Eigen::Vector2d>& hand_px) {
+  if (frame.depth_m.empty())
+    throw core::InvalidInputError("frame " + std::to_string(frame.index) + " has no depth image: objects need depth");
+  const int now = frame_++;
+  stats_ = Stats{};
+  const CameraModel camera(frame.intrinsics);
+  const cv::Mat cloud = depthToCloud(frame.depth_m, camera);
+  lastPlane_ = support ? std::optional<Plane>(*support) : fitDominantPlane(cloud, detector_.options().plane);
+  if (!lastPlane_) {
+    answers_.clear();
+    return {};
+  }
+  const Plane& plane = *lastPlane_;
+  const std::vector<ObjectSegment> segs = detector_.segments(frame, cloud, plane);
+  stats_.segments = static_cast<int>(segs.size());
+
+  std::vector<Answer> next;
+  std::set<std::string> assigned;
+  std::vector<ObjectDetection> out;
+  auto answer = [&](const ObjectSegment& seg, int explainedAt, const std::optional<ObjectDetection>& d) {
+    next.push_back({seg.lo_plane_m, seg.hi_plane_m, static_cast<int>(seg.points_camera_m.size()), explainedAt, d});
+    if (!d) return;
+    ObjectDetection det = *d;
+    // A static object fixed since this answer was given reports its fixed pose.
+    if (const auto f = fixed_.find(det.className); f != fixed_.end()) det.X_camera_object = f->second.X_camera_object;
+    assigned.insert(det.className);
+    out.push_back(det);
+  };
+
+  // 0. The hand's segment (with what it holds) explains no object.
+  const double r2 = options_.handRadius_px * options_.handRadius_px;
+  auto isHand = [&](const ObjectSegment& seg) {
+    for (const Eigen::Vector2d& h : hand_px)
+      for (const cv::Point& p : seg.pixels)
+        if ((Eigen::Vector2d(p.x, p.y) - h).squaredNorm() <= r2) return true;
+    return false;
+  };
+
+  // 1. Unchanged segments keep their answer.
+  std::vector<std::size_t> pending;
+  for (std::size_t i = 0; i < segs.size(); ++i) {
+    if (isHand(segs[i])) {
+      ++stats_.hand;
+      continue;
+    }
+    const auto a = std::find_if(answers_.begin(), answers_.end(), [&](const Answer& x) {
+      return now - x.frame < options_.refreshFrames && same(x, segs[i]) &&
+             !(x.detection && assigned.count(x.detection->className));
+    });
+    if (a == answers_.end()) {
+      pending.push_back(i);
+      continue;
+    }
+    ++stats_.unchanged;
+    const Answer kept = *a;
+    answer(segs[i], kept.frame, kept.detection);
+    next.back().lo_plane_m = kept.lo_plane_m;  // the anchor stays: no drift by small steps
+    next.back().hi_plane_m = kept.hi_plane_m;
+    next.back().pixels = kept.pixels;
+  }
+
+  // 2. Fixed static objects: verified at their pose, no fit.
+  const core::Pose3 X_plane_camera = plane.X_camera_plane().inverse();
+  for (auto it = pending.begin(); it != pending.end();) {
+    const ObjectSegment& seg = segs[*it];
+    bool taken = false;
+    for (const auto& [name, det] : fixed_) {
+      if (assigned.count(name)) continue;
+      const auto fitter = std::find_if(detector_.fitters().begin(), detector_.fitters().end(),
+                                       [&](const ObjectPoseFitter& f) { return f.model().name == name; });
+      const Eigen::Vector3d p = X_plane_camera * det.X_camera_object.translation();
+      if ((p - seg.centre_plane_m()).head<2>().norm() > fitter->model().dimensions_m.head<2>().norm()) continue;
+      const ObjectPoseFit fit = fitter->evaluate(seg.points_camera_m, det.X_camera_object, cloud, camera);
+      const double confidence = fit.score * detector_.colourScore(seg, fitter->model());
+      if (fit.inlierRatio < options_.staticVerifyInliers || confidence < detector_.options().minConfidence) continue;
+      answer(seg, now, detector_.makeDetection(*fitter, det.X_camera_object, confidence, seg, plane));
+      ++stats_.staticVerified;
+      taken = true;
+      break;
+    }
+    it = taken ? pending.erase(it) : it + 1;
+  }
+
+  // 3. The rest: tracking from the last poses, else the full search; each
+  // class to its most confident segment.
+  std::map<std::string, core::Pose3> previous;
+  for (const auto& [name, X] : lastPose_)
+    if (!options_.staticClasses.count(name)) previous[name] = X;
+  std::set<std::string> excluded = assigned;
+  for (const auto& [name, det] : fixed_) excluded.insert(name);
+  std::vector<std::pair<std::size_t, std::optional<ObjectDetection>>> found;
+  for (std::size_t i : pending) {
+    found.emplace_back(i, detector_.explain(segs[i], plane, cloud, camera, previous, excluded));
+    ++stats_.explained;
+  }
+  std::stable_sort(found.begin(), found.end(), [](const auto& a, const auto& b) {
+    return (a.second ? a.second->confidence : 0.0) > (b.second ? b.second->confidence : 0.0);
+  });
+  for (auto& [i, d] : found) {
+    if (d && assigned.count(d->className)) {
+      // Its class went to a better segment: the next best class, if any.
+      for (const auto& n : assigned) excluded.insert(n);
+      d = detector_.explain(segs[i], plane, cloud, camera, previous, excluded);
+      ++stats_.explained;
+      if (d && assigned.count(d->className)) d.reset();
+    }
+    answer(segs[i], now, d);
+  }
+  answers_ = std::move(next);
+
+  for (const ObjectDetection& d : out) {
+    lastPose_[d.className] = d.X_camera_object;
+    if (!options_.staticClasses.count(d.className) || fixed_.count(d.className)) continue;
+    auto& seen = staticDetections_[d.className];
+    seen.push_back(d);
+    if (static_cast<int>(seen.size()) >= options_.staticFixDetections)
+      fixed_[d.className] = *std::max_element(seen.begin(), seen.end(), [](const auto& a, const auto& b) {
+        return a.confidence < b.confidence;
+      });
+  }
+  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.confidence > b.confidence; });
+  return out;
+}
+
+}  // namespace srp::perception

@@ -51,8 +51,9 @@ std::optional<double> medianDepthInDisc(const cv::Mat& depth_m, const cv::Mat& m
 
 MarkerFreeHandDetector::MarkerFreeHandDetector(const Options& options) : options_(options) {
   core::require(options.backgroundFrames >= 1, "MarkerFreeHandDetector: backgroundFrames must be >= 1");
-  core::require(options.palmFromWrist_m > 0.0 && options.palmRadius_m > 0.0,
-                "MarkerFreeHandDetector: palmFromWrist_m and palmRadius_m must be > 0 m");
+  core::require(options.palmFromWrist_m > 0.0 && options.palmFromFingertips_m > 0.0 && options.palmRadius_m > 0.0,
+                "MarkerFreeHandDetector: palmFromWrist_m, palmFromFingertips_m and palmRadius_m must be > 0 m "
+                "(lengths of the demonstrator's hand)");
 }
 
 std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::RgbdFrame& frame) {
@@ -231,46 +232,60 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
         }
     }
   }
-  Eigen::Vector2d palm;
+  // The palm is placed in metres: the anchor (cuff line or fingertips)
+  // back-projected at the palm's depth, then a fixed length along the axis
+  // in that plane. (The cuff's own depth is no help: the median there is the
+  // sleeve's, centimetres above the wrist's skin.)
+  Eigen::Vector2d anchor_px, dir;
+  double length_m = 0.0;
   if (nCuff >= kMinCuffPixels) {
     // The palm a fixed length from the cuff along the arm (sleeve + hand) axis.
-    wrist /= nCuff;
-    const double z_wrist = medianDepthInDisc(depth, arm, wrist, options_.palmRadius_m * pxPerM, 5).value_or(*z_hand);
+    anchor_px = wrist / nCuff;
+    dir = principalAxis(hand, sleeve)->dir;
+    length_m = options_.palmFromWrist_m;
     geometry_.haveWrist = true;
-    geometry_.wrist_px = wrist;
-    geometry_.wristDepth_m = z_wrist;
-    geometry_.axis = principalAxis(hand, sleeve)->dir;
-    palm = wrist + options_.palmFromWrist_m * (k.fx_px / z_wrist) * geometry_.axis;
+    geometry_.wrist_px = anchor_px;
   } else {
     // The palm a fixed length back from the fingertips along the hand's axis
     // (or, for a short blob, the inward normal of the border the arm enters
     // from), on the hand's centre line.
-    Eigen::Vector2d dir = handAxis->dir;
+    dir = handAxis->dir;
     if (!handAxis->elongated) {
       const double du = std::min(entry.x(), hand.cols - 1 - entry.x()), dv = std::min(entry.y(), hand.rows - 1 - entry.y());
       dir = du < dv ? Eigen::Vector2d(entry.x() < hand.cols / 2 ? 1 : -1, 0) : Eigen::Vector2d(0, entry.y() < hand.rows / 2 ? 1 : -1);
     }
-    geometry_.axis = dir;
     double tip = -1e9;
     for (int v = 0; v < hand.rows; v += 2) {
       const uchar* p = hand.ptr<uchar>(v);
       for (int u = 0; u < hand.cols; u += 2)
         if (p[u]) tip = std::max(tip, (Eigen::Vector2d(u, v) - handMean).dot(dir));
     }
-    palm = handMean + (tip - options_.palmFromFingertips_m * pxPerM) * dir;
+    anchor_px = handMean + tip * dir;
+    length_m = -options_.palmFromFingertips_m;
   }
-  geometry_.palm_px = palm;
+  geometry_.axis = dir;
+  const Eigen::Vector2d dir_m = Eigen::Vector2d(dir.x() / k.fx_px, dir.y() / k.fy_px).normalized();
+  auto palmAt = [&](double z_m) {  // palm centre if it lies at depth z_m
+    return Eigen::Vector3d((anchor_px.x() - k.cx_px) * z_m / k.fx_px + length_m * dir_m.x(),
+                           (anchor_px.y() - k.cy_px) * z_m / k.fy_px + length_m * dir_m.y(), z_m);
+  };
+  auto project = [&](const Eigen::Vector3d& p) {
+    return Eigen::Vector2d(k.fx_px * p.x() / p.z() + k.cx_px, k.fy_px * p.y() / p.z() + k.cy_px);
+  };
+  // First at the hand's depth (for the palm disc), then at the palm's own.
+  Eigen::Vector2d palm = project(palmAt(*z_hand + options_.palmDepth_m));
   HandObservation h;
-  h.palm_px = palm;
   h.confidence = std::min(1.0, bestArea / 3000.0) * (geometry_.haveWrist ? 1.0 : 0.5);
   std::optional<double> z = medianDepthInDisc(depth, hand, palm, options_.palmRadius_m * pxPerM, 5);
   if (!z) z = medianDepthInDisc(depth, hand, handMean, 1e4, 5);
   if (z) {
-    const double zc = *z + options_.palmDepth_m;
-    h.p_camera_palm_m = {(palm.x() - k.cx_px) * zc / k.fx_px, (palm.y() - k.cy_px) * zc / k.fy_px, zc};
+    h.p_camera_palm_m = palmAt(*z + options_.palmDepth_m);
+    palm = project(h.p_camera_palm_m);
     h.hasDepth = true;
     lastDepth_m_ = *z;
   }
+  h.palm_px = palm;
+  geometry_.palm_px = palm;
   return h;
 }
 

@@ -14,6 +14,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <string>
+#include <ctime>
 #include <vector>
 
 #include "srp/perception/MarkerFreeHandDetector.h"
@@ -34,6 +35,8 @@ struct HandEvaluation {
   int handInView = 0;       ///< frames whose ground truth shows some of the hand or arm
   int handWithoutHand = 0;  ///< frames with a hand reported but none in view
   int depthCarried = 0;     ///< detections whose depth came from an earlier frame
+  double detectCpu_s = 0.0;  ///< thread CPU time in detect() over the frames after the background ones
+  int timedFrames = 0;
   std::vector<double> error_m;  ///< palm centre 3D error of every detection in a hand-in-view frame
   std::map<std::string, std::vector<double>> errorByPhase_m;
   std::map<std::string, std::pair<int, int>> detectedByPhase;  ///< phase -> (detected, in view)
@@ -45,9 +48,10 @@ struct HandEvaluation {
   void print(const std::string& what) const {
     std::printf("[ figures  ] marker-free hand, %s (%d frames): detected in %zu/%d frames with the hand in view "
                 "(%.1f %%; %d with carried depth), palm error median %.1f mm, p95 %.1f mm, max %.1f mm; "
-                "hand reported in %d frames without a hand\n",
+                "hand reported in %d frames without a hand; detect() %.1f ms CPU per frame\n",
                 what.c_str(), frames, error_m.size(), handInView, 100.0 * rate(), depthCarried, 1e3 * median_m(),
-                1e3 * p95_m(), 1e3 * percentile(error_m, 1.0), handWithoutHand);
+                1e3 * p95_m(), 1e3 * percentile(error_m, 1.0), handWithoutHand,
+                1e3 * detectCpu_s / std::max(1, timedFrames));
     for (const auto& [phase, e] : errorByPhase_m)
       std::printf("[ figures  ]   %-8s detected %3d/%3d, median %5.1f mm, p95 %5.1f mm\n", phase.c_str(),
                   detectedByPhase.at(phase).first, detectedByPhase.at(phase).second, 1e3 * percentile(e, 0.5),
@@ -98,7 +102,13 @@ inline HandEvaluation evaluateMarkerFreeHand(
     if (i >= gt.frames.size()) break;
     ++ev.frames;
     const auto& truth = gt.frames[i];
+    timespec t0{}, t1{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t0);
     const auto h = detector.detect(*f);
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t1);
+    if (static_cast<int>(i) >= options.backgroundFrames) ++ev.timedFrames;
+    if (static_cast<int>(i) >= options.backgroundFrames)
+      ev.detectCpu_s += static_cast<double>(t1.tv_sec - t0.tv_sec) + 1e-9 * static_cast<double>(t1.tv_nsec - t0.tv_nsec);
     bool have = false;
     Eigen::Vector3d p_m = Eigen::Vector3d::Zero();
     if (h && h->hasDepth) {

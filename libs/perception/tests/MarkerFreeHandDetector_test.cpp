@@ -61,8 +61,10 @@ rawlog::RgbdFrame drawnFrame(int index, const std::optional<ArmPose>& arm) {
   f.colour_bgr8 = cv::Mat(480, 640, CV_8UC3, kTableBgr);
   f.depth_m = cv::Mat(480, 640, CV_32FC1, cv::Scalar(kTable_m));
   if (!arm) return f;
-  drawBox(f, *arm, -0.60, -0.122, 0.038, 0.0, kSleeveBgr, kSleeveTop_m);  // sleeve, its cuff 12.2 cm from the palm centre
-  drawBox(f, *arm, -0.122, -0.045, 0.031, 0.0, kSkinBgr, kHandTop_m);     // wrist
+  // The sleeve, its cuff where the detector expects it from the palm centre.
+  const double cuff_m = -MarkerFreeHandDetector::Options{}.palmFromWrist_m;
+  drawBox(f, *arm, -0.60, cuff_m, 0.038, 0.0, kSleeveBgr, kSleeveTop_m);
+  drawBox(f, *arm, cuff_m, -0.045, 0.031, 0.0, kSkinBgr, kHandTop_m);     // wrist
   drawBox(f, *arm, -0.045, 0.045, 0.042, 0.0, kSkinBgr, kHandTop_m);      // palm
   for (const double across : {-0.030, -0.010, 0.010, 0.030})             // fingers
     drawBox(f, *arm, 0.045, 0.045 + arm->fingerLength_m, 0.008, across, kSkinBgr, kHandTop_m);
@@ -186,7 +188,7 @@ TEST(MarkerFreeHandDetector, PalmCentreOnARenderedDemo) {
   if (const char* dir = std::getenv("SRP_HAND_DEBUG_DIR")) {
     std::filesystem::create_directories(debugDir = dir);
     csv = std::fopen((debugDir + "/geometry.csv").c_str(), "w");
-    std::fprintf(csv, "frame,phase,grip,error_mm,have_wrist,along_mm,across_mm,z_err_mm\n");
+    std::fprintf(csv, "frame,phase,grip,error_mm,have_wrist,along_err_mm,across_err_mm,z_err_mm,wrist_z_mm,x_mm,y_mm,z_mm,wrist_u\n");
   }
   const auto ev = testing::evaluateMarkerFreeHand(
       demo, {},
@@ -194,16 +196,14 @@ TEST(MarkerFreeHandDetector, PalmCentreOnARenderedDemo) {
           const std::optional<Eigen::Vector3d>& p_m) {
         if (debugDir.empty() || !p_m || !truth.handInView) return;
         const double e = (*p_m - truth.p_camera_palm_m).norm();
-        // Where the true palm lies from the found wrist: along and across the found axis [mm].
+        // The error along and across the found axis and in depth [mm].
         const auto& g = d.lastGeometry();
-        const auto& k = f.intrinsics;
-        const Eigen::Vector3d& q = truth.p_camera_palm_m;
-        const Eigen::Vector2d truth_px(k.fx_px * q.x() / q.z() + k.cx_px, k.fy_px * q.y() / q.z() + k.cy_px);
-        const double mPerPx = g.wristDepth_m > 0 ? g.wristDepth_m / k.fx_px : 0.0;
-        const Eigen::Vector2d dw = truth_px - g.wrist_px;
-        std::fprintf(csv, "%d,%s,%.2f,%.1f,%d,%.1f,%.1f,%.1f\n", truth.index, truth.phase.c_str(), truth.grip, 1e3 * e,
-                     g.haveWrist, 1e3 * mPerPx * dw.dot(g.axis), 1e3 * mPerPx * (g.axis.x() * dw.y() - g.axis.y() * dw.x()),
-                     1e3 * (p_m->z() - q.z()));
+        const Eigen::Vector3d de = *p_m - truth.p_camera_palm_m;
+        std::fprintf(csv, "%d,%s,%.2f,%.1f,%d,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f\n", truth.index, truth.phase.c_str(),
+                     truth.grip, 1e3 * e, g.haveWrist, 1e3 * de.head<2>().dot(g.axis),
+                     1e3 * (g.axis.x() * de.y() - g.axis.y() * de.x()), 1e3 * de.z(), 0.0,
+                     1e3 * truth.p_camera_palm_m.x(), 1e3 * truth.p_camera_palm_m.y(), 1e3 * truth.p_camera_palm_m.z(),
+                     g.wrist_px.x());
         char name[80];
         std::snprintf(name, sizeof name, "/hand_%04d_%s_%03.0fmm.png", truth.index, truth.phase.c_str(), 1e3 * e);
         testing::drawHandGeometry(f, d, truth, debugDir + name);

@@ -2,8 +2,8 @@
 /// \file MarkerFreeHandDetector.h
 /// \brief The bare hand without a marker: depth foreground against the
 /// hand-free first frames, skin colour, and connection to the image border
-/// where the arm enters; the hand point is the palm centre, found from the
-/// arm's geometry (its axis and the wrist), not from any marker.
+/// where the arm enters; the palm centre from the arm's geometry (its axis and
+/// the wrist at the cuff), not from any marker.
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
@@ -13,40 +13,42 @@
 namespace srp::perception {
 
 /// Marker-free hand detector (no tag is decoded or used as a feature: it works
-/// on a plain glove or a bare hand).
+/// on a plain glove or a bare hand in a sleeve).
 ///
 /// Background: a per-pixel median depth and mean colour of the first
 /// `backgroundFrames` frames, which must show no hand (a demo's first second).
 ///
 /// Per frame (pixels of the colour image, registered depth):
-/// 1. foreground = closer than the background by `minForeground_m`, or no
-///    depth where the colour changed (the moving hand's depth holes);
-/// 2. the arm = the largest foreground component touching the image border;
+/// 1. foreground = closer than the background by `minForeground_m`, or a
+///    depth hole where the colour changed (the moving hand's holes: on a ToF
+///    camera more than half of the hand has no depth);
+/// 2. the arm = the largest foreground component touching the image border
+///    (where it enters);
 /// 3. the hand = its skin-coloured part (YCrCb box), holes filled (a held
-///    object, a badge); the sleeve = the rest of the arm that reaches the
-///    border (a carried object is not part of it);
-/// 4. the arm axis = principal direction of sleeve + hand, pointing from the
-///    border into the image; the wrist = where the hand meets the sleeve (the
-///    cuff line), or, with a bare forearm (no sleeve seen), the narrowest
-///    station of the width profile along the axis before the hand widens;
-/// 5. the palm centre = the wrist plus `palmFromWrist_m` along the axis (a
-///    fixed length of the hand: the palm centre does not move when the
-///    fingers close, unlike the hand's blob centre or its thickest point),
-///    centred across the hand at that station;
+///    object, a badge); the sleeve = the largest non-skin part of the arm that
+///    reaches the border (a carried object does not);
+/// 4. the wrist = the cuff line, the hand's pixels next to the sleeve; the
+///    arm axis = principal direction of sleeve + hand, pointing inwards;
+///    the palm centre = the wrist plus `palmFromWrist_m` along the axis
+///    (a fixed length of the hand: it does not move when the fingers close
+///    round an object, unlike the blob's centre or its thickest point);
+/// 5. no cuff in view (the skin itself reaches the border while the hand
+///    enters or leaves, or no sleeve): the palm centre lies
+///    `palmFromFingertips_m` back from the fingertips along the hand's
+///    principal axis (the inward border normal for a short blob), on the
+///    hand's centre line; it may lie outside the image;
 /// 6. depth: median of the valid depth on the hand within `palmRadius_m` of
-///    that pixel, else of the whole hand's valid depth, plus `palmDepth_m`
-///    (the palm centre lies inside the hand, below the visible back);
-///    no valid hand depth at all: `hasDepth = false` (the caller carries the
-///    last depth along the ray, see DemoPerception).
+///    the palm pixel, else of the whole hand's valid depth, plus `palmDepth_m`
+///    (the palm centre lies inside the hand, below its visible back); no valid
+///    depth on the hand at all: `hasDepth = false` (the caller carries the last
+///    depth along the ray, see DemoPerception).
 ///
-/// When no wrist is found (the hand just entering, no sleeve and no narrowing)
-/// the palm is the thickest point (distance-transform maximum) of the hand
-/// beyond `palmFromEntry` of its reach from the border.
-///
-/// State across frames: the background, and the last palm-to-wrist length in
-/// pixels per metre of depth is not kept (each frame stands alone apart from
-/// the background), so the detector can be reused on any frame order after
-/// the background frames.
+/// Metric lengths become pixels through the hand's depth (fx / z); in a frame
+/// without any valid hand depth the last one is used. State across frames:
+/// the background and that last hand depth only (no smoothing: each palm is
+/// measured in its own frame). Defaults measured on srp::synth's demonstrator
+/// (a glove and a sleeve, 7 cm wide);
+/// a real demonstrator's hand size sets palmFromWrist_m / palmFromFingertips_m.
 class MarkerFreeHandDetector : public HandDetector {
  public:
   struct Options {
@@ -58,7 +60,7 @@ class MarkerFreeHandDetector : public HandDetector {
     double palmDepth_m = 0.0125;
     /// Palm centre from the wrist (cuff line) along the arm axis, in the
     /// plane of the hand [m].
-    double palmFromWrist_m = 0.122;
+    double palmFromWrist_m = 0.13;
     /// Radius of the palm disc whose valid depth gives the palm depth [m].
     double palmRadius_m = 0.03;
     /// Without a wrist in view: palm centre back from the fingertips along the
@@ -71,7 +73,6 @@ class MarkerFreeHandDetector : public HandDetector {
     bool haveWrist = false;
     Eigen::Vector2d entry_px = Eigen::Vector2d::Zero();  ///< mean of the arm's border pixels
     Eigen::Vector2d wrist_px = Eigen::Vector2d::Zero();  ///< cuff line centre
-    double wristDepth_m = 0.0;                            ///< depth at the wrist (sets the pixel scale)
     Eigen::Vector2d axis = Eigen::Vector2d::UnitX();     ///< unit, from the border towards the fingers
     Eigen::Vector2d palm_px = Eigen::Vector2d::Zero();
   };

@@ -58,6 +58,7 @@ MarkerFreeHandDetector::MarkerFreeHandDetector(const Options& options) : options
 
 std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::RgbdFrame& frame) {
   geometry_ = Geometry{};
+  ++frameCount_;
   if (backgroundDepth_m_.empty()) {
     depthHistory_.push_back(frame.depth_m.clone());
     colourHistory_.push_back(frame.colour_bgr8.clone());
@@ -277,12 +278,22 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   HandObservation h;
   h.confidence = std::min(1.0, bestArea / 3000.0) * (geometry_.haveWrist ? 1.0 : 0.5);
   std::optional<double> z = medianDepthInDisc(depth, hand, palm, options_.palmRadius_m * pxPerM, 5);
-  if (!z) z = medianDepthInDisc(depth, hand, handMean, 1e4, 5);
-  if (z) {
-    h.p_camera_palm_m = palmAt(*z + options_.palmDepth_m);
-    palm = project(h.p_camera_palm_m);
-    h.hasDepth = true;
-    lastDepth_m_ = *z;
+  // No depth on the palm (a hole, or the palm out of view while the fingers
+  // enter or leave): the last palm depth if it is a few frames old (the caller
+  // carries it along the ray), else the whole hand's (biased by the fingers'
+  // and the wrist's tilt, but the best there is).
+  constexpr int kMaxCarryFrames = 3;
+  if (!z && lastDepth_m_ > 0.0 && frameCount_ - lastDepthFrame_ <= kMaxCarryFrames) {
+    palm = project(palmAt(lastDepth_m_ + options_.palmDepth_m));
+  } else {
+    if (!z) z = medianDepthInDisc(depth, hand, handMean, 1e4, 5);
+    if (z) {
+      h.p_camera_palm_m = palmAt(*z + options_.palmDepth_m);
+      palm = project(h.p_camera_palm_m);
+      h.hasDepth = true;
+      lastDepth_m_ = *z;
+      lastDepthFrame_ = frameCount_;
+    }
   }
   h.palm_px = palm;
   geometry_.palm_px = palm;

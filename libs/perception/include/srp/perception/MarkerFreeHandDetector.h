@@ -38,15 +38,17 @@ namespace srp::perception {
 ///    principal axis (the inward border normal for a short blob), on the
 ///    hand's centre line; it may lie outside the image;
 /// 6. depth: median of the valid depth on the hand within `palmRadius_m` of
-///    the palm pixel, else of the whole hand's valid depth, plus `palmDepth_m`
-///    (the palm centre lies inside the hand, below its visible back); no valid
-///    depth on the hand at all: `hasDepth = false` (the caller carries the last
-///    depth along the ray, see DemoPerception).
+///    the palm pixel, plus `palmDepth_m` (the palm centre lies inside the
+///    hand, below its visible back). None there (a hole, or the palm out of
+///    view): `hasDepth = false` when the last palm depth is at most 3 frames
+///    old (the caller carries it along the palm's ray, see DemoPerception;
+///    `palm_px` is placed for that depth), else the whole hand's valid depth,
+///    else `hasDepth = false`.
 ///
-/// Metric lengths become pixels through the hand's depth (fx / z); in a frame
-/// without any valid hand depth the last one is used. State across frames:
-/// the background and that last hand depth only (no smoothing: each palm is
-/// measured in its own frame). Defaults measured on srp::synth's demonstrator
+/// The palm is placed in metres: the anchor pixel (cuff or fingertips)
+/// back-projected at the palm's depth, plus the length along the axis.
+/// State across frames: the background and the last palm depth with its age
+/// (no smoothing: each palm is measured in its own frame). Defaults measured on srp::synth's demonstrator
 /// (a glove and a sleeve, 7 cm wide);
 /// a real demonstrator's hand size sets palmFromWrist_m / palmFromFingertips_m.
 class MarkerFreeHandDetector : public HandDetector {
@@ -92,7 +94,9 @@ class MarkerFreeHandDetector : public HandDetector {
   cv::Mat backgroundDepth_m_, backgroundColour_;
   cv::Mat lastMask_;
   Geometry geometry_;
-  double lastDepth_m_ = 0.0;  ///< last valid hand depth (for the wrist's scale in a depth hole)
+  double lastDepth_m_ = 0.0;  ///< last measured depth of the palm's visible back
+  int lastDepthFrame_ = 0;    ///< the frameCount_ it was measured in
+  int frameCount_ = 0;        ///< frames seen
 };
 
 }  // namespace srp::perception

@@ -129,8 +129,8 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   cv::morphologyEx(hand, hand, cv::MORPH_OPEN, disc5);
   if (cv::countNonZero(hand) < options_.minPixels / 2) return std::nullopt;
   {
-    // Fill holes (a held object, a badge on the glove): the hand's width and
-    // distance transform must not see them as background.
+    // Fill holes (a held object, a badge on the glove): the palm disc's depth
+    // and the sleeve (the arm's non-skin part) must not include them.
     std::vector<std::vector<cv::Point>> contours;
     cv::findContours(hand.clone(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
     cv::drawContours(hand, contours, -1, cv::Scalar(255), cv::FILLED);

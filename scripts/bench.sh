@@ -9,3 +9,8 @@ for b in "$build"/bench/*_bench; do
   echo "== $name"
   "$b" --benchmark_out="$build/bench-results/$name.json" --benchmark_out_format=json
 done
+# Issue 8: srp program on a 60 s demo, wall time and peak memory.
+if [ -x "$build/apps/srp" ]; then
+  echo "== srp program (scripts/bench-program.sh)"
+  "$(dirname "$0")/bench-program.sh" "$build" "$build/bench-results/program"
+fi

@@ -6,7 +6,7 @@ set -euo pipefail
 PACKAGES=(
   # toolchain and test tools
   build-essential cmake pkg-config
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev time
   # core utilities
   libeigen3-dev nlohmann-json3-dev libcli11-dev
   # taskdb
@@ -25,6 +25,8 @@ PACKAGES=(
   libnlopt-cxx-dev libsimbody-dev liburdfdom-dev liburdfdom-headers-dev
   # synthetic demos: the hand's AprilTag (tag36h11 bit patterns)
   libapriltag-dev
+  # rawlog: gzip members compressed with libdeflate (fast, in parallel)
+  libdeflate-dev
   # test data shipped by Debian
   visp-images-data
 )

@@ -2,6 +2,8 @@
 // recall, F1 and support per entity and relation type; time per sentence).
 #include <fstream>
 #include <iostream>
+#include <set>
+#include <vector>
 
 #include "CommandRegistry.h"
 #include "srp/core/Json.h"
@@ -20,19 +22,29 @@ void setupEvalLanguage(CLI::App& app) {
   app.add_option("--model", *modelPath, "language model file")->capture_default_str();
   app.add_option("--predictions", *predictionsPath, "also write the predicted sentences (SpERT JSON) here");
   app.add_flag("--json", *json, "print {\"types\": {...}, \"ms_per_sentence\": x}");
+  auto errorTypes = std::make_shared<std::vector<std::string>>();
+  auto errors = std::make_shared<bool>(false);
+  app.add_flag("--errors", *errors, "also print the entity errors: counts per kind, gold vs predicted spans per sentence");
+  app.add_option("--error-types", *errorTypes, "entity types of the error dump (default: all)")->delimiter(',');
   app.callback([=] {
     const auto model = srp::language::LanguageModel::load(*modelPath);
     const auto gold = srp::language::readSpertCorpus(*dataPath);
     const auto scores = srp::language::evaluateModel(model, gold);
+    std::vector<srp::language::AnnotatedSentence> predicted;
+    if (!predictionsPath->empty() || *errors)
+      for (const auto& s : gold) predicted.push_back(model.annotate(s.tokens));
     if (!predictionsPath->empty()) {
       nlohmann::json out = nlohmann::json::array();
-      for (const auto& s : gold) out.push_back(srp::language::toJson(model.annotate(s.tokens)));
+      for (const auto& s : predicted) out.push_back(srp::language::toJson(s));
       srp::core::writeJsonFile(*predictionsPath, out);
     }
     if (*json)
       std::cout << srp::language::toJson(scores).dump(2) << "\n";
     else
       std::cout << gold.size() << " sentences of " << *dataPath << "\n" << srp::language::formatScoreTable(scores);
+    if (*errors)
+      (*json ? std::cerr : std::cout) << srp::language::formatEntityErrors(
+          gold, predicted, std::set<std::string>(errorTypes->begin(), errorTypes->end()));
   });
 }
 const srp::app::CommandRegistrar kReg{"eval-language", "Score the instruction model on a SpERT corpus (P/R/F1 per type)",

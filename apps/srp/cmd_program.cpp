@@ -100,7 +100,7 @@ void setupProgram(CLI::App& cmd) {
                 << "\n";
     std::cout << "\n" << r.skillCount << " skills learned (Reach/Move as DMPs). Timing:";
     for (const auto& t : r.timings) std::cout << " " << t.stage << " " << std::setprecision(3) << t.wall_s << " s;";
-    std::cout << "\n";
+    std::cout << " peak memory " << static_cast<long>(r.peakResidentMemory_MB + 0.5) << " MB\n";
     for (const auto& w : r.warnings) std::cout << "warning: " << w << "\n";
     if (!r.reportFiles.empty()) std::cout << "Report: " << a->report << "/summary.md\n";
   });

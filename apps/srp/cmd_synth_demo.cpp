@@ -1,4 +1,5 @@
 // `srp synth-demo`: scene + instruction plan -> synthetic RGB-D demo rawlog + ground truth.
+#include <algorithm>
 #include <iostream>
 
 #include <nlohmann/json.hpp>
@@ -18,7 +19,7 @@ struct SynthDemoArgs {
   std::string outPath = "demo.rawlog";
   std::string contactSheet;
   long long seed = -1;
-  int width = 0, height = 0, maxFrames = -1;
+  int width = 0, height = 0, maxFrames = -1, colourNoiseBlock = -1, depthNoiseBlock = -1;
   double speed = 1.0;
   bool clean = false, noRandomise = false, motionBlur = false, json = false, quiet = false;
 };
@@ -33,6 +34,8 @@ void run(const SynthDemoArgs& a) {
   options.demo.speedFactor = a.speed;
   options.sensor.enabled = !a.clean;
   options.sensor.motionBlur = a.motionBlur;
+  if (a.colourNoiseBlock > 0) options.sensor.colourNoiseBlock_px = a.colourNoiseBlock;
+  if (a.depthNoiseBlock > 0) options.sensor.depthNoiseBlock_px = a.depthNoiseBlock;
   options.width_px = a.width;
   options.height_px = a.height;
   options.maxFrames = a.maxFrames;
@@ -46,6 +49,8 @@ void run(const SynthDemoArgs& a) {
                                                         });
   if (!quiet) std::cerr << "\n";
   const double fps = result.frameCount / result.totalTime_s;
+  const double n = std::max(1, result.frameCount);
+  const double rawlogMBPerMin = result.duration_s > 0.0 ? result.rawlogBytes / 1e6 / (result.duration_s / 60.0) : 0.0;
   if (a.json) {
     std::cout << nlohmann::json{{"rawlog", result.rawlogPath},
                                 {"ground_truth", result.groundTruthPath},
@@ -57,6 +62,13 @@ void run(const SynthDemoArgs& a) {
                                 {"sensor_s", result.sensorTime_s},
                                 {"write_s", result.writeTime_s},
                                 {"total_s", result.totalTime_s},
+                                {"cpu_ms_per_frame",
+                                 {{"render", 1e3 * result.renderCpuTime_s / n},
+                                  {"sensor", 1e3 * result.sensorCpuTime_s / n},
+                                  {"write", 1e3 * result.writeCpuTime_s / n},
+                                  {"all", 1e3 * result.processCpuTime_s / n}}},
+                                {"rawlog_bytes", result.rawlogBytes},
+                                {"rawlog_MB_per_min", rawlogMBPerMin},
                                 {"mean_hand_valid_depth", result.meanHandValidDepth},
                                 {"mean_object_valid_depth", result.meanObjectValidDepth}}
                      .dump(2)
@@ -66,8 +78,9 @@ void run(const SynthDemoArgs& a) {
   std::cout << "rawlog:       " << result.rawlogPath << " (" << result.frameCount << " frames, " << result.duration_s
             << " s)\nground truth: " << result.groundTruthPath << "\n";
   if (!result.contactSheetPath.empty()) std::cout << "contact sheet: " << result.contactSheetPath << "\n";
-  std::cout << "generated at " << fps << " frames/s (render " << result.renderTime_s << " s, sensor "
-            << result.sensorTime_s << " s, write " << result.writeTime_s << " s)\n";
+  std::cout << "generated at " << fps << " frames/s; CPU per frame: render " << 1e3 * result.renderCpuTime_s / n
+            << " ms, sensor " << 1e3 * result.sensorCpuTime_s / n << " ms, rawlog " << 1e3 * result.writeCpuTime_s / n
+            << " ms; rawlog " << result.rawlogBytes / 1e6 << " MB (" << rawlogMBPerMin << " MB per minute)\n";
   if (!a.clean)
     std::cout << "valid depth: hand " << 100.0 * result.meanHandValidDepth << " %, moved parts "
               << 100.0 * result.meanObjectValidDepth << " %\n";
@@ -84,6 +97,12 @@ void setupSynthDemo(CLI::App& cmd) {
   cmd.add_option("--speed", args->speed, "demonstrator speed factor (>1 faster)");
   cmd.add_flag("--clean", args->clean, "no sensor noise or invalid pixels");
   cmd.add_flag("--motion-blur", args->motionBlur, "blend each colour frame with the previous one");
+  cmd.add_option("--colour-noise-block", args->colourNoiseBlock,
+                 "colour noise drawn per block of N x N pixels (default 4; smaller: larger rawlog)")
+      ->check(CLI::PositiveNumber);
+  cmd.add_option("--depth-noise-block", args->depthNoiseBlock,
+                 "depth noise and dropout drawn per block of N x N pixels (default 1: per pixel; 2: smaller rawlog)")
+      ->check(CLI::PositiveNumber);
   cmd.add_option("--width", args->width, "image width (default: the scene camera's)");
   cmd.add_option("--height", args->height, "image height (default: the scene camera's)");
   cmd.add_option("--max-frames", args->maxFrames, "stop after this many frames");

@@ -2,6 +2,8 @@
 // corpus and writes the model file that `srp parse` loads.
 #include <chrono>
 #include <iostream>
+#include <set>
+#include <vector>
 
 #include "CommandRegistry.h"
 #include "srp/core/Json.h"
@@ -26,6 +28,10 @@ void setupTrainLanguage(CLI::App& app) {
   app.add_option("--cv", *cvFolds, "only cross-validate on the training corpus with this many folds (no model written)");
   app.add_option("--cv-threads", *cvThreads, "folds trained in parallel")->capture_default_str();
   app.add_option("--cv-predictions", *cvPredictions, "write the out-of-fold predictions (SpERT JSON) here");
+  auto cvErrors = std::make_shared<bool>(false);
+  auto errorTypes = std::make_shared<std::vector<std::string>>();
+  app.add_flag("--errors", *cvErrors, "with --cv: also print the out-of-fold entity errors");
+  app.add_option("--error-types", *errorTypes, "entity types of the error dump (default: all)")->delimiter(',');
   app.callback([=] {
     const auto corpus = srp::language::readSpertCorpus(*trainPath);
     if (*cvFolds > 0) {
@@ -38,6 +44,9 @@ void setupTrainLanguage(CLI::App& app) {
       }
       std::cout << *cvFolds << "-fold cross-validation (" << *trainPath << "):\n"
                 << srp::language::formatScoreTable(cv.scores);
+      if (*cvErrors)
+        std::cout << srp::language::formatEntityErrors(corpus, cv.predictions,
+                                                       std::set<std::string>(errorTypes->begin(), errorTypes->end()));
       return;
     }
     std::cerr << "training on " << corpus.size() << " sentences...\n";

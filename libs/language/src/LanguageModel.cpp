@@ -11,6 +11,7 @@
 
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
+#include "srp/language/IndicatorConventions.h"
 #include "srp/language/Tokenizer.h"
 #include "srp/language/WordNetLexicon.h"
 
@@ -18,7 +19,7 @@ namespace srp::language {
 
 namespace {
 
-constexpr int kModelFormatVersion = 1;
+constexpr int kModelFormatVersion = 2;  // 2: indicator span and type conventions
 const std::vector<std::string> kEntityTypes{"Action", "Trajector", "SpatialIndicator", "GoalIndicator", "Color"};
 constexpr unsigned long kNumLabels = 11;  // O, then B-/I- for each of the five types
 
@@ -104,6 +105,7 @@ struct LanguageModel::Impl {
   std::vector<std::string> relationFeatureNames;
   std::unordered_map<std::string, unsigned long> relationFeatureIds;
   dlib::decision_function<RelationKernel> relationScorer;
+  IndicatorConventions indicatorConventions;  ///< counted on the training corpus
 
   std::string lemmaOf(const std::string& lower) const {
     const WordInfo info = lexicon.lookup(lower);
@@ -329,17 +331,20 @@ struct LanguageModel::Impl {
 
   bool isNounish(const std::string& lower) const {
     const WordInfo k = lexicon.lookup(lower);
+    static const std::set<std::string> kPersonalPronouns{"i", "me", "you", "us", "him", "her", "we"};
     return k.noun && !k.color && !kPrepositions.count(lower) && !kPronouns.count(lower) &&
-           !kDeterminers.count(lower) && !isActionWord(lower);
+           !kPersonalPronouns.count(lower) && !kDeterminers.count(lower) && !isActionWord(lower);
   }
 
   /// Corpus regularities the tagger does not always respect (train.json counts):
   /// an indicator with another action after it describes where an object *is*
-  /// (SpatialIndicator: 113 of 114), and so does every indicator of "pick" (224
-  /// of 224); the first indicator of a put/place/drop/carry clause with no action
-  /// after it says where the object goes (GoalIndicator: 275 of 281).
+  /// (SpatialIndicator: 113 of 114); otherwise the type the training corpus gives
+  /// to indicators of that action, direction and place in the clause, where it is
+  /// consistent (IndicatorConventions: every indicator of "pick" is spatial, the
+  /// first of "put / place" a goal, "take / bring ... on" spatial, "... to" a goal).
   void relabelIndicators(const std::vector<std::string>& tokens, std::vector<EntitySpan>& entities) const {
-    static const std::set<std::string> kPlaceVerbs{"put", "place", "drop", "carry"};
+    std::vector<std::string> lower(tokens.size());
+    std::transform(tokens.begin(), tokens.end(), lower.begin(), lowerOf);
     std::sort(entities.begin(), entities.end(), [](const EntitySpan& a, const EntitySpan& b) { return a.start < b.start; });
     std::string verb;
     bool firstInClause = true;
@@ -353,10 +358,15 @@ struct LanguageModel::Impl {
       if (e.type != "GoalIndicator" && e.type != "SpatialIndicator") continue;
       bool actionAfter = false;
       for (size_t j = i + 1; j < entities.size(); ++j) actionAfter |= entities[j].type == "Action";
-      if (actionAfter || verb == "pick")
+      if (IndicatorConventions::inRelativeClause(lower, e.start)) {
         e.type = "SpatialIndicator";
-      else if (firstInClause && kPlaceVerbs.count(verb))
-        e.type = "GoalIndicator";
+        continue;  // locates an object: the clause's first goal may still follow
+      }
+      if (actionAfter) {
+        e.type = "SpatialIndicator";
+      } else {
+        if (auto type = indicatorConventions.indicatorType(verb, lowerOf(tokens[e.start]), firstInClause)) e.type = *type;
+      }
       firstInClause = false;
     }
     // One goal per clause (train: only 1 clause has two goals): of several goals the
@@ -495,6 +505,9 @@ LanguageModel LanguageModel::train(const std::vector<AnnotatedSentence>& corpus,
       if (e.type == "Action" && e.end - e.start == 1) m.actionLemmaSet.insert(m.lemmaOf(lowerOf(s.tokens[e.start])));
   m.actionLemmas.assign(m.actionLemmaSet.begin(), m.actionLemmaSet.end());
 
+  m.indicatorConventions =
+      IndicatorConventions::learn(corpus, [&m](const std::string& word) { return m.lemmaOf(word); });
+
   // Entity feature dictionary (sorted names, so ids do not depend on hashing).
   std::map<std::string, int> counts;
   for (const auto& s : corpus)
@@ -575,6 +588,7 @@ void LanguageModel::save(const std::string& path) const {
   dlib::serialize(m.tagger, out);
   dlib::serialize(m.relationFeatureNames, out);
   dlib::serialize(m.relationScorer, out);
+  dlib::serialize(m.indicatorConventions.toJson().dump(), out);
   if (!out) throw core::FileError(path, "write failed (disk full?)");
 }
 
@@ -598,7 +612,14 @@ LanguageModel LanguageModel::load(const std::string& path) {
     dlib::deserialize(m.tagger, in);
     dlib::deserialize(m.relationFeatureNames, in);
     dlib::deserialize(m.relationScorer, in);
+    std::string conventions;
+    dlib::deserialize(conventions, in);
+    m.indicatorConventions = IndicatorConventions::fromJson(nlohmann::json::parse(conventions));
   } catch (const dlib::serialization_error& e) {
+    throw core::FileError(path, std::string("is corrupt (") + e.what() + "); retrain with `srp train-language`");
+  } catch (const nlohmann::json::exception& e) {
+    throw core::FileError(path, std::string("is corrupt (") + e.what() + "); retrain with `srp train-language`");
+  } catch (const core::InvalidInputError& e) {
     throw core::FileError(path, std::string("is corrupt (") + e.what() + "); retrain with `srp train-language`");
   }
   m.actionLemmaSet.insert(m.actionLemmas.begin(), m.actionLemmas.end());
@@ -623,6 +644,8 @@ AnnotatedSentence LanguageModel::annotate(const std::vector<std::string>& tokens
     out.entities.push_back({static_cast<int>(i), static_cast<int>(j), kEntityTypes[type]});
     i = j;
   }
+  impl_->indicatorConventions.applySpanLengths(tokens, out.entities);
+  IndicatorConventions::dropIndicatorsOutsideOrders(tokens, out.entities);
   impl_->relabelIndicators(tokens, out.entities);
   impl_->enforceTrajectorConsistency(tokens, out.entities);
   out.relations = impl_->predictRelations(tokens, out.entities);

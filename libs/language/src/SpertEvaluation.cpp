@@ -126,3 +126,84 @@ std::string formatScoreTable(const SpertScores& scores) {
 }
 
 }  // namespace srp::language
+
+namespace srp::language {
+
+std::vector<EntityError> entityErrors(const std::vector<AnnotatedSentence>& gold,
+                                      const std::vector<AnnotatedSentence>& predicted) {
+  core::require(gold.size() == predicted.size(),
+                "entityErrors: " + std::to_string(predicted.size()) + " predicted sentences for " +
+                    std::to_string(gold.size()) + " gold ones; annotate every gold sentence once");
+  std::vector<EntityError> errors;
+  auto overlaps = [](const EntitySpan& a, const EntitySpan& b) { return a.start < b.end && b.start < a.end; };
+  for (size_t i = 0; i < gold.size(); ++i) {
+    const auto& g = gold[i].entities;
+    const auto& p = predicted[i].entities;
+    // One side's entity against the other side: which kind of error, if any.
+    auto classify = [&](const EntitySpan& e, const std::vector<EntitySpan>& other, bool goldSide) {
+      EntityError err{"", static_cast<int>(i), goldSide, e, ""};
+      bool sameType = false, otherType = false;
+      for (const auto& o : other) {
+        if (o == e) return;  // correct
+        if (o.start == e.start && o.end == e.end) {
+          if (!goldSide) return;  // listed once, as the gold entity's type error
+          err.kind = "type";
+          err.otherType = o.type;
+          errors.push_back(err);
+          return;
+        }
+        if (overlaps(o, e)) (o.type == e.type ? sameType : otherType) = true;
+      }
+      err.kind = sameType ? "boundary" : otherType ? "overlap" : goldSide ? "missed" : "spurious";
+      errors.push_back(err);
+    };
+    for (const auto& e : g) classify(e, p, true);
+    for (const auto& e : p) classify(e, g, false);
+  }
+  return errors;
+}
+
+std::string formatEntityErrors(const std::vector<AnnotatedSentence>& gold,
+                               const std::vector<AnnotatedSentence>& predicted, const std::set<std::string>& types) {
+  const auto all = entityErrors(gold, predicted);
+  std::vector<EntityError> errors;
+  for (const auto& e : all)
+    if (types.empty() || types.count(e.entity.type)) errors.push_back(e);
+  std::map<std::string, std::map<std::string, int>> counts;  // type -> "side kind" -> count
+  for (const auto& e : errors) ++counts[e.entity.type][std::string(e.goldSide ? "gold " : "predicted ") + e.kind];
+  std::string out = "entity errors (gold side: not predicted; predicted side: not in gold):\n";
+  for (const auto& [type, byKind] : counts) {
+    out += "  " + type + ":";
+    for (const auto& [kind, n] : byKind) out += " " + kind + " " + std::to_string(n) + ";";
+    out += "\n";
+  }
+  auto text = [](const AnnotatedSentence& s, int start, int end) {
+    std::string t;
+    for (int k = start; k < end && k < static_cast<int>(s.tokens.size()); ++k) t += (k > start ? " " : "") + s.tokens[k];
+    return t;
+  };
+  auto bracketed = [&](const AnnotatedSentence& s) {
+    std::vector<std::string> words = s.tokens;
+    for (const auto& e : s.entities) {
+      if ((!types.empty() && !types.count(e.type)) || e.start >= e.end || e.end > static_cast<int>(words.size())) continue;
+      words[e.start] = "[" + words[e.start];
+      words[e.end - 1] += "]" + e.type;
+    }
+    std::string t;
+    for (const auto& w : words) t += (t.empty() ? "" : " ") + w;
+    return t;
+  };
+  for (size_t k = 0; k < errors.size();) {
+    const int i = errors[k].sentence;
+    out += "#" + std::to_string(i) + "\n  gold: " + bracketed(gold[i]) + "\n  pred: " + bracketed(predicted[i]) + "\n";
+    for (; k < errors.size() && errors[k].sentence == i; ++k) {
+      const auto& e = errors[k];
+      out += std::string("    ") + (e.goldSide ? "gold " : "pred ") + e.kind + " " + e.entity.type +
+             (e.kind == "type" ? " -> " + e.otherType : "") + " \"" +
+             text(e.goldSide ? gold[i] : predicted[i], e.entity.start, e.entity.end) + "\"\n";
+    }
+  }
+  return out;
+}
+
+}  // namespace srp::language

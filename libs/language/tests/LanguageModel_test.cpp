@@ -56,6 +56,28 @@ TEST(LanguageModel, AnnotatesAPickAndPlaceSentence) {
   EXPECT_TRUE(model.annotate({}).entities.empty());
 }
 
+// "take / get X on Y" locates X (the corpus' convention for these actions), and
+// the trajector is the object, not the person it is fetched for.
+TEST(LanguageModel, IndicatorOfAFetchVerbIsSpatial) {
+  const auto model = LanguageModel::load(defaultModelPath());
+  const auto s = model.annotate({"get", "me", "the", "wallet", "on", "the", "pillow"});
+  const std::vector<EntitySpan> expected{{0, 1, "Action"}, {3, 4, "Trajector"}, {4, 5, "SpatialIndicator"}};
+  EXPECT_EQ(s.entities, expected);
+  ASSERT_EQ(s.relations.size(), 1u);
+  EXPECT_EQ(s.relations[0].type, "Spatial");
+}
+
+// A participle phrase locates the object; the clause's goal is the next phrase.
+TEST(LanguageModel, ParticiplePhraseIsSpatialAndTheNextIsTheGoal) {
+  const auto model = LanguageModel::load(defaultModelPath());
+  const auto s = model.annotate({"put", "the", "grey", "pyramid", "which", "is", "putted", "on", "a", "green", "box",
+                                 "on", "another", "green", "box"});
+  std::vector<std::string> indicatorTypes;
+  for (const auto& e : s.entities)
+    if (e.type == "SpatialIndicator" || e.type == "GoalIndicator") indicatorTypes.push_back(e.type);
+  EXPECT_EQ(indicatorTypes, (std::vector<std::string>{"SpatialIndicator", "GoalIndicator"}));
+}
+
 TEST(LanguageModel, MissingOrCorruptModelFileNamesThePath) {
   try {
     LanguageModel::load("/nonexistent/language_model.dat");

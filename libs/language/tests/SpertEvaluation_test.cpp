@@ -58,3 +58,26 @@ TEST(SpertEvaluation, CrossValidationIsOutOfFoldAndDeterministic) {
   EXPECT_GT(oneThread.scores.types.at("Action").f1(), kMinActionF1);
   EXPECT_THROW(crossValidate(corpus, {}, 1), srp::core::InvalidInputError);
 }
+
+TEST(SpertEvaluation, EntityErrorsAreClassifiedByKind) {
+  AnnotatedSentence gold, pred;
+  gold.tokens = pred.tokens = {"take", "the", "cup", "near", "to", "the", "box", "on", "the", "table", "in", "it"};
+  gold.entities = {{0, 1, "Action"}, {2, 3, "Trajector"}, {3, 4, "SpatialIndicator"}, {7, 8, "SpatialIndicator"}};
+  pred.entities = {{0, 1, "Action"}, {2, 3, "Trajector"}, {3, 5, "SpatialIndicator"}, {7, 8, "GoalIndicator"},
+                   {10, 11, "SpatialIndicator"}};
+  const auto errors = entityErrors({gold}, {pred});
+  ASSERT_EQ(errors.size(), 4u);
+  EXPECT_EQ(errors[0].kind, "boundary");  // gold "near" vs predicted "near to"
+  EXPECT_TRUE(errors[0].goldSide);
+  EXPECT_EQ(errors[1].kind, "type");  // "on": spatial predicted as a goal, listed once
+  EXPECT_EQ(errors[1].otherType, "GoalIndicator");
+  EXPECT_EQ(errors[2].kind, "boundary");  // predicted "near to"
+  EXPECT_FALSE(errors[2].goldSide);
+  EXPECT_EQ(errors[3].kind, "spurious");  // predicted "in"
+  const std::string dump = formatEntityErrors({gold}, {pred}, {"SpatialIndicator"});
+  EXPECT_NE(dump.find("gold boundary 1;"), std::string::npos) << dump;
+  EXPECT_NE(dump.find("pred spurious SpatialIndicator \"in\""), std::string::npos) << dump;
+  EXPECT_NE(dump.find("[near to]SpatialIndicator"), std::string::npos) << dump;
+  EXPECT_EQ(formatEntityErrors({gold}, {gold}).find("#0"), std::string::npos);  // no error, no sentence
+  EXPECT_THROW(entityErrors({gold}, {}), srp::core::InvalidInputError);
+}

@@ -41,6 +41,14 @@ void Axes::horizontalLine(double y, std::string label, std::optional<Color> colo
   refLines_.push_back({false, y, std::move(label), color.value_or(Color::gray()), dashed});
 }
 
+void Axes::band(double x0, double x1, std::string label, std::optional<Color> color, double opacity) {
+  if (!std::isfinite(x0) || !std::isfinite(x1) || x0 > x1)
+    throw core::InvalidInputError("plot band '" + label + "': needs finite bounds with x0 <= x1");
+  if (!(opacity >= 0.0 && opacity <= 1.0))
+    throw core::InvalidInputError("plot band '" + label + "': opacity must be in [0, 1]");
+  bands_.push_back({x0, x1, std::move(label), color.value_or(Color::gray()), opacity});
+}
+
 Figure::Figure(int width_px, int height_px, int rows, int cols)
     : width_px_(width_px), height_px_(height_px), rows_(rows), cols_(cols),
       axes_(static_cast<std::size_t>(rows * cols)) {
@@ -130,6 +138,7 @@ void drawAxes(cv::Mat& img, const Axes& ax, cv::Rect cell) {
         x0 = std::min(x0, s.x[i]); x1 = std::max(x1, s.x[i]);
         y0 = std::min(y0, s.y[i]); y1 = std::max(y1, s.y[i]);
       }
+  for (const auto& b : ax.bands()) { x0 = std::min(x0, b.x0); x1 = std::max(x1, b.x1); }
   for (const auto& r : ax.refLines()) {
     if (r.vertical) { x0 = std::min(x0, r.value); x1 = std::max(x1, r.value); }
     else { y0 = std::min(y0, r.value); y1 = std::max(y1, r.value); }
@@ -154,6 +163,16 @@ void drawAxes(cv::Mat& img, const Axes& ax, cv::Rect cell) {
   const auto px = [&](double x, double y) {
     return cv::Point2d(plot.x + (x - x0) / (x1 - x0) * plot.width, plot.y + plot.height - (y - y0) / (y1 - y0) * plot.height);
   };
+
+  // Bands first, under the grid and the data.
+  for (const auto& b : ax.bands()) {
+    const double a = std::clamp(px(b.x0, y0).x, double(plot.x), double(plot.x + plot.width));
+    const double e = std::clamp(px(b.x1, y0).x, double(plot.x), double(plot.x + plot.width));
+    const cv::Rect r(static_cast<int>(std::round(a)), plot.y, static_cast<int>(std::round(e - a)), plot.height);
+    if (r.width <= 0) continue;
+    cv::Mat area = img(r);
+    cv::addWeighted(area, 1.0 - b.opacity, cv::Mat(area.size(), area.type(), bgr(b.color)), b.opacity, 0.0, area);
+  }
 
   // Grid and ticks.
   const double xs = tickStep(x1 - x0, std::max(2, plot.width / 90)), ys = tickStep(y1 - y0, std::max(2, plot.height / 50));
@@ -219,6 +238,12 @@ void drawAxes(cv::Mat& img, const Axes& ax, cv::Rect cell) {
         int base = 0;
         wmax = std::max(wmax, cv::getTextSize(s.label, kFont, 0.4, 1, &base).width);
       }
+    for (const auto& b : ax.bands())
+      if (!b.label.empty()) {
+        ++n;
+        int base = 0;
+        wmax = std::max(wmax, cv::getTextSize(b.label, kFont, 0.4, 1, &base).width);
+      }
     if (n > 0) {
       const cv::Rect box(plot.x + plot.width - wmax - 45, plot.y + 6, wmax + 38, 18 * n + 6);
       cv::rectangle(img, box, kWhite, cv::FILLED);
@@ -234,6 +259,15 @@ void drawAxes(cv::Mat& img, const Axes& ax, cv::Rect cell) {
         }
         drawMarker(img, (a + b) * 0.5, s.marker, std::min(4.0, s.markerSize_px), bgr(s.color));
         text(img, s.label, cv::Point(box.x + 32, y), 0.4, kBlack);
+      }
+      for (const auto& b : ax.bands()) {
+        if (b.label.empty()) continue;
+        const int y = box.y + 14 + 18 * row++;
+        const cv::Rect swatch(box.x + 8, y - 11, 16, 12);
+        cv::Mat area = img(swatch);
+        cv::addWeighted(area, 1.0 - b.opacity, cv::Mat(area.size(), area.type(), bgr(b.color)), b.opacity, 0.0, area);
+        cv::rectangle(img, swatch, bgr(b.color), 1);
+        text(img, b.label, cv::Point(box.x + 32, y), 0.4, kBlack);
       }
     }
   }

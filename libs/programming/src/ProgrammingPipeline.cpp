@@ -1,5 +1,7 @@
 #include "srp/programming/ProgrammingPipeline.h"
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
@@ -87,6 +89,14 @@ double frameRateOf(const core::PositionTrajectory& samples) {
   const double median = dt[dt.size() / 2];
   return median > 0.0 ? 1.0 / median : 30.0;
 }
+
+namespace {
+double peakResidentMemory_MB() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;  // Linux reports kilobytes
+}
+}  // namespace
 
 ProgramResult programTask(const ProgrammingOptions& o) {
   ProgramResult result;
@@ -227,6 +237,7 @@ ProgramResult programTask(const ProgrammingOptions& o) {
 
   if (!o.reportDir.empty())
     result.reportFiles = writeProgramReport(o.reportDir, result, seen, segmentation, skills);
+  result.peakResidentMemory_MB = peakResidentMemory_MB();
   return result;
 }
 
@@ -247,6 +258,7 @@ std::string toJsonText(const ProgramResult& r) {
                             {"move_lambda", o.moveLambda}, {"note", o.note}});
   j["timings_s"] = nlohmann::json::object();
   for (const auto& t : r.timings) j["timings_s"][t.stage] = t.wall_s;
+  j["peak_memory_MB"] = r.peakResidentMemory_MB;
   j["warnings"] = r.warnings;
   j["report_files"] = r.reportFiles;
   return j.dump(2);

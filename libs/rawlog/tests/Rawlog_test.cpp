@@ -3,6 +3,11 @@
 #include <filesystem>
 #include <fstream>
 
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/serialization/CArchive.h>
+
 #include "srp/core/Error.h"
 #include "srp/rawlog/RawlogReader.h"
 #include "srp/rawlog/RawlogWriter.h"
@@ -109,4 +114,106 @@ TEST(Rawlog, ReadsMrptSampleDataset) {
   EXPECT_NEAR(f->intrinsics.fx_px, 572.883, 0.01);  // depth camera, per the dataset README
   const int valid = cv::countNonZero(f->depth_m > 0.0f);
   EXPECT_EQ(valid, 273225);
+}
+
+// Frames handed to encoder threads come back complete and in write() order,
+// also when the caller reuses its buffers right after write().
+TEST(Rawlog, ThreadedWriterKeepsOrderAndPixels) {
+  const std::string path = tempPath("threaded.rawlog");
+  constexpr int kFrames = 12;
+  {
+    RawlogWriter writer(path, kDepthUnit_m, 1, 3);
+    RgbdFrame reused = makeFrame(0);
+    for (int i = 0; i < kFrames; ++i) {
+      makeFrame(i).colour_bgr8.copyTo(reused.colour_bgr8);  // same buffers every frame
+      makeFrame(i).depth_m.copyTo(reused.depth_m);
+      reused.index = i;
+      reused.t_s = makeFrame(i).t_s;
+      writer.write(reused);
+    }
+    EXPECT_EQ(writer.framesWritten(), kFrames);
+    writer.close();
+    EXPECT_EQ(writer.bytesWritten(), std::filesystem::file_size(path));
+    EXPECT_GT(writer.encodeCpuTime_s(), 0.0);
+  }
+  const auto frames = RawlogReader::readAll(path);
+  ASSERT_EQ(static_cast<int>(frames.size()), kFrames);
+  for (int i = 0; i < kFrames; ++i) {
+    const RgbdFrame expected = makeFrame(i);
+    EXPECT_NEAR(frames[i].t_s, expected.t_s, 1e-6) << "frame " << i;
+    EXPECT_EQ(cv::norm(frames[i].colour_bgr8, expected.colour_bgr8, cv::NORM_INF), 0.0) << "frame " << i;
+    cv::Mat err;
+    cv::absdiff(frames[i].depth_m, expected.depth_m, err);
+    double maxErr = 0.0;
+    cv::minMaxLoc(err, nullptr, &maxErr);
+    EXPECT_LT(maxErr, kDepthTol_m) << "frame " << i;
+  }
+  std::filesystem::remove(path);
+}
+
+// One gzip member per frame: the file is still one valid gzip stream for zlib
+// (MRPT's own gzip reader, as RawLogViewer uses it, reads every observation).
+TEST(Rawlog, MrptReadsTheConcatenatedGzipMembers) {
+  const std::string path = tempPath("members.rawlog");
+  {
+    RawlogWriter writer(path, kDepthUnit_m);
+    for (int i = 0; i < 3; ++i) writer.write(makeFrame(i));
+  }
+  mrpt::io::CFileGZInputStream in(path);
+  auto arch = mrpt::serialization::archiveFrom(in);
+  int observations = 0;
+  for (;;) {
+    mrpt::serialization::CSerializable::Ptr obj;
+    try {
+      arch >> obj;
+    } catch (const mrpt::serialization::CExceptionEOF&) {
+      break;
+    }
+    const auto obs = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obj);
+    ASSERT_TRUE(obs) << "object " << observations << " is not a CObservation3DRangeScan";
+    EXPECT_EQ(obs->rangeImage.cols(), kK.width_px);
+    EXPECT_EQ(obs->intensityImage.getWidth(), static_cast<size_t>(kK.width_px));
+    ++observations;
+  }
+  EXPECT_EQ(observations, 3);
+  std::filesystem::remove(path);
+}
+
+// Rawlogs written before the per-frame members (one gzip stream by MRPT's
+// CFileGZOutputStream, as MRPT's grabbers write them) still read.
+TEST(Rawlog, ReadsSingleStreamRawlogs) {
+  const std::string path = tempPath("single_stream.rawlog");
+  {
+    mrpt::io::CFileGZOutputStream out(path);
+    auto arch = mrpt::serialization::archiveFrom(out);
+    const RgbdFrame f = makeFrame(0);
+    auto obs = mrpt::obs::CObservation3DRangeScan::Create();
+    obs->timestamp = mrpt::Clock::fromDouble(f.t_s);
+    obs->cameraParams.ncols = kK.width_px;
+    obs->cameraParams.nrows = kK.height_px;
+    obs->cameraParams.setIntrinsicParamsFromValues(kK.fx_px, kK.fy_px, kK.cx_px, kK.cy_px);
+    obs->range_is_depth = true;
+    obs->rangeUnits = static_cast<float>(kDepthUnit_m);
+    obs->hasRangeImage = true;
+    obs->rangeImage_setSize(kK.height_px, kK.width_px);
+    obs->rangeImage.fill(8500);
+    for (int i = 0; i < 2; ++i) arch << *obs;
+  }
+  const auto frames = RawlogReader::readAll(path);
+  ASSERT_EQ(frames.size(), 2u);
+  EXPECT_EQ(frames[1].intrinsics, kK);
+  EXPECT_NEAR(frames[1].depth_m.at<float>(100, 100), 0.85, kDepthTol_m);
+  std::filesystem::remove(path);
+}
+
+TEST(Rawlog, ThreadedWriterRejectsBadFramesAtWrite) {
+  const std::string path = tempPath("threaded_bad.rawlog");
+  RawlogWriter writer(path, kDepthUnit_m, 1, 2);
+  RgbdFrame f = makeFrame(0);
+  f.colour_bgr8 = cv::Mat(10, 10, CV_8UC3);
+  EXPECT_THROW(writer.write(f), srp::core::InvalidInputError);
+  EXPECT_THROW(RawlogWriter(path, kDepthUnit_m, 13), srp::core::InvalidInputError);
+  EXPECT_THROW(RawlogWriter("/nonexistent/dir/x.rawlog", kDepthUnit_m, 1, 2), srp::core::FileError);
+  writer.close();
+  std::filesystem::remove(path);
 }

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
+#include <optional>
 #include <condition_variable>
 #include <deque>
 #include <exception>
@@ -97,82 +99,59 @@ double tagVisibleFraction(const srp::core::Pose3& X_camera_tag, double plateHalf
   return inside ? static_cast<double>(visible) / inside : 0.0;
 }
 
-// Writes frames on a background thread so that serialisation and compression
-// (the costliest step with noisy images) overlap with rendering the next frames.
-class AsyncRawlogWriter {
+double threadCpuTime_s() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+double processCpuTime_s() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// Hands rendered frames from the render thread to the sensor thread. Bounded,
+// so that a slow consumer holds the producer back instead of filling memory.
+template <class T>
+class FrameQueue {
  public:
-  AsyncRawlogWriter(const std::string& path, double depthUnit_m) : writer_(path, depthUnit_m) {
-    thread_ = std::thread([this] { loop(); });
-  }
-  ~AsyncRawlogWriter() {
-    try {
-      close();
-    } catch (...) {
-    }
-  }
-  void write(srp::rawlog::RgbdFrame frame) {
+  explicit FrameQueue(std::size_t capacity) : capacity_(capacity) {}
+  /// Blocks while full; false when the consumer has stopped (it failed).
+  bool push(T item) {
     std::unique_lock<std::mutex> lock(mutex_);
-    spaceFree_.wait(lock, [this] { return queue_.size() < kMaxQueued || error_; });
-    rethrow();
-    queue_.push_back(std::move(frame));
-    frameQueued_.notify_one();
+    notFull_.wait(lock, [this] { return items_.size() < capacity_ || stopped_; });
+    if (stopped_) return false;
+    items_.push_back(std::move(item));
+    notEmpty_.notify_one();
+    return true;
   }
-  /// Waits for the queue to drain, closes the file; returns the seconds spent writing.
-  double close() {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      done_ = true;
-      frameQueued_.notify_one();
-    }
-    if (thread_.joinable()) thread_.join();
-    writer_.close();
+  /// Blocks while empty; nullopt once the producer has finished and all is taken.
+  std::optional<T> pop() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    notEmpty_.wait(lock, [this] { return !items_.empty() || finished_; });
+    if (items_.empty()) return std::nullopt;
+    T item = std::move(items_.front());
+    items_.pop_front();
+    notFull_.notify_one();
+    return item;
+  }
+  void finish() {
     std::lock_guard<std::mutex> lock(mutex_);
-    rethrow();
-    return writeTime_s_;
+    finished_ = true;
+    notEmpty_.notify_all();
+  }
+  void stop() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stopped_ = true;
+    notFull_.notify_all();
   }
 
  private:
-  static constexpr std::size_t kMaxQueued = 4;
-  void rethrow() {
-    if (error_) {
-      auto e = error_;
-      error_ = nullptr;
-      std::rethrow_exception(e);
-    }
-  }
-  void loop() {
-    for (;;) {
-      srp::rawlog::RgbdFrame frame;
-      {
-        std::unique_lock<std::mutex> lock(mutex_);
-        frameQueued_.wait(lock, [this] { return !queue_.empty() || done_; });
-        if (queue_.empty()) return;
-        frame = std::move(queue_.front());
-        queue_.pop_front();
-        spaceFree_.notify_one();
-      }
-      try {
-        const auto t0 = Clock::now();
-        writer_.write(frame);
-        const double dt = secondsSince(t0);
-        std::lock_guard<std::mutex> lock(mutex_);
-        writeTime_s_ += dt;
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(mutex_);
-        error_ = std::current_exception();
-        spaceFree_.notify_all();
-        return;
-      }
-    }
-  }
-  srp::rawlog::RawlogWriter writer_;
-  std::thread thread_;
+  std::size_t capacity_;
   std::mutex mutex_;
-  std::condition_variable frameQueued_, spaceFree_;
-  std::deque<srp::rawlog::RgbdFrame> queue_;
-  bool done_ = false;
-  std::exception_ptr error_;
-  double writeTime_s_ = 0.0;
+  std::condition_variable notEmpty_, notFull_;
+  std::deque<T> items_;
+  bool finished_ = false, stopped_ = false;
 };
 
 cv::Mat colourMapDepth(const cv::Mat& depth_m, double near_m, double far_m) {
@@ -302,152 +281,202 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
   std::vector<std::pair<int, srp::rawlog::RgbdFrame>> sheet;
 
   // ---- Frames -------------------------------------------------------------------
+  // Two stages on two threads: this thread renders (the EGL context lives here),
+  // the sensor thread computes masks, ground truth and sensor realism and hands
+  // the frame to the rawlog writer, whose own threads compress and append.
   SynthDemoResult result;
   result.rawlogPath = rawlogPath;
   // With realism on, depth is already quantised to depthStep_m: storing it finer adds only size.
   const double depthUnit_m = options.sensor.enabled ? std::max(options.rawlogDepthUnit_m, options.sensor.depthStep_m)
                                                     : options.rawlogDepthUnit_m;
-  AsyncRawlogWriter writer(rawlogPath, depthUnit_m);
+  const int encoderThreads = options.rawlogEncoderThreads >= 0
+                                 ? options.rawlogEncoderThreads
+                                 : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  srp::rawlog::RawlogWriter writer(rawlogPath, depthUnit_m, options.rawlogCompressionLevel, encoderThreads);
+  const double cpuLoopStart_s = processCpuTime_s();
   SensorModel sensor(options.sensor, options.demo.seed);
   const srp::core::Pose3 X_camera_world = world.X_world_camera.inverse();
-  cv::Mat previousColour;
   double handValidSum = 0.0, objectValidSum = 0.0;
   int handValidFrames = 0, objectValidFrames = 0;
   const double dt = 1.0 / world.fps;
-  for (int k = 0; k < frameCount; ++k) {
-    const FrameState& f = timeline.frames[k];
-    const FrameState& prev = timeline.frames[std::max(k - 1, 0)];
-    auto t0 = Clock::now();
-    const auto partPoses = hand.partPoses(f.grip);
+
+  struct Rendered {
+    int k;
     srp::rawlog::RgbdFrame frame;
-    if (!layered) {
-      for (std::size_t i = 0; i < world.objects.size(); ++i)
-        background.renderer->setBodyPose(background.objectBodies[i], f.X_world_objects[i]);
-      for (std::size_t i = 0; i < background.handBodies.size(); ++i)
-        background.renderer->setBodyPose(background.handBodies[i], f.X_world_hand * partPoses[i]);
-      frame = background.renderer->render(world.X_world_camera);
-    } else {
-      // Objects in motion (carried, or moved since the last frame) go to the moving layer.
-      std::vector<int> state(world.objects.size());
-      bool anyMoving = false;
-      for (std::size_t i = 0; i < world.objects.size(); ++i) {
-        const bool isMoving = static_cast<int>(i) == f.carriedObject ||
-                              !f.X_world_objects[i].matrix().isApprox(prev.X_world_objects[i].matrix(), 0.0);
-        state[i] = isMoving ? 0 : 1;
-        anyMoving = anyMoving || isMoving;
-      }
-      bool backgroundChanged = state != backgroundState;
-      for (std::size_t i = 0; i < world.objects.size() && !backgroundChanged; ++i)
-        backgroundChanged = state[i] && !f.X_world_objects[i].matrix().isApprox(backgroundPoses[i].matrix(), 0.0);
-      if (backgroundChanged) {
+    std::vector<srp::core::Pose3> partPoses;
+  };
+  FrameQueue<Rendered> rendered(3);
+  std::exception_ptr sensorError;
+  std::thread sensorThread([&] {
+    try {
+      cv::Mat previousColour;
+      while (auto item = rendered.pop()) {
+        const int k = item->k;
+        const FrameState& f = timeline.frames[k];
+        const FrameState& prev = timeline.frames[std::max(k - 1, 0)];
+        const auto& partPoses = item->partPoses;
+        srp::rawlog::RgbdFrame& frame = item->frame;
+        const double cpu0 = threadCpuTime_s();
+        auto t0 = Clock::now();
+        frame.index = k;
+        frame.t_s = kRawlogEpoch_s + f.t_s;
+        cv::Mat handMask(K.height_px, K.width_px, CV_8UC1, cv::Scalar(0));
+        cv::Mat partMask(K.height_px, K.width_px, CV_8UC1, cv::Scalar(0));
+        cv::Mat movingMask(K.height_px, K.width_px, CV_8UC1, cv::Scalar(0));
+        for (std::size_t i = 0; i < hand.parts().size(); ++i)
+          markBox(hand.parts()[i].bounds_part, X_camera_world * f.X_world_hand * partPoses[i], K, frame.depth_m, handMask);
+        double movingSpeed = 0.0;
         for (std::size_t i = 0; i < world.objects.size(); ++i) {
-          background.renderer->setBodyVisible(background.objectBodies[i], state[i] == 1);
+          if (!isPart[i]) continue;
+          const double speed = (f.X_world_objects[i].translation() - prev.X_world_objects[i].translation()).norm() / dt;
+          markBox(objectBounds[i], X_camera_world * f.X_world_objects[i], K, frame.depth_m, speed > 0.0 ? movingMask : partMask);
+          movingSpeed = std::max(movingSpeed, speed);
+        }
+        partMask.setTo(0, handMask);
+        movingMask.setTo(0, handMask);
+        // Tag visibility from the clean rendered depth (before the sensor model punches holes).
+        const srp::core::Pose3 X_camera_tag = X_camera_world * f.X_world_hand * hand.X_hand_tag();
+        const double tagVisible = tagVisibleFraction(X_camera_tag, hand.tagPlateHalfSize_m() - kTagRim_m, K, frame.depth_m);
+        const double handSpeed = (f.X_world_hand.translation() - prev.X_world_hand.translation()).norm() / dt;
+        const cv::Mat cleanColour = options.sensor.motionBlur ? frame.colour_bgr8.clone() : cv::Mat();
+        sensor.apply(frame, handMask, handSpeed, partMask, movingMask, movingSpeed, previousColour);
+        previousColour = cleanColour;
+
+        GroundTruthFrame g;
+        g.index = k;
+        g.t_s = f.t_s;
+        g.phase = f.phase;
+        g.step = f.step;
+        g.grip = f.grip;
+        g.handPixels = cv::countNonZero(handMask);
+        g.handInView = g.handPixels > 0;
+        g.X_world_hand = f.X_world_hand;
+        g.p_camera_palm_m = X_camera_world * f.X_world_hand.translation();
+        g.X_camera_tag = X_camera_tag;
+        const auto corners = hand.tagCorners_tag();
+        for (int c = 0; c < 4; ++c) {
+          const auto uv = K.project(g.X_camera_tag * corners[c]);
+          g.tagCorners_px[c] = uv ? *uv : Eigen::Vector2d(-1, -1);
+        }
+        // "In view" = a detector could read it: the whole plate (black square and
+        // white margin) is in the image, seen at most kMaxTagViewAngle_rad off its
+        // normal, and nothing hides any of its pixels.
+        const double cosView = X_camera_tag.linear().col(2).dot(X_camera_tag.translation().normalized());
+        g.tagVisibleFraction = tagVisible;
+        g.tagInView = tagVisible >= 1.0 && cosView >= std::cos(kMaxTagViewAngle_rad);
+        if (f.carriedObject >= 0) g.carriedObject = world.objects[f.carriedObject].id;
+        for (std::size_t i = 0; i < world.objects.size(); ++i) g.X_world_objects[world.objects[i].id] = f.X_world_objects[i];
+        auto validFraction = [&](const cv::Mat& mask) -> std::optional<double> {
+          const int n = cv::countNonZero(mask);
+          if (n == 0) return std::nullopt;
+          cv::Mat valid = (frame.depth_m > 0.f) & mask;
+          return static_cast<double>(cv::countNonZero(valid)) / n;
+        };
+        g.handValidDepthFraction = validFraction(handMask);
+        g.objectsValidDepthFraction = validFraction(partMask | movingMask);
+        if (g.handValidDepthFraction && g.handPixels > 200) {
+          handValidSum += *g.handValidDepthFraction;
+          ++handValidFrames;
+        }
+        if (g.objectsValidDepthFraction) {
+          objectValidSum += *g.objectsValidDepthFraction;
+          ++objectValidFrames;
+        }
+        gt.frames.push_back(std::move(g));
+        result.sensorTime_s += secondsSince(t0);
+        result.sensorCpuTime_s += threadCpuTime_s() - cpu0;
+
+        if (std::find(sheetFrames.begin(), sheetFrames.end(), k) != sheetFrames.end()) sheet.emplace_back(k, frame);
+        t0 = Clock::now();
+        writer.write(std::move(frame));
+        result.writeTime_s += secondsSince(t0);
+      }
+    } catch (...) {
+      sensorError = std::current_exception();
+      rendered.stop();
+    }
+  });
+
+  try {
+    for (int k = 0; k < frameCount; ++k) {
+      const FrameState& f = timeline.frames[k];
+      const FrameState& prev = timeline.frames[std::max(k - 1, 0)];
+      auto t0 = Clock::now();
+      auto partPoses = hand.partPoses(f.grip);
+      srp::rawlog::RgbdFrame frame;
+      if (!layered) {
+        for (std::size_t i = 0; i < world.objects.size(); ++i)
           background.renderer->setBodyPose(background.objectBodies[i], f.X_world_objects[i]);
-        }
-        backgroundFrame = background.renderer->render(world.X_world_camera);
-        backgroundState = state;
-        backgroundPoses = f.X_world_objects;
-      }
-      frame.intrinsics = K;
-      frame.colour_bgr8 = backgroundFrame.colour_bgr8.clone();
-      frame.depth_m = backgroundFrame.depth_m.clone();
-      // The hand is out of view while idle (the timeline guarantees it): nothing moves then.
-      if (f.phase != "idle" || anyMoving) {
+        for (std::size_t i = 0; i < background.handBodies.size(); ++i)
+          background.renderer->setBodyPose(background.handBodies[i], f.X_world_hand * partPoses[i]);
+        frame = background.renderer->render(world.X_world_camera);
+      } else {
+        // Objects in motion (carried, or moved since the last frame) go to the moving layer.
+        std::vector<int> state(world.objects.size());
+        bool anyMoving = false;
         for (std::size_t i = 0; i < world.objects.size(); ++i) {
-          moving.renderer->setBodyVisible(moving.objectBodies[i], state[i] == 0);
-          moving.renderer->setBodyPose(moving.objectBodies[i], f.X_world_objects[i]);
+          const bool isMoving = static_cast<int>(i) == f.carriedObject ||
+                                !f.X_world_objects[i].matrix().isApprox(prev.X_world_objects[i].matrix(), 0.0);
+          state[i] = isMoving ? 0 : 1;
+          anyMoving = anyMoving || isMoving;
         }
-        for (std::size_t i = 0; i < moving.handBodies.size(); ++i)
-          moving.renderer->setBodyPose(moving.handBodies[i], f.X_world_hand * partPoses[i]);
-        const auto front = moving.renderer->render(world.X_world_camera);
-        for (int r = 0; r < K.height_px; ++r) {
-          const float* dFront = front.depth_m.ptr<float>(r);
-          const cv::Vec3b* cFront = front.colour_bgr8.ptr<cv::Vec3b>(r);
-          float* d = frame.depth_m.ptr<float>(r);
-          cv::Vec3b* c = frame.colour_bgr8.ptr<cv::Vec3b>(r);
-          for (int col = 0; col < K.width_px; ++col)
-            if (dFront[col] > 0.f && (d[col] <= 0.f || dFront[col] < d[col])) {
-              d[col] = dFront[col];
-              c[col] = cFront[col];
-            }
+        bool backgroundChanged = state != backgroundState;
+        for (std::size_t i = 0; i < world.objects.size() && !backgroundChanged; ++i)
+          backgroundChanged = state[i] && !f.X_world_objects[i].matrix().isApprox(backgroundPoses[i].matrix(), 0.0);
+        if (backgroundChanged) {
+          for (std::size_t i = 0; i < world.objects.size(); ++i) {
+            background.renderer->setBodyVisible(background.objectBodies[i], state[i] == 1);
+            background.renderer->setBodyPose(background.objectBodies[i], f.X_world_objects[i]);
+          }
+          backgroundFrame = background.renderer->render(world.X_world_camera);
+          backgroundState = state;
+          backgroundPoses = f.X_world_objects;
+        }
+        frame.intrinsics = K;
+        frame.colour_bgr8 = backgroundFrame.colour_bgr8.clone();
+        frame.depth_m = backgroundFrame.depth_m.clone();
+        // The hand is out of view while idle (the timeline guarantees it): nothing moves then.
+        if (f.phase != "idle" || anyMoving) {
+          for (std::size_t i = 0; i < world.objects.size(); ++i) {
+            moving.renderer->setBodyVisible(moving.objectBodies[i], state[i] == 0);
+            moving.renderer->setBodyPose(moving.objectBodies[i], f.X_world_objects[i]);
+          }
+          for (std::size_t i = 0; i < moving.handBodies.size(); ++i)
+            moving.renderer->setBodyPose(moving.handBodies[i], f.X_world_hand * partPoses[i]);
+          const auto front = moving.renderer->render(world.X_world_camera);
+          for (int r = 0; r < K.height_px; ++r) {
+            const float* dFront = front.depth_m.ptr<float>(r);
+            const cv::Vec3b* cFront = front.colour_bgr8.ptr<cv::Vec3b>(r);
+            float* d = frame.depth_m.ptr<float>(r);
+            cv::Vec3b* c = frame.colour_bgr8.ptr<cv::Vec3b>(r);
+            for (int col = 0; col < K.width_px; ++col)
+              if (dFront[col] > 0.f && (d[col] <= 0.f || dFront[col] < d[col])) {
+                d[col] = dFront[col];
+                c[col] = cFront[col];
+              }
+          }
         }
       }
+      result.renderTime_s += secondsSince(t0);
+      if (!rendered.push({k, std::move(frame), std::move(partPoses)})) break;  // the sensor thread failed
+      if (progress) progress(k, frameCount);
     }
-    result.renderTime_s += secondsSince(t0);
-
-    t0 = Clock::now();
-    frame.index = k;
-    frame.t_s = kRawlogEpoch_s + f.t_s;
-    cv::Mat handMask(K.height_px, K.width_px, CV_8UC1, cv::Scalar(0));
-    cv::Mat partMask(K.height_px, K.width_px, CV_8UC1, cv::Scalar(0));
-    cv::Mat movingMask(K.height_px, K.width_px, CV_8UC1, cv::Scalar(0));
-    for (std::size_t i = 0; i < hand.parts().size(); ++i)
-      markBox(hand.parts()[i].bounds_part, X_camera_world * f.X_world_hand * partPoses[i], K, frame.depth_m, handMask);
-    double movingSpeed = 0.0;
-    for (std::size_t i = 0; i < world.objects.size(); ++i) {
-      if (!isPart[i]) continue;
-      const double speed = (f.X_world_objects[i].translation() - prev.X_world_objects[i].translation()).norm() / dt;
-      markBox(objectBounds[i], X_camera_world * f.X_world_objects[i], K, frame.depth_m, speed > 0.0 ? movingMask : partMask);
-      movingSpeed = std::max(movingSpeed, speed);
-    }
-    partMask.setTo(0, handMask);
-    movingMask.setTo(0, handMask);
-    // Tag visibility from the clean rendered depth (before the sensor model punches holes).
-    const srp::core::Pose3 X_camera_tag = X_camera_world * f.X_world_hand * hand.X_hand_tag();
-    const double tagVisible = tagVisibleFraction(X_camera_tag, hand.tagPlateHalfSize_m() - kTagRim_m, K, frame.depth_m);
-    const double handSpeed = (f.X_world_hand.translation() - prev.X_world_hand.translation()).norm() / dt;
-    const cv::Mat cleanColour = options.sensor.motionBlur ? frame.colour_bgr8.clone() : cv::Mat();
-    sensor.apply(frame, handMask, handSpeed, partMask, movingMask, movingSpeed, previousColour);
-    previousColour = cleanColour;
-
-    GroundTruthFrame g;
-    g.index = k;
-    g.t_s = f.t_s;
-    g.phase = f.phase;
-    g.step = f.step;
-    g.grip = f.grip;
-    g.handPixels = cv::countNonZero(handMask);
-    g.handInView = g.handPixels > 0;
-    g.X_world_hand = f.X_world_hand;
-    g.p_camera_palm_m = X_camera_world * f.X_world_hand.translation();
-    g.X_camera_tag = X_camera_tag;
-    const auto corners = hand.tagCorners_tag();
-    for (int c = 0; c < 4; ++c) {
-      const auto uv = K.project(g.X_camera_tag * corners[c]);
-      g.tagCorners_px[c] = uv ? *uv : Eigen::Vector2d(-1, -1);
-    }
-    // "In view" = a detector could read it: the whole plate (black square and
-    // white margin) is in the image, seen at most kMaxTagViewAngle_rad off its
-    // normal, and nothing hides any of its pixels.
-    const double cosView = X_camera_tag.linear().col(2).dot(X_camera_tag.translation().normalized());
-    g.tagVisibleFraction = tagVisible;
-    g.tagInView = tagVisible >= 1.0 && cosView >= std::cos(kMaxTagViewAngle_rad);
-    if (f.carriedObject >= 0) g.carriedObject = world.objects[f.carriedObject].id;
-    for (std::size_t i = 0; i < world.objects.size(); ++i) g.X_world_objects[world.objects[i].id] = f.X_world_objects[i];
-    auto validFraction = [&](const cv::Mat& mask) -> std::optional<double> {
-      const int n = cv::countNonZero(mask);
-      if (n == 0) return std::nullopt;
-      cv::Mat valid = (frame.depth_m > 0.f) & mask;
-      return static_cast<double>(cv::countNonZero(valid)) / n;
-    };
-    g.handValidDepthFraction = validFraction(handMask);
-    g.objectsValidDepthFraction = validFraction(partMask | movingMask);
-    if (g.handValidDepthFraction && g.handPixels > 200) {
-      handValidSum += *g.handValidDepthFraction;
-      ++handValidFrames;
-    }
-    if (g.objectsValidDepthFraction) {
-      objectValidSum += *g.objectsValidDepthFraction;
-      ++objectValidFrames;
-    }
-    gt.frames.push_back(std::move(g));
-    result.sensorTime_s += secondsSince(t0);
-
-    if (std::find(sheetFrames.begin(), sheetFrames.end(), k) != sheetFrames.end()) sheet.emplace_back(k, frame);
-    writer.write(std::move(frame));
-    if (progress) progress(k, frameCount);
+  } catch (...) {
+    rendered.finish();
+    sensorThread.join();
+    throw;
   }
-  result.writeTime_s = writer.close();
+  rendered.finish();
+  sensorThread.join();
+  if (sensorError) std::rethrow_exception(sensorError);
+  const auto tClose = Clock::now();
+  writer.close();
+  result.writeTime_s += secondsSince(tClose);
+  result.writeCpuTime_s = writer.encodeCpuTime_s();
+  result.rawlogBytes = writer.bytesWritten();
+  result.processCpuTime_s = processCpuTime_s() - cpuLoopStart_s;
+  // The rest of the loop's CPU: the render thread and llvmpipe's rasteriser threads.
+  result.renderCpuTime_s = std::max(0.0, result.processCpuTime_s - result.sensorCpuTime_s - result.writeCpuTime_s);
   result.groundTruthPath = groundTruthPathFor(rawlogPath);
   gt.save(result.groundTruthPath);
   result.frameCount = frameCount;

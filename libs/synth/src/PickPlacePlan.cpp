@@ -1,5 +1,7 @@
 #include "srp/synth/PickPlacePlan.h"
 
+#include "srp/core/SpatialRelations.h"
+
 #include <algorithm>
 #include <map>
 
@@ -13,10 +15,6 @@ std::string optionalString(const nlohmann::json& j, const std::string& key) {
   if (!j.contains(key) || j.at(key).is_null()) return "";
   if (!j.at(key).is_string()) throw srp::core::InvalidInputError("field '" + key + "' must be a string or null");
   return j.at(key).get<std::string>();
-}
-
-bool isBesideRelation(const std::string& r) {
-  return r == "next to" || r == "beside" || r == "adjacent to" || r == "near" || r == "by" || r == "close to";
 }
 
 }  // namespace
@@ -99,7 +97,7 @@ std::vector<PickPlaceStep> groundPlan(const nlohmann::json& plan, const srp::cor
           groundPhrase(srp::core::requireField(r, "landmark", where + ": target"), where + ": target landmark", false);
       if (isContainer(id)) {
         step.targetId = id;
-      } else if (isBesideRelation(relation)) {
+      } else if (srp::core::isNeighbourRelation(relation)) {
         step.referenceId = id;
       } else {
         throw InvalidInputError(where + ": target: relation '" + relation + "' with '" + id +

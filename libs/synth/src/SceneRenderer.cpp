@@ -7,6 +7,7 @@
 #include <mrpt/poses/CPose3D.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <opencv2/imgproc.hpp>
 
 #include "srp/core/Error.h"
@@ -131,10 +132,8 @@ srp::rawlog::RgbdFrame SceneRenderer::render(const srp::core::Pose3& X_world_cam
   frame.colour_bgr8 = impl_->rgb.asCvMat<cv::Mat>(mrpt::img::DEEP_COPY);
   if (frame.colour_bgr8.channels() == 1) cv::cvtColor(frame.colour_bgr8, frame.colour_bgr8, cv::COLOR_GRAY2BGR);
   frame.depth_m.create(K_.height_px, K_.width_px, CV_32FC1);
-  for (int r = 0; r < K_.height_px; ++r) {
-    float* row = frame.depth_m.ptr<float>(r);
-    for (int c = 0; c < K_.width_px; ++c) row[c] = impl_->depth(r, c);
-  }
+  for (int r = 0; r < K_.height_px; ++r)  // CMatrixFloat is row-major
+    std::memcpy(frame.depth_m.ptr<float>(r), &impl_->depth(r, 0), sizeof(float) * K_.width_px);
   return frame;
 }
 

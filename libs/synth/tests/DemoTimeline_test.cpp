@@ -30,6 +30,18 @@ TEST(PickPlacePlan, DefaultPlanGroundsInstructionOne) {
   }
 }
 
+// Appendix A words every neighbour relation differently ("near", "alongside", ...).
+TEST(PickPlacePlan, EveryNeighbourWordingOfAppendixAPlacesBesideTheLandmark) {
+  Fixture f;
+  for (const char* relation : {"near", "alongside", "beside", "adjacent to"}) {
+    auto plan = srp::synth::defaultPlanJson();
+    plan["steps"][1]["target"][0]["relation"] = relation;
+    const auto steps = srp::synth::groundPlan(plan, f.scene, f.catalogue);
+    EXPECT_EQ(steps[1].referenceId, "cuboid") << relation;
+    EXPECT_EQ(steps[1].targetId, "gray box") << relation;
+  }
+}
+
 TEST(PickPlacePlan, ErrorsNameTheStepAndField) {
   Fixture f;
   auto plan = srp::synth::defaultPlanJson();

@@ -8,6 +8,8 @@
 /// task model (Products / SourceLocations / TargetLocations); see PlanConversion.h.
 
 #include <Eigen/Core>
+
+#include "srp/core/SpatialRelations.h"
 #include <optional>
 #include <string>
 #include <vector>
@@ -43,9 +45,8 @@ struct ExecutionPlan {
   std::vector<ExecutionStep> steps;
 };
 
-/// True for relations that mean "beside" (next to, beside, adjacent to, near, alongside, by).
-bool isNeighbourRelation(const std::string& relation);
-/// True for relations that mean "inside" (in, into, inside, on, onto, to, back to, at).
-bool isContainmentRelation(const std::string& relation);
+// The relation words, shared with the demo generator (srp/core/SpatialRelations.h).
+using srp::core::isContainmentRelation;
+using srp::core::isNeighbourRelation;
 
 }  // namespace srp::execution

@@ -7,6 +7,7 @@
 /// match a gold relation. Scores are micro-averaged per type over the corpus.
 
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,32 @@ struct CrossValidationResult {
 /// deterministic. Throws InvalidInputError when folds < 2 or > corpus size.
 CrossValidationResult crossValidate(const std::vector<AnnotatedSentence>& corpus,
                                     const LanguageTrainingOptions& options, int folds, int threads = 1);
+
+/// One entity that a prediction got wrong, on the gold side (a gold entity not
+/// predicted) or the predicted side (a prediction not in gold).
+struct EntityError {
+  /// "missed" / "spurious": nothing of the same type overlaps it on the other side;
+  /// "boundary": an entity of the same type overlaps it with another span;
+  /// "type": the other side has the same span with another type (listed once, gold side);
+  /// "overlap": only entities of other types overlap it.
+  std::string kind;
+  int sentence = 0;  ///< index in the corpus
+  bool goldSide = true;
+  EntitySpan entity;      ///< the gold entity (goldSide) or the predicted one
+  std::string otherType;  ///< for "type": the predicted type
+};
+
+/// Every entity error of `predicted` against `gold` (same length, same tokens),
+/// in sentence order; throws InvalidInputError when the corpora do not line up.
+std::vector<EntityError> entityErrors(const std::vector<AnnotatedSentence>& gold,
+                                      const std::vector<AnnotatedSentence>& predicted);
+
+/// A readable error dump for the entity types `types` (all when empty): counts
+/// per type and kind, then each sentence with an error, gold and predicted
+/// spans bracketed ("[on top of]SpatialIndicator"), and its errors.
+std::string formatEntityErrors(const std::vector<AnnotatedSentence>& gold,
+                               const std::vector<AnnotatedSentence>& predicted,
+                               const std::set<std::string>& types = {});
 
 /// The `srp eval-language --json` form: {"types": {"Action": {"precision", "recall",
 /// "f1", "support"}, ...}, "ms_per_sentence": x}.

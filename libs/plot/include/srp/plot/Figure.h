@@ -1,7 +1,7 @@
 #pragma once
 /// \file Figure.h
 /// \brief Small 2D charts written as PNG (line, scatter, vertical markers,
-/// legends, subplot grids), drawn with OpenCV, for reports, experiments and
+/// shaded bands, legends, subplot grids), drawn with OpenCV, for reports, experiments and
 /// notebooks. No display needed.
 ///
 /// \code
@@ -56,15 +56,24 @@ class Axes {
                   std::optional<Color> color = std::nullopt, Marker marker = Marker::Circle, double size_px = 4.0);
   void verticalLine(double x, std::string label = "", std::optional<Color> color = std::nullopt, bool dashed = true);
   void horizontalLine(double y, std::string label = "", std::optional<Color> color = std::nullopt, bool dashed = true);
+  /// A shaded vertical band over x in [x0, x1] (a phase, an interval), drawn
+  /// under the data and blended with the background at `opacity` (0-1); a
+  /// labelled band gets a filled square in the legend. Throws
+  /// InvalidInputError when x0 > x1, a bound is not finite or opacity is outside [0, 1].
+  void band(double x0, double x1, std::string label = "", std::optional<Color> color = std::nullopt,
+            double opacity = 0.2);
 
   const std::vector<Series>& series() const { return series_; }
   struct RefLine { bool vertical; double value; std::string label; Color color; bool dashed; };
   const std::vector<RefLine>& refLines() const { return refLines_; }
+  struct Band { double x0, x1; std::string label; Color color; double opacity; };
+  const std::vector<Band>& bands() const { return bands_; }
 
  private:
   Color nextColor() { return Color::tab(static_cast<int>(series_.size())); }
   std::vector<Series> series_;
   std::vector<RefLine> refLines_;
+  std::vector<Band> bands_;
 };
 
 /// A grid of Axes rendered to one image.

@@ -69,6 +69,7 @@ struct ProgramResult {
   int handDetectedFrames = 0;
   std::size_t skillCount = 0;
   std::vector<StageTiming> timings;
+  double peakResidentMemory_MB = 0.0;  ///< the process' peak resident set size when the pipeline ended
   std::vector<std::string> warnings;
   std::vector<std::string> reportFiles;
 };

@@ -3,6 +3,7 @@
 /// \brief `srp synth-demo`: a scene and an instruction's plan in, a synthetic
 /// RGB-D demonstration (MRPT rawlog) and its ground truth out.
 
+#include <cstdint>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -24,6 +25,8 @@ struct SynthDemoOptions {
   int width_px = 0;   ///< 0: the scene camera's; otherwise the intrinsics are scaled
   int height_px = 0;
   double rawlogDepthUnit_m = 1e-4;   ///< depth step stored in the rawlog
+  int rawlogCompressionLevel = 1;    ///< libdeflate level 0..12 (RawlogWriter)
+  int rawlogEncoderThreads = -1;     ///< threads compressing frames; -1: one per core
   int maxFrames = -1;                ///< stop after this many frames (tests); -1: all
   /// Render the table and resting objects once and only the moving bodies per
   /// frame, composed by depth (same images, several times faster in software).
@@ -32,15 +35,23 @@ struct SynthDemoOptions {
   int contactSheetFrames = 6;
 };
 
-/// What a generation produced, with timing.
+/// What a generation produced, with timing. Wall times [s] of the stages
+/// overlap (they run on different threads); CPU times [s] add up to the
+/// process's CPU time less set-up and ground-truth saving, and do not depend
+/// on how busy the machine is.
 struct SynthDemoResult {
   std::string rawlogPath, groundTruthPath, contactSheetPath;
   int frameCount = 0;
   double duration_s = 0.0;
-  double renderTime_s = 0.0;   ///< rendering (MRPT/EGL)
-  double sensorTime_s = 0.0;   ///< masks and sensor realism
-  double writeTime_s = 0.0;    ///< rawlog serialisation and compression (on a background thread, overlapping)
-  double totalTime_s = 0.0;
+  std::uint64_t rawlogBytes = 0;
+  double renderTime_s = 0.0;   ///< wall: rendering and composing (MRPT/EGL)
+  double sensorTime_s = 0.0;   ///< wall: masks, ground truth, sensor realism
+  double writeTime_s = 0.0;    ///< wall: waiting for the rawlog writer (queue full, final drain)
+  double totalTime_s = 0.0;    ///< wall: the whole call
+  double renderCpuTime_s = 0.0;  ///< CPU: render thread while rendering + llvmpipe's rasteriser threads
+  double sensorCpuTime_s = 0.0;  ///< CPU: masks, ground truth, sensor realism
+  double writeCpuTime_s = 0.0;   ///< CPU: rawlog conversion, serialisation, compression (encoder threads)
+  double processCpuTime_s = 0.0; ///< CPU: the whole process during the call (all threads)
   double meanHandValidDepth = -1.0;    ///< over frames with a visible hand
   double meanObjectValidDepth = -1.0;  ///< over frames with visible parts
 };

@@ -1,8 +1,9 @@
-#include "srp/execution/ExecutionPlan.h"
+#include "srp/core/SpatialRelations.h"
 
 #include <algorithm>
+#include <iterator>
 
-namespace srp::execution {
+namespace srp::core {
 
 bool isNeighbourRelation(const std::string& r) {
   static const char* kWords[] = {"next to", "beside", "adjacent to", "adjacent", "near", "alongside",
@@ -15,4 +16,4 @@ bool isContainmentRelation(const std::string& r) {
   return std::any_of(std::begin(kWords), std::end(kWords), [&](const char* w) { return r == w; });
 }
 
-}  // namespace srp::execution
+}  // namespace srp::core

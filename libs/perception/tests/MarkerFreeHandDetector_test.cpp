@@ -1,0 +1,224 @@
+// MarkerFreeHandDetector: unit tests on drawn frames (a sleeved arm of boxes
+// to scale, seen from above), then issue 5's figures on a rendered synthetic
+// demo with ground truth (srp::synth, default scene, thesis instruction 1,
+// default sensor noise): the first frames, through the first grasp and lift.
+// No tag is used: the detector never decodes one.
+//
+// SRP_HAND_DEMO=<demo.rawlog> evaluates that demo instead (e.g. the whole
+// `srp synth-demo` output, its .gt.json next to it; rendered whole first when
+// missing, with seed SRP_HAND_SEED or the scene's); SRP_HAND_DEBUG_DIR=<dir>
+// writes every hand frame with the found geometry and a CSV of the palm's
+// offset from the found wrist.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <random>
+
+#include "HandEvaluation.h"
+#include "srp/core/Error.h"
+#include "srp/core/Scene.h"
+#include "srp/synth/PickPlacePlan.h"
+
+namespace srp::perception {
+namespace {
+
+// ---- drawn frames -------------------------------------------------------
+// 640x480, fx = fy = 600 px, table 0.85 m away; the hand's back 0.75 m away
+// (800 px per metre), the sleeve 1 cm higher. Lengths along the arm from the
+// palm centre [m], as a real forearm and hand (and srp::synth's HandModel).
+constexpr double kTable_m = 0.85, kHandTop_m = 0.75, kSleeveTop_m = 0.74;
+const cv::Scalar kTableBgr(181, 212, 230), kSkinBgr(160, 195, 252), kSleeveBgr(107, 69, 56);
+
+struct ArmPose {
+  Eigen::Vector2d palm_px;  ///< palm centre pixel
+  double angle_rad;         ///< arm axis (towards the fingers) from the image's +x
+  double fingerLength_m;    ///< 0.08 relaxed, ~0.03 closed round an object
+};
+
+core::CameraIntrinsics camera() { return {600.0, 600.0, 319.5, 239.5, 640, 480}; }
+
+/// Fills the box [along0, along1] x [-halfWidth, halfWidth] (metres, arm frame) in both images.
+void drawBox(rawlog::RgbdFrame& f, const ArmPose& a, double along0, double along1, double halfWidth, double across,
+             const cv::Scalar& bgr, double depth_m) {
+  const double s = camera().fx_px / kHandTop_m;
+  const Eigen::Vector2d x(std::cos(a.angle_rad), std::sin(a.angle_rad)), y(-x.y(), x.x());
+  std::vector<cv::Point> poly;
+  for (const auto& [l, w] : {std::pair{along0, -halfWidth}, {along1, -halfWidth}, {along1, halfWidth}, {along0, halfWidth}}) {
+    const Eigen::Vector2d p = a.palm_px + s * (l * x + (w + across) * y);
+    poly.emplace_back(static_cast<int>(std::lround(p.x())), static_cast<int>(std::lround(p.y())));
+  }
+  cv::fillConvexPoly(f.colour_bgr8, poly, bgr);
+  cv::fillConvexPoly(f.depth_m, poly, cv::Scalar(depth_m));
+}
+
+rawlog::RgbdFrame drawnFrame(int index, const std::optional<ArmPose>& arm) {
+  rawlog::RgbdFrame f;
+  f.index = index;
+  f.t_s = index / 30.0;
+  f.intrinsics = camera();
+  f.colour_bgr8 = cv::Mat(480, 640, CV_8UC3, kTableBgr);
+  f.depth_m = cv::Mat(480, 640, CV_32FC1, cv::Scalar(kTable_m));
+  if (!arm) return f;
+  // The sleeve, its cuff where the detector expects it from the palm centre.
+  const double cuff_m = -MarkerFreeHandDetector::Options{}.palmFromWrist_m;
+  drawBox(f, *arm, -0.60, cuff_m, 0.038, 0.0, kSleeveBgr, kSleeveTop_m);
+  drawBox(f, *arm, cuff_m, -0.045, 0.031, 0.0, kSkinBgr, kHandTop_m);     // wrist
+  drawBox(f, *arm, -0.045, 0.045, 0.042, 0.0, kSkinBgr, kHandTop_m);      // palm
+  for (const double across : {-0.030, -0.010, 0.010, 0.030})             // fingers
+    drawBox(f, *arm, 0.045, 0.045 + arm->fingerLength_m, 0.008, across, kSkinBgr, kHandTop_m);
+  drawBox(f, *arm, -0.02, 0.03, 0.01, 0.05, kSkinBgr, kHandTop_m);         // thumb
+  return f;
+}
+
+Eigen::Vector3d palmPoint(const ArmPose& a) {
+  const double z = kHandTop_m + MarkerFreeHandDetector::Options{}.palmDepth_m;
+  const auto k = camera();
+  return {(a.palm_px.x() - k.cx_px) * z / k.fx_px, (a.palm_px.y() - k.cy_px) * z / k.fy_px, z};
+}
+
+constexpr int kBackgroundFrames = 10;
+constexpr double kPalmPixelTol_px = 4.0;   // 5 mm at 0.75 m
+constexpr double kPalmTol_m = 0.005;
+
+TEST(MarkerFreeHandDetector, PalmFromTheCuffWhateverTheFingersDo) {
+  MarkerFreeHandDetector detector({});
+  for (int i = 0; i < kBackgroundFrames; ++i) EXPECT_FALSE(detector.detect(drawnFrame(i, std::nullopt))) << i;
+  // The arm from the top border, turning; the fingers closing from relaxed to round an object.
+  for (int i = 0; i < 8; ++i) {
+    const ArmPose arm{{300.0 + 10 * i, 250.0 + 5 * i}, (70.0 + 5.0 * i) * M_PI / 180, 0.08 - 0.007 * i};
+    const auto h = detector.detect(drawnFrame(kBackgroundFrames + i, arm));
+    ASSERT_TRUE(h.has_value()) << "frame " << i;
+    EXPECT_TRUE(detector.lastGeometry().haveWrist) << "frame " << i;
+    EXPECT_LT((h->palm_px - arm.palm_px).norm(), kPalmPixelTol_px) << "frame " << i;
+    ASSERT_TRUE(h->hasDepth);
+    EXPECT_LT((h->p_camera_palm_m - palmPoint(arm)).norm(), kPalmTol_m) << "frame " << i;
+  }
+  // The hand gone again: nothing reported.
+  EXPECT_FALSE(detector.detect(drawnFrame(30, std::nullopt)).has_value());
+}
+
+TEST(MarkerFreeHandDetector, DepthHolesOnTheHand) {
+  MarkerFreeHandDetector detector({});
+  for (int i = 0; i < kBackgroundFrames; ++i) detector.detect(drawnFrame(i, std::nullopt));
+  const ArmPose arm{{330.0, 260.0}, 100.0 * M_PI / 180, 0.08};
+  // A moving hand on a ToF camera: blobs of missing depth over 60 % of the arm.
+  auto f = drawnFrame(kBackgroundFrames, arm);
+  const cv::Mat arm0 = f.depth_m < kTable_m - 0.05;
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> u(0, 639), v(0, 479);
+  for (int n = 0; n < 3000; ++n) {
+    const cv::Point c(u(rng), v(rng));
+    if (arm0.at<uchar>(c)) cv::circle(f.depth_m, c, 12, cv::Scalar(0.0), cv::FILLED);
+  }
+  const cv::Mat armHoles = arm0 & (f.depth_m == 0.0);
+  ASSERT_GT(2 * cv::countNonZero(armHoles), cv::countNonZero(arm0)) << "the test should leave < 50 % valid arm depth";
+  auto h = detector.detect(f);
+  ASSERT_TRUE(h.has_value());
+  EXPECT_LT((h->palm_px - arm.palm_px).norm(), kPalmPixelTol_px);
+  ASSERT_TRUE(h->hasDepth);
+  EXPECT_LT((h->p_camera_palm_m - palmPoint(arm)).norm(), kPalmTol_m);
+  // No depth at all on the arm: the pixel still (scale from the last depth), no depth.
+  f = drawnFrame(kBackgroundFrames + 1, arm);
+  f.depth_m.setTo(0.0, f.depth_m < kTable_m - 0.05);
+  h = detector.detect(f);
+  ASSERT_TRUE(h.has_value());
+  EXPECT_FALSE(h->hasDepth);
+  EXPECT_LT((h->palm_px - arm.palm_px).norm(), kPalmPixelTol_px);
+}
+
+TEST(MarkerFreeHandDetector, EnteringHandFromItsFingertips) {
+  MarkerFreeHandDetector detector({});
+  for (int i = 0; i < kBackgroundFrames; ++i) detector.detect(drawnFrame(i, std::nullopt));
+  // The wrist still outside the image (skin on the border): no cuff, the palm
+  // is found back from the fingertips (relaxed fingers).
+  const ArmPose arm{{320.0, 40.0}, 90.0 * M_PI / 180, 0.08};
+  const auto h = detector.detect(drawnFrame(kBackgroundFrames, arm));
+  ASSERT_TRUE(h.has_value());
+  EXPECT_FALSE(detector.lastGeometry().haveWrist);
+  constexpr double kFromFingertipsTol_px = 12.0;  // 15 mm: the relaxed fingers' length is a guess
+  EXPECT_LT((h->palm_px - arm.palm_px).norm(), kFromFingertipsTol_px);
+}
+
+TEST(MarkerFreeHandDetector, RejectsBadOptions) {
+  MarkerFreeHandDetector::Options o;
+  o.backgroundFrames = 0;
+  EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
+  o = {};
+  o.palmFromWrist_m = 0.0;
+  EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
+}
+
+// ---- rendered synthetic demo ---------------------------------------------
+
+// The first 150 frames: 1.5 s without the hand, the reach to the cuboid, the
+// grasp (fingers closing) and the lift with the part in the hand.
+constexpr int kFrames = 150;
+
+/// Renders the default scene's demo of instruction 1 (`frames` < 0: whole).
+void renderDemo(const std::string& rawlogPath, int frames, std::optional<std::uint32_t> seed) {
+  const auto scene = core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
+  const auto catalogue = core::ObjectCatalogue::load(scene.cataloguePath);
+  synth::SynthDemoOptions o;
+  o.demo.seed = seed.value_or(static_cast<std::uint32_t>(scene.seed));
+  o.maxFrames = frames;
+  synth::generateSyntheticDemo(scene, catalogue, synth::defaultPlanJson(), o, rawlogPath);
+}
+
+/// The demo to evaluate: SRP_HAND_DEMO (rendered whole first when missing,
+/// with seed SRP_HAND_SEED or the scene's), else the first kFrames frames.
+std::string demoToEvaluate() {
+  if (const char* path = std::getenv("SRP_HAND_DEMO")) {
+    if (!std::filesystem::exists(path)) {
+      const char* seed = std::getenv("SRP_HAND_SEED");
+      renderDemo(path, -1, seed ? std::optional<std::uint32_t>(std::stoul(seed)) : std::nullopt);
+    }
+    return path;
+  }
+  const std::string path = (std::filesystem::path(SRP_BINARY_DIR) / "perception_marker_free_hand.rawlog").string();
+  renderDemo(path, kFrames, std::nullopt);
+  return path;
+}
+
+TEST(MarkerFreeHandDetector, PalmCentreOnARenderedDemo) {
+  const std::string demo = demoToEvaluate();
+  std::string debugDir;
+  std::FILE* csv = nullptr;
+  if (const char* dir = std::getenv("SRP_HAND_DEBUG_DIR")) {
+    std::filesystem::create_directories(debugDir = dir);
+    csv = std::fopen((debugDir + "/geometry.csv").c_str(), "w");
+    std::fprintf(csv, "frame,phase,grip,error_mm,have_wrist,along_err_mm,across_err_mm,z_err_mm,wrist_z_mm,x_mm,y_mm,z_mm,wrist_u\n");
+  }
+  const auto ev = testing::evaluateMarkerFreeHand(
+      demo, {},
+      [&](const rawlog::RgbdFrame& f, const MarkerFreeHandDetector& d, const synth::GroundTruthFrame& truth,
+          const std::optional<Eigen::Vector3d>& p_m) {
+        if (debugDir.empty() || !p_m || !truth.handInView) return;
+        const double e = (*p_m - truth.p_camera_palm_m).norm();
+        // The error along and across the found axis and in depth [mm].
+        const auto& g = d.lastGeometry();
+        const Eigen::Vector3d de = *p_m - truth.p_camera_palm_m;
+        std::fprintf(csv, "%d,%s,%.2f,%.1f,%d,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f\n", truth.index, truth.phase.c_str(),
+                     truth.grip, 1e3 * e, g.haveWrist, 1e3 * de.head<2>().dot(g.axis),
+                     1e3 * (g.axis.x() * de.y() - g.axis.y() * de.x()), 1e3 * de.z(), 0.0,
+                     1e3 * truth.p_camera_palm_m.x(), 1e3 * truth.p_camera_palm_m.y(), 1e3 * truth.p_camera_palm_m.z(),
+                     g.wrist_px.x());
+        char name[80];
+        std::snprintf(name, sizeof name, "/hand_%04d_%s_%03.0fmm.png", truth.index, truth.phase.c_str(), 1e3 * e);
+        testing::drawHandGeometry(f, d, truth, debugDir + name);
+      });
+  if (csv) std::fclose(csv);
+  ev.print(demo);
+  ASSERT_GT(ev.handInView, 0);
+  constexpr double kRate = 0.95;               // issue 5: detected in >= 95 % of the frames with the hand in view
+  constexpr double kMedianTol_m = 0.015;       // issue 5: median palm error
+  constexpr double kP95Tol_m = 0.040;          // not in the issue: guards the tail against regressions
+  EXPECT_GE(ev.rate(), kRate);
+  EXPECT_LE(ev.median_m(), kMedianTol_m);
+  EXPECT_LE(ev.p95_m(), kP95Tol_m);
+  EXPECT_EQ(ev.handWithoutHand, 0) << "a hand reported in frames without a hand";
+}
+
+}  // namespace
+}  // namespace srp::perception

@@ -143,7 +143,34 @@ std::vector<ObjectDetection> ObjectTracker::update(const rawlog::RgbdFrame& fram
   }
   answers_ = std::move(next);
 
+  // A moving part far from where it was, with no grasp since: not believed yet.
+  for (const auto& [name, X] : lastPose_) {
+    if (options_.staticClasses.count(name)) continue;
+    const Eigen::Vector2d at_px = camera.cameraToPixel(X.translation());
+    const double visit_px = camera.intrinsics().fx_px * options_.handVisit_m / std::max(X.translation().z(), 0.1);
+    for (const Eigen::Vector2d& h : hand_px)
+      if ((h - at_px).norm() <= visit_px) handVisited_[name] = true;
+  }
+  out.erase(std::remove_if(out.begin(), out.end(),
+                           [&](const ObjectDetection& d) {
+                             if (options_.staticClasses.count(d.className)) return false;
+                             const auto last = lastPose_.find(d.className);
+                             if (last == lastPose_.end() || handVisited_[d.className]) return false;
+                             if (core::translationDistance(d.X_camera_object, last->second) <= options_.maxUnheldJump_m) {
+                               pendingJumps_.erase(d.className);
+                               return false;
+                             }
+                             auto& jump = pendingJumps_[d.className];
+                             const bool same = jump.frames > 0 && core::translationDistance(d.X_camera_object, jump.X_camera_object) <= options_.maxUnheldJump_m;
+                             jump.frames = same ? jump.frames + 1 : 1;
+                             jump.X_camera_object = d.X_camera_object;
+                             return jump.frames < options_.jumpConfirmFrames;
+                           }),
+            out.end());
+
   for (const ObjectDetection& d : out) {
+    handVisited_[d.className] = false;
+    pendingJumps_.erase(d.className);
     lastPose_[d.className] = d.X_camera_object;
     if (!options_.staticClasses.count(d.className) || fixed_.count(d.className)) continue;
     auto& seen = staticDetections_[d.className];

@@ -45,6 +45,14 @@ class ObjectTracker {
     double samePixels = 0.06;             ///< ... and pixel counts within this fraction
     double noObjectSlack = 3.0;           ///< tolerances x this for a segment that was no object
     double handRadius_px = 6.0;           ///< a segment this close to a hand point is the hand
+    /// A part moves only in the hand: a moving class reported farther than
+    /// this from its last pose is believed only when a hand point has come
+    /// within handVisit_m of that pose since (a grasp), or when the new pose
+    /// holds for jumpConfirmFrames frames (a hand the detector missed). Keeps
+    /// a reaching hand's fingers from being taken for the part it reaches for.
+    double maxUnheldJump_m = 0.02;
+    double handVisit_m = 0.03;
+    int jumpConfirmFrames = 15;
   };
 
   /// `detector` must outlive the tracker.
@@ -88,6 +96,12 @@ class ObjectTracker {
   int frame_ = 0;
   std::vector<Answer> answers_;  ///< of the last frame
   std::map<std::string, core::Pose3> lastPose_;
+  std::map<std::string, bool> handVisited_;  ///< a hand point came near lastPose_ since it was set
+  struct PendingJump {
+    core::Pose3 X_camera_object;
+    int frames = 0;
+  };
+  std::map<std::string, PendingJump> pendingJumps_;
   std::map<std::string, std::vector<ObjectDetection>> staticDetections_;
   std::map<std::string, ObjectDetection> fixed_;
   Stats stats_;

@@ -41,24 +41,16 @@ namespace {
 
 constexpr int kEventTol_frames = 3;  // issue 8: grasp/release within +-3 frames of the truth
 
-/// Thesis Appendix A, verbatim: five wordings of one four-step task.
-const char* const kAppendixA[5] = {
-    "Begin by picking up the cuboid from the blue box and placing it in the gray box. Next, carefully lift the star "
-    "and position it next to the cuboid in the gray box. Then, move the parallelogram, placing it beside the star in "
-    "the gray box. Finally, pick up the octagon and place it adjacent to the parallelogram in the gray box.",
-    "Start by gently lifting the cuboid from the blue box and placing it precisely in the gray box. Then, grasp the "
-    "star and carefully set it near the cuboid in the gray box. Afterwards, pick up the parallelogram and position it "
-    "beside the star in the gray box. Conclude by placing the octagon next to the parallelogram in the gray box.",
-    "First, remove the cuboid from the blue box and place it in the gray box with precision. Following that, take "
-    "the star and gently place it alongside the cuboid in the gray box. Continue by moving the parallelogram, placing "
-    "it next to the star in the gray box. Finish by setting the octagon beside the parallelogram in the gray box.",
-    "Initially, pick up the cuboid from the blue box and carefully place it in the gray box. Next, take the star and "
-    "delicately place it next to the cuboid in the gray box. Then, transfer the parallelogram, positioning it beside "
-    "the star in the gray box. Finally, place the octagon adjacent to the parallelogram in the gray box.",
-    "Begin by lifting the cuboid from the blue box and placing it neatly in the gray box. Then, pick up the star and "
-    "position it carefully next to the cuboid in the gray box. Next, move the parallelogram and place it beside the "
-    "star in the gray box. Lastly, place the octagon next to the parallelogram, completing the sequence in the gray "
-    "box."};
+/// Thesis Appendix A, verbatim: five wordings of one four-step task (datasets/language/appendix_a.json).
+std::vector<std::string> appendixAInstructions() {
+  const std::string path = std::string(SRP_DATASETS_DIR) + "/language/appendix_a.json";
+  const nlohmann::json file = core::readJsonFile(path);  // kept: the loop reads into it
+  std::vector<std::string> texts;
+  for (const auto& entry : core::requireField(file, "instructions", path))
+    texts.push_back(core::requireField(entry, "instruction", path).get<std::string>());
+  if (texts.size() != 5) throw core::InvalidInputError(path + ": expected the 5 Appendix A instructions");
+  return texts;
+}
 
 /// The plan every Appendix A wording states (SPEC.md §4): object, neighbour landmark ("" = none).
 struct ExpectedStep {
@@ -107,7 +99,8 @@ nlohmann::json runOne(int instruction, unsigned seed, const fs::path& out, const
   const std::string tag = "i" + std::to_string(instruction) + "_s" + std::to_string(seed);
   const fs::path dir = out / "work" / tag;
   fs::create_directories(dir);
-  const std::string text = kAppendixA[instruction - 1];
+  static const std::vector<std::string> kAppendixA = appendixAInstructions();
+  const std::string text = kAppendixA.at(instruction - 1);
   nlohmann::json r = {{"instruction", instruction}, {"seed", seed}};
 
   // 1. The demonstration of what the instruction says, rendered with the seed's randomisation.

@@ -28,6 +28,7 @@
 #include "srp/core/Scene.h"
 #include "srp/execution/ExecutionSession.h"
 #include "srp/execution/PlanConversion.h"
+#include "srp/experiment/ExperimentSupport.h"
 #include "srp/language/InstructionParser.h"
 #include "srp/programming/ProgrammingPipeline.h"
 #include "srp/synth/DemoGenerator.h"
@@ -179,13 +180,6 @@ nlohmann::json runOne(int instruction, unsigned seed, const fs::path& out, const
   return r;
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return std::nan("");
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 nlohmann::json summarise(const fs::path& out) {
   std::vector<nlohmann::json> runs;
   if (fs::exists(out / "runs"))
@@ -230,8 +224,8 @@ nlohmann::json summarise(const fs::path& out) {
   s["errors"] = errors;
   s["worst_event_error_frames"] = worstEvent;
   s["worst_placement_error_m"] = worstPlacement;
-  s["median_program_wall_s"] = median(programWall);
-  s["median_program_time_over_demo_duration"] = median(ratio);
+  s["median_program_wall_s"] = experiment::medianOf(programWall);
+  s["median_program_time_over_demo_duration"] = experiment::medianOf(ratio);
   s["peak_rss_MB"] = peakRss;
   for (const auto& [k, v] : perInstruction)
     s["per_instruction"][std::to_string(k)] = {{"success", v.first}, {"runs", v.second}};

@@ -98,21 +98,6 @@ std::vector<std::pair<std::string, std::pair<int, int>>> corpusRanges(
   return ranges;
 }
 
-language::ObjectRef objectFromJson(const nlohmann::json& j)
-{
-  language::ObjectRef o;
-  o.name = j.at("name").get<std::string>();
-  if (j.contains("color") && !j.at("color").is_null()) o.color = j.at("color").get<std::string>();
-  return o;
-}
-
-std::vector<language::LocationRef> locationsFromJson(const nlohmann::json& j)
-{
-  std::vector<language::LocationRef> out;
-  for (const auto& l : j) out.push_back({l.at("relation").get<std::string>(), objectFromJson(l.at("landmark"))});
-  return out;
-}
-
 }  // namespace
 
 ExperimentResult runLanguageExperiment(const ExperimentOptions& options)
@@ -180,12 +165,13 @@ ExperimentResult runLanguageExperiment(const ExperimentOptions& options)
   for (const auto& item : core::requireField(appendix, "instructions", appendixPath.string())) {
     ++index;
     const auto plan = parser.parse(item.at("instruction").get<std::string>());
-    const auto& expected = item.at("expected_steps");
+    // The expected steps are in the plan's own JSON step format.
+    const auto expected = language::taskPlanFromJson({{"steps", item.at("expected_steps")}}).steps;
     int objects = 0, sources = 0, targets = 0;
     for (size_t s = 0; s < expected.size() && s < plan.steps.size(); ++s) {
-      objects += plan.steps[s].object == objectFromJson(expected[s].at("object"));
-      sources += plan.steps[s].source == locationsFromJson(expected[s].at("source"));
-      targets += plan.steps[s].target == locationsFromJson(expected[s].at("target"));
+      objects += plan.steps[s].object == expected[s].object;
+      sources += plan.steps[s].source == expected[s].source;
+      targets += plan.steps[s].target == expected[s].target;
     }
     const int n = static_cast<int>(expected.size());
     const bool right = static_cast<int>(plan.steps.size()) == n && objects == n && sources == n && targets == n;

@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "srp/rawlog/RgbdFrame.h"
 
@@ -21,10 +22,19 @@ namespace srp::rawlog {
 /// rangeUnits, registered to colour when both cameras have the same size (the
 /// usual case); otherwise the depth camera's intrinsics are reported and the
 /// colour image is resized to the depth size.
+///
+/// Read-ahead: by default a background thread decompresses and converts the
+/// next few frames while the caller works on the current one (decoding a
+/// 640x480 frame costs 5-10 ms, about half of what perception spends on it).
+/// Frames, counters and damage are reported exactly as a synchronous read
+/// would, in the same order; `readAheadFrames = 0` decodes in next() instead.
 class RawlogReader {
  public:
+  /// How many decoded frames may wait in the read-ahead queue (0: no thread).
+  static constexpr int kDefaultReadAheadFrames = 4;
+
   /// Opens the file; throws FileError naming it when missing or unreadable.
-  explicit RawlogReader(const std::string& path);
+  explicit RawlogReader(const std::string& path, int readAheadFrames = kDefaultReadAheadFrames);
   ~RawlogReader();
   RawlogReader(const RawlogReader&) = delete;
   RawlogReader& operator=(const RawlogReader&) = delete;
@@ -47,6 +57,10 @@ class RawlogReader {
 
  private:
   struct Impl;
+  struct Decoded;
+  Decoded decodeNext();
+  void startReadAhead(int frames);
+
   std::unique_ptr<Impl> impl_;
   std::string path_;
   std::optional<std::string> damage_;

@@ -220,7 +220,7 @@ void setupCalibrate(CLI::App& cmd) {
   });
 }
 
-const srp::app::CommandRegistrar kReg{"calibrate", "camera intrinsics from pattern images (ViSP XML); extrinsics",
+const srp::app::CommandRegistrar kReg{"calibrate", "Camera intrinsics from pattern images (ViSP XML) and extrinsics",
                                       10, setupCalibrate};
 
 }  // namespace

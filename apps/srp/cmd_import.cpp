@@ -61,7 +61,7 @@ void setupImport(CLI::App& cmd) {
   });
 }
 
-const srp::app::CommandRegistrar kReg{"import", "convert an image folder or TUM RGB-D sequence to a rawlog", 21,
+const srp::app::CommandRegistrar kReg{"import", "Convert an image folder or TUM RGB-D sequence to a rawlog", 21,
                                       setupImport};
 
 }  // namespace

@@ -32,6 +32,6 @@ void setupRecord(CLI::App& cmd) {
   });
 }
 
-const srp::app::CommandRegistrar kReg{"record", "record an RGB-D camera (OpenNI2) to a rawlog", 20, setupRecord};
+const srp::app::CommandRegistrar kReg{"record", "Record an RGB-D camera (OpenNI2) to a rawlog", 20, setupRecord};
 
 }  // namespace

@@ -72,6 +72,6 @@ void setupReplay(CLI::App& cmd) {
   });
 }
 
-const srp::app::CommandRegistrar kReg{"replay", "summarise a rawlog; export PNGs or a video", 80, setupReplay};
+const srp::app::CommandRegistrar kReg{"replay", "Summarise a rawlog; export PNGs or a video", 80, setupReplay};
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "srp/core/Error.h"
+#include "srp/experiment/ExperimentSupport.h"
 #include "srp/core/Json.h"
 #include "srp/core/ObjectCatalogue.h"
 #include "srp/core/Scene.h"
@@ -156,8 +157,11 @@ ProgrammedDemo DemoCache::programmed(
   const FileLock lock(dir / (key + ".program.lock"));
   if (std::filesystem::exists(donePath) && std::filesystem::exists(out.databasePath)) {
     out.program = core::readJsonFile(donePath.string());
-    out.taskModelId = out.program.at("task_model_id").get<int>();
-    return out;
+    // Programmed by this build: reuse; by another build: program again.
+    if (out.program.value("program_build", std::string()) == programBuildIdentity()) {
+      out.taskModelId = out.program.at("task_model_id").get<int>();
+      return out;
+    }
   }
   const auto t0 = std::chrono::steady_clock::now();
   std::filesystem::remove(out.databasePath);  // a half-written one from an interrupted run
@@ -173,6 +177,7 @@ ProgrammedDemo DemoCache::programmed(
   out.programmedNow = true;
   out.programTime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out.program["program_time_s"] = out.programTime_s;
+  out.program["program_build"] = programBuildIdentity();
   core::writeJsonFile(donePath.string(), out.program);
   return out;
 }

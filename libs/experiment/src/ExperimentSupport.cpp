@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <system_error>
 
 #include "srp/core/Error.h"
 
@@ -41,6 +43,21 @@ double medianOf(std::vector<double> values)
   std::sort(values.begin(), values.end());
   const size_t n = values.size();
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+const std::string& programBuildIdentity()
+{
+  static const std::string identity = [] {
+    std::error_code ec;
+    const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (ec) return std::string("unknown");
+    const auto size = std::filesystem::file_size(exe, ec);
+    if (ec) return std::string("unknown");
+    const auto mtime = std::filesystem::last_write_time(exe, ec);
+    if (ec) return std::string("unknown");
+    return std::to_string(size) + "-" + std::to_string(mtime.time_since_epoch().count());
+  }();
+  return identity;
 }
 
 }  // namespace srp::experiment

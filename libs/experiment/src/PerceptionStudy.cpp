@@ -212,7 +212,8 @@ std::vector<PerceivedDemo> perceivedDemos(const ExperimentOptions& options, cons
       try {
         const nlohmann::json j = core::readJsonFile(cachePath.string());
         if (j.at("schema_version").get<int>() == kCacheSchemaVersion && j.at("frames").get<int>() == size.framesPerDemo &&
-            j.at("seed").get<unsigned>() == seed && j.at("demo_key").get<std::string>() == demoKey) {
+            j.at("seed").get<unsigned>() == seed && j.at("demo_key").get<std::string>() == demoKey &&
+            j.value("program_build", std::string()) == programBuildIdentity()) {
           PerceivedDemo demo;
           demo.seed = seed;
           demo.frames = size.framesPerDemo;
@@ -237,6 +238,7 @@ std::vector<PerceivedDemo> perceivedDemos(const ExperimentOptions& options, cons
                                              {"seed", seed},
                                              {"frames", demo.frames},
                                              {"demo_key", demoKey},
+                                             {"program_build", programBuildIdentity()},
                                              {"rawlog", files.rawlogPath.string()},
                                              {"perception_time_s", demo.perceptionTime_s},
                                              {"static", demo.isStatic},

@@ -8,6 +8,7 @@
 #include "srp/core/Error.h"
 #include "srp/experiment/DemoCache.h"
 #include "srp/experiment/ExperimentReport.h"
+#include "srp/experiment/ExperimentSupport.h"
 #include "srp/language/LanguageModel.h"
 #include "srp/language/SpertEvaluation.h"
 
@@ -142,4 +143,13 @@ TEST(DemoCache, KeyDependsOnEveryFieldOfTheRequest)
   DemoRequest missing = a;
   missing.scenePath = "/nonexistent/scene.json";
   EXPECT_THROW(cache.keyOf(missing), srp::core::FileError);
+}
+
+TEST(ExperimentSupport, ProgramBuildIdentityIsTheExecutablesSizeAndTime)
+{
+  // Cached perception and programming results are keyed by it: it must name this build.
+  const std::string& identity = programBuildIdentity();
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe");
+  EXPECT_EQ(identity.rfind(std::to_string(std::filesystem::file_size(exe)) + "-", 0), 0u) << identity;
+  EXPECT_EQ(&identity, &programBuildIdentity()) << "computed once";
 }

@@ -77,7 +77,8 @@ public:
 
   /// The demo of `request` programmed with its plan's "instruction" (rendered
   /// and programmed now if not cached): `<key>.task.db` beside the rawlog,
-  /// `<key>.program.json` marking a complete run. `progress(stage, done, total)`
+  /// `<key>.program.json` marking a complete run by this build of the program
+  /// (programBuildIdentity(); another build programs again). `progress(stage, done, total)`
   /// reports rendering ("render") and the pipeline's stages. Throws
   /// InvalidInputError when the plan has no "instruction".
   ProgrammedDemo programmed(const DemoRequest& request,

@@ -28,6 +28,12 @@ void reportProgress(const ExperimentOptions& options, const std::string& what, d
 /// Median of `values` (mean of the middle two for an even count); NaN when empty.
 double medianOf(std::vector<double> values);
 
+/// The running program's build, as "<size>-<mtime>" of its executable
+/// (/proc/self/exe; "unknown" where that cannot be read). Results computed by
+/// the code under study (perception, programming) are cached under it, so a
+/// rebuilt program computes them again instead of reporting the old code's.
+const std::string& programBuildIdentity();
+
 /// Wall-clock seconds since construction.
 class WallClock
 {

@@ -11,12 +11,8 @@
 #include <time.h>
 
 #include <chrono>
-#include <filesystem>
-
-#include "srp/core/Scene.h"
+#include "BenchDemo.h"
 #include "srp/rawlog/RawlogReader.h"
-#include "srp/synth/DemoGenerator.h"
-#include "srp/synth/PickPlacePlan.h"
 
 namespace {
 
@@ -30,19 +26,7 @@ double threadCpu_s() {
 }
 
 const std::string& demoRawlog() {
-  static const std::string path = [] {
-    const auto file = std::filesystem::temp_directory_path() / ("srp_rawlog_bench_demo_" + std::to_string(kFrames) + ".rawlog");
-    // The ground truth is written last: without it the rawlog may be partial.
-    if (!std::filesystem::exists(std::filesystem::path(file).replace_extension(".gt.json"))) {
-      const auto scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-      srp::synth::SynthDemoOptions o;
-      o.demo.seed = static_cast<std::uint32_t>(scene.seed);
-      o.maxFrames = kFrames;
-      srp::synth::generateSyntheticDemo(scene, srp::core::ObjectCatalogue::load(scene.cataloguePath),
-                                        srp::synth::defaultPlanJson(), o, file.string());
-    }
-    return file.string();
-  }();
+  static const std::string path = srp::bench::syntheticBenchDemo(kFrames);
   return path;
 }
 

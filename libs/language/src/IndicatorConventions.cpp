@@ -11,6 +11,8 @@ namespace srp::language {
 namespace {
 
 constexpr int kMaxIndicatorWords = 8;
+constexpr int kMinWordCountForRareStart = 5;
+constexpr double kMaxRareStartRate = 0.02;
 
 bool isIndicator(const std::string& type) { return type == "SpatialIndicator" || type == "GoalIndicator"; }
 
@@ -75,6 +77,14 @@ IndicatorConventions IndicatorConventions::learn(const std::vector<AnnotatedSent
         for (int k = e.start; k < e.end; ++k) phrase += (k > e.start ? " " : "") + toLowerAscii(s.tokens[k]);
         c.phrases_.insert(phrase);
       }
+  std::map<std::string, int> seen, starts;
+  for (const auto& s : corpus) {
+    for (const auto& token : s.tokens) ++seen[toLowerAscii(token)];
+    for (const auto& e : s.entities)
+      if (isIndicator(e.type)) ++starts[toLowerAscii(s.tokens[e.start])];
+  }
+  for (const auto& [word, count] : seen)
+    if (count >= kMinWordCountForRareStart && starts[word] < kMaxRareStartRate * count) c.rarelyAnnotatedStarts_.insert(word);
   std::map<std::string, std::map<int, int>> lengths;
   std::map<std::string, std::map<std::string, int>> types;
   for (const auto& s : corpus) {
@@ -164,8 +174,21 @@ void IndicatorConventions::dropIndicatorsOutsideOrders(const std::vector<std::st
                  entities.end());
 }
 
+void IndicatorConventions::dropRarelyAnnotatedStarts(const std::vector<std::string>& tokens,
+                                                     std::vector<EntitySpan>& entities) const {
+  entities.erase(std::remove_if(entities.begin(), entities.end(),
+                                [&](const EntitySpan& e) {
+                                  return isIndicator(e.type) && e.start < static_cast<int>(tokens.size()) &&
+                                         rarelyAnnotatedStarts_.count(toLowerAscii(tokens[e.start])) > 0;
+                                }),
+                 entities.end());
+}
+
 nlohmann::json IndicatorConventions::toJson() const {
-  return {{"phrases", phrases_}, {"length_by_phrase", lengthByPhrase_}, {"type_by_key", typeByKey_}};
+  return {{"phrases", phrases_},
+          {"length_by_phrase", lengthByPhrase_},
+          {"type_by_key", typeByKey_},
+          {"rarely_annotated_starts", rarelyAnnotatedStarts_}};
 }
 
 IndicatorConventions IndicatorConventions::fromJson(const nlohmann::json& j) {
@@ -173,6 +196,8 @@ IndicatorConventions IndicatorConventions::fromJson(const nlohmann::json& j) {
   c.phrases_ = core::requireField(j, "phrases", "indicator conventions").get<std::set<std::string>>();
   c.lengthByPhrase_ = core::requireField(j, "length_by_phrase", "indicator conventions").get<std::map<std::string, int>>();
   c.typeByKey_ = core::requireField(j, "type_by_key", "indicator conventions").get<std::map<std::string, std::string>>();
+  c.rarelyAnnotatedStarts_ =
+      core::requireField(j, "rarely_annotated_starts", "indicator conventions").get<std::set<std::string>>();
   return c;
 }
 

@@ -106,6 +106,24 @@ TEST(IndicatorConventions, FrequentNeverAnnotatedWordsStartNoIndicator) {
   EXPECT_TRUE(again.empty());
 }
 
+// "cup on" is read 3 times and starts an indicator once (33 %): kept; "box on"
+// 3 times, never: a spatial "on" after "box" is dropped, a goal "on" is not.
+TEST(IndicatorConventions, RarelyAnnotatedPairsStartNoSpatialIndicator) {
+  std::vector<AnnotatedSentence> corpus;
+  corpus.push_back(sentence({"take", "the", "cup", "on", "the", "table"}, {{0, 1, "Action"}, {3, 4, "SpatialIndicator"}}));
+  for (int i = 0; i < 2; ++i) corpus.push_back(sentence({"turn", "the", "cup", "on"}, {}));
+  for (int i = 0; i < 3; ++i) corpus.push_back(sentence({"open", "the", "box", "on", "the", "left"}, {{0, 1, "Action"}}));
+  const auto c = IndicatorConventions::learn(corpus, identity);
+  const std::vector<std::string> tokens{"take", "the", "cup", "on", "the", "box", "on", "the", "left"};
+  std::vector<EntitySpan> spatial{{0, 1, "Action"}, {3, 4, "SpatialIndicator"}, {6, 7, "SpatialIndicator"}};
+  c.dropRarelyAnnotatedStarts(tokens, spatial);
+  const std::vector<EntitySpan> expected{{0, 1, "Action"}, {3, 4, "SpatialIndicator"}};
+  EXPECT_EQ(spatial, expected);
+  std::vector<EntitySpan> goal{{0, 1, "Action"}, {6, 7, "GoalIndicator"}};
+  c.dropRarelyAnnotatedStarts(tokens, goal);
+  EXPECT_EQ(goal.size(), 2u);
+}
+
 TEST(IndicatorConventions, JsonRoundTripKeepsEveryConvention) {
   const auto c = IndicatorConventions::learn(tinyCorpus(), identity);
   const auto back = IndicatorConventions::fromJson(c.toJson());

@@ -22,7 +22,7 @@
 ///   start an indicator ("grab hold of the block", "the knife with the handle");
 ///   nor does a spatial indicator start with a word after the word before it
 ///   when that pair is read >= 3 times and starts an indicator in <= 10 % of
-///   them ("parallelipiped in": 0 of 5, "second from": 0 of 3; goals keep
+///   them ("parallelipiped in": 0 of 5, "second from": 0 of 7; goals keep
 ///   theirs: on train the rule removed right ones among goals in CV).
 ///
 /// Example:
@@ -83,8 +83,8 @@ class IndicatorConventions {
   /// Removes indicators whose first word the corpus often reads but (almost)
   /// never annotates as an indicator's start ("grab hold *of*", "the knife
   /// *with* the black handle": a word seen >= 5 times, < 2 % annotated), and
-  /// spatial indicators whose first word after the word before it is such a
-  /// pair ("parallelipiped *in* the corner": a pair seen >= 3 times, <= 10 %).
+  /// indicators tagged spatial whose (previous word, first word) pair is such
+  /// a pair ("parallelipiped *in* the corner": seen >= 3 times, <= 10 %).
   void dropRarelyAnnotatedStarts(const std::vector<std::string>& tokens, std::vector<EntitySpan>& entities) const;
 
   nlohmann::json toJson() const;

@@ -11,6 +11,15 @@ namespace srp::language {
 namespace {
 
 constexpr int kMaxIndicatorWords = 8;
+constexpr int kMinWordCountForRareStart = 5;
+constexpr double kMaxRareStartRate = 0.02;
+constexpr int kMinPairCountForRareStart = 3;
+constexpr double kMaxRarePairStartRate = 0.10;
+
+/// "previous|word" of the word at `k` ("<s>" before the first word).
+std::string pairKey(const std::vector<std::string>& lowerTokens, int k) {
+  return (k > 0 ? lowerTokens[k - 1] : std::string("<s>")) + "|" + lowerTokens[k];
+}
 
 bool isIndicator(const std::string& type) { return type == "SpatialIndicator" || type == "GoalIndicator"; }
 
@@ -75,6 +84,24 @@ IndicatorConventions IndicatorConventions::learn(const std::vector<AnnotatedSent
         for (int k = e.start; k < e.end; ++k) phrase += (k > e.start ? " " : "") + toLowerAscii(s.tokens[k]);
         c.phrases_.insert(phrase);
       }
+  std::map<std::string, int> seen, starts, pairsSeen, pairStarts;
+  for (const auto& s : corpus) {
+    const auto lower = lowerAll(s.tokens);
+    for (int k = 0; k < static_cast<int>(lower.size()); ++k) {
+      ++seen[lower[k]];
+      ++pairsSeen[pairKey(lower, k)];
+    }
+    for (const auto& e : s.entities)
+      if (isIndicator(e.type) && e.start < static_cast<int>(lower.size())) {
+        ++starts[lower[e.start]];
+        ++pairStarts[pairKey(lower, e.start)];
+      }
+  }
+  for (const auto& [word, count] : seen)
+    if (count >= kMinWordCountForRareStart && starts[word] < kMaxRareStartRate * count) c.rarelyAnnotatedStarts_.insert(word);
+  for (const auto& [pair, count] : pairsSeen)
+    if (count >= kMinPairCountForRareStart && pairStarts[pair] <= kMaxRarePairStartRate * count)
+      c.rarelyAnnotatedPairs_.insert(pair);
   std::map<std::string, std::map<int, int>> lengths;
   std::map<std::string, std::map<std::string, int>> types;
   for (const auto& s : corpus) {
@@ -164,8 +191,25 @@ void IndicatorConventions::dropIndicatorsOutsideOrders(const std::vector<std::st
                  entities.end());
 }
 
+void IndicatorConventions::dropRarelyAnnotatedStarts(const std::vector<std::string>& tokens,
+                                                     std::vector<EntitySpan>& entities) const {
+  const auto lower = lowerAll(tokens);
+  entities.erase(std::remove_if(entities.begin(), entities.end(),
+                                [&](const EntitySpan& e) {
+                                  return isIndicator(e.type) && e.start < static_cast<int>(lower.size()) &&
+                                         (rarelyAnnotatedStarts_.count(lower[e.start]) > 0 ||
+                                          (e.type == "SpatialIndicator" &&
+                                           rarelyAnnotatedPairs_.count(pairKey(lower, e.start)) > 0));
+                                }),
+                 entities.end());
+}
+
 nlohmann::json IndicatorConventions::toJson() const {
-  return {{"phrases", phrases_}, {"length_by_phrase", lengthByPhrase_}, {"type_by_key", typeByKey_}};
+  return {{"phrases", phrases_},
+          {"length_by_phrase", lengthByPhrase_},
+          {"type_by_key", typeByKey_},
+          {"rarely_annotated_starts", rarelyAnnotatedStarts_},
+          {"rarely_annotated_pairs", rarelyAnnotatedPairs_}};
 }
 
 IndicatorConventions IndicatorConventions::fromJson(const nlohmann::json& j) {
@@ -173,6 +217,10 @@ IndicatorConventions IndicatorConventions::fromJson(const nlohmann::json& j) {
   c.phrases_ = core::requireField(j, "phrases", "indicator conventions").get<std::set<std::string>>();
   c.lengthByPhrase_ = core::requireField(j, "length_by_phrase", "indicator conventions").get<std::map<std::string, int>>();
   c.typeByKey_ = core::requireField(j, "type_by_key", "indicator conventions").get<std::map<std::string, std::string>>();
+  c.rarelyAnnotatedStarts_ =
+      core::requireField(j, "rarely_annotated_starts", "indicator conventions").get<std::set<std::string>>();
+  c.rarelyAnnotatedPairs_ =
+      core::requireField(j, "rarely_annotated_pairs", "indicator conventions").get<std::set<std::string>>();
   return c;
 }
 

@@ -19,7 +19,7 @@ namespace srp::language {
 
 namespace {
 
-constexpr int kModelFormatVersion = 2;  // 2: indicator span and type conventions
+constexpr int kModelFormatVersion = 3;  // 2: indicator span and type conventions; 3: rarely annotated starts
 const std::vector<std::string> kEntityTypes{"Action", "Trajector", "SpatialIndicator", "GoalIndicator", "Color"};
 constexpr unsigned long kNumLabels = 11;  // O, then B-/I- for each of the five types
 
@@ -646,6 +646,7 @@ AnnotatedSentence LanguageModel::annotate(const std::vector<std::string>& tokens
   }
   impl_->indicatorConventions.applySpanLengths(tokens, out.entities);
   IndicatorConventions::dropIndicatorsOutsideOrders(tokens, out.entities);
+  impl_->indicatorConventions.dropRarelyAnnotatedStarts(tokens, out.entities);
   impl_->relabelIndicators(tokens, out.entities);
   impl_->enforceTrajectorConsistency(tokens, out.entities);
   out.relations = impl_->predictRelations(tokens, out.entities);

@@ -72,11 +72,10 @@ std::vector<ObjectDetection> ObjectTracker::update(const rawlog::RgbdFrame& fram
   };
 
   // 1. Unchanged segments keep their answer.
-  std::vector<std::size_t> pending, handSegments;
+  std::vector<std::size_t> pending;
   for (std::size_t i = 0; i < segs.size(); ++i) {
     if (isHand(segs[i])) {
       ++stats_.hand;
-      handSegments.push_back(i);
       continue;
     }
     const auto a = std::find_if(answers_.begin(), answers_.end(), [&](const Answer& x) {
@@ -151,16 +150,6 @@ std::vector<ObjectDetection> ObjectTracker::update(const rawlog::RgbdFrame& fram
     const double visit_px = camera.intrinsics().fx_px * options_.handVisit_m / std::max(X.translation().z(), 0.1);
     for (const Eigen::Vector2d& h : hand_px)
       if ((h - at_px).norm() <= visit_px) handVisited_[name] = true;
-    // The hand's segment reaching over the part's place: the part touches the
-    // hand (a grasp, the palm itself may be a hand's length away).
-    for (std::size_t i : handSegments) {
-      if (handVisited_[name]) break;
-      for (const cv::Point& p : segs[i].pixels)
-        if ((Eigen::Vector2d(p.x, p.y) - at_px).squaredNorm() <= options_.handTouch_px * options_.handTouch_px) {
-          handVisited_[name] = true;
-          break;
-        }
-    }
   }
   out.erase(std::remove_if(out.begin(), out.end(),
                            [&](const ObjectDetection& d) {

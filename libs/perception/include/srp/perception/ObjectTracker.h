@@ -52,7 +52,6 @@ class ObjectTracker {
     /// a reaching hand's fingers from being taken for the part it reaches for.
     double maxUnheldJump_m = 0.02;
     double handVisit_m = 0.03;
-    double handTouch_px = 3.0;  ///< ... or when the hand's segment covers the pose's pixel (the part touches the hand)
     int jumpConfirmFrames = 15;
   };
 

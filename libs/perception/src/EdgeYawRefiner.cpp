@@ -115,8 +115,6 @@ std::optional<core::Pose3> EdgeYawRefiner::refine(const core::Pose3& X_camera_ob
   std::complex<double> sum = 0.0;
   double weight = 0.0;
   int edgePixels = 0;
-  constexpr int kNormalBins = 720;  // edge normals modulo pi, 0.25-degree bins
-  std::vector<double> normals(kNormalBins, 0.0);
   for (int y = 0; y < roi.height; ++y) {
     const std::uint8_t* r = ring.ptr<std::uint8_t>(y);
     const cv::Vec3f* ax = gx.ptr<cv::Vec3f>(y);
@@ -137,8 +135,6 @@ std::optional<core::Pose3> EdgeYawRefiner::refine(const core::Pose3& X_camera_ob
       sum += strength * std::polar(1.0, order_ * tangent);
       weight += strength;
       ++edgePixels;
-      const double normal = std::fmod(tangent + 0.5 * kPi + 4 * kPi, kPi);
-      normals[static_cast<std::size_t>(std::min(kNormalBins - 1.0, std::floor(normal / kPi * kNormalBins)))] += strength;
     }
   }
   if (std::getenv("SRP_PERCEPTION_DEBUG"))
@@ -154,7 +150,52 @@ std::optional<core::Pose3> EdgeYawRefiner::refine(const core::Pose3& X_camera_ob
     // The turn that lines the model's side normals up with the edge normals:
     // each edge pixel votes with a kernel (sigma ~3 deg) around every model
     // direction, searched within maxCorrection of the fit.
-    if (edgePixels < options_.minEdgePixels || weight <= 0) return std::nullopt;
+    // Edges of the part's own colour only (a box wall beside it, the floor's
+    // texture do not vote): the gradient of each pixel's likeness to the
+    // top face's colour (the median colour of the depth segment).
+    cv::Vec3b topColour;
+    {
+      std::vector<std::uint8_t> channel(segmentPixels.size());
+      for (int c = 0; c < 3; ++c) {
+        for (std::size_t i = 0; i < segmentPixels.size(); ++i) channel[i] = colour_bgr8.at<cv::Vec3b>(segmentPixels[i])[c];
+        std::nth_element(channel.begin(), channel.begin() + static_cast<long>(channel.size() / 2), channel.end());
+        topColour[c] = channel[channel.size() / 2];
+      }
+    }
+    cv::Mat likeness(roi.size(), CV_32F);
+    for (int y = 0; y < roi.height; ++y) {
+      const cv::Vec3b* c = patch.ptr<cv::Vec3b>(y);
+      float* l = likeness.ptr<float>(y);
+      for (int x = 0; x < roi.width; ++x) {
+        int d = 0;
+        for (int k3 = 0; k3 < 3; ++k3) d = std::max(d, std::abs(static_cast<int>(c[x][k3]) - static_cast<int>(topColour[k3])));
+        const double r = d / (255.0 * options_.colourLikeness);
+        l[x] = static_cast<float>(std::exp(-r * r));
+      }
+    }
+    cv::Mat lx, ly;
+    cv::Sobel(likeness, lx, CV_32F, 1, 0, 5);
+    cv::Sobel(likeness, ly, CV_32F, 0, 1, 5);
+    constexpr int kNormalBins = 720;  // edge normals modulo pi, 0.25-degree bins
+    std::vector<double> normals(kNormalBins, 0.0);
+    int partEdgePixels = 0;
+    double partWeight = 0.0;
+    for (int y = 0; y < roi.height; ++y) {
+      const std::uint8_t* r = ring.ptr<std::uint8_t>(y);
+      for (int x = 0; x < roi.width; ++x) {
+        if (!r[x]) continue;
+        const double gx1 = lx.at<float>(y, x), gy1 = ly.at<float>(y, x);
+        const double strength = gx1 * gx1 + gy1 * gy1;
+        if (strength < 25.0) continue;  // a full step gives ~48^2
+        const double theta = std::atan2(gy1, gx1);  // gradient direction
+        const Eigen::Vector3d t = -std::sin(theta) * ex + std::cos(theta) * ey;
+        const double normal = std::fmod(std::atan2(t.y(), t.x()) + 0.5 * kPi + 4 * kPi, kPi);
+        normals[static_cast<std::size_t>(std::min(kNormalBins - 1.0, std::floor(normal / kPi * kNormalBins)))] += strength;
+        partWeight += strength;
+        ++partEdgePixels;
+      }
+    }
+    if (partEdgePixels < options_.minEdgePixels || partWeight <= 0) return std::nullopt;
     const double binWidth = kPi / kNormalBins;
     constexpr int kReach = 48;  // 12 deg = 4 sigma
     std::vector<double> kernel(2 * kReach + 1);
@@ -179,12 +220,12 @@ std::optional<core::Pose3> EdgeYawRefiner::refine(const core::Pose3& X_camera_ob
         best = st;
       }
     }
-    const double coherence = bestScore / weight;
+    const double coherence = bestScore / partWeight;
     if (std::getenv("SRP_PERCEPTION_DEBUG"))
       std::fprintf(stderr, "edges (%zu directions): %d px, coherence %.2f, correction %.2f deg\n", sideNormals_rad_.size(),
-                   edgePixels, coherence, best * binWidth * 180 / kPi);
+                   partEdgePixels, coherence, best * binWidth * 180 / kPi);
     // At the search's border the optimum lies beyond it: distrusted.
-    if (coherence < options_.minCoherence || std::abs(best) >= steps) return std::nullopt;
+    if (coherence < options_.minOutlineCoherence || std::abs(best) >= steps) return std::nullopt;
     const double l = scores[static_cast<std::size_t>(best + steps - 1)], c = bestScore,
                  r = scores[static_cast<std::size_t>(best + steps + 1)];
     const double sub = (l - 2 * c + r) < 0 ? 0.5 * (l - r) / (l - 2 * c + r) : 0.0;

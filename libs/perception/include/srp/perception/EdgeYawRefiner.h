@@ -40,6 +40,11 @@ class EdgeYawRefiner {
     int ringWidth_px = 2;
     int minEdgePixels = 20;
     int maxOutlineDirections = 4;  ///< order 0: at most this many distinct side directions (modulo pi)
+    double colourLikeness = 0.12;  ///< order 0: colour distance [0, 1] at which a pixel is 1/e like the top face
+    /// Order 0: share of the edge weight the model's directions must explain
+    /// at the best turn (0.63-0.65 on clean outlines; 0.35 where the outline
+    /// seen is not the model's, e.g. seed 3's parallelogram against its box wall).
+    double minOutlineCoherence = 0.5;
   };
 
   explicit EdgeYawRefiner(const ObjectModel& model);

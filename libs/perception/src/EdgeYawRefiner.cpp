@@ -1,5 +1,7 @@
 #include "srp/perception/EdgeYawRefiner.h"
 
+#include "srp/perception/SegmentColour.h"
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -153,15 +155,7 @@ std::optional<core::Pose3> EdgeYawRefiner::refine(const core::Pose3& X_camera_ob
     // Edges of the part's own colour only (a box wall beside it, the floor's
     // texture do not vote): the gradient of each pixel's likeness to the
     // top face's colour (the median colour of the depth segment).
-    cv::Vec3b topColour;
-    {
-      std::vector<std::uint8_t> channel(segmentPixels.size());
-      for (int c = 0; c < 3; ++c) {
-        for (std::size_t i = 0; i < segmentPixels.size(); ++i) channel[i] = colour_bgr8.at<cv::Vec3b>(segmentPixels[i])[c];
-        std::nth_element(channel.begin(), channel.begin() + static_cast<long>(channel.size() / 2), channel.end());
-        topColour[c] = channel[channel.size() / 2];
-      }
-    }
+    const cv::Vec3b topColour = medianColour(segmentPixels, colour_bgr8);
     cv::Mat likeness(roi.size(), CV_32F);
     for (int y = 0; y < roi.height; ++y) {
       const cv::Vec3b* c = patch.ptr<cv::Vec3b>(y);

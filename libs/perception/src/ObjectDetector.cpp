@@ -248,7 +248,7 @@ std::optional<ObjectDetection> ObjectDetector::explain(const ObjectSegment& seg,
     // well; the colour outline tells which one puts the origin right.
     const auto branches = bestFitter->symmetricBranches(bestPose);
     std::vector<double> iou;
-    const auto k = branchPicker_.pick(bestFitter->model().mesh, branches, seg.pixels, seg.meanRgb, seg.colour_bgr8,
+    const auto k = branchPicker_.pick(bestFitter->model().mesh, branches, seg.pixels, seg.colour_bgr8,
                                       camera, &iou);
     if (std::getenv("SRP_PERCEPTION_DEBUG")) {
       std::fprintf(stderr, "%s branches (IoU):", bestFitter->model().name.c_str());

@@ -4,13 +4,13 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
+#include "srp/perception/SegmentColour.h"
+
 namespace srp::perception {
 
 std::optional<std::size_t> SilhouetteBranchPicker::pick(const TriangleMesh& mesh, const std::vector<core::Pose3>& candidates,
-                                                        const std::vector<cv::Point>& segmentPixels,
-                                                        const Eigen::Vector3d& meanRgb, const cv::Mat& colour_bgr8,
+                                                        const std::vector<cv::Point>& segmentPixels, const cv::Mat& colour_bgr8,
                                                         const CameraModel& camera, std::vector<double>* iou) const {
-  (void)meanRgb;
   if (candidates.empty() || colour_bgr8.empty() || segmentPixels.empty() || mesh.triangles.empty()) return std::nullopt;
   cv::Rect roi = cv::boundingRect(segmentPixels);
   roi.x -= options_.margin_px;
@@ -22,15 +22,7 @@ std::optional<std::size_t> SilhouetteBranchPicker::pick(const TriangleMesh& mesh
 
   // Pixels of the colour of the part's top face: the median colour of its
   // depth segment (a part seen from above shows mostly its top).
-  cv::Vec3b topColour;
-  {
-    std::vector<std::uint8_t> channel(segmentPixels.size());
-    for (int c = 0; c < 3; ++c) {
-      for (std::size_t i = 0; i < segmentPixels.size(); ++i) channel[i] = colour_bgr8.at<cv::Vec3b>(segmentPixels[i])[c];
-      std::nth_element(channel.begin(), channel.begin() + static_cast<long>(channel.size() / 2), channel.end());
-      topColour[c] = channel[channel.size() / 2];
-    }
-  }
+  const cv::Vec3b topColour = medianColour(segmentPixels, colour_bgr8);
   const int maxDiff = static_cast<int>(std::lround(255 * options_.maxColourDifference));
   cv::Mat colourMask(roi.size(), CV_8U, cv::Scalar(0));
   for (int y = 0; y < roi.height; ++y) {

@@ -81,7 +81,7 @@ TEST(SilhouetteBranchPicker, StarTurnWithTheRightOriginFromTheColourOutline) {
     const auto branches = fitter.symmetricBranches(fitted);
     ASSERT_EQ(branches.size(), 5u);
     std::vector<double> iou;
-    const auto k = SilhouetteBranchPicker().pick(star.mesh, branches, pixels, Eigen::Vector3d(0.94, 0.84, 0.1), colour,
+    const auto k = SilhouetteBranchPicker().pick(star.mesh, branches, pixels, colour,
                                                  camera, &iou);
     ASSERT_TRUE(k.has_value()) << yaw_deg;
     EXPECT_LT(core::translationDistance(branches[*k], truth), kOriginTol_m) << yaw_deg << " deg";
@@ -104,14 +104,14 @@ TEST(SilhouetteBranchPicker, PartialViewIsInconclusive) {
   std::vector<cv::Point> visible;
   for (const auto& p : pixels)
     if (p.x >= box.x + box.width / 2) visible.push_back(p);
-  EXPECT_FALSE(SilhouetteBranchPicker().pick(star.mesh, fitter.symmetricBranches(truth), visible, Eigen::Vector3d(0.94, 0.84, 0.1),
+  EXPECT_FALSE(SilhouetteBranchPicker().pick(star.mesh, fitter.symmetricBranches(truth), visible,
                                              colour, camera).has_value());
 }
 
 TEST(SilhouetteBranchPicker, NoColourNoAnswer) {
   const ObjectModel star = model("star");
   const CameraModel camera(core::CameraIntrinsics{607.0, 607.0, 321.4, 241.9, 640, 480});
-  EXPECT_FALSE(SilhouetteBranchPicker().pick(star.mesh, {core::Pose3::Identity()}, {{1, 1}}, Eigen::Vector3d::Ones(), cv::Mat(),
+  EXPECT_FALSE(SilhouetteBranchPicker().pick(star.mesh, {core::Pose3::Identity()}, {{1, 1}}, cv::Mat(),
                                              camera).has_value());
 }
 

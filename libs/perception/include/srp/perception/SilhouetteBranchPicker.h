@@ -38,10 +38,10 @@ class SilhouetteBranchPicker {
   /// colour, or when no candidate agrees with the colour mask by minIoU and
   /// by minMargin more than every other (a partial view, a colour like the
   /// background's). `iou`: when given, every candidate's agreement.
-  /// `segmentPixels`: the part's depth segment; `meanRgb`: its mean colour ([0, 1]).
+  /// `segmentPixels`: the part's depth segment (its median colour is the top face's).
   std::optional<std::size_t> pick(const TriangleMesh& mesh_object, const std::vector<core::Pose3>& candidates,
-                                  const std::vector<cv::Point>& segmentPixels, const Eigen::Vector3d& meanRgb,
-                                  const cv::Mat& colour_bgr8, const CameraModel& camera,
+                                  const std::vector<cv::Point>& segmentPixels, const cv::Mat& colour_bgr8,
+                                  const CameraModel& camera,
                                   std::vector<double>* iou = nullptr) const;
 
  private:

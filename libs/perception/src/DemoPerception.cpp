@@ -188,27 +188,21 @@ PerceptionResult DemoPerceiver::finish() const {
       std::vector<std::size_t> rest;
       auto close = [&]() {
         if (rest.size() >= 3) {
-          std::vector<double> c[3], dyaw;
+          std::vector<double> dyaw;
           const double yaw0 = yawInPlane(dets[rest.front()]->X_camera_object);
-          for (std::size_t i : rest) {
-            for (int a = 0; a < 3; ++a) c[a].push_back(dets[i]->X_camera_object.translation()[a]);
+          for (std::size_t i : rest)
             dyaw.push_back(std::remainder(yawInPlane(dets[i]->X_camera_object) - yaw0, symmetry_rad));
-          }
-          Eigen::Vector3d median;
-          for (int a = 0; a < 3; ++a) {
-            std::nth_element(c[a].begin(), c[a].begin() + static_cast<long>(c[a].size() / 2), c[a].end());
-            median[a] = c[a][c[a].size() / 2];
-          }
           // The detection whose yaw is the median lends its orientation (tilt included).
           std::vector<std::size_t> order(rest.size());
           for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
           std::nth_element(order.begin(), order.begin() + static_cast<long>(order.size() / 2), order.end(),
                            [&](std::size_t a, std::size_t b) { return dyaw[a] < dyaw[b]; });
           const Eigen::Matrix3d R = dets[rest[order[order.size() / 2]]]->X_camera_object.linear();
-          for (std::size_t i : rest) {
-            rested[i]->X_camera_object.linear() = R;
-            rested[i]->X_camera_object.translation() = median;
-          }
+          // The orientation only: each detection keeps its position, which
+          // the motion module reads for the small moves of a grasp and a
+          // release (snapping them to the rest's median hid a whole pick
+          // from its segmentation on a 320x240 demo).
+          for (std::size_t i : rest) rested[i]->X_camera_object.linear() = R;
         }
         rest.clear();
       };

@@ -1,6 +1,7 @@
 #include "srp/perception/DemoPerception.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -176,7 +177,57 @@ PerceptionResult DemoPerceiver::finish() const {
       result.objects.push_back(traj);  // never seen: empty trajectory
       continue;
     }
-    const ObjectDetection* carried = &*dets[static_cast<std::size_t>(firstFrame)];
+    // Rests of a moving part: runs of detections near their running median.
+    std::vector<std::optional<ObjectDetection>> rested = dets;
+    if (!p.isStatic && m.options.consolidateRests) {
+      double symmetry_rad = 2 * M_PI;
+      for (const auto& f : m.detector->fitters())
+        if (f.model().name == p.className) symmetry_rad = f.model().yawSymmetry_rad;
+      const core::Pose3 X_plane_camera = m.support ? m.support->X_camera_plane().inverse() : core::Pose3::Identity();
+      auto yawInPlane = [&](const core::Pose3& X) { return core::yawOf((X_plane_camera * X).linear()); };
+      std::vector<std::size_t> rest;
+      auto close = [&]() {
+        if (rest.size() >= 3) {
+          std::vector<double> dyaw;
+          const double yaw0 = yawInPlane(dets[rest.front()]->X_camera_object);
+          for (std::size_t i : rest)
+            dyaw.push_back(std::remainder(yawInPlane(dets[i]->X_camera_object) - yaw0, symmetry_rad));
+          // The detection whose yaw is the median lends its orientation (tilt included).
+          std::vector<std::size_t> order(rest.size());
+          for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+          std::nth_element(order.begin(), order.begin() + static_cast<long>(order.size() / 2), order.end(),
+                           [&](std::size_t a, std::size_t b) { return dyaw[a] < dyaw[b]; });
+          const Eigen::Matrix3d R = dets[rest[order[order.size() / 2]]]->X_camera_object.linear();
+          // The orientation only: each detection keeps its position, which
+          // the motion module reads for the small moves of a grasp and a
+          // release (snapping them to the rest's median hid a whole pick
+          // from its segmentation on a 320x240 demo).
+          for (std::size_t i : rest) rested[i]->X_camera_object.linear() = R;
+        }
+        rest.clear();
+      };
+      Eigen::Vector3d anchor = Eigen::Vector3d::Zero();
+      std::vector<Eigen::Vector3d> members;
+      for (std::size_t i = 0; i < dets.size(); ++i) {
+        if (!dets[i]) continue;
+        const Eigen::Vector3d t = dets[i]->X_camera_object.translation();
+        if (!rest.empty() && (t - anchor).norm() > m.options.restRadius_m) {
+          close();
+          members.clear();
+        }
+        rest.push_back(i);
+        members.push_back(t);
+        // The anchor: the members' per-axis median (a stray detection does not drag it).
+        for (int a = 0; a < 3; ++a) {
+          std::vector<double> v;
+          for (const auto& x : members) v.push_back(x[a]);
+          std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+          anchor[a] = v[v.size() / 2];
+        }
+      }
+      close();
+    }
+    const ObjectDetection* carried = &*rested[static_cast<std::size_t>(firstFrame)];
     for (std::size_t i = 0; i < dets.size(); ++i) {
       ObjectPoseSample s;
       s.frame = m.frameIndex[i];
@@ -187,7 +238,7 @@ PerceptionResult DemoPerceiver::finish() const {
         s.detected = dets[i].has_value();
         s.confidence = best.confidence;
       } else {
-        if (dets[i]) carried = &*dets[i];
+        if (rested[i]) carried = &*rested[i];
         s.X_camera_object = carried->X_camera_object;
         s.detected = dets[i].has_value();
         s.confidence = dets[i] ? dets[i]->confidence : 0.0;

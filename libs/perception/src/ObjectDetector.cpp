@@ -24,7 +24,8 @@ double colourAgreement(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 
 ObjectDetector::ObjectDetector(std::vector<ObjectModel> models) : ObjectDetector(std::move(models), Options{}) {}
 
-ObjectDetector::ObjectDetector(std::vector<ObjectModel> models, const Options& options) : options_(options) {
+ObjectDetector::ObjectDetector(std::vector<ObjectModel> models, const Options& options)
+    : branchPicker_(options.branches), options_(options) {
   core::require(!models.empty(), "ObjectDetector: no object models (is the knowledge base empty?)");
   for (const auto& m : models) {
     fitters_.emplace_back(m, options.fit);
@@ -196,6 +197,7 @@ std::optional<ObjectDetection> ObjectDetector::explain(const ObjectSegment& seg,
   const ObjectPoseFitter* bestFitter = nullptr;
   core::Pose3 bestPose = core::Pose3::Identity();
   double bestConfidence = 0.0;
+  bool tracked = false;
   // Tracking: a class whose previous pose lies on this segment is refined from it first.
   for (const ObjectPoseFitter& fitter : fitters_) {
     if (excluded.count(fitter.model().name)) continue;
@@ -210,6 +212,7 @@ std::optional<ObjectDetection> ObjectDetector::explain(const ObjectSegment& seg,
       bestFitter = &fitter;
       bestPose = fit.X_camera_object;
       bestConfidence = confidence;
+      tracked = true;
     }
   }
   for (const ObjectPoseFitter& fitter : fitters_) {
@@ -240,6 +243,37 @@ std::optional<ObjectDetection> ObjectDetector::explain(const ObjectSegment& seg,
     }
   }
   if (!bestFitter || bestConfidence < options_.minConfidence) return std::nullopt;
+  if (!tracked && options_.pickBranchBySilhouette && bestFitter->hasOffCentreSymmetry() && seg.hasColour) {
+    // Depth fits every symmetric turn of a nearly symmetric part equally
+    // well; the colour outline tells which one puts the origin right.
+    const auto branches = bestFitter->symmetricBranches(bestPose);
+    std::vector<double> iou;
+    const auto k = branchPicker_.pick(bestFitter->model().mesh, branches, seg.pixels, seg.colour_bgr8,
+                                      camera, &iou);
+    if (std::getenv("SRP_PERCEPTION_DEBUG")) {
+      std::fprintf(stderr, "%s branches (IoU):", bestFitter->model().name.c_str());
+      for (double v : iou) std::fprintf(stderr, " %.3f", v);
+      std::fprintf(stderr, " -> %d\n", k ? static_cast<int>(*k) : -1);
+    }
+    std::size_t chosen = k ? *k : 0;
+    const auto prev = previous.find(bestFitter->model().name);
+    if (!k && prev != previous.end() &&
+        core::translationDistance(prev->second, bestPose) < options_.trackRadius_m) {
+      // Colour inconclusive (a partial view): the turn nearest the part's last pose (it has not moved).
+      double nearest = 1e9;
+      for (std::size_t b = 0; b < branches.size(); ++b) {
+        const double a = core::rotationAngleBetween(prev->second.linear(), branches[b].linear());
+        if (a < nearest) {
+          nearest = a;
+          chosen = b;
+        }
+      }
+    }
+    if (chosen != 0) {
+      const ObjectPoseFit refit = bestFitter->fit(seg.points_camera_m, plane, cloud, camera, &branches[chosen]);
+      bestPose = refit.X_camera_object;
+    }
+  }
   if (options_.refineYawByEdges && bestFitter->model().kind == core::ObjectKind::Part) {
     const EdgeYawRefiner& refiner = refiners_[static_cast<std::size_t>(bestFitter - fitters_.data())];
     if (const auto X = refiner.refine(bestPose, seg.pixels, seg.colour_bgr8, camera, plane)) bestPose = *X;

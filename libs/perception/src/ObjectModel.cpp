@@ -117,6 +117,7 @@ ObjectModel ObjectModel::fromMesh(const std::string& name, const TriangleMesh& m
   const TriangleMesh m = mesh.transformed(X_object_mesh);
   model.dimensions_m = m.bounds().sizes();
   model.surface = m.sampleSurface(spacing_m);
+  model.mesh = m;
   model.yawSymmetry_rad = 2 * kPi / yawSymmetryOrder(model.surface, 0.75 * spacing_m + 1e-3);
   return model;
 }

@@ -29,6 +29,10 @@ ObjectPoseFitter::ObjectPoseFitter(const ObjectModel& model) : ObjectPoseFitter(
 ObjectPoseFitter::ObjectPoseFitter(const ObjectModel& model, const Options& options)
     : model_(model), options_(options), impl_(std::make_unique<Impl>()) {
   core::require(!model.surface.empty(), "ObjectPoseFitter: model '" + model.name + "' has no surface samples");
+  // Centre of the model's yaw symmetry: the samples' mean along the plane.
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (const auto& s : model.surface) centre += s.p_m.head<2>() / static_cast<double>(model.surface.size());
+  symmetryCentre_xy_ = centre;
   Eigen::AlignedBox3d box;
   for (const auto& s : model.surface) box.extend(s.p_m);
   const double margin = 0.03;
@@ -67,6 +71,25 @@ ObjectPoseFitter::ObjectPoseFitter(const ObjectModel& model, const Options& opti
 }
 
 ObjectPoseFitter::~ObjectPoseFitter() = default;
+
+bool ObjectPoseFitter::hasOffCentreSymmetry() const {
+  constexpr double kOffCentre_m = 5e-4;  // well below a pixel's footprint; the star's is 2.6 mm
+  return model_.yawSymmetry_rad < 2 * 3.14159265358979323846 - 1e-6 && symmetryCentre_xy_.norm() > kOffCentre_m;
+}
+
+std::vector<core::Pose3> ObjectPoseFitter::symmetricBranches(const core::Pose3& X_camera_object) const {
+  const int n = std::max(1, static_cast<int>(std::lround(2 * 3.14159265358979323846 / model_.yawSymmetry_rad)));
+  const Eigen::Vector3d c(symmetryCentre_xy_.x(), symmetryCentre_xy_.y(), 0.0);
+  std::vector<core::Pose3> out;
+  for (int k = 0; k < n; ++k) {
+    // X * T(c) * Rz(k * symmetry) * T(-c): turned about the symmetry centre.
+    core::Pose3 turn = core::Pose3::Identity();
+    turn.linear() = Eigen::AngleAxisd(k * model_.yawSymmetry_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    turn.translation() = c - turn.linear() * c;
+    out.push_back(X_camera_object * turn);
+  }
+  return out;
+}
 ObjectPoseFitter::ObjectPoseFitter(ObjectPoseFitter&&) noexcept = default;
 ObjectPoseFitter& ObjectPoseFitter::operator=(ObjectPoseFitter&&) noexcept = default;
 

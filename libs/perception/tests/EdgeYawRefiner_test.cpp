@@ -85,6 +85,31 @@ TEST(EdgeYawRefiner, OctagonYawFromColourEdges) {
   }
 }
 
+// A green parallelogram (two side directions, not m-fold regular) on the
+// blue floor, the fit 4 deg off either way: the edge normals bring it back.
+TEST(EdgeYawRefiner, ParallelogramYawFromItsTwoEdgeDirections) {
+  constexpr double kYawTol_rad = 0.5 * kDeg, kPositionTol_m = 1e-9;
+  const TopDownScene scene;
+  const ObjectModel parallelogram = ObjectModel::fromCatalogue(catalogue().at("parallelogram"));
+  const EdgeYawRefiner refiner(parallelogram);
+  ASSERT_EQ(refiner.sideNormals_rad().size(), 2u);
+  EXPECT_TRUE(EdgeYawRefiner(ObjectModel::fromCatalogue(catalogue().at("star"))).sideNormals_rad().empty())
+      << "ten short edges: depth gives the star's yaw";
+  for (double trueYaw : {5.0 * kDeg, 71.0 * kDeg, 150.0 * kDeg}) {
+    for (double off : {-4.0 * kDeg, 4.0 * kDeg}) {
+      const core::Pose3 truth = scene.objectAt(-0.04, 0.02, trueYaw);
+      std::vector<cv::Point> pixels;
+      const cv::Mat image = scene.render(parallelogram, truth, cv::Scalar(77, 173, 46), cv::Scalar(199, 71, 31), pixels);
+      const core::Pose3 fitted = scene.objectAt(-0.04, 0.02, trueYaw + off);
+      const auto refined = refiner.refine(fitted, pixels, image, scene.camera, scene.table);
+      ASSERT_TRUE(refined.has_value()) << "yaw " << trueYaw / kDeg;
+      const double err = std::remainder(planeYaw(scene.table, *refined) - trueYaw, 180.0 * kDeg);
+      EXPECT_LT(std::abs(err), kYawTol_rad) << "yaw " << trueYaw / kDeg << " deg: " << err / kDeg << " deg off";
+      EXPECT_LT((refined->translation() - fitted.translation()).norm(), kPositionTol_m);
+    }
+  }
+}
+
 TEST(EdgeYawRefiner, NoEdgesOrTooLargeACorrectionLeaveThePose) {
   const TopDownScene scene;
   const ObjectModel octagon = ObjectModel::fromCatalogue(catalogue().at("octagon"));

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 
 #include "RenderedDemo.h"
 #include "srp/perception/DemoPerception.h"
@@ -59,6 +60,13 @@ TEST(SyntheticDemo, MarkerHandAndObjects) {
   EXPECT_GE(rate, 0.99);  // issue 5: tag-visible = readable in the rendered frame (srp::synth ground truth)
 
   const core::Pose3 X_camera_world = d.gt.X_world_camera.inverse();
+  // Per-frame errors for diagnosis: SRP_PERCEPTION_FRAMES_CSV=errors.csv.
+  std::ofstream perFrame;
+  if (const char* path = std::getenv("SRP_PERCEPTION_FRAMES_CSV")) {
+    perFrame.open(path);
+    perFrame << "frame,class,phase,carried,detected,confidence,error_mm,dx_world_mm,dy_world_mm,dz_world_mm,yaw_error_deg,"
+                "hand_distance_mm\n";
+  }
   for (const auto& traj : r.objects) {
     const auto* cls = d.catalogue.find(traj.className);
     ASSERT_NE(cls, nullptr);
@@ -87,6 +95,15 @@ TEST(SyntheticDemo, MarkerHandAndObjects) {
       const Eigen::Matrix3d R_truth = f.X_world_objects.at(traj.className).linear();
       double dy = std::fmod(std::abs(core::angleDifference(core::yawOf(R_world), core::yawOf(R_truth))), symmetry);
       yaw_rad.push_back(std::min(dy, symmetry - dy));
+      if (perFrame.is_open()) {
+        const Eigen::Vector3d d_world_m = (d.gt.X_world_camera * s.X_camera_object).translation() -
+                                          f.X_world_objects.at(traj.className).translation();
+        const double signedYaw = std::remainder(core::angleDifference(core::yawOf(R_world), core::yawOf(R_truth)), symmetry);
+        perFrame << i << ',' << traj.className << ',' << f.phase << ',' << (f.carriedObject == traj.className) << ','
+                 << s.detected << ',' << s.confidence << ',' << 1e3 * e << ',' << 1e3 * d_world_m.x() << ','
+                 << 1e3 * d_world_m.y() << ',' << 1e3 * d_world_m.z() << ',' << signedYaw * 180 / M_PI << ','
+                 << (f.handInView ? 1e3 * (f.p_camera_palm_m - truth.translation()).norm() : -1.0) << '\n';
+      }
     }
     EXPECT_EQ(carriedWrong, 0) << traj.className << " reported away from the hand carrying it";
     const double precision = detected ? static_cast<double>(correct) / detected : 0.0;

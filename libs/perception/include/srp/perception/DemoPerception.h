@@ -57,6 +57,13 @@ struct PerceptionOptions {
   std::vector<PlanObject> plan;
   /// Fit the support plane once on the first frame (the camera is fixed).
   bool fixedSupportPlane = true;
+  /// A part moves only in the hand: consecutive detections of a moving class
+  /// within restRadius_m of their period's median are one rest, reported
+  /// with the rest's median yaw (modulo the model's symmetry; positions stay
+  /// per detection). A single detection of a part half hidden by the
+  /// reaching hand then neither turns the rest nor is carried through the grasp.
+  bool consolidateRests = true;
+  double restRadius_m = 0.005;
   /// Called with each frame's index and its detections before any refinement
   /// (the detector alone, e.g. for `srp experiment objects`); may be empty.
   std::function<void(int, const std::vector<ObjectDetection>&)> onFrameDetections;

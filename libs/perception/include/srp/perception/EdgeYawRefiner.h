@@ -21,7 +21,11 @@ namespace srp::perception {
 /// m-fold regular (m = 4: cuboids, boxes; m = 8: octagons; `order()` 0
 /// otherwise): the outline's edges then have orientations yaw + k 2pi/m, and
 /// the circular mean of exp(i m angle) over the edge pixels gives the yaw
-/// modulo 2pi/m, the fitted pose picking the branch.
+/// modulo 2pi/m, the fitted pose picking the branch. Other outlines of a few
+/// straight sides (the parallelogram: 2 directions; depth noise and the lost
+/// depth along its edges turn its depth-only yaw by 3-4 deg in some scenes):
+/// the turn within maxCorrection_rad that lines the model's side normals up
+/// with the edge normals (each edge pixel votes through a ~3 deg kernel).
 ///
 /// Edge pixels: a ring of +-ringWidth_px around the depth segment's outline,
 /// each weighted by its colour structure-tensor strength (Sobel on the three
@@ -35,6 +39,12 @@ class EdgeYawRefiner {
     double minCoherence = 0.25; ///< |mean exp(i m angle)| of the edge pixels, [0, 1]
     int ringWidth_px = 2;
     int minEdgePixels = 20;
+    int maxOutlineDirections = 4;  ///< order 0: at most this many distinct side directions (modulo pi)
+    double colourLikeness = 0.12;  ///< order 0: colour distance [0, 1] at which a pixel is 1/e like the top face
+    /// Order 0: share of the edge weight the model's directions must explain
+    /// at the best turn (0.63-0.65 on clean outlines; 0.35 where the outline
+    /// seen is not the model's, e.g. seed 3's parallelogram against its box wall).
+    double minOutlineCoherence = 0.5;
   };
 
   explicit EdgeYawRefiner(const ObjectModel& model);
@@ -42,6 +52,11 @@ class EdgeYawRefiner {
 
   /// m (4 or 8), or 0 when the model's outline is not m-fold regular.
   int order() const { return order_; }
+  /// Order 0 with a polygonal outline of few directions (parallelogram): the distinct
+  /// directions (modulo pi, object frame) of its side normals; the yaw is
+  /// then the turn within maxCorrection_rad that best lines them up with the
+  /// edge normals. Empty otherwise (curved outlines).
+  const std::vector<double>& sideNormals_rad() const { return sideNormals_rad_; }
 
   /// X_camera_object turned about its z axis to the edges' yaw; nullopt when
   /// the model has no order, the image shows too few or too incoherent edges,
@@ -55,6 +70,7 @@ class EdgeYawRefiner {
   int order_ = 0;
   double modelPhase_rad_ = 0.0;  ///< arg of sum exp(i m beta) over the side normals, object frame
   double top_m_ = 0.0;
+  std::vector<double> sideNormals_rad_;  ///< order 0: the outline's distinct side normal directions, modulo pi
 };
 
 }  // namespace srp::perception

@@ -19,6 +19,7 @@
 #include "srp/perception/ObjectModel.h"
 #include "srp/perception/ObjectPoseFitter.h"
 #include "srp/perception/PlaneFit.h"
+#include "srp/perception/SilhouetteBranchPicker.h"
 #include "srp/rawlog/RgbdFrame.h"
 
 namespace srp::perception {
@@ -67,6 +68,11 @@ class ObjectDetector {
     /// edges (EdgeYawRefiner), which depth alone barely shows.
     bool refineYawByEdges = true;
     EdgeYawRefiner::Options edges;
+    /// Parts symmetric about an axis off their origin (the star): the
+    /// symmetric turn whose outline matches the colour silhouette
+    /// (SilhouetteBranchPicker), which depth cannot tell.
+    bool pickBranchBySilhouette = true;
+    SilhouetteBranchPicker::Options branches;
   };
 
   ObjectDetector(std::vector<ObjectModel> models, const Options& options);
@@ -120,6 +126,7 @@ class ObjectDetector {
  private:
   std::vector<ObjectPoseFitter> fitters_;
   std::vector<EdgeYawRefiner> refiners_;  ///< one per fitter
+  SilhouetteBranchPicker branchPicker_;
   Options options_;
   mutable std::optional<Plane> lastPlane_;
 };

@@ -23,6 +23,7 @@ struct ObjectModel {
   Eigen::Vector3d rgb = Eigen::Vector3d::Constant(0.5);   ///< catalogue colour (linear RGB, [0, 1])
   bool useColour = false;                                  ///< colour is known and discriminative
   std::vector<SurfacePoint> surface;                       ///< object frame
+  TriangleMesh mesh;                                       ///< object frame (silhouettes)
   /// Smallest yaw (about object z) [rad] that maps the model onto itself
   /// (2 pi when none): a cube pi/2, a cuboid pi, a five-point star 2 pi/5.
   double yawSymmetry_rad = 2.0 * 3.14159265358979323846;

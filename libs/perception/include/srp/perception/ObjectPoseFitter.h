@@ -66,12 +66,23 @@ class ObjectPoseFitter {
   /// inside the image that the cloud confirms (depth within inlierTol).
   double coverage(const core::Pose3& X_camera_object, const cv::Mat& cloud, const CameraModel& camera) const;
 
+  /// True when the model is (nearly) yaw-symmetric about a vertical axis
+  /// away from its origin (e.g. the five-point star, whose frame is centred
+  /// on its bounding box, 2.6 mm from the star's centre): depth cannot tell
+  /// its symmetric poses apart, yet they put the origin at different places.
+  bool hasOffCentreSymmetry() const;
+
+  /// The model's symmetric poses: X_camera_object turned about the symmetry
+  /// centre's vertical axis by k x yawSymmetry_rad (k = 0 first = the input).
+  std::vector<core::Pose3> symmetricBranches(const core::Pose3& X_camera_object) const;
+
   const ObjectModel& model() const { return model_; }
 
  private:
   struct Impl;
   ObjectModel model_;
   Options options_;
+  Eigen::Vector2d symmetryCentre_xy_ = Eigen::Vector2d::Zero();  ///< object frame, mean of the samples [m]
   std::unique_ptr<Impl> impl_;
 };
 

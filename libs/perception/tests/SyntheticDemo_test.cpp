@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "HandEvaluation.h"
 #include "RenderedDemo.h"
 #include "srp/perception/DemoPerception.h"
 
@@ -17,11 +18,7 @@ namespace {
 
 constexpr int kFrames = 200;
 
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 1e9;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<std::size_t>(p * static_cast<double>(v.size())))];
-}
+using testing::percentile;  // NaN for no samples: every assertion on it fails
 
 using Demo = testing::RenderedDemo;
 
@@ -73,6 +70,9 @@ TEST(SyntheticDemo, MarkerHandAndObjects) {
     const double symmetry = ObjectModel::fromCatalogue(*cls).yawSymmetry_rad;
     std::vector<double> pos_m, yaw_rad;
     int frames = 0, detected = 0, correct = 0, carriedWrong = 0;
+    // Unoccluded = not carried and no hand pixel over the object's projected box
+    // (ground truth): detected in the frame / reported within 2 cm after refinement.
+    int unoccluded = 0, unoccludedDetected = 0, unoccludedReported = 0;
     for (std::size_t i = 0; i < d.gt.frames.size() && i < traj.samples.size(); ++i) {
       const auto& f = d.gt.frames[i];
       if (!f.X_world_objects.count(traj.className)) continue;
@@ -89,6 +89,11 @@ TEST(SyntheticDemo, MarkerHandAndObjects) {
       if (s.detected) {
         ++detected;
         correct += e < 0.02;
+      }
+      if (f.handOccludedObjects && !f.handOccludedObjects->count(traj.className)) {
+        ++unoccluded;
+        unoccludedDetected += s.detected && e < 0.02;
+        unoccludedReported += e < 0.02;
       }
       pos_m.push_back(e);
       const Eigen::Matrix3d R_world = d.gt.X_world_camera.linear() * s.X_camera_object.linear();
@@ -107,11 +112,19 @@ TEST(SyntheticDemo, MarkerHandAndObjects) {
     }
     EXPECT_EQ(carriedWrong, 0) << traj.className << " reported away from the hand carrying it";
     const double precision = detected ? static_cast<double>(correct) / detected : 0.0;
-    std::printf("[ figures  ] %-14s %s: detected %d/%d frames, precision %.1f %%, position median %.1f mm, yaw median %.2f deg\n",
+    const double recallDetected = static_cast<double>(unoccludedDetected) / std::max(1, unoccluded);
+    const double recallRefined = static_cast<double>(unoccludedReported) / std::max(1, unoccluded);
+    std::printf("[ figures  ] %-14s %s: detected %d/%d frames, precision %.1f %%, position median %.1f mm, yaw median %.2f deg; "
+                "unoccluded %d frames: detected %.1f %%, reported after refinement %.1f %%\n",
                 traj.className.c_str(), traj.isStatic ? "static" : "moving", detected, frames, 100 * precision,
-                1e3 * percentile(pos_m, 0.5), percentile(yaw_rad, 0.5) * 180 / M_PI);
+                1e3 * percentile(pos_m, 0.5), percentile(yaw_rad, 0.5) * 180 / M_PI, unoccluded, 100 * recallDetected,
+                100 * recallRefined);
     constexpr double kPrecision = 0.99, kPositionMedian_m = 0.005, kYawMedian_rad = 3.0 * M_PI / 180;  // issue 5
     EXPECT_GE(precision, kPrecision) << traj.className;
+    // Issue 5: recall >= 99 % on unoccluded frames, of what the module reports
+    // (after refinement: a fixed box or a tracked part's pose within 2 cm).
+    constexpr double kUnoccludedRecall = 0.99;
+    if (unoccluded > 0) EXPECT_GE(recallRefined, kUnoccludedRecall) << traj.className << " on unoccluded frames";
     EXPECT_LT(percentile(pos_m, 0.5), kPositionMedian_m) << traj.className;
     // The octagon's and the cuboid's yaw come from the colour edges (EdgeYawRefiner):
     // in depth the octagon's corners move ~1 px over 9 deg at 0.84 m.

@@ -31,27 +31,55 @@ constexpr double kRawlogEpoch_s = 1.7e9;  // rawlog timestamps: a fixed epoch + 
 constexpr double kMaskDepthMargin_m = 0.004;
 constexpr double kMaxTagViewAngle_rad = 60.0 * 3.14159265358979323846 / 180.0;
 
-// Marks the pixels where a box (in its part frame, placed at X_camera_part) is
-// the visible surface: inside the projected hull and at a depth within the box's range.
-void markBox(const Eigen::AlignedBox3d& box, const srp::core::Pose3& X_camera_part,
-             const srp::core::CameraIntrinsics& K, const cv::Mat& depth, cv::Mat& mask) {
-  std::vector<cv::Point> pts;
+// A box (in its part frame, placed at X_camera_part) projected into the image:
+// its convex hull as a filled mask over `bounds` (clipped to the image) and its
+// depth range. nullopt when it is behind the camera or outside the image.
+struct ProjectedBox {
+  cv::Rect bounds;
+  cv::Mat local;  // CV_8UC1 over `bounds`, 255 inside the hull
   double zMin = 1e9, zMax = -1e9;
+};
+std::optional<ProjectedBox> projectBox(const Eigen::AlignedBox3d& box, const srp::core::Pose3& X_camera_part,
+                                       const srp::core::CameraIntrinsics& K) {
+  ProjectedBox out;
+  std::vector<cv::Point> pts;
   for (int c = 0; c < 8; ++c) {
     const Eigen::Vector3d p = X_camera_part * box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c));
-    if (p.z() <= 0.05) return;  // behind or at the camera: not drawn
-    zMin = std::min(zMin, p.z());
-    zMax = std::max(zMax, p.z());
+    if (p.z() <= 0.05) return std::nullopt;  // behind or at the camera: not drawn
+    out.zMin = std::min(out.zMin, p.z());
+    out.zMax = std::max(out.zMax, p.z());
     const auto uv = K.project(p);
     pts.emplace_back(static_cast<int>(std::lround(uv->x())), static_cast<int>(std::lround(uv->y())));
   }
   std::vector<cv::Point> hull;
   cv::convexHull(pts, hull);
-  const cv::Rect bounds = cv::boundingRect(hull) & cv::Rect(0, 0, depth.cols, depth.rows);
-  if (bounds.empty()) return;
-  cv::Mat local(bounds.size(), CV_8UC1, cv::Scalar(0));
-  for (auto& p : hull) p -= bounds.tl();
-  cv::fillConvexPoly(local, hull, cv::Scalar(255));
+  out.bounds = cv::boundingRect(hull) & cv::Rect(0, 0, K.width_px, K.height_px);
+  if (out.bounds.empty()) return std::nullopt;
+  out.local = cv::Mat(out.bounds.size(), CV_8UC1, cv::Scalar(0));
+  for (auto& p : hull) p -= out.bounds.tl();
+  cv::fillConvexPoly(out.local, hull, cv::Scalar(255));
+  return out;
+}
+
+// Whether some pixel of `mask` lies inside the box's projected hull.
+bool boxCoversMaskPixels(const Eigen::AlignedBox3d& box, const srp::core::Pose3& X_camera_part,
+                         const srp::core::CameraIntrinsics& K, const cv::Mat& mask) {
+  const auto projected = projectBox(box, X_camera_part, K);
+  if (!projected) return false;
+  cv::Mat inside;
+  cv::bitwise_and(mask(projected->bounds), projected->local, inside);
+  return cv::countNonZero(inside) > 0;
+}
+
+// Marks the pixels where a box (in its part frame, placed at X_camera_part) is
+// the visible surface: inside the projected hull and at a depth within the box's range.
+void markBox(const Eigen::AlignedBox3d& box, const srp::core::Pose3& X_camera_part,
+             const srp::core::CameraIntrinsics& K, const cv::Mat& depth, cv::Mat& mask) {
+  const auto projected = projectBox(box, X_camera_part, K);
+  if (!projected) return;
+  const cv::Rect& bounds = projected->bounds;
+  const cv::Mat& local = projected->local;
+  const double zMin = projected->zMin, zMax = projected->zMax;
   for (int r = 0; r < bounds.height; ++r) {
     const unsigned char* l = local.ptr<unsigned char>(r);
     const float* d = depth.ptr<float>(bounds.y + r) + bounds.x;
@@ -366,6 +394,11 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
         g.tagInView = tagVisible >= 1.0 && cosView >= std::cos(kMaxTagViewAngle_rad);
         if (f.carriedObject >= 0) g.carriedObject = world.objects[f.carriedObject].id;
         for (std::size_t i = 0; i < world.objects.size(); ++i) g.X_world_objects[world.objects[i].id] = f.X_world_objects[i];
+        g.handOccludedObjects.emplace();
+        if (g.handInView)
+          for (std::size_t i = 0; i < world.objects.size(); ++i)
+            if (boxCoversMaskPixels(objectBounds[i], X_camera_world * f.X_world_objects[i], K, handMask))
+              g.handOccludedObjects->insert(world.objects[i].id);
         auto validFraction = [&](const cv::Mat& mask) -> std::optional<double> {
           const int n = cv::countNonZero(mask);
           if (n == 0) return std::nullopt;

@@ -86,6 +86,7 @@ json DemoGroundTruth::toJson() const {
     for (const auto& c : f.tagCorners_px) jf["tag_corners_px"].push_back({c.x(), c.y()});
     jf["objects"] = json::object();
     for (const auto& [id, X] : f.X_world_objects) jf["objects"][id] = poseToJson(X);
+    if (f.handOccludedObjects) jf["hand_occluded_objects"] = *f.handOccludedObjects;
     jf["valid_depth_fraction"] = {
         {"hand", f.handValidDepthFraction ? json(*f.handValidDepthFraction) : json(nullptr)},
         {"objects", f.objectsValidDepthFraction ? json(*f.objectsValidDepthFraction) : json(nullptr)}};
@@ -163,6 +164,8 @@ DemoGroundTruth DemoGroundTruth::fromJson(const json& j, const std::string& ctx)
     if (jf.contains("carried") && jf.at("carried").is_string()) f.carriedObject = jf.at("carried").get<std::string>();
     for (const auto& [id, X] : requireField(jf, "objects", fc).items())
       f.X_world_objects[id] = poseFromJson(X, fc + ".objects." + id);
+    if (jf.contains("hand_occluded_objects"))
+      f.handOccludedObjects = jf.at("hand_occluded_objects").get<std::set<std::string>>();
     if (jf.contains("valid_depth_fraction")) {
       const auto& v = jf.at("valid_depth_fraction");
       if (v.contains("hand") && v.at("hand").is_number()) f.handValidDepthFraction = v.at("hand").get<double>();

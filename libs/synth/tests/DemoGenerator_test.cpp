@@ -82,6 +82,17 @@ TEST(DemoGenerator, RawlogAndGroundTruthReadBack) {
   for (int k = e.graspFrame - 10; k <= e.graspFrame + 10; ++k) EXPECT_TRUE(gt.frames[k].tagInView) << "frame " << k;
   EXPECT_EQ(again.frames[e.graspFrame].tagVisibleFraction, gt.frames[e.graspFrame].tagVisibleFraction);
 
+  // Occlusion by the hand: none without a hand in view; the grasped part is
+  // under the hand at the grasp; the gray box, far from the first pick, is not
+  // hidden while the hand reaches into the blue box.
+  for (const auto& g : gt.frames) {
+    ASSERT_TRUE(g.handOccludedObjects.has_value()) << "frame " << g.index;
+    if (!g.handInView) EXPECT_TRUE(g.handOccludedObjects->empty()) << "frame " << g.index;
+  }
+  EXPECT_EQ(gt.frames[e.graspFrame].handOccludedObjects->count("cuboid"), 1u);
+  EXPECT_EQ(gt.frames[e.graspFrame].handOccludedObjects->count("gray box"), 0u);
+  EXPECT_EQ(again.frames[e.graspFrame].handOccludedObjects, gt.frames[e.graspFrame].handOccludedObjects);
+
   // Sensor realism as in the thesis: < 50 % valid depth on the hand, > 70 % on objects.
   std::cout << "[measured] valid depth: hand " << 100 * result.meanHandValidDepth << " %, objects "
             << 100 * result.meanObjectValidDepth << " %\n";

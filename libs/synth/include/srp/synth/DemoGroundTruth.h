@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <map>
+#include <set>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
@@ -37,6 +38,10 @@ struct GroundTruthFrame {
   std::array<Eigen::Vector2d, 4> tagCorners_px{};  ///< TL, TR, BR, BL as the tag is read (may lie outside)
   std::string carriedObject;     ///< id of the object in the hand, empty when none
   std::map<std::string, srp::core::Pose3> X_world_objects;  ///< every scene object, by id
+  /// Ids of the objects the hand hides in part: some visible hand pixel lies
+  /// inside the object's projected bounding box. nullopt in ground truth
+  /// written before this field existed (occlusion unknown).
+  std::optional<std::set<std::string>> handOccludedObjects;
   /// Fraction of valid depth pixels on the visible hand / moved parts; nullopt
   /// when none is visible.
   std::optional<double> handValidDepthFraction, objectsValidDepthFraction;

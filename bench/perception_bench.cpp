@@ -16,6 +16,7 @@
 
 #include <filesystem>
 
+#include "BenchDemo.h"
 #include "srp/core/Scene.h"
 #include "srp/perception/DemoPerception.h"
 #include "srp/perception/MarkerFreeHandDetector.h"
@@ -50,20 +51,7 @@ const srp::core::ObjectCatalogue& catalogue() {
 
 /// The synthetic demo's rawlog (rendered on first use, ~1 min).
 const std::string& synthRawlog() {
-  static const std::string path = [] {
-    const auto file = std::filesystem::temp_directory_path() /
-                      ("srp_perception_bench_demo_" + std::to_string(kSynthFrames) + ".rawlog");
-    // The ground truth is written last: without it the rawlog may be partial.
-    if (!std::filesystem::exists(std::filesystem::path(file).replace_extension(".gt.json"))) {
-      const auto scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-      srp::synth::SynthDemoOptions o;
-      o.demo.seed = static_cast<std::uint32_t>(scene.seed);
-      o.maxFrames = kSynthFrames;
-      srp::synth::generateSyntheticDemo(scene, srp::core::ObjectCatalogue::load(scene.cataloguePath),
-                                        srp::synth::defaultPlanJson(), o, file.string());
-    }
-    return file.string();
-  }();
+  static const std::string path = srp::bench::syntheticBenchDemo(kSynthFrames);
   return path;
 }
 

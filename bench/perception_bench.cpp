@@ -3,7 +3,7 @@
 // (a) the synthetic default demo (srp::synth, default scene, thesis
 //     instruction 1, default sensor noise), its first kSynthFrames frames (the
 //     first pick & place: idle, reach, grasp, carry, release, retract),
-//     rendered once into the temp folder and reused;
+//     rendered by this build at start (bench/BenchDemo.h);
 // (b) the real RealSense recording (datasets/real/visp-rbt-cube, 10 frames of
 //     a cluttered desk, hand-held camera) with the whole knowledge base as
 //     object models.
@@ -49,7 +49,7 @@ const srp::core::ObjectCatalogue& catalogue() {
   return c;
 }
 
-/// The synthetic demo's rawlog (rendered on first use, ~1 min).
+/// The synthetic demo's rawlog (rendered at first use by this process, 1-2 s).
 const std::string& synthRawlog() {
   static const std::string path = srp::bench::syntheticBenchDemo(kSynthFrames);
   return path;

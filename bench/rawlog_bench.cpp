@@ -1,6 +1,6 @@
 // Rawlog decoding on 640x480 RGB-D frames of the synthetic default demo
 // (srp::synth, default scene and sensor noise, first kFrames frames, rendered
-// once into the temp folder):
+// by this build at start, bench/BenchDemo.h):
 // - BM_Decode/<read-ahead>: wall time per frame of RawlogReader::next() alone,
 //   synchronous (0) and with the background read-ahead (4);
 // - BM_DecodeAndWork/<read-ahead>: the same with a consumer that spends

@@ -197,7 +197,6 @@ std::optional<ObjectDetection> ObjectDetector::explain(const ObjectSegment& seg,
   const ObjectPoseFitter* bestFitter = nullptr;
   core::Pose3 bestPose = core::Pose3::Identity();
   double bestConfidence = 0.0;
-  bool tracked = false;
   // Tracking: a class whose previous pose lies on this segment is refined from it first.
   for (const ObjectPoseFitter& fitter : fitters_) {
     if (excluded.count(fitter.model().name)) continue;
@@ -212,7 +211,6 @@ std::optional<ObjectDetection> ObjectDetector::explain(const ObjectSegment& seg,
       bestFitter = &fitter;
       bestPose = fit.X_camera_object;
       bestConfidence = confidence;
-      tracked = true;
     }
   }
   for (const ObjectPoseFitter& fitter : fitters_) {
@@ -243,9 +241,11 @@ std::optional<ObjectDetection> ObjectDetector::explain(const ObjectSegment& seg,
     }
   }
   if (!bestFitter || bestConfidence < options_.minConfidence) return std::nullopt;
-  if (!tracked && options_.pickBranchBySilhouette && bestFitter->hasOffCentreSymmetry() && seg.hasColour) {
+  if (options_.pickBranchBySilhouette && bestFitter->hasOffCentreSymmetry() && seg.hasColour) {
     // Depth fits every symmetric turn of a nearly symmetric part equally
-    // well; the colour outline tells which one puts the origin right.
+    // well; the colour outline tells which one puts the origin right. Also
+    // for a tracked part: one first found half hidden (a part just placed,
+    // the hand still over it) keeps a wrong turn otherwise.
     const auto branches = bestFitter->symmetricBranches(bestPose);
     std::vector<double> iou;
     const auto k = branchPicker_.pick(bestFitter->model().mesh, branches, seg.pixels, seg.colour_bgr8,

@@ -93,10 +93,11 @@ std::vector<core::Pose3> ObjectPoseFitter::symmetricBranches(const core::Pose3& 
 ObjectPoseFitter::ObjectPoseFitter(ObjectPoseFitter&&) noexcept = default;
 ObjectPoseFitter& ObjectPoseFitter::operator=(ObjectPoseFitter&&) noexcept = default;
 
-double ObjectPoseFitter::coverage(const core::Pose3& X_camera_object, const cv::Mat& cloud,
-                                  const CameraModel& camera) const {
+ObjectPoseFitter::SurfaceEvidence ObjectPoseFitter::surfaceEvidence(const core::Pose3& X_camera_object,
+                                                                    const cv::Mat& cloud,
+                                                                    const CameraModel& camera) const {
   const auto& k = camera.intrinsics();
-  int supported = 0, contradicted = 0;
+  SurfaceEvidence e;
   const std::size_t step = std::max<std::size_t>(1, model_.surface.size() / 2000);
   for (std::size_t i = 0; i < model_.surface.size(); i += step) {
     const Eigen::Vector3d p = X_camera_object * model_.surface[i].p_m;
@@ -108,11 +109,17 @@ double ObjectPoseFitter::coverage(const core::Pose3& X_camera_object, const cv::
     const float zObs = cloud.at<cv::Vec3f>(v, u)[2];
     if (zObs <= 0.f) continue;  // no depth: no evidence
     const double dz = zObs - p.z();
-    if (std::abs(dz) < options_.inlierTol_m) ++supported;
-    else if (dz > 0) ++contradicted;  // the camera sees through where the model should be
+    if (std::abs(dz) < options_.inlierTol_m) ++e.supported;
+    else if (dz > 0) ++e.seenThrough;  // the camera sees through where the model should be
     // dz < 0: something in front (occlusion), no evidence
   }
-  return supported + contradicted > 0 ? static_cast<double>(supported) / (supported + contradicted) : 0.0;
+  return e;
+}
+
+double ObjectPoseFitter::coverage(const core::Pose3& X_camera_object, const cv::Mat& cloud,
+                                  const CameraModel& camera) const {
+  const SurfaceEvidence e = surfaceEvidence(X_camera_object, cloud, camera);
+  return e.total() > 0 ? static_cast<double>(e.supported) / e.total() : 0.0;
 }
 
 ObjectPoseFit ObjectPoseFitter::evaluate(const std::vector<Eigen::Vector3d>& points_camera,

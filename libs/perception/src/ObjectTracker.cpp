@@ -1,5 +1,8 @@
 #include "srp/perception/ObjectTracker.h"
 
+#include <cstdio>
+#include <cstdlib>
+
 #include <algorithm>
 #include <cmath>
 
@@ -30,6 +33,19 @@ std::optional<ObjectDetection> ObjectTracker::fixedStatic(const std::string& cla
   const auto it = fixed_.find(className);
   if (it == fixed_.end()) return std::nullopt;
   return it->second;
+}
+
+bool ObjectTracker::placeVacated(const std::string& className, const core::Pose3& X_camera_object,
+                                 const cv::Mat& cloud, const CameraModel& camera) const {
+  const auto fitter = std::find_if(detector_.fitters().begin(), detector_.fitters().end(),
+                                   [&](const ObjectPoseFitter& f) { return f.model().name == className; });
+  if (fitter == detector_.fitters().end()) return false;
+  const ObjectPoseFitter::SurfaceEvidence e = fitter->surfaceEvidence(X_camera_object, cloud, camera);
+  if (std::getenv("SRP_PERCEPTION_DEBUG"))
+    std::fprintf(stderr, "frame %d: %s's last place (%.3f %.3f %.3f): %d samples supported, %d seen through\n",
+                 frame_ - 1, className.c_str(), X_camera_object.translation().x(), X_camera_object.translation().y(),
+                 X_camera_object.translation().z(), e.supported, e.seenThrough);
+  return e.total() >= options_.vacatedMinEvidence && e.seenThrough >= options_.vacatedSeenThrough * e.total();
 }
 
 std::vector<ObjectDetection> ObjectTracker::update(const rawlog::RgbdFrame& frame, const Plane* support,
@@ -160,6 +176,7 @@ std::vector<ObjectDetection> ObjectTracker::update(const rawlog::RgbdFrame& fram
                                pendingJumps_.erase(d.className);
                                return false;
                              }
+                             if (placeVacated(d.className, last->second, cloud, camera)) return false;
                              auto& jump = pendingJumps_[d.className];
                              const bool same = jump.frames > 0 && core::translationDistance(d.X_camera_object, jump.X_camera_object) <= options_.maxUnheldJump_m;
                              jump.frames = same ? jump.frames + 1 : 1;

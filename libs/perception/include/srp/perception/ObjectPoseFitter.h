@@ -62,8 +62,22 @@ class ObjectPoseFitter {
   ObjectPoseFit evaluate(const std::vector<Eigen::Vector3d>& points_camera, const core::Pose3& X_camera_object,
                          const cv::Mat& cloud, const CameraModel& camera) const;
 
+  /// What the cloud says about the model's camera-facing surface samples at
+  /// X_camera_object (inside the image): `supported` within inlierTol,
+  /// `seenThrough` where the measured depth is farther (the camera sees
+  /// through where the surface should be: the object is not there). Samples
+  /// with something in front (occlusion) or without depth are no evidence.
+  struct SurfaceEvidence {
+    int supported = 0;
+    int seenThrough = 0;
+    int total() const { return supported + seenThrough; }
+  };
+  SurfaceEvidence surfaceEvidence(const core::Pose3& X_camera_object, const cv::Mat& cloud,
+                                  const CameraModel& camera) const;
+
   /// Fraction of the model surface facing the camera at X_camera_object and
-  /// inside the image that the cloud confirms (depth within inlierTol).
+  /// inside the image that the cloud confirms (depth within inlierTol), of
+  /// the samples with evidence (surfaceEvidence); 0 without evidence.
   double coverage(const core::Pose3& X_camera_object, const cv::Mat& cloud, const CameraModel& camera) const;
 
   /// True when the model is (nearly) yaw-symmetric about a vertical axis

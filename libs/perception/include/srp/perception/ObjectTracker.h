@@ -47,11 +47,19 @@ class ObjectTracker {
     double handRadius_px = 6.0;           ///< a segment this close to a hand point is the hand
     /// A part moves only in the hand: a moving class reported farther than
     /// this from its last pose is believed only when a hand point has come
-    /// within handVisit_m of that pose since (a grasp), or when the new pose
+    /// within handVisit_m of that pose since (a grasp), when its last place
+    /// is vacated (the depth sees through at least vacatedSeenThrough of the
+    /// model's surface samples there, of at least vacatedMinEvidence samples
+    /// with evidence; a hand in front is no evidence), or when the new pose
     /// holds for jumpConfirmFrames frames (a hand the detector missed). Keeps
-    /// a reaching hand's fingers from being taken for the part it reaches for.
+    /// a reaching hand's fingers from being taken for the part it reaches
+    /// for (the part is still in its place), yet believes a placed part at
+    /// once even when the palm stayed centimetres from it (a cuboid held at
+    /// its end: 7 cm).
     double maxUnheldJump_m = 0.02;
     double handVisit_m = 0.03;
+    double vacatedSeenThrough = 0.6;
+    int vacatedMinEvidence = 30;
     int jumpConfirmFrames = 15;
   };
 
@@ -82,6 +90,10 @@ class ObjectTracker {
   const Stats& lastStats() const { return stats_; }
 
  private:
+  /// Whether the class's model at X_camera_object is seen through (see Options).
+  bool placeVacated(const std::string& className, const core::Pose3& X_camera_object, const cv::Mat& cloud,
+                    const CameraModel& camera) const;
+
   /// A segment answered in some frame, and the answer.
   struct Answer {
     Eigen::Vector3d lo_plane_m, hi_plane_m;

@@ -8,13 +8,11 @@
 //   other arguments go to Google Benchmark (e.g. --benchmark_min_time=2s)
 #include <benchmark/benchmark.h>
 
-#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "../libs/perception/tests/HandEvaluation.h"
-#include "srp/core/Scene.h"
-#include "srp/synth/PickPlacePlan.h"
+#include "BenchDemo.h"
 
 namespace {
 
@@ -42,14 +40,8 @@ int main(int argc, char** argv) {
     else rest.push_back(argv[i]);
   }
   if (demo.empty()) {
-    const auto scene = core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-    synth::SynthDemoOptions o;
-    o.demo.seed = static_cast<std::uint32_t>(scene.seed);
-    o.maxFrames = 200;
-    demo = (std::filesystem::temp_directory_path() / "marker_free_hand_bench.rawlog").string();
-    std::fprintf(stderr, "rendering the first %d frames of the default demo to %s ...\n", o.maxFrames, demo.c_str());
-    synth::generateSyntheticDemo(scene, core::ObjectCatalogue::load(scene.cataloguePath), synth::defaultPlanJson(), o,
-                                 demo);
+    std::fprintf(stderr, "rendering the first 200 frames of the default demo ...\n");
+    demo = srp::bench::syntheticBenchDemo(200);
   }
   const int backgroundFrames = MarkerFreeHandDetector::Options{}.backgroundFrames;
   const auto ev = perception::testing::evaluateMarkerFreeHand(

@@ -180,9 +180,8 @@ PerceptionResult DemoPerceiver::finish() const {
     // Rests of a moving part: runs of detections near their running median.
     std::vector<std::optional<ObjectDetection>> rested = dets;
     if (!p.isStatic && m.options.consolidateRests) {
-      double symmetry_rad = 2 * M_PI;
-      for (const auto& f : m.detector->fitters())
-        if (f.model().name == p.className) symmetry_rad = f.model().yawSymmetry_rad;
+      const ObjectPoseFitter* fitter = m.detector->fitterFor(p.className);
+      const double symmetry_rad = fitter ? fitter->model().yawSymmetry_rad : 2 * M_PI;
       const core::Pose3 X_plane_camera = m.support ? m.support->X_camera_plane().inverse() : core::Pose3::Identity();
       auto yawInPlane = [&](const core::Pose3& X) { return core::yawOf((X_plane_camera * X).linear()); };
       std::vector<std::size_t> rest;

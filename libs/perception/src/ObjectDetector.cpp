@@ -155,6 +155,12 @@ std::vector<ObjectSegment> ObjectDetector::segments(const rawlog::RgbdFrame& fra
   return out;
 }
 
+const ObjectPoseFitter* ObjectDetector::fitterFor(const std::string& className) const {
+  const auto it = std::find_if(fitters_.begin(), fitters_.end(),
+                               [&](const ObjectPoseFitter& f) { return f.model().name == className; });
+  return it == fitters_.end() ? nullptr : &*it;
+}
+
 double ObjectDetector::colourScore(const ObjectSegment& segment, const ObjectModel& model) const {
   return model.useColour && segment.hasColour ? colourAgreement(segment.meanRgb, model.rgb) : 1.0;
 }

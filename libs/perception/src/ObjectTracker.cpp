@@ -37,9 +37,8 @@ std::optional<ObjectDetection> ObjectTracker::fixedStatic(const std::string& cla
 
 bool ObjectTracker::placeVacated(const std::string& className, const core::Pose3& X_camera_object,
                                  const cv::Mat& cloud, const CameraModel& camera) const {
-  const auto fitter = std::find_if(detector_.fitters().begin(), detector_.fitters().end(),
-                                   [&](const ObjectPoseFitter& f) { return f.model().name == className; });
-  if (fitter == detector_.fitters().end()) return false;
+  const ObjectPoseFitter* fitter = detector_.fitterFor(className);
+  if (!fitter) return false;
   const ObjectPoseFitter::SurfaceEvidence e = fitter->surfaceEvidence(X_camera_object, cloud, camera);
   if (std::getenv("SRP_PERCEPTION_DEBUG"))
     std::fprintf(stderr, "frame %d: %s's last place (%.3f %.3f %.3f): %d samples supported, %d seen through\n",
@@ -117,8 +116,7 @@ std::vector<ObjectDetection> ObjectTracker::update(const rawlog::RgbdFrame& fram
     bool taken = false;
     for (const auto& [name, det] : fixed_) {
       if (assigned.count(name)) continue;
-      const auto fitter = std::find_if(detector_.fitters().begin(), detector_.fitters().end(),
-                                       [&](const ObjectPoseFitter& f) { return f.model().name == name; });
+      const ObjectPoseFitter* fitter = detector_.fitterFor(name);
       const Eigen::Vector3d p = X_plane_camera * det.X_camera_object.translation();
       if ((p - seg.centre_plane_m()).head<2>().norm() > fitter->model().dimensions_m.head<2>().norm()) continue;
       const ObjectPoseFit fit = fitter->evaluate(seg.points_camera_m, det.X_camera_object, cloud, camera);

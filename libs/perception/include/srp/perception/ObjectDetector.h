@@ -118,6 +118,8 @@ class ObjectDetector {
   /// The support plane of the last detect() call, if one was found.
   const std::optional<Plane>& lastPlane() const { return lastPlane_; }
   const std::vector<ObjectPoseFitter>& fitters() const { return fitters_; }
+  /// The fitter of class `className`; nullptr when the detector has no such model.
+  const ObjectPoseFitter* fitterFor(const std::string& className) const;
   const Options& options() const { return options_; }
 
   /// Segments above the plane: label image (CV_32S, 0 = none) and the count.

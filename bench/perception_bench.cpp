@@ -49,17 +49,11 @@ const srp::core::ObjectCatalogue& catalogue() {
   return c;
 }
 
-/// The synthetic demo's rawlog (rendered at first use by this process, 1-2 s).
-const std::string& synthRawlog() {
-  static const std::string path = srp::bench::syntheticBenchDemo(kSynthFrames);
-  return path;
-}
-
 void BM_WholeModule_SyntheticDemo(benchmark::State& state) {
   PerceptionOptions o;  // marker defaults = synth-demo's glove
   o.plan = {{"cuboid", false}, {"star", false}, {"parallelogram", false}, {"octagon", false},
             {"blue box", true}, {"gray box", true}};  // what `srp program` grounds for instruction 1
-  const std::string path = synthRawlog();
+  const std::string path = srp::bench::syntheticBenchDemo(kSynthFrames);  // rendered once per process
   int frames = 0;
   for (auto _ : state) {
     DemoPerceiver perceiver(catalogue(), o);

@@ -25,11 +25,6 @@ double threadCpu_s() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-const std::string& demoRawlog() {
-  static const std::string path = srp::bench::syntheticBenchDemo(kFrames);
-  return path;
-}
-
 /// Spends `ms` of this thread's CPU time (a stand-in for perception's work on a frame).
 void spendCpu(double ms) {
   const double end = threadCpu_s() + 1e-3 * ms;
@@ -39,7 +34,7 @@ void spendCpu(double ms) {
 }
 
 void readAll(benchmark::State& state, double work_ms) {
-  const std::string& path = demoRawlog();
+  const std::string path = srp::bench::syntheticBenchDemo(kFrames);  // rendered once per process
   const int readAhead = static_cast<int>(state.range(0));
   int frames = 0;
   const auto t0 = std::chrono::steady_clock::now();

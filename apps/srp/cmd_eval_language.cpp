@@ -7,6 +7,7 @@
 
 #include "CommandRegistry.h"
 #include "srp/core/Json.h"
+#include "srp/language/AnnotationPrecedents.h"
 #include "srp/language/LanguageModel.h"
 #include "srp/language/SpertEvaluation.h"
 
@@ -26,12 +27,17 @@ void setupEvalLanguage(CLI::App& app) {
   auto errors = std::make_shared<bool>(false);
   app.add_flag("--errors", *errors, "also print the entity errors: counts per kind, gold vs predicted spans per sentence");
   app.add_option("--error-types", *errorTypes, "entity types of the error dump (default: all)")->delimiter(',');
+  auto precedentsPath = std::make_shared<std::string>();
+  app.add_option("--precedents", *precedentsPath,
+                 "SpERT corpus (e.g. train.json) to check each error against: how it annotates the same 7 words, "
+                 "and the scores if the scored corpus followed it where the model did")
+      ->check(CLI::ExistingFile);
   app.callback([=] {
     const auto model = srp::language::LanguageModel::load(*modelPath);
     const auto gold = srp::language::readSpertCorpus(*dataPath);
     const auto scores = srp::language::evaluateModel(model, gold);
     std::vector<srp::language::AnnotatedSentence> predicted;
-    if (!predictionsPath->empty() || *errors)
+    if (!predictionsPath->empty() || *errors || !precedentsPath->empty())
       for (const auto& s : gold) predicted.push_back(model.annotate(s.tokens));
     if (!predictionsPath->empty()) {
       nlohmann::json out = nlohmann::json::array();
@@ -45,6 +51,20 @@ void setupEvalLanguage(CLI::App& app) {
     if (*errors)
       (*json ? std::cerr : std::cout) << srp::language::formatEntityErrors(
           gold, predicted, std::set<std::string>(errorTypes->begin(), errorTypes->end()));
+    if (!precedentsPath->empty()) {
+      const srp::language::AnnotationPrecedents precedents(srp::language::readSpertCorpus(*precedentsPath));
+      const auto check = srp::language::checkAgainstPrecedents(
+          gold, predicted, precedents, std::set<std::string>(errorTypes->begin(), errorTypes->end()));
+      std::ostream& out = *json ? std::cerr : std::cout;
+      out << "errors against " << *precedentsPath << " (the same " << 2 * precedents.radius() + 1
+          << " words, [position]):\n"
+          << check.report << check.errors << " errors, " << check.withPrecedent << " with a precedent, "
+          << check.againstPrecedent << " where " << *precedentsPath
+          << " annotates the same words as predicted\nscores if " << *dataPath << " followed it there:\n";
+      srp::language::SpertScores consistent;
+      consistent.types = check.ifConsistent;
+      out << srp::language::formatScoreTable(consistent);
+    }
   });
 }
 const srp::app::CommandRegistrar kReg{"eval-language", "Score the instruction model on a SpERT corpus (P/R/F1 per type)",

@@ -121,6 +121,7 @@ std::string formatScoreTable(const SpertScores& scores) {
                   100 * s.f1(), s.support());
     out += line;
   }
+  if (scores.msPerSentence <= 0.0) return out;  // not timed (pooled or recounted scores)
   std::snprintf(line, sizeof line, "time per sentence: %.3f ms\n", scores.msPerSentence);
   return out + line;
 }

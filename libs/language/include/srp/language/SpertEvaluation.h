@@ -82,7 +82,8 @@ std::string formatEntityErrors(const std::vector<AnnotatedSentence>& gold,
 /// "f1", "support"}, ...}, "ms_per_sentence": x}.
 nlohmann::json toJson(const SpertScores& scores);
 
-/// A fixed-width table: type, precision, recall, F1 (percent), support.
+/// A fixed-width table: type, precision, recall, F1 (percent), support; then the
+/// time per sentence when the scores were timed (msPerSentence > 0).
 std::string formatScoreTable(const SpertScores& scores);
 
 }  // namespace srp::language

@@ -15,12 +15,16 @@ struct ObjectPoseFitter::Impl {
   Eigen::Vector3d origin;
   Eigen::Vector3i size;
   double cell = 0.002;
+  double invCell = 500.0;
   std::vector<int> nearest;
 
-  int lookup(const Eigen::Vector3d& p_object) const {
-    Eigen::Vector3i c = ((p_object - origin) / cell).array().floor().cast<int>();
-    for (int k = 0; k < 3; ++k) c[k] = std::clamp(c[k], 0, size[k] - 1);
-    return nearest[(static_cast<std::size_t>(c.z()) * size.y() + c.y()) * size.x() + c.x()];
+  // The hottest call of a fit (once per point and iteration): truncation
+  // instead of floor is the same after the clamp (below 0 clamps to 0 either way).
+  inline int lookup(const Eigen::Vector3d& p_object) const {
+    const int x = std::clamp(static_cast<int>((p_object.x() - origin.x()) * invCell), 0, size.x() - 1);
+    const int y = std::clamp(static_cast<int>((p_object.y() - origin.y()) * invCell), 0, size.y() - 1);
+    const int z = std::clamp(static_cast<int>((p_object.z() - origin.z()) * invCell), 0, size.z() - 1);
+    return nearest[(static_cast<std::size_t>(z) * size.y() + y) * size.x() + x];
   }
 };
 
@@ -37,6 +41,7 @@ ObjectPoseFitter::ObjectPoseFitter(const ObjectModel& model, const Options& opti
   for (const auto& s : model.surface) box.extend(s.p_m);
   const double margin = 0.03;
   impl_->cell = options.gridCell_m;
+  impl_->invCell = 1.0 / options.gridCell_m;
   impl_->origin = box.min() - Eigen::Vector3d::Constant(margin);
   impl_->size = ((box.sizes() + Eigen::Vector3d::Constant(2 * margin)) / impl_->cell).array().ceil().cast<int>() + 1;
   const std::size_t n = static_cast<std::size_t>(impl_->size.prod());
@@ -193,30 +198,44 @@ ObjectPoseFit ObjectPoseFitter::fit(const std::vector<Eigen::Vector3d>& points_c
     double yaw = s[3];
     for (int it = 0; it < iterations; ++it) {
       const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-      Eigen::Matrix4d H = Eigen::Matrix4d::Zero();
-      Eigen::Vector4d g = Eigen::Vector4d::Zero();
       // Later iterations trust only close matches (outliers: other objects, the hand).
       const double gate = it < iterations / 2 ? 0.05 : 4 * tol;
+      // Point-to-plane (along the model normal; free of the sampling's
+      // spacing) plus a weak point-to-point term that keeps faces from sliding.
+      // The Jacobian of a residual e = p - (R m0 + t) in (t, yaw) is
+      // J = [-I | -c], c = (-m.y, m.x, 0); J^T J = [[I, c], [c^T, c.c]] is
+      // summed as its parts (sum w, sum w c, sum w c.c), the plane term as a
+      // rank-one update: the same normal equations at a fraction of the cost.
+      constexpr double kPointWeight = 0.1;
+      Eigen::Matrix4d H = Eigen::Matrix4d::Zero();
+      Eigen::Vector4d g = Eigen::Vector4d::Zero();
+      double sumW = 0.0, sumWcc = 0.0;
+      Eigen::Vector3d sumWc = Eigen::Vector3d::Zero();
       for (std::size_t i = 0; i < q.size(); i += stride) {
         const Eigen::Vector3d& p = q[i];
         const Eigen::Vector3d po = R.transpose() * (p - t);
         const SurfacePoint& sp = model_.surface[static_cast<std::size_t>(impl_->lookup(po))];
         const Eigen::Vector3d m = R * sp.p_m;
         const Eigen::Vector3d e = p - (m + t);
-        const double dist = e.norm();
-        if (dist > gate) continue;
+        const double dist2 = e.squaredNorm();
+        if (dist2 > gate * gate) continue;
+        const double dist = std::sqrt(dist2);
         const double w = dist < tol ? 1.0 : tol / dist;  // Huber
-        Eigen::Matrix<double, 3, 4> J;
-        J.leftCols<3>() = -Eigen::Matrix3d::Identity();
-        J.col(3) = -Eigen::Vector3d(-m.y(), m.x(), 0.0);
-        // Point-to-plane (along the model normal; free of the sampling's
-        // spacing) plus a weak point-to-point term that keeps faces from sliding.
+        const Eigen::Vector3d c(-m.y(), m.x(), 0.0);
         const Eigen::Vector3d n = R * sp.n;
-        const Eigen::Matrix<double, 1, 4> Jn = n.transpose() * J;
-        constexpr double kPointWeight = 0.1;
-        H += w * (Jn.transpose() * Jn + kPointWeight * J.transpose() * J);
-        g += w * (Jn.transpose() * n.dot(e) + kPointWeight * J.transpose() * e);
+        const Eigen::Vector4d a(-n.x(), -n.y(), -n.z(), -n.dot(c));  // n^T J
+        H.noalias() += (w * a) * a.transpose();
+        g += (w * n.dot(e)) * a;
+        sumW += w;
+        sumWc += w * c;
+        sumWcc += w * c.squaredNorm();
+        g.head<3>() -= (kPointWeight * w) * e;
+        g(3) -= kPointWeight * w * c.dot(e);
       }
+      H.topLeftCorner<3, 3>().diagonal().array() += kPointWeight * sumW;
+      H.topRightCorner<3, 1>() += kPointWeight * sumWc;
+      H.bottomLeftCorner<1, 3>() += kPointWeight * sumWc.transpose();
+      H(3, 3) += kPointWeight * sumWcc;
       // Weak prior keeping the start's height: side faces alone cannot tell
       // the height (an open box's walls fit raised as well); the starts try both
       // "on the plane" and "top at the data's top", and coverage picks.
@@ -285,22 +304,42 @@ ObjectPoseFit ObjectPoseFitter::fit(const std::vector<Eigen::Vector3d>& points_c
     core::Pose3 X = best.X_camera_object;
     for (int it = 0; it < options_.iterations; ++it) {
       const core::Pose3 Xinv = X.inverse();
-      Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
-      Eigen::Matrix<double, 6, 1> g = Eigen::Matrix<double, 6, 1>::Zero();
+      // J = [[r]x | -I] per point; J^T J = [[|r|^2 I - r r^T, [r]x], [-[r]x, I]]
+      // and J^T e = [e x r; -e] are summed as their parts.
+      double sumW = 0.0, sumWrr = 0.0;
+      Eigen::Vector3d sumWr = Eigen::Vector3d::Zero(), sumWe = Eigen::Vector3d::Zero(),
+                      sumWexr = Eigen::Vector3d::Zero();
+      Eigen::Matrix3d sumWrrT = Eigen::Matrix3d::Zero();
+      const Eigen::Matrix3d X_object_plane_R = Xinv.linear() * X_camera_plane.linear();
+      const Eigen::Vector3d X_object_plane_t = Xinv.linear() * X_camera_plane.translation() + Xinv.translation();
       for (const auto& pp : q) {
         const Eigen::Vector3d p = X_camera_plane * pp;
-        const Eigen::Vector3d m = X * model_.surface[static_cast<std::size_t>(impl_->lookup(Xinv * p))].p_m;
+        const Eigen::Vector3d m =
+            X * model_.surface[static_cast<std::size_t>(impl_->lookup(X_object_plane_R * pp + X_object_plane_t))].p_m;
         const Eigen::Vector3d e = p - m;
-        const double dist = e.norm();
-        if (dist > 3 * tol) continue;
+        const double dist2 = e.squaredNorm();
+        if (dist2 > 9 * tol * tol) continue;
+        const double dist = std::sqrt(dist2);
         const double w = dist < tol ? 1.0 : tol / dist;
         const Eigen::Vector3d r = m - X.translation();
-        Eigen::Matrix<double, 3, 6> J;
-        J.leftCols<3>() << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;  // [r]x
-        J.rightCols<3>() = -Eigen::Matrix3d::Identity();
-        H += w * J.transpose() * J;
-        g += w * J.transpose() * e;
+        sumW += w;
+        sumWr += w * r;
+        sumWrr += w * r.squaredNorm();
+        sumWrrT.noalias() += (w * r) * r.transpose();
+        sumWe += w * e;
+        sumWexr += w * e.cross(r);
       }
+      const Eigen::Matrix3d S = (Eigen::Matrix3d() << 0, -sumWr.z(), sumWr.y(), sumWr.z(), 0, -sumWr.x(), -sumWr.y(),
+                                 sumWr.x(), 0)
+                                    .finished();  // sum w [r]x
+      Eigen::Matrix<double, 6, 6> H;
+      H.topLeftCorner<3, 3>() = sumWrr * Eigen::Matrix3d::Identity() - sumWrrT;
+      H.topRightCorner<3, 3>() = S;
+      H.bottomLeftCorner<3, 3>() = -S;
+      H.bottomRightCorner<3, 3>() = sumW * Eigen::Matrix3d::Identity();
+      Eigen::Matrix<double, 6, 1> g;
+      g.head<3>() = sumWexr;
+      g.tail<3>() = -sumWe;
       H.diagonal().array() += 1e-4;
       const Eigen::Matrix<double, 6, 1> d = -H.ldlt().solve(g);
       const Eigen::Vector3d wv = d.head<3>();

@@ -211,8 +211,12 @@ std::optional<ObjectDetection> ObjectDetector::explain(const ObjectSegment& seg,
     const Eigen::Vector3d p = X_plane_camera * prev->second.translation();
     if ((p - segCentre).head<2>().norm() > options_.trackRadius_m + 0.5 * fitter.model().dimensions_m.head<2>().norm())
       continue;
+    // A fit's score is at most 1, so a colour below what it must reach cannot
+    // win (a hand's fragment next to a part): no fit.
+    const double colour = colourScore(seg, fitter.model());
+    if (colour < options_.trackConfidence || colour <= bestConfidence) continue;
     const ObjectPoseFit fit = fitter.fit(seg.points_camera_m, plane, cloud, camera, &prev->second);
-    const double confidence = fit.score * colourScore(seg, fitter.model());
+    const double confidence = fit.score * colour;
     if (confidence >= options_.trackConfidence && confidence > bestConfidence) {
       bestFitter = &fitter;
       bestPose = fit.X_camera_object;
@@ -229,7 +233,7 @@ std::optional<ObjectDetection> ObjectDetector::explain(const ObjectSegment& seg,
     if (segTop_m > model.dimensions_m.z() + options_.maxElevation_m + 0.02 || segTop_m < 0.4 * model.dimensions_m.z())
       continue;
     const double colour = colourScore(seg, model);
-    if (colour < 0.05) continue;
+    if (colour < 0.05 || colour < options_.minConfidence || colour <= bestConfidence) continue;  // cannot win (score <= 1)
     // A coarse score that even a perfect fine stage could not lift to half
     // the acceptance is not worth the fine stage.
     const ObjectPoseFit fit = fitter.fit(seg.points_camera_m, plane, cloud, camera, nullptr,

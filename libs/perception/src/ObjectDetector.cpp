@@ -68,26 +68,30 @@ int ObjectDetector::segment(const cv::Mat& cloud, const Plane& plane, cv::Mat& l
       if (h >= options_.minHeight_m && h <= options_.maxHeight_m) parent[v * W + u] = v * W + u;
     }
   }
-  auto joinable = [&](int a, int b) {
-    if (parent[a] < 0 || parent[b] < 0) return false;
-    const float za = cloud.at<cv::Vec3f>(a / W, a % W)[2], zb = cloud.at<cv::Vec3f>(b / W, b % W)[2];
-    return std::abs(za - zb) < options_.depthEdge_m * std::max(1.0f, za);
-  };
-  for (int v = 0; v < H; ++v)
+  const double depthEdge = options_.depthEdge_m;
+  auto joinable = [depthEdge](float za, float zb) { return std::abs(za - zb) < depthEdge * std::max(1.0f, za); };
+  for (int v = 0; v < H; ++v) {
+    const cv::Vec3f* row = cloud.ptr<cv::Vec3f>(v);
+    const cv::Vec3f* below = v + 1 < H ? cloud.ptr<cv::Vec3f>(v + 1) : nullptr;
     for (int u = 0; u < W; ++u) {
       const int i = v * W + u;
       if (parent[i] < 0) continue;
-      if (u + 1 < W && joinable(i, i + 1)) unite(i, i + 1);
-      if (v + 1 < H && joinable(i, i + W)) unite(i, i + W);
+      if (u + 1 < W && parent[i + 1] >= 0 && joinable(row[u][2], row[u + 1][2])) unite(i, i + 1);
+      if (below && parent[i + W] >= 0 && joinable(row[u][2], below[u][2])) unite(i, i + W);
     }
+  }
   labels = cv::Mat(H, W, CV_32S, cv::Scalar(0));
   std::vector<int> rootLabel(parent.size(), 0);
   int n = 0;
-  for (int i = 0; i < W * H; ++i) {
-    if (parent[i] < 0) continue;
-    const int r = find(i);
-    if (rootLabel[r] == 0) rootLabel[r] = ++n;
-    labels.at<int>(i / W, i % W) = rootLabel[r];
+  for (int v = 0; v < H; ++v) {
+    int* out = labels.ptr<int>(v);
+    for (int u = 0; u < W; ++u) {
+      const int i = v * W + u;
+      if (parent[i] < 0) continue;
+      const int r = find(i);
+      if (rootLabel[r] == 0) rootLabel[r] = ++n;
+      out[u] = rootLabel[r];
+    }
   }
   return n;
 }

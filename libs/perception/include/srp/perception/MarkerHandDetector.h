@@ -29,6 +29,15 @@ class MarkerHandDetector : public HandDetector {
     /// previous frame (a few times cheaper than the whole image); the whole
     /// image when the tag is not there. 0: always the whole image.
     double trackWindowTagSides = 4.0;
+    /// While the tag is lost, search only the part of the image that changed
+    /// since the previous frame (the whole image when more than half
+    /// changed, or on the first frame): a hand out of view costs no search.
+    bool searchChangedRegionOnly = true;
+    int changeThreshold = 30;   ///< grey levels: a pixel changed
+    int changeMargin_px = 48;   ///< the changed region grows by this much (at least)
+    /// Every this many lost frames the whole image anyway: what changed too
+    /// slowly to count frame to frame (light) is looked at too.
+    int fullSearchEveryFrames = 15;
   };
   explicit MarkerHandDetector(const Options& options);
   std::optional<HandObservation> detect(const rawlog::RgbdFrame& frame) override;
@@ -36,8 +45,14 @@ class MarkerHandDetector : public HandDetector {
 
  private:
   Options options_;
+  /// Where `grey` changed against the previous (lost) frame: nullopt when
+  /// there is no previous frame, an empty rectangle when nothing changed.
+  std::optional<cv::Rect> changedRegion(const cv::Mat& grey) const;
+
   AprilTagDetector tags_;
   std::optional<cv::Rect> lastTagBox_px_;  ///< the tag's image box in the previous frame
+  cv::Mat previousGrey_;                   ///< the previous frame, kept while the tag is lost
+  int lostFrames_ = 0;                     ///< frames since the tag was last found
 };
 
 }  // namespace srp::perception

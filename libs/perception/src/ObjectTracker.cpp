@@ -54,7 +54,8 @@ std::vector<ObjectDetection> ObjectTracker::update(const rawlog::RgbdFrame& fram
   const int now = frame_++;
   stats_ = Stats{};
   const CameraModel camera(frame.intrinsics);
-  const cv::Mat cloud = depthToCloud(frame.depth_m, camera);
+  depthToCloud(frame.depth_m, camera, cloud_);
+  const cv::Mat& cloud = cloud_;
   lastPlane_ = support ? std::optional<Plane>(*support) : fitDominantPlane(cloud, detector_.options().plane);
   if (!lastPlane_) {
     answers_.clear();

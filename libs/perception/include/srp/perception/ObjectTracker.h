@@ -117,6 +117,7 @@ class ObjectTracker {
   std::map<std::string, std::vector<ObjectDetection>> staticDetections_;
   std::map<std::string, ObjectDetection> fixed_;
   Stats stats_;
+  cv::Mat cloud_;  ///< the frame's point cloud, its memory reused frame to frame
   std::optional<Plane> lastPlane_;
 };
 

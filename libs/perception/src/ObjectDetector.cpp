@@ -124,6 +124,18 @@ std::vector<ObjectSegment> ObjectDetector::segments(const rawlog::RgbdFrame& fra
   thread_local cv::Mat labels;  // reused frame to frame
   const int nSegments = segment(cloud, plane, labels);
   std::vector<ObjectSegment> segs(static_cast<std::size_t>(nSegments));
+  {
+    std::vector<int> size(static_cast<std::size_t>(nSegments), 0);
+    for (int v = 0; v < labels.rows; ++v) {
+      const int* l = labels.ptr<int>(v);
+      for (int u = 0; u < labels.cols; ++u)
+        if (l[u] > 0) ++size[static_cast<std::size_t>(l[u] - 1)];
+    }
+    for (std::size_t k = 0; k < segs.size(); ++k) {
+      segs[k].points_camera_m.reserve(static_cast<std::size_t>(size[k]));
+      segs[k].pixels.reserve(static_cast<std::size_t>(size[k]));
+    }
+  }
   const bool hasColour = !frame.colour_bgr8.empty();
   for (int v = 0; v < labels.rows; ++v) {
     const int* l = labels.ptr<int>(v);
@@ -155,7 +167,9 @@ std::vector<ObjectSegment> ObjectDetector::segments(const rawlog::RgbdFrame& fra
       const std::size_t n = c[a].size(), i0 = n / 50, i1 = n - 1 - n / 50;
       std::nth_element(c[a].begin(), c[a].begin() + static_cast<long>(i0), c[a].end());
       seg.lo_plane_m[a] = c[a][i0];
-      std::nth_element(c[a].begin(), c[a].begin() + static_cast<long>(i1), c[a].end());
+      // Everything after i0 is >= it now: the upper percentile is in that part.
+      std::nth_element(c[a].begin() + static_cast<long>(std::min(i0 + 1, i1)), c[a].begin() + static_cast<long>(i1),
+                       c[a].end());
       seg.hi_plane_m[a] = c[a][i1];
     }
     out.push_back(std::move(seg));

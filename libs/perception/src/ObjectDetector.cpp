@@ -183,6 +183,33 @@ const ObjectPoseFitter* ObjectDetector::fitterFor(const std::string& className) 
   return it == fitters_.end() ? nullptr : &*it;
 }
 
+std::set<std::string> ObjectDetector::overlappingParts(const std::vector<ObjectDetection>& detections,
+                                                      const Plane& plane) const {
+  const core::Pose3 X_plane_camera = plane.X_camera_plane().inverse();
+  auto partOf = [this](const ObjectDetection& d) -> const ObjectModel* {
+    const ObjectPoseFitter* f = fitterFor(d.className);
+    return f && f->model().kind == core::ObjectKind::Part ? &f->model() : nullptr;
+  };
+  std::set<std::string> dropped;
+  for (std::size_t a = 0; a < detections.size(); ++a)
+    for (std::size_t b = a + 1; b < detections.size(); ++b) {
+      const ObjectModel* ma = partOf(detections[a]);
+      const ObjectModel* mb = partOf(detections[b]);
+      if (!ma || !mb) continue;
+      const Eigen::Vector3d pa = X_plane_camera * detections[a].X_camera_object.translation();
+      const Eigen::Vector3d pb = X_plane_camera * detections[b].X_camera_object.translation();
+      const double reach = 0.5 * std::min(ma->dimensions_m.head<2>().norm(), mb->dimensions_m.head<2>().norm());
+      const double sharedHeight =
+          std::min(pa.z() + ma->dimensions_m.z(), pb.z() + mb->dimensions_m.z()) - std::max(pa.z(), pb.z());
+      if ((pa - pb).head<2>().norm() >= reach ||
+          sharedHeight <= 0.5 * std::min(ma->dimensions_m.z(), mb->dimensions_m.z()))
+        continue;  // apart, or stacked
+      dropped.insert(detections[a].confidence < detections[b].confidence ? detections[a].className
+                                                                         : detections[b].className);
+    }
+  return dropped;
+}
+
 double ObjectDetector::colourScore(const ObjectSegment& segment, const ObjectModel& model) const {
   return model.useColour && segment.hasColour ? colourAgreement(segment.meanRgb, model.rgb) : 1.0;
 }

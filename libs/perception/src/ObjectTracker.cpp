@@ -156,6 +156,15 @@ std::vector<ObjectDetection> ObjectTracker::update(const rawlog::RgbdFrame& fram
     }
     answer(segs[i], now, d);
   }
+  // Two parts cannot fill the same space (ObjectDetector::overlappingParts):
+  // the less confident goes, and its segment's answer with it.
+  const std::set<std::string> dropped = detector_.overlappingParts(out, plane);
+  if (!dropped.empty()) {
+    out.erase(std::remove_if(out.begin(), out.end(), [&](const auto& d) { return dropped.count(d.className) > 0; }),
+              out.end());
+    for (Answer& x : next)
+      if (x.detection && dropped.count(x.detection->className)) x.detection.reset();
+  }
   answers_ = std::move(next);
 
   // A moving part far from where it was, with no grasp since: not believed yet.

@@ -73,6 +73,37 @@ TEST(ObjectModel, CatalogueShapesHaveTheirSymmetry) {
   EXPECT_THROW(ObjectModel::shapeMesh("torus", {0.1, 0.1, 0.1}, 0.0), core::InvalidInputError);
 }
 
+// Two parts in one place: the less confident is named; parts side by side,
+// stacked or in a container are not.
+TEST(ObjectDetector, OverlappingPartsLoseTheLessConfident) {
+  const auto cat = core::ObjectCatalogue::load(core::ObjectCatalogue::defaultPath());
+  const ObjectDetector detector(ObjectDetector::modelsFromCatalogue(cat, {"star", "octagon", "cuboid", "gray box"}));
+  Plane plane;  // camera looking straight down on a table 0.8 m away
+  plane.n = Eigen::Vector3d(0, 0, -1);
+  plane.d = 0.8;
+  const core::Pose3 X_camera_plane = plane.X_camera_plane();
+  auto at = [&](const std::string& name, double x, double y, double z, double confidence) {
+    ObjectDetection d;
+    d.className = name;
+    core::Pose3 X_plane_object = core::Pose3::Identity();
+    X_plane_object.translation() = Eigen::Vector3d(x, y, z);
+    d.X_camera_object = X_camera_plane * X_plane_object;
+    d.confidence = confidence;
+    return d;
+  };
+  // The star (diagonal 7.1 cm) read on the octagon's place, 1 cm off: it goes.
+  EXPECT_EQ(detector.overlappingParts({at("octagon", 0.10, 0.0, 0.0, 0.9), at("star", 0.11, 0.0, 0.0, 0.42)}, plane),
+            std::set<std::string>{"star"});
+  EXPECT_EQ(detector.overlappingParts({at("octagon", 0.10, 0.0, 0.0, 0.3), at("star", 0.11, 0.0, 0.0, 0.42)}, plane),
+            std::set<std::string>{"octagon"});
+  // Side by side (3 cm apart: more than half the octagon's 5.7 cm diagonal).
+  EXPECT_TRUE(detector.overlappingParts({at("octagon", 0.10, 0.0, 0.0, 0.9), at("star", 0.13, 0.0, 0.0, 0.4)}, plane).empty());
+  // Stacked: the star on the 2.5 cm high octagon.
+  EXPECT_TRUE(detector.overlappingParts({at("octagon", 0.10, 0.0, 0.0, 0.9), at("star", 0.10, 0.0, 0.025, 0.4)}, plane).empty());
+  // A part in a container, at its centre: a container is not a part.
+  EXPECT_TRUE(detector.overlappingParts({at("gray box", 0.10, 0.0, 0.0, 0.9), at("star", 0.10, 0.0, 0.003, 0.4)}, plane).empty());
+}
+
 // Acceptance (issue 5): the cube found from its CAD model alone on frame 0
 // within 1 cm and 5 deg of the stored pose, and in frames 1-9 consistently:
 // there the reference is the frame-0 pose carried by the board's motion

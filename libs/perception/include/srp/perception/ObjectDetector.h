@@ -120,6 +120,14 @@ class ObjectDetector {
   const std::vector<ObjectPoseFitter>& fitters() const { return fitters_; }
   /// The fitter of class `className`; nullptr when the detector has no such model.
   const ObjectPoseFitter* fitterFor(const std::string& className) const;
+
+  /// Classes of `detections` that cannot be where they are said to be: of two
+  /// parts (ObjectKind::Part) whose origins are closer along `plane` than half
+  /// the smaller footprint diagonal and whose height ranges share more than
+  /// half the smaller height, the less confident one (a part's fragment read
+  /// as a neighbour: the orange octagon as the yellow star, colour 0.47).
+  /// Stacked parts and parts in containers are left alone.
+  std::set<std::string> overlappingParts(const std::vector<ObjectDetection>& detections, const Plane& plane) const;
   const Options& options() const { return options_; }
 
   /// Segments above the plane: label image (CV_32S, 0 = none) and the count.

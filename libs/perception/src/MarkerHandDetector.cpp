@@ -80,10 +80,11 @@ std::optional<HandObservation> MarkerHandDetector::detect(const rawlog::RgbdFram
     }
   }
   lastTagBox_px_.reset();
-  // The next frame's change is against this one; a copy only while lost (the
+  // The next frame's change is against this one, kept only while lost (the
   // conversion made `grey` a new image unless the frame was grey already).
   if (tag) lostFrames_ = 0;
-  previousGrey_ = tag || !options_.searchChangedRegionOnly ? cv::Mat() : (grey.data == frame.colour_bgr8.data ? grey.clone() : grey);
+  if (tag || !options_.searchChangedRegionOnly) previousGrey_.release();
+  else previousGrey_ = grey.data == frame.colour_bgr8.data ? grey.clone() : grey;
   if (!tag) return std::nullopt;
   {
     std::vector<cv::Point2f> corners;

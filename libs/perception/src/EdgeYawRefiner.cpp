@@ -92,10 +92,7 @@ std::optional<core::Pose3> EdgeYawRefiner::refine(const core::Pose3& X_camera_ob
   cv::erode(mask, eroded, kernel);
   const cv::Mat ring = dilated - eroded;
 
-  cv::Mat gx, gy;
   const cv::Mat patch = colour_bgr8(roi);
-  cv::Sobel(patch, gx, CV_32F, 1, 0, 5);
-  cv::Sobel(patch, gy, CV_32F, 0, 1, 5);
 
   // Plane-frame direction of an image tangent at pixel (u, v), on the plane
   // parallel to the support at the model's top height.
@@ -114,33 +111,6 @@ std::optional<core::Pose3> EdgeYawRefiner::refine(const core::Pose3& X_camera_ob
   // The image-to-plane map is nearly affine over a part's few dozen pixels:
   // its Jacobian at the part's centre maps every tangent.
 
-  std::complex<double> sum = 0.0;
-  double weight = 0.0;
-  int edgePixels = 0;
-  for (int y = 0; y < roi.height; ++y) {
-    const std::uint8_t* r = ring.ptr<std::uint8_t>(y);
-    const cv::Vec3f* ax = gx.ptr<cv::Vec3f>(y);
-    const cv::Vec3f* ay = gy.ptr<cv::Vec3f>(y);
-    for (int x = 0; x < roi.width; ++x) {
-      if (!r[x]) continue;
-      double jxx = 0, jyy = 0, jxy = 0;
-      for (int c = 0; c < 3; ++c) {
-        jxx += ax[x][c] * ax[x][c];
-        jyy += ay[x][c] * ay[x][c];
-        jxy += ax[x][c] * ay[x][c];
-      }
-      const double strength = std::sqrt((jxx - jyy) * (jxx - jyy) + 4 * jxy * jxy);
-      if (strength < 1e5) continue;  // flat (5x5 Sobel of 8-bit values: a 10-level step gives ~2.6e4 per channel)
-      const double theta = 0.5 * std::atan2(2 * jxy, jxx - jyy);  // gradient direction, mod pi
-      const Eigen::Vector3d t = -std::sin(theta) * ex + std::cos(theta) * ey;  // tangent on the plane
-      const double tangent = std::atan2(t.y(), t.x());
-      sum += strength * std::polar(1.0, order_ * tangent);
-      weight += strength;
-      ++edgePixels;
-    }
-  }
-  if (std::getenv("SRP_PERCEPTION_DEBUG"))
-    std::fprintf(stderr, "edges: %d px, coherence %.2f\n", edgePixels, std::abs(sum) / std::max(1e-9, weight));
   const core::Pose3 X_plane_object = X_plane_camera * X_camera_object;
   const double yawFit = std::atan2(X_plane_object.linear()(1, 0), X_plane_object.linear()(0, 0));
   auto turned = [&](double delta) {
@@ -225,6 +195,38 @@ std::optional<core::Pose3> EdgeYawRefiner::refine(const core::Pose3& X_camera_ob
     const double sub = (l - 2 * c + r) < 0 ? 0.5 * (l - r) / (l - 2 * c + r) : 0.0;
     return turned((best + sub) * binWidth);
   }
+  // m-fold regular outlines: the circular mean of the colour edges'
+  // tangents (structure tensor of the three channels), times m.
+  cv::Mat gx, gy;
+  cv::Sobel(patch, gx, CV_32F, 1, 0, 5);
+  cv::Sobel(patch, gy, CV_32F, 0, 1, 5);
+  std::complex<double> sum = 0.0;
+  double weight = 0.0;
+  int edgePixels = 0;
+  for (int y = 0; y < roi.height; ++y) {
+    const std::uint8_t* r = ring.ptr<std::uint8_t>(y);
+    const cv::Vec3f* ax = gx.ptr<cv::Vec3f>(y);
+    const cv::Vec3f* ay = gy.ptr<cv::Vec3f>(y);
+    for (int x = 0; x < roi.width; ++x) {
+      if (!r[x]) continue;
+      double jxx = 0, jyy = 0, jxy = 0;
+      for (int c = 0; c < 3; ++c) {
+        jxx += ax[x][c] * ax[x][c];
+        jyy += ay[x][c] * ay[x][c];
+        jxy += ax[x][c] * ay[x][c];
+      }
+      const double strength = std::sqrt((jxx - jyy) * (jxx - jyy) + 4 * jxy * jxy);
+      if (strength < 1e5) continue;  // flat (5x5 Sobel of 8-bit values: a 10-level step gives ~2.6e4 per channel)
+      const double theta = 0.5 * std::atan2(2 * jxy, jxx - jyy);  // gradient direction, mod pi
+      const Eigen::Vector3d t = -std::sin(theta) * ex + std::cos(theta) * ey;  // tangent on the plane
+      const double tangent = std::atan2(t.y(), t.x());
+      sum += strength * std::polar(1.0, order_ * tangent);
+      weight += strength;
+      ++edgePixels;
+    }
+  }
+  if (std::getenv("SRP_PERCEPTION_DEBUG"))
+    std::fprintf(stderr, "edges: %d px, coherence %.2f\n", edgePixels, std::abs(sum) / std::max(1e-9, weight));
   if (edgePixels < options_.minEdgePixels || std::abs(sum) < options_.minCoherence * weight) return std::nullopt;
 
   const double yawEdges = (std::arg(sum) - modelPhase_rad_) / order_;
@@ -234,9 +236,7 @@ std::optional<core::Pose3> EdgeYawRefiner::refine(const core::Pose3& X_camera_ob
     std::fprintf(stderr, "edges: fit yaw %.2f deg, edge yaw %.2f deg, correction %.2f deg\n", yawFit * 180 / kPi,
                  yawEdges * 180 / kPi, delta * 180 / kPi);
   if (std::abs(delta) > options_.maxCorrection_rad) return std::nullopt;
-  core::Pose3 X = X_camera_object;
-  X.linear() = X_camera_object.linear() * Eigen::AngleAxisd(delta, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  return X;
+  return turned(delta);
 }
 
 }  // namespace srp::perception

@@ -12,8 +12,10 @@ namespace srp::language {
 AnnotationPrecedents::AnnotationPrecedents(const std::vector<AnnotatedSentence>& reference, int radius)
     : radius_(radius) {
   core::require(radius >= 0, "AnnotationPrecedents: radius must be >= 0, got " + std::to_string(radius));
-  for (const auto& s : reference)
-    for (int i = 0; i < static_cast<int>(s.tokens.size()); ++i) ++counts_[contextKey(s.tokens, i)][labelAt(s, i)];
+  for (const auto& s : reference) {
+    const std::vector<std::string> lower = toLowerAscii(s.tokens);
+    for (int i = 0; i < static_cast<int>(lower.size()); ++i) ++counts_[contextKey(lower, i)][labelAt(s, i)];
+  }
 }
 
 std::string AnnotationPrecedents::labelAt(const AnnotatedSentence& sentence, int position) {
@@ -24,18 +26,18 @@ std::string AnnotationPrecedents::labelAt(const AnnotatedSentence& sentence, int
   return best.empty() ? "none" : best;
 }
 
-std::string AnnotationPrecedents::contextKey(const std::vector<std::string>& tokens, int position) const {
-  const int n = static_cast<int>(tokens.size());
+std::string AnnotationPrecedents::contextKey(const std::vector<std::string>& lowerTokens, int position) const {
+  const int n = static_cast<int>(lowerTokens.size());
   std::string key;
   for (int k = position - radius_; k <= position + radius_; ++k) {
-    key += k < 0 ? "<s>" : k >= n ? "</s>" : toLowerAscii(tokens[k]);
+    key += k < 0 ? "<s>" : k >= n ? "</s>" : lowerTokens[k];
     key += ' ';
   }
   return key;
 }
 
 std::map<std::string, int> AnnotationPrecedents::at(const std::vector<std::string>& tokens, int position) const {
-  auto it = counts_.find(contextKey(tokens, position));
+  auto it = counts_.find(contextKey(toLowerAscii(tokens), position));
   return it == counts_.end() ? std::map<std::string, int>{} : it->second;
 }
 

@@ -23,12 +23,6 @@ std::string pairKey(const std::vector<std::string>& lowerTokens, int k) {
 
 bool isIndicator(const std::string& type) { return type == "SpatialIndicator" || type == "GoalIndicator"; }
 
-std::vector<std::string> lowerAll(const std::vector<std::string>& tokens) {
-  std::vector<std::string> lower(tokens.size());
-  std::transform(tokens.begin(), tokens.end(), lower.begin(), toLowerAscii);
-  return lower;
-}
-
 /// "verb|dir|first": action lemma, directional or not, first indicator of the clause or not.
 std::string typeKey(const std::string& verbLemma, const std::string& firstWord, bool firstInClause) {
   static const std::set<std::string> kDirectional{"to", "into", "onto", "toward", "towards"};
@@ -86,7 +80,7 @@ IndicatorConventions IndicatorConventions::learn(const std::vector<AnnotatedSent
       }
   std::map<std::string, int> seen, starts, pairsSeen, pairStarts;
   for (const auto& s : corpus) {
-    const auto lower = lowerAll(s.tokens);
+    const auto lower = toLowerAscii(s.tokens);
     for (int k = 0; k < static_cast<int>(lower.size()); ++k) {
       ++seen[lower[k]];
       ++pairsSeen[pairKey(lower, k)];
@@ -105,7 +99,7 @@ IndicatorConventions IndicatorConventions::learn(const std::vector<AnnotatedSent
   std::map<std::string, std::map<int, int>> lengths;
   std::map<std::string, std::map<std::string, int>> types;
   for (const auto& s : corpus) {
-    const auto lower = lowerAll(s.tokens);
+    const auto lower = toLowerAscii(s.tokens);
     auto sorted = s.entities;
     std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.start < b.start; });
     std::string verb;
@@ -148,7 +142,7 @@ std::optional<std::string> IndicatorConventions::indicatorType(const std::string
 
 void IndicatorConventions::applySpanLengths(const std::vector<std::string>& tokens,
                                             std::vector<EntitySpan>& entities) const {
-  const auto lower = lowerAll(tokens);
+  const auto lower = toLowerAscii(tokens);
   const int n = static_cast<int>(tokens.size());
   std::vector<int> owner(n, -1);
   for (size_t e = 0; e < entities.size(); ++e)
@@ -193,7 +187,7 @@ void IndicatorConventions::dropIndicatorsOutsideOrders(const std::vector<std::st
 
 void IndicatorConventions::dropRarelyAnnotatedStarts(const std::vector<std::string>& tokens,
                                                      std::vector<EntitySpan>& entities) const {
-  const auto lower = lowerAll(tokens);
+  const auto lower = toLowerAscii(tokens);
   entities.erase(std::remove_if(entities.begin(), entities.end(),
                                 [&](const EntitySpan& e) {
                                   return isIndicator(e.type) && e.start < static_cast<int>(lower.size()) &&

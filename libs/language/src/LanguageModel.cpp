@@ -343,8 +343,7 @@ struct LanguageModel::Impl {
   /// consistent (IndicatorConventions: every indicator of "pick" is spatial, the
   /// first of "put / place" a goal, "take / bring ... on" spatial, "... to" a goal).
   void relabelIndicators(const std::vector<std::string>& tokens, std::vector<EntitySpan>& entities) const {
-    std::vector<std::string> lower(tokens.size());
-    std::transform(tokens.begin(), tokens.end(), lower.begin(), lowerOf);
+    const std::vector<std::string> lower = toLowerAscii(tokens);
     std::sort(entities.begin(), entities.end(), [](const EntitySpan& a, const EntitySpan& b) { return a.start < b.start; });
     std::string verb;
     bool firstInClause = true;
@@ -399,8 +398,7 @@ struct LanguageModel::Impl {
   /// phrase; a trajector with no indicator after it in its clause is dropped.
   void enforceTrajectorConsistency(const std::vector<std::string>& tokens, std::vector<EntitySpan>& entities) const {
     const int n = static_cast<int>(tokens.size());
-    std::vector<std::string> lower(n);
-    for (int i = 0; i < n; ++i) lower[i] = lowerOf(tokens[i]);
+    const std::vector<std::string> lower = toLowerAscii(tokens);
     std::vector<int> owner(n, -1);  // token -> entity index
     for (size_t e = 0; e < entities.size(); ++e)
       for (int k = entities[e].start; k < entities[e].end; ++k) owner[k] = static_cast<int>(e);

@@ -11,6 +11,13 @@ std::string toLowerAscii(const std::string& s) {
   return out;
 }
 
+std::vector<std::string> toLowerAscii(const std::vector<std::string>& words) {
+  std::vector<std::string> out;
+  out.reserve(words.size());
+  for (const auto& w : words) out.push_back(toLowerAscii(w));
+  return out;
+}
+
 namespace {
 bool isWordByte(unsigned char c) { return std::isalnum(c) || c == '-' || c == '\'' || c >= 0x80; }
 bool isSpace(unsigned char c) { return std::isspace(c) != 0; }

@@ -50,7 +50,7 @@ class AnnotationPrecedents {
   int radius() const { return radius_; }
 
  private:
-  std::string contextKey(const std::vector<std::string>& tokens, int position) const;
+  std::string contextKey(const std::vector<std::string>& lowerTokens, int position) const;
   int radius_;
   std::map<std::string, std::map<std::string, int>> counts_;
 };

@@ -23,5 +23,7 @@ std::vector<std::vector<Token>> tokenizeSentences(const std::string& text);
 
 /// Lower-cases ASCII letters (the corpus is English; other bytes are kept).
 std::string toLowerAscii(const std::string& s);
+/// Every word of `words` lower-cased (toLowerAscii).
+std::vector<std::string> toLowerAscii(const std::vector<std::string>& words);
 
 }  // namespace srp::language

@@ -12,32 +12,21 @@
 // demo with a fresh perceiver; only add() is timed (thread CPU time), so
 // start-up (models) and rawlog decoding are not counted (BM_StartUp).
 #include <benchmark/benchmark.h>
-#include <time.h>
-
-#include <filesystem>
 
 #include "BenchDemo.h"
-#include "srp/core/Scene.h"
+#include "ThreadCpuTime.h"
 #include "srp/perception/DemoPerception.h"
 #include "srp/perception/MarkerFreeHandDetector.h"
 #include "srp/perception/MarkerHandDetector.h"
 #include "srp/perception/ObjectDetector.h"
 #include "srp/perception/RgbdFolder.h"
 #include "srp/rawlog/RawlogReader.h"
-#include "srp/synth/DemoGenerator.h"
-#include "srp/synth/PickPlacePlan.h"
 
 namespace {
 
 using namespace srp::perception;
 
 constexpr int kSynthFrames = 200;
-
-double threadCpu_s() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 const std::vector<srp::rawlog::RgbdFrame>& realFrames() {
   static const auto f = readRgbdFolder(std::string(SRP_DATASETS_DIR) + "/real/visp-rbt-cube");
@@ -60,9 +49,9 @@ void BM_WholeModule_SyntheticDemo(benchmark::State& state) {
     srp::rawlog::RawlogReader reader(path);
     double cpu_s = 0.0;
     while (auto f = reader.next()) {
-      const double t0 = threadCpu_s();
+      const double t0 = srp::bench::threadCpu_s();
       perceiver.add(*f);
-      cpu_s += threadCpu_s() - t0;
+      cpu_s += srp::bench::threadCpu_s() - t0;
     }
     frames += perceiver.framesAdded();
     state.SetIterationTime(cpu_s / perceiver.framesAdded());  // per frame
@@ -82,9 +71,9 @@ void BM_WholeModule_RealDesk(benchmark::State& state) {
     double t_s = 0.0;
     for (auto f : realFrames()) {
       f.t_s = (t_s += 1.0 / 30.0);
-      const double t0 = threadCpu_s();
+      const double t0 = srp::bench::threadCpu_s();
       perceiver.add(f);
-      cpu_s += threadCpu_s() - t0;
+      cpu_s += srp::bench::threadCpu_s() - t0;
     }
     state.SetIterationTime(cpu_s / perceiver.framesAdded());
   }

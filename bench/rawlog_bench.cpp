@@ -8,10 +8,10 @@
 //   read-ahead on two free cores the time per frame drops from decode + work
 //   to about max(decode, work).
 #include <benchmark/benchmark.h>
-#include <time.h>
 
 #include <chrono>
 #include "BenchDemo.h"
+#include "ThreadCpuTime.h"
 #include "srp/rawlog/RawlogReader.h"
 
 namespace {
@@ -19,17 +19,11 @@ namespace {
 constexpr int kFrames = 60;
 constexpr double kWork_ms = 15.0;
 
-double threadCpu_s() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
 /// Spends `ms` of this thread's CPU time (a stand-in for perception's work on a frame).
 void spendCpu(double ms) {
-  const double end = threadCpu_s() + 1e-3 * ms;
+  const double end = srp::bench::threadCpu_s() + 1e-3 * ms;
   volatile double x = 0.0;
-  while (threadCpu_s() < end)
+  while (srp::bench::threadCpu_s() < end)
     for (int i = 0; i < 1000; ++i) x = x + 1e-9 * i;
 }
 

@@ -12,10 +12,10 @@
 #include <sstream>
 
 #include "srp/core/Error.h"
-#include "srp/experiment/ExperimentSupport.h"
 #include "srp/core/Json.h"
 #include "srp/core/ObjectCatalogue.h"
 #include "srp/core/Scene.h"
+#include "srp/experiment/ExperimentSupport.h"
 #include "srp/programming/ProgrammingPipeline.h"
 #include "srp/synth/DemoGenerator.h"
 #include "srp/synth/PickPlacePlan.h"

@@ -1,10 +1,9 @@
 #include "srp/perception/ObjectTracker.h"
 
-#include <cstdio>
-#include <cstdlib>
-
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "srp/core/Error.h"
 #include "srp/perception/DepthCloud.h"

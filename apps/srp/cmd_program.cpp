@@ -14,7 +14,7 @@
 namespace {
 
 struct ProgramArgs {
-  std::string instruction, demo, camera, kb, calib, db = "task.db", name = "task", report, hand = "marker";
+  std::string instruction, demo, kb, calib, db = "task.db", name = "task", report, hand = "marker";
   bool json = false, quiet = false;
 };
 
@@ -52,10 +52,9 @@ void setupProgram(CLI::App& cmd) {
   auto a = std::make_shared<ProgramArgs>();
   cmd.add_option("-i,--instruction", a->instruction, "The instruction, e.g. \"Pick up the cuboid from the blue box "
                                                      "and place it in the gray box.\"")->required();
-  auto* demo = cmd.add_option("--demo", a->demo, "Demonstration rawlog (srp record / srp import / srp synth-demo)");
-  auto* cam = cmd.add_option("--camera", a->camera,
-                             "Record the demonstration from an RGB-D camera first (OpenNI2 device URI or 'default')");
-  demo->excludes(cam);
+  // Recording is its own command (srp record demo.rawlog): programming reads a finished recording,
+  // so a failed recording can never leave a half-programmed task.
+  cmd.add_option("--demo", a->demo, "Demonstration rawlog (srp record / srp import / srp synth-demo)")->required();
   cmd.add_option("--kb", a->kb, "Knowledge base catalogue (default: datasets/kb/catalogue.json)");
   cmd.add_option("--calib", a->calib, "Camera intrinsics (ViSP XML, e.g. calib/camera.xml) overriding the rawlog's");
   cmd.add_option("--db", a->db, "Task database to store the task model in")->capture_default_str();
@@ -67,11 +66,6 @@ void setupProgram(CLI::App& cmd) {
   cmd.add_flag("--json", a->json, "Print the result as JSON");
   cmd.add_flag("-q,--quiet", a->quiet, "No progress bar");
   cmd.callback([a] {
-    if (a->demo.empty() && a->camera.empty())
-      throw srp::core::InvalidInputError("give the demonstration: --demo demo.rawlog (or --camera to record one)");
-    if (!a->camera.empty())
-      throw srp::core::InvalidInputError(
-          "--camera: record the demonstration with 'srp record --out demo.rawlog' first, then pass --demo demo.rawlog");
     srp::programming::ProgrammingOptions o;
     o.instruction = a->instruction;
     o.demoPath = a->demo;

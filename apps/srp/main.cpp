@@ -23,10 +23,24 @@ int main(int argc, char** argv) {
     spec.setup(*sub);
   }
 
+  // CLI11 reports an unknown command as "A subcommand is required"; name it and the valid ones.
+  const auto isCommand = [&](const std::string& name) {
+    return std::any_of(registry.begin(), registry.end(), [&](const auto& spec) { return spec.name == name; });
+  };
+  if (argc > 1 && argv[1][0] != '-' && !isCommand(argv[1])) {
+    std::string names;
+    for (const auto& spec : registry) names += (names.empty() ? "" : ", ") + spec.name;
+    std::cerr << "srp: unknown command '" << argv[1] << "'; the commands are: " << names
+              << ". Run 'srp --help' for what each does.\n";
+    return 2;
+  }
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version are successes; every other parse error is a usage error (exit 2).
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : 2;
   } catch (const std::exception& e) {
     std::string cmd;
     for (const CLI::App* level = &app; !level->get_subcommands().empty();) {

@@ -4,8 +4,8 @@
 // grasp/release frames against the ground truth, and execute the stored task on
 // the simulated UR5 in the demo's own scene.
 //
-//   build/bench/e2e_matrix --seeds 10 --out out/e2e        # 5 x 10 runs
-//   build/bench/e2e_matrix --instructions 1 --seeds 1      # one run
+//   build/tests/acceptance/e2e_matrix --seeds 10 --out out/e2e        # 5 x 10 runs
+//   build/tests/acceptance/e2e_matrix --instructions 1 --seeds 1      # one run
 //
 // Every run writes <out>/runs/i<k>_s<seed>.json and is skipped when that file
 // exists, so an interrupted matrix resumes, and two processes can share the work

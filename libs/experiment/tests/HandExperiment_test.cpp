@@ -43,10 +43,13 @@ TEST(HandExperiment, QuickStudyMeetsIssue5MarkerFigures)
   EXPECT_LT(m.at("marker_error").at("p95_m").get<double>(), kP95Tol_m);
   EXPECT_EQ(m.at("marker_false_detections").get<int>(), 0);
   EXPECT_GT(m.at("hand_free_frames").get<int>(), 0);
-  // The marker-free detector is measured too (issue 5's 15 mm is not met yet:
-  // libs/perception/README.md); it must find the hand in most frames.
-  EXPECT_GE(m.at("marker_free_rate").get<double>(), 0.5);
-  EXPECT_GT(m.at("marker_free_error").at("frames").get<int>(), 0);
+  // The marker-free detector on the same frames: the hand enters the image here, so the
+  // rate is below the whole-demo 99 % of the perception README (measured 95.7 %, palm
+  // median 4.6 mm); the bounds leave room for noise, not for a broken detector.
+  constexpr double kMarkerFreeRate = 0.92, kMarkerFreeMedianTol_m = 0.008;
+  EXPECT_GE(m.at("marker_free_rate").get<double>(), kMarkerFreeRate);
+  EXPECT_GE(m.at("marker_free_error").at("frames").get<int>(), 40);
+  EXPECT_LT(m.at("marker_free_error").at("median_m").get<double>(), kMarkerFreeMedianTol_m);
 
   ASSERT_EQ(r.tables.size(), 2u);
   EXPECT_EQ(r.tables[0].rows.size(), 2u);  // one demo + "All"

@@ -27,8 +27,9 @@ ExecutionStep step(const std::string& object, std::vector<SpatialRelation> sourc
   return {{object, {}}, std::move(source), std::move(target), {}, {}};
 }
 
-/// The plan each Appendix A instruction states, with its own relation words (the
-/// Language Module, not yet merged, produces these from the text).
+/// The plan each Appendix A instruction states, with its own relation words, written by
+/// hand so that execution is tested apart from the Language Module (the test
+/// AppendixAInstructionsThroughTheLanguageModule parses the same instructions).
 ExecutionPlan appendixA(int k) {
   const std::vector<std::array<const char*, 3>> words = {{"next to", "beside", "adjacent to"},
                                                          {"near", "beside", "next to"},

@@ -92,7 +92,7 @@ TEST(RawlogReplay, TruncatedRawlogReplaysTheFramesBeforeTheDamage) {
 
 TEST(RawlogReplay, MrptSampleRgbdRawlogReplaysAndExports) {
   const std::string sample = "/usr/share/mrpt/datasets/tests_rgbd.rawlog";
-  if (!fs::exists(sample)) GTEST_SKIP() << "install Debian's mrpt-common for " << sample;
+  if (!fs::exists(sample)) FAIL() << sample << " missing: install Debian's mrpt-common (scripts/install-deps.sh does)";
   const fs::path dir = fs::temp_directory_path() / "srp_calib_replay_mrpt";
   fs::remove_all(dir);
   ReplayOptions options;

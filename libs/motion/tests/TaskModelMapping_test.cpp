@@ -88,7 +88,7 @@ TEST(TaskModelMapping, PlanObjectWithoutPosesIsAnErrorAndNothingIsStored) {
 // when the srp executable has not been built).
 TEST(TaskModelMapping, SrpMotionCommandStoresSkillsAndWritesPlots) {
   const std::string srp = std::string(SRP_BINARY_DIR) + "/apps/srp";
-  if (!std::filesystem::exists(srp)) GTEST_SKIP() << "build the srp target to run this test";
+  if (!std::filesystem::exists(srp)) FAIL() << srp << " missing: build the srp target (make build) before this test";
   const auto demo = SyntheticPickPlaceGenerator(SyntheticPickPlaceConfig{}).generate();
   const std::string path = tempPath("cmd.db"), outDir = tempPath("cmd_plots");
   removeDb(path);

@@ -52,7 +52,7 @@ TEST(AprilTagDetector, RealFrameCornersMatchStoredDetections) {
 // (0.053 m). Skipped when the package is not installed.
 TEST(AprilTagDetector, VispImageGroundTruthPoses) {
   const std::string dir = "/usr/share/visp-images-data/ViSP-images/AprilTag";
-  if (!std::filesystem::exists(dir + "/AprilTag.pgm")) GTEST_SKIP() << "visp-images-data not installed";
+  if (!std::filesystem::exists(dir + "/AprilTag.pgm")) FAIL() << dir << "/AprilTag.pgm missing: install Debian's visp-images-data (scripts/install-deps.sh does)";
   const cv::Mat img = cv::imread(dir + "/AprilTag.pgm", cv::IMREAD_GRAYSCALE);
   ASSERT_FALSE(img.empty());
   const core::CameraIntrinsics k{615.1674804688, 615.1675415039, 312.1889953613, 243.4373779297, img.cols, img.rows};

@@ -15,7 +15,7 @@ namespace {
 // 0.053 m): the palm is p_tag_palm in the tag frame.
 TEST(MarkerHandDetector, PalmFromTheTagPoseOnARealImage) {
   const std::string dir = "/usr/share/visp-images-data/ViSP-images/AprilTag";
-  if (!std::filesystem::exists(dir + "/AprilTag.pgm")) GTEST_SKIP() << "visp-images-data not installed";
+  if (!std::filesystem::exists(dir + "/AprilTag.pgm")) FAIL() << dir << "/AprilTag.pgm missing: install Debian's visp-images-data (scripts/install-deps.sh does)";
   rawlog::RgbdFrame f;
   cv::cvtColor(cv::imread(dir + "/AprilTag.pgm", cv::IMREAD_GRAYSCALE), f.colour_bgr8, cv::COLOR_GRAY2BGR);
   f.intrinsics = {615.1674804688, 615.1675415039, 312.1889953613, 243.4373779297, f.colour_bgr8.cols, f.colour_bgr8.rows};
@@ -41,7 +41,7 @@ TEST(MarkerHandDetector, PalmFromTheTagPoseOnARealImage) {
 // unchanged frame costs no search and finds nothing new.
 TEST(MarkerHandDetector, LostTagIsSoughtWhereTheImageChanged) {
   const std::string dir = "/usr/share/visp-images-data/ViSP-images/AprilTag";
-  if (!std::filesystem::exists(dir + "/AprilTag.pgm")) GTEST_SKIP() << "visp-images-data not installed";
+  if (!std::filesystem::exists(dir + "/AprilTag.pgm")) FAIL() << dir << "/AprilTag.pgm missing: install Debian's visp-images-data (scripts/install-deps.sh does)";
   rawlog::RgbdFrame shown;
   cv::cvtColor(cv::imread(dir + "/AprilTag.pgm", cv::IMREAD_GRAYSCALE), shown.colour_bgr8, cv::COLOR_GRAY2BGR);
   shown.intrinsics = {615.1674804688, 615.1675415039, 312.1889953613, 243.4373779297, shown.colour_bgr8.cols,

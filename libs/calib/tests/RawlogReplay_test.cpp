@@ -101,6 +101,9 @@ TEST(RawlogReplay, MrptSampleRgbdRawlogReplaysAndExports) {
   EXPECT_EQ(s.frames, 1);
   EXPECT_EQ(s.intrinsics.width_px, 640);
   EXPECT_EQ(s.intrinsics.height_px, 480);
+  // Its cameras sit 1.6 mm apart (MRPT's own flag says they differ): kept as recorded (rawlog README).
+  EXPECT_EQ(s.depthAlignment(), "registered");
+  EXPECT_NE(s.toText().find("registered as recorded"), std::string::npos);
   constexpr double kFocalTol_px = 0.01;
   EXPECT_NEAR(s.intrinsics.fx_px, 572.883, kFocalTol_px) << "the depth camera's focal length (datasets README)";
   EXPECT_GT(s.validDepthFraction, 0.5);

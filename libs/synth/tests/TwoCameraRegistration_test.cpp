@@ -48,15 +48,13 @@ TEST(TwoCameraRegistration, RegisteredDepthMatchesTheColourCamerasOwnRender) {
   const TwoCameraScene s;
   const srp::core::Pose3 X_world_colour = s.scene.X_world_camera;
   const srp::core::Pose3 X_world_depth = X_world_colour * s.X_colour_depth;
-  // One renderer at a time: MRPT's off-screen renderers of different sizes
-  // interfere when two are alive in one thread.
-  const auto renderDepth = [&](const srp::core::CameraIntrinsics& K, const srp::core::Pose3& X_world_camera) {
-    srp::synth::SceneRenderer renderer(K);
-    s.addBodies(renderer);
-    return renderer.render(X_world_camera).depth_m;
-  };
-  const cv::Mat truth = renderDepth(s.Kc, X_world_colour);
-  const cv::Mat depth = renderDepth(s.Kd, X_world_depth);
+  // Both renderers alive in one thread, of different sizes (SceneRenderer
+  // makes its own EGL context current before rendering).
+  srp::synth::SceneRenderer colourRenderer(s.Kc), depthRenderer(s.Kd);
+  s.addBodies(colourRenderer);
+  s.addBodies(depthRenderer);
+  const cv::Mat depth = depthRenderer.render(X_world_depth).depth_m;
+  const cv::Mat truth = colourRenderer.render(X_world_colour).depth_m;
   // The renderer draws ideal pinhole images, so the colour camera is given no distortion.
   const srp::rawlog::DepthRegistration reg({s.Kd, {}}, {s.Kc, {}}, s.X_colour_depth);
   const cv::Mat registered = reg.registerDepth(depth);

@@ -82,7 +82,18 @@ SceneRenderer::SceneRenderer(const srp::core::CameraIntrinsics& K, double minDep
   camera.set6DOFMode(true);
 }
 
-SceneRenderer::~SceneRenderer() = default;
+SceneRenderer::~SceneRenderer() {
+  // MRPT deletes the FBO in whatever context is current: make it ours. When
+  // another renderer's destruction already terminated the shared EGL display
+  // (and with it this context), release the thread's context instead, so the
+  // deletions are no-ops rather than GL errors in a foreign context (MRPT
+  // throws those from its destructor, which terminates the program).
+  if (!impl_ || !impl_->fbo) return;
+  if (impl_->eglContext != EGL_NO_CONTEXT && eglGetCurrentContext() != impl_->eglContext &&
+      eglMakeCurrent(impl_->eglDisplay, impl_->eglDraw, impl_->eglRead, impl_->eglContext) != EGL_TRUE)
+    eglReleaseThread();
+  impl_->fbo.reset();
+}
 
 int SceneRenderer::addBody(const std::string& name, const srp::kb::TriangleMesh& mesh,
                            const Eigen::Vector3d& rgb) {

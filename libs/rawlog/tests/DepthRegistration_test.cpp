@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/serialization/CArchive.h>
 
@@ -178,6 +179,18 @@ TEST(DepthRegistration, UnregisteredMrptObservationIsRegisteredOnRead) {
       ++checked;
     }
   EXPECT_GT(checked, 500);
+  // The same through RawlogReader, from a rawlog written by MRPT itself.
+  const std::string path = (std::filesystem::temp_directory_path() / "srp_rawlog_unregistered.rawlog").string();
+  {
+    mrpt::io::CFileGZOutputStream out(path);
+    auto arch = mrpt::serialization::archiveFrom(out);
+    arch << obs;
+  }
+  const auto frames = RawlogReader::readAll(path);
+  ASSERT_EQ(frames.size(), 1u);
+  EXPECT_TRUE(frames[0].depthRegisteredOnRead);
+  EXPECT_EQ(frames[0].intrinsics, Kc);
+  EXPECT_EQ(cv::norm(frames[0].depth_m, f.depth_m, cv::NORM_INF), 0.0);
   // Asked to keep it as recorded, the reader cannot pair 320x240 depth with 640x360 colour but by resizing the colour.
   EXPECT_EQ(frameFromObservation(obs, 0, DepthRegistrationMode::AsRecorded).intrinsics, Kd);
 }

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "srp/core/Error.h"
@@ -227,4 +228,33 @@ TEST(DepthRegistration, MrptSampleKeepsItsAlignment) {
   const auto frames = RawlogReader::readAll(kTestsRgbd);
   ASSERT_FALSE(frames.empty());
   EXPECT_EQ(medianDepthEdgeToColourEdge_px(frames.front()), asRead_px);
+}
+
+// Real depth (ViSP's RealSense recording, frame 0, registered by the camera):
+// registering it between two identical cameras must give it back unchanged,
+// holes and noise included (no depth invented, none lost).
+TEST(DepthRegistration, IdentityLeavesRealDepthUnchanged) {
+  constexpr double kDepthTol_m = 1e-6;  // float rounding of the back-and-forth
+  const std::string path = std::string(SRP_DATASETS_DIR) + "/real/visp-rbt-cube/depth_0000.png";
+  const cv::Mat raw = cv::imread(path, cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(raw.type(), CV_16UC1) << path;
+  cv::Mat depth;
+  raw.convertTo(depth, CV_32FC1, 0.001);
+  const srp::core::CameraIntrinsics K{607.178466796875, 607.2342529296875, 321.39129638671875, 241.91822814941406, 640, 480};
+  const DepthRegistration reg({K, {}}, {K, {}}, srp::core::Pose3::Identity());
+  const cv::Mat out = reg.registerDepth(depth);
+  int valid = 0, changed = 0, filledHoles = 0, lost = 0;
+  for (int r = 0; r < depth.rows; ++r)
+    for (int c = 0; c < depth.cols; ++c) {
+      const float a = depth.at<float>(r, c), b = out.at<float>(r, c);
+      if (a > 0.f) ++valid;
+      if (a > 0.f && !(b > 0.f)) ++lost;
+      else if (!(a > 0.f) && b > 0.f) ++filledHoles;
+      else if (a > 0.f && std::abs(a - b) > kDepthTol_m) ++changed;
+    }
+  EXPECT_GT(valid, 200000);
+  EXPECT_LT(valid, 640 * 480) << "the frame has holes to keep";
+  EXPECT_EQ(lost, 0);
+  EXPECT_EQ(filledHoles, 0);
+  EXPECT_EQ(changed, 0);
 }

@@ -134,6 +134,18 @@ cv::Mat DepthRegistration::registerDepth(const cv::Mat& depth_m) const {
     for (int c = 0; c < W; ++c) {
       const Projected& centre = centres[static_cast<std::size_t>(r) * W + c];
       if (centre.z <= 0.f) continue;
+      // Inside a continuous surface the triangles of the four quads around a
+      // pixel tile its footprint already: splat only at borders, holes and jumps.
+      if (r > 0 && c > 0 && r + 1 < H && c + 1 < W) {
+        const float tol = static_cast<float>(0.45 * jumpTol(centre.z));
+        bool interior = true;
+        for (int dr = -1; dr <= 1 && interior; ++dr)
+          for (int dc = -1; dc <= 1 && interior; ++dc) {
+            const float z = centres[static_cast<std::size_t>(r + dr) * W + c + dc].z;
+            interior = z > 0.f && std::abs(z - centre.z) <= tol;
+          }
+        if (interior) continue;
+      }
       float uMin = 1e9f, uMax = -1e9f, vMin = 1e9f, vMax = -1e9f;
       bool ok = true;
       for (const auto& [dc, dr] : {std::pair{0, 0}, {1, 0}, {0, 1}, {1, 1}}) {

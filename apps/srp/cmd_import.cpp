@@ -10,7 +10,7 @@ namespace {
 
 struct Args {
   std::string folder, out, layout = "auto";
-  std::string intrinsics;
+  std::string intrinsics, depthIntrinsics, depthMColor;
   double depthScale_m = 0.0;
   double fps = 30.0;
   double maxDt_s = 0.02;
@@ -26,6 +26,13 @@ void setupImport(CLI::App& cmd) {
       ->capture_default_str();
   cmd.add_option("--intrinsics", a->intrinsics,
                  "camera file: ViSP XML or JSON (default: the folder's camera.xml, cam.json or intrinsics.json)");
+  cmd.add_option("--depth-intrinsics", a->depthIntrinsics,
+                 "depth camera file (ViSP XML or JSON) when depth is not registered to colour (default: the "
+                 "folder's depth_camera.xml, depth_cam.json, depth_intrinsics.json or camera 'depth_camera' in "
+                 "camera.xml); depth is then re-projected into the colour camera");
+  cmd.add_option("--depth-M-color", a->depthMColor,
+                 "ViSP depth_M_color.txt: 4x4 pose of the colour camera in the depth camera (default: the folder's "
+                 "depth_M_color.txt, else identity)");
   cmd.add_option("--depth-scale", a->depthScale_m,
                  "metres per depth PNG unit (default: the camera JSON's depthScale, else 0.001; TUM 0.0002)");
   cmd.add_option("--fps", a->fps, "frame rate of an image folder (timestamps i / fps)")->capture_default_str();
@@ -35,6 +42,8 @@ void setupImport(CLI::App& cmd) {
   cmd.callback([a] {
     srp::calib::ImportOptions o;
     o.cameraPath = a->intrinsics;
+    o.depthCameraPath = a->depthIntrinsics;
+    o.depthToColourPath = a->depthMColor;
     if (a->depthScale_m > 0.0) o.depthScale_m = a->depthScale_m;
     o.fps = a->fps;
     o.maxTimeDifference_s = a->maxDt_s;
@@ -49,7 +58,10 @@ void setupImport(CLI::App& cmd) {
     if (a->json) {
       std::cout << nlohmann::json{{"rawlog", a->out},         {"layout", s.layout},
                                   {"frames", s.frames},       {"depth_scale_m", s.depthScale_m},
-                                  {"intrinsics", K},          {"unpaired_depth", s.unpairedDepth}}
+                                  {"intrinsics", K},          {"unpaired_depth", s.unpairedDepth},
+                                  {"depth_registered", s.depthRegistered},
+                                  {"depth_intrinsics", s.depthIntrinsics},
+                                  {"depth_to_colour_baseline_m", s.depthToColourBaseline_m}}
                        .dump(2)
                 << "\n";
       return;
@@ -57,6 +69,11 @@ void setupImport(CLI::App& cmd) {
     std::printf("%s -> %s: %d frames (%s layout), depth scale %g m/unit, %dx%d fx %.3f fy %.3f cx %.3f cy %.3f\n",
                 a->folder.c_str(), a->out.c_str(), s.frames, s.layout.c_str(), s.depthScale_m, K.width_px, K.height_px,
                 K.fx_px, K.fy_px, K.cx_px, K.cy_px);
+    if (s.depthRegistered)
+      std::printf("  depth %dx%d from its own camera (%.1f mm from the colour camera) registered to colour\n",
+                  s.depthIntrinsics.width_px, s.depthIntrinsics.height_px, 1e3 * s.depthToColourBaseline_m);
+    else
+      std::printf("  depth registered to colour as recorded\n");
     if (s.unpairedDepth > 0) std::printf("  %d depth images without a colour partner were left out\n", s.unpairedDepth);
   });
 }

@@ -17,7 +17,7 @@ struct SynthDemoArgs {
   std::string scenePath = std::string(SRP_SIM_DIR) + "/scenes/default.json";
   std::string planPath;
   std::string outPath = "demo.rawlog";
-  std::string contactSheet;
+  std::string contactSheet, depthCamera;
   long long seed = -1;
   int width = 0, height = 0, maxFrames = -1, colourNoiseBlock = -1, depthNoiseBlock = -1;
   double speed = 1.0;
@@ -40,6 +40,15 @@ void run(const SynthDemoArgs& a) {
   options.height_px = a.height;
   options.maxFrames = a.maxFrames;
   options.contactSheetPath = a.contactSheet;
+  if (!a.depthCamera.empty()) {
+    // {"intrinsics": {fx, fy, cx, cy, width, height}, "X_colour_depth": {"translation": [m], "quaternion": [w, x, y, z]}}
+    const nlohmann::json j = srp::core::readJsonFile(a.depthCamera);
+    const std::string context = "depth camera file '" + a.depthCamera + "'";
+    srp::synth::SynthDepthCamera d;
+    d.intrinsics = srp::core::requireField(j, "intrinsics", context).get<srp::core::CameraIntrinsics>();
+    if (j.contains("X_colour_depth")) d.X_colour_depth = srp::core::poseFromJson(j.at("X_colour_depth"), context);
+    options.depthCamera = d;
+  }
   const bool quiet = a.quiet;
   const auto result = srp::synth::generateSyntheticDemo(scene, catalogue, plan, options, a.outPath,
                                                         [quiet](int k, int n) {
@@ -107,6 +116,11 @@ void setupSynthDemo(CLI::App& cmd) {
   cmd.add_option("--height", args->height, "image height (default: the scene camera's)");
   cmd.add_option("--max-frames", args->maxFrames, "stop after this many frames");
   cmd.add_option("--contact-sheet", args->contactSheet, "write a PNG of a few frames (colour and depth)");
+  cmd.add_option("--depth-camera", args->depthCamera,
+                 "JSON of a depth camera of its own ({\"intrinsics\": {fx, fy, cx, cy, width, height}, "
+                 "\"X_colour_depth\": {\"translation\": [x, y, z] m, \"quaternion\": [w, x, y, z]}}): depth is "
+                 "rendered by it and -o names an image folder for 'srp import' (unregistered RGB-D, as a "
+                 "RealSense records it); example: sim/cameras/realsense_d435_depth.json");
   cmd.add_flag("--json", args->json, "print the result as JSON");
   cmd.add_flag("-q,--quiet", args->quiet, "no progress on stderr");
   cmd.callback([args]() { run(*args); });

@@ -29,9 +29,16 @@ nlohmann::json ReplaySummary::toJson() const {
                    {"valid_depth_fraction", validDepthFraction},
                    {"has_colour", hasColour},
                    {"objects_skipped", objectsSkipped},
-                   {"depth_clipped", depthClipped}};
+                   {"depth_clipped", depthClipped},
+                   {"depth_alignment", depthAlignment()},
+                   {"frames_registered_on_read", framesRegisteredOnRead}};
   j["damage"] = damage ? nlohmann::json(*damage) : nlohmann::json(nullptr);
   return j;
+}
+
+std::string ReplaySummary::depthAlignment() const {
+  if (framesRegisteredOnRead == 0) return "registered";
+  return framesRegisteredOnRead == frames ? "unregistered" : "mixed";
 }
 
 std::string ReplaySummary::toText() const {
@@ -42,6 +49,11 @@ std::string ReplaySummary::toText() const {
     << " fy " << intrinsics.fy_px << " cx " << intrinsics.cx_px << " cy " << intrinsics.cy_px
     << (intrinsicsChange ? " (changes during the recording)" : "") << "\n  depth:      unit " << depthUnit_m * 1000.0
     << " mm, " << std::round(validDepthFraction * 1000.0) / 10.0 << " % of pixels valid\n";
+  if (framesRegisteredOnRead == 0)
+    s << "  alignment:  registered as recorded (depth pixel = colour pixel)\n";
+  else
+    s << "  alignment:  unregistered: depth re-projected into the colour camera on reading (" << framesRegisteredOnRead
+      << " of " << frames << " frames; intrinsics above are the colour camera's)\n";
   if (!hasColour) s << "  colour:     missing in some frames\n";
   if (objectsSkipped > 0) s << "  skipped:    " << objectsSkipped << " non-RGB-D objects\n";
   if (damage) s << "  DAMAGED:    " << *damage << "\n";
@@ -105,6 +117,7 @@ ReplaySummary replayRawlog(const std::string& path, const ReplayOptions& options
     validSum += static_cast<double>(cv::countNonZero(f.depth_m > 0.0f)) / static_cast<double>(f.depth_m.total());
     const bool colour = !f.colour_bgr8.empty();
     s.hasColour = s.hasColour && colour;
+    if (f.depthRegisteredOnRead) ++s.framesRegisteredOnRead;
 
     if (!options.exportDir.empty()) {
       cv::Mat depth16(f.depth_m.size(), CV_16UC1);

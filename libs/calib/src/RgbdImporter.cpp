@@ -5,6 +5,9 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <regex>
@@ -12,6 +15,8 @@
 
 #include "srp/calib/CameraFiles.h"
 #include "srp/core/Error.h"
+#include "srp/core/Json.h"
+#include "srp/rawlog/DepthRegistration.h"
 #include "srp/rawlog/RawlogWriter.h"
 
 namespace srp::calib {
@@ -27,14 +32,86 @@ std::string typeName(const cv::Mat& m) {
 
 std::string sizeName(const cv::Mat& m) { return std::to_string(m.cols) + "x" + std::to_string(m.rows); }
 
+bool xmlHasCamera(const fs::path& xml, const std::string& name) {
+  if (!fs::is_regular_file(xml)) return false;
+  const auto names = cameraNamesInXml(xml.string());
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
 CameraFile findCamera(const std::string& folder, const ImportOptions& options) {
   if (!options.cameraPath.empty()) return loadCameraFile(options.cameraPath);
+  // ViSP's saveRealSenseData writes colour, depth and infrared cameras into one camera.xml.
+  const fs::path xml = fs::path(folder) / "camera.xml";
+  if (xmlHasCamera(xml, "color_camera")) return CameraFile{loadCameraXml(xml.string(), "color_camera"), std::nullopt};
   for (const char* name : {"camera.xml", "cam.json", "intrinsics.json"}) {
     const fs::path p = fs::path(folder) / name;
     if (fs::is_regular_file(p)) return loadCameraFile(p.string());
   }
   throw core::FileError(folder, "no camera file: put camera.xml, cam.json or intrinsics.json in the folder or pass "
                                 "--intrinsics FILE (ViSP XML or JSON)");
+}
+
+/// The depth camera of an unregistered recording, nullopt for a registered one.
+struct DepthCamera {
+  rawlog::DepthRegistration::Camera camera;
+  core::Pose3 X_colour_depth = core::Pose3::Identity();
+};
+
+rawlog::DepthRegistration::Camera toRegistrationCamera(const std::string& path) {
+  const CameraFile file = loadCameraFile(path);
+  rawlog::DepthRegistration::Camera out;
+  out.K = file.camera.intrinsics;
+  out.distortion.k1 = file.camera.kud;  // ViSP's model: kud is OpenCV's k1
+  if (fs::path(path).extension() != ".xml") {
+    const nlohmann::json root = core::readJsonFile(path);
+    const nlohmann::json& j = root.contains("intrinsics") ? root.at("intrinsics") : root;
+    if (j.contains("distortion")) out.distortion = j.at("distortion").get<rawlog::LensDistortion>();
+  }
+  return out;
+}
+
+core::Pose3 readDepthMColour(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw core::FileError(path, "cannot open depth_M_color (4 rows of 4 numbers, p_depth = depth_M_color p_colour)");
+  Eigen::Matrix4d M;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c)
+      if (!(in >> M(r, c)))
+        throw core::FileError(path, "expected 16 numbers (a 4x4 homogeneous matrix, rows first, metres)");
+  const Eigen::Matrix3d R = M.topLeftCorner<3, 3>();
+  if ((R * R.transpose() - Eigen::Matrix3d::Identity()).norm() > 1e-4 || R.determinant() < 0.0 ||
+      (M.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).norm() > 1e-9)
+    throw core::FileError(path, "not a rigid transform (the rotation must be orthonormal, the last row 0 0 0 1)");
+  core::Pose3 X_depth_colour = core::Pose3::Identity();
+  X_depth_colour.linear() = R;
+  X_depth_colour.translation() = M.topRightCorner<3, 1>();
+  return X_depth_colour;
+}
+
+std::optional<DepthCamera> findDepthCamera(const std::string& folder, const ImportOptions& options) {
+  std::string path = options.depthCameraPath;
+  const fs::path xml = fs::path(folder) / "camera.xml";
+  std::optional<rawlog::DepthRegistration::Camera> camera;
+  if (path.empty())
+    for (const char* name : {"depth_camera.xml", "depth_cam.json", "depth_intrinsics.json"})
+      if (fs::is_regular_file(fs::path(folder) / name)) {
+        path = (fs::path(folder) / name).string();
+        break;
+      }
+  if (!path.empty()) {
+    camera = toRegistrationCamera(path);
+  } else if (options.cameraPath.empty() && xmlHasCamera(xml, "depth_camera")) {
+    const CameraCalibration c = loadCameraXml(xml.string(), "depth_camera");
+    camera = rawlog::DepthRegistration::Camera{c.intrinsics, rawlog::LensDistortion{c.kud, 0, 0, 0, 0}};
+  }
+  if (!camera) return std::nullopt;
+  DepthCamera out;
+  out.camera = *camera;
+  std::string extrinsic = options.depthToColourPath;
+  if (extrinsic.empty() && fs::is_regular_file(fs::path(folder) / "depth_M_color.txt"))
+    extrinsic = (fs::path(folder) / "depth_M_color.txt").string();
+  if (!extrinsic.empty()) out.X_colour_depth = readDepthMColour(extrinsic).inverse();
+  return out;
 }
 
 cv::Mat readColour(const std::string& path) {
@@ -65,9 +142,19 @@ cv::Mat readDepth(const std::string& path, double scale_m) {
 
 /// Reads, checks and writes all pairs.
 ImportSummary writePairs(ImportSummary summary, const std::vector<double>& times_s, const CameraFile& camera,
-                         const std::string& rawlogPath, const ImportOptions& options) {
+                         const std::optional<DepthCamera>& depthCamera, const std::string& rawlogPath,
+                         const ImportOptions& options) {
   const auto& K = camera.camera.intrinsics;
   summary.intrinsics = K;
+  summary.depthIntrinsics = depthCamera ? depthCamera->camera.K : K;
+  std::unique_ptr<rawlog::DepthRegistration> registration;
+  if (depthCamera) {
+    registration = std::make_unique<rawlog::DepthRegistration>(depthCamera->camera,
+                                                               rawlog::DepthRegistration::Camera{K, {}},
+                                                               depthCamera->X_colour_depth);
+    summary.depthRegistered = true;
+    summary.depthToColourBaseline_m = depthCamera->X_colour_depth.translation().norm();
+  }
   if (camera.camera.hasDistortion())
     throw core::InvalidInputError("camera '" + camera.camera.name +
                                   "' has lens distortion; import expects undistorted (rectified) images and "
@@ -87,10 +174,20 @@ ImportSummary writePairs(ImportSummary summary, const std::vector<double>& times
       throw core::FileError(summary.colourFiles[i], "colour image is " + sizeName(f.colour_bgr8) +
                                                         " but the camera file says " + std::to_string(K.width_px) +
                                                         "x" + std::to_string(K.height_px));
-    if (f.depth_m.size() != f.colour_bgr8.size())
+    if (registration) {
+      const auto& Kd = registration->depthCamera().K;
+      if (f.depth_m.cols != Kd.width_px || f.depth_m.rows != Kd.height_px)
+        throw core::FileError(summary.depthFiles[i], "depth image is " + sizeName(f.depth_m) +
+                                                         " but the depth camera file says " +
+                                                         std::to_string(Kd.width_px) + "x" + std::to_string(Kd.height_px));
+      f.depth_m = registration->registerDepth(f.depth_m);
+    } else if (f.depth_m.size() != f.colour_bgr8.size()) {
       throw core::FileError(summary.depthFiles[i], "depth image is " + sizeName(f.depth_m) + " but its colour image '" +
                                                        summary.colourFiles[i] + "' is " + sizeName(f.colour_bgr8) +
-                                                       " (depth must be registered to colour)");
+                                                       ": depth registered to colour must have its size; depth from "
+                                                       "its own camera needs that camera's file (depth_cam.json or "
+                                                       "--depth-intrinsics) and depth_M_color.txt");
+    }
     writer.write(f);
   }
   writer.close();
@@ -185,7 +282,7 @@ ImportSummary importImageFolder(const std::string& folder, const std::string& ra
   }
   for (const auto& entry : depth)
     if (!colour.count(entry.first)) ++s.unpairedDepth;
-  return writePairs(s, times, camera, rawlogPath, options);
+  return writePairs(s, times, camera, findDepthCamera(folder, options), rawlogPath, options);
 }
 
 ImportSummary importTum(const std::string& folder, const std::string& rawlogPath, const ImportOptions& options) {
@@ -229,7 +326,7 @@ ImportSummary importTum(const std::string& folder, const std::string& rawlogPath
     throw core::FileError(folder, "no colour/depth pair within " + std::to_string(options.maxTimeDifference_s) +
                                       " s of each other in rgb.txt and depth.txt");
   s.unpairedDepth = static_cast<int>(depth.size() - s.depthFiles.size());
-  return writePairs(s, times, camera, rawlogPath, options);
+  return writePairs(s, times, camera, findDepthCamera(folder, options), rawlogPath, options);
 }
 
 ImportSummary importRecording(const std::string& folder, const std::string& rawlogPath, const ImportOptions& options) {

@@ -2,6 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -101,6 +106,9 @@ TEST(RawlogReplay, MrptSampleRgbdRawlogReplaysAndExports) {
   EXPECT_EQ(s.frames, 1);
   EXPECT_EQ(s.intrinsics.width_px, 640);
   EXPECT_EQ(s.intrinsics.height_px, 480);
+  // Its cameras sit 1.6 mm apart (MRPT's own flag says they differ): kept as recorded (rawlog README).
+  EXPECT_EQ(s.depthAlignment(), "registered");
+  EXPECT_NE(s.toText().find("registered as recorded"), std::string::npos);
   constexpr double kFocalTol_px = 0.01;
   EXPECT_NEAR(s.intrinsics.fx_px, 572.883, kFocalTol_px) << "the depth camera's focal length (datasets README)";
   EXPECT_GT(s.validDepthFraction, 0.5);
@@ -119,4 +127,37 @@ TEST(RawlogReplay, MissingOrEmptyFilesAreNamed) {
   const auto path = writeRecording("cut.rawlog", 2);
   fs::resize_file(path, 40);  // not even one frame left
   test::expectErrorNaming<srp::core::FileError>([&] { replayRawlog(path); }, path);
+}
+
+// An MRPT rawlog whose depth camera (320x240) is not the colour camera
+// (640x360, 25 mm away), as MRPT's grabbers write one: replay says so and
+// reports the colour camera's intrinsics.
+TEST(RawlogReplay, UnregisteredMrptRawlogIsReportedAsSuch) {
+  const fs::path path = fs::temp_directory_path() / "srp_calib_replay_unregistered.rawlog";
+  {
+    mrpt::obs::CObservation3DRangeScan obs;
+    obs.hasRangeImage = true;
+    obs.range_is_depth = true;
+    obs.rangeUnits = 0.001f;
+    obs.rangeImage_setSize(240, 320);
+    obs.rangeImage.fill(800);
+    obs.cameraParams.ncols = 320, obs.cameraParams.nrows = 240;
+    obs.cameraParams.setIntrinsicParamsFromValues(285.0, 285.0, 159.5, 119.5);
+    obs.cameraParamsIntensity.ncols = 640, obs.cameraParamsIntensity.nrows = 360;
+    obs.cameraParamsIntensity.setIntrinsicParamsFromValues(460.0, 461.0, 321.0, 178.0);
+    // The colour camera 25 mm along the depth camera's x (MRPT's sensor frame: -y).
+    obs.relativePoseIntensityWRTDepth = mrpt::poses::CPose3D(0.0, -0.025, 0.0, -M_PI / 2, 0.0, -M_PI / 2);
+    obs.hasIntensityImage = true;
+    obs.intensityImage = mrpt::img::CImage(cv::Mat(360, 640, CV_8UC3, cv::Scalar(40, 90, 160)), mrpt::img::DEEP_COPY);
+    mrpt::io::CFileGZOutputStream out(path.string());
+    auto arch = mrpt::serialization::archiveFrom(out);
+    arch << obs << obs;
+  }
+  const auto s = replayRawlog(path.string());
+  EXPECT_EQ(s.frames, 2);
+  EXPECT_EQ(s.framesRegisteredOnRead, 2);
+  EXPECT_EQ(s.depthAlignment(), "unregistered");
+  EXPECT_NE(s.toText().find("unregistered"), std::string::npos);
+  EXPECT_EQ(s.intrinsics, (srp::core::CameraIntrinsics{460.0, 461.0, 321.0, 178.0, 640, 360}));
+  EXPECT_EQ(s.toJson().at("depth_alignment"), "unregistered");
 }

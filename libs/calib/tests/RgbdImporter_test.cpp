@@ -10,6 +10,7 @@
 #include "srp/calib/CameraFiles.h"
 #include "srp/calib/RawlogReplay.h"
 #include "srp/core/Error.h"
+#include "srp/rawlog/LensDistortion.h"
 #include "srp/rawlog/RawlogReader.h"
 
 using namespace srp::calib;
@@ -184,4 +185,57 @@ TEST(RgbdImporter, BadInputNamesTheFile) {
     cv::imwrite((dir / "color_0.png").string(), cv::Mat(kH, kW, CV_8UC3, cv::Scalar::all(0)));
     expectFileErrorNaming([&] { importImageFolder(dir.string(), out); }, "--intrinsics");
   }
+}
+
+// A recording as a RealSense stores it: 320x240 depth of its own camera (with
+// lens distortion), 640x360 colour, ViSP's depth_M_color.txt. The import
+// re-projects depth into the colour camera: colour-sized depth on the plane
+// the depth camera saw, colour images unchanged, the colour intrinsics.
+TEST(RgbdImporter, UnregisteredFolderIsRegisteredToColour) {
+  constexpr double kDepthTol_m = 1.5e-3;  // millimetre PNGs, re-projected
+  const fs::path dir = freshDir("unregistered");
+  const srp::core::CameraIntrinsics Kd{285.0, 286.0, 160.2, 119.1, 320, 240}, Kc{460.0, 461.0, 321.0, 178.0, 640, 360};
+  const srp::rawlog::LensDistortion distortion{0.03, -0.01, 0.0, 0.0, 0.0};
+  std::ofstream(dir / "cam.json") << R"({"px": 460, "py": 461, "u0": 321, "v0": 178, "w": 640, "h": 360, "depthScale": 0.001})";
+  std::ofstream(dir / "depth_cam.json")
+      << R"({"fx": 285, "fy": 286, "cx": 160.2, "cy": 119.1, "width": 320, "height": 240, "distortion": {"k1": 0.03, "k2": -0.01}})";
+  // The colour camera 20 mm to the right of the depth camera: p_depth = depth_M_color p_colour.
+  std::ofstream(dir / "depth_M_color.txt") << "1 0 0 0.02\n0 1 0 0\n0 0 1 0\n0 0 0 1\n";
+  // A plane Z = 0.6 + 0.3 y in the depth frame, seen through the distorted depth lens.
+  const auto planeDepth = [](const Eigen::Vector2d& xy) { return 0.6 / (1.0 - 0.3 * xy.y()); };
+  for (int i = 0; i < 2; ++i) {
+    cv::Mat depth(240, 320, CV_16UC1);
+    for (int r = 0; r < 240; ++r)
+      for (int c = 0; c < 320; ++c) {
+        const Eigen::Vector2d xy = distortion.undistort({(c - Kd.cx_px) / Kd.fx_px, (r - Kd.cy_px) / Kd.fy_px});
+        depth.at<uint16_t>(r, c) = static_cast<uint16_t>(std::lround(1000.0 * planeDepth(xy)));
+      }
+    cv::imwrite((dir / ("depth_" + std::to_string(i) + ".png")).string(), depth);
+    cv::imwrite((dir / ("color_" + std::to_string(i) + ".png")).string(),
+                cv::Mat(360, 640, CV_8UC3, cv::Scalar(20 * i, 100, 200)));
+  }
+  const std::string rawlog = (dir / "out.rawlog").string();
+  const ImportSummary s = importRecording(dir.string(), rawlog);
+  EXPECT_TRUE(s.depthRegistered);
+  EXPECT_EQ(s.intrinsics, Kc);
+  EXPECT_EQ(s.depthIntrinsics, Kd);
+  EXPECT_NEAR(s.depthToColourBaseline_m, 0.02, 1e-12);
+  const auto frames = srp::rawlog::RawlogReader::readAll(rawlog);
+  ASSERT_EQ(frames.size(), 2u);
+  const auto& f = frames[1];
+  EXPECT_EQ(f.intrinsics, Kc);
+  EXPECT_EQ(cv::norm(f.colour_bgr8, cv::Mat(360, 640, CV_8UC3, cv::Scalar(20, 100, 200)), cv::NORM_INF), 0.0);
+  int checked = 0;
+  for (int v = 10; v < 350; v += 7)
+    for (int u = 80; u < 560; u += 11) {  // the depth camera sees u in about [60, 590]
+      const float z = f.depth_m.at<float>(v, u);
+      ASSERT_GT(z, 0.f) << u << "," << v;
+      const Eigen::Vector3d p_depth = Kc.backProject(u, v, z) + Eigen::Vector3d(0.02, 0.0, 0.0);
+      EXPECT_NEAR(p_depth.z(), planeDepth(p_depth.head<2>() / p_depth.z()), kDepthTol_m) << u << "," << v;
+      ++checked;
+    }
+  EXPECT_GT(checked, 1000);
+  // Without the depth camera file the sizes disagree: the error says what to add.
+  fs::remove(dir / "depth_cam.json");
+  expectFileErrorNaming([&] { importRecording(dir.string(), rawlog); }, "depth_M_color.txt");
 }

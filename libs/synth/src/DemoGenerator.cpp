@@ -14,6 +14,9 @@
 #include <mutex>
 #include <thread>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <cstdio>
 
 #include "srp/core/Error.h"
 #include "srp/kb/KnowledgeBase.h"
@@ -191,6 +194,49 @@ cv::Mat colourMapDepth(const cv::Mat& depth_m, double near_m, double far_m) {
   return coloured;
 }
 
+// `srp import`'s unregistered layout (RgbdImporter.h): colour camera, depth camera, extrinsic.
+void writeTwoCameraFolderHeader(const std::string& folder, const srp::core::CameraIntrinsics& K,
+                                const SynthDepthCamera& depthCamera, double depthUnit_m) {
+  namespace fs = std::filesystem;
+  fs::create_directories(folder);
+  const auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream out(fs::path(folder) / name);
+    out << text;
+    if (!out) throw srp::core::FileError((fs::path(folder) / name).string(), "cannot write the two-camera demo");
+  };
+  write("cam.json", nlohmann::json{{"px", K.fx_px}, {"py", K.fy_px}, {"u0", K.cx_px}, {"v0", K.cy_px}, {"w", K.width_px},
+                                   {"h", K.height_px}, {"depthScale", depthUnit_m},
+                                   {"model", "perspectiveProjWithoutDistortion"}}
+                        .dump(2));
+  write("depth_cam.json", nlohmann::json(depthCamera.intrinsics).dump(2));
+  const Eigen::Matrix4d depth_M_color = depthCamera.X_colour_depth.inverse().matrix();
+  std::ostringstream m;
+  m.precision(17);
+  for (int r = 0; r < 4; ++r) m << depth_M_color(r, 0) << " " << depth_M_color(r, 1) << " " << depth_M_color(r, 2) << " "
+                                << depth_M_color(r, 3) << "\n";
+  write("depth_M_color.txt", m.str());
+}
+
+void writeTwoCameraFolderFrame(const std::string& folder, int k, const cv::Mat& colour, const cv::Mat& depth_m,
+                               double depthUnit_m) {
+  char name[32];
+  std::snprintf(name, sizeof name, "%04d.png", k);
+  const std::filesystem::path dir(folder);
+  cv::Mat depth16(depth_m.size(), CV_16UC1);
+  for (int r = 0; r < depth_m.rows; ++r) {
+    const float* d = depth_m.ptr<float>(r);
+    std::uint16_t* o = depth16.ptr<std::uint16_t>(r);
+    for (int c = 0; c < depth_m.cols; ++c) {
+      const double steps = d[c] / depthUnit_m;
+      o[c] = steps > 0.0 && steps <= 65535.0 ? static_cast<std::uint16_t>(std::lround(steps)) : 0;
+    }
+  }
+  const std::vector<int> fast{cv::IMWRITE_PNG_COMPRESSION, 1};
+  if (!cv::imwrite((dir / (std::string("color_") + name)).string(), colour, fast) ||
+      !cv::imwrite((dir / (std::string("depth_") + name)).string(), depth16, fast))
+    throw srp::core::FileError(folder, "cannot write frame " + std::to_string(k) + " of the two-camera demo");
+}
+
 }  // namespace
 
 std::string groundTruthPathFor(const std::string& rawlogPath) {
@@ -269,6 +315,33 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
   const bool layered = options.layeredRendering;
   Layer background = makeLayer(true, !layered);
   Layer moving = layered ? makeLayer(false, true) : Layer{};
+  // Two-camera sensor: the depth camera renders the whole scene itself.
+  const std::optional<SynthDepthCamera>& depthCamera = options.depthCamera;
+  Layer depthLayer;
+  if (depthCamera) {
+    depthCamera->intrinsics.validate("synth-demo depth camera");
+    // As makeLayer, with the depth camera's intrinsics.
+    depthLayer.renderer = std::make_unique<SceneRenderer>(depthCamera->intrinsics);
+    SceneRenderer& r = *depthLayer.renderer;
+    r.setLighting(world.lighting);
+    r.setBackground({0.3, 0.3, 0.32});
+    const int table = r.addBody(
+        "table",
+        srp::kb::makeBoxMesh({-0.5 * world.tableSize_m.x(), -0.5 * world.tableSize_m.y(), -0.03},
+                             {0.5 * world.tableSize_m.x(), 0.5 * world.tableSize_m.y(), 0.0}),
+        world.tableRgb);
+    r.setBodyPose(table, srp::core::Pose3::Identity());
+    const int floor = r.addBody("floor", srp::kb::makeBoxMesh({-3, -3, -0.78}, {3, 3, -0.75}), {0.42, 0.4, 0.38});
+    r.setBodyPose(floor, srp::core::Pose3::Identity());
+    for (std::size_t i = 0; i < world.objects.size(); ++i)
+      depthLayer.objectBodies.push_back(r.addBody(world.objects[i].id, objectMeshes[i], timeline.objectRgb.at(world.objects[i].id)));
+    for (const auto& part : hand.parts()) depthLayer.handBodies.push_back(r.addBody("hand:" + part.name, part.mesh_part, part.triangleRgb));
+  }
+  const srp::core::Pose3 X_world_depth =
+      depthCamera ? srp::core::Pose3(world.X_world_camera * depthCamera->X_colour_depth) : world.X_world_camera;
+  std::filesystem::path folderPath = std::filesystem::path(rawlogPath).lexically_normal();
+  if (!folderPath.has_filename()) folderPath = folderPath.parent_path();  // "demo/" -> "demo"
+  const std::string folder = depthCamera ? folderPath.string() : std::string();
   std::vector<int> backgroundState;  // per object: 0 hidden, 1 shown; with the poses below
   std::vector<srp::core::Pose3> backgroundPoses;
   srp::rawlog::RgbdFrame backgroundFrame;
@@ -276,7 +349,7 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
   // ---- Ground truth header -----------------------------------------------------
   DemoGroundTruth gt;
   gt.sceneName = world.name;
-  gt.rawlogFile = std::filesystem::path(rawlogPath).filename().string();
+  gt.rawlogFile = (options.depthCamera ? folderPath : std::filesystem::path(rawlogPath)).filename().string();
   gt.seed = options.demo.seed;
   gt.fps = world.fps;
   gt.speedFactor = timeline.speedFactor;
@@ -320,9 +393,16 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
   const int encoderThreads = options.rawlogEncoderThreads >= 0
                                  ? options.rawlogEncoderThreads
                                  : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  srp::rawlog::RawlogWriter writer(rawlogPath, depthUnit_m, options.rawlogCompressionLevel, encoderThreads);
+  std::unique_ptr<srp::rawlog::RawlogWriter> writer;
+  if (depthCamera) {
+    writeTwoCameraFolderHeader(folder, K, *depthCamera, depthUnit_m);
+  } else {
+    writer = std::make_unique<srp::rawlog::RawlogWriter>(rawlogPath, depthUnit_m, options.rawlogCompressionLevel,
+                                                         encoderThreads);
+  }
   const double cpuLoopStart_s = processCpuTime_s();
   SensorModel sensor(options.sensor, options.demo.seed);
+  SensorModel depthSensor(options.sensor, options.demo.seed + 1);
   const srp::core::Pose3 X_camera_world = world.X_world_camera.inverse();
   double handValidSum = 0.0, objectValidSum = 0.0;
   int handValidFrames = 0, objectValidFrames = 0;
@@ -332,6 +412,7 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
     int k;
     srp::rawlog::RgbdFrame frame;
     std::vector<srp::core::Pose3> partPoses;
+    srp::rawlog::RgbdFrame depthCameraFrame;  // two-camera sensor only
   };
   FrameQueue<Rendered> rendered(3);
   std::exception_ptr sensorError;
@@ -348,20 +429,34 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
         auto t0 = Clock::now();
         frame.index = k;
         frame.t_s = kRawlogEpoch_s + f.t_s;
-        cv::Mat handMask(K.height_px, K.width_px, CV_8UC1, cv::Scalar(0));
-        cv::Mat partMask(K.height_px, K.width_px, CV_8UC1, cv::Scalar(0));
-        cv::Mat movingMask(K.height_px, K.width_px, CV_8UC1, cv::Scalar(0));
-        for (std::size_t i = 0; i < hand.parts().size(); ++i)
-          markBox(hand.parts()[i].bounds_part, X_camera_world * f.X_world_hand * partPoses[i], K, frame.depth_m, handMask);
-        double movingSpeed = 0.0;
-        for (std::size_t i = 0; i < world.objects.size(); ++i) {
-          if (!isPart[i]) continue;
-          const double speed = (f.X_world_objects[i].translation() - prev.X_world_objects[i].translation()).norm() / dt;
-          markBox(objectBounds[i], X_camera_world * f.X_world_objects[i], K, frame.depth_m, speed > 0.0 ? movingMask : partMask);
-          movingSpeed = std::max(movingSpeed, speed);
-        }
-        partMask.setTo(0, handMask);
-        movingMask.setTo(0, handMask);
+        // Hand, resting-part and moving-part masks of a camera's rendered depth.
+        struct Masks {
+          cv::Mat hand, part, moving;
+          double movingSpeed = 0.0;
+        };
+        const auto masksOf = [&](const srp::core::CameraIntrinsics& Kcam, const srp::core::Pose3& X_cam_world,
+                                 const cv::Mat& depth) {
+          Masks m;
+          m.hand = cv::Mat(Kcam.height_px, Kcam.width_px, CV_8UC1, cv::Scalar(0));
+          m.part = m.hand.clone();
+          m.moving = m.hand.clone();
+          for (std::size_t i = 0; i < hand.parts().size(); ++i)
+            markBox(hand.parts()[i].bounds_part, X_cam_world * f.X_world_hand * partPoses[i], Kcam, depth, m.hand);
+          for (std::size_t i = 0; i < world.objects.size(); ++i) {
+            if (!isPart[i]) continue;
+            const double speed = (f.X_world_objects[i].translation() - prev.X_world_objects[i].translation()).norm() / dt;
+            markBox(objectBounds[i], X_cam_world * f.X_world_objects[i], Kcam, depth, speed > 0.0 ? m.moving : m.part);
+            m.movingSpeed = std::max(m.movingSpeed, speed);
+          }
+          m.part.setTo(0, m.hand);
+          m.moving.setTo(0, m.hand);
+          return m;
+        };
+        const Masks masks = masksOf(K, X_camera_world, frame.depth_m);
+        const cv::Mat& handMask = masks.hand;
+        const cv::Mat& partMask = masks.part;
+        const cv::Mat& movingMask = masks.moving;
+        const double movingSpeed = masks.movingSpeed;
         // Tag visibility from the clean rendered depth (before the sensor model punches holes).
         const srp::core::Pose3 X_camera_tag = X_camera_world * f.X_world_hand * hand.X_hand_tag();
         const double tagVisible = tagVisibleFraction(X_camera_tag, hand.tagPlateHalfSize_m() - kTagRim_m, K, frame.depth_m);
@@ -369,6 +464,11 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
         const cv::Mat cleanColour = options.sensor.motionBlur ? frame.colour_bgr8.clone() : cv::Mat();
         sensor.apply(frame, handMask, handSpeed, partMask, movingMask, movingSpeed, previousColour);
         previousColour = cleanColour;
+        if (depthCamera) {  // the depth camera's own image, degraded the same way
+          srp::rawlog::RgbdFrame& d = item->depthCameraFrame;
+          const Masks dm = masksOf(depthCamera->intrinsics, X_world_depth.inverse(), d.depth_m);
+          depthSensor.apply(d, dm.hand, handSpeed, dm.part, dm.moving, dm.movingSpeed, cv::Mat());
+        }
 
         GroundTruthFrame g;
         g.index = k;
@@ -421,7 +521,8 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
 
         if (std::find(sheetFrames.begin(), sheetFrames.end(), k) != sheetFrames.end()) sheet.emplace_back(k, frame);
         t0 = Clock::now();
-        writer.write(std::move(frame));
+        if (writer) writer->write(std::move(frame));
+        else writeTwoCameraFolderFrame(folder, k, frame.colour_bgr8, item->depthCameraFrame.depth_m, depthUnit_m);
         result.writeTime_s += secondsSince(t0);
       }
     } catch (...) {
@@ -490,8 +591,17 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
           }
         }
       }
+      srp::rawlog::RgbdFrame depthCameraFrame;
+      if (depthCamera) {
+        for (std::size_t i = 0; i < world.objects.size(); ++i)
+          depthLayer.renderer->setBodyPose(depthLayer.objectBodies[i], f.X_world_objects[i]);
+        for (std::size_t i = 0; i < depthLayer.handBodies.size(); ++i)
+          depthLayer.renderer->setBodyPose(depthLayer.handBodies[i], f.X_world_hand * partPoses[i]);
+        depthCameraFrame = depthLayer.renderer->render(X_world_depth);
+      }
       result.renderTime_s += secondsSince(t0);
-      if (!rendered.push({k, std::move(frame), std::move(partPoses)})) break;  // the sensor thread failed
+      if (!rendered.push({k, std::move(frame), std::move(partPoses), std::move(depthCameraFrame)}))
+        break;  // the sensor thread failed
       if (progress) progress(k, frameCount);
     }
   } catch (...) {
@@ -503,14 +613,16 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
   sensorThread.join();
   if (sensorError) std::rethrow_exception(sensorError);
   const auto tClose = Clock::now();
-  writer.close();
+  if (writer) {
+    writer->close();
+    result.writeCpuTime_s = writer->encodeCpuTime_s();
+    result.rawlogBytes = writer->bytesWritten();
+  }
   result.writeTime_s += secondsSince(tClose);
-  result.writeCpuTime_s = writer.encodeCpuTime_s();
-  result.rawlogBytes = writer.bytesWritten();
   result.processCpuTime_s = processCpuTime_s() - cpuLoopStart_s;
   // The rest of the loop's CPU: the render thread and llvmpipe's rasteriser threads.
   result.renderCpuTime_s = std::max(0.0, result.processCpuTime_s - result.sensorCpuTime_s - result.writeCpuTime_s);
-  result.groundTruthPath = groundTruthPathFor(rawlogPath);
+  result.groundTruthPath = groundTruthPathFor(depthCamera ? folder : rawlogPath);
   gt.save(result.groundTruthPath);
   result.frameCount = frameCount;
   result.duration_s = frameCount / world.fps;

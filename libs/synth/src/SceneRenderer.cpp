@@ -1,5 +1,6 @@
 #include "srp/synth/SceneRenderer.h"
 
+#include <EGL/egl.h>
 #include <mrpt/img/TCamera.h>
 #include <mrpt/opengl/CFBORender.h>
 #include <mrpt/opengl/COpenGLScene.h>
@@ -33,6 +34,18 @@ struct SceneRenderer::Impl {
   std::vector<mrpt::opengl::CSetOfTriangles::Ptr> bodies;
   mrpt::img::CImage rgb;
   mrpt::math::CMatrixFloat depth;
+  // This MRPT's CFBORender makes its EGL context current only when created;
+  // with several renderers in one thread, each must make its own current
+  // before rendering (else it draws into the last one created, at its size).
+  EGLDisplay eglDisplay = EGL_NO_DISPLAY;
+  EGLContext eglContext = EGL_NO_CONTEXT;
+  EGLSurface eglDraw = EGL_NO_SURFACE, eglRead = EGL_NO_SURFACE;
+  void makeCurrent() const {
+    if (eglContext != EGL_NO_CONTEXT && eglGetCurrentContext() != eglContext &&
+        eglMakeCurrent(eglDisplay, eglDraw, eglRead, eglContext) != EGL_TRUE)
+      throw srp::core::Error("SceneRenderer: cannot make its EGL context current (EGL error " +
+                             std::to_string(eglGetError()) + ")");
+  }
 };
 
 SceneRenderer::SceneRenderer(const srp::core::CameraIntrinsics& K, double minDepth_m, double maxDepth_m)
@@ -41,6 +54,10 @@ SceneRenderer::SceneRenderer(const srp::core::CameraIntrinsics& K, double minDep
   prepareHeadlessEnvironment();
   try {
     impl_->fbo = std::make_unique<mrpt::opengl::CFBORender>(K.width_px, K.height_px);
+    impl_->eglDisplay = eglGetCurrentDisplay();
+    impl_->eglContext = eglGetCurrentContext();
+    impl_->eglDraw = eglGetCurrentSurface(EGL_DRAW);
+    impl_->eglRead = eglGetCurrentSurface(EGL_READ);
   } catch (const std::exception& e) {
     throw srp::core::Error(std::string("SceneRenderer: cannot create the off-screen EGL renderer (EGL_PLATFORM=") +
                            (std::getenv("EGL_PLATFORM") ? std::getenv("EGL_PLATFORM") : "") +
@@ -65,7 +82,18 @@ SceneRenderer::SceneRenderer(const srp::core::CameraIntrinsics& K, double minDep
   camera.set6DOFMode(true);
 }
 
-SceneRenderer::~SceneRenderer() = default;
+SceneRenderer::~SceneRenderer() {
+  // MRPT deletes the FBO in whatever context is current: make it ours. When
+  // another renderer's destruction already terminated the shared EGL display
+  // (and with it this context), release the thread's context instead, so the
+  // deletions are no-ops rather than GL errors in a foreign context (MRPT
+  // throws those from its destructor, which terminates the program).
+  if (!impl_ || !impl_->fbo) return;
+  if (impl_->eglContext != EGL_NO_CONTEXT && eglGetCurrentContext() != impl_->eglContext &&
+      eglMakeCurrent(impl_->eglDisplay, impl_->eglDraw, impl_->eglRead, impl_->eglContext) != EGL_TRUE)
+    eglReleaseThread();
+  impl_->fbo.reset();
+}
 
 int SceneRenderer::addBody(const std::string& name, const srp::kb::TriangleMesh& mesh,
                            const Eigen::Vector3d& rgb) {
@@ -125,6 +153,7 @@ void SceneRenderer::setBackground(const Eigen::Vector3d& rgb) {
 }
 
 srp::rawlog::RgbdFrame SceneRenderer::render(const srp::core::Pose3& X_world_camera) {
+  impl_->makeCurrent();
   impl_->fbo->getCamera(impl_->scene).setPose(srp::core::toMrpt(X_world_camera));
   impl_->fbo->render_RGBD(impl_->scene, impl_->rgb, impl_->depth);
   srp::rawlog::RgbdFrame frame;

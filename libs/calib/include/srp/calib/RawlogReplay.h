@@ -46,6 +46,12 @@ struct ReplaySummary {
   int objectsSkipped = 0;          ///< non-RGB-D objects in the file
   std::optional<std::string> damage;  ///< where a damaged file ended
   int depthClipped = 0;            ///< exported depth pixels beyond 16 bits (written as 0)
+  /// Frames whose depth the reader re-projected from the depth camera into the
+  /// colour camera (rawlog::needsRegistration): 0 for a registered recording,
+  /// `frames` for one whose two cameras differ.
+  int framesRegisteredOnRead = 0;
+  /// "registered" (as recorded), "unregistered" (registered on read) or "mixed".
+  std::string depthAlignment() const;
 
   nlohmann::json toJson() const;
   std::string toText() const;      ///< a few human-readable lines

@@ -23,6 +23,18 @@ struct ImportOptions {
   std::optional<double> depthScale_m;
   double fps = 30.0;                   ///< image folders: frame i at t = i / fps [s]
   double maxTimeDifference_s = 0.02;   ///< TUM: colour/depth association window
+  /// Depth camera file (ViSP XML, or JSON as above, optionally with a
+  /// "distortion" object {k1, k2, p1, p2, k3}) of a recording whose depth is
+  /// not registered to colour. Empty: the folder's depth_camera.xml,
+  /// depth_cam.json or depth_intrinsics.json, else the camera named
+  /// "depth_camera" in its camera.xml (ViSP's saveRealSenseData layout, whose
+  /// colour camera is then "color_camera"). No depth camera: depth must be
+  /// registered to colour (same size), as before.
+  std::string depthCameraPath;
+  /// ViSP's depth_M_color.txt (vpHomogeneousMatrix::save: 4 rows of 4 numbers,
+  /// p_depth = depth_M_color * p_colour, metres). Empty: the folder's
+  /// depth_M_color.txt; none: identity (the cameras share their optical centre).
+  std::string depthToColourPath;
   std::function<void(int done, int total)> progress;
 };
 
@@ -35,12 +47,23 @@ struct ImportSummary {
   std::vector<std::string> colourFiles;  ///< in frame order
   std::vector<std::string> depthFiles;   ///< paired with colourFiles
   int unpairedDepth = 0;               ///< depth images without a colour partner (ignored)
+  /// Depth re-projected into the colour camera on import (rawlog::DepthRegistration):
+  /// the recording had a depth camera of its own.
+  bool depthRegistered = false;
+  srp::core::CameraIntrinsics depthIntrinsics;  ///< of the depth images (== intrinsics when not registered)
+  double depthToColourBaseline_m = 0.0;         ///< distance of the two optical centres
 };
 
 /// Image folder: colour files `color_N`, `colour_N` or `rgb_N` (.png/.jpg,
 /// any zero padding, optional separator) or any `N.png/.jpg` inside a `color/`,
 /// `colour/` or `rgb/` subfolder; depth files `depth_N.png` or `depth/N.png`,
-/// 16-bit single channel, registered to colour; paired by the number N.
+/// 16-bit single channel, paired by the number N. Depth is either registered
+/// to colour (same size, one camera file) or seen by its own depth camera
+/// (any size; a depth camera file and depth_M_color.txt, see ImportOptions):
+/// then each depth image is re-projected into the colour camera
+/// (rawlog::DepthRegistration) and the rawlog holds colour-sized depth with
+/// the colour camera's intrinsics. Colour images are never resized, and must
+/// be undistorted (the depth camera may have lens distortion).
 /// Errors (FileError naming the file): no colour images, a colour image
 /// without depth, an unreadable image, a depth image that is not 16-bit
 /// single-channel, sizes that differ from each other or from the intrinsics.

@@ -19,9 +19,9 @@ namespace srp::rawlog {
 ///
 /// Colour: the intensity image (grey images are converted to BGR); when the
 /// scan has no intensity image, colour is left empty. Depth: rangeImage times
-/// rangeUnits, registered to colour when both cameras have the same size (the
-/// usual case); otherwise the depth camera's intrinsics are reported and the
-/// colour image is resized to the depth size.
+/// rangeUnits, as recorded when the scan's two cameras coincide, else
+/// re-projected into the colour camera (frameFromObservation in
+/// ObservationToFrame.h says when; RgbdFrame::depthRegisteredOnRead tells).
 ///
 /// Read-ahead: by default a background thread decompresses and converts the
 /// next few frames while the caller works on the current one (decoding a

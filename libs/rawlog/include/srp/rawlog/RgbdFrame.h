@@ -17,6 +17,11 @@ struct RgbdFrame {
   cv::Mat colour_bgr8;              ///< CV_8UC3, BGR, height x width
   cv::Mat depth_m;                  ///< CV_32FC1, depth Z [m] along the optical axis, 0 = invalid
   srp::core::CameraIntrinsics intrinsics;  ///< of both images (registered)
+  /// How depth came onto the colour grid: false when recorded so (the sensor
+  /// registered it, or its two cameras coincide), true when srp re-projected
+  /// the depth camera's image into the colour camera on reading
+  /// (DepthRegistration; rawlog::needsRegistration says when).
+  bool depthRegisteredOnRead = false;
 
   /// Throws InvalidInputError (naming `what`) when an image is missing, of the
   /// wrong type, or its size differs from the intrinsics'.

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "srp/core/CameraIntrinsics.h"
@@ -17,6 +18,14 @@
 #include "srp/synth/SensorModel.h"
 
 namespace srp::synth {
+
+/// A depth camera of its own, as RealSense-like sensors have: depth is rendered
+/// by this camera (its size, intrinsics and pose; the same sensor model) and
+/// colour by the scene camera.
+struct SynthDepthCamera {
+  srp::core::CameraIntrinsics intrinsics;
+  srp::core::Pose3 X_colour_depth = srp::core::Pose3::Identity();  ///< the depth camera in the colour camera's frame
+};
 
 struct SynthDemoOptions {
   DemoOptions demo;
@@ -31,6 +40,13 @@ struct SynthDemoOptions {
   /// Render the table and resting objects once and only the moving bodies per
   /// frame, composed by depth (same images, several times faster in software).
   bool layeredRendering = true;
+  /// When set, the demo is recorded as an unregistered two-camera sensor and
+  /// written as an image folder (the `rawlogPath` argument names the folder)
+  /// in `srp import`'s layout: color_NNNN.png, depth_NNNN.png (16-bit, depth
+  /// camera's size, rawlogDepthUnit_m per unit), cam.json (colour camera,
+  /// depthScale), depth_cam.json, depth_M_color.txt (ViSP: p_depth =
+  /// depth_M_color p_colour). The ground truth is the colour camera's.
+  std::optional<SynthDepthCamera> depthCamera;
   std::string contactSheetPath;      ///< PNG of a few frames (colour + depth) when set
   int contactSheetFrames = 6;
 };

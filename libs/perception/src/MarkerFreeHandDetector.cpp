@@ -72,6 +72,12 @@ void MarkerFreeHandDetector::preview(const rawlog::RgbdFrame& frame) {
   core::require(frameCount_ == 0,
                 "MarkerFreeHandDetector::preview: frame " + std::to_string(frame.index) +
                     " previewed after detect(); preview the whole recording first");
+  // A frame without depth or of another size is left out here; detect()'s
+  // caller reports it (DemoPerceiver::add checks every frame).
+  if (frame.depth_m.empty() || frame.depth_m.type() != CV_32FC1 ||
+      (!previewDepth_mm_.empty() && frame.depth_m.size() != previewDepth_mm_[0].size()) ||
+      (!frame.colour_bgr8.empty() && frame.colour_bgr8.size() != frame.depth_m.size()))
+    return;
   if (previewFrames_ % previewStride_ == 0) {
     cv::Mat mm;
     frame.depth_m.convertTo(mm, CV_16UC1, 1000.0);
@@ -90,7 +96,7 @@ void MarkerFreeHandDetector::preview(const rawlog::RgbdFrame& frame) {
       previewStride_ *= 2;
     }
   }
-  if (!frame.colour_bgr8.empty()) {
+  if (!frame.colour_bgr8.empty() && (previewColourSum_.empty() || previewColourSum_.size() == frame.colour_bgr8.size())) {
     if (previewColourSum_.empty()) previewColourSum_ = cv::Mat(frame.colour_bgr8.size(), CV_32FC3, cv::Scalar::all(0));
     cv::accumulate(frame.colour_bgr8, previewColourSum_);
   }
@@ -138,7 +144,11 @@ void MarkerFreeHandDetector::finishPreview() {
 }
 
 void MarkerFreeHandDetector::accumulateSkin(const cv::Mat& colour_bgr8, const cv::Mat& foreground, int step) {
-  if (skinHistogram_.empty()) skinHistogram_ = cv::Mat(256, 256, CV_32FC1, cv::Scalar(0));
+  if (skinHistogram_.empty()) {
+    skinHistogram_ = cv::Mat(256, 256, CV_32FC1, cv::Scalar(0));
+    skinLumaSum_ = cv::Mat(256, 256, CV_64FC1, cv::Scalar(0));
+    skinLumaSqSum_ = cv::Mat(256, 256, CV_64FC1, cv::Scalar(0));
+  }
   cv::Mat ycrcb;
   cv::cvtColor(colour_bgr8, ycrcb, cv::COLOR_BGR2YCrCb);
   const Options& o = options_;
@@ -148,7 +158,11 @@ void MarkerFreeHandDetector::accumulateSkin(const cv::Mat& colour_bgr8, const cv
     for (int u = 0; u < ycrcb.cols; u += step)
       if (f[u] && c[u][0] >= o.skinMinLuma && c[u][1] >= o.skinPriorCrMin && c[u][1] <= o.skinPriorCrMax &&
           c[u][2] >= o.skinPriorCbMin && c[u][2] <= o.skinPriorCbMax)
+      {
         skinHistogram_.at<float>(c[u][1], c[u][2]) += 1.f;
+        skinLumaSum_.at<double>(c[u][1], c[u][2]) += c[u][0];
+        skinLumaSqSum_.at<double>(c[u][1], c[u][2]) += static_cast<double>(c[u][0]) * c[u][0];
+      }
   }
 }
 
@@ -206,13 +220,32 @@ void MarkerFreeHandDetector::fitSkin() {
     cov = s2 / w2 - mean * mean.transpose() + Eigen::Matrix2d::Identity();
     w = w2;
   }
+  // The luma of the skin's pixels: its mean and spread (a bright toy face or
+  // table of the skin's chroma is far brighter than this person's skin in
+  // this light, or far darker).
+  {
+    const Eigen::Matrix2d info = cov.inverse();
+    double n = 0.0, sy = 0.0, syy = 0.0;
+    for (int cr = 0; cr < 256; ++cr)
+      for (int cb = 0; cb < 256; ++cb) {
+        const double c = skinHistogram_.at<float>(cr, cb);
+        if (c <= 0.0) continue;
+        const Eigen::Vector2d d = Eigen::Vector2d(cr, cb) - mean;
+        if (d.dot(info * d) > maxD2) continue;
+        n += c;
+        sy += skinLumaSum_.at<double>(cr, cb);
+        syy += skinLumaSqSum_.at<double>(cr, cb);
+      }
+    skin_.meanLuma = sy / n;
+    skin_.sdLuma = std::sqrt(std::max(0.0, syy / n - skin_.meanLuma * skin_.meanLuma)) + 1.0;
+  }
   skin_.samples = static_cast<int>(w);
   skin_.covariance = cov;
   skin_.mean = mean;
   skin_.learnt = true;
   if (std::getenv("SRP_HAND_TRACE"))
-    std::fprintf(stderr, "skin: mode %d %d, mean %.1f %.1f, cov %.1f %.1f %.1f, %d px\n", mode.y, mode.x, mean.x(),
-                 mean.y(), cov(0, 0), cov(1, 1), cov(0, 1), skin_.samples);
+    std::fprintf(stderr, "skin: mode %d %d, mean %.1f %.1f, cov %.1f %.1f %.1f, luma %.1f sd %.1f, %d px\n", mode.y,
+                 mode.x, mean.x(), mean.y(), cov(0, 0), cov(1, 1), cov(0, 1), skin_.meanLuma, skin_.sdLuma, skin_.samples);
 }
 
 cv::Mat MarkerFreeHandDetector::skinMask(const cv::Mat& colour_bgr8) const {
@@ -234,11 +267,14 @@ cv::Mat MarkerFreeHandDetector::skinMask(const cv::Mat& colour_bgr8) const {
       const Eigen::Vector2d d = Eigen::Vector2d(cr, cb) - skin_.mean;
       lut.at<uchar>(cr, cb) = d.dot(info * d) <= maxD2 ? 255 : 0;
     }
+  const double lumaMin = std::max<double>(o.skinMinLuma, skin_.meanLuma - o.skinMaxMahalanobis * skin_.sdLuma);
+  const double lumaMax = skin_.meanLuma + o.skinMaxMahalanobis * skin_.sdLuma;
   skin = cv::Mat(ycrcb.size(), CV_8UC1);
   for (int v = 0; v < ycrcb.rows; ++v) {
     const cv::Vec3b* c = ycrcb.ptr<cv::Vec3b>(v);
     uchar* m = skin.ptr<uchar>(v);
-    for (int u = 0; u < ycrcb.cols; ++u) m[u] = c[u][0] >= o.skinMinLuma ? lut.at<uchar>(c[u][1], c[u][2]) : 0;
+    for (int u = 0; u < ycrcb.cols; ++u)
+      m[u] = c[u][0] >= lumaMin && c[u][0] <= lumaMax ? lut.at<uchar>(c[u][1], c[u][2]) : 0;
   }
   return skin;
 }
@@ -247,6 +283,11 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   geometry_ = Geometry{};
   ++frameCount_;
   if (!previewDepth_mm_.empty()) finishPreview();
+  if (!backgroundDepth_m_.empty() && backgroundDepth_m_.size() != frame.depth_m.size())
+    throw core::InvalidInputError("MarkerFreeHandDetector: frame " + std::to_string(frame.index) + " is " +
+                                  std::to_string(frame.depth_m.cols) + "x" + std::to_string(frame.depth_m.rows) +
+                                  ", the background " + std::to_string(backgroundDepth_m_.cols) + "x" +
+                                  std::to_string(backgroundDepth_m_.rows) + ": a demo must come from one camera setting");
   if (backgroundDepth_m_.empty()) {
     depthHistory_.push_back(frame.depth_m.clone());
     colourHistory_.push_back(frame.colour_bgr8.clone());
@@ -272,7 +313,7 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
     uchar* m = mask.ptr<uchar>(v);
     for (int u = 0; u < depth.cols; ++u) {
       if (z[u] > 0.f && bg[u] > 0.f) m[u] = (bg[u] - z[u] > options_.minForeground_m) ? 255 : 0;
-      else if (z[u] <= 0.f && hasColour) {
+      else if (z[u] <= 0.f && hasColour && !backgroundColour_.empty()) {
         // A hole (moving hand): foreground when the colour changed.
         const cv::Vec3b a = frame.colour_bgr8.at<cv::Vec3b>(v, u), b = backgroundColour_.at<cv::Vec3b>(v, u);
         const int diff = std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]);
@@ -304,11 +345,6 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   }
   if (bestLabel < 0) return std::nullopt;
   const cv::Mat arm = (labels == bestLabel);
-  // Stream (no preview): the skin model grows with every frame's arm.
-  if (options_.useSkin && hasColour && previewFrames_ == 0) {
-    accumulateSkin(frame.colour_bgr8, arm, 2);
-    fitSkin();
-  }
   const cv::Mat skin = hasColour ? skinMask(frame.colour_bgr8) : cv::Mat(depth.size(), CV_8UC1, cv::Scalar(255));
   cv::Mat hand = arm & skin;
   cv::morphologyEx(hand, hand, cv::MORPH_OPEN, disc5);
@@ -433,7 +469,15 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
       if (std::getenv("SRP_HAND_TRACE"))
         std::fprintf(stderr, "frame %d: comp area %d of %d, extent %.0f px = %.3f m at z %.2f, entry %.0f %.0f\n",
                      frame.index, bestArea2, nc - 1, sMax - sMin, (sMax - sMin) / compPxPerM, z_comp, entry.x(), entry.y());
-      if (sMax - sMin > options_.maxHandLength_m * compPxPerM) {
+      // Its length in 3D (a forearm pointing at the camera looks short).
+      auto endPoint = [&](double sEnd) {
+        const Eigen::Vector2d e = ax->mean + sEnd * axis;
+        const double z = medianDepthInDisc(depth, comp, e, options_.palmRadius_m * compPxPerM, 5).value_or(z_comp);
+        return Eigen::Vector3d((e.x() - k.cx_px) * z / k.fx_px, (e.y() - k.cy_px) * z / k.fy_px, z);
+      };
+      const double length3d_m = (endPoint(sMax) - endPoint(sMin)).norm();
+      if (std::getenv("SRP_HAND_TRACE")) std::fprintf(stderr, "  3D length %.3f m\n", length3d_m);
+      if (length3d_m > options_.maxHandLength_m) {
         // The hand's own axis and centre line: the last maxHandLength_m.
         const double from = sMax - options_.maxHandLength_m * compPxPerM;
         Eigen::Vector2d mean = Eigen::Vector2d::Zero();
@@ -502,6 +546,16 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
     anchor_px = wrist / nCuff;
     dir = principalAxis(hand, sleeve)->dir;
     length_m = options_.palmFromWrist_m;
+    // The palm stays palmFromFarEnd_m back from the hand's far end: a skin
+    // boundary nearer the fingers than a sleeve's cuff (a forearm in shadow,
+    // too dark to be skin) must not push the palm past the hand.
+    double tip_px = 0.0;
+    for (int v = 0; v < hand.rows; v += 2) {
+      const uchar* p = hand.ptr<uchar>(v);
+      for (int u = 0; u < hand.cols; u += 2)
+        if (p[u]) tip_px = std::max(tip_px, (Eigen::Vector2d(u, v) - anchor_px).dot(dir));
+    }
+    length_m = std::max(0.0, std::min(length_m, tip_px / pxPerM - options_.palmFromFarEnd_m));
     geometry_.haveWrist = true;
     geometry_.wrist_px = anchor_px;
   } else {

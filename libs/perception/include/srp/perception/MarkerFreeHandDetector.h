@@ -44,8 +44,9 @@ namespace srp::perception {
 ///    badge); the sleeve = the largest non-skin part of the arm that reaches
 ///    the border (a carried object does not);
 /// 4. bare forearm: when the largest skin component is longer than
-///    `maxHandLength_m` along its principal axis (skin from the elbow or the
-///    short sleeve to the fingers), the hand is its far end: the axis end
+///    `maxHandLength_m` between the ends of its principal axis (in 3D; skin
+///    from the elbow or a short sleeve to the fingers), the hand is its far
+///    end: the axis end
 ///    farther from the arm's entry (the body); its last `maxHandLength_m`
 ///    give the hand's own axis and centre line, and the palm centre lies
 ///    `palmFromFarEnd_m` back from the far end along it;
@@ -53,7 +54,9 @@ namespace srp::perception {
 ///    the arm axis = principal direction of sleeve + hand, pointing inwards;
 ///    the palm centre = the wrist plus `palmFromWrist_m` along the axis
 ///    (a fixed length of the hand: it does not move when the fingers close
-///    round an object, unlike the blob's centre or its thickest point);
+///    round an object, unlike the blob's centre or its thickest point), but
+///    at least `palmFromFarEnd_m` back from the hand's far end (a skin
+///    boundary at the wrist, a forearm in shadow, is no sleeve's cuff);
 /// 6. no cuff in view (the skin itself reaches the border while the hand
 ///    enters or leaves, or no sleeve): the palm centre lies
 ///    `palmFromFingertips_m` back from the fingertips along the hand's
@@ -116,10 +119,11 @@ class MarkerFreeHandDetector : public HandDetector {
     /// Without a wrist in view: palm centre back from the fingertips along the
     /// hand's axis [m] (relaxed fingers, as when the hand enters or leaves).
     double palmFromFingertips_m = 0.125;
-    /// A skin component longer than this along its axis is a bare forearm
-    /// with its hand, not a hand (an adult hand, wrist crease to fingertip,
-    /// is 0.17-0.21 m) [m].
-    double maxHandLength_m = 0.25;
+    /// A skin component longer than this between its ends (in 3D, from
+    /// their depths) is a bare forearm with its hand, not a hand: an adult
+    /// hand, wrist crease to fingertip, is 0.17-0.21 m, srp::synth's glove
+    /// from its cuff to relaxed fingertips 0.255 m, a forearm alone ~0.25 m [m].
+    double maxHandLength_m = 0.28;
     /// Bare forearm: palm centre back from the arm's far end along the hand's
     /// axis [m] (half a palm plus the curled fingers of a hand grasping from
     /// above, 0.05 + 0.02 m).
@@ -145,6 +149,7 @@ class MarkerFreeHandDetector : public HandDetector {
     bool learnt = false;
     Eigen::Vector2d mean = Eigen::Vector2d::Zero();
     Eigen::Matrix2d covariance = Eigen::Matrix2d::Identity();
+    double meanLuma = 0.0, sdLuma = 255.0;  ///< luma (Y) of those pixels; skin lies within skinMaxMahalanobis sd
     int samples = 0;
   };
 
@@ -176,6 +181,7 @@ class MarkerFreeHandDetector : public HandDetector {
   cv::Mat previewColourSum_;
   int previewFrames_ = 0, previewStride_ = 1;
   cv::Mat skinHistogram_;  ///< 256x256 CV_32F over (Cr, Cb)
+  cv::Mat skinLumaSum_, skinLumaSqSum_;  ///< per (Cr, Cb) bin: sum of Y and of Y^2 (CV_64F)
   SkinModel skin_;
   cv::Mat backgroundDepth_m_, backgroundColour_;
   cv::Mat lastMask_;

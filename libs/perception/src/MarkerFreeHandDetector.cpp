@@ -546,16 +546,6 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
     anchor_px = wrist / nCuff;
     dir = principalAxis(hand, sleeve)->dir;
     length_m = options_.palmFromWrist_m;
-    // The palm stays palmFromFarEnd_m back from the hand's far end: a skin
-    // boundary nearer the fingers than a sleeve's cuff (a forearm in shadow,
-    // too dark to be skin) must not push the palm past the hand.
-    double tip_px = 0.0;
-    for (int v = 0; v < hand.rows; v += 2) {
-      const uchar* p = hand.ptr<uchar>(v);
-      for (int u = 0; u < hand.cols; u += 2)
-        if (p[u]) tip_px = std::max(tip_px, (Eigen::Vector2d(u, v) - anchor_px).dot(dir));
-    }
-    length_m = std::max(0.0, std::min(length_m, tip_px / pxPerM - options_.palmFromFarEnd_m));
     geometry_.haveWrist = true;
     geometry_.wrist_px = anchor_px;
   } else {

@@ -54,9 +54,7 @@ namespace srp::perception {
 ///    the arm axis = principal direction of sleeve + hand, pointing inwards;
 ///    the palm centre = the wrist plus `palmFromWrist_m` along the axis
 ///    (a fixed length of the hand: it does not move when the fingers close
-///    round an object, unlike the blob's centre or its thickest point), but
-///    at least `palmFromFarEnd_m` back from the hand's far end (a skin
-///    boundary at the wrist, a forearm in shadow, is no sleeve's cuff);
+///    round an object, unlike the blob's centre or its thickest point);
 /// 6. no cuff in view (the skin itself reaches the border while the hand
 ///    enters or leaves, or no sleeve): the palm centre lies
 ///    `palmFromFingertips_m` back from the fingertips along the hand's

@@ -78,6 +78,7 @@ void MarkerFreeHandDetector::preview(const rawlog::RgbdFrame& frame) {
       (!previewDepth_mm_.empty() && frame.depth_m.size() != previewDepth_mm_[0].size()) ||
       (!frame.colour_bgr8.empty() && frame.colour_bgr8.size() != frame.depth_m.size()))
     return;
+  previewIntrinsics_ = frame.intrinsics;
   if (previewFrames_ % previewStride_ == 0) {
     cv::Mat mm;
     frame.depth_m.convertTo(mm, CV_16UC1, 1000.0);
@@ -137,6 +138,65 @@ void MarkerFreeHandDetector::finishPreview() {
       accumulateSkin(previewColour_[i], fgOpen, 1);
     }
     fitSkin();
+    if (skin_.learnt) {
+      // Does this demonstrator show a bare forearm? The largest skin-coloured
+      // foreground component of each sample, longer than a hand in 3D.
+      core::CameraIntrinsics k = previewIntrinsics_;
+      k.fx_px /= 2;
+      k.fy_px /= 2;
+      k.cx_px /= 2;
+      k.cy_px /= 2;
+      int withSkin = 0, bare = 0;
+      for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
+        if (previewColour_[i].empty()) continue;
+        cv::Mat z_m;
+        cv::resize(previewDepth_mm_[i], z_m, {}, 0.5, 0.5, cv::INTER_NEAREST);
+        z_m.convertTo(z_m, CV_32FC1, 1e-3);
+        cv::Mat m = (z_m > 0) & (bgHalf - 1e3f * z_m > 1e3 * options_.minForeground_m) & skinMask(previewColour_[i], true);
+        cv::morphologyEx(m, m, cv::MORPH_OPEN, disc3);
+        cv::Mat cl, cs, cc;
+        const int nc = cv::connectedComponentsWithStats(m, cl, cs, cc, 8, CV_32S);
+        int best = -1, area = options_.minPixels / 8;  // a quarter of the pixels at half size, halved
+        for (int l = 1; l < nc; ++l)
+          if (cs.at<int>(l, cv::CC_STAT_AREA) > area) {
+            best = l;
+            area = cs.at<int>(l, cv::CC_STAT_AREA);
+          }
+        if (best < 0) continue;
+        ++withSkin;
+        const cv::Mat comp = cl == best;
+        std::vector<Eigen::Vector2d> pts;
+        Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+        for (int v = 0; v < comp.rows; ++v)
+          for (int u = 0; u < comp.cols; ++u)
+            if (comp.at<uchar>(v, u)) {
+              pts.emplace_back(u, v);
+              mean += pts.back();
+            }
+        mean /= static_cast<double>(pts.size());
+        Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+        for (const auto& p : pts) scatter += (p - mean) * (p - mean).transpose();
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(scatter);
+        const Eigen::Vector2d axis = eig.eigenvectors().col(1).normalized();
+        double sMin = 1e9, sMax = -1e9;
+        for (const auto& p : pts) {
+          sMin = std::min(sMin, (p - mean).dot(axis));
+          sMax = std::max(sMax, (p - mean).dot(axis));
+        }
+        const double zMean = medianDepthInDisc(z_m, comp, mean, 1e4, 5).value_or(0.0);
+        if (zMean <= 0.0) continue;
+        auto endPoint = [&](double sEnd) {
+          const Eigen::Vector2d e = mean + sEnd * axis;
+          const double z =
+              medianDepthInDisc(z_m, comp, e, options_.palmRadius_m * k.fx_px / zMean, 3).value_or(zMean);
+          return Eigen::Vector3d((e.x() - k.cx_px) * z / k.fx_px, (e.y() - k.cy_px) * z / k.fy_px, z);
+        };
+        if ((endPoint(sMax) - endPoint(sMin)).norm() > options_.maxHandLength_m) ++bare;
+      }
+      bareForearms_ = withSkin > 0 && bare >= options_.bareForearmFraction * withSkin;
+      if (std::getenv("SRP_HAND_TRACE"))
+        std::fprintf(stderr, "bare forearm in %d of %d samples: %s\n", bare, withSkin, bareForearms_ ? "yes" : "no");
+    }
   }
   previewDepth_mm_.clear();
   previewColour_.clear();
@@ -248,12 +308,12 @@ void MarkerFreeHandDetector::fitSkin() {
                  mode.x, mean.x(), mean.y(), cov(0, 0), cov(1, 1), cov(0, 1), skin_.meanLuma, skin_.sdLuma, skin_.samples);
 }
 
-cv::Mat MarkerFreeHandDetector::skinMask(const cv::Mat& colour_bgr8) const {
+cv::Mat MarkerFreeHandDetector::skinMask(const cv::Mat& colour_bgr8, bool learnt) const {
   if (!options_.useSkin || colour_bgr8.empty()) return cv::Mat(colour_bgr8.size(), CV_8UC1, cv::Scalar(255));
   cv::Mat ycrcb, skin;
   cv::cvtColor(colour_bgr8, ycrcb, cv::COLOR_BGR2YCrCb);
   const Options& o = options_;
-  if (!skin_.learnt) {
+  if (!learnt || !skin_.learnt) {
     cv::inRange(ycrcb, cv::Scalar(o.skinMinLuma, o.skinPriorCrMin, o.skinPriorCbMin),
                 cv::Scalar(255, o.skinPriorCrMax, o.skinPriorCbMax), skin);
     return skin;
@@ -345,7 +405,10 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   }
   if (bestLabel < 0) return std::nullopt;
   const cv::Mat arm = (labels == bestLabel);
-  const cv::Mat skin = hasColour ? skinMask(frame.colour_bgr8) : cv::Mat(depth.size(), CV_8UC1, cv::Scalar(255));
+  // The recording's skin model for a bare forearm; the prior box for a glove
+  // and sleeve (the cuff rule's lengths were measured with it).
+  const cv::Mat skin =
+      hasColour ? skinMask(frame.colour_bgr8, bareForearms_) : cv::Mat(depth.size(), CV_8UC1, cv::Scalar(255));
   cv::Mat hand = arm & skin;
   cv::morphologyEx(hand, hand, cv::MORPH_OPEN, disc5);
   if (cv::countNonZero(hand) < options_.minPixels / 2) return std::nullopt;
@@ -477,7 +540,7 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
       };
       const double length3d_m = (endPoint(sMax) - endPoint(sMin)).norm();
       if (std::getenv("SRP_HAND_TRACE")) std::fprintf(stderr, "  3D length %.3f m\n", length3d_m);
-      if (length3d_m > options_.maxHandLength_m) {
+      if (length3d_m > options_.maxHandLength_m || bareForearms_) {
         // The hand's own axis and centre line: the last maxHandLength_m.
         const double from = sMax - options_.maxHandLength_m * compPxPerM;
         Eigen::Vector2d mean = Eigen::Vector2d::Zero();

@@ -251,14 +251,15 @@ void checkRealTask(const std::string& task, double rate, double maxError_px) {
 // length of the label (~90 px at 1.1 m), short of the body.
 TEST(MarkerFreeHandDetector, RealDemonstratorHrt1Task2) { checkRealTask("task2", 0.90, 80.0); }
 
-// task3 (our held-out check): the acceptance is NOT reached (61 %, see the
-// perception README: while only the arm is in view its forearm is in shadow,
-// too dark for skin, and the palm is placed from a wrong cuff; in frames 2-3 on
-// the shoulder at the border). This guards the reached level against
-// regressions; raise it to 0.90 / 80 px when the class of problem is fixed.
+// task3 (our held-out check): the acceptance is NOT reached (26/36 = 72 %,
+// see the perception README: while only the arm is in view its forearm and
+// hand are in shadow, and the largest skin-coloured component is the toy's
+// tan belly (frames 17-21) or a patch at the right border (frames 2-3, the
+// shoulder)). This guards the reached level against regressions; raise it to
+// 0.90 / 80 px when that class of problem is fixed.
 TEST(MarkerFreeHandDetector, RealDemonstratorHrt1Task3) {
-  constexpr double kReachedRate = 0.55;   // regression guard, not the acceptance
-  constexpr double kNoBound_px = 1e9;     // palms on the shoulder occur (frames 2, 3)
+  constexpr double kReachedRate = 0.70;   // regression guard, not the acceptance
+  constexpr double kNoBound_px = 1e9;     // palms at the shoulder occur (frames 2, 3)
   checkRealTask("task3", kReachedRate, kNoBound_px);
 }
 

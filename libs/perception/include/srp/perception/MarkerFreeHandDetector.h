@@ -30,8 +30,10 @@ namespace srp::perception {
 /// `skinMinLuma`): the histogram's mode and the pixels within `skinModeRadius`
 /// of it (the demonstrator's dominant skin tone; a shirt, a toy's face or a
 /// table of a skin-like colour fall outside it). Learnt from the preview
-/// samples, or accumulated from each frame's foreground in the stream; until
-/// `minSkinSamples` pixels are seen, the prior box itself.
+/// samples (at least `minSkinSamples` pixels) and used when the recording
+/// shows a bare forearm (step 4); otherwise (a glove and sleeve, or no
+/// preview) the prior box itself, with which the cuff rule's lengths were
+/// measured.
 ///
 /// Per frame (pixels of the colour image, registered depth):
 /// 1. foreground = closer than the background by `minForeground_m`, or a
@@ -49,7 +51,9 @@ namespace srp::perception {
 ///    end: the axis end
 ///    farther from the arm's entry (the body); its last `maxHandLength_m`
 ///    give the hand's own axis and centre line, and the palm centre lies
-///    `palmFromFarEnd_m` back from the far end along it;
+///    `palmFromFarEnd_m` back from the far end along it. With a preview, a
+///    recording whose samples show such a forearm in at least
+///    `bareForearmFraction` of them uses this rule in every frame;
 /// 5. else the wrist = the cuff line, the hand's pixels next to the sleeve;
 ///    the arm axis = principal direction of sleeve + hand, pointing inwards;
 ///    the palm centre = the wrist plus `palmFromWrist_m` along the axis
@@ -122,6 +126,12 @@ class MarkerFreeHandDetector : public HandDetector {
     /// hand, wrist crease to fingertip, is 0.17-0.21 m, srp::synth's glove
     /// from its cuff to relaxed fingertips 0.255 m, a forearm alone ~0.25 m [m].
     double maxHandLength_m = 0.28;
+    /// Whole recording: when the longest skin component is longer than
+    /// maxHandLength_m in at least this share of the preview samples that
+    /// show skin, the demonstrator's forearms are bare and every frame uses
+    /// the far-end rule (a forearm in shadow, too dark for skin, leaves only
+    /// the hand: its skin boundary is no sleeve's cuff).
+    double bareForearmFraction = 0.2;
     /// Bare forearm: palm centre back from the arm's far end along the hand's
     /// axis [m] (half a palm plus the curled fingers of a hand grasping from
     /// above, 0.05 + 0.02 m).
@@ -167,7 +177,8 @@ class MarkerFreeHandDetector : public HandDetector {
  private:
   Options options_;
   void finishPreview();
-  cv::Mat skinMask(const cv::Mat& colour_bgr8) const;
+  /// Skin pixels: the learnt model when `learnt` and there is one, else the prior box.
+  cv::Mat skinMask(const cv::Mat& colour_bgr8, bool learnt) const;
   /// Adds the (Cr, Cb) of the foreground pixels inside the prior box.
   void accumulateSkin(const cv::Mat& colour_bgr8, const cv::Mat& foreground, int step);
   void fitSkin();
@@ -181,6 +192,8 @@ class MarkerFreeHandDetector : public HandDetector {
   cv::Mat skinHistogram_;  ///< 256x256 CV_32F over (Cr, Cb)
   cv::Mat skinLumaSum_, skinLumaSqSum_;  ///< per (Cr, Cb) bin: sum of Y and of Y^2 (CV_64F)
   SkinModel skin_;
+  core::CameraIntrinsics previewIntrinsics_;
+  bool bareForearms_ = false;  ///< the preview showed a bare forearm: the far end rule in every frame
   cv::Mat backgroundDepth_m_, backgroundColour_;
   cv::Mat lastMask_;
   Geometry geometry_;

@@ -79,6 +79,8 @@ namespace srp::perception {
 /// frame). Hand lengths default to srp::synth's demonstrator (a glove and a
 /// sleeve, 7 cm wide) and, for the bare forearm, to an adult hand grasping
 /// from above; a real demonstrator's hand size sets them.
+/// SRP_HAND_TRACE=1 prints the skin model, the bare-forearm decision and each
+/// frame's skin component to stderr (for tuning on a new recording).
 class MarkerFreeHandDetector : public HandDetector {
  public:
   struct Options {

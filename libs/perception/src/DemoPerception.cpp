@@ -256,7 +256,9 @@ PerceptionResult perceiveFrames(const std::vector<rawlog::RgbdFrame>& frames, co
                                 const PerceptionOptions& options, const std::function<void(int, int)>& progress) {
   if (frames.empty()) throw core::InvalidInputError("the demo has zero frames: nothing to perceive");
   DemoPerceiver perceiver(catalogue, options);
-  for (const auto& f : frames) perceiver.preview(f);
+  // The preview pass only where a detector learns from it (the marker-free hand).
+  if (options.hand == PerceptionOptions::HandMethod::MarkerFree)
+    for (const auto& f : frames) perceiver.preview(f);
   for (std::size_t i = 0; i < frames.size(); ++i) {
     perceiver.add(frames[i]);
     if (progress) progress(static_cast<int>(i), static_cast<int>(frames.size()));
@@ -267,7 +269,7 @@ PerceptionResult perceiveFrames(const std::vector<rawlog::RgbdFrame>& frames, co
 PerceptionResult perceiveRawlog(const std::string& rawlogPath, const core::ObjectCatalogue& catalogue,
                                 const PerceptionOptions& options, const std::function<void(int, int)>& progress) {
   DemoPerceiver perceiver(catalogue, options);
-  {
+  if (options.hand == PerceptionOptions::HandMethod::MarkerFree) {  // the marker detector learns nothing from it
     rawlog::RawlogReader previewReader(rawlogPath);
     while (auto f = previewReader.next()) perceiver.preview(*f);
   }

@@ -107,7 +107,8 @@ class DemoPerceiver {
   std::unique_ptr<Impl> impl_;
 };
 
-/// Runs the module on frames (in time order; previewed first). Throws InvalidInputError when
+/// Runs the module on frames (in time order; previewed first for the
+/// marker-free hand). Throws InvalidInputError when
 /// there are no frames, a frame lacks depth or colour, the sizes or
 /// intrinsics change between frames, or the hand is never detected.
 /// `progress(frameIndex, frameCount)` is called after each frame when given
@@ -116,8 +117,8 @@ PerceptionResult perceiveFrames(const std::vector<rawlog::RgbdFrame>& frames, co
                                 const PerceptionOptions& options,
                                 const std::function<void(int, int)>& progress = {});
 
-/// Reads the demo rawlog (RawlogReader) twice, a preview pass and the
-/// perception pass, as perceiveFrames. Throws
+/// Reads the demo rawlog (RawlogReader) and runs it as perceiveFrames (for the
+/// marker-free hand twice: a preview pass, then the perception pass). Throws
 /// FileError for an unreadable or damaged rawlog or one without RGB-D frames.
 PerceptionResult perceiveRawlog(const std::string& rawlogPath, const core::ObjectCatalogue& catalogue,
                                 const PerceptionOptions& options,

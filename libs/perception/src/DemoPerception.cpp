@@ -85,6 +85,8 @@ DemoPerceiver::~DemoPerceiver() = default;
 
 int DemoPerceiver::framesAdded() const { return static_cast<int>(impl_->frameIndex.size()); }
 
+void DemoPerceiver::preview(const rawlog::RgbdFrame& f) { impl_->hand->preview(f); }
+
 void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
   Impl& m = *impl_;
   const int i = framesAdded();
@@ -151,7 +153,8 @@ PerceptionResult DemoPerceiver::finish() const {
                                   " frames of the demo (" +
                                   (m.options.hand == PerceptionOptions::HandMethod::Marker
                                        ? std::string("no tag36h11 tag of the glove seen: check the tag size/id, or use the marker-free detector")
-                                       : std::string("no foreground hand: do the first frames show the scene without the hand?")) +
+                                       : std::string("no skin-coloured foreground at the end of an arm: is the demonstrator's hand in view and does "
+                                                     "the camera stay still?")) +
                                   "); nothing written");
   PerceptionResult result = m.result;
   result.frames = static_cast<int>(m.frameIndex.size());
@@ -253,6 +256,9 @@ PerceptionResult perceiveFrames(const std::vector<rawlog::RgbdFrame>& frames, co
                                 const PerceptionOptions& options, const std::function<void(int, int)>& progress) {
   if (frames.empty()) throw core::InvalidInputError("the demo has zero frames: nothing to perceive");
   DemoPerceiver perceiver(catalogue, options);
+  // The preview pass only where a detector learns from it (the marker-free hand).
+  if (options.hand == PerceptionOptions::HandMethod::MarkerFree)
+    for (const auto& f : frames) perceiver.preview(f);
   for (std::size_t i = 0; i < frames.size(); ++i) {
     perceiver.add(frames[i]);
     if (progress) progress(static_cast<int>(i), static_cast<int>(frames.size()));
@@ -262,8 +268,12 @@ PerceptionResult perceiveFrames(const std::vector<rawlog::RgbdFrame>& frames, co
 
 PerceptionResult perceiveRawlog(const std::string& rawlogPath, const core::ObjectCatalogue& catalogue,
                                 const PerceptionOptions& options, const std::function<void(int, int)>& progress) {
-  rawlog::RawlogReader reader(rawlogPath);
   DemoPerceiver perceiver(catalogue, options);
+  if (options.hand == PerceptionOptions::HandMethod::MarkerFree) {  // the marker detector learns nothing from it
+    rawlog::RawlogReader previewReader(rawlogPath);
+    while (auto f = previewReader.next()) perceiver.preview(*f);
+  }
+  rawlog::RawlogReader reader(rawlogPath);
   while (auto f = reader.next()) {
     perceiver.add(*f);
     if (progress) progress(perceiver.framesAdded() - 1, -1);

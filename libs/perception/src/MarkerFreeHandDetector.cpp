@@ -3,6 +3,10 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
@@ -51,14 +55,299 @@ std::optional<double> medianDepthInDisc(const cv::Mat& depth_m, const cv::Mat& m
 
 MarkerFreeHandDetector::MarkerFreeHandDetector(const Options& options) : options_(options) {
   core::require(options.backgroundFrames >= 1, "MarkerFreeHandDetector: backgroundFrames must be >= 1");
+  core::require(options.backgroundPercentile > 0.0 && options.backgroundPercentile <= 1.0 &&
+                    options.maxBackgroundSamples >= 2,
+                "MarkerFreeHandDetector: backgroundPercentile must be in (0, 1] and maxBackgroundSamples >= 2");
+  core::require(options.skinModeRadius > 0.0 && options.skinMaxMahalanobis > 0.0 && options.minSkinSamples >= 1,
+                "MarkerFreeHandDetector: skinModeRadius, skinMaxMahalanobis must be > 0 and minSkinSamples >= 1");
+  core::require(options.maxHandLength_m > 0.0 && options.palmFromFarEnd_m > 0.0,
+                "MarkerFreeHandDetector: maxHandLength_m and palmFromFarEnd_m must be > 0 m (lengths of the "
+                "demonstrator's hand)");
   core::require(options.palmFromWrist_m > 0.0 && options.palmFromFingertips_m > 0.0 && options.palmRadius_m > 0.0,
                 "MarkerFreeHandDetector: palmFromWrist_m, palmFromFingertips_m and palmRadius_m must be > 0 m "
                 "(lengths of the demonstrator's hand)");
 }
 
+void MarkerFreeHandDetector::preview(const rawlog::RgbdFrame& frame) {
+  core::require(frameCount_ == 0,
+                "MarkerFreeHandDetector::preview: frame " + std::to_string(frame.index) +
+                    " previewed after detect(); preview the whole recording first");
+  // A frame without depth or of another size is left out here; detect()'s
+  // caller reports it (DemoPerceiver::add checks every frame).
+  if (frame.depth_m.empty() || frame.depth_m.type() != CV_32FC1 ||
+      (!previewDepth_mm_.empty() && frame.depth_m.size() != previewDepth_mm_[0].size()) ||
+      (!frame.colour_bgr8.empty() && frame.colour_bgr8.size() != frame.depth_m.size()))
+    return;
+  previewIntrinsics_ = frame.intrinsics;
+  if (previewFrames_ % previewStride_ == 0) {
+    cv::Mat mm;
+    frame.depth_m.convertTo(mm, CV_16UC1, 1000.0);
+    previewDepth_mm_.push_back(mm);
+    cv::Mat half;
+    if (!frame.colour_bgr8.empty()) cv::resize(frame.colour_bgr8, half, {}, 0.5, 0.5, cv::INTER_AREA);
+    previewColour_.push_back(half);
+    if (static_cast<int>(previewDepth_mm_.size()) > options_.maxBackgroundSamples) {
+      // Keep every other sample: the samples stay evenly spread, at twice the stride.
+      for (std::size_t i = 0; 2 * i < previewDepth_mm_.size(); ++i) {
+        previewDepth_mm_[i] = previewDepth_mm_[2 * i];
+        previewColour_[i] = previewColour_[2 * i];
+      }
+      previewDepth_mm_.resize((previewDepth_mm_.size() + 1) / 2);
+      previewColour_.resize(previewDepth_mm_.size());
+      previewStride_ *= 2;
+    }
+  }
+  if (!frame.colour_bgr8.empty() && (previewColourSum_.empty() || previewColourSum_.size() == frame.colour_bgr8.size())) {
+    if (previewColourSum_.empty()) previewColourSum_ = cv::Mat(frame.colour_bgr8.size(), CV_32FC3, cv::Scalar::all(0));
+    cv::accumulate(frame.colour_bgr8, previewColourSum_);
+  }
+  ++previewFrames_;
+}
+
+void MarkerFreeHandDetector::finishPreview() {
+  const cv::Size size = previewDepth_mm_[0].size();
+  cv::Mat background_mm(size, CV_32FC1, cv::Scalar(0));
+  std::vector<std::uint16_t> vals;
+  for (int v = 0; v < size.height; ++v)
+    for (int u = 0; u < size.width; ++u) {
+      vals.clear();
+      for (const auto& d : previewDepth_mm_)
+        if (const std::uint16_t z = d.at<std::uint16_t>(v, u); z > 0) vals.push_back(z);
+      if (vals.empty()) continue;
+      const auto k = std::min(vals.size() - 1, static_cast<std::size_t>(options_.backgroundPercentile *
+                                                                           static_cast<double>(vals.size())));
+      std::nth_element(vals.begin(), vals.begin() + static_cast<long>(k), vals.end());
+      background_mm.at<float>(v, u) = vals[k];
+    }
+  background_mm.convertTo(backgroundDepth_m_, CV_32FC1, 1e-3);
+  if (!previewColourSum_.empty())
+    previewColourSum_.convertTo(backgroundColour_, CV_8UC3, 1.0 / static_cast<double>(previewFrames_));
+  // Skin from every sample's foreground (half size: plenty of pixels).
+  if (options_.useSkin) {
+    cv::Mat bgHalf;
+    cv::resize(background_mm, bgHalf, {}, 0.5, 0.5, cv::INTER_NEAREST);
+    const cv::Mat disc3 = cv::getStructuringElement(cv::MORPH_ELLIPSE, {3, 3});
+    for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
+      if (previewColour_[i].empty()) continue;
+      cv::Mat z;
+      cv::resize(previewDepth_mm_[i], z, {}, 0.5, 0.5, cv::INTER_NEAREST);
+      z.convertTo(z, CV_32FC1);
+      const cv::Mat fg = (z > 0) & (bgHalf - z > 1e3 * options_.minForeground_m);
+      cv::Mat fgOpen;
+      cv::morphologyEx(fg, fgOpen, cv::MORPH_OPEN, disc3);
+      accumulateSkin(previewColour_[i], fgOpen, 1);
+    }
+    fitSkin();
+    if (skin_.learnt) {
+      // Does this demonstrator show a bare forearm? The largest skin-coloured
+      // foreground component of each sample, longer than a hand in 3D.
+      core::CameraIntrinsics k = previewIntrinsics_;
+      k.fx_px /= 2;
+      k.fy_px /= 2;
+      k.cx_px /= 2;
+      k.cy_px /= 2;
+      int withSkin = 0, bare = 0;
+      for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
+        if (previewColour_[i].empty()) continue;
+        cv::Mat z_m;
+        cv::resize(previewDepth_mm_[i], z_m, {}, 0.5, 0.5, cv::INTER_NEAREST);
+        z_m.convertTo(z_m, CV_32FC1, 1e-3);
+        cv::Mat m = (z_m > 0) & (bgHalf - 1e3f * z_m > 1e3 * options_.minForeground_m) & skinMask(previewColour_[i], true);
+        cv::morphologyEx(m, m, cv::MORPH_OPEN, disc3);
+        cv::Mat cl, cs, cc;
+        const int nc = cv::connectedComponentsWithStats(m, cl, cs, cc, 8, CV_32S);
+        int best = -1, area = options_.minPixels / 8;  // a quarter of the pixels at half size, halved
+        for (int l = 1; l < nc; ++l)
+          if (cs.at<int>(l, cv::CC_STAT_AREA) > area) {
+            best = l;
+            area = cs.at<int>(l, cv::CC_STAT_AREA);
+          }
+        if (best < 0) continue;
+        ++withSkin;
+        const cv::Mat comp = cl == best;
+        std::vector<Eigen::Vector2d> pts;
+        Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+        for (int v = 0; v < comp.rows; ++v)
+          for (int u = 0; u < comp.cols; ++u)
+            if (comp.at<uchar>(v, u)) {
+              pts.emplace_back(u, v);
+              mean += pts.back();
+            }
+        mean /= static_cast<double>(pts.size());
+        Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+        for (const auto& p : pts) scatter += (p - mean) * (p - mean).transpose();
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(scatter);
+        const Eigen::Vector2d axis = eig.eigenvectors().col(1).normalized();
+        double sMin = 1e9, sMax = -1e9;
+        for (const auto& p : pts) {
+          sMin = std::min(sMin, (p - mean).dot(axis));
+          sMax = std::max(sMax, (p - mean).dot(axis));
+        }
+        const double zMean = medianDepthInDisc(z_m, comp, mean, 1e4, 5).value_or(0.0);
+        if (zMean <= 0.0) continue;
+        auto endPoint = [&](double sEnd) {
+          const Eigen::Vector2d e = mean + sEnd * axis;
+          const double z =
+              medianDepthInDisc(z_m, comp, e, options_.palmRadius_m * k.fx_px / zMean, 3).value_or(zMean);
+          return Eigen::Vector3d((e.x() - k.cx_px) * z / k.fx_px, (e.y() - k.cy_px) * z / k.fy_px, z);
+        };
+        if ((endPoint(sMax) - endPoint(sMin)).norm() > options_.maxHandLength_m) ++bare;
+      }
+      bareForearms_ = withSkin > 0 && bare >= options_.bareForearmFraction * withSkin;
+      if (std::getenv("SRP_HAND_TRACE"))
+        std::fprintf(stderr, "bare forearm in %d of %d samples: %s\n", bare, withSkin, bareForearms_ ? "yes" : "no");
+    }
+  }
+  previewDepth_mm_.clear();
+  previewColour_.clear();
+  previewColourSum_.release();
+}
+
+void MarkerFreeHandDetector::accumulateSkin(const cv::Mat& colour_bgr8, const cv::Mat& foreground, int step) {
+  if (skinHistogram_.empty()) {
+    skinHistogram_ = cv::Mat(256, 256, CV_32FC1, cv::Scalar(0));
+    skinLumaSum_ = cv::Mat(256, 256, CV_64FC1, cv::Scalar(0));
+    skinLumaSqSum_ = cv::Mat(256, 256, CV_64FC1, cv::Scalar(0));
+  }
+  cv::Mat ycrcb;
+  cv::cvtColor(colour_bgr8, ycrcb, cv::COLOR_BGR2YCrCb);
+  const Options& o = options_;
+  for (int v = 0; v < ycrcb.rows; v += step) {
+    const cv::Vec3b* c = ycrcb.ptr<cv::Vec3b>(v);
+    const uchar* f = foreground.ptr<uchar>(v);
+    for (int u = 0; u < ycrcb.cols; u += step)
+      if (f[u] && c[u][0] >= o.skinMinLuma && c[u][1] >= o.skinPriorCrMin && c[u][1] <= o.skinPriorCrMax &&
+          c[u][2] >= o.skinPriorCbMin && c[u][2] <= o.skinPriorCbMax)
+      {
+        skinHistogram_.at<float>(c[u][1], c[u][2]) += 1.f;
+        skinLumaSum_.at<double>(c[u][1], c[u][2]) += c[u][0];
+        skinLumaSqSum_.at<double>(c[u][1], c[u][2]) += static_cast<double>(c[u][0]) * c[u][0];
+      }
+  }
+}
+
+void MarkerFreeHandDetector::fitSkin() {
+  if (skinHistogram_.empty()) return;
+  // The mode of the smoothed histogram (sigma 2 units: JPEG chroma noise),
+  // then mean and covariance of the counts within skinModeRadius of it.
+  cv::Mat smooth;
+  cv::GaussianBlur(skinHistogram_, smooth, {0, 0}, 2.0);
+  cv::Point mode;
+  cv::minMaxLoc(smooth, nullptr, nullptr, nullptr, &mode);
+  const double r = options_.skinModeRadius;
+  double w = 0.0;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d second = Eigen::Matrix2d::Zero();
+  for (int cr = std::max(0, mode.y - static_cast<int>(r)); cr <= std::min(255, mode.y + static_cast<int>(r)); ++cr)
+    for (int cb = std::max(0, mode.x - static_cast<int>(r)); cb <= std::min(255, mode.x + static_cast<int>(r)); ++cb) {
+      const double n = skinHistogram_.at<float>(cr, cb);
+      if (n <= 0.0 || std::hypot(cr - mode.y, cb - mode.x) > r) continue;
+      const Eigen::Vector2d x(cr, cb);
+      w += n;
+      mean += n * x;
+      second += n * x * x.transpose();
+    }
+  if (w < options_.minSkinSamples) {
+    skin_.samples = static_cast<int>(w);
+    return;
+  }
+  mean /= w;
+  // + identity: the 8-bit quantisation (and a floor for a single-colour render).
+  Eigen::Matrix2d cov = second / w - mean * mean.transpose() + Eigen::Matrix2d::Identity();
+  // The window around the mode truncates the skin's spread (shading moves
+  // the chroma along the skin line); re-estimate from the counts inside the
+  // skinMaxMahalanobis ellipse of the current fit, a few times (a trimmed
+  // estimate: stable for a Gaussian, it grows to the skin's real extent).
+  constexpr int kRefinements = 3;
+  const double maxD2 = options_.skinMaxMahalanobis * options_.skinMaxMahalanobis;
+  for (int it = 0; it < kRefinements; ++it) {
+    const Eigen::Matrix2d info = cov.inverse();
+    double w2 = 0.0;
+    Eigen::Vector2d m2 = Eigen::Vector2d::Zero();
+    Eigen::Matrix2d s2 = Eigen::Matrix2d::Zero();
+    for (int cr = 0; cr < 256; ++cr)
+      for (int cb = 0; cb < 256; ++cb) {
+        const double n = skinHistogram_.at<float>(cr, cb);
+        if (n <= 0.0) continue;
+        const Eigen::Vector2d x(cr, cb), d = x - mean;
+        if (d.dot(info * d) > maxD2) continue;
+        w2 += n;
+        m2 += n * x;
+        s2 += n * x * x.transpose();
+      }
+    if (w2 < options_.minSkinSamples) break;
+    mean = m2 / w2;
+    cov = s2 / w2 - mean * mean.transpose() + Eigen::Matrix2d::Identity();
+    w = w2;
+  }
+  // The luma of the skin's pixels: its mean and spread (a bright toy face or
+  // table of the skin's chroma is far brighter than this person's skin in
+  // this light, or far darker).
+  {
+    const Eigen::Matrix2d info = cov.inverse();
+    double n = 0.0, sy = 0.0, syy = 0.0;
+    for (int cr = 0; cr < 256; ++cr)
+      for (int cb = 0; cb < 256; ++cb) {
+        const double c = skinHistogram_.at<float>(cr, cb);
+        if (c <= 0.0) continue;
+        const Eigen::Vector2d d = Eigen::Vector2d(cr, cb) - mean;
+        if (d.dot(info * d) > maxD2) continue;
+        n += c;
+        sy += skinLumaSum_.at<double>(cr, cb);
+        syy += skinLumaSqSum_.at<double>(cr, cb);
+      }
+    skin_.meanLuma = sy / n;
+    skin_.sdLuma = std::sqrt(std::max(0.0, syy / n - skin_.meanLuma * skin_.meanLuma)) + 1.0;
+  }
+  skin_.samples = static_cast<int>(w);
+  skin_.covariance = cov;
+  skin_.mean = mean;
+  skin_.learnt = true;
+  if (std::getenv("SRP_HAND_TRACE"))
+    std::fprintf(stderr, "skin: mode %d %d, mean %.1f %.1f, cov %.1f %.1f %.1f, luma %.1f sd %.1f, %d px\n", mode.y,
+                 mode.x, mean.x(), mean.y(), cov(0, 0), cov(1, 1), cov(0, 1), skin_.meanLuma, skin_.sdLuma, skin_.samples);
+}
+
+cv::Mat MarkerFreeHandDetector::skinMask(const cv::Mat& colour_bgr8, bool learnt) const {
+  if (!options_.useSkin || colour_bgr8.empty()) return cv::Mat(colour_bgr8.size(), CV_8UC1, cv::Scalar(255));
+  cv::Mat ycrcb, skin;
+  cv::cvtColor(colour_bgr8, ycrcb, cv::COLOR_BGR2YCrCb);
+  const Options& o = options_;
+  if (!learnt || !skin_.learnt) {
+    cv::inRange(ycrcb, cv::Scalar(o.skinMinLuma, o.skinPriorCrMin, o.skinPriorCbMin),
+                cv::Scalar(255, o.skinPriorCrMax, o.skinPriorCbMax), skin);
+    return skin;
+  }
+  // Look-up table over (Cr, Cb): inside the Gaussian's skinMaxMahalanobis ellipse.
+  const Eigen::Matrix2d info = skin_.covariance.inverse();
+  const double maxD2 = o.skinMaxMahalanobis * o.skinMaxMahalanobis;
+  cv::Mat lut(256, 256, CV_8UC1);
+  for (int cr = 0; cr < 256; ++cr)
+    for (int cb = 0; cb < 256; ++cb) {
+      const Eigen::Vector2d d = Eigen::Vector2d(cr, cb) - skin_.mean;
+      lut.at<uchar>(cr, cb) = d.dot(info * d) <= maxD2 ? 255 : 0;
+    }
+  const double lumaMin = std::max<double>(o.skinMinLuma, skin_.meanLuma - o.skinMaxMahalanobis * skin_.sdLuma);
+  const double lumaMax = skin_.meanLuma + o.skinMaxMahalanobis * skin_.sdLuma;
+  skin = cv::Mat(ycrcb.size(), CV_8UC1);
+  for (int v = 0; v < ycrcb.rows; ++v) {
+    const cv::Vec3b* c = ycrcb.ptr<cv::Vec3b>(v);
+    uchar* m = skin.ptr<uchar>(v);
+    for (int u = 0; u < ycrcb.cols; ++u)
+      m[u] = c[u][0] >= lumaMin && c[u][0] <= lumaMax ? lut.at<uchar>(c[u][1], c[u][2]) : 0;
+  }
+  return skin;
+}
+
 std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::RgbdFrame& frame) {
   geometry_ = Geometry{};
   ++frameCount_;
+  if (!previewDepth_mm_.empty()) finishPreview();
+  if (!backgroundDepth_m_.empty() && backgroundDepth_m_.size() != frame.depth_m.size())
+    throw core::InvalidInputError("MarkerFreeHandDetector: frame " + std::to_string(frame.index) + " is " +
+                                  std::to_string(frame.depth_m.cols) + "x" + std::to_string(frame.depth_m.rows) +
+                                  ", the background " + std::to_string(backgroundDepth_m_.cols) + "x" +
+                                  std::to_string(backgroundDepth_m_.rows) + ": a demo must come from one camera setting");
   if (backgroundDepth_m_.empty()) {
     depthHistory_.push_back(frame.depth_m.clone());
     colourHistory_.push_back(frame.colour_bgr8.clone());
@@ -75,17 +364,8 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   const cv::Mat& depth = frame.depth_m;
   const auto& k = frame.intrinsics;
   const bool hasColour = !frame.colour_bgr8.empty();
-  cv::Mat skin(depth.size(), CV_8UC1, cv::Scalar(255));
-  if (options_.useSkin && hasColour) {
-    cv::Mat ycrcb;
-    cv::cvtColor(frame.colour_bgr8, ycrcb, cv::COLOR_BGR2YCrCb);
-    cv::inRange(ycrcb, cv::Scalar(0, 135, 80), cv::Scalar(255, 180, 130), skin);
-  }
   // Foreground by depth (the whole arm, sleeve included, reaches the border);
   // the hand is its skin-coloured part.
-  // Sum of |BGR| changes that marks a depth hole as foreground: skin over a
-  // beige table differs by ~60, sensor colour noise (sigma 2 per channel) by ~5.
-  constexpr int kHoleColourChange = 30;
   cv::Mat mask(depth.size(), CV_8UC1, cv::Scalar(0));
   for (int v = 0; v < depth.rows; ++v) {
     const float* z = depth.ptr<float>(v);
@@ -93,11 +373,11 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
     uchar* m = mask.ptr<uchar>(v);
     for (int u = 0; u < depth.cols; ++u) {
       if (z[u] > 0.f && bg[u] > 0.f) m[u] = (bg[u] - z[u] > options_.minForeground_m) ? 255 : 0;
-      else if (z[u] <= 0.f && hasColour) {
+      else if (z[u] <= 0.f && hasColour && !backgroundColour_.empty()) {
         // A hole (moving hand): foreground when the colour changed.
         const cv::Vec3b a = frame.colour_bgr8.at<cv::Vec3b>(v, u), b = backgroundColour_.at<cv::Vec3b>(v, u);
         const int diff = std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]);
-        m[u] = diff > kHoleColourChange ? 255 : 0;
+        m[u] = diff > options_.holeColourChange ? 255 : 0;
       }
     }
   }
@@ -125,6 +405,10 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   }
   if (bestLabel < 0) return std::nullopt;
   const cv::Mat arm = (labels == bestLabel);
+  // The recording's skin model for a bare forearm; the prior box for a glove
+  // and sleeve (the cuff rule's lengths were measured with it).
+  const cv::Mat skin =
+      hasColour ? skinMask(frame.colour_bgr8, bareForearms_) : cv::Mat(depth.size(), CV_8UC1, cv::Scalar(255));
   cv::Mat hand = arm & skin;
   cv::morphologyEx(hand, hand, cv::MORPH_OPEN, disc5);
   if (cv::countNonZero(hand) < options_.minPixels / 2) return std::nullopt;
@@ -206,7 +490,88 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   std::optional<double> z_hand = medianDepthInDisc(depth, hand, handMean, 1e4, 5);
   if (!z_hand && lastDepth_m_ > 0.0) z_hand = lastDepth_m_;
   if (!z_hand) return std::nullopt;  // no scale yet: the first frames of the hand are all depth holes
-  const double pxPerM = k.fx_px / *z_hand;
+  double pxPerM = k.fx_px / *z_hand;
+
+  // Bare forearm: the largest skin component, when it is longer than a hand
+  // (skin from the elbow or a short sleeve to the fingers), ends in the hand
+  // at the end farther from the arm's entry (the body).
+  Eigen::Vector2d anchor_px, dir;
+  double length_m = 0.0;
+  {
+    cv::Mat cl, cs, cc;
+    const int nc = cv::connectedComponentsWithStats(hand, cl, cs, cc, 8, CV_32S);
+    int best = -1, bestArea2 = 0;
+    for (int l = 1; l < nc; ++l)
+      if (cs.at<int>(l, cv::CC_STAT_AREA) > bestArea2) {
+        best = l;
+        bestArea2 = cs.at<int>(l, cv::CC_STAT_AREA);
+      }
+    const cv::Mat comp = best > 0 ? cv::Mat(cl == best) : cv::Mat();
+    const auto ax = best > 0 && bestArea2 >= options_.minPixels / 2 ? principalAxis(comp, cv::Mat()) : std::nullopt;
+    if (ax) {
+      std::vector<Eigen::Vector2d> pts;
+      for (int v = 0; v < comp.rows; v += 2) {
+        const uchar* p = comp.ptr<uchar>(v);
+        for (int u = 0; u < comp.cols; u += 2)
+          if (p[u]) pts.emplace_back(u, v);
+      }
+      Eigen::Vector2d axis = ax->dir;
+      double sMin = 1e9, sMax = -1e9;
+      for (const auto& p : pts) {
+        sMin = std::min(sMin, (p - ax->mean).dot(axis));
+        sMax = std::max(sMax, (p - ax->mean).dot(axis));
+      }
+      if ((ax->mean + sMin * axis - entry).norm() > (ax->mean + sMax * axis - entry).norm()) {
+        axis = -axis;
+        std::swap(sMin, sMax);
+        sMin = -sMin;
+        sMax = -sMax;
+      }
+      const double z_comp = medianDepthInDisc(depth, comp, ax->mean, 1e4, 5).value_or(*z_hand);
+      const double compPxPerM = k.fx_px / z_comp;
+      if (std::getenv("SRP_HAND_TRACE"))
+        std::fprintf(stderr, "frame %d: comp area %d of %d, extent %.0f px = %.3f m at z %.2f, entry %.0f %.0f\n",
+                     frame.index, bestArea2, nc - 1, sMax - sMin, (sMax - sMin) / compPxPerM, z_comp, entry.x(), entry.y());
+      // Its length in 3D (a forearm pointing at the camera looks short).
+      auto endPoint = [&](double sEnd) {
+        const Eigen::Vector2d e = ax->mean + sEnd * axis;
+        const double z = medianDepthInDisc(depth, comp, e, options_.palmRadius_m * compPxPerM, 5).value_or(z_comp);
+        return Eigen::Vector3d((e.x() - k.cx_px) * z / k.fx_px, (e.y() - k.cy_px) * z / k.fy_px, z);
+      };
+      const double length3d_m = (endPoint(sMax) - endPoint(sMin)).norm();
+      if (std::getenv("SRP_HAND_TRACE")) std::fprintf(stderr, "  3D length %.3f m\n", length3d_m);
+      if (length3d_m > options_.maxHandLength_m || bareForearms_) {
+        // The hand's own axis and centre line: the last maxHandLength_m.
+        const double from = sMax - options_.maxHandLength_m * compPxPerM;
+        Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+        Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+        int count = 0;
+        for (const auto& p : pts)
+          if ((p - ax->mean).dot(axis) >= from) {
+            mean += p;
+            scatter += p * p.transpose();
+            ++count;
+          }
+        mean /= count;
+        scatter = scatter / count - mean * mean.transpose();
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(scatter);
+        Eigen::Vector2d local = eig.eigenvectors().col(1).normalized();
+        if (local.dot(axis) < 0) local = -local;
+        double tip = -1e9;
+        for (const auto& p : pts)
+          if ((p - ax->mean).dot(axis) >= from) tip = std::max(tip, (p - mean).dot(local));
+        anchor_px = mean + tip * local;
+        dir = local;
+        length_m = -options_.palmFromFarEnd_m;
+        hand = comp;
+        lastMask_ = hand;
+        z_hand = z_comp;
+        pxPerM = compPxPerM;
+        geometry_.bareForearm = true;
+        geometry_.farEnd_px = anchor_px;
+      }
+    }
+  }
 
   // Wrist: the cuff line, skin pixels next to the sleeve. Not when the skin
   // itself reaches the border (the hand entering or leaving: the cuff is out
@@ -220,7 +585,7 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   constexpr int kMinCuffPixels = 10;
   Eigen::Vector2d wrist = Eigen::Vector2d::Zero();
   int nCuff = 0;
-  if (handOnBorder < kMinCuffPixels && cv::countNonZero(sleeve) > 0) {
+  if (!geometry_.bareForearm && handOnBorder < kMinCuffPixels && cv::countNonZero(sleeve) > 0) {
     cv::Mat near;
     cv::dilate(sleeve, near, disc5);
     near &= hand;
@@ -237,9 +602,9 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   // back-projected at the palm's depth, then a fixed length along the axis
   // in that plane. (The cuff's own depth is no help: the median there is the
   // sleeve's, centimetres above the wrist's skin.)
-  Eigen::Vector2d anchor_px, dir;
-  double length_m = 0.0;
-  if (nCuff >= kMinCuffPixels) {
+  if (geometry_.bareForearm) {
+    // anchor, axis and length set above
+  } else if (nCuff >= kMinCuffPixels) {
     // The palm a fixed length from the cuff along the arm (sleeve + hand) axis.
     anchor_px = wrist / nCuff;
     dir = principalAxis(hand, sleeve)->dir;
@@ -282,8 +647,7 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   // enter or leave): the last palm depth if it is a few frames old (the caller
   // carries it along the ray), else the whole hand's (biased by the fingers'
   // and the wrist's tilt, but the best there is).
-  constexpr int kMaxCarryFrames = 3;
-  if (!z && lastDepth_m_ > 0.0 && frameCount_ - lastDepthFrame_ <= kMaxCarryFrames) {
+  if (!z && lastDepth_m_ > 0.0 && frameCount_ - lastDepthFrame_ <= options_.maxCarryFrames) {
     palm = project(palmAt(lastDepth_m_ + options_.palmDepth_m));
   } else {
     if (!z) z = medianDepthInDisc(depth, hand, handMean, 1e4, 5);

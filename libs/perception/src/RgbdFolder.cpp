@@ -26,11 +26,13 @@ std::vector<rawlog::RgbdFrame> readRgbdFolder(const std::string& folder, int max
   std::vector<rawlog::RgbdFrame> frames;
   for (int i = 0; maxFrames <= 0 || i < maxFrames; ++i) {
     char name[32];
-    std::snprintf(name, sizeof(name), "%04d.png", i);
-    const std::string colourPath = (fs::path(folder) / ("color_" + std::string(name))).string();
-    const std::string depthPath = (fs::path(folder) / ("depth_" + std::string(name))).string();
+    std::snprintf(name, sizeof(name), "%04d", i);
+    // Colour as PNG, else JPEG (HRT1's recordings); depth always a 16-bit PNG.
+    std::string colourPath = (fs::path(folder) / ("color_" + std::string(name) + ".png")).string();
+    if (!fs::exists(colourPath)) colourPath = (fs::path(folder) / ("color_" + std::string(name) + ".jpg")).string();
+    const std::string depthPath = (fs::path(folder) / ("depth_" + std::string(name) + ".png")).string();
     if (!fs::exists(colourPath)) break;
-    if (!fs::exists(depthPath)) throw core::FileError(depthPath, "missing: every color_NNNN.png needs its depth_NNNN.png");
+    if (!fs::exists(depthPath)) throw core::FileError(depthPath, "missing: every color_NNNN.png/.jpg needs its depth_NNNN.png");
     rawlog::RgbdFrame f;
     f.index = i;
     f.t_s = i / 30.0;  // the folder carries no timestamps; RealSense rate

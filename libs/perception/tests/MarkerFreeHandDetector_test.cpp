@@ -14,10 +14,15 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <random>
 
 #include "HandEvaluation.h"
 #include "srp/core/Error.h"
+#include "srp/core/Json.h"
+#include "srp/perception/RgbdFolder.h"
 #include "srp/core/Scene.h"
 #include "srp/synth/PickPlacePlan.h"
 
@@ -148,6 +153,114 @@ TEST(MarkerFreeHandDetector, RejectsBadOptions) {
   o = {};
   o.palmFromWrist_m = 0.0;
   EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
+}
+
+// ---- a real demonstrator -------------------------------------------------
+// HRT1's task2 and task3 (datasets/real/hrt1-pick-place, MIT, credits in its
+// README): a person beside a table, in view from the first frame, bare
+// forearm, picks a plush toy up and drops it into a bin. The palm labels are
+// our own, by eye (palm_labels.json). The whole recording is previewed (the
+// whole-recording background and skin model), then every frame detected.
+// SRP_HAND_DEBUG_DIR=<dir> writes every frame with the found and the
+// labelled palm.
+
+struct RealFrameError {
+  int frame = 0;
+  bool detected = false;
+  Eigen::Vector2d palm_px = Eigen::Vector2d::Zero(), label_px = Eigen::Vector2d::Zero();
+  double error_px = 0.0;
+  bool bareForearm = false;
+};
+
+std::vector<RealFrameError> palmErrorsOnHrt1(const std::string& task) {
+  const std::string root = std::string(SRP_DATASETS_DIR) + "/real/hrt1-pick-place";
+  const auto labels = core::readJsonFile(root + "/palm_labels.json").at("tasks").at(task);
+  std::map<int, Eigen::Vector2d> label;
+  for (const auto& l : labels.at("visible")) label[l[0].get<int>()] = {l[1].get<double>(), l[2].get<double>()};
+  const auto frames = readRgbdFolder(root + "/" + task);
+  MarkerFreeHandDetector detector({});
+  for (const auto& f : frames) detector.preview(f);
+  const char* debugDir = std::getenv("SRP_HAND_DEBUG_DIR");
+  std::vector<RealFrameError> out;
+  for (const auto& f : frames) {
+    const auto h = detector.detect(f);
+    const auto it = label.find(f.index);
+    if (debugDir) {
+      std::filesystem::create_directories(debugDir);
+      cv::Mat img = f.colour_bgr8.clone();
+      const auto& g = detector.lastGeometry();
+      if (!detector.lastMask().empty() && h) {
+        std::vector<std::vector<cv::Point>> contours;
+        cv::findContours(detector.lastMask().clone(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+        cv::drawContours(img, contours, -1, cv::Scalar(0, 255, 0), 1);
+      }
+      auto pt = [](const Eigen::Vector2d& p) { return cv::Point(static_cast<int>(p.x()), static_cast<int>(p.y())); };
+      cv::circle(img, pt(g.entry_px), 5, cv::Scalar(255, 0, 255), cv::FILLED);
+      if (g.bareForearm) cv::circle(img, pt(g.farEnd_px), 4, cv::Scalar(255, 255, 0), cv::FILLED);
+      if (h) cv::drawMarker(img, pt(h->palm_px), cv::Scalar(0, 0, 255), cv::MARKER_CROSS, 14, 2);
+      if (it != label.end()) cv::drawMarker(img, pt(it->second), cv::Scalar(255, 255, 255), cv::MARKER_TILTED_CROSS, 14, 2);
+      char name[64];
+      std::snprintf(name, sizeof name, "/%s_%04d.png", task.c_str(), f.index);
+      cv::imwrite(std::string(debugDir) + name, img);
+    }
+    if (it == label.end()) continue;  // hand not visible: not scored
+    RealFrameError e;
+    e.frame = f.index;
+    e.label_px = it->second;
+    e.detected = h.has_value();
+    if (h) {
+      e.palm_px = h->palm_px;
+      e.error_px = (h->palm_px - it->second).norm();
+      e.bareForearm = detector.lastGeometry().bareForearm;
+    }
+    out.push_back(e);
+  }
+  return out;
+}
+
+/// `rate`: the share of labelled frames whose palm must lie within 40 px;
+/// `maxError_px`: no palm farther from the label (none on the torso).
+void checkRealTask(const std::string& task, double rate, double maxError_px) {
+  const auto errors = palmErrorsOnHrt1(task);
+  ASSERT_FALSE(errors.empty()) << task << ": no labelled frame";
+  constexpr double kPalmTol_px = 40.0;     // issue 17: palm within 40 px of the labelled palm
+  const double kRate = rate, kMaxError_px = maxError_px;
+  int within = 0;
+  double worst = 0.0;
+  std::printf("[ figures  ] %s: frame, palm u v, label u v, error px\n", task.c_str());
+  for (const auto& e : errors) {
+    if (e.detected && e.error_px <= kPalmTol_px) ++within;
+    if (e.detected) worst = std::max(worst, e.error_px);
+    std::printf("[ figures  ] %s %2d %s %5.0f %5.0f  %5.0f %5.0f  %5.1f\n", task.c_str(), e.frame,
+                e.detected ? (e.bareForearm ? "far-end" : "other  ") : "missed ", e.palm_px.x(), e.palm_px.y(),
+                e.label_px.x(), e.label_px.y(), e.error_px);
+  }
+  std::vector<double> err;
+  for (const auto& e : errors)
+    if (e.detected) err.push_back(e.error_px);
+  std::sort(err.begin(), err.end());
+  std::printf("[ figures  ] %s: %d/%zu frames within %.0f px (%.1f %%), median %.1f px, worst %.1f px\n", task.c_str(),
+              within, errors.size(), kPalmTol_px, 100.0 * within / errors.size(),
+              err.empty() ? 0.0 : err[err.size() / 2], worst);
+  EXPECT_GE(within, kRate * static_cast<double>(errors.size())) << task;
+  EXPECT_LE(worst, kMaxError_px) << task;
+}
+
+// task2 (developed on): issue 17's acceptance, >= 90 % within 40 px, and no
+// palm on the torso or the upper arm: even the worst stays within a hand
+// length of the label (~90 px at 1.1 m), short of the body.
+TEST(MarkerFreeHandDetector, RealDemonstratorHrt1Task2) { checkRealTask("task2", 0.90, 80.0); }
+
+// task3 (our held-out check): the acceptance is NOT reached (26/36 = 72 %,
+// see the perception README: while only the arm is in view its forearm and
+// hand are in shadow, and the largest skin-coloured component is the toy's
+// tan belly (frames 17-21) or a patch at the right border (frames 2-3, the
+// shoulder)). This guards the reached level against regressions; raise it to
+// 0.90 / 80 px when that class of problem is fixed.
+TEST(MarkerFreeHandDetector, RealDemonstratorHrt1Task3) {
+  constexpr double kReachedRate = 0.70;   // regression guard, not the acceptance
+  constexpr double kNoBound_px = 1e9;     // palms at the shoulder occur (frames 2, 3)
+  checkRealTask("task3", kReachedRate, kNoBound_px);
 }
 
 // ---- rendered synthetic demo ---------------------------------------------

@@ -90,6 +90,10 @@ class DemoPerceiver {
   DemoPerceiver(const DemoPerceiver&) = delete;
   DemoPerceiver& operator=(const DemoPerceiver&) = delete;
 
+  /// Optional pre-pass: every frame of the recording, in order, before the
+  /// first add() (the marker-free hand learns its background and skin colour
+  /// from the whole recording; see HandDetector::preview).
+  void preview(const rawlog::RgbdFrame& frame);
   /// Throws InvalidInputError when the frame lacks depth or colour, or its
   /// size or intrinsics differ from the first frame's.
   void add(const rawlog::RgbdFrame& frame);
@@ -103,7 +107,8 @@ class DemoPerceiver {
   std::unique_ptr<Impl> impl_;
 };
 
-/// Runs the module on frames (in time order). Throws InvalidInputError when
+/// Runs the module on frames (in time order; previewed first for the
+/// marker-free hand). Throws InvalidInputError when
 /// there are no frames, a frame lacks depth or colour, the sizes or
 /// intrinsics change between frames, or the hand is never detected.
 /// `progress(frameIndex, frameCount)` is called after each frame when given
@@ -112,7 +117,8 @@ PerceptionResult perceiveFrames(const std::vector<rawlog::RgbdFrame>& frames, co
                                 const PerceptionOptions& options,
                                 const std::function<void(int, int)>& progress = {});
 
-/// Reads the demo rawlog (RawlogReader) and runs perceiveFrames. Throws
+/// Reads the demo rawlog (RawlogReader) and runs it as perceiveFrames (for the
+/// marker-free hand twice: a preview pass, then the perception pass). Throws
 /// FileError for an unreadable or damaged rawlog or one without RGB-D frames.
 PerceptionResult perceiveRawlog(const std::string& rawlogPath, const core::ObjectCatalogue& catalogue,
                                 const PerceptionOptions& options,

@@ -23,9 +23,15 @@ struct HandObservation {
 
 /// A hand detector sees one frame at a time, in order (it may learn from the
 /// first frames, e.g. a background). nullopt = no hand in this frame.
+/// A caller holding the whole recording may first show every frame to
+/// preview() (in order, before the first detect()): a detector may learn from
+/// the whole recording (a background behind a demonstrator who is in view from
+/// the first frame, the demonstrator's skin colour).
 class HandDetector {
  public:
   virtual ~HandDetector() = default;
+  /// Pre-pass over the recording; the default ignores it.
+  virtual void preview(const rawlog::RgbdFrame& /*frame*/) {}
   virtual std::optional<HandObservation> detect(const rawlog::RgbdFrame& frame) = 0;
   virtual std::string name() const = 0;
 };

@@ -13,50 +13,105 @@
 namespace srp::perception {
 
 /// Marker-free hand detector (no tag is decoded or used as a feature: it works
-/// on a plain glove or a bare hand in a sleeve).
+/// on a plain glove, a bare hand in a sleeve, or a bare forearm).
 ///
-/// Background: a per-pixel median depth and mean colour of the first
-/// `backgroundFrames` frames, which must show no hand (a demo's first second).
+/// Background, two ways:
+/// - whole recording (when the caller showed every frame to preview() first,
+///   as DemoPerception does): per pixel, the `backgroundPercentile` quantile of
+///   the valid depths of up to `maxBackgroundSamples` frames spread over the
+///   recording (the depth behind whatever moves: a demonstrator in view from
+///   the first frame, whose arm and torso move, is foreground), and the mean
+///   colour;
+/// - first frames (no preview, a stream): the per-pixel median depth and mean
+///   colour of the first `backgroundFrames` frames, which must show no hand.
+///
+/// Skin colour, adapted per recording: a Gaussian in (Cr, Cb) fitted to the
+/// foreground pixels inside a broad prior box (`skinPrior*`, luma >=
+/// `skinMinLuma`): the histogram's mode and the pixels within `skinModeRadius`
+/// of it (the demonstrator's dominant skin tone; a shirt, a toy's face or a
+/// table of a skin-like colour fall outside it). Learnt from the preview
+/// samples (at least `minSkinSamples` pixels) and used when the recording
+/// shows a bare forearm (step 4); otherwise (a glove and sleeve, or no
+/// preview) the prior box itself, with which the cuff rule's lengths were
+/// measured.
 ///
 /// Per frame (pixels of the colour image, registered depth):
 /// 1. foreground = closer than the background by `minForeground_m`, or a
-///    depth hole where the colour changed (the moving hand's holes: on a ToF
-///    camera more than half of the hand has no depth);
+///    depth hole where the colour changed by more than `holeColourChange`
+///    (the moving hand's holes: on a ToF camera more than half of the hand has
+///    no depth);
 /// 2. the arm = the largest foreground component touching the image border
-///    (where it enters);
-/// 3. the hand = its skin-coloured part (YCrCb box), holes filled (a held
-///    object, a badge); the sleeve = the largest non-skin part of the arm that
-///    reaches the border (a carried object does not);
-/// 4. the wrist = the cuff line, the hand's pixels next to the sleeve; the
-///    arm axis = principal direction of sleeve + hand, pointing inwards;
+///    (where it enters; a demonstrator's whole body);
+/// 3. the hand = its skin-coloured part, holes filled (a held object, a
+///    badge); the sleeve = the largest non-skin part of the arm that reaches
+///    the border (a carried object does not);
+/// 4. bare forearm: when the largest skin component is longer than
+///    `maxHandLength_m` between the ends of its principal axis (in 3D; skin
+///    from the elbow or a short sleeve to the fingers), the hand is its far
+///    end: the axis end
+///    farther from the arm's entry (the body); its last `maxHandLength_m`
+///    give the hand's own axis and centre line, and the palm centre lies
+///    `palmFromFarEnd_m` back from the far end along it. With a preview, a
+///    recording whose samples show such a forearm in at least
+///    `bareForearmFraction` of them uses this rule in every frame;
+/// 5. else the wrist = the cuff line, the hand's pixels next to the sleeve;
+///    the arm axis = principal direction of sleeve + hand, pointing inwards;
 ///    the palm centre = the wrist plus `palmFromWrist_m` along the axis
 ///    (a fixed length of the hand: it does not move when the fingers close
 ///    round an object, unlike the blob's centre or its thickest point);
-/// 5. no cuff in view (the skin itself reaches the border while the hand
+/// 6. no cuff in view (the skin itself reaches the border while the hand
 ///    enters or leaves, or no sleeve): the palm centre lies
 ///    `palmFromFingertips_m` back from the fingertips along the hand's
 ///    principal axis (the inward border normal for a short blob), on the
 ///    hand's centre line; it may lie outside the image;
-/// 6. depth: median of the valid depth on the hand within `palmRadius_m` of
+/// 7. depth: median of the valid depth on the hand within `palmRadius_m` of
 ///    the palm pixel, plus `palmDepth_m` (the palm centre lies inside the
 ///    hand, below its visible back). None there (a hole, or the palm out of
-///    view): `hasDepth = false` when the last palm depth is at most 3 frames
-///    old (the caller carries it along the palm's ray, see DemoPerception;
-///    `palm_px` is placed for that depth), else the whole hand's valid depth,
-///    else `hasDepth = false`.
+///    view): `hasDepth = false` when the last palm depth is at most
+///    `maxCarryFrames` frames old (the caller carries it along the palm's ray,
+///    see DemoPerception; `palm_px` is placed for that depth), else the whole
+///    hand's valid depth, else `hasDepth = false`.
 ///
-/// The palm is placed in metres: the anchor pixel (cuff or fingertips)
-/// back-projected at the palm's depth, plus the length along the axis.
-/// State across frames: the background and the last palm depth with its age
-/// (no smoothing: each palm is measured in its own frame). Defaults measured on srp::synth's demonstrator
-/// (a glove and a sleeve, 7 cm wide);
-/// a real demonstrator's hand size sets palmFromWrist_m / palmFromFingertips_m.
+/// The palm is placed in metres: the anchor pixel (far end, cuff or
+/// fingertips) back-projected at the palm's depth, plus the length along the
+/// axis. State across frames: the background, the skin model and the last
+/// palm depth with its age (no smoothing: each palm is measured in its own
+/// frame). Hand lengths default to srp::synth's demonstrator (a glove and a
+/// sleeve, 7 cm wide) and, for the bare forearm, to an adult hand grasping
+/// from above; a real demonstrator's hand size sets them.
+/// SRP_HAND_TRACE=1 prints the skin model, the bare-forearm decision and each
+/// frame's skin component to stderr (for tuning on a new recording).
 class MarkerFreeHandDetector : public HandDetector {
  public:
   struct Options {
+    /// First-frames background (no preview): frames without the hand.
     int backgroundFrames = 10;
+    /// Whole-recording background: quantile (0..1) of each pixel's valid
+    /// depths over the samples. High: the depth behind what moves, as long as
+    /// the pixel is free in more than (1 - quantile) of the recording.
+    double backgroundPercentile = 0.9;
+    /// Whole-recording background: at most this many frames are kept,
+    /// evenly spread over the recording (memory: 0.6 MB each at 640x480).
+    int maxBackgroundSamples = 48;
+    /// Foreground: closer than the background by this much [m].
     double minForeground_m = 0.02;
+    /// Foreground in a depth hole: sum of |BGR| changes from the background
+    /// colour (skin over a beige table differs by ~60, sensor noise by ~5).
+    int holeColourChange = 30;
     bool useSkin = true;
+    /// Skin prior box in YCrCb (8-bit), where the recording's skin model is
+    /// looked for; also the skin test until the model is learnt.
+    int skinPriorCrMin = 135, skinPriorCrMax = 180, skinPriorCbMin = 80, skinPriorCbMax = 130;
+    /// Below this luma (8-bit Y) chroma is noise (black clothes, backlit
+    /// faces): never skin.
+    int skinMinLuma = 25;
+    /// Skin model: pixels within this (Cr, Cb) distance of the histogram's
+    /// mode [8-bit units] give the Gaussian's mean and covariance.
+    double skinModeRadius = 8.0;
+    /// Skin = Mahalanobis distance to the Gaussian below this [sigma].
+    double skinMaxMahalanobis = 3.0;
+    /// Pixels the skin model needs before it replaces the prior box.
+    int minSkinSamples = 500;
     int minPixels = 300;
     /// Palm centre below the visible back of the hand along the ray [m].
     double palmDepth_m = 0.0125;
@@ -68,18 +123,50 @@ class MarkerFreeHandDetector : public HandDetector {
     /// Without a wrist in view: palm centre back from the fingertips along the
     /// hand's axis [m] (relaxed fingers, as when the hand enters or leaves).
     double palmFromFingertips_m = 0.125;
+    /// A skin component longer than this between its ends (in 3D, from
+    /// their depths) is a bare forearm with its hand, not a hand: an adult
+    /// hand, wrist crease to fingertip, is 0.17-0.21 m, srp::synth's glove
+    /// from its cuff to relaxed fingertips 0.255 m, a forearm alone ~0.25 m [m].
+    double maxHandLength_m = 0.28;
+    /// Whole recording: when the longest skin component is longer than
+    /// maxHandLength_m in at least this share of the preview samples that
+    /// show skin, the demonstrator's forearms are bare and every frame uses
+    /// the far-end rule (a forearm in shadow, too dark for skin, leaves only
+    /// the hand: its skin boundary is no sleeve's cuff).
+    double bareForearmFraction = 0.2;
+    /// Bare forearm: palm centre back from the arm's far end along the hand's
+    /// axis [m] (half a palm plus the curled fingers of a hand grasping from
+    /// above, 0.05 + 0.02 m).
+    double palmFromFarEnd_m = 0.07;
+    /// The last palm depth is carried along the palm's ray for at most this
+    /// many frames (the caller does it, see DemoPerception) [frames].
+    int maxCarryFrames = 3;
   };
 
   /// What the last detect() found, in pixels (for drawing and tests).
   struct Geometry {
     bool haveWrist = false;
+    bool bareForearm = false;  ///< the palm was placed from the far end of a bare forearm
     Eigen::Vector2d entry_px = Eigen::Vector2d::Zero();  ///< mean of the arm's border pixels
     Eigen::Vector2d wrist_px = Eigen::Vector2d::Zero();  ///< cuff line centre
+    Eigen::Vector2d farEnd_px = Eigen::Vector2d::Zero();  ///< bare forearm: its far end
     Eigen::Vector2d axis = Eigen::Vector2d::UnitX();     ///< unit, from the border towards the fingers
     Eigen::Vector2d palm_px = Eigen::Vector2d::Zero();
   };
 
+  /// The recording's skin model (Gaussian in Cr, Cb).
+  struct SkinModel {
+    bool learnt = false;
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    Eigen::Matrix2d covariance = Eigen::Matrix2d::Identity();
+    double meanLuma = 0.0, sdLuma = 255.0;  ///< luma (Y) of those pixels; skin lies within skinMaxMahalanobis sd
+    int samples = 0;
+  };
+
   explicit MarkerFreeHandDetector(const Options& options);
+  /// Keeps a sample of the frame for the whole-recording background and skin
+  /// model. Throws InvalidInputError after the first detect().
+  void preview(const rawlog::RgbdFrame& frame) override;
   std::optional<HandObservation> detect(const rawlog::RgbdFrame& frame) override;
   std::string name() const override { return "marker-free"; }
   const Options& options() const { return options_; }
@@ -87,10 +174,28 @@ class MarkerFreeHandDetector : public HandDetector {
   /// Hand mask of the last frame (CV_8UC1), for drawing.
   const cv::Mat& lastMask() const { return lastMask_; }
   const Geometry& lastGeometry() const { return geometry_; }
+  const SkinModel& skinModel() const { return skin_; }
 
  private:
   Options options_;
+  void finishPreview();
+  /// Skin pixels: the learnt model when `learnt` and there is one, else the prior box.
+  cv::Mat skinMask(const cv::Mat& colour_bgr8, bool learnt) const;
+  /// Adds the (Cr, Cb) of the foreground pixels inside the prior box.
+  void accumulateSkin(const cv::Mat& colour_bgr8, const cv::Mat& foreground, int step);
+  void fitSkin();
+
   std::vector<cv::Mat> depthHistory_, colourHistory_;
+  // Preview: depth samples [mm, CV_16UC1] every previewStride_-th frame, the
+  // colour samples at half size, and the colour sum of every frame.
+  std::vector<cv::Mat> previewDepth_mm_, previewColour_;
+  cv::Mat previewColourSum_;
+  int previewFrames_ = 0, previewStride_ = 1;
+  cv::Mat skinHistogram_;  ///< 256x256 CV_32F over (Cr, Cb)
+  cv::Mat skinLumaSum_, skinLumaSqSum_;  ///< per (Cr, Cb) bin: sum of Y and of Y^2 (CV_64F)
+  SkinModel skin_;
+  core::CameraIntrinsics previewIntrinsics_;
+  bool bareForearms_ = false;  ///< the preview showed a bare forearm: the far end rule in every frame
   cv::Mat backgroundDepth_m_, backgroundColour_;
   cv::Mat lastMask_;
   Geometry geometry_;

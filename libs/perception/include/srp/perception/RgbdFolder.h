@@ -1,6 +1,6 @@
 #pragma once
 /// \file RgbdFolder.h
-/// \brief Reads a folder of registered RGB-D images (color_NNNN.png +
+/// \brief Reads a folder of registered RGB-D images (color_NNNN.png or .jpg +
 /// depth_NNNN.png, 16-bit depth) with a `cam.json` (px, py, u0, v0, w, h,
 /// depthScale), the layout of ViSP's RealSense recordings
 /// (datasets/real/visp-rbt-cube).

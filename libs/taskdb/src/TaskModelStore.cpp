@@ -32,7 +32,7 @@ void writeChunked(Dao& dao, int id, const std::vector<Row>& rows, std::size_t& d
 }
 }  // namespace
 
-int TaskModelStore::write(const TaskModel& m, const Progress& progress) {
+int TaskModelStore::write(const TaskModel& m, const Progress& progress, const BeforeCommit& beforeCommit) {
   ScopedTransaction tx(db_);
   try {
     TaskModelDao models(db_);
@@ -58,6 +58,7 @@ int TaskModelStore::write(const TaskModel& m, const Progress& progress) {
     writeChunked(hands, id, m.handPositions, done, total, progress);
     ProductPoseDao poses(db_);
     writeChunked(poses, id, m.productPoses, done, total, progress);
+    if (beforeCommit) beforeCommit(id, info.version);
     tx.commit();  // deferred foreign keys are checked here
     return id;
   } catch (const SQLite::Exception& e) {

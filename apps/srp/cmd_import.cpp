@@ -27,9 +27,14 @@ void setupImport(CLI::App& cmd) {
   cmd.add_option("--intrinsics", a->intrinsics,
                  "camera file: ViSP XML or JSON (default: the folder's camera.xml, cam.json or intrinsics.json)");
   cmd.add_option("--depth-scale", a->depthScale_m,
-                 "metres per depth PNG unit (default: the camera JSON's depthScale, else 0.001; TUM 0.0002)");
-  cmd.add_option("--fps", a->fps, "frame rate of an image folder (timestamps i / fps)")->capture_default_str();
-  cmd.add_option("--max-dt", a->maxDt_s, "TUM: max colour/depth timestamp difference [s]")->capture_default_str();
+                 "metres per depth PNG unit (default: the camera JSON's depthScale, else 0.001; TUM 0.0002)")
+      ->check(CLI::Range(1e-6, 1.0));
+  cmd.add_option("--fps", a->fps, "frame rate of an image folder (timestamps i / fps)")
+      ->check(CLI::Range(0.1, 1000.0))
+      ->capture_default_str();
+  cmd.add_option("--max-dt", a->maxDt_s, "TUM: max colour/depth timestamp difference [s]")
+      ->check(CLI::Range(0.0, 10.0))
+      ->capture_default_str();
   cmd.add_flag("--json", a->json, "print the summary as JSON");
   cmd.footer("Example: srp import datasets/real/visp-rbt-cube cube.rawlog");
   cmd.callback([a] {

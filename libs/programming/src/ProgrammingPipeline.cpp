@@ -177,7 +177,12 @@ ProgramResult programTask(const ProgrammingOptions& o) {
       perceiver.add(*f);
       progress("environment", static_cast<std::size_t>(perceiver.framesAdded()), 0);
     }
-    if (reader.damage()) throw core::FileError(o.demoPath, "unreadable demonstration, " + *reader.damage());
+    if (reader.damage() && !o.allowTruncated)
+      throw core::FileError(o.demoPath, "unreadable demonstration, " + *reader.damage() +
+                                            "; nothing was stored (--allow-truncated uses the frames before the damage)");
+    if (reader.damage())
+      result.warnings.push_back("demonstration " + *reader.damage() + "; using the " +
+                                std::to_string(reader.framesRead()) + " frames before it (--allow-truncated)");
     if (perceiver.framesAdded() == 0)
       throw core::FileError(o.demoPath, "no RGB-D frames with depth in this rawlog; record one with 'srp record' "
                                         "or make one with 'srp synth-demo'");

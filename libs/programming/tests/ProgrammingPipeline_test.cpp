@@ -247,3 +247,28 @@ TEST(ProgrammingPipeline, UnwritableReportStoresNothing) {
   EXPECT_EQ(r.version, 1);
   EXPECT_TRUE(std::filesystem::exists(workDir() / "report_ok" / "summary.md"));
 }
+
+// Issue 21: a damaged demonstration fails the run (nothing stored) unless the
+// caller allows the frames before the damage.
+TEST(ProgrammingPipeline, DamagedDemonstrationStoresNothingUnlessAllowed) {
+  const std::string db = freshDb("damaged");
+  const std::string cut = (workDir() / "cut.rawlog").string();
+  std::filesystem::copy_file(demoPath(), cut, std::filesystem::copy_options::overwrite_existing);
+  std::filesystem::resize_file(cut, std::filesystem::file_size(cut) * 97 / 100);
+  auto o = options(db);
+  o.demoPath = cut;
+  try {
+    programming::programTask(o);
+    ADD_FAILURE() << "a truncated demonstration was programmed";
+  } catch (const core::FileError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("damaged after frame"), std::string::npos) << what;
+    EXPECT_NE(what.find("nothing was stored"), std::string::npos) << what;
+  }
+  EXPECT_EQ(modelCount(db), 0u);
+  o.allowTruncated = true;
+  const auto r = programming::programTask(o);
+  EXPECT_EQ(modelCount(db), 1u);
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_NE(r.warnings.back().find("--allow-truncated"), std::string::npos) << r.warnings.back();
+}

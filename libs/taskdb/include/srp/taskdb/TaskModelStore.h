@@ -35,6 +35,7 @@ class TaskModelStore {
   void replaceSkills(int taskModelId, const std::vector<SkillRow>& skills);
 
  private:
+  TaskModel readUnchecked(int taskModelId) const;
   TaskDatabase& db_;
 };
 

@@ -85,7 +85,6 @@ bool RawlogSource::decodeMore(bool crossMembers) {
     if (buf_.size() < len_ + kOutputChunk) buf_.resize(len_ + kOutputChunk);
     const std::size_t n = std::fread(buf_.data() + len_, 1, kOutputChunk, file_);
     len_ += n;
-    consumed_ += 0;
     if (n == 0) {
       fileEnded_ = memberEnded_ = done_ = true;
       return false;
@@ -258,13 +257,66 @@ std::optional<std::string> checkSide(std::int64_t side, const std::string& what)
   return std::nullopt;
 }
 
+// An MRPT string (uint32 length + bytes): the length is checked before
+// MRPT allocates it (a flipped length byte asked for gigabytes).
+std::optional<std::string> skipString(Cursor& c, std::uint32_t maxBytes, const char* what) {
+  std::uint32_t n = 0;
+  if (!c.take(&n, 4)) return std::string();
+  if (n > maxBytes)
+    return std::string(what) + " of " + std::to_string(n) + " bytes (at most " + std::to_string(maxBytes) +
+           " expected; a damaged length field)";
+  if (auto e = checkBytes(c, n, what)) return e;
+  if (!c.skip(n)) return std::string();
+  return std::nullopt;
+}
+
+std::optional<std::string> endFlag(Cursor& c, const char* what) {
+  std::uint8_t end = 0;
+  if (!c.take(&end, 1)) return std::string();
+  if (end != 0x88) return std::string(what) + " does not end where its sizes say (damaged)";
+  return std::nullopt;
+}
+
+// A CPose3D: v2 x y z + quaternion, v3 rotation matrix + x y z (doubles).
+// Sets `known` false for other versions (the rest is then left to MRPT).
+std::optional<std::string> scanPose(Cursor& c, const char* what, bool& known) {
+  Header pose;
+  if (auto e = readHeader(c, pose)) return e->empty() ? *e : std::string(what) + ": " + *e;
+  if (pose.className != "mrpt::poses::CPose3D" && pose.className != "CPose3D")
+    return std::string(what) + " is a '" + pose.className + "' (damaged)";
+  known = !pose.oldFormat && (pose.version == 2 || pose.version == 3);
+  if (!known) return std::nullopt;
+  if (!c.skip(pose.version == 2 ? 7 * 8 : 12 * 8)) return std::string();
+  return endFlag(c, what);
+}
+
+// An mrpt::img::TCamera v5/v6: focal length, 8 distortion terms, fx fy cx cy
+// (doubles), nrows ncols (uint32), name (string), v6: distortion model (uint8).
+std::optional<std::string> scanCamera(Cursor& c, const char* what, bool& known) {
+  Header h;
+  if (auto e = readHeader(c, h)) return e->empty() ? *e : std::string(what) + ": " + *e;
+  if (h.className != "mrpt::img::TCamera" && h.className != "TCamera")
+    return std::string(what) + " is a '" + h.className + "' (damaged)";
+  known = !h.oldFormat && (h.version == 5 || h.version == 6);
+  if (!known) return std::nullopt;
+  if (!c.skip(13 * 8)) return std::string();
+  std::uint32_t rows = 0, cols = 0;
+  if (!c.take(&rows, 4) || !c.take(&cols, 4)) return std::string();
+  if (auto e = checkSide(rows, std::string(what) + " height")) return e;
+  if (auto e = checkSide(cols, std::string(what) + " width")) return e;
+  if (auto e = skipString(c, 1024, "camera name")) return e;
+  if (h.version >= 6 && !c.skip(1)) return std::string();
+  return endFlag(c, what);
+}
+
 // An mrpt::img::CImage (versions 2..9) inside a scan.
-std::optional<std::string> scanImage(Cursor& c, const char* what) {
+std::optional<std::string> scanImage(Cursor& c, const char* what, bool& known) {
   Header h;
   if (auto e = readHeader(c, h)) return e;
   if (h.className != "mrpt::img::CImage" && h.className != "CImage")
     return std::string(what) + " is a '" + h.className + "', not an image";
-  if (h.oldFormat || h.version < 7 || h.version > 9) return std::nullopt;  // older layouts: left to MRPT
+  known = !h.oldFormat && h.version >= 7 && h.version <= 9;
+  if (!known) return std::nullopt;  // older layouts: left to MRPT
   bool external = false;
   if (auto e = readFlag(c, external, "external-image")) return e;
   if (external) {
@@ -319,16 +371,9 @@ std::optional<std::string> scanRgbd(Cursor& c, int version) {
   if (version < 9 || version > 10) return std::nullopt;  // older layouts: left to MRPT
   float maxRange = 0;
   if (!c.take(&maxRange, 4)) return std::string();
-  Header pose;
-  if (auto e = readHeader(c, pose)) return "sensor pose: " + *e;
-  if (pose.className != "mrpt::poses::CPose3D" && pose.className != "CPose3D")
-    return "sensor pose is a '" + pose.className + "' (damaged)";
-  // CPose3D v2: x y z + quaternion; v3: rotation matrix + x y z (doubles).
-  if (pose.oldFormat || (pose.version != 2 && pose.version != 3)) return std::nullopt;
-  if (!c.skip(pose.version == 2 ? 7 * 8 : 12 * 8)) return std::string();
-  std::uint8_t end = 0;
-  if (!c.take(&end, 1)) return std::string();
-  if (end != 0x88) return std::string("sensor pose does not end where it should (damaged)");
+  bool known = true;
+  if (auto e = scanPose(c, "sensor pose", known)) return e;
+  if (!known) return std::nullopt;
   bool hasPoints = false;
   if (auto e = readFlag(c, hasPoints, "3D-points")) return e;
   if (hasPoints) {
@@ -356,13 +401,58 @@ std::optional<std::string> scanRgbd(Cursor& c, int version) {
   }
   bool hasIntensity = false;
   if (auto e = readFlag(c, hasIntensity, "colour-image")) return e;
-  if (hasIntensity)
-    if (auto e = scanImage(c, "colour image")) return e;
+  if (hasIntensity) {
+    if (auto e = scanImage(c, "colour image", known)) return e;
+    if (!known) return std::nullopt;
+  }
   bool hasConfidence = false;
   if (auto e = readFlag(c, hasConfidence, "confidence-image")) return e;
-  if (hasConfidence)
-    if (auto e = scanImage(c, "confidence image")) return e;
-  return std::nullopt;
+  if (hasConfidence) {
+    if (auto e = scanImage(c, "confidence image", known)) return e;
+    if (!known) return std::nullopt;
+  }
+  // The rest (MRPT 2.x, versions 9 and 10): cameras, pose, strings, layers.
+  for (const char* camera : {"depth camera", "colour camera"}) {
+    if (auto e = scanCamera(c, camera, known)) return e;
+    if (!known) return std::nullopt;
+  }
+  if (auto e = scanPose(c, "colour camera pose", known)) return e;
+  if (!known) return std::nullopt;
+  if (!c.skip(4 + 8)) return std::string();  // stdError, timestamp
+  if (auto e = skipString(c, 1024, "sensor label")) return e;
+  for (const char* file : {"external 3D points file name", "external depth file name"}) {
+    bool external = false;
+    if (auto e = readFlag(c, external, "external-storage")) return e;
+    if (auto e = skipString(c, 4096, file)) return e;
+  }
+  bool rangeIsDepth = false, hasLabels = false;
+  if (auto e = readFlag(c, rangeIsDepth, "range-is-depth")) return e;
+  if (!c.skip(1)) return std::string();  // intensity channel
+  if (auto e = readFlag(c, hasLabels, "pixel-labels")) return e;
+  if (hasLabels) return std::nullopt;  // a layout of its own: left to MRPT
+  if (version >= 10) {
+    std::uint8_t layers = 0;
+    if (!c.take(&layers, 1)) return std::string();
+    for (int i = 0; i < layers; ++i) {
+      if (auto e = skipString(c, 1024, "depth layer name")) return e;
+      std::uint32_t a = 0, b = 0;
+      if (!c.take(&a, 4) || !c.take(&b, 4)) return std::string();
+      if (auto e = checkSide(a, "depth layer side")) return e;
+      if (auto e = checkSide(b, "depth layer side")) return e;
+      const std::uint64_t bytes = 2ull * a * b;
+      if (auto e = checkBytes(c, bytes, "depth layer")) return e;
+      if (!c.skip(bytes)) return std::string();
+    }
+  }
+  return endFlag(c, "the RGB-D scan");
+}
+
+// mrpt::obs::CObservationComment (srp's markers): text, timestamp.
+std::optional<std::string> scanComment(Cursor& c, int version) {
+  if (version != 0) return std::nullopt;
+  if (auto e = skipString(c, 1 << 20, "comment text")) return e;
+  if (!c.skip(8)) return std::string();
+  return endFlag(c, "the comment");
 }
 
 }  // namespace
@@ -374,6 +464,9 @@ std::optional<std::string> prescanObject(const std::uint8_t* p, std::size_t n, b
   if (!problem && !h.oldFormat &&
       (h.className == "CObservation3DRangeScan" || h.className == "mrpt::obs::CObservation3DRangeScan"))
     problem = scanRgbd(c, h.version);
+  if (!problem && !h.oldFormat &&
+      (h.className == "CObservationComment" || h.className == "mrpt::obs::CObservationComment"))
+    problem = scanComment(c, h.version);
   if (problem && problem->empty()) {
     // Ran out of bytes: damage when the object had to fit, else left to MRPT.
     if (!bounded) return std::nullopt;

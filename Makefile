@@ -10,7 +10,9 @@ CTEST_ARGS ?=
 CCACHE := $(shell command -v ccache 2>/dev/null)
 LAUNCHER := $(if $(CCACHE),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache,)
 
-.PHONY: all deps configure build test test-slow demo bench clean
+.PHONY: all deps configure build test test-slow test-sanitize demo bench clean
+
+SANITIZE_DIR ?= build-sanitize
 
 all: build
 
@@ -32,6 +34,18 @@ test: build
 test-slow: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS) -L slow $(CTEST_ARGS)
 
+# The rawlog reader and its fuzz test under AddressSanitizer + UBSan, in a
+# build dir of its own (huge allocations return an error instead of aborting,
+# as the fuzz test's memory limit expects).
+test-sanitize: deps
+	@cmake -S . -B $(SANITIZE_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSRP_BUILD_BENCHMARKS=OFF $(LAUNCHER) \
+	  -DCMAKE_CXX_FLAGS="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
+	  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" > $(SANITIZE_DIR).configure.log 2>&1 \
+	  || (cat $(SANITIZE_DIR).configure.log; exit 1)
+	@cmake --build $(SANITIZE_DIR) --target srp_rawlog_tests -j $(JOBS)
+	@cd $(SANITIZE_DIR) && ASAN_OPTIONS=allocator_may_return_null=1:max_allocation_size_mb=1024:detect_leaks=1 \
+	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ./libs/rawlog/srp_rawlog_tests
+
 demo: build
 	@bash scripts/demo.sh $(BUILD_DIR)
 
@@ -39,4 +53,4 @@ bench: build
 	@bash scripts/bench.sh $(BUILD_DIR)
 
 clean:
-	rm -rf $(BUILD_DIR) $(BUILD_DIR).configure.log
+	rm -rf $(BUILD_DIR) $(BUILD_DIR).configure.log $(SANITIZE_DIR) $(SANITIZE_DIR).configure.log

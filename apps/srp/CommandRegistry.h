@@ -30,6 +30,15 @@ struct CommandRegistrar {
                    std::function<void(CLI::App&)> setup);
 };
 
+/// A TaskModelId: decimal digits only (CLI11 would read "0x1" as 1 and "1e0" as 1).
+inline const CLI::Validator kDecimalId(
+    [](std::string& text) -> std::string {
+      const bool digits = !text.empty() && text.size() <= 9 &&
+                          text.find_first_not_of("0123456789") == std::string::npos;
+      return digits ? std::string() : "'" + text + "' is not a TaskModelId (a decimal number, see 'srp db list')";
+    },
+    "ID");
+
 /// Exit code a command can request (e.g. 2 for "done, but with skipped steps").
 int& commandExitCode();
 

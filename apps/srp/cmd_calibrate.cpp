@@ -211,7 +211,9 @@ void setupCalibrate(CLI::App& cmd) {
   auto* board = cmd.add_subcommand("board", "write a printable image of a calibration pattern");
   board->add_option("--pattern", boardArgs->pattern, "e.g. apriltag:4x3:0.04:0.01 or chessboard:9x6:0.025")->required();
   board->add_option("--out", boardArgs->out, "PNG to write")->required();
-  board->add_option("--dpi", boardArgs->dpi, "printer resolution")->capture_default_str();
+  board->add_option("--dpi", boardArgs->dpi, "printer resolution [dots per inch]")
+      ->check(CLI::Range(30, 4800))
+      ->capture_default_str();
   board->callback([boardArgs] { runBoard(*boardArgs); });
 
   cmd.callback([&cmd, intrinsic] {

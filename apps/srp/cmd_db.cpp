@@ -64,7 +64,7 @@ void setupDb(CLI::App& app) {
   });
 
   auto* show = app.add_subcommand("show", "Show one task model: plan, grounded objects, skills");
-  show->add_option("id", o->id, "TaskModelId (see 'srp db list')")->required();
+  show->add_option("id", o->id, "TaskModelId (see 'srp db list')")->required()->check(srp::app::kDecimalId);
   addDbOption(*show, *o);
   show->add_flag("--json", o->json, "Print the whole task model as JSON (the form 'srp db import' reads)");
   show->callback([o] {
@@ -75,7 +75,7 @@ void setupDb(CLI::App& app) {
   });
 
   auto* exp = app.add_subcommand("export", "Export a task model in another layout");
-  exp->add_option("id", o->id, "TaskModelId")->required();
+  exp->add_option("id", o->id, "TaskModelId")->required()->check(srp::app::kDecimalId);
   addDbOption(*exp, *o);
   exp->add_option("--format", o->format, "Layout: appendix-c (the thesis' Appendix C tables) or json")
       ->check(CLI::IsMember({"appendix-c", "json"}))
@@ -108,7 +108,7 @@ void setupDb(CLI::App& app) {
   });
 
   auto* del = app.add_subcommand("delete", "Delete a task model and all its rows");
-  del->add_option("id", o->id, "TaskModelId")->required();
+  del->add_option("id", o->id, "TaskModelId")->required()->check(srp::app::kDecimalId);
   addDbOption(*del, *o);
   del->callback([o] {
     auto db = TaskDatabase::open(o->db);

@@ -34,9 +34,14 @@ void setupImport(CLI::App& cmd) {
                  "ViSP depth_M_color.txt: 4x4 pose of the colour camera in the depth camera (default: the folder's "
                  "depth_M_color.txt, else identity)");
   cmd.add_option("--depth-scale", a->depthScale_m,
-                 "metres per depth PNG unit (default: the camera JSON's depthScale, else 0.001; TUM 0.0002)");
-  cmd.add_option("--fps", a->fps, "frame rate of an image folder (timestamps i / fps)")->capture_default_str();
-  cmd.add_option("--max-dt", a->maxDt_s, "TUM: max colour/depth timestamp difference [s]")->capture_default_str();
+                 "metres per depth PNG unit (default: the camera JSON's depthScale, else 0.001; TUM 0.0002)")
+      ->check(CLI::Range(1e-6, 1.0));
+  cmd.add_option("--fps", a->fps, "frame rate of an image folder (timestamps i / fps)")
+      ->check(CLI::Range(0.1, 1000.0))
+      ->capture_default_str();
+  cmd.add_option("--max-dt", a->maxDt_s, "TUM: max colour/depth timestamp difference [s]")
+      ->check(CLI::Range(0.0, 10.0))
+      ->capture_default_str();
   cmd.add_flag("--json", a->json, "print the summary as JSON");
   cmd.footer("Example: srp import datasets/real/visp-rbt-cube cube.rawlog");
   cmd.callback([a] {

@@ -91,7 +91,7 @@ void runMotion(const MotionOptions& o) {
 
 void setupMotion(CLI::App& app) {
   auto o = std::make_shared<MotionOptions>();
-  app.add_option("id", o->id, "TaskModelId (see 'srp db list')");
+  app.add_option("id", o->id, "TaskModelId (see 'srp db list')")->check(srp::app::kDecimalId);
   app.add_flag("--synthetic-demo", o->syntheticDemo,
                "First store a synthetic 4-object demo (noise, dropouts, flicker) as a new task model, then process it");
   app.add_option("--db", o->db, "Task database file (SQLite)")->capture_default_str();

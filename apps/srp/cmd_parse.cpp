@@ -1,13 +1,39 @@
 // srp parse: instruction text -> task plan (readable, or --json), optionally
 // stored in the task database.
+#include <cstdio>
 #include <iostream>
 
 #include "CommandRegistry.h"
 #include "srp/language/InstructionParser.h"
+#include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/language/PlanTables.h"
 
 namespace {
+// Index of the first byte that is not part of well-formed UTF-8 (RFC 3629), or npos.
+std::size_t firstInvalidUtf8(const std::string& s) {
+  std::size_t i = 0;
+  while (i < s.size()) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    std::size_t n = 0;
+    unsigned min = 0, cp = 0;
+    if (c < 0x80) { ++i; continue; }
+    if ((c & 0xE0) == 0xC0) { n = 1; min = 0x80; cp = c & 0x1F; }
+    else if ((c & 0xF0) == 0xE0) { n = 2; min = 0x800; cp = c & 0x0F; }
+    else if ((c & 0xF8) == 0xF0) { n = 3; min = 0x10000; cp = c & 0x07; }
+    else return i;
+    for (std::size_t k = 1; k <= n; ++k) {
+      if (i + k >= s.size()) return i;
+      const auto t = static_cast<unsigned char>(s[i + k]);
+      if ((t & 0xC0) != 0x80) return i;
+      cp = (cp << 6) | (t & 0x3F);
+    }
+    if (cp < min || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return i;
+    i += n + 1;
+  }
+  return std::string::npos;
+}
+
 void setupParse(CLI::App& app) {
   auto text = std::make_shared<std::string>();
   auto modelPath = std::make_shared<std::string>(srp::language::defaultModelPath());
@@ -27,6 +53,12 @@ void setupParse(CLI::App& app) {
   app.add_option("--name", *name, "task model name for --db (re-using a name makes a new version)")->capture_default_str();
   app.add_flag("--entities", *showEntities, "also print the recognised entities and relations");
   app.callback([=] {
+    if (const std::size_t bad = firstInvalidUtf8(*text); bad != std::string::npos) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "0x%02X", static_cast<unsigned char>((*text)[bad]));
+      throw srp::core::InvalidInputError("the instruction is not valid UTF-8 (byte " + std::to_string(bad) + " is " +
+                                         hex + "); give it as UTF-8 text");
+    }
     const srp::language::InstructionParser parser(*modelPath);
     std::vector<srp::language::PlanStep> known;
     if (!knownPath->empty()) known = srp::language::taskPlanFromJson(srp::core::readJsonFile(*knownPath)).steps;

@@ -15,7 +15,7 @@ namespace {
 
 struct ProgramArgs {
   std::string instruction, demo, kb, calib, db = "task.db", name = "task", report, hand = "marker";
-  bool json = false, quiet = false;
+  bool json = false, quiet = false, allowTruncated = false;
 };
 
 // One progress line per stage on a terminal, redrawn in place; silent otherwise.
@@ -63,6 +63,8 @@ void setupProgram(CLI::App& cmd) {
   cmd.add_option("--hand", a->hand, "Hand detector: marker (AprilTag on the glove) or marker-free")
       ->check(CLI::IsMember({"marker", "marker-free"}))
       ->capture_default_str();
+  cmd.add_flag("--allow-truncated", a->allowTruncated,
+               "Use the frames before the damage of a damaged demonstration rawlog (default: fail, store nothing)");
   cmd.add_flag("--json", a->json, "Print the result as JSON");
   cmd.add_flag("-q,--quiet", a->quiet, "No progress bar");
   cmd.callback([a] {
@@ -74,6 +76,7 @@ void setupProgram(CLI::App& cmd) {
     o.dbPath = a->db;
     o.name = a->name;
     o.reportDir = a->report;
+    o.allowTruncated = a->allowTruncated;
     o.markerFreeHand = a->hand == "marker-free";
     ProgressBar bar(!a->quiet && !a->json);
     o.progress = [&bar](const std::string& s, std::size_t d, std::size_t t) { bar(s, d, t); };

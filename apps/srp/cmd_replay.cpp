@@ -26,13 +26,14 @@ void setupReplay(CLI::App& cmd) {
   cmd.add_option("--export", a->exportDir,
                  "write color_NNNN.png, 16-bit depth_NNNN.png and cam.json here (importable again)");
   cmd.add_option("--depth-scale", a->depthScale_m,
-                 "metres per exported depth unit (default: the rawlog's own unit, lossless)");
+                 "metres per exported depth unit (default: the rawlog's own unit, lossless)")
+      ->check(CLI::Range(1e-6, 1.0));
   cmd.add_option("--video", a->video, "write an MJPG video of the colour frames (.avi)");
-  cmd.add_option("--fps", a->fps, "video frame rate (default: the recording's)");
+  cmd.add_option("--fps", a->fps, "video frame rate (default: the recording's)")->check(CLI::Range(0.1, 1000.0));
   cmd.add_option("--overlay", a->overlayDb,
                  "task database: draw a task model's trajectories, detections and skills on the video and as "
                  "overlay_NNNN.png in --export");
-  cmd.add_option("--task-id", a->taskId, "task model to draw (default: the newest)");
+  cmd.add_option("--task-id", a->taskId, "task model to draw (default: the newest)")->check(srp::app::kDecimalId);
   cmd.add_option("--first-time-id", a->firstTimeId, "TimeId of the rawlog's first frame")->capture_default_str();
   cmd.add_flag("--json", a->json, "print the summary as JSON");
   cmd.footer("Example: srp replay demo.rawlog --export frames/ --video demo.avi --overlay task.db");

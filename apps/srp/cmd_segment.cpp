@@ -77,7 +77,7 @@ void setupSegment(CLI::App& app) {
                  "0,0,0 = not detected)");
   app.add_option("--order", o->order, "Target objects in plan order, comma separated (e.g. cuboid,star)")
       ->delimiter(',');
-  app.add_option("--fps", o->fps, "Frame rate of the table [Hz]")->capture_default_str();
+  app.add_option("--fps", o->fps, "Frame rate of the table [Hz]")->check(CLI::Range(0.1, 1000.0))->capture_default_str();
   app.add_flag("--json", o->json, R"(Print {"objects":[{"name","grasp_frame","release_frame"}]})");
   app.add_option("--write-example", o->writeExample, "Write a synthetic 4-object demo table to this CSV and exit");
   app.add_option("--events", o->events,

@@ -103,7 +103,7 @@ void setupSynthDemo(CLI::App& cmd) {
   cmd.add_option("-o,--out", args->outPath, "output rawlog; the ground truth goes next to it as <name>.gt.json");
   cmd.add_option("--seed", args->seed, "randomisation seed (default: the scene's)");
   cmd.add_flag("--no-randomise", args->noRandomise, "use the scene exactly as given, nominal speed");
-  cmd.add_option("--speed", args->speed, "demonstrator speed factor (>1 faster)");
+  cmd.add_option("--speed", args->speed, "demonstrator speed factor (>1 faster)")->check(CLI::Range(0.05, 20.0));
   cmd.add_flag("--clean", args->clean, "no sensor noise or invalid pixels");
   cmd.add_flag("--motion-blur", args->motionBlur, "blend each colour frame with the previous one");
   cmd.add_option("--colour-noise-block", args->colourNoiseBlock,
@@ -112,9 +112,9 @@ void setupSynthDemo(CLI::App& cmd) {
   cmd.add_option("--depth-noise-block", args->depthNoiseBlock,
                  "depth noise and dropout drawn per block of N x N pixels (default 1: per pixel; 2: smaller rawlog)")
       ->check(CLI::PositiveNumber);
-  cmd.add_option("--width", args->width, "image width (default: the scene camera's)");
-  cmd.add_option("--height", args->height, "image height (default: the scene camera's)");
-  cmd.add_option("--max-frames", args->maxFrames, "stop after this many frames");
+  cmd.add_option("--width", args->width, "image width (default: the scene camera's)")->check(CLI::Range(16, 16384));
+  cmd.add_option("--height", args->height, "image height (default: the scene camera's)")->check(CLI::Range(16, 16384));
+  cmd.add_option("--max-frames", args->maxFrames, "stop after this many frames")->check(CLI::PositiveNumber);
   cmd.add_option("--contact-sheet", args->contactSheet, "write a PNG of a few frames (colour and depth)");
   cmd.add_option("--depth-camera", args->depthCamera,
                  "JSON of a depth camera of its own ({\"intrinsics\": {fx, fy, cx, cy, width, height}, "

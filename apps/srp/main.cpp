@@ -23,16 +23,30 @@ int main(int argc, char** argv) {
     spec.setup(*sub);
   }
 
-  // CLI11 reports an unknown command as "A subcommand is required"; name it and the valid ones.
-  const auto isCommand = [&](const std::string& name) {
-    return std::any_of(registry.begin(), registry.end(), [&](const auto& spec) { return spec.name == name; });
-  };
-  if (argc > 1 && argv[1][0] != '-' && !isCommand(argv[1])) {
-    std::string names;
-    for (const auto& spec : registry) names += (names.empty() ? "" : ", ") + spec.name;
-    std::cerr << "srp: unknown command '" << argv[1] << "'; the commands are: " << names
-              << ". Run 'srp --help' for what each does.\n";
-    return 2;
+  // An unknown command name: CLI11 would say only "A subcommand is required"
+  // or "argument was not expected"; name it and list the commands instead.
+  {
+    CLI::App* level = &app;
+    std::string path;
+    for (int i = 1; i < argc; ++i) {
+      const std::string token = argv[i];
+      if (token.empty() || token[0] == '-') break;  // options (and their values) are CLI11's
+      const auto subs = level->get_subcommands([](CLI::App*) { return true; });
+      const auto it = std::find_if(subs.begin(), subs.end(), [&](CLI::App* s) { return s->get_name() == token; });
+      if (it != subs.end()) {
+        level = *it;
+        path += " " + token;
+        continue;
+      }
+      if (level->get_require_subcommand_min() > 0) {
+        std::string names;
+        for (const CLI::App* s : subs) names += (names.empty() ? "" : ", ") + s->get_name();
+        std::cerr << "srp" << path << ": error: unknown command '" << token << "' (commands: " << names
+                  << "; see 'srp" << path << " --help')\n";
+        return 2;  // a usage error, like CLI11's parse errors below
+      }
+      break;
+    }
   }
 
   try {

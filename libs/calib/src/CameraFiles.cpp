@@ -59,13 +59,17 @@ CameraCalibration loadCameraXml(const std::string& path, const std::string& came
   vpXmlParserCamera parser;
   vpCameraParameters cam;
   bool ok = false;
-  {
+  try {
     SilenceStdout quiet;
     ok = parser.parse(cam, path, name, vpCameraParameters::perspectiveProjWithDistortion) ==
          vpXmlParserCamera::SEQUENCE_OK;
     if (!ok)
       ok = parser.parse(cam, path, name, vpCameraParameters::perspectiveProjWithoutDistortion) ==
            vpXmlParserCamera::SEQUENCE_OK;
+  } catch (const vpException& e) {
+    // ViSP refuses a px of 0 (also what it makes of "abc") with a bare "Camera parameter px = 0".
+    throw core::FileError(path, "camera '" + name + "': px, py, u0, v0 must be numbers, px and py positive [px] (ViSP: " +
+                                    e.getStringMessage() + ")");
   }
   if (!ok)
     throw core::FileError(path, "camera '" + name +

@@ -12,8 +12,13 @@ nlohmann::json readJsonFile(const std::string& path) {
   if (!in) throw FileError(path, "cannot open JSON file (does it exist and is it readable?)");
   try {
     return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw FileError(path, std::string("malformed JSON: ") + e.what());
+  } catch (const nlohmann::json::exception& e) {
+    // Parse errors, numbers out of range (1e999) and invalid UTF-8 alike;
+    // without nlohmann's "[json.exception.<kind>.<id>] " prefix.
+    std::string what = e.what();
+    if (what.rfind("[json.exception.", 0) == 0 && what.find("] ") != std::string::npos)
+      what = what.substr(what.find("] ") + 2);
+    throw FileError(path, "malformed JSON: " + what + " (fix the file; numbers must be finite doubles)");
   }
 }
 
@@ -60,9 +65,14 @@ Pose3 poseFromJson(const nlohmann::json& j, const std::string& context) {
     const auto& q = requireField(j, "quaternion", context);
     if (t.size() != 3 || q.size() != 4)
       throw InvalidInputError(context + ": 'translation' needs 3 numbers, 'quaternion' 4 (w,x,y,z)");
-    return makePose({t[0].get<double>(), t[1].get<double>(), t[2].get<double>()},
-                    Eigen::Quaterniond(q[0].get<double>(), q[1].get<double>(), q[2].get<double>(),
-                                       q[3].get<double>()));
+    const Eigen::Vector3d p(t[0].get<double>(), t[1].get<double>(), t[2].get<double>());
+    const Eigen::Quaterniond rotation(q[0].get<double>(), q[1].get<double>(), q[2].get<double>(), q[3].get<double>());
+    if (!p.allFinite()) throw InvalidInputError(context + ": 'translation' must be 3 finite numbers [m]");
+    // A quaternion of (almost) zero length is no rotation; normalising it gives NaN.
+    constexpr double kMinQuaternionNorm = 1e-6;
+    if (!rotation.coeffs().allFinite() || !(rotation.norm() > kMinQuaternionNorm))
+      throw InvalidInputError(context + ": 'quaternion' (w,x,y,z) must be finite and not zero (e.g. [1, 0, 0, 0])");
+    return makePose(p, rotation);
   } catch (const nlohmann::json::exception& e) {
     throw InvalidInputError(context + ": bad pose (" + e.what() + ")");
   }

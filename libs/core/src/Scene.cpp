@@ -51,7 +51,11 @@ Scene Scene::fromJson(const nlohmann::json& j, const std::string& ctx, const std
     if (table.contains("rgb")) s.tableRgb = vec3(table.at("rgb"), ctx + ": field 'table.rgb'");
 
     const auto& camera = requireField(j, "camera", ctx);
-    s.intrinsics = requireField(camera, "intrinsics", ctx + ": camera").get<CameraIntrinsics>();
+    try {
+      s.intrinsics = requireField(camera, "intrinsics", ctx + ": camera").get<CameraIntrinsics>();
+    } catch (const InvalidInputError& e) {
+      throw InvalidInputError(ctx + ": " + e.what());  // name the file, not only the field
+    }
     s.intrinsics.validate(ctx + ": camera.intrinsics");
     s.fps = camera.value("fps", 30.0);
     if (!(s.fps > 0)) throw InvalidInputError(ctx + ": field 'camera.fps' must be positive");

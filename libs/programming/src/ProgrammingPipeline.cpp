@@ -91,6 +91,23 @@ double frameRateOf(const core::PositionTrajectory& samples) {
 }
 
 namespace {
+// Creates the report folder and writes (and removes) a probe file in it, so
+// an unusable folder fails the run before anything is computed or stored.
+void checkReportFolder(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir))
+    throw core::FileError(dir, "cannot create the report folder (" + (ec ? ec.message() : std::string("not a folder")) +
+                                   "); nothing was stored. Give a writable folder with --report");
+  const std::string probe = dir + "/.srp_write_probe";
+  {
+    std::ofstream out(probe);
+    if (!(out << "probe") || !out.flush())
+      throw core::FileError(dir, "cannot write in the report folder (permissions? disk full?); nothing was stored");
+  }
+  std::filesystem::remove(probe, ec);
+}
+
 double peakResidentMemory_MB() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
@@ -106,8 +123,10 @@ ProgramResult programTask(const ProgrammingOptions& o) {
   };
   if (o.name.empty()) throw InvalidInputError("a task model needs a name (--name)");
   if (o.demoPath.empty()) throw InvalidInputError("no demonstration given (--demo demo.rawlog)");
-  // Open the database first: a bad file fails before minutes of perception.
+  // Open the database and check the report folder first: a bad file fails
+  // before minutes of perception.
   { auto db = taskdb::TaskDatabase::open(o.dbPath); }
+  if (!o.reportDir.empty()) checkReportFolder(o.reportDir);
 
   // 1. Language.
   clock.start("language");
@@ -158,7 +177,12 @@ ProgramResult programTask(const ProgrammingOptions& o) {
       perceiver.add(*f);
       progress("environment", static_cast<std::size_t>(perceiver.framesAdded()), 0);
     }
-    if (reader.damage()) throw core::FileError(o.demoPath, "unreadable demonstration, " + *reader.damage());
+    if (reader.damage() && !o.allowTruncated)
+      throw core::FileError(o.demoPath, "unreadable demonstration, " + *reader.damage() +
+                                            "; nothing was stored (--allow-truncated uses the frames before the damage)");
+    if (reader.damage())
+      result.warnings.push_back("demonstration " + *reader.damage() + "; using the " +
+                                std::to_string(reader.framesRead()) + " frames before it (--allow-truncated)");
     if (perceiver.framesAdded() == 0)
       throw core::FileError(o.demoPath, "no RGB-D frames with depth in this rawlog; record one with 'srp record' "
                                         "or make one with 'srp synth-demo'");
@@ -224,19 +248,23 @@ ProgramResult programTask(const ProgrammingOptions& o) {
   }
   progress("motion", 1, 1);
 
-  // 6. One transaction.
+  // 6. One transaction. The report is written inside it, before COMMIT: a
+  // report that cannot be written rolls the model back (all or nothing).
   clock.start("store");
   {
     auto db = taskdb::TaskDatabase::open(o.dbPath);
     taskdb::TaskModelStore store(db);
-    result.taskModelId = store.write(model, [&](std::size_t done, std::size_t total) { progress("store", done, total); });
-    result.version = store.read(result.taskModelId).info.version;
     result.name = o.name;
+    result.taskModelId = store.write(
+        model, [&](std::size_t done, std::size_t total) { progress("store", done, total); },
+        [&](int id, int version) {
+          result.taskModelId = id;
+          result.version = version;
+          clock.stop();
+          if (!o.reportDir.empty())
+            result.reportFiles = writeProgramReport(o.reportDir, result, seen, segmentation, skills);
+        });
   }
-  clock.stop();
-
-  if (!o.reportDir.empty())
-    result.reportFiles = writeProgramReport(o.reportDir, result, seen, segmentation, skills);
   result.peakResidentMemory_MB = peakResidentMemory_MB();
   return result;
 }

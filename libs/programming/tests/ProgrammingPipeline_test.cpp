@@ -202,3 +202,73 @@ TEST(ProgrammingPipeline, KilledAtAnyStageLeavesTheDatabaseAsBefore) {
     EXPECT_EQ(modelCount(db), 1u) << "killed in stage " << stage;
   }
 }
+
+// Issue 21: a run whose report cannot be written stores nothing, whether the
+// folder is unusable from the start or the report fails after the model is in.
+TEST(ProgrammingPipeline, UnwritableReportStoresNothing) {
+  const std::string db = freshDb("report");
+  {
+    auto d = taskdb::TaskDatabase::open(db);
+    taskdb::TaskModel m;
+    m.info.name = "previous";
+    taskdb::TaskModelStore(d).write(m);
+  }
+  // A folder under a regular file cannot be created, even by root.
+  const auto file = workDir() / "a_regular_file";
+  std::ofstream(file) << "x";
+  auto o = options(db);
+  o.reportDir = (file / "report").string();
+  bool perceptionStarted = false;
+  o.progress = [&](const std::string& stage, std::size_t, std::size_t) {
+    if (stage == "environment") perceptionStarted = true;
+  };
+  try {
+    programming::programTask(o);
+    ADD_FAILURE() << "a report folder under a regular file was accepted";
+  } catch (const core::FileError& e) {
+    EXPECT_NE(std::string(e.what()).find("report folder"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(perceptionStarted) << "the report folder must be checked before the demonstration is read";
+  EXPECT_EQ(modelCount(db), 1u);
+
+  // The folder is fine but the first figure's name is taken by a folder: the
+  // report fails after every row is written, and the model is rolled back.
+  const auto dir = workDir() / "report_blocked";
+  std::filesystem::create_directories(dir / "hand_trajectory.png");
+  o = options(db);
+  o.reportDir = dir.string();
+  EXPECT_THROW(programming::programTask(o), core::FileError);
+  EXPECT_EQ(modelCount(db), 1u);
+
+  // And with a usable folder the same run stores exactly one model.
+  o.reportDir = (workDir() / "report_ok").string();
+  const auto r = programming::programTask(o);
+  EXPECT_EQ(modelCount(db), 2u);
+  EXPECT_EQ(r.version, 1);
+  EXPECT_TRUE(std::filesystem::exists(workDir() / "report_ok" / "summary.md"));
+}
+
+// Issue 21: a damaged demonstration fails the run (nothing stored) unless the
+// caller allows the frames before the damage.
+TEST(ProgrammingPipeline, DamagedDemonstrationStoresNothingUnlessAllowed) {
+  const std::string db = freshDb("damaged");
+  const std::string cut = (workDir() / "cut.rawlog").string();
+  std::filesystem::copy_file(demoPath(), cut, std::filesystem::copy_options::overwrite_existing);
+  std::filesystem::resize_file(cut, std::filesystem::file_size(cut) * 97 / 100);
+  auto o = options(db);
+  o.demoPath = cut;
+  try {
+    programming::programTask(o);
+    ADD_FAILURE() << "a truncated demonstration was programmed";
+  } catch (const core::FileError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("damaged after frame"), std::string::npos) << what;
+    EXPECT_NE(what.find("nothing was stored"), std::string::npos) << what;
+  }
+  EXPECT_EQ(modelCount(db), 0u);
+  o.allowTruncated = true;
+  const auto r = programming::programTask(o);
+  EXPECT_EQ(modelCount(db), 1u);
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_NE(r.warnings.back().find("--allow-truncated"), std::string::npos) << r.warnings.back();
+}

@@ -1,11 +1,13 @@
 #include "srp/rawlog/RawlogReader.h"
 
-#include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CObservationComment.h>
 #include <mrpt/serialization/CArchive.h>
 #include <mrpt/serialization/CSerializable.h>
 
+#include <cmath>
 #include <condition_variable>
+#include <cstring>
 #include <deque>
 #include <exception>
 #include <filesystem>
@@ -13,6 +15,7 @@
 #include <thread>
 
 #include "srp/core/Error.h"
+#include "RawlogSource.h"
 #include "srp/rawlog/ObservationToFrame.h"
 
 namespace srp::rawlog {
@@ -28,8 +31,46 @@ struct RawlogReader::Decoded {
   std::exception_ptr error;
 };
 
+namespace {
+
+// Decode a whole gzip member (a frame, for srp's rawlogs) before parsing it:
+// its CRC is checked and its length known before MRPT allocates anything.
+constexpr std::size_t kPrefetchBytes = std::size_t(64) << 20;
+
+// MRPT exceptions start with a banner line; the reason is on "Message:".
+std::string reasonOf(const std::string& what) {
+  std::string reason = what;
+  if (const auto m = reason.find("Message:"); m != std::string::npos) reason = reason.substr(m + 8);
+  reason.erase(0, reason.find_first_not_of(" \t"));
+  if (const auto nl = reason.find('\n'); nl != std::string::npos) reason = reason.substr(0, nl);
+  return detail::printable(reason);
+}
+
+// What srp needs of a scan, checked after MRPT read it and before converting it.
+std::optional<std::string> checkScan(const mrpt::obs::CObservation3DRangeScan& obs) {
+  const auto rows = obs.rangeImage.rows(), cols = obs.rangeImage.cols();
+  if (rows < 1 || cols < 1 || rows > static_cast<int>(detail::kMaxImageSide_px) ||
+      cols > static_cast<int>(detail::kMaxImageSide_px))
+    return "depth image of " + std::to_string(cols) + " x " + std::to_string(rows) + " px";
+  if (!std::isfinite(obs.rangeUnits) || obs.rangeUnits <= 0.0f) return "depth unit " + std::to_string(obs.rangeUnits);
+  const auto& cam = obs.cameraParams;
+  for (const double v : {cam.fx(), cam.fy(), cam.cx(), cam.cy()})
+    if (!std::isfinite(v)) return std::string("camera intrinsics are not finite");
+  if (obs.hasIntensityImage && !obs.intensityImage.isEmpty()) {
+    const auto w = obs.intensityImage.getWidth(), h = obs.intensityImage.getHeight();
+    if (w < 1 || h < 1 || w > detail::kMaxImageSide_px || h > detail::kMaxImageSide_px)
+      return "colour image of " + std::to_string(w) + " x " + std::to_string(h) + " px";
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 struct RawlogReader::Impl {
-  mrpt::io::CFileGZInputStream in;
+  std::unique_ptr<detail::RawlogSource> in;
+  bool srpFormat = false;      // the file starts with srp's start marker: it must end with the end marker
+  bool endMarkerSeen = false;
+  int objects = 0;
   bool decoderEnded = false;   // the decoder saw the end (or damage)
   bool consumerEnded = false;  // next() returned the end
   Decoded state;               // the decoder's running counters
@@ -47,7 +88,7 @@ RawlogReader::RawlogReader(const std::string& path, int readAheadFrames)
     : impl_(std::make_unique<Impl>()), path_(path) {
   if (!std::filesystem::is_regular_file(path))
     throw core::FileError(path, "rawlog not found (record one with 'srp record' or make one with 'srp synth-demo')");
-  if (!impl_->in.open(path)) throw core::FileError(path, "cannot open rawlog (permissions?)");
+  impl_->in = std::make_unique<detail::RawlogSource>(path);
   if (readAheadFrames > 0) startReadAhead(readAheadFrames);
 }
 
@@ -91,34 +132,91 @@ void RawlogReader::startReadAhead(int frames) {
 RawlogReader::Decoded RawlogReader::decodeNext() {
   Decoded& st = impl_->state;
   Decoded out;
-  while (!impl_->decoderEnded) {
+  Impl& im = *impl_;
+  detail::RawlogSource& src = *im.in;
+  const auto fail = [&](const std::string& reason, std::uint64_t fileOffset, std::uint64_t dataOffset) {
+    im.decoderEnded = true;
+    std::string where = "at byte " + std::to_string(fileOffset) + " of the file";
+    if (src.gzip()) where += " (the gzip member holding it; byte " + std::to_string(dataOffset) + " of the decompressed data)";
+    st.damage = "damaged after frame " + std::to_string(st.framesRead) + " (" + std::to_string(st.framesRead) +
+                " frames readable): frame " + std::to_string(st.framesRead) + " " + where + ": " + reason;
+  };
+  while (!im.decoderEnded) {
+    src.prefetch(kPrefetchBytes);
+    const std::uint64_t fileOffset = src.fileOffset(), dataOffset = src.getPosition();
+    if (src.error()) {
+      // The member did not decode (corrupt data, CRC mismatch, cut short):
+      // none of its bytes are trusted, even those zlib produced before.
+      fail(*src.error(), fileOffset, dataOffset);
+      break;
+    }
+    if (src.available() == 0) {
+      if (im.srpFormat && !im.endMarkerSeen) {
+        fail("the file ends without srp's end marker (truncated; it was not closed by its writer)", fileOffset,
+             dataOffset);
+      } else {
+        im.decoderEnded = true;  // a clean end: nothing was left to read
+      }
+      break;
+    }
+    if (im.endMarkerSeen) {
+      fail("data after srp's end marker", fileOffset, dataOffset);
+      break;
+    }
+    if (auto problem = detail::prescanObject(src.peek(), src.available(), src.bounded())) {
+      fail(*problem, fileOffset, dataOffset);
+      break;
+    }
     mrpt::serialization::CSerializable::Ptr obj;
     try {
-      auto arch = mrpt::serialization::archiveFrom(impl_->in);
+      auto arch = mrpt::serialization::archiveFrom(src);
       arch >> obj;
-    } catch (const mrpt::serialization::CExceptionEOF&) {
-      impl_->decoderEnded = true;
+    } catch (const std::bad_alloc&) {
+      fail("the object declares more memory than this machine has (a damaged size field)", fileOffset, dataOffset);
       break;
     } catch (const std::exception& e) {
-      impl_->decoderEnded = true;
-      std::string reason = e.what();
-      // MRPT exceptions start with a banner line; the reason is on "Message:".
-      if (const auto m = reason.find("Message:"); m != std::string::npos) reason = reason.substr(m + 8);
-      reason.erase(0, reason.find_first_not_of(" \t"));
-      if (const auto nl = reason.find('\n'); nl != std::string::npos) reason = reason.substr(0, nl);
-      st.damage = "damaged after frame " + std::to_string(st.framesRead) + " (" + std::to_string(st.framesRead) +
-                  " frames readable): " + reason;
+      // MRPT reports any failure inside an object as "EOF"; an object had
+      // started here, so it is damage (a gzip error says what it was).
+      fail(src.error() ? *src.error() : reasonOf(e.what()), fileOffset, dataOffset);
       break;
+    }
+    const bool first = im.objects++ == 0;
+    if (auto comment = std::dynamic_pointer_cast<mrpt::obs::CObservationComment>(obj)) {
+      const std::string& text = comment->text;
+      if (first && text == detail::kStartMarker) {
+        im.srpFormat = true;
+        continue;
+      }
+      if (text.rfind(detail::kEndMarker, 0) == 0) {
+        const std::string count = text.substr(std::strlen(detail::kEndMarker));
+        if (count != std::to_string(st.framesRead)) {
+          fail("the end marker counts " + detail::printable(count, 20) + " frames but " +
+                   std::to_string(st.framesRead) + " were read (frames lost)",
+               fileOffset, dataOffset);
+          break;
+        }
+        im.endMarkerSeen = true;
+        continue;
+      }
     }
     auto obs = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obj);
     if (!obs) {
       ++st.objectsSkipped;
       continue;
     }
-    obs->load();
+    try {
+      obs->load();
+    } catch (const std::exception& e) {
+      fail("external image: " + reasonOf(e.what()), fileOffset, dataOffset);
+      break;
+    }
     if (!obs->hasRangeImage) {
       ++st.objectsSkipped;
       continue;
+    }
+    if (auto problem = checkScan(*obs)) {
+      fail(*problem + " (a damaged field)", fileOffset, dataOffset);
+      break;
     }
     st.depthUnit_m = static_cast<double>(obs->rangeUnits);
     out.frame = frameFromObservation(*obs, st.framesRead++);

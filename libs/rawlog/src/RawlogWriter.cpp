@@ -3,6 +3,7 @@
 #include <libdeflate.h>
 #include <mrpt/io/CStream.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CObservationComment.h>
 #include <mrpt/serialization/CArchive.h>
 
 #include <atomic>
@@ -18,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+#include "RawlogSource.h"
 #include "srp/core/Error.h"
 
 namespace srp::rawlog {
@@ -88,20 +90,34 @@ class FrameEncoder {
     obs->hasIntensityImage = true;
     obs->intensityImage = mrpt::img::CImage(frame.colour_bgr8, mrpt::img::SHALLOW_COPY);
     obs->intensityImageChannel = mrpt::obs::CObservation3DRangeScan::CH_VISIBLE;
+    return compress(*obs);
+  }
+
+  /// The gzip member of a CObservationComment (srp's start and end markers).
+  const std::vector<std::uint8_t>& encodeComment(const std::string& text) {
+    auto c = mrpt::obs::CObservationComment::Create();
+    c->sensorLabel = "srp";
+    c->text = text;
+    return compress(*c);
+  }
+
+ private:
+  // One object, serialised and compressed into one gzip member (whose CRC32
+  // lets the reader check the frame before parsing it).
+  const std::vector<std::uint8_t>& compress(const mrpt::serialization::CSerializable& object) {
     {
       VectorOutStream stream(serialised_);
       auto arch = mrpt::serialization::archiveFrom(stream);
-      arch << *obs;
+      arch << object;
     }
     compressed_.resize(libdeflate_gzip_compress_bound(compressor_, serialised_.size()));
     const size_t n = libdeflate_gzip_compress(compressor_, serialised_.data(), serialised_.size(), compressed_.data(),
                                               compressed_.size());
-    if (n == 0) throw core::Error("rawlog: gzip compression of frame " + std::to_string(frame.index) + " failed");
+    if (n == 0) throw core::Error("rawlog: gzip compression failed");
     compressed_.resize(n);
     return compressed_;
   }
 
- private:
   double depthUnit_m_;
   libdeflate_compressor* compressor_;
   std::vector<std::uint8_t> serialised_, compressed_;
@@ -113,7 +129,8 @@ struct RawlogWriter::Impl {
   std::FILE* file = nullptr;
   double depthUnit_m = 1e-4;
   int level = 1;
-  std::unique_ptr<FrameEncoder> syncEncoder;  // encoderThreads == 0
+  std::unique_ptr<FrameEncoder> syncEncoder;    // encoderThreads == 0
+  std::unique_ptr<FrameEncoder> markerEncoder;  // encoderThreads > 0: for the end marker
   std::uint64_t bytes = 0;
   double cpu_s = 0.0;
 
@@ -183,9 +200,11 @@ RawlogWriter::RawlogWriter(const std::string& path, double depthUnit_m, int comp
   mrpt::img::CImage::DISABLE_JPEG_COMPRESSION(true);  // colour raw, lossless
   impl_->file = std::fopen(path.c_str(), "wb");
   if (!impl_->file) throw core::FileError(path, "cannot create rawlog (is the folder there and writable?)");
-  if (encoderThreads == 0) {
-    impl_->syncEncoder = std::make_unique<FrameEncoder>(depthUnit_m, compressionLevel);
-  } else {
+  impl_->syncEncoder = std::make_unique<FrameEncoder>(depthUnit_m, compressionLevel);
+  // The start marker tells readers that this file ends with an end marker.
+  impl_->append(impl_->syncEncoder->encodeComment(detail::kStartMarker), path_);
+  if (encoderThreads > 0) {
+    impl_->markerEncoder = std::move(impl_->syncEncoder);
     impl_->maxQueued = static_cast<std::size_t>(encoderThreads) + 2;
     for (int i = 0; i < encoderThreads; ++i) impl_->workers.emplace_back([this, path] { impl_->workerLoop(path); });
   }
@@ -239,10 +258,25 @@ void RawlogWriter::close() {
   }
   for (auto& w : impl_->workers)
     if (w.joinable()) w.join();
+  std::exception_ptr markerError;
+  {
+    std::lock_guard<std::mutex> lock(impl_->mutex);
+    // The end marker with the frame count, only when every frame is in: a
+    // file without it reads as truncated.
+    if (!impl_->error) {
+      try {
+        FrameEncoder& enc = impl_->syncEncoder ? *impl_->syncEncoder : *impl_->markerEncoder;
+        impl_->append(enc.encodeComment(detail::kEndMarker + std::to_string(framesWritten_)), path_);
+      } catch (...) {
+        markerError = std::current_exception();
+      }
+    }
+  }
   const bool flushed = std::fclose(impl_->file) == 0;
   impl_->file = nullptr;
   std::lock_guard<std::mutex> lock(impl_->mutex);
   impl_->rethrowLocked();
+  if (markerError) std::rethrow_exception(markerError);
   if (!flushed) throw core::FileError(path_, "cannot finish the rawlog (disk full?)");
 }
 

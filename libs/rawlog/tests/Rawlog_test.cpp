@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/obs/CObservationComment.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/serialization/CArchive.h>
@@ -162,6 +163,7 @@ TEST(Rawlog, MrptReadsTheConcatenatedGzipMembers) {
   mrpt::io::CFileGZInputStream in(path);
   auto arch = mrpt::serialization::archiveFrom(in);
   int observations = 0;
+  std::vector<std::string> comments;
   for (;;) {
     mrpt::serialization::CSerializable::Ptr obj;
     try {
@@ -169,12 +171,19 @@ TEST(Rawlog, MrptReadsTheConcatenatedGzipMembers) {
     } catch (const mrpt::serialization::CExceptionEOF&) {
       break;
     }
+    // srp's start and end markers are MRPT comments, readable by MRPT's tools.
+    if (const auto c = std::dynamic_pointer_cast<mrpt::obs::CObservationComment>(obj)) {
+      comments.push_back(c->text);
+      continue;
+    }
     const auto obs = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obj);
     ASSERT_TRUE(obs) << "object " << observations << " is not a CObservation3DRangeScan";
     EXPECT_EQ(obs->rangeImage.cols(), kK.width_px);
     EXPECT_EQ(obs->intensityImage.getWidth(), static_cast<size_t>(kK.width_px));
     ++observations;
   }
+  ASSERT_EQ(comments.size(), 2u);
+  EXPECT_EQ(comments.back(), "srp-rawlog end: frames=3");
   EXPECT_EQ(observations, 3);
   std::filesystem::remove(path);
 }

@@ -32,7 +32,7 @@ void writeChunked(Dao& dao, int id, const std::vector<Row>& rows, std::size_t& d
 }
 }  // namespace
 
-int TaskModelStore::write(const TaskModel& m, const Progress& progress) {
+int TaskModelStore::write(const TaskModel& m, const Progress& progress, const BeforeCommit& beforeCommit) {
   ScopedTransaction tx(db_);
   try {
     TaskModelDao models(db_);
@@ -58,6 +58,7 @@ int TaskModelStore::write(const TaskModel& m, const Progress& progress) {
     writeChunked(hands, id, m.handPositions, done, total, progress);
     ProductPoseDao poses(db_);
     writeChunked(poses, id, m.productPoses, done, total, progress);
+    if (beforeCommit) beforeCommit(id, info.version);
     tx.commit();  // deferred foreign keys are checked here
     return id;
   } catch (const SQLite::Exception& e) {
@@ -65,7 +66,23 @@ int TaskModelStore::write(const TaskModel& m, const Progress& progress) {
   }
 }
 
+namespace {
+// A page SQLite cannot read mid-query: say which file and what to do.
+[[noreturn]] void rethrowUnreadable(const std::string& path, const SQLite::Exception& e) {
+  throw core::FileError(path, std::string("cannot read the task database (") + e.what() +
+                                  "); if it is corrupt, restore it from a backup");
+}
+}  // namespace
+
 TaskModel TaskModelStore::read(int id) const {
+  try {
+    return readUnchecked(id);
+  } catch (const SQLite::Exception& e) {
+    rethrowUnreadable(db_.path(), e);
+  }
+}
+
+TaskModel TaskModelStore::readUnchecked(int id) const {
   TaskModel m;
   auto info = TaskModelDao(db_).get(id);
   if (!info)
@@ -84,14 +101,23 @@ TaskModel TaskModelStore::read(int id) const {
     m.handPositions = HandPositionDao(db_).list(id);
     m.skills = SkillDao(db_).list(id);
   } catch (...) {
-    db_.connection().exec("ROLLBACK");
+    try {
+      db_.connection().exec("ROLLBACK");
+    } catch (...) {
+    }
     throw;
   }
   db_.connection().exec("COMMIT");
   return m;
 }
 
-std::vector<TaskModelInfo> TaskModelStore::list() const { return TaskModelDao(db_).list(); }
+std::vector<TaskModelInfo> TaskModelStore::list() const {
+  try {
+    return TaskModelDao(db_).list();
+  } catch (const SQLite::Exception& e) {
+    rethrowUnreadable(db_.path(), e);
+  }
+}
 
 void TaskModelStore::remove(int id) {
   ScopedTransaction tx(db_);

@@ -11,6 +11,8 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <random>
 #include <thread>
 
 #include "TestDb.h"
@@ -213,4 +215,222 @@ TEST(Robustness, BulkInsertOf100kPoseRows) {
   ASSERT_EQ(back.productPoses.size(), 100000u);
   EXPECT_EQ(back.productPoses[54321], m.productPoses[54321]);
   EXPECT_EQ(back.handPositions.size(), 2000u);
+}
+
+// ---- Issue 21: concurrent first use, read-only use, foreign files, messages ----
+
+namespace {
+std::string fileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+bool exists(const std::string& path) { return std::filesystem::exists(path); }
+}  // namespace
+
+TEST(Robustness, TwoWritersOnANewFileBothStoreTheirWork) {
+  constexpr int kRounds = 30;
+  test::TempDbPath path("first_use");
+  for (int round = 0; round < kRounds; ++round) {
+    for (const char* suffix : {"", "-wal", "-shm", "-journal"}) std::filesystem::remove(path.str() + suffix);
+    // Two processes (file locks are per process) open the same new file at once.
+    pid_t children[2];
+    for (int w = 0; w < 2; ++w) {
+      children[w] = fork();
+      ASSERT_GE(children[w], 0);
+      if (children[w] == 0) {
+        try {
+          auto db = TaskDatabase::open(path.str());
+          TaskModelStore(db).write(test::bulkModel("writer" + std::to_string(w), 50, 2));
+          _exit(0);
+        } catch (const std::exception& e) {
+          std::fprintf(stderr, "writer %d: %s\n", w, e.what());
+          _exit(1);
+        }
+      }
+    }
+    for (const pid_t child : children) {
+      int status = 0;
+      waitpid(child, &status, 0);
+      ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "round " << round << ": a writer failed";
+    }
+    auto db = TaskDatabase::open(path.str(), TaskDatabase::Mode::ReadOnly);
+    const auto models = TaskModelStore(db).list();
+    ASSERT_EQ(models.size(), 2u) << "round " << round;
+    for (const auto& m : models) EXPECT_EQ(TaskModelStore(db).read(m.id).productPoses.size(), 100u);
+  }
+}
+
+TEST(Robustness, ReadOnlyOpenWritesNothing) {
+  test::TempDbPath path("readonly");
+  {
+    auto db = TaskDatabase::open(path.str());
+    TaskModelStore(db).write(test::bulkModel("kept", 100, 2));
+  }
+  ASSERT_FALSE(exists(path.str() + "-wal")) << "the last writer's close checkpoints and removes the WAL";
+  const std::string before = fileBytes(path.str());
+  const auto mtime = std::filesystem::last_write_time(path.str());
+  {
+    auto db = TaskDatabase::open(path.str(), TaskDatabase::Mode::ReadOnly);
+    TaskModelStore store(db);
+    ASSERT_EQ(store.list().size(), 1u);
+    EXPECT_EQ(store.read(store.list()[0].id).handPositions.size(), 100u);
+    EXPECT_THROW(db.connection().exec("DELETE FROM TaskModels"), SQLite::Exception) << "opened with SQLITE_OPEN_READONLY";
+  }
+  EXPECT_EQ(fileBytes(path.str()), before);
+  EXPECT_EQ(std::filesystem::last_write_time(path.str()), mtime);
+  // SQLite may leave an empty -wal beside a WAL database a reader opened (a
+  // read-only connection cannot remove it), but nothing is written to it.
+  if (exists(path.str() + "-wal")) EXPECT_EQ(std::filesystem::file_size(path.str() + "-wal"), 0u);
+
+  // A database in rollback-journal mode stays so: a read-only open switches nothing.
+  { SQLite::Database raw(path.str(), SQLite::OPEN_READWRITE); raw.exec("PRAGMA journal_mode = DELETE"); }
+  const std::string rollback = fileBytes(path.str());
+  ASSERT_EQ(rollback[18], 1) << "file format byte: 1 = rollback journal, 2 = WAL";
+  { auto db = TaskDatabase::open(path.str(), TaskDatabase::Mode::ReadOnly); TaskModelStore(db).list(); }
+  EXPECT_EQ(fileBytes(path.str()), rollback);
+}
+
+TEST(Robustness, ReadOnlyOpenWorksInAReadOnlyFolder) {
+  // Permission bits do not stop root, so this case needs an ordinary user.
+  if (geteuid() == 0) GTEST_SKIP() << "running as root: folder permissions cannot be tested (ReadOnlyOpenWritesNothing covers the rest)";
+  const auto dir = std::filesystem::temp_directory_path() / ("srp_taskdb_rofolder_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "task.db").string();
+  {
+    auto db = TaskDatabase::open(path);
+    TaskModelStore(db).write(test::bulkModel("kept", 10, 1));
+  }
+  std::filesystem::permissions(dir, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+  std::string error;
+  std::size_t count = 0;
+  try {
+    auto db = TaskDatabase::open(path, TaskDatabase::Mode::ReadOnly);
+    count = TaskModelStore(db).list().size();
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  std::filesystem::permissions(dir, std::filesystem::perms::owner_all);
+  std::filesystem::remove_all(dir);
+  EXPECT_EQ(error, "");
+  EXPECT_EQ(count, 1u);
+}
+
+TEST(Robustness, ForeignSqliteFileIsRefusedAndLeftUnchanged) {
+  test::TempDbPath path("foreign");
+  {
+    SQLite::Database raw(path.str(), SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE);
+    raw.exec("CREATE TABLE Customers (id INTEGER PRIMARY KEY, name TEXT); INSERT INTO Customers VALUES (1, 'ada')");
+  }
+  const std::string before = fileBytes(path.str());
+  for (const auto mode : {TaskDatabase::Mode::ReadWrite, TaskDatabase::Mode::ReadOnly}) {
+    try {
+      TaskDatabase::open(path.str(), mode);
+      ADD_FAILURE() << "another application's SQLite file was accepted";
+    } catch (const FileError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("not a task database"), std::string::npos) << what;
+      EXPECT_NE(what.find("Customers"), std::string::npos) << what;
+    }
+  }
+  EXPECT_EQ(fileBytes(path.str()), before) << "no tables added, no switch to WAL";
+  EXPECT_FALSE(exists(path.str() + "-wal"));
+
+  // An empty file is fine: it becomes a task database.
+  test::TempDbPath empty("empty");
+  std::ofstream(empty.str()).close();
+  EXPECT_EQ(TaskDatabase::open(empty.str()).schemaVersion(), kSchemaVersion);
+}
+
+TEST(Robustness, LockContentionIsReportedAsALockNotAsCorruption) {
+  test::TempDbPath path("locked");
+  { TaskDatabase::open(path.str()); }
+  SQLite::Database holder(path.str(), SQLite::OPEN_READWRITE);
+  holder.exec("BEGIN EXCLUSIVE");
+  constexpr int kShortTimeout_ms = 200;
+  std::string what;
+  try {
+    TaskDatabase::open(path.str(), TaskDatabase::Mode::ReadWrite, kShortTimeout_ms);
+  } catch (const FileError& e) {
+    what = e.what();
+  }
+  EXPECT_NE(what.find("locked by another program"), std::string::npos) << what;
+  EXPECT_NE(what.find("retry"), std::string::npos) << what;
+  EXPECT_EQ(what.find("corrupt"), std::string::npos) << what;
+
+  // A write on an open connection waits, then says the same.
+  holder.exec("ROLLBACK");
+  auto db = TaskDatabase::open(path.str(), TaskDatabase::Mode::ReadWrite, kShortTimeout_ms);
+  holder.exec("BEGIN EXCLUSIVE");
+  try {
+    TaskModelStore(db).write(test::bulkModel("late", 5, 1));
+    ADD_FAILURE() << "write under another writer's lock succeeded";
+  } catch (const FileError& e) {
+    EXPECT_NE(std::string(e.what()).find("locked by another program"), std::string::npos) << e.what();
+  }
+  holder.exec("ROLLBACK");
+  EXPECT_EQ(TaskModelStore(db).list().size(), 0u);
+}
+
+TEST(Robustness, NoPermissionIsReportedAsSuch) {
+  if (geteuid() == 0) GTEST_SKIP() << "running as root: file permissions cannot be tested";
+  test::TempDbPath path("noperm");
+  { TaskDatabase::open(path.str()); }
+  std::filesystem::permissions(path.str(), std::filesystem::perms::none);
+  const std::string what = errorOf(path.str());
+  std::filesystem::permissions(path.str(), std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
+  EXPECT_NE(what.find("permission"), std::string::npos) << what;
+  EXPECT_EQ(what.find("corrupt"), std::string::npos) << what;
+}
+
+// Issue 21: seeded single-byte mutations and truncations of a small task
+// database: each opens and reads (SQLite has no page checksums, so a flipped
+// value can read as another value) or fails with srp's error naming the file;
+// never a crash or a raw SQLite exception.
+TEST(TaskDbFuzz, MutatedDatabasesReadOrNameTheFile) {
+  constexpr int kCases = 600;
+  test::TempDbPath original("fuzz_original");
+  {
+    auto db = TaskDatabase::open(original.str());
+    TaskModelStore(db).write(test::bulkModel("fuzz", 30, 2));
+    db.connection().exec("PRAGMA wal_checkpoint(TRUNCATE)");
+  }
+  const std::string bytes = fileBytes(original.str());
+  const std::string clean = dump(original.str());
+  test::TempDbPath path("fuzz_case");
+  std::mt19937 rng(2021);
+  int exact = 0, changed = 0, refused = 0;
+  for (int i = 0; i < kCases; ++i) {
+    std::string m = bytes;
+    if (i % 6 == 5) {
+      m.resize(rng() % m.size());
+    } else {
+      const std::size_t at = rng() % m.size();
+      m[at] = static_cast<char>(m[at] ^ static_cast<char>(1 + rng() % 255));
+    }
+    for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(path.str() + suffix);
+    std::ofstream(path.str(), std::ios::binary) << m;
+    try {
+      auto db = TaskDatabase::open(path.str(), TaskDatabase::Mode::ReadOnly);
+      TaskModelStore store(db);
+      for (const auto& info : store.list()) store.read(info.id);
+      std::string content;
+      try {
+        content = dump(path.str());  // every row, also pages the store did not read
+      } catch (const SQLite::Exception&) {
+        content = "unreadable";
+      }
+      (content == clean ? exact : changed)++;
+    } catch (const srp::core::Error& e) {
+      ++refused;
+      const std::string what = e.what();
+      if (what.find(path.str()) == std::string::npos && what.find("task model") == std::string::npos)
+        ADD_FAILURE() << "case " << i << ": message names neither the file nor the model: " << what;
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "case " << i << ": not an srp error: " << e.what();
+    }
+  }
+  EXPECT_EQ(exact + changed + refused, kCases);
+  EXPECT_GT(refused, 0);
+  std::cout << "[ fuzz ] task database: " << kCases << " cases, " << exact << " read exactly, " << changed
+            << " read with changed values, " << refused << " refused\n";
 }

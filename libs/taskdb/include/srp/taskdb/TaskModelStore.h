@@ -16,12 +16,16 @@ class TaskModelStore {
  public:
   /// Called during write() with (rows written, rows in total); may throw to abort.
   using Progress = std::function<void(std::size_t done, std::size_t total)>;
+  /// Called inside write()'s transaction once every row is in, just before
+  /// COMMIT, with the new model's id and version; throwing rolls the write
+  /// back. For outputs that must exist exactly when the model does (a report).
+  using BeforeCommit = std::function<void(int taskModelId, int version)>;
 
   explicit TaskModelStore(TaskDatabase& db) : db_(db) {}
 
   /// Writes a new task model and returns its TaskModelId. The version is
   /// 1 + the latest version of the same name (model.info.version is ignored).
-  int write(const TaskModel& model, const Progress& progress = {});
+  int write(const TaskModel& model, const Progress& progress = {}, const BeforeCommit& beforeCommit = {});
   /// Throws InvalidInputError when there is no such task model.
   TaskModel read(int taskModelId) const;
   std::vector<TaskModelInfo> list() const;
@@ -31,6 +35,7 @@ class TaskModelStore {
   void replaceSkills(int taskModelId, const std::vector<SkillRow>& skills);
 
  private:
+  TaskModel readUnchecked(int taskModelId) const;
   TaskDatabase& db_;
 };
 

@@ -641,6 +641,10 @@ LanguageModel LanguageModel::train(const std::vector<AnnotatedSentence>& corpus,
   Impl& m = *model.impl_;
   m.rules = options.rules;
   m.features = options.features;
+  // The indicator conventions are counted on the real sentences only: they describe
+  // the corpus' annotation, which the synthetic commands only imitate.
+  m.indicatorConventions =
+      IndicatorConventions::learn(corpus, [&m](const std::string& word) { return m.lemmaOf(word); });
   if (options.syntheticRatio > 0.0) {
     std::vector<AnnotatedSentence> mixed = corpus;
     const auto count = static_cast<size_t>(options.syntheticRatio * static_cast<double>(corpus.size()) + 0.5);
@@ -648,7 +652,9 @@ LanguageModel LanguageModel::train(const std::vector<AnnotatedSentence>& corpus,
     mixed.insert(mixed.end(), synthetic.begin(), synthetic.end());
     LanguageTrainingOptions realOnly = options;
     realOnly.syntheticRatio = 0.0;
-    return train(mixed, realOnly);
+    LanguageModel mixedModel = train(mixed, realOnly);
+    mixedModel.impl_->indicatorConventions = m.indicatorConventions;
+    return mixedModel;
   }
 
   // Action lexicon from the annotation.
@@ -656,9 +662,6 @@ LanguageModel LanguageModel::train(const std::vector<AnnotatedSentence>& corpus,
     for (const auto& e : s.entities)
       if (e.type == "Action" && e.end - e.start == 1) m.actionLemmaSet.insert(m.lemmaOf(lowerOf(s.tokens[e.start])));
   m.actionLemmas.assign(m.actionLemmaSet.begin(), m.actionLemmaSet.end());
-
-  m.indicatorConventions =
-      IndicatorConventions::learn(corpus, [&m](const std::string& word) { return m.lemmaOf(word); });
 
   // Entity feature dictionary (sorted names, so ids do not depend on hashing).
   std::map<std::string, int> counts;

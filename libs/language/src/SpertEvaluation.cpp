@@ -128,6 +128,14 @@ CvSummary meanStd(const std::vector<double>& v) {
   return out;
 }
 
+/// Standard deviation of the mean of n = folds x seeds paired fold differences,
+/// corrected for the overlap of the training sets (Nadeau & Bengio 2003,
+/// "Inference for the generalization error": variance factor 1/n + n_test/n_train).
+double correctedStdOfMean(double foldStd, int folds, int seeds) {
+  const double n = static_cast<double>(folds) * seeds;
+  return foldStd * std::sqrt(1.0 / n + 1.0 / (folds - 1));
+}
+
 /// Fisher-Yates with explicit modulo draws: the same order on every platform.
 std::vector<size_t> shuffledIndices(size_t n, unsigned seed) {
   std::vector<size_t> order(n);
@@ -139,7 +147,7 @@ std::vector<size_t> shuffledIndices(size_t n, unsigned seed) {
 
 bool passes(const RepeatedCrossValidation& cv, size_t variant) {
   const auto macro = cvF1Difference(cv.folds[variant], cv.folds[0], "macro");
-  if (!(macro.mean > macro.std)) return false;
+  if (!(macro.mean > correctedStdOfMean(macro.std, cv.numFolds, cv.numSeeds))) return false;
   for (const auto& t : kScoredTypes)
     if (cvF1Difference(cv.folds[variant], cv.folds[0], t).mean < 0.0) return false;
   return true;
@@ -234,8 +242,9 @@ std::string formatCrossValidation(const RepeatedCrossValidation& cv) {
         std::snprintf(line, sizeof line, "  %-17s %6.2f +- %5.2f\n", t.c_str(), 100 * s.mean, 100 * s.std);
       } else {
         const auto d = cvF1Difference(cv.folds[v], cv.folds[0], t);
-        std::snprintf(line, sizeof line, "  %-17s %6.2f +- %5.2f   diff %+6.2f +- %5.2f\n", t.c_str(), 100 * s.mean,
-                      100 * s.std, 100 * d.mean, 100 * d.std);
+        std::snprintf(line, sizeof line, "  %-17s %6.2f +- %5.2f   diff %+6.2f +- %5.2f (of the mean %4.2f)\n",
+                      t.c_str(), 100 * s.mean, 100 * s.std, 100 * d.mean, 100 * d.std,
+                      100 * correctedStdOfMean(d.std, cv.numFolds, cv.numSeeds));
       }
       out += line;
     }
@@ -254,10 +263,14 @@ nlohmann::json toJson(const RepeatedCrossValidation& cv) {
     for (const auto& t : types) {
       const auto s = cvF1(cv.folds[v], t);
       j[t] = {{"f1_mean", s.mean}, {"f1_std", s.std}};
+      std::vector<double> perFold;  // seed-major: compare runs fold by fold (same seeds, same splits)
+      for (const auto& f : cv.folds[v]) perFold.push_back(foldF1(f, t));
+      j[t]["f1_folds"] = perFold;
       if (v > 0) {
         const auto d = cvF1Difference(cv.folds[v], cv.folds[0], t);
         j[t]["diff_mean"] = d.mean;
         j[t]["diff_std"] = d.std;
+        j[t]["diff_std_of_mean"] = correctedStdOfMean(d.std, cv.numFolds, cv.numSeeds);
       }
     }
     if (v > 0) j["better_than_baseline"] = passes(cv, v);

@@ -28,16 +28,17 @@ namespace srp::language {
 /// Switches of the decoding rules applied after the tagger (each one counted on
 /// the training corpus or written from its annotation guide; README "Decoding
 /// rules"). Every rule is kept or dropped by the pooled cross-validation
-/// protocol (`srp train-language --cv 5 --cv-seeds 3 --ablate`).
+/// protocol (`srp train-language --cv 5 --cv-seeds 3 --ablate`): the defaults
+/// are what it kept (session 5); the others stay available for ablations.
 struct DecodingRules {
-  bool spanLengths = true;             ///< indicator span reaches as the corpus' spans from that word
-  bool ordersOnly = true;              ///< no indicator before a sentence's first action
+  bool spanLengths = false;            ///< indicator span reaches as the corpus' spans from that word
+  bool ordersOnly = false;             ///< no indicator before a sentence's first action
   bool rareStartWords = true;          ///< no indicator starting at a word almost never annotated ("of")
-  bool rareStartPairs = true;          ///< no spatial indicator at a (previous, word) pair almost never annotated
+  bool rareStartPairs = false;         ///< no spatial indicator at a (previous, word) pair almost never annotated
   bool actionAfterIsSpatial = true;    ///< an indicator with another action after it is spatial
-  bool relativeClauseIsSpatial = true; ///< "the cube placed on" / "that is on": spatial
+  bool relativeClauseIsSpatial = false;///< "the cube placed on" / "that is on": spatial
   bool conventionTypes = true;         ///< learned indicator type per (action, direction, first)
-  bool oneGoalPerClause = true;        ///< of two goals in a clause, "to/onto/into" or the first stays
+  bool oneGoalPerClause = false;       ///< of two goals in a clause, "to/onto/into" or the first stays
   bool addTrajectors = true;           ///< a spatial indicator after a verb gets the head noun as trajector
   bool dropUnlocatedTrajectors = true; ///< a trajector with no spatial indicator after it is dropped
   bool sourceIsSpatial = false;        ///< "from / off / out of" phrases are spatial and not the clause's goal

@@ -88,8 +88,9 @@ CvSummary cvF1Difference(const std::vector<SpertScores>& folds, const std::vecto
 
 /// The protocol's table: per type mean ± std F1 (percent) of each variant, and
 /// for every variant after the first its paired difference to the first with
-/// the verdict of the rule (kept when the macro mean rises by more than its std
-/// and no type's mean falls).
+/// the verdict of the rule (kept when the macro mean difference exceeds its
+/// standard deviation, i.e. the fold std of the difference corrected for the
+/// overlapping training sets (Nadeau & Bengio 2003), and no type's mean falls).
 std::string formatCrossValidation(const RepeatedCrossValidation& cv);
 nlohmann::json toJson(const RepeatedCrossValidation& cv);
 

@@ -1,65 +1,135 @@
 // srp train-language: trains the Language Module's entity/relation model on the
-// corpus and writes the model file that `srp parse` loads.
+// pooled corpus and writes the model file that `srp parse` loads; with --cv runs
+// the pooled cross-validation protocol instead (libs/language/README.md).
 #include <chrono>
 #include <iostream>
 #include <set>
+#include <sstream>
 #include <vector>
 
 #include "CommandRegistry.h"
+#include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/language/LanguageModel.h"
 #include "srp/language/SpertEvaluation.h"
+#include "srp/language/SyntheticCommandGrammar.h"
 
 namespace {
+
+/// "name=0,name=1" settings of a switch set (DecodingRules / FeatureGroups).
+template <typename Switches>
+void applySwitches(const std::vector<std::string>& settings, Switches& s, const std::string& what) {
+  for (const auto& setting : settings) {
+    const auto eq = setting.find('=');
+    const std::string name = setting.substr(0, eq);
+    bool found = false;
+    for (const auto& [n, member] : Switches::all())
+      if (n == name) {
+        s.*member = eq == std::string::npos || setting.substr(eq + 1) != "0";
+        found = true;
+      }
+    if (!found) {
+      std::string names;
+      for (const auto& [n, member] : Switches::all()) names += " " + n;
+      throw srp::core::InvalidInputError("unknown " + what + " '" + name + "'; one of:" + names);
+    }
+  }
+}
+
 void setupTrainLanguage(CLI::App& app) {
-  auto trainPath = std::make_shared<std::string>(std::string(SRP_DATASETS_DIR) + "/language/train.json");
-  auto valPath = std::make_shared<std::string>(std::string(SRP_DATASETS_DIR) + "/language/val.json");
+  const std::string dir = std::string(SRP_DATASETS_DIR) + "/language/";
+  auto trainPaths = std::make_shared<std::vector<std::string>>(
+      std::vector<std::string>{dir + "train.json", dir + "val.json"});
+  auto scorePath = std::make_shared<std::string>();
   auto outPath = std::make_shared<std::string>(srp::language::defaultModelPath());
-  app.add_option("--train", *trainPath, "SpERT training corpus")->capture_default_str();
-  app.add_option("--val", *valPath, "SpERT validation corpus, scored after training")->capture_default_str();
+  app.add_option("--train", *trainPaths, "SpERT corpora, pooled for training and cross-validation")
+      ->capture_default_str();
+  app.add_option("--score", *scorePath, "SpERT corpus scored after training (not for choosing anything)");
   app.add_option("--out", *outPath, "model file to write")->capture_default_str();
   auto options = std::make_shared<srp::language::LanguageTrainingOptions>();
   app.add_option("--entity-c", options->entityC, "entity tagger SVM C")->capture_default_str();
   app.add_option("--relation-c", options->relationC, "relation classifier SVM C")->capture_default_str();
   app.add_option("--min-feature-count", options->minFeatureCount, "drop rarer entity features")->capture_default_str();
+  auto rules = std::make_shared<std::vector<std::string>>();
+  auto features = std::make_shared<std::vector<std::string>>();
+  app.add_option("--rules", *rules, "decoding rule switches, e.g. span_lengths=0,source_is_spatial=1")->delimiter(',');
+  app.add_option("--features", *features, "tagger feature groups, e.g. source_goal_role=1")->delimiter(',');
+  app.add_option("--synthetic-ratio", options->syntheticRatio,
+                 "synthetic commands added to training per real sentence (SyntheticCommandGrammar)")
+      ->capture_default_str();
+  app.add_option("--synthetic-seed", options->syntheticSeed, "seed of the synthetic commands")->capture_default_str();
   auto cvFolds = std::make_shared<int>(0);
+  auto cvSeeds = std::make_shared<int>(3);
   auto cvThreads = std::make_shared<int>(2);
   auto cvPredictions = std::make_shared<std::string>();
-  app.add_option("--cv", *cvFolds, "only cross-validate on the training corpus with this many folds (no model written)");
+  auto cvJson = std::make_shared<std::string>();
+  auto ablate = std::make_shared<bool>(false);
+  app.add_option("--cv", *cvFolds, "only run the pooled protocol with this many folds (no model written)");
+  app.add_option("--cv-seeds", *cvSeeds, "repetitions of the k-fold split (seeds 1..n)")->capture_default_str();
   app.add_option("--cv-threads", *cvThreads, "folds trained in parallel")->capture_default_str();
-  app.add_option("--cv-predictions", *cvPredictions, "write the out-of-fold predictions (SpERT JSON) here");
+  app.add_option("--cv-predictions", *cvPredictions, "write the first seed's out-of-fold predictions (SpERT JSON)");
+  app.add_option("--cv-json", *cvJson, "write the CV summary (mean, std, paired differences) as JSON");
+  app.add_flag("--ablate", *ablate, "with --cv: also score each decoding rule switched the other way");
   auto cvErrors = std::make_shared<bool>(false);
   auto errorTypes = std::make_shared<std::vector<std::string>>();
-  app.add_flag("--errors", *cvErrors, "with --cv: also print the out-of-fold entity errors");
+  app.add_flag("--errors", *cvErrors, "with --cv: also print the first seed's out-of-fold entity errors");
   app.add_option("--error-types", *errorTypes, "entity types of the error dump (default: all)")->delimiter(',');
+  auto syntheticOut = std::make_shared<std::string>();
+  auto syntheticCount = std::make_shared<int>(200);
+  app.add_option("--write-synthetic", *syntheticOut, "only write synthetic commands (SpERT JSON) to this file");
+  app.add_option("--synthetic-count", *syntheticCount, "how many, for --write-synthetic")->capture_default_str();
   app.callback([=] {
-    const auto corpus = srp::language::readSpertCorpus(*trainPath);
+    applySwitches(*rules, options->rules, "decoding rule");
+    applySwitches(*features, options->features, "feature group");
+    if (!syntheticOut->empty()) {
+      nlohmann::json out = nlohmann::json::array();
+      for (const auto& s : srp::language::SyntheticCommandGrammar().generate(
+               static_cast<size_t>(std::max(0, *syntheticCount)), options->syntheticSeed))
+        out.push_back(srp::language::toJson(s));
+      srp::core::writeJsonFile(*syntheticOut, out);
+      std::cout << "wrote " << out.size() << " synthetic commands to " << *syntheticOut << "\n";
+      return;
+    }
+    std::vector<srp::language::AnnotatedSentence> corpus;
+    for (const auto& path : *trainPaths) {
+      const auto part = srp::language::readSpertCorpus(path);
+      corpus.insert(corpus.end(), part.begin(), part.end());
+    }
     if (*cvFolds > 0) {
-      std::cerr << *cvFolds << "-fold cross-validation on " << corpus.size() << " sentences...\n";
-      const auto cv = srp::language::crossValidate(corpus, *options, *cvFolds, *cvThreads);
+      std::vector<std::pair<std::string, srp::language::DecodingRules>> variants;
+      if (*ablate)
+        for (const auto& [name, member] : srp::language::DecodingRules::all()) {
+          auto r = options->rules;
+          r.*member = !(r.*member);
+          variants.push_back({name + ((r.*member) ? "=1" : "=0"), r});
+        }
+      std::cerr << *cvFolds << "-fold x " << *cvSeeds << " cross-validation on " << corpus.size()
+                << " pooled sentences...\n";
+      const auto cv = srp::language::repeatedCrossValidate(corpus, *options, *cvFolds, *cvSeeds, *cvThreads, variants);
       if (!cvPredictions->empty()) {
         nlohmann::json out = nlohmann::json::array();
-        for (const auto& s : cv.predictions) out.push_back(srp::language::toJson(s));
+        for (const auto& s : cv.firstSeedPredictions) out.push_back(srp::language::toJson(s));
         srp::core::writeJsonFile(*cvPredictions, out);
       }
-      std::cout << *cvFolds << "-fold cross-validation (" << *trainPath << "):\n"
-                << srp::language::formatScoreTable(cv.scores);
+      if (!cvJson->empty()) srp::core::writeJsonFile(*cvJson, srp::language::toJson(cv));
+      std::cout << "pooled corpus:";
+      for (const auto& p : *trainPaths) std::cout << " " << p;
+      std::cout << " (" << corpus.size() << " sentences)\n" << srp::language::formatCrossValidation(cv);
       if (*cvErrors)
-        std::cout << srp::language::formatEntityErrors(corpus, cv.predictions,
+        std::cout << srp::language::formatEntityErrors(corpus, cv.firstSeedPredictions,
                                                        std::set<std::string>(errorTypes->begin(), errorTypes->end()));
       return;
     }
-    std::cerr << "training on " << corpus.size() << " sentences...\n";
+    std::cerr << "training on " << corpus.size() << " pooled sentences...\n";
     const auto t0 = std::chrono::steady_clock::now();
     const auto model = srp::language::LanguageModel::train(corpus, *options);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     model.save(*outPath);
     std::cout << "trained in " << seconds << " s, wrote " << *outPath << "\n";
-    if (!valPath->empty()) {
-      std::cout << "validation (" << *valPath << "):\n"
+    if (!scorePath->empty())
+      std::cout << "scores on " << *scorePath << ":\n"
                 << srp::language::formatScoreTable(
-                       srp::language::evaluateModel(model, srp::language::readSpertCorpus(*valPath)));
-    }
+                       srp::language::evaluateModel(model, srp::language::readSpertCorpus(*scorePath)));
   });
 }
 const srp::app::CommandRegistrar kReg{"train-language", "Train the instruction entity/relation model on the corpus", 21,

@@ -186,13 +186,14 @@ void IndicatorConventions::dropIndicatorsOutsideOrders(const std::vector<std::st
 }
 
 void IndicatorConventions::dropRarelyAnnotatedStarts(const std::vector<std::string>& tokens,
-                                                     std::vector<EntitySpan>& entities) const {
+                                                     std::vector<EntitySpan>& entities, bool byWord,
+                                                     bool byPair) const {
   const auto lower = toLowerAscii(tokens);
   entities.erase(std::remove_if(entities.begin(), entities.end(),
                                 [&](const EntitySpan& e) {
                                   return isIndicator(e.type) && e.start < static_cast<int>(lower.size()) &&
-                                         (rarelyAnnotatedStarts_.count(lower[e.start]) > 0 ||
-                                          (e.type == "SpatialIndicator" &&
+                                         ((byWord && rarelyAnnotatedStarts_.count(lower[e.start]) > 0) ||
+                                          (byPair && e.type == "SpatialIndicator" &&
                                            rarelyAnnotatedPairs_.count(pairKey(lower, e.start)) > 0));
                                 }),
                  entities.end());

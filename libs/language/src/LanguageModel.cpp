@@ -12,6 +12,7 @@
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/language/IndicatorConventions.h"
+#include "srp/language/SyntheticCommandGrammar.h"
 #include "srp/language/Tokenizer.h"
 #include "srp/language/WordNetLexicon.h"
 
@@ -19,7 +20,8 @@ namespace srp::language {
 
 namespace {
 
-constexpr int kModelFormatVersion = 3;  // 2: indicator span and type conventions; 3: rarely annotated starts
+constexpr int kModelFormatVersion = 4;  // 2: indicator span and type conventions; 3: rarely annotated starts;
+                                        // 4: decoding rule switches and feature groups
 const std::vector<std::string> kEntityTypes{"Action", "Trajector", "SpatialIndicator", "GoalIndicator", "Color"};
 constexpr unsigned long kNumLabels = 11;  // O, then B-/I- for each of the five types
 
@@ -77,6 +79,57 @@ const std::set<std::string> kPrepositions{"on",   "in",    "into",   "onto",  "f
 
 std::string lowerOf(const std::string& s) { return toLowerAscii(s); }
 
+// Linguistic word classes of the session-5 feature groups (closed classes of
+// English, not counted on the corpus).
+const std::set<std::string> kSourcePreps{"from", "off"};
+const std::set<std::string> kGoalPreps{"to", "onto", "into", "toward", "towards"};
+const std::set<std::string> kPlacingVerbs{"put",  "place", "drop",     "set",    "move",   "leave", "lay",
+                                          "stack", "position", "insert", "release", "shift", "slide", "push",
+                                          "transfer", "deposit", "return"};
+const std::set<std::string> kFetchVerbs{"bring", "carry", "give", "pass", "hand", "fetch", "deliver"};
+const std::set<std::string> kPickVerbs{"pick", "grab", "grasp", "take", "get", "lift", "catch", "remove", "hold", "raise"};
+// Nouns and adjectives of direction that head a multi-word indicator ("on the top left corner of").
+const std::set<std::string> kDirectionNouns{"left", "right", "top",   "bottom", "front", "back",   "side",
+                                            "middle", "center", "centre", "edge", "corner", "end", "rear",
+                                            "front", "border", "margin", "surface"};
+const std::set<std::string> kDirectionModifiers{"far", "top", "bottom", "left", "right", "upper", "lower",
+                                                "very", "front", "back", "lefthand", "righthand", "exact"};
+// Adjectives that take "to" ("next to", "close to", "left to").
+const std::set<std::string> kRelationalAdjectives{"next", "adjacent", "close", "closest", "near", "nearest",
+                                                  "left", "right", "opposite", "parallel", "perpendicular"};
+const std::set<std::string> kDegreeAdverbs{"directly", "right", "just", "immediately", "exactly", "slightly",
+                                           "straight", "somewhere", "anywhere"};
+
+std::string verbClassOf(const std::string& lemma) {
+  if (kPlacingVerbs.count(lemma)) return "place";
+  if (kFetchVerbs.count(lemma)) return "fetch";
+  if (kPickVerbs.count(lemma)) return "pick";
+  return "other";
+}
+
+/// Length of the multi-word direction phrase starting at `i` ("in front of",
+/// "on the top left corner", "left to", "at the far right corner of"), 0 when none.
+int directionPhraseLength(const std::vector<std::string>& w, int i) {
+  const int n = static_cast<int>(w.size());
+  static const std::set<std::string> kStarters{"on", "at", "in", "to", "from", "onto", "into", "towards", "toward", "by"};
+  int j = i;
+  if (kStarters.count(w[i])) {
+    j = i + 1;
+    if (j < n && (w[j] == "the" || w[j] == "a" || w[j] == "its")) ++j;
+    int head = -1;
+    while (j < n && (kDirectionModifiers.count(w[j]) || kDirectionNouns.count(w[j]))) head = j++;
+    if (head < 0 || !kDirectionNouns.count(w[head])) return 0;
+  } else if (kRelationalAdjectives.count(w[i])) {
+    j = i + 1;
+    if (j >= n || w[j] != "to") return 0;
+    return 2;
+  } else {
+    return 0;
+  }
+  if (j < n && (w[j] == "of" || w[j] == "to")) ++j;
+  return j - i >= 2 ? j - i : 0;
+}
+
 bool isPunct(const std::string& w) {
   return !w.empty() && std::all_of(w.begin(), w.end(), [](char c) { return std::ispunct(static_cast<unsigned char>(c)); });
 }
@@ -106,6 +159,8 @@ struct LanguageModel::Impl {
   std::unordered_map<std::string, unsigned long> relationFeatureIds;
   dlib::decision_function<RelationKernel> relationScorer;
   IndicatorConventions indicatorConventions;  ///< counted on the training corpus
+  DecodingRules rules;
+  FeatureGroups features;
 
   std::string lemmaOf(const std::string& lower) const {
     const WordInfo info = lexicon.lookup(lower);
@@ -146,6 +201,8 @@ struct LanguageModel::Impl {
     int actionsBefore = 0, andsBefore = 0;
     std::string prevAction = "<none>";
     bool pronounSinceAction = false, nounSinceAction = false, prepSinceAction = false;
+    bool sourceSinceAction = false, goalSinceAction = false;
+    std::vector<int> inDirectionPhrase(n, 0);  // 1 inside, 2 last word of a direction phrase
     auto nounish = [&](int i) {
       return info[i].noun && !info[i].color && !kPrepositions.count(w[i]) && !kPronouns.count(w[i]) &&
              !kDeterminers.count(w[i]) && !isActionWord(w[i]);
@@ -244,12 +301,48 @@ struct LanguageModel::Impl {
       for (int k = i + 1; k < n; ++k) actionAhead |= isActionWord(w[k]);
       if (actionAhead) f.push_back("actionAhead");
       f.push_back("pos=" + std::string(i == 0 ? "first" : i == n - 1 ? "last" : "mid"));
+      const bool prepLike = kPrepositions.count(w[i]) > 0 || kRelationalAdjectives.count(w[i]) > 0 ||
+                            kDirectionNouns.count(w[i]) > 0;
+      if (features.sourceGoalRole && prepLike) {
+        const std::string vclass = actionsBefore > 0 ? verbClassOf(prevAction) : "none";
+        std::string role = "other";
+        if (kSourcePreps.count(w[i]) || (w[i] == "out" && word(i + 1) == "of")) role = "source";
+        else if (kGoalPreps.count(w[i])) role = "goal";
+        else if (vclass == "place" && kPrepositions.count(w[i])) role = "placeLoc";
+        const std::string seen = std::string(sourceSinceAction ? "S" : "-") + (goalSinceAction ? "G" : "-");
+        f.push_back("role=" + role);
+        f.push_back("role|v=" + role + "|" + vclass);
+        f.push_back("role|seen=" + role + "|" + seen);
+        f.push_back("role|v|seen=" + role + "|" + vclass + "|" + seen);
+      }
+      if (features.directionPhrases) {
+        if (const int len = directionPhraseLength(w, i)) {
+          f.push_back("dp=B");
+          f.push_back("dp|len=" + std::to_string(std::min(len, 5)));
+          f.push_back(std::string("dp|end=") + (w[i + len - 1] == "of" || w[i + len - 1] == "to" ? "prep" : "noun"));
+          for (int k = i + 1; k < i + len; ++k) inDirectionPhrase[k] = i + len - 1 == k ? 2 : 1;
+        }
+        if (inDirectionPhrase[i] == 1) f.push_back("dp=I");
+        if (inDirectionPhrase[i] == 2) f.push_back("dp=L");
+      }
+      if (features.noLandmark && prepLike) {
+        int k = i + 1;
+        while (k < n && kDirectionModifiers.count(w[k])) ++k;
+        const bool landmarkless = k >= n || isPunct(w[k]) || w[k] == "and" || isActionWord(w[k]);
+        if (landmarkless) {
+          f.push_back("noLm");
+          f.push_back("noLm|w=" + w[i]);
+        }
+        if (i > 0 && kDegreeAdverbs.count(w[i - 1])) f.push_back("advBefore");
+      }
 
       if (action) {
         ++actionsBefore;
         prevAction = lemmaOf(w[i]);
-        pronounSinceAction = nounSinceAction = prepSinceAction = false;
+        pronounSinceAction = nounSinceAction = prepSinceAction = sourceSinceAction = goalSinceAction = false;
       } else {
+        sourceSinceAction |= kSourcePreps.count(w[i]) > 0 || (w[i] == "out" && word(i + 1) == "of");
+        goalSinceAction |= kGoalPreps.count(w[i]) > 0;
         pronounSinceAction |= kPronouns.count(w[i]) > 0;
         nounSinceAction |= nounish(i);
         prepSinceAction |= kPrepositions.count(w[i]) > 0;
@@ -342,6 +435,11 @@ struct LanguageModel::Impl {
   /// to indicators of that action, direction and place in the clause, where it is
   /// consistent (IndicatorConventions: every indicator of "pick" is spatial, the
   /// first of "put / place" a goal, "take / bring ... on" spatial, "... to" a goal).
+  static bool isSourceAt(const std::vector<std::string>& lower, int start) {
+    return kSourcePreps.count(lower[start]) > 0 ||
+           (lower[start] == "out" && start + 1 < static_cast<int>(lower.size()) && lower[start + 1] == "of");
+  }
+
   void relabelIndicators(const std::vector<std::string>& tokens, std::vector<EntitySpan>& entities) const {
     const std::vector<std::string> lower = toLowerAscii(tokens);
     std::sort(entities.begin(), entities.end(), [](const EntitySpan& a, const EntitySpan& b) { return a.start < b.start; });
@@ -357,20 +455,24 @@ struct LanguageModel::Impl {
       if (e.type != "GoalIndicator" && e.type != "SpatialIndicator") continue;
       bool actionAfter = false;
       for (size_t j = i + 1; j < entities.size(); ++j) actionAfter |= entities[j].type == "Action";
-      if (IndicatorConventions::inRelativeClause(lower, e.start)) {
+      if (rules.relativeClauseIsSpatial && IndicatorConventions::inRelativeClause(lower, e.start)) {
         e.type = "SpatialIndicator";
         continue;  // locates an object: the clause's first goal may still follow
       }
-      if (actionAfter) {
+      if (rules.sourceIsSpatial && isSourceAt(lower, e.start)) {
         e.type = "SpatialIndicator";
-      } else {
+        continue;  // where the object comes from: the clause's goal may still follow
+      }
+      if (actionAfter && rules.actionAfterIsSpatial) {
+        e.type = "SpatialIndicator";
+      } else if (!actionAfter && rules.conventionTypes) {
         if (auto type = indicatorConventions.indicatorType(verb, lowerOf(tokens[e.start]), firstInClause)) e.type = *type;
       }
       firstInClause = false;
     }
     // One goal per clause (train: only 1 clause has two goals): of several goals the
     // directional one ("to / onto / into the ...") stays, else the first.
-    for (size_t i = 0; i < entities.size();) {
+    for (size_t i = 0; rules.oneGoalPerClause && i < entities.size();) {
       size_t end = i + 1;
       while (end < entities.size() && entities[end].type != "Action") ++end;
       std::vector<size_t> goals;
@@ -410,7 +512,7 @@ struct LanguageModel::Impl {
     };
     std::vector<EntitySpan> added;
     for (const auto& e : entities) {
-      if (e.type != "SpatialIndicator") continue;
+      if (e.type != "SpatialIndicator" || !rules.addTrajectors) continue;
       const int clause = clauseStart(e.start);
       if (clause == 0 || typeAt(clause - 1) != "Action") continue;  // no verb before it: nothing is being moved
       // After a goal the phrase locates the goal's landmark ("on the table in the
@@ -441,7 +543,7 @@ struct LanguageModel::Impl {
     }
     std::vector<EntitySpan> kept;
     for (const auto& e : entities) {
-      if (e.type == "Trajector") {
+      if (e.type == "Trajector" && rules.dropUnlocatedTrajectors) {
         bool located = false;
         for (int k = e.end; k < n && typeAt(k) != "Action" && lower[k] != "." && lower[k] != ";"; ++k)
           located |= typeAt(k) == "SpatialIndicator";
@@ -490,21 +592,76 @@ LanguageModel::LanguageModel(LanguageModel&&) noexcept = default;
 LanguageModel& LanguageModel::operator=(LanguageModel&&) noexcept = default;
 
 const std::vector<std::string>& LanguageModel::actionLemmas() const { return impl_->actionLemmas; }
+const DecodingRules& LanguageModel::decodingRules() const { return impl_->rules; }
+void LanguageModel::setDecodingRules(const DecodingRules& rules) { impl_->rules = rules; }
+
+const std::vector<std::pair<std::string, bool DecodingRules::*>>& DecodingRules::all() {
+  static const std::vector<std::pair<std::string, bool DecodingRules::*>> kAll{
+      {"span_lengths", &DecodingRules::spanLengths},
+      {"orders_only", &DecodingRules::ordersOnly},
+      {"rare_start_words", &DecodingRules::rareStartWords},
+      {"rare_start_pairs", &DecodingRules::rareStartPairs},
+      {"action_after_is_spatial", &DecodingRules::actionAfterIsSpatial},
+      {"relative_clause_is_spatial", &DecodingRules::relativeClauseIsSpatial},
+      {"convention_types", &DecodingRules::conventionTypes},
+      {"one_goal_per_clause", &DecodingRules::oneGoalPerClause},
+      {"add_trajectors", &DecodingRules::addTrajectors},
+      {"drop_unlocated_trajectors", &DecodingRules::dropUnlocatedTrajectors},
+      {"source_is_spatial", &DecodingRules::sourceIsSpatial}};
+  return kAll;
+}
+
+const std::vector<std::pair<std::string, bool FeatureGroups::*>>& FeatureGroups::all() {
+  static const std::vector<std::pair<std::string, bool FeatureGroups::*>> kAll{
+      {"source_goal_role", &FeatureGroups::sourceGoalRole},
+      {"direction_phrases", &FeatureGroups::directionPhrases},
+      {"no_landmark", &FeatureGroups::noLandmark}};
+  return kAll;
+}
+
+namespace {
+template <typename Switches>
+nlohmann::json switchesToJson(const Switches& s) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& [name, member] : Switches::all()) j[name] = s.*member;
+  return j;
+}
+template <typename Switches>
+Switches switchesFromJson(const nlohmann::json& j, const std::string& what) {
+  Switches s;
+  for (const auto& [name, member] : Switches::all()) s.*member = core::requireField(j, name, what).template get<bool>();
+  return s;
+}
+}  // namespace
 
 LanguageModel LanguageModel::train(const std::vector<AnnotatedSentence>& corpus,
                                    const LanguageTrainingOptions& options) {
   core::require(!corpus.empty(), "language training corpus is empty; pass datasets/language/train.json");
   LanguageModel model;
   Impl& m = *model.impl_;
+  m.rules = options.rules;
+  m.features = options.features;
+  // The indicator conventions are counted on the real sentences only: they describe
+  // the corpus' annotation, which the synthetic commands only imitate.
+  m.indicatorConventions =
+      IndicatorConventions::learn(corpus, [&m](const std::string& word) { return m.lemmaOf(word); });
+  if (options.syntheticRatio > 0.0) {
+    std::vector<AnnotatedSentence> mixed = corpus;
+    const auto count = static_cast<size_t>(options.syntheticRatio * static_cast<double>(corpus.size()) + 0.5);
+    const auto synthetic = SyntheticCommandGrammar().generate(count, options.syntheticSeed);
+    mixed.insert(mixed.end(), synthetic.begin(), synthetic.end());
+    LanguageTrainingOptions realOnly = options;
+    realOnly.syntheticRatio = 0.0;
+    LanguageModel mixedModel = train(mixed, realOnly);
+    mixedModel.impl_->indicatorConventions = m.indicatorConventions;
+    return mixedModel;
+  }
 
   // Action lexicon from the annotation.
   for (const auto& s : corpus)
     for (const auto& e : s.entities)
       if (e.type == "Action" && e.end - e.start == 1) m.actionLemmaSet.insert(m.lemmaOf(lowerOf(s.tokens[e.start])));
   m.actionLemmas.assign(m.actionLemmaSet.begin(), m.actionLemmaSet.end());
-
-  m.indicatorConventions =
-      IndicatorConventions::learn(corpus, [&m](const std::string& word) { return m.lemmaOf(word); });
 
   // Entity feature dictionary (sorted names, so ids do not depend on hashing).
   std::map<std::string, int> counts;
@@ -587,6 +744,8 @@ void LanguageModel::save(const std::string& path) const {
   dlib::serialize(m.relationFeatureNames, out);
   dlib::serialize(m.relationScorer, out);
   dlib::serialize(m.indicatorConventions.toJson().dump(), out);
+  dlib::serialize(nlohmann::json{{"rules", switchesToJson(m.rules)}, {"features", switchesToJson(m.features)}}.dump(),
+                  out);
   if (!out) throw core::FileError(path, "write failed (disk full?)");
 }
 
@@ -613,6 +772,11 @@ LanguageModel LanguageModel::load(const std::string& path) {
     std::string conventions;
     dlib::deserialize(conventions, in);
     m.indicatorConventions = IndicatorConventions::fromJson(nlohmann::json::parse(conventions));
+    std::string switches;
+    dlib::deserialize(switches, in);
+    const auto j = nlohmann::json::parse(switches);
+    m.rules = switchesFromJson<DecodingRules>(core::requireField(j, "rules", "model switches"), "decoding rules");
+    m.features = switchesFromJson<FeatureGroups>(core::requireField(j, "features", "model switches"), "feature groups");
   } catch (const dlib::serialization_error& e) {
     throw core::FileError(path, std::string("is corrupt (") + e.what() + "); retrain with `srp train-language`");
   } catch (const nlohmann::json::exception& e) {
@@ -642,9 +806,12 @@ AnnotatedSentence LanguageModel::annotate(const std::vector<std::string>& tokens
     out.entities.push_back({static_cast<int>(i), static_cast<int>(j), kEntityTypes[type]});
     i = j;
   }
-  impl_->indicatorConventions.applySpanLengths(tokens, out.entities);
-  IndicatorConventions::dropIndicatorsOutsideOrders(tokens, out.entities);
-  impl_->indicatorConventions.dropRarelyAnnotatedStarts(tokens, out.entities);
+  const DecodingRules& rules = impl_->rules;
+  if (rules.spanLengths) impl_->indicatorConventions.applySpanLengths(tokens, out.entities);
+  if (rules.ordersOnly) IndicatorConventions::dropIndicatorsOutsideOrders(tokens, out.entities);
+  if (rules.rareStartWords || rules.rareStartPairs)
+    impl_->indicatorConventions.dropRarelyAnnotatedStarts(tokens, out.entities, rules.rareStartWords,
+                                                          rules.rareStartPairs);
   impl_->relabelIndicators(tokens, out.entities);
   impl_->enforceTrajectorConsistency(tokens, out.entities);
   out.relations = impl_->predictRelations(tokens, out.entities);

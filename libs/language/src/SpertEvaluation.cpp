@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <random>
 #include <cstdio>
 #include <set>
 #include <thread>
@@ -101,6 +103,180 @@ CrossValidationResult crossValidate(const std::vector<AnnotatedSentence>& corpus
   for (auto& t : pool) t.join();
   result.scores = scoreSpert(corpus, result.predictions);
   return result;
+}
+
+namespace {
+const std::vector<std::string> kScoredTypes{"Action", "Trajector", "SpatialIndicator", "GoalIndicator",
+                                            "Color",  "Spatial",   "Transition"};
+
+double foldF1(const SpertScores& s, const std::string& type) {
+  if (type != "macro") return s.types.at(type).f1();
+  double sum = 0.0;
+  for (const auto& t : kScoredTypes) sum += s.types.at(t).f1();
+  return sum / static_cast<double>(kScoredTypes.size());
+}
+
+CvSummary meanStd(const std::vector<double>& v) {
+  CvSummary out;
+  if (v.empty()) return out;
+  for (double x : v) out.mean += x;
+  out.mean /= static_cast<double>(v.size());
+  if (v.size() < 2) return out;
+  double ss = 0.0;
+  for (double x : v) ss += (x - out.mean) * (x - out.mean);
+  out.std = std::sqrt(ss / static_cast<double>(v.size() - 1));
+  return out;
+}
+
+/// Standard deviation of the mean of n = folds x seeds paired fold differences,
+/// corrected for the overlap of the training sets (Nadeau & Bengio 2003,
+/// "Inference for the generalization error": variance factor 1/n + n_test/n_train).
+double correctedStdOfMean(double foldStd, int folds, int seeds) {
+  const double n = static_cast<double>(folds) * seeds;
+  return foldStd * std::sqrt(1.0 / n + 1.0 / (folds - 1));
+}
+
+/// Fisher-Yates with explicit modulo draws: the same order on every platform.
+std::vector<size_t> shuffledIndices(size_t n, unsigned seed) {
+  std::vector<size_t> order(n);
+  for (size_t i = 0; i < n; ++i) order[i] = i;
+  std::mt19937_64 engine(seed);
+  for (size_t i = n; i > 1; --i) std::swap(order[i - 1], order[engine() % i]);
+  return order;
+}
+
+bool passes(const RepeatedCrossValidation& cv, size_t variant) {
+  const auto macro = cvF1Difference(cv.folds[variant], cv.folds[0], "macro");
+  if (!(macro.mean > correctedStdOfMean(macro.std, cv.numFolds, cv.numSeeds))) return false;
+  for (const auto& t : kScoredTypes)
+    if (cvF1Difference(cv.folds[variant], cv.folds[0], t).mean < 0.0) return false;
+  return true;
+}
+}  // namespace
+
+CvSummary cvF1(const std::vector<SpertScores>& folds, const std::string& type) {
+  std::vector<double> v;
+  for (const auto& f : folds) v.push_back(foldF1(f, type));
+  return meanStd(v);
+}
+
+CvSummary cvF1Difference(const std::vector<SpertScores>& folds, const std::vector<SpertScores>& baseline,
+                         const std::string& type) {
+  core::require(folds.size() == baseline.size(), "cvF1Difference: variants scored on different folds");
+  std::vector<double> v;
+  for (size_t i = 0; i < folds.size(); ++i) v.push_back(foldF1(folds[i], type) - foldF1(baseline[i], type));
+  return meanStd(v);
+}
+
+RepeatedCrossValidation repeatedCrossValidate(const std::vector<AnnotatedSentence>& corpus,
+                                              const LanguageTrainingOptions& options, int folds, int seeds,
+                                              int threads,
+                                              const std::vector<std::pair<std::string, DecodingRules>>& variants) {
+  core::require(folds >= 2 && folds <= static_cast<int>(corpus.size()) && seeds >= 1,
+                "repeatedCrossValidate: need 2 <= folds <= corpus size and seeds >= 1, got folds " +
+                    std::to_string(folds) + ", seeds " + std::to_string(seeds));
+  RepeatedCrossValidation cv;
+  cv.numFolds = folds;
+  cv.numSeeds = seeds;
+  cv.variantNames.push_back("baseline");
+  std::vector<DecodingRules> rules{options.rules};
+  for (const auto& [name, r] : variants) {
+    cv.variantNames.push_back(name);
+    rules.push_back(r);
+  }
+  const int jobs = folds * seeds;
+  cv.folds.assign(rules.size(), std::vector<SpertScores>(jobs));
+  cv.firstSeedPredictions.resize(corpus.size());
+  std::vector<std::vector<size_t>> orders;
+  for (int s = 0; s < seeds; ++s) orders.push_back(shuffledIndices(corpus.size(), static_cast<unsigned>(s + 1)));
+  std::vector<double> seconds(jobs, 0.0);
+  auto runJob = [&](int job) {
+    const int seed = job / folds, fold = job % folds;
+    const auto& order = orders[seed];
+    std::vector<AnnotatedSentence> train, test;
+    std::vector<size_t> testIds;
+    for (size_t k = 0; k < order.size(); ++k) {
+      if (static_cast<int>(k % folds) == fold) {
+        test.push_back(corpus[order[k]]);
+        testIds.push_back(order[k]);
+      } else {
+        train.push_back(corpus[order[k]]);
+      }
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    LanguageModel model = LanguageModel::train(train, options);
+    seconds[job] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    for (size_t v = 0; v < rules.size(); ++v) {
+      model.setDecodingRules(rules[v]);
+      std::vector<AnnotatedSentence> predicted;
+      for (const auto& sentence : test) predicted.push_back(model.annotate(sentence.tokens));
+      cv.folds[v][job] = scoreSpert(test, predicted);
+      if (v == 0 && seed == 0)
+        for (size_t k = 0; k < testIds.size(); ++k) cv.firstSeedPredictions[testIds[k]] = predicted[k];
+    }
+  };
+  const int workers = std::max(1, std::min(threads, jobs));
+  std::vector<std::thread> pool;
+  for (int w = 0; w < workers; ++w)
+    pool.emplace_back([&, w] {
+      for (int job = w; job < jobs; job += workers) runJob(job);
+    });
+  for (auto& t : pool) t.join();
+  for (double x : seconds) cv.trainSecondsPerFold += x / jobs;
+  return cv;
+}
+
+std::string formatCrossValidation(const RepeatedCrossValidation& cv) {
+  char line[256];
+  std::string out;
+  std::snprintf(line, sizeof line, "%d-fold cross-validation x %d seeds (F1 %%, mean +- std over %d folds)\n",
+                cv.numFolds, cv.numSeeds, cv.numFolds * cv.numSeeds);
+  out += line;
+  std::vector<std::string> types = kScoredTypes;
+  types.push_back("macro");
+  for (size_t v = 0; v < cv.folds.size(); ++v) {
+    out += (v == 0 ? "" : "\n") + cv.variantNames[v] + (v == 0 ? "" : " (difference to baseline, paired)") + ":\n";
+    for (const auto& t : types) {
+      const auto s = cvF1(cv.folds[v], t);
+      if (v == 0) {
+        std::snprintf(line, sizeof line, "  %-17s %6.2f +- %5.2f\n", t.c_str(), 100 * s.mean, 100 * s.std);
+      } else {
+        const auto d = cvF1Difference(cv.folds[v], cv.folds[0], t);
+        std::snprintf(line, sizeof line, "  %-17s %6.2f +- %5.2f   diff %+6.2f +- %5.2f (of the mean %4.2f)\n",
+                      t.c_str(), 100 * s.mean, 100 * s.std, 100 * d.mean, 100 * d.std,
+                      100 * correctedStdOfMean(d.std, cv.numFolds, cv.numSeeds));
+      }
+      out += line;
+    }
+    if (v > 0) out += std::string("  verdict: ") + (passes(cv, v) ? "better than baseline" : "not better") + "\n";
+  }
+  std::snprintf(line, sizeof line, "training: %.1f s per fold\n", cv.trainSecondsPerFold);
+  return out + line;
+}
+
+nlohmann::json toJson(const RepeatedCrossValidation& cv) {
+  nlohmann::json variants = nlohmann::json::object();
+  std::vector<std::string> types = kScoredTypes;
+  types.push_back("macro");
+  for (size_t v = 0; v < cv.folds.size(); ++v) {
+    nlohmann::json j = nlohmann::json::object();
+    for (const auto& t : types) {
+      const auto s = cvF1(cv.folds[v], t);
+      j[t] = {{"f1_mean", s.mean}, {"f1_std", s.std}};
+      std::vector<double> perFold;  // seed-major: compare runs fold by fold (same seeds, same splits)
+      for (const auto& f : cv.folds[v]) perFold.push_back(foldF1(f, t));
+      j[t]["f1_folds"] = perFold;
+      if (v > 0) {
+        const auto d = cvF1Difference(cv.folds[v], cv.folds[0], t);
+        j[t]["diff_mean"] = d.mean;
+        j[t]["diff_std"] = d.std;
+        j[t]["diff_std_of_mean"] = correctedStdOfMean(d.std, cv.numFolds, cv.numSeeds);
+      }
+    }
+    if (v > 0) j["better_than_baseline"] = passes(cv, v);
+    variants[cv.variantNames[v]] = j;
+  }
+  return {{"folds", cv.numFolds}, {"seeds", cv.numSeeds}, {"variants", variants}};
 }
 
 nlohmann::json toJson(const SpertScores& scores) {

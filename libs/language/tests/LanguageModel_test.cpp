@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <vector>
 
 #include "srp/core/Error.h"
 #include "srp/language/SpertEvaluation.h"
@@ -20,23 +21,38 @@ const std::map<std::string, double> kSpertValF1{{"Action", 0.9913},     {"Trajec
                                                 {"Transition", 0.8346}};
 }  // namespace
 
-// Training is deterministic: a fresh run on train.json scores exactly as the
-// shipped model on val.json (tolerance: one entity in ~70 would move F1 by >1e-3).
-TEST(LanguageModel, FreshTrainingReproducesTheShippedScores) {
-  constexpr double kF1Tol = 1e-3;
+std::vector<AnnotatedSentence> pooledCorpus() {
+  auto corpus = readSpertCorpus(kTrain);
   const auto val = readSpertCorpus(kVal);
-  const auto shipped = evaluateModel(LanguageModel::load(defaultModelPath()), val);
-  const auto fresh = evaluateModel(LanguageModel::train(readSpertCorpus(kTrain)), val);
-  for (const auto& [type, score] : shipped.types) {
-    SCOPED_TRACE(type);
-    EXPECT_NEAR(fresh.types.at(type).f1(), score.f1(), kF1Tol);
-    EXPECT_EQ(fresh.types.at(type).support(), score.support());
-  }
+  corpus.insert(corpus.end(), val.begin(), val.end());
+  return corpus;
 }
 
-// The shipped model beats the SpERT validation row on every type.
-TEST(LanguageModel, ShippedModelBeatsSpertOnEveryType) {
-  const auto scores = evaluateModel(LanguageModel::load(defaultModelPath()), readSpertCorpus(kVal));
+// Training is deterministic: a fresh run with the default options on the pooled
+// corpus (train.json + val.json, as `srp train-language`) gives the shipped model:
+// the same rules and feature groups, and the same annotation of every sentence.
+TEST(LanguageModel, FreshTrainingOnThePooledCorpusGivesTheShippedModel) {
+  const auto corpus = pooledCorpus();
+  const auto shipped = LanguageModel::load(defaultModelPath());
+  const auto fresh = LanguageModel::train(corpus);
+  for (const auto& [name, member] : DecodingRules::all()) EXPECT_EQ(shipped.decodingRules().*member, fresh.decodingRules().*member) << name;
+  int differing = 0;
+  for (const auto& s : corpus) {
+    const auto a = shipped.annotate(s.tokens), b = fresh.annotate(s.tokens);
+    bool same = a.entities == b.entities && a.relations.size() == b.relations.size();
+    for (size_t r = 0; same && r < a.relations.size(); ++r)
+      same = a.relations[r].head == b.relations[r].head && a.relations[r].tail == b.relations[r].tail &&
+             a.relations[r].type == b.relations[r].type;
+    differing += !same;
+  }
+  EXPECT_EQ(differing, 0);
+}
+
+// Generalisation check that can fail: a model trained on train.json alone (same
+// options) beats SpERT's validation row on val.json, which it has not seen.
+// (Choices are made by pooled CV, README "Protocol"; this is not one of them.)
+TEST(LanguageModel, ModelTrainedOnTrainBeatsSpertOnUnseenVal) {
+  const auto scores = evaluateModel(LanguageModel::train(readSpertCorpus(kTrain)), readSpertCorpus(kVal));
   for (const auto& [type, spertF1] : kSpertValF1) {
     SCOPED_TRACE(type);
     EXPECT_GT(scores.types.at(type).f1(), spertF1);
@@ -67,9 +83,15 @@ TEST(LanguageModel, IndicatorOfAFetchVerbIsSpatial) {
   EXPECT_EQ(s.relations[0].type, "Spatial");
 }
 
-// A participle phrase locates the object; the clause's goal is the next phrase.
-TEST(LanguageModel, ParticiplePhraseIsSpatialAndTheNextIsTheGoal) {
-  const auto model = LanguageModel::load(defaultModelPath());
+// The relative-clause rule (switched off by the pooled-CV protocol, README
+// "Protocol") still works when switched on: a participle phrase locates the
+// object and the clause's goal is the next phrase.
+TEST(LanguageModel, RelativeClauseRuleMakesAParticiplePhraseSpatial) {
+  auto model = LanguageModel::load(defaultModelPath());
+  EXPECT_FALSE(model.decodingRules().relativeClauseIsSpatial);
+  DecodingRules rules = model.decodingRules();
+  rules.relativeClauseIsSpatial = true;
+  model.setDecodingRules(rules);
   const auto s = model.annotate({"put", "the", "grey", "pyramid", "which", "is", "putted", "on", "a", "green", "box",
                                  "on", "another", "green", "box"});
   std::vector<std::string> indicatorTypes;

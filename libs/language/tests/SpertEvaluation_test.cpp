@@ -59,6 +59,44 @@ TEST(SpertEvaluation, CrossValidationIsOutOfFoldAndDeterministic) {
   EXPECT_THROW(crossValidate(corpus, {}, 1), srp::core::InvalidInputError);
 }
 
+// The pooled protocol: every (seed, fold) scores each sentence of its fold once,
+// the per-fold supports add up to the corpus' gold counts per seed, a variant
+// with the baseline's rules has zero difference, and threads change nothing.
+TEST(SpertEvaluation, RepeatedCrossValidationIsPairedAndDeterministic) {
+  constexpr double kTol = 1e-12;
+  auto corpus = readSpertCorpus(std::string(SRP_DATASETS_DIR) + "/language/train.json");
+  corpus.resize(36);
+  LanguageTrainingOptions options;
+  DecodingRules noSpans = options.rules;
+  noSpans.spanLengths = false;
+  const auto cv = repeatedCrossValidate(corpus, options, 3, 2, 2, {{"same", options.rules}, {"no_spans", noSpans}});
+  ASSERT_EQ(cv.folds.size(), 3u);
+  ASSERT_EQ(cv.folds[0].size(), 6u);
+  int goals = 0;
+  for (const auto& s : corpus)
+    for (const auto& e : s.entities) goals += e.type == "GoalIndicator";
+  for (int seed = 0; seed < 2; ++seed) {
+    int support = 0;
+    for (int fold = 0; fold < 3; ++fold) support += cv.folds[0][seed * 3 + fold].types.at("GoalIndicator").support();
+    EXPECT_EQ(support, goals);
+  }
+  for (const std::string type : {"Action", "SpatialIndicator", "Transition", "macro"}) {
+    const auto same = cvF1Difference(cv.folds[1], cv.folds[0], type);
+    EXPECT_NEAR(same.mean, 0.0, kTol);
+    EXPECT_NEAR(same.std, 0.0, kTol);
+  }
+  const auto oneThread = repeatedCrossValidate(corpus, options, 3, 2, 1);
+  for (size_t job = 0; job < 6; ++job)
+    EXPECT_EQ(oneThread.folds[0][job].types.at("Trajector").truePositives,
+              cv.folds[0][job].types.at("Trajector").truePositives);
+  ASSERT_EQ(cv.firstSeedPredictions.size(), corpus.size());
+  EXPECT_EQ(cv.firstSeedPredictions[7].tokens, corpus[7].tokens);
+  const std::string table = formatCrossValidation(cv);
+  EXPECT_NE(table.find("3-fold cross-validation x 2 seeds"), std::string::npos) << table;
+  EXPECT_NE(table.find("no_spans"), std::string::npos) << table;
+  EXPECT_THROW(repeatedCrossValidate(corpus, options, 3, 0), srp::core::InvalidInputError);
+}
+
 TEST(SpertEvaluation, EntityErrorsAreClassifiedByKind) {
   AnnotatedSentence gold, pred;
   gold.tokens = pred.tokens = {"take", "the", "cup", "near", "to", "the", "box", "on", "the", "table", "in", "it"};

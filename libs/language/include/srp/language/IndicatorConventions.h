@@ -85,7 +85,9 @@ class IndicatorConventions {
   /// *with* the black handle": a word seen >= 5 times, < 2 % annotated), and
   /// indicators tagged spatial whose (previous word, first word) pair is such
   /// a pair ("parallelipiped *in* the corner": seen >= 3 times, <= 10 %).
-  void dropRarelyAnnotatedStarts(const std::vector<std::string>& tokens, std::vector<EntitySpan>& entities) const;
+  /// `byWord` / `byPair` switch the two halves (pooled-CV ablations).
+  void dropRarelyAnnotatedStarts(const std::vector<std::string>& tokens, std::vector<EntitySpan>& entities,
+                                 bool byWord = true, bool byPair = true) const;
 
   nlohmann::json toJson() const;
   /// Throws InvalidInputError when a field is missing.

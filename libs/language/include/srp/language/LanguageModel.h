@@ -18,19 +18,57 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "srp/language/TaskPlan.h"
 
 namespace srp::language {
 
-/// Training settings; the defaults are the ones selected on val.json.
+/// Switches of the decoding rules applied after the tagger (each one counted on
+/// the training corpus or written from its annotation guide; README "Decoding
+/// rules"). Every rule is kept or dropped by the pooled cross-validation
+/// protocol (`srp train-language --cv 5 --cv-seeds 3 --ablate`): the defaults
+/// are what it kept (session 5); the others stay available for ablations.
+struct DecodingRules {
+  bool spanLengths = false;            ///< indicator span reaches as the corpus' spans from that word
+  bool ordersOnly = false;             ///< no indicator before a sentence's first action
+  bool rareStartWords = true;          ///< no indicator starting at a word almost never annotated ("of")
+  bool rareStartPairs = false;         ///< no spatial indicator at a (previous, word) pair almost never annotated
+  bool actionAfterIsSpatial = true;    ///< an indicator with another action after it is spatial
+  bool relativeClauseIsSpatial = false;///< "the cube placed on" / "that is on": spatial
+  bool conventionTypes = true;         ///< learned indicator type per (action, direction, first)
+  bool oneGoalPerClause = false;       ///< of two goals in a clause, "to/onto/into" or the first stays
+  bool addTrajectors = true;           ///< a spatial indicator after a verb gets the head noun as trajector
+  bool dropUnlocatedTrajectors = true; ///< a trajector with no spatial indicator after it is dropped
+  bool sourceIsSpatial = false;        ///< "from / off / out of" phrases are spatial and not the clause's goal
+
+  /// Name and member of every switch, in README order (for ablations and the model file).
+  static const std::vector<std::pair<std::string, bool DecodingRules::*>>& all();
+};
+
+/// Groups of tagger features added in session 5 (linguistic evidence that does
+/// not depend on the corpus' words); each is kept only if pooled CV says so.
+struct FeatureGroups {
+  bool sourceGoalRole = false;    ///< preposition role: source (from/off/out of), goal (to/onto/into, on/in after a placing verb)
+  bool directionPhrases = false;  ///< multi-word direction phrases (in front of, left of, at the ... corner)
+  bool noLandmark = false;        ///< an indicator word with no noun phrase after it ("directly below .")
+  static const std::vector<std::pair<std::string, bool FeatureGroups::*>>& all();
+};
+
+/// Training settings; the defaults are the ones selected by pooled cross-validation.
 struct LanguageTrainingOptions {
   double entityC = 30.0;         ///< structural SVM C of the entity tagger
   double entityEpsilon = 0.01;   ///< its stopping tolerance (risk gap)
   double relationC = 1.0;        ///< linear SVM C of the relation classifier
   int minFeatureCount = 2;       ///< entity features seen fewer times in training are dropped
   int threads = 1;  ///< 1 keeps the loss sums in one order: bit-identical models everywhere
+  DecodingRules rules;           ///< stored in the model file
+  FeatureGroups features;        ///< stored in the model file
+  /// Synthetic commands (SyntheticCommandGrammar) added to the training corpus:
+  /// this many per real sentence (0 = none), generated with `syntheticSeed`.
+  double syntheticRatio = 0.0;
+  unsigned syntheticSeed = 1;
 };
 
 class LanguageModel {
@@ -55,6 +93,11 @@ class LanguageModel {
   /// Entities and relations of one tokenised sentence (tokens as written).
   /// `tokens` is copied into the result; an empty input gives an empty result.
   AnnotatedSentence annotate(const std::vector<std::string>& tokens) const;
+
+  /// The decoding rules in use; setDecodingRules changes them (cross-validation
+  /// ablations score one trained model under several rule sets).
+  const DecodingRules& decodingRules() const;
+  void setDecodingRules(const DecodingRules& rules);
 
   /// Lemmas that the training corpus annotated as actions ("pick", "place", ...).
   const std::vector<std::string>& actionLemmas() const;

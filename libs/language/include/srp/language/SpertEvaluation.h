@@ -9,6 +9,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "srp/language/LanguageModel.h"
@@ -51,6 +52,47 @@ struct CrossValidationResult {
 /// deterministic. Throws InvalidInputError when folds < 2 or > corpus size.
 CrossValidationResult crossValidate(const std::vector<AnnotatedSentence>& corpus,
                                     const LanguageTrainingOptions& options, int folds, int threads = 1);
+
+/// The pooled protocol (README "Protocol"): repeated k-fold cross-validation.
+/// For each seed the corpus is shuffled (Fisher-Yates on std::mt19937_64(seed),
+/// the same on every platform) and cut into `folds` folds; each fold is
+/// annotated by a model trained on the others. One trained model per (seed,
+/// fold) scores every decoding-rule variant, so rule ablations cost no retraining.
+struct RepeatedCrossValidation {
+  std::vector<std::string> variantNames;        ///< variants[0] is the baseline
+  std::vector<std::vector<SpertScores>> folds;  ///< [variant][seed * folds + fold]
+  /// Out-of-fold predictions of the baseline for the first seed, corpus order.
+  std::vector<AnnotatedSentence> firstSeedPredictions;
+  int numFolds = 0, numSeeds = 0;
+  double trainSecondsPerFold = 0.0;  ///< mean wall time of one training
+};
+
+/// Runs the protocol with `options` (its rules are the baseline) and, on the
+/// same trained models, each extra (name, rules) variant. Seeds are 1..seeds.
+/// Throws InvalidInputError when folds < 2, seeds < 1 or folds > corpus size.
+RepeatedCrossValidation repeatedCrossValidate(const std::vector<AnnotatedSentence>& corpus,
+                                              const LanguageTrainingOptions& options, int folds, int seeds,
+                                              int threads = 1,
+                                              const std::vector<std::pair<std::string, DecodingRules>>& variants = {});
+
+/// Mean and standard deviation (n - 1) of a type's F1 over a variant's folds,
+/// fractions; and the same of the per-fold difference to the baseline (paired:
+/// both are scored on the same folds by the same trained model or split).
+struct CvSummary {
+  double mean = 0.0, std = 0.0;
+};
+CvSummary cvF1(const std::vector<SpertScores>& folds, const std::string& type);
+/// `type` "macro" is the mean F1 of the seven types per fold.
+CvSummary cvF1Difference(const std::vector<SpertScores>& folds, const std::vector<SpertScores>& baseline,
+                         const std::string& type);
+
+/// The protocol's table: per type mean ± std F1 (percent) of each variant, and
+/// for every variant after the first its paired difference to the first with
+/// the verdict of the rule (kept when the macro mean difference exceeds its
+/// standard deviation, i.e. the fold std of the difference corrected for the
+/// overlapping training sets (Nadeau & Bengio 2003), and no type's mean falls).
+std::string formatCrossValidation(const RepeatedCrossValidation& cv);
+nlohmann::json toJson(const RepeatedCrossValidation& cv);
 
 /// One entity that a prediction got wrong, on the gold side (a gold entity not
 /// predicted) or the predicted side (a prediction not in gold).

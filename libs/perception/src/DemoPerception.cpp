@@ -123,13 +123,27 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
     if (s.valid) ++m.result.handDetected;
   }
   // Objects after the hand: the hand's segment (and a part it holds) explains no object.
+  std::optional<Plane> movingPlane;
+  if (m.options.movingCamera) {
+    // The table turns little between frames: the plane is looked for near
+    // the last one, so that a wall or board filling more of the image does
+    // not take its place (frame 41 of the real RealSense recording).
+    PlaneFitOptions po = m.options.objects.plane;
+    if (m.support) {
+      po.expectedNormal = m.support->n;
+      po.maxTilt_rad = m.options.maxPlaneTurnPerFrame_rad;
+    }
+    movingPlane = fitDominantPlane(depthToCloud(f.depth_m, CameraModel(f.intrinsics)), po);
+    if (!movingPlane) movingPlane = m.support;
+    if (movingPlane) m.support = movingPlane;
+  }
   const auto detections =
       m.options.movingCamera
-          ? m.detector->detect(f)
+          ? (movingPlane ? m.detector->detect(f, &*movingPlane) : std::vector<ObjectDetection>{})
           : m.tracker->update(f, m.options.fixedSupportPlane && m.support ? &*m.support : nullptr,
                               h ? std::vector<Eigen::Vector2d>{h->palm_px} : std::vector<Eigen::Vector2d>{});
   if (m.options.onFrameDetections) m.options.onFrameDetections(f.index, detections);
-  if (!m.support) m.support = m.options.movingCamera ? m.detector->lastPlane() : m.tracker->lastPlane();
+  if (!m.support) m.support = m.tracker->lastPlane();
   if (m.debug && !m.options.movingCamera) {
     const auto& st = m.tracker->lastStats();
     std::fprintf(stderr, "frame %d: %d segments: %d hand, %d unchanged, %d static verified, %d explained\n", f.index,

@@ -66,6 +66,10 @@ struct PerceptionOptions {
   /// reuse of unchanged segments, no "parts move only in the hand" rule, no
   /// rest consolidation, all of which assume a fixed camera).
   bool movingCamera = false;
+  /// Moving camera: the support plane's normal is looked for within this of
+  /// the previous frame's [rad] (a hand-held camera turns a few degrees
+  /// between frames; a wall or board is 45-90 deg away).
+  double maxPlaneTurnPerFrame_rad = 15.0 * 3.14159265358979323846 / 180.0;
   /// A part moves only in the hand: consecutive detections of a moving class
   /// within restRadius_m of their period's median are one rest, reported
   /// with the rest's median yaw (modulo the model's symmetry; positions stay

@@ -24,8 +24,9 @@ struct SurfacePoint {
 /// convention).
 ///
 /// \code
-///   srp::kb::TriangleMesh mesh = srp::kb::TriangleMesh::loadStl("datasets/kb/meshes/star.stl");
+///   srp::kb::TriangleMesh mesh = srp::kb::TriangleMesh::load("datasets/kb/meshes/star.stl");
 ///   Eigen::AlignedBox3d box = mesh.bounds();   // 0.05 x 0.05 x 0.025 m
+///   auto samples = mesh.sampleSurface(0.004);  // oriented points for pose estimation
 /// \endcode
 class TriangleMesh {
  public:

@@ -168,7 +168,8 @@ PerceptionResult DemoPerceiver::finish() const {
     throw core::InvalidInputError("the hand was never detected in the " + std::to_string(m.frameIndex.size()) +
                                   " frames of the demo (" +
                                   (m.options.hand == PerceptionOptions::HandMethod::Marker
-                                       ? std::string("no tag36h11 tag of the glove seen: check the tag size/id, or use the marker-free detector")
+                                       ? std::string("no tag36h11 tag of the glove seen: check the tag size/id, use the marker-free detector, or "
+                                                     "perceive objects only (HandMethod::None, srp perceive --hand none)")
                                        : std::string("no foreground hand: do the first frames show the scene without the hand?")) +
                                   "); nothing written");
   PerceptionResult result = m.result;

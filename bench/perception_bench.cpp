@@ -29,7 +29,7 @@ using namespace srp::perception;
 constexpr int kSynthFrames = 200;
 
 const std::vector<srp::rawlog::RgbdFrame>& realFrames() {
-  static const auto f = readRgbdFolder(std::string(SRP_DATASETS_DIR) + "/real/visp-rbt-cube");
+  static const auto f = readRgbdFolder(std::string(SRP_DATASETS_DIR) + "/real/visp-rbt-cube", 10);  // frames 0-9, as before the folder held 50
   return f;
 }
 

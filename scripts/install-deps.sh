@@ -27,6 +27,8 @@ PACKAGES=(
   libapriltag-dev
   # rawlog: gzip members compressed with libdeflate (fast, in parallel)
   libdeflate-dev
+  # knowledge base: users' CAD files of their parts (OBJ, STL, PLY, glTF, COLLADA)
+  libassimp-dev
   # test data shipped by Debian
   visp-images-data
 )

@@ -1,4 +1,5 @@
 // `srp kb`: the knowledge base (object classes and their CAD meshes).
+#include <cstdio>
 #include <iostream>
 
 #include <nlohmann/json.hpp>
@@ -22,11 +23,46 @@ void setupKb(CLI::App& cmd) {
       std::cout << m.className << ": " << m.triangleCount << " triangles -> " << m.path << "\n";
   });
 
+  auto* add = cmd.add_subcommand("add", "Add a part or container given by its CAD file alone (STL, OBJ, PLY, glTF, COLLADA)");
+  auto entry = std::make_shared<srp::kb::MeshClassEntry>();
+  auto rgb = std::make_shared<std::vector<double>>();
+  auto mass = std::make_shared<double>(0.0);
+  add->add_option("--catalogue", *cataloguePath, "catalogue JSON to add to (created when missing)")->required();
+  add->add_option("--name", entry->name, "class name, unique in the catalogue")->required();
+  add->add_option("--mesh", entry->meshPath,
+                  "CAD file in metres; its frame becomes the class's object frame (+z up when the part rests)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  add->add_option("--id", entry->classId, "class_id (default: the next free one)");
+  add->add_option("--noun", entry->noun, "head noun in instructions (default: the name)");
+  add->add_option("--kind", entry->kind, "part or container")->check(CLI::IsMember({"part", "container"}))->capture_default_str();
+  add->add_option("--rgb", *rgb, "linear RGB in [0, 1] when the colour identifies the part (default: none)")->expected(3);
+  add->add_option("--mass", *mass, "mass [kg] (default: the mesh's volume at 1000 kg/m^3)");
+  add->add_flag("--json", *json, "machine-readable output");
+  add->footer("Example: srp kb add --catalogue my_parts.json --name cube --mesh cube.obj");
+  add->callback([cataloguePath, entry, rgb, mass, json]() {
+    if (rgb->size() == 3) entry->rgb = Eigen::Vector3d((*rgb)[0], (*rgb)[1], (*rgb)[2]);
+    if (*mass > 0.0) entry->mass_kg = *mass;
+    const srp::core::ObjectClass c = srp::kb::addMeshClass(*cataloguePath, *entry);
+    const Eigen::Vector3d& d = c.dimensions_m;
+    if (*json) {
+      std::cout << nlohmann::json{{"catalogue", *cataloguePath}, {"name", c.name}, {"class_id", c.classId},
+                                  {"kind", srp::core::toString(c.kind)}, {"mesh", c.meshPath},
+                                  {"dimensions_m", {d.x(), d.y(), d.z()}}, {"mass_kg", c.mass_kg}}
+                       .dump(2)
+                << "\n";
+      return;
+    }
+    std::printf("added '%s' (class_id %d, %s) to %s: %.4f x %.4f x %.4f m, %.3f kg, mesh %s\n", c.name.c_str(),
+                c.classId, srp::core::toString(c.kind).c_str(), cataloguePath->c_str(), d.x(), d.y(), d.z(), c.mass_kg,
+                c.meshPath.c_str());
+  });
+
   auto* list = cmd.add_subcommand("list", "List the catalogue classes");
   list->add_option("--catalogue", *cataloguePath, "catalogue JSON (default: the bundled one)");
   list->add_flag("--json", *json, "machine-readable output");
   list->callback([cataloguePath, json]() {
-    const auto catalogue = srp::core::ObjectCatalogue::load(*cataloguePath);
+    const auto catalogue = srp::kb::loadCatalogue(*cataloguePath);
     nlohmann::json out = nlohmann::json::array();
     for (const auto& c : catalogue.classes()) {
       if (*json) {
@@ -34,7 +70,7 @@ void setupKb(CLI::App& cmd) {
                        {"shape", c.shape}, {"dimensions_m", {c.dimensions_m.x(), c.dimensions_m.y(), c.dimensions_m.z()}},
                        {"mesh", c.meshPath}});
       } else {
-        std::cout << c.classId << "  " << c.name << "  (" << c.shape << ", " << c.dimensions_m.x() << " x "
+        std::cout << c.classId << "  " << c.name << "  (" << (c.shape.empty() ? "mesh" : c.shape) << ", " << c.dimensions_m.x() << " x "
                   << c.dimensions_m.y() << " x " << c.dimensions_m.z() << " m)  " << c.meshPath << "\n";
       }
     }
@@ -42,6 +78,6 @@ void setupKb(CLI::App& cmd) {
   });
 }
 
-const srp::app::CommandRegistrar kReg{"kb", "Knowledge base: list classes, generate their CAD meshes", 15, setupKb};
+const srp::app::CommandRegistrar kReg{"kb", "Knowledge base: list classes, add a CAD part, generate meshes", 15, setupKb};
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include "CommandRegistry.h"
 #include "srp/core/Json.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/DemoPerception.h"
 
 namespace {
@@ -27,12 +28,16 @@ struct PerceiveOptions {
   double tagSize_m = 0.05;
   int tagId = 0;
   bool json = false;
+  bool movingCamera = false;
 };
 
 void run(const PerceiveOptions& o) {
-  const auto catalogue = srp::core::ObjectCatalogue::load(o.kb);
+  const auto catalogue = srp::kb::loadCatalogue(o.kb);
   PerceptionOptions p;
-  p.hand = o.hand == "marker-free" ? PerceptionOptions::HandMethod::MarkerFree : PerceptionOptions::HandMethod::Marker;
+  p.hand = o.hand == "marker-free" ? PerceptionOptions::HandMethod::MarkerFree
+           : o.hand == "none"      ? PerceptionOptions::HandMethod::None
+                                   : PerceptionOptions::HandMethod::Marker;
+  p.movingCamera = o.movingCamera;
   p.marker.tagSize_m = o.tagSize_m;
   p.marker.tagId = o.tagId;
   const auto statics = splitList(o.staticObjects);
@@ -95,8 +100,12 @@ void run(const PerceiveOptions& o) {
 void setupPerceive(CLI::App& app) {
   auto o = std::make_shared<PerceiveOptions>();
   app.add_option("--demo", o->demo, "Demo RGB-D rawlog (srp record / srp synth-demo)")->required();
-  app.add_option("--kb", o->kb, "Knowledge-base catalogue JSON")->capture_default_str();
-  app.add_option("--hand", o->hand, "Hand detector")->check(CLI::IsMember({"marker", "marker-free"}))->capture_default_str();
+  app.add_option("--kb", o->kb, "Knowledge-base catalogue JSON (classes may be given by a CAD file alone)")->capture_default_str();
+  app.add_option("--hand", o->hand, "Hand detector (none: objects only, a recording without a demonstrator)")
+      ->check(CLI::IsMember({"marker", "marker-free", "none"}))
+      ->capture_default_str();
+  app.add_flag("--moving-camera", o->movingCamera,
+               "Hand-held camera: support plane fitted and objects detected in every frame on its own");
   app.add_option("--tag-size", o->tagSize_m, "Glove tag (tag36h11) black square side [m]")->capture_default_str();
   app.add_option("--tag-id", o->tagId, "Glove tag id (-1: any)")->capture_default_str();
   app.add_option("--objects", o->objects, "Moving objects of interest, comma-separated class names (default: all classes)");
@@ -105,6 +114,11 @@ void setupPerceive(CLI::App& app) {
   app.add_option("--csv", o->csv,
                  "Write the per-frame CSV in the 'srp segment' format (a sample not detected in its frame, "
                  "e.g. a part in the hand, is written as 0,0,0,0)");
+  app.footer(
+      "Object poses are those of each class's mesh frame (a CAD file's own frame), camera optical frame.\n"
+      "Example (a real hand-held recording, objects only):\n"
+      "  srp import datasets/real/visp-rbt-cube cube.rawlog\n"
+      "  srp perceive --demo cube.rawlog --kb my_parts.json --objects cube --hand none --moving-camera --json");
   app.callback([o] { run(*o); });
 }
 

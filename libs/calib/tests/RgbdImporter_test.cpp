@@ -44,11 +44,11 @@ TEST(RgbdImporter, VispRbtCubeFolderImportsWithItsIntrinsicsAndDepthScale) {
   const std::string out = (fs::temp_directory_path() / "srp_calib_cube.rawlog").string();
   const auto s = importRecording(kCubeFolder, out);
   EXPECT_EQ(s.layout, "folder");
-  EXPECT_EQ(s.frames, 10);
+  EXPECT_EQ(s.frames, 50);
   EXPECT_DOUBLE_EQ(s.depthScale_m, 0.001) << "from cam.json's depthScale";
   const auto cam = loadCameraFile(kCubeFolder + "/cam.json").camera.intrinsics;
   const auto frames = srp::rawlog::RawlogReader::readAll(out);
-  ASSERT_EQ(frames.size(), 10u);
+  ASSERT_EQ(frames.size(), 50u);
   EXPECT_EQ(frames[3].intrinsics, cam);
   EXPECT_NEAR(frames[9].t_s - frames[0].t_s, 9.0 / 30.0, 1e-6);
   // Depth checked against the PNG: millimetres x 0.001 = metres, every pixel.
@@ -59,7 +59,7 @@ TEST(RgbdImporter, VispRbtCubeFolderImportsWithItsIntrinsicsAndDepthScale) {
   EXPECT_EQ(cv::norm(frames[4].depth_m, expected_m, cv::NORM_INF), 0.0);
   EXPECT_GT(cv::countNonZero(raw), raw.total() / 2) << "a real depth image, mostly valid";
   const auto replay = replayRawlog(out);
-  EXPECT_EQ(replay.frames, 10);
+  EXPECT_EQ(replay.frames, 50);
   EXPECT_EQ(replay.intrinsics, cam);
   EXPECT_DOUBLE_EQ(static_cast<float>(replay.depthUnit_m), 0.001f);
   EXPECT_NEAR(replay.fps, 30.0, 1e-3);
@@ -72,9 +72,9 @@ TEST(RgbdImporter, ImportReplayExportRoundTripsPixelsAndDepthBitExactly) {
   ReplayOptions options;
   options.exportDir = exported.string();
   const auto s = replayRawlog(out, options);
-  ASSERT_EQ(s.frames, 10);
+  ASSERT_EQ(s.frames, 50);
   EXPECT_EQ(s.depthClipped, 0);
-  for (int i = 0; i < 10; ++i) {
+  for (int i = 0; i < 50; ++i) {
     char name[32];
     std::snprintf(name, sizeof name, "_%04d.png", i);
     for (const char* kind : {"color", "depth"}) {

@@ -50,14 +50,20 @@ ObjectCatalogue ObjectCatalogue::load(const std::string& path) {
       if (kind == "part") c.kind = ObjectKind::Part;
       else if (kind == "container") c.kind = ObjectKind::Container;
       else throw InvalidInputError(ctx + ": field 'kind' must be \"part\" or \"container\", not \"" + kind + "\"");
-      c.shape = requireField(e, "shape", ctx).get<std::string>();
-      c.rgb = vec3(requireField(e, "rgb", ctx), ctx + " field 'rgb'");
-      c.dimensions_m = vec3(requireField(e, "dimensions_m", ctx), ctx + " field 'dimensions_m'");
-      if ((c.dimensions_m.array() <= 0.0).any())
-        throw InvalidInputError(ctx + ": field 'dimensions_m' must be positive");
-      c.wallThickness_m = e.value("wall_thickness_m", 0.0);
-      c.mass_kg = requireField(e, "mass_kg", ctx).get<double>();
       if (e.contains("mesh")) c.meshPath = (folder / e.at("mesh").get<std::string>()).lexically_normal().string();
+      // A class given by its CAD file alone: shape, size, colour and mass may
+      // be left out (size and mass then come from the mesh, kb::loadCatalogue).
+      const bool meshOnly = !c.meshPath.empty() && !e.contains("shape");
+      c.shape = meshOnly ? std::string() : requireField(e, "shape", ctx).get<std::string>();
+      c.hasColour = e.contains("rgb") || !meshOnly;
+      if (c.hasColour) c.rgb = vec3(requireField(e, "rgb", ctx), ctx + " field 'rgb'");
+      if (!meshOnly || e.contains("dimensions_m")) {
+        c.dimensions_m = vec3(requireField(e, "dimensions_m", ctx), ctx + " field 'dimensions_m'");
+        if ((c.dimensions_m.array() <= 0.0).any())
+          throw InvalidInputError(ctx + ": field 'dimensions_m' must be positive");
+      }
+      c.wallThickness_m = e.value("wall_thickness_m", 0.0);
+      c.mass_kg = meshOnly ? e.value("mass_kg", 0.0) : requireField(e, "mass_kg", ctx).get<double>();
       if (e.contains("grasp_axis")) c.graspAxis_object = vec3(e.at("grasp_axis"), ctx + " field 'grasp_axis'").normalized();
       classes.push_back(std::move(c));
     }

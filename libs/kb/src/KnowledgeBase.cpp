@@ -1,8 +1,11 @@
 #include "srp/kb/KnowledgeBase.h"
 
+#include <cmath>
 #include <filesystem>
+#include <fstream>
 
 #include "srp/core/Error.h"
+#include "srp/core/Json.h"
 #include "srp/kb/ShapeMeshes.h"
 
 namespace srp::kb {
@@ -25,10 +28,62 @@ std::vector<BuiltMesh> buildMeshes(const srp::core::ObjectCatalogue& catalogue) 
 }
 
 TriangleMesh loadClassMesh(const srp::core::ObjectClass& c) {
-  if (!c.meshPath.empty() && std::filesystem::exists(c.meshPath)) return TriangleMesh::loadStl(c.meshPath);
+  if (!c.meshPath.empty() && std::filesystem::exists(c.meshPath)) return TriangleMesh::load(c.meshPath);
   if (hasShapeGenerator(c.shape)) return makeClassMesh(c);
   throw srp::core::FileError(c.meshPath, "mesh of class '" + c.name + "' (shape '" + c.shape +
-                                             "') is missing and cannot be generated; add the STL file");
+                                             "') is missing and cannot be generated; add the mesh file (STL, OBJ, PLY, glTF, COLLADA)");
+}
+
+srp::core::ObjectCatalogue loadCatalogue(const std::string& path) {
+  const srp::core::ObjectCatalogue raw = srp::core::ObjectCatalogue::load(path);
+  std::vector<srp::core::ObjectClass> classes = raw.classes();
+  for (auto& c : classes) {
+    if (!c.shape.empty() || c.meshPath.empty()) continue;  // generated shapes carry their size
+    const TriangleMesh mesh = TriangleMesh::load(c.meshPath);
+    if ((c.dimensions_m.array() <= 0.0).any()) c.dimensions_m = mesh.bounds().sizes();
+    if (!(c.mass_kg > 0.0)) c.mass_kg = std::abs(mesh.volume()) * kDefaultPartDensity_kg_m3;
+  }
+  return srp::core::ObjectCatalogue(std::move(classes));
+}
+
+srp::core::ObjectClass addMeshClass(const std::string& cataloguePath, const MeshClassEntry& entry) {
+  namespace fs = std::filesystem;
+  srp::core::require(!entry.name.empty(), "srp kb add: the class needs a name (--name)");
+  srp::core::require(entry.kind == "part" || entry.kind == "container",
+                     "srp kb add: kind must be \"part\" or \"container\", not \"" + entry.kind + "\"");
+  TriangleMesh::load(entry.meshPath);  // readable, has triangles
+  nlohmann::json j = fs::exists(cataloguePath) ? srp::core::readJsonFile(cataloguePath)
+                                               : nlohmann::json{{"schema_version", 1}, {"classes", nlohmann::json::array()}};
+  if (fs::exists(cataloguePath)) srp::core::ObjectCatalogue::load(cataloguePath);  // a valid catalogue to add to
+  int nextId = 0;
+  for (const auto& c : j.at("classes")) {
+    if (c.value("name", "") == entry.name)
+      throw srp::core::InvalidInputError("srp kb add: class '" + entry.name + "' is already in " + cataloguePath +
+                                         "; choose another --name");
+    if (c.value("class_id", -1) == entry.classId)
+      throw srp::core::InvalidInputError("srp kb add: class_id " + std::to_string(entry.classId) + " is taken by '" +
+                                         c.value("name", "") + "' in " + cataloguePath + "; choose another --id");
+    nextId = std::max(nextId, c.value("class_id", -1) + 1);
+  }
+  const fs::path folder = fs::absolute(cataloguePath).parent_path();
+  nlohmann::json e{{"name", entry.name},
+                   {"class_id", entry.classId >= 0 ? entry.classId : nextId},
+                   {"noun", entry.noun.empty() ? entry.name : entry.noun},
+                   {"kind", entry.kind},
+                   {"mesh", fs::absolute(entry.meshPath).lexically_relative(folder).generic_string()}};
+  if (entry.rgb) e["rgb"] = {entry.rgb->x(), entry.rgb->y(), entry.rgb->z()};
+  if (entry.mass_kg) e["mass_kg"] = *entry.mass_kg;
+  j["classes"].push_back(e);
+  if (!folder.empty()) fs::create_directories(folder);
+  const std::string tmp = cataloguePath + ".tmp";
+  {
+    std::ofstream out(tmp);
+    if (!out) throw srp::core::FileError(cataloguePath, "cannot write the catalogue (folder read-only?)");
+    out << j.dump(2) << "\n";
+    if (!out) throw srp::core::FileError(cataloguePath, "write failed (disk full?)");
+  }
+  fs::rename(tmp, cataloguePath);
+  return loadCatalogue(cataloguePath).at(entry.name);
 }
 
 }  // namespace srp::kb

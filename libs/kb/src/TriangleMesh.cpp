@@ -1,5 +1,6 @@
 #include "srp/kb/TriangleMesh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -7,6 +8,10 @@
 #include <fstream>
 #include <map>
 #include <tuple>
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
 
 #include "srp/core/Error.h"
 
@@ -95,36 +100,66 @@ void TriangleMesh::saveStl(const std::string& path, const std::string& header) c
   if (!out) throw srp::core::FileError(path, "write failed");
 }
 
-TriangleMesh TriangleMesh::loadStl(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw srp::core::FileError(path, "cannot open STL mesh (run `srp kb build` to generate the bundled ones)");
-  char head[80];
-  std::uint32_t count = 0;
-  in.read(head, sizeof(head));
-  in.read(reinterpret_cast<char*>(&count), sizeof(count));
-  if (!in) throw srp::core::FileError(path, "not a binary STL file (shorter than its 84-byte header)");
-  in.seekg(0, std::ios::end);
-  const auto size = static_cast<std::uint64_t>(in.tellg());
-  if (size != 84ull + 50ull * count)
-    throw srp::core::FileError(path, "not a binary STL file: " + std::to_string(count) +
-                                         " triangles need " + std::to_string(84ull + 50ull * count) +
-                                         " bytes, the file has " + std::to_string(size) +
-                                         " (ASCII STL is not supported)");
-  in.seekg(84);
+TriangleMesh TriangleMesh::load(const std::string& path) {
+  if (!std::filesystem::is_regular_file(path))
+    throw srp::core::FileError(path, "mesh file not found (a catalogue's \"mesh\" is relative to the catalogue file; "
+                                     "run `srp kb build` to generate the bundled ones)");
+  Assimp::Importer importer;
+  // The object frame is the file's own: no up-axis conversion.
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
+  // Whole faces only: points and lines are no surface.
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                                                     aiProcess_SortByPType | aiProcess_FindDegenerates);
+  if (!scene || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
+    throw srp::core::FileError(path, std::string("cannot read the mesh (") + importer.GetErrorString() +
+                                         "); give an STL, OBJ, PLY, glTF or COLLADA file");
   TriangleMesh mesh;
-  mesh.triangles_.reserve(count);
-  for (std::uint32_t i = 0; i < count; ++i) {
-    float record[12];
-    std::uint16_t attribute = 0;
-    in.read(reinterpret_cast<char*>(record), sizeof(record));
-    in.read(reinterpret_cast<char*>(&attribute), sizeof(attribute));
-    Triangle t;
-    for (int v = 0; v < 3; ++v)
-      t[v] = Eigen::Vector3d(record[3 + 3 * v], record[4 + 3 * v], record[5 + 3 * v]);
-    mesh.triangles_.push_back(t);
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh* am = scene->mMeshes[m];
+    for (unsigned f = 0; f < am->mNumFaces; ++f) {
+      const aiFace& face = am->mFaces[f];
+      if (face.mNumIndices != 3) continue;
+      Triangle t;
+      for (int k = 0; k < 3; ++k) {
+        const aiVector3D& v = am->mVertices[face.mIndices[k]];
+        t[k] = Eigen::Vector3d(v.x, v.y, v.z);
+      }
+      mesh.triangles_.push_back(t);
+    }
   }
-  if (!in) throw srp::core::FileError(path, "truncated STL file");
+  if (mesh.triangles_.empty()) throw srp::core::FileError(path, "the mesh file holds no triangles");
   return mesh;
+}
+
+std::vector<SurfacePoint> TriangleMesh::sampleSurface(double spacing_m) const {
+  std::vector<SurfacePoint> out;
+  for (const Triangle& t : triangles_) {
+    const Eigen::Vector3d &a = t[0], &b = t[1], &c = t[2];
+    Eigen::Vector3d n = (b - a).cross(c - a);
+    const double area2 = n.norm();
+    if (area2 < 1e-14) continue;
+    n /= area2;
+    // Barycentric grid: steps along the two edges from a.
+    const int steps = std::max(1, static_cast<int>(std::ceil(std::max((b - a).norm(), (c - a).norm()) / spacing_m)));
+    bool any = false;
+    for (int i = 0; i <= steps; ++i)
+      for (int j = 0; i + j <= steps; ++j) {
+        const double s = (i + 1.0 / 3.0) / (steps + 1.0), r = (j + 1.0 / 3.0) / (steps + 1.0);
+        if (s + r > 1.0) continue;
+        out.push_back({a + s * (b - a) + r * (c - a), n});
+        any = true;
+      }
+    if (!any) out.push_back({(a + b + c) / 3.0, n});
+  }
+  return out;
+}
+
+TriangleMesh TriangleMesh::transformed(const Eigen::Isometry3d& X) const {
+  TriangleMesh m = *this;
+  for (Triangle& t : m.triangles_)
+    for (Eigen::Vector3d& v : t) v = X * v;
+  return m;
 }
 
 }  // namespace srp::kb

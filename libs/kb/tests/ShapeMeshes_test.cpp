@@ -67,7 +67,7 @@ TEST(ShapeMeshes, CommittedMeshesMatchTheGenerator) {
   const auto catalogue = srp::core::ObjectCatalogue::load(srp::core::ObjectCatalogue::defaultPath());
   for (const auto& c : catalogue.classes()) {
     SCOPED_TRACE(c.meshPath);
-    const auto committed = srp::kb::TriangleMesh::loadStl(c.meshPath);
+    const auto committed = srp::kb::TriangleMesh::load(c.meshPath);
     const auto generated = srp::kb::makeClassMesh(c);
     ASSERT_EQ(committed.size(), generated.size());
     for (std::size_t i = 0; i < committed.size(); ++i)

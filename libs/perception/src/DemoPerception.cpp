@@ -77,7 +77,8 @@ DemoPerceiver::DemoPerceiver(const core::ObjectCatalogue& catalogue, const Perce
     if (p.isStatic) tracking.staticClasses.insert(p.className);
   impl_->tracker = std::make_unique<ObjectTracker>(*impl_->detector, tracking);
   if (options.hand == PerceptionOptions::HandMethod::Marker) impl_->hand = std::make_unique<MarkerHandDetector>(options.marker);
-  else impl_->hand = std::make_unique<MarkerFreeHandDetector>(options.markerFree);
+  else if (options.hand == PerceptionOptions::HandMethod::MarkerFree)
+    impl_->hand = std::make_unique<MarkerFreeHandDetector>(options.markerFree);
   for (const auto& p : impl_->plan) impl_->perClass[p.className];
 }
 
@@ -106,7 +107,7 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
   s.frame = f.index;
   s.t_s = f.t_s;
   s.valid = false;
-  const auto h = m.hand->detect(f);
+  const auto h = m.hand ? m.hand->detect(f) : std::nullopt;
   if (h) {
     if (h->hasDepth) {
       s.p_m = h->p_camera_palm_m;
@@ -124,11 +125,28 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
     if (s.valid) ++m.result.handDetected;
   }
   // Objects after the hand: the hand's segment (and a part it holds) explains no object.
-  const auto detections = m.tracker->update(f, m.options.fixedSupportPlane && m.support ? &*m.support : nullptr,
-                                             h ? std::vector<Eigen::Vector2d>{h->palm_px} : std::vector<Eigen::Vector2d>{});
+  std::optional<Plane> movingPlane;
+  if (m.options.movingCamera) {
+    // The table turns little between frames: the plane is looked for near
+    // the last one, so that a wall or board filling more of the image does
+    // not take its place (frame 41 of the real RealSense recording).
+    PlaneFitOptions po = m.options.objects.plane;
+    if (m.support) {
+      po.expectedNormal = m.support->n;
+      po.maxTilt_rad = m.options.maxPlaneTurnPerFrame_rad;
+    }
+    movingPlane = fitDominantPlane(depthToCloud(f.depth_m, CameraModel(f.intrinsics)), po);
+    if (!movingPlane) movingPlane = m.support;
+    if (movingPlane) m.support = movingPlane;
+  }
+  const auto detections =
+      m.options.movingCamera
+          ? (movingPlane ? m.detector->detect(f, &*movingPlane) : std::vector<ObjectDetection>{})
+          : m.tracker->update(f, m.options.fixedSupportPlane && m.support ? &*m.support : nullptr,
+                              h ? std::vector<Eigen::Vector2d>{h->palm_px} : std::vector<Eigen::Vector2d>{});
   if (m.options.onFrameDetections) m.options.onFrameDetections(f.index, detections);
   if (!m.support) m.support = m.tracker->lastPlane();
-  if (m.debug) {
+  if (m.debug && !m.options.movingCamera) {
     const auto& st = m.tracker->lastStats();
     std::fprintf(stderr, "frame %d: %d segments: %d hand, %d unchanged, %d static verified, %d explained\n", f.index,
                  st.segments, st.hand, st.unchanged, st.staticVerified, st.explained);
@@ -148,11 +166,12 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
 PerceptionResult DemoPerceiver::finish() const {
   const Impl& m = *impl_;
   if (m.frameIndex.empty()) throw core::InvalidInputError("the demo has zero frames: nothing to perceive");
-  if (m.result.handDetected == 0)
+  if (m.result.handDetected == 0 && m.hand)
     throw core::InvalidInputError("the hand was never detected in the " + std::to_string(m.frameIndex.size()) +
                                   " frames of the demo (" +
                                   (m.options.hand == PerceptionOptions::HandMethod::Marker
-                                       ? std::string("no tag36h11 tag of the glove seen: check the tag size/id, or use the marker-free detector")
+                                       ? std::string("no tag36h11 tag of the glove seen: check the tag size/id, use the marker-free detector, or "
+                                                     "perceive objects only (HandMethod::None, srp perceive --hand none)")
                                        : std::string("no skin-coloured foreground at the end of an arm: is the demonstrator's hand in view and does "
                                                      "the camera stay still?")) +
                                   "); nothing written");
@@ -182,7 +201,7 @@ PerceptionResult DemoPerceiver::finish() const {
     }
     // Rests of a moving part: runs of detections near their running median.
     std::vector<std::optional<ObjectDetection>> rested = dets;
-    if (!p.isStatic && m.options.consolidateRests) {
+    if (!p.isStatic && m.options.consolidateRests && !m.options.movingCamera) {
       const ObjectPoseFitter* fitter = m.detector->fitterFor(p.className);
       const double symmetry_rad = fitter ? fitter->model().yawSymmetry_rad : 2 * M_PI;
       const core::Pose3 X_plane_camera = m.support ? m.support->X_camera_plane().inverse() : core::Pose3::Identity();
@@ -229,6 +248,9 @@ PerceptionResult DemoPerceiver::finish() const {
       }
       close();
     }
+    // Reported in the class's object frame (its mesh's), not the model frame the detector fits in.
+    const ObjectPoseFitter* classFitter = m.detector->fitterFor(p.className);
+    const core::Pose3 X_model_mesh = classFitter ? classFitter->model().X_model_mesh : core::Pose3::Identity();
     const ObjectDetection* carried = &*rested[static_cast<std::size_t>(firstFrame)];
     for (std::size_t i = 0; i < dets.size(); ++i) {
       ObjectPoseSample s;
@@ -245,6 +267,7 @@ PerceptionResult DemoPerceiver::finish() const {
         s.detected = dets[i].has_value();
         s.confidence = dets[i] ? dets[i]->confidence : 0.0;
       }
+      s.X_camera_object = s.X_camera_object * X_model_mesh;
       traj.samples.push_back(s);
     }
     result.objects.push_back(traj);

@@ -25,7 +25,7 @@ EdgeYawRefiner::EdgeYawRefiner(const ObjectModel& model, const Options& options)
   for (int m : {4, 8}) {
     std::complex<double> sum = 0.0;
     double weight = 0.0;
-    for (const SurfacePoint& s : model.surface) {
+    for (const kb::SurfacePoint& s : model.surface) {
       if (std::abs(s.n.z()) > 0.1) continue;  // side faces only
       sum += std::polar(1.0, m * std::atan2(s.n.y(), s.n.x()));
       weight += 1.0;
@@ -42,7 +42,7 @@ EdgeYawRefiner::EdgeYawRefiner(const ObjectModel& model, const Options& options)
   constexpr int kBins = 180;
   std::vector<double> hist(kBins, 0.0);
   double sides = 0.0;
-  for (const SurfacePoint& s : model.surface) {
+  for (const kb::SurfacePoint& s : model.surface) {
     if (std::abs(s.n.z()) > 0.1) continue;
     const double a = std::fmod(std::atan2(s.n.y(), s.n.x()) + 2 * kPi, kPi);
     hist[static_cast<std::size_t>(std::min(kBins - 1.0, std::floor(a / kPi * kBins)))] += 1.0;

@@ -245,6 +245,11 @@ std::optional<ObjectDetection> ObjectDetector::explain(const ObjectSegment& seg,
                                                        const std::map<std::string, core::Pose3>& previous,
                                                        const std::set<std::string>& excluded) const {
   const core::Pose3 X_plane_camera = plane.X_camera_plane().inverse();
+  // The fits stand the part on the table where it is (the gates below stay
+  // in the global plane's frame, as the segment's extent).
+  std::optional<Plane> local;
+  if (options_.localSupport) local = fitLocalPlane(cloud, plane, cv::boundingRect(seg.pixels), options_.localPlane);
+  const Plane& support = local ? *local : plane;
   const double segExtent = (seg.hi_plane_m - seg.lo_plane_m).head<2>().norm();
   const double segTop_m = seg.hi_plane_m.z();
   const Eigen::Vector3d segCentre = seg.centre_plane_m();
@@ -264,7 +269,7 @@ std::optional<ObjectDetection> ObjectDetector::explain(const ObjectSegment& seg,
     // win (a hand's fragment next to a part): no fit.
     const double colour = colourScore(seg, fitter.model());
     if (colour < options_.trackConfidence || colour <= bestConfidence) continue;
-    const ObjectPoseFit fit = fitter.fit(seg.points_camera_m, plane, cloud, camera, &prev->second);
+    const ObjectPoseFit fit = fitter.fit(seg.points_camera_m, support, cloud, camera, &prev->second);
     const double confidence = fit.score * colour;
     if (confidence >= options_.trackConfidence && confidence > bestConfidence) {
       bestFitter = &fitter;
@@ -285,7 +290,7 @@ std::optional<ObjectDetection> ObjectDetector::explain(const ObjectSegment& seg,
     if (colour < 0.05 || colour < options_.minConfidence || colour <= bestConfidence) continue;  // cannot win (score <= 1)
     // A coarse score that even a perfect fine stage could not lift to half
     // the acceptance is not worth the fine stage.
-    const ObjectPoseFit fit = fitter.fit(seg.points_camera_m, plane, cloud, camera, nullptr,
+    const ObjectPoseFit fit = fitter.fit(seg.points_camera_m, support, cloud, camera, nullptr,
                                          0.5 * std::max(options_.minConfidence, bestConfidence) / colour);
     const double confidence = fit.score * colour;
     if (std::getenv("SRP_PERCEPTION_DEBUG"))
@@ -329,15 +334,15 @@ std::optional<ObjectDetection> ObjectDetector::explain(const ObjectSegment& seg,
       }
     }
     if (chosen != 0) {
-      const ObjectPoseFit refit = bestFitter->fit(seg.points_camera_m, plane, cloud, camera, &branches[chosen]);
+      const ObjectPoseFit refit = bestFitter->fit(seg.points_camera_m, support, cloud, camera, &branches[chosen]);
       bestPose = refit.X_camera_object;
     }
   }
   if (options_.refineYawByEdges && bestFitter->model().kind == core::ObjectKind::Part) {
     const EdgeYawRefiner& refiner = refiners_[static_cast<std::size_t>(bestFitter - fitters_.data())];
-    if (const auto X = refiner.refine(bestPose, seg.pixels, seg.colour_bgr8, camera, plane)) bestPose = *X;
+    if (const auto X = refiner.refine(bestPose, seg.pixels, seg.colour_bgr8, camera, support)) bestPose = *X;
   }
-  return makeDetection(*bestFitter, bestPose, bestConfidence, seg, plane);
+  return makeDetection(*bestFitter, bestPose, bestConfidence, seg, plane);  // yaw in the frame of the global plane
 }
 
 }  // namespace srp::perception

@@ -214,7 +214,7 @@ ObjectPoseFit ObjectPoseFitter::fit(const std::vector<Eigen::Vector3d>& points_c
       for (std::size_t i = 0; i < q.size(); i += stride) {
         const Eigen::Vector3d& p = q[i];
         const Eigen::Vector3d po = R.transpose() * (p - t);
-        const SurfacePoint& sp = model_.surface[static_cast<std::size_t>(impl_->lookup(po))];
+        const kb::SurfacePoint& sp = model_.surface[static_cast<std::size_t>(impl_->lookup(po))];
         const Eigen::Vector3d m = R * sp.p_m;
         const Eigen::Vector3d e = p - (m + t);
         const double dist2 = e.squaredNorm();

@@ -73,4 +73,59 @@ std::optional<Plane> fitDominantPlane(const cv::Mat& cloud, const PlaneFitOption
   return best;
 }
 
+std::optional<Plane> fitLocalPlane(const cv::Mat& cloud, const Plane& global, const cv::Rect& roi_px,
+                                   const LocalPlaneOptions& o) {
+  const int grow = static_cast<int>(std::lround(o.margin * std::max(roi_px.width, roi_px.height)));
+  const cv::Rect roi = cv::Rect(roi_px.x - grow, roi_px.y - grow, roi_px.width + 2 * grow, roi_px.height + 2 * grow) &
+                       cv::Rect(0, 0, cloud.cols, cloud.rows);
+  std::vector<Eigen::Vector3d> pts;
+  for (int v = roi.y; v < roi.y + roi.height; v += o.stride_px) {
+    const cv::Vec3f* row = cloud.ptr<cv::Vec3f>(v);
+    for (int u = roi.x; u < roi.x + roi.width; u += o.stride_px) {
+      if (row[u][2] <= 0.f) continue;
+      const Eigen::Vector3d p(row[u][0], row[u][1], row[u][2]);
+      if (std::abs(global.height(p)) < o.band_m) pts.push_back(p);
+    }
+  }
+  if (static_cast<int>(pts.size()) < o.minInliers) return std::nullopt;
+  std::mt19937 rng(o.seed);
+  std::uniform_int_distribution<std::size_t> pick(0, pts.size() - 1);
+  const double cosMaxTurn = std::cos(o.maxTurn_rad);
+  Plane best;
+  best.inliers = 0;
+  for (int it = 0; it < o.iterations; ++it) {
+    const Eigen::Vector3d a = pts[pick(rng)], b = pts[pick(rng)], c = pts[pick(rng)];
+    Eigen::Vector3d n = (b - a).cross(c - a);
+    if (n.norm() < 1e-9) continue;
+    n.normalize();
+    if (n.dot(global.n) < 0) n = -n;  // the camera's side, as the global plane
+    if (n.dot(global.n) < cosMaxTurn) continue;
+    const double d = -n.dot(a);
+    int count = 0;
+    for (const auto& p : pts) count += std::abs(n.dot(p) + d) < o.inlierTol_m;
+    if (count > best.inliers) best = Plane{n, d, count};
+  }
+  if (best.inliers < o.minInliers) return std::nullopt;
+  // Least squares on the inliers.
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector3d> in;
+  for (const auto& p : pts)
+    if (std::abs(best.height(p)) < o.inlierTol_m) in.push_back(p);
+  for (const auto& p : in) mean += p;
+  mean /= static_cast<double>(in.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const auto& p : in) cov += (p - mean) * (p - mean).transpose();
+  Eigen::Vector3d n = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
+  if (n.dot(global.n) < 0) n = -n;
+  if (n.dot(global.n) < cosMaxTurn) return std::nullopt;
+  const Plane local{n, -n.dot(mean), static_cast<int>(in.size())};
+  // The shift where the part stands: the global plane's point below the roi's centre.
+  const cv::Vec3f& centre = cloud.at<cv::Vec3f>(roi_px.y + roi_px.height / 2, roi_px.x + roi_px.width / 2);
+  Eigen::Vector3d q = mean;
+  if (centre[2] > 0.f) q = Eigen::Vector3d(centre[0], centre[1], centre[2]);
+  const Eigen::Vector3d foot = q - global.height(q) * global.n;
+  if (std::abs(local.height(foot)) > o.maxShift_m) return std::nullopt;
+  return local;
+}
+
 }  // namespace srp::perception

@@ -8,10 +8,10 @@
 
 namespace srp::perception {
 
-std::optional<std::size_t> SilhouetteBranchPicker::pick(const TriangleMesh& mesh, const std::vector<core::Pose3>& candidates,
+std::optional<std::size_t> SilhouetteBranchPicker::pick(const kb::TriangleMesh& mesh, const std::vector<core::Pose3>& candidates,
                                                         const std::vector<cv::Point>& segmentPixels, const cv::Mat& colour_bgr8,
                                                         const CameraModel& camera, std::vector<double>* iou) const {
-  if (candidates.empty() || colour_bgr8.empty() || segmentPixels.empty() || mesh.triangles.empty()) return std::nullopt;
+  if (candidates.empty() || colour_bgr8.empty() || segmentPixels.empty() || mesh.empty()) return std::nullopt;
   cv::Rect roi = cv::boundingRect(segmentPixels);
   roi.x -= options_.margin_px;
   roi.y -= options_.margin_px;
@@ -37,7 +37,7 @@ std::optional<std::size_t> SilhouetteBranchPicker::pick(const TriangleMesh& mesh
 
   // Each candidate's silhouette: its mesh triangles filled (sub-pixel vertices).
   double topZ = -1e9;
-  for (const auto& v : mesh.vertices_m) topZ = std::max(topZ, v.z());
+  topZ = mesh.bounds().max().z();
   topZ -= 1e-4;
   constexpr int kShift = 4;  // fillConvexPoly's fractional bits
   std::vector<double> local;
@@ -49,14 +49,14 @@ std::optional<std::size_t> SilhouetteBranchPicker::pick(const TriangleMesh& mesh
   cv::Mat fine(roi.height * kSuper, roi.width * kSuper, CV_8U), silhouette;
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     fine.setTo(0);
-    for (const auto& t : mesh.triangles) {
-      const Eigen::Vector3d& a = mesh.vertices_m[static_cast<std::size_t>(t[0])];
-      const Eigen::Vector3d n = (mesh.vertices_m[static_cast<std::size_t>(t[1])] - a).cross(mesh.vertices_m[static_cast<std::size_t>(t[2])] - a);
+    for (const auto& t : mesh.triangles()) {
+      const Eigen::Vector3d& a = t[0];
+      const Eigen::Vector3d n = (t[1] - a).cross(t[2] - a);
       if (n.z() < 0.9 * n.norm() || a.z() < topZ) continue;  // the top face only
       cv::Point corners[3];
       bool inFront = true;
       for (int i = 0; i < 3; ++i) {
-        const Eigen::Vector3d p = candidates[k] * mesh.vertices_m[static_cast<std::size_t>(t[i])];
+        const Eigen::Vector3d p = candidates[k] * t[i];
         if (p.z() <= 0.0) inFront = false;
         const Eigen::Vector2d px = camera.cameraToPixel(p);
         // Pixel centres at integers in both images: x -> S (x + 0.5) - 0.5.

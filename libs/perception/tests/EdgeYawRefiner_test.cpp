@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "srp/core/ObjectCatalogue.h"
+#include "srp/kb/ShapeMeshes.h"
 
 namespace srp::perception {
 namespace {
@@ -33,13 +34,14 @@ struct TopDownScene {
   /// The model's top face, filled (anti-aliased) in `rgb` on `background`; its pixels.
   cv::Mat render(const ObjectModel& model, const core::Pose3& X_camera_object, const cv::Scalar& bgr,
                  const cv::Scalar& backgroundBgr, std::vector<cv::Point>& pixels) const {
-    const TriangleMesh mesh = ObjectModel::shapeMesh(catalogue().at(model.name).shape, model.dimensions_m, 0.0);
+    const kb::TriangleMesh mesh = kb::makeClassMesh(catalogue().at(model.name));
     std::vector<cv::Point> top;
-    for (const auto& v : mesh.vertices_m)
-      if (std::abs(v.z() - model.dimensions_m.z()) < 1e-9) {
-        const Eigen::Vector2d px = camera.cameraToPixel(X_camera_object * v);
-        top.emplace_back(static_cast<int>(std::lround(px.x() * 16)), static_cast<int>(std::lround(px.y() * 16)));
-      }
+    for (const auto& t : mesh.triangles())
+      for (const Eigen::Vector3d& v : t)
+        if (std::abs(v.z() - model.dimensions_m.z()) < 1e-9) {
+          const Eigen::Vector2d px = camera.cameraToPixel(X_camera_object * v);
+          top.emplace_back(static_cast<int>(std::lround(px.x() * 16)), static_cast<int>(std::lround(px.y() * 16)));
+        }
     std::vector<cv::Point> hull;
     cv::convexHull(top, hull);
     cv::Mat image(480, 640, CV_8UC3, backgroundBgr), mask(480, 640, CV_8U, cv::Scalar(0));

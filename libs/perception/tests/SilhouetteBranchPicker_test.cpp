@@ -34,8 +34,8 @@ cv::Mat renderTop(const ObjectModel& m, const core::Pose3& X_camera_object, cons
       const double s = (top - o.z()) / ray.z();
       const Eigen::Vector2d p = (o + s * ray).head<2>();
       bool inside = false;
-      for (const auto& t : m.mesh.triangles) {
-        const Eigen::Vector3d &a = m.mesh.vertices_m[t[0]], &b = m.mesh.vertices_m[t[1]], &c = m.mesh.vertices_m[t[2]];
+      for (const auto& t : m.mesh.triangles()) {
+        const Eigen::Vector3d &a = t[0], &b = t[1], &c = t[2];
         if (std::min({a.z(), b.z(), c.z()}) < top - 1e-6) continue;
         const auto cross = [](const Eigen::Vector2d& x, const Eigen::Vector2d& y) { return x.x() * y.y() - x.y() * y.x(); };
         const double d1 = cross(b.head<2>() - a.head<2>(), p - a.head<2>());

@@ -6,7 +6,10 @@
 /// Object frame of every class: origin at the centre of the bottom face of the
 /// bounding box, z up (so an object resting on a surface at height h has its
 /// origin at z = h), x along the longest horizontal side. Metres, kilograms.
-/// A user adds a part by adding a mesh and a catalogue entry.
+/// A user adds a part by adding a mesh and a catalogue entry; a class given by
+/// its CAD file alone (no "shape") has the mesh file's own frame as its
+/// object frame, and its size and mass come from the mesh (kb::loadCatalogue):
+/// `{"name": "cube", "class_id": 0, "noun": "cube", "kind": "part", "mesh": "cube.obj"}`.
 ///
 /// \code{.json}
 /// {"schema_version": 1,
@@ -32,11 +35,12 @@ struct ObjectClass {
   std::string noun;        ///< head noun in instructions, e.g. "box" for "blue box"
   std::string colorName;   ///< e.g. "blue"; empty when the colour does not identify it
   ObjectKind kind = ObjectKind::Part;
-  std::string shape;       ///< generator shape: "cuboid", "star", "parallelogram", "octagon", "open_box", ...
+  std::string shape;       ///< generator shape: "cuboid", "star", "parallelogram", "octagon", "open_box", ...; empty: the mesh file alone
   Eigen::Vector3d rgb = Eigen::Vector3d::Constant(0.5);      ///< linear RGB in [0, 1]
-  Eigen::Vector3d dimensions_m = Eigen::Vector3d::Zero();   ///< bounding box x, y, z
+  bool hasColour = true;   ///< false: the entry gave no "rgb" (a mesh-only class); `rgb` is then a neutral grey
+  Eigen::Vector3d dimensions_m = Eigen::Vector3d::Zero();   ///< bounding box x, y, z; zero for a mesh-only class until kb::loadCatalogue measures it
   double wallThickness_m = 0.0;                             ///< containers only
-  double mass_kg = 0.0;
+  double mass_kg = 0.0;    ///< zero for a mesh-only class without "mass_kg" until kb::loadCatalogue estimates it
   std::string meshPath;    ///< absolute (resolved against the catalogue's folder); may not exist yet
   Eigen::Vector3d graspAxis_object = Eigen::Vector3d::UnitY();  ///< gripper closing direction
 };

@@ -1,7 +1,11 @@
 #pragma once
 /// \file KnowledgeBase.h
-/// \brief Builds and loads the knowledge base's meshes (`srp kb build`).
+/// \brief Builds and loads the knowledge base's meshes (`srp kb build`),
+/// loads catalogues whose classes may be given by a CAD file alone, and adds
+/// such classes (`srp kb add`).
 
+#include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,5 +34,33 @@ bool hasShapeGenerator(const std::string& shape);
 /// a fresh checkout renders before `srp kb build`). Throws FileError naming the
 /// path when the file is absent and the shape has no generator.
 TriangleMesh loadClassMesh(const srp::core::ObjectClass& objectClass);
+
+/// Density [kg/m^3] that gives a mesh-only class without "mass_kg" its mass
+/// from the mesh's volume (a solid plastic part).
+constexpr double kDefaultPartDensity_kg_m3 = 1000.0;
+
+/// ObjectCatalogue::load, then every class given by its mesh alone gets its
+/// bounding-box size (`dimensions_m`, in the mesh's frame) and, without
+/// "mass_kg", the mass of its volume at kDefaultPartDensity_kg_m3 from the
+/// mesh file. Throws FileError naming a mesh that cannot be read.
+srp::core::ObjectCatalogue loadCatalogue(const std::string& path);
+
+/// A class given by its CAD file alone (`srp kb add`).
+struct MeshClassEntry {
+  std::string name;
+  int classId = -1;                 ///< -1: the next free id
+  std::string noun;                 ///< empty: the name
+  std::string kind = "part";        ///< "part" or "container"
+  std::string meshPath;             ///< the CAD file (any path; stored relative to the catalogue)
+  std::optional<Eigen::Vector3d> rgb;  ///< linear RGB [0, 1] when the colour identifies it
+  std::optional<double> mass_kg;
+};
+
+/// Appends `entry` to the catalogue file (created when missing), after
+/// checking that its mesh loads and its name and id are free; the file keeps
+/// its other content. Returns the class as loadCatalogue() reads it back.
+/// Throws InvalidInputError naming a taken name or id or a bad kind, and
+/// FileError naming an unreadable mesh or catalogue.
+srp::core::ObjectClass addMeshClass(const std::string& cataloguePath, const MeshClassEntry& entry);
 
 }  // namespace srp::kb

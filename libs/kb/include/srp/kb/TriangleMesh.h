@@ -1,7 +1,9 @@
 #pragma once
 /// \file TriangleMesh.h
-/// \brief A triangle soup in an object's frame, read from and written to
-/// binary STL: the CAD model format of the knowledge base.
+/// \brief A triangle soup in an object's frame: the CAD model of a part or
+/// container, read from any CAD exchange format Assimp knows (STL, OBJ, PLY,
+/// glTF, COLLADA, ...) and written as binary STL (`srp kb build`). The one
+/// mesh type synth, perception and execution share.
 
 #include <Eigen/Geometry>
 #include <array>
@@ -10,14 +12,21 @@
 
 namespace srp::kb {
 
+/// Oriented surface sample: position [m] and outward unit normal, mesh frame.
+struct SurfacePoint {
+  Eigen::Vector3d p_m;
+  Eigen::Vector3d n;
+};
+
 /// A triangle mesh as a list of triangles (vertices in metres, in the frame of
 /// the object the mesh describes). Vertices are ordered counter-clockwise seen
 /// from outside, so the right-hand normal points out of the solid (the STL
 /// convention).
 ///
 /// \code
-///   srp::kb::TriangleMesh mesh = srp::kb::TriangleMesh::loadStl("datasets/kb/meshes/star.stl");
+///   srp::kb::TriangleMesh mesh = srp::kb::TriangleMesh::load("datasets/kb/meshes/star.stl");
 ///   Eigen::AlignedBox3d box = mesh.bounds();   // 0.05 x 0.05 x 0.025 m
+///   auto samples = mesh.sampleSurface(0.004);  // oriented points for pose estimation
 /// \endcode
 class TriangleMesh {
  public:
@@ -47,11 +56,21 @@ class TriangleMesh {
   /// to within `tolerance_m`.
   bool isClosed(double tolerance_m = 1e-9) const;
 
+  /// Points on the surface on a barycentric grid of about `spacing_m`, with
+  /// the face normal; every non-degenerate triangle gets at least one sample.
+  std::vector<SurfacePoint> sampleSurface(double spacing_m) const;
+  /// The mesh moved by X (p' = X p).
+  TriangleMesh transformed(const Eigen::Isometry3d& X) const;
+
   /// Writes binary STL (float32, little-endian); throws FileError naming the path.
   void saveStl(const std::string& path, const std::string& header = "srp") const;
-  /// Reads binary STL; throws FileError naming the path when missing, truncated
-  /// or ASCII.
-  static TriangleMesh loadStl(const std::string& path);
+  /// Reads a CAD file through Assimp, the format by its content and extension
+  /// (STL ASCII or binary, OBJ, PLY, glTF 2, COLLADA, ...): every mesh of the
+  /// file's scene, placed by its node transforms, polygons triangulated;
+  /// coordinates as stored (metres expected; COLLADA's up axis is not
+  /// applied, so the object frame is the file's own). Throws FileError naming
+  /// the path when it is missing, unreadable, truncated or has no triangles.
+  static TriangleMesh load(const std::string& path);
 
  private:
   std::vector<Triangle> triangles_;

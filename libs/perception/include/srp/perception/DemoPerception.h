@@ -31,6 +31,8 @@ struct PlanObject {
 struct ObjectPoseSample {
   int frame = 0;
   double t_s = 0.0;
+  /// The class's object frame = its mesh file's frame (bottom centre for the
+  /// generated catalogue shapes, the CAD file's own frame for a mesh-only class).
   core::Pose3 X_camera_object = core::Pose3::Identity();
   bool detected = false;     ///< false: carried from the nearest detection
   double confidence = 0.0;
@@ -46,7 +48,9 @@ struct ObjectTrajectory {
 };
 
 struct PerceptionOptions {
-  enum class HandMethod { Marker, MarkerFree };
+  /// None: objects only (a recording without a demonstrator, e.g. to check
+  /// object poses); finish() then does not require a hand.
+  enum class HandMethod { Marker, MarkerFree, None };
   HandMethod hand = HandMethod::Marker;
   MarkerHandDetector::Options marker;  ///< defaults: srp synth-demo's glove (tag 0, 5 cm, palm 13.6 mm under the tag)
   MarkerFreeHandDetector::Options markerFree;
@@ -57,6 +61,15 @@ struct PerceptionOptions {
   std::vector<PlanObject> plan;
   /// Fit the support plane once on the first frame (the camera is fixed).
   bool fixedSupportPlane = true;
+  /// A hand-held or moving camera: the support plane is fitted in every
+  /// frame and every frame is detected on its own (ObjectDetector::detect; no
+  /// reuse of unchanged segments, no "parts move only in the hand" rule, no
+  /// rest consolidation, all of which assume a fixed camera).
+  bool movingCamera = false;
+  /// Moving camera: the support plane's normal is looked for within this of
+  /// the previous frame's [rad] (a hand-held camera turns a few degrees
+  /// between frames; a wall or board is 45-90 deg away).
+  double maxPlaneTurnPerFrame_rad = 15.0 * 3.14159265358979323846 / 180.0;
   /// A part moves only in the hand: consecutive detections of a moving class
   /// within restRadius_m of their period's median are one rest, reported
   /// with the rest's median yaw (modulo the model's symmetry; positions stay

@@ -36,4 +36,28 @@ struct PlaneFitOptions {
 /// nullopt when fewer than 3 valid points or no plane fits the constraint.
 std::optional<Plane> fitDominantPlane(const cv::Mat& cloud, const PlaneFitOptions& options = {});
 
+/// The support plane where one object stands: a dominant plane fitted over
+/// the whole image is a compromise over a table seen at a grazing angle (its
+/// depth error grows with distance: 5-10 mm and 3-6 deg off at the part in
+/// the real RealSense recording), so it is refitted to the table around the part.
+struct LocalPlaneOptions {
+  double margin = 1.0;           ///< the part's image box grown by this x its larger side on each side [-]
+  double band_m = 0.015;         ///< candidate table points: within this of the global plane [m]
+  double inlierTol_m = 0.003;    ///< RANSAC inlier distance to the local plane [m]
+  double maxTurn_rad = 10.0 * 3.14159265358979323846 / 180.0;  ///< local normal within this of the global one
+  double maxShift_m = 0.012;     ///< local plane within this of the global one below the part [m]
+  int minInliers = 150;          ///< fewer: the global plane is kept
+  int iterations = 60;
+  int stride_px = 2;
+  unsigned seed = 1;
+};
+
+/// `global` refitted (RANSAC, then least squares) to the cloud points within
+/// band_m of it in `roi_px` grown by LocalPlaneOptions::margin, which are not
+/// the part (`excluded`, e.g. its segment's pixels, may be empty); nullopt
+/// when too few points agree or the local plane turns or shifts (at the roi's
+/// centre) more than allowed.
+std::optional<Plane> fitLocalPlane(const cv::Mat& cloud, const Plane& global, const cv::Rect& roi_px,
+                                   const LocalPlaneOptions& options = {});
+
 }  // namespace srp::perception

@@ -10,7 +10,7 @@
 
 #include "srp/core/Pose.h"
 #include "srp/perception/CameraModel.h"
-#include "srp/perception/TriangleMesh.h"
+#include "srp/kb/TriangleMesh.h"
 
 namespace srp::perception {
 
@@ -39,7 +39,7 @@ class SilhouetteBranchPicker {
   /// by minMargin more than every other (a partial view, a colour like the
   /// background's). `iou`: when given, every candidate's agreement.
   /// `segmentPixels`: the part's depth segment (its median colour is the top face's).
-  std::optional<std::size_t> pick(const TriangleMesh& mesh_object, const std::vector<core::Pose3>& candidates,
+  std::optional<std::size_t> pick(const kb::TriangleMesh& mesh_object, const std::vector<core::Pose3>& candidates,
                                   const std::vector<cv::Point>& segmentPixels, const cv::Mat& colour_bgr8,
                                   const CameraModel& camera,
                                   std::vector<double>* iou = nullptr) const;

@@ -8,7 +8,10 @@
 #include <string>
 #include <vector>
 
+#include <iostream>
+
 #include "srp/motion/RealTrackNoise.h"
+#include "srp/motion/Segmenter.h"
 #include "srp/synth/DemoTimeline.h"
 #include "srp/synth/PickPlacePlan.h"
 
@@ -74,5 +77,37 @@ struct EventErrors {
     return w;
   }
 };
+
+}  // namespace srp::motion::testing
+
+namespace srp::motion::testing {
+
+/// Grasp/release errors of `config` on the noisy synth demos of `seeds`
+/// (printed per event when `print`).
+inline EventErrors evaluateNoisy(const std::vector<std::uint32_t>& seeds, const Segmenter::Config& config,
+                                 const std::string& label, bool print) {
+  EventErrors errors;
+  for (std::uint32_t seed : seeds) {
+    const auto r = noisySynthDemo(seed);
+    const auto seg = Segmenter(config).segment(r.noisy.hand, r.noisy.objects, r.noisy.planOrder);
+    for (std::size_t k = 0; k < r.noisy.planOrder.size(); ++k) {
+      const auto& o = seg.objects[k];
+      const int g = o.moved ? o.graspIndex - r.truth.graspIndex[k] : 9999;
+      const int rel = o.moved ? o.releaseIndex - r.truth.releaseIndex[k] : 9999;
+      errors.grasp.push_back(g);
+      errors.release.push_back(rel);
+      if (print)
+        std::cout << label << " seed " << seed << " " << o.name << ": grasp " << g << ", release " << rel
+                  << (r.nudgeIndex[k] >= 0 ? " (nudged)" : "") << "\n";
+    }
+  }
+  return errors;
+}
+
+inline std::vector<std::uint32_t> seedRange(std::uint32_t from, std::uint32_t count) {
+  std::vector<std::uint32_t> s;
+  for (std::uint32_t i = 0; i < count; ++i) s.push_back(from + i);
+  return s;
+}
 
 }  // namespace srp::motion::testing

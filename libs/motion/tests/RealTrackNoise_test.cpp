@@ -10,6 +10,7 @@
 
 #include "NoisyDemos.h"
 #include "srp/motion/Segmenter.h"
+#include "srp/motion/TrajectoryTable.h"
 
 namespace srp::motion {
 namespace {
@@ -69,5 +70,36 @@ TEST(RealTrackNoise, ReproducesTheRealTrackStatistics) {
   }
 }
 
+}  // namespace
+}  // namespace srp::motion
+
+namespace srp::motion {
+namespace {
+
+TEST(RealTrackSegmentation, DevelopmentSeeds) {
+  const auto seeds = testing::seedRange(1, 20);
+  Segmenter::Config thesis;
+  thesis.events = Segmenter::EventEstimator::Thesis;
+  for (const auto& [label, config] : std::vector<std::pair<std::string, Segmenter::Config>>{{"default", {}}, {"thesis", thesis}}) {
+    const auto e = testing::evaluateNoisy(seeds, config, label, std::getenv("SRP_PRINT_EVENTS") != nullptr);
+    std::cout << label << ": " << e.within(3) << "/" << e.count() << " within 3 frames, worst " << e.worst() << "\n";
+  }
+}
+
+}  // namespace
+}  // namespace srp::motion
+
+namespace srp::motion {
+namespace {
+TEST(RealTrackSegmentation, DISABLED_Dump) {
+  const auto seed = static_cast<std::uint32_t>(std::atoi(std::getenv("SRP_SEED")));
+  const auto r = testing::noisySynthDemo(seed);
+  TrajectoryTable{r.noisy.hand, r.noisy.objects}.writeCsv("/tmp/noisy.csv");
+  TrajectoryTable{r.truth.hand, r.truth.objects}.writeCsv("/tmp/truth.csv");
+  for (std::size_t k = 0; k < r.truth.planOrder.size(); ++k)
+    std::cout << r.truth.planOrder[k] << " grasp " << r.truth.graspIndex[k] << " release " << r.truth.releaseIndex[k]
+              << " nudge " << r.nudgeIndex[k] << " depart " << r.departIndex[k] << "\n";
+  const auto seg = Segmenter().segment(r.noisy.hand, r.noisy.objects, r.noisy.planOrder);
+}
 }  // namespace
 }  // namespace srp::motion

@@ -107,6 +107,21 @@ class Segmenter {
     int restSamples = 6;               ///< hand detections fitted as the rest beside a boundary (>= 3)
     int moveSamples = 8;               ///< hand detections fitted as the smooth start beside a boundary (>= 3)
     double releaseReachTolerance_m = 0.02;  ///< release: |hand - p_final| within this of its minimum over the search
+    /// Robust mode (issue 18, real detector tracks; false = the estimator before it, for comparisons):
+    /// hand jumps and carried values dropped, object rests from medians of the raw detections, release = the
+    /// change point into the final rest (detections within restTolerance of the final position).
+    bool robust = true;
+    double handOutlierSigmas = 4.0;   ///< hand detection dropped beyond this many robust sigmas of its neighbours' interpolation
+    double handOutlierMin_m = 0.015;  ///< ... and beyond this distance
+    int objectMedianHalfWindow = 15;  ///< running median of the object's detections, +-samples
+    int restMedianSamples = 30;       ///< initial/final position = median of the first/last this many detections
+    double restTolerance_m = 0.025;   ///< a detection this close to the final position is in the final rest
+    double carriedInRest = 0.05;      ///< release change point: P(detection in the final rest) while carried
+    double restInRest = 0.6;          ///< ... and once placed (outliers, the lingering hand take the rest)
+    double restNoiseFactor = 2.0;     ///< a hand rest admits detections within this x the hand's robust noise of its median
+    double restNoiseMax_m = 0.006;    ///< ... at most this (a hand as noisy as the marker-free detector has no mm rests)
+    double boundaryMinMove_m = 0.005; ///< a rest/move boundary needs the move side to leave the rest by this
+    int releaseRefineAfter = 20;      ///< the hand's rest at the place is searched up to this many samples after the coarse release
   };
 
   Segmenter() = default;

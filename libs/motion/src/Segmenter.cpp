@@ -458,6 +458,7 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
                                 std::to_string(track[i].frame) + ", the hand's is " + std::to_string(hand[i].frame));
   }
 
+  if (config_.events == EventEstimator::ThesisPublished) return segmentThesisPublished(hand, objects, planOrder);
   Segmentation result;
   // Robust mode: hand jumps and carried values dropped before anything uses the hand.
   double handSpread_m = 0.0;
@@ -536,14 +537,34 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
     // object is put back where it was and the components are out of temporal order).
     int searchFrom = start;
     {
-      double farthest = -1.0;
-      for (int i = start; i < n; ++i) {
+      // Robust: the object is away from its rests only in the hand, and for a
+      // whole carry (1-4 s); outlier clusters that survive the running median
+      // are shorter. So: the longest run (gaps of up to kGap samples) of
+      // samples away from both rests by minExcursion with the hand near, and
+      // the farthest sample in it.
+      constexpr int kGap = 3;
+      auto distanceFromRests = [&](int i) {
         const Eigen::Vector3d& p = seg.smoothed[static_cast<std::size_t>(i)].p_m;
-        // Robust: the object is away from its rests only in the hand.
-        if (robust && (handEvents[static_cast<std::size_t>(i)].valid || true) &&
-            (result.hand[static_cast<std::size_t>(i)].p_m - p).norm() > config_.handReach_m)
-          continue;
-        const double d = std::min((p - seg.p_initial_m).norm(), (p - seg.p_final_m).norm());
+        return std::min((p - seg.p_initial_m).norm(), (p - seg.p_final_m).norm());
+      };
+      auto away = [&](int i) {
+        return distanceFromRests(i) > config_.minExcursion_m &&
+               (result.hand[static_cast<std::size_t>(i)].p_m - seg.smoothed[static_cast<std::size_t>(i)].p_m).norm() <=
+                   config_.handReach_m;
+      };
+      int runFrom = -1, runTo = -1, bestFrom = -1, bestTo = -1;
+      if (robust) {
+        for (int i = start; i < n; ++i) {
+          if (!away(i)) continue;
+          if (runFrom >= 0 && i - runTo <= kGap + 1) runTo = i;
+          else runFrom = runTo = i;
+          if (runTo - runFrom > bestTo - bestFrom) bestFrom = runFrom, bestTo = runTo;
+        }
+      }
+      const int lo = bestFrom >= 0 ? bestFrom : start, hi = bestFrom >= 0 ? bestTo + 1 : n;
+      double farthest = -1.0;
+      for (int i = lo; i < hi; ++i) {
+        const double d = distanceFromRests(i);
         if (d > farthest) farthest = d, searchFrom = i;
       }
     }
@@ -561,14 +582,22 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
       for (int i = searchFrom; i < n; ++i)
         if (!robust || detected(track.positions[static_cast<std::size_t>(i)])) after += inFinal(i) ? inAfter : outAfter;
       double before = 0.0, bestCost = std::numeric_limits<double>::infinity();
+      std::vector<double> costs;
       for (int r = searchFrom; r < n; ++r) {
         const double cost = before + after;
+        costs.push_back(cost);
         if (cost < bestCost - 1e-9) bestCost = cost, release = r;
         if (!robust || detected(track.positions[static_cast<std::size_t>(r)])) {
           before += inFinal(r) ? inBefore : outBefore;
           after -= inFinal(r) ? inAfter : outAfter;
         }
       }
+      // Margin: the best change point more than kMarginSamples away.
+      constexpr int kMarginSamples = 10;
+      double alternative = std::numeric_limits<double>::infinity();
+      for (int r = searchFrom; r < n; ++r)
+        if (std::abs(r - release) > kMarginSamples) alternative = std::min(alternative, costs[static_cast<std::size_t>(r - searchFrom)]);
+      if (robust) seg.releaseMargin = std::isfinite(alternative) ? alternative - bestCost : 0.0;
       // The change point lands on the first final-component sample of its run.
       while (release < n - 1 && !inFinal(release)) ++release;
     }
@@ -641,6 +670,18 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
       std::cerr << "DEBUG " << name << " start " << start << " searchFrom " << searchFrom << " coarseRelease " << coarseRelease
                 << " valley " << valley.front() << ".." << valley.back() << " from " << from << " to " << to
                 << " grasp " << grasp << " release " << release << "\n";
+    if (robust) {
+      int outliers = 0, count = 0;
+      for (int i = 0; i < n; ++i) {
+        const auto& s = track.positions[static_cast<std::size_t>(i)];
+        if (!detected(s)) continue;
+        ++count;
+        outliers += (s.p_m - seg.smoothed[static_cast<std::size_t>(i)].p_m).norm() > 2 * config_.restTolerance_m;
+      }
+      seg.outlierFraction = count > 0 ? static_cast<double>(outliers) / count : 1.0;
+      seg.releaseCueGap = release - coarseRelease;
+      seg.lowConfidence = seg.outlierFraction > 0.3 || seg.releaseMargin < 3.0 || std::abs(seg.releaseCueGap) > 10;
+    }
     seg.graspIndex = grasp;
     seg.releaseIndex = release;
     seg.graspFrame = hand[static_cast<std::size_t>(grasp)].frame;

@@ -63,6 +63,7 @@ inline RealTrackNoise::Result noisySynthDemo(std::uint32_t seed) {
 
 struct EventErrors {
   std::vector<int> grasp, release;  // estimate - truth, frames
+  int demos = 0;                    // demos evaluated
   int within(int tol) const {
     int k = 0;
     for (int e : grasp) k += std::abs(e) <= tol;
@@ -88,7 +89,15 @@ inline EventErrors evaluateNoisy(const std::vector<std::uint32_t>& seeds, const 
                                  const std::string& label, bool print) {
   EventErrors errors;
   for (std::uint32_t seed : seeds) {
-    const auto r = noisySynthDemo(seed);
+    RealTrackNoise::Result r;
+    try {
+      r = noisySynthDemo(seed);
+    } catch (const std::exception& e) {
+      // The synth planner finds no free spot for some seeds: not a demo.
+      if (print) std::cout << label << " seed " << seed << ": no demo (" << e.what() << ")\n";
+      continue;
+    }
+    ++errors.demos;
     const auto seg = Segmenter(config).segment(r.noisy.hand, r.noisy.objects, r.noisy.planOrder);
     for (std::size_t k = 0; k < r.noisy.planOrder.size(); ++k) {
       const auto& o = seg.objects[k];

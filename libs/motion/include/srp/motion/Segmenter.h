@@ -44,6 +44,7 @@
 /// every object sample the same frames (same count, same frame numbers).
 
 #include <Eigen/Core>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -75,6 +76,18 @@ struct ObjectSegmentation {
   std::vector<int> component;        ///< mixture component per sample, ordered by time: 0 first
   core::PositionTrajectory smoothed; ///< the filled and smoothed object trajectory
   std::string note;                  ///< what was unusual (not moved, order conflict), empty if nothing
+  /// How much to trust the events (robust default estimator; NaN otherwise):
+  /// share of the object's detections farther than 2 x restTolerance from its
+  /// running median (outliers) ...
+  double outlierFraction = std::numeric_limits<double>::quiet_NaN();
+  /// ... the release change point's margin: -log-likelihood of the best
+  /// change point more than 10 samples away minus the chosen one's (nats; small
+  /// = another release time explains the detections almost as well) ...
+  double releaseMargin = std::numeric_limits<double>::quiet_NaN();
+  /// ... and release from the hand's rest minus release from the part's rest
+  /// (samples; two independent cues that should agree within a few samples).
+  int releaseCueGap = 0;
+  bool lowConfidence = false;  ///< any of: outlierFraction > 0.3, releaseMargin < 3, |releaseCueGap| > 10
 };
 
 struct Segmentation {
@@ -89,7 +102,15 @@ class Segmenter {
   /// How grasp and release are placed (see the file comment).
   enum class EventEstimator {
     HandDwellBoundary,  ///< default: the ends of the hand's rests at the object
-    Thesis,             ///< thesis ch. 6.4.3: hand closest to the initial position; first sample of the final component
+    Thesis,             ///< thesis ch. 6.4.3 made robust (flicker removal, seeded EM, change point): the estimator before issue 18
+    /// The thesis' published code (shuanglu2023/SemanticRobotProgramming env_module, `srp segment --events
+    /// thesis`): pykalman smoothing with identity models and unit covariances (missing object samples
+    /// carried forward first, the hand's zeros kept as measurements as there), a 3-component full-covariance
+    /// Gaussian mixture initialised by k-means (k-means++ seeding from `thesisSeed`) on the whole smoothed
+    /// track, release = the first sample anywhere whose component is the last sample's, grasp = the smoothed
+    /// hand sample closest to the mean object position before `start` within [start, release), start = the
+    /// first hand detection, then the previous release.
+    ThesisPublished,
   };
 
   struct Config {
@@ -104,6 +125,7 @@ class Segmenter {
     double graspValleyDepth_m = 0.01;  ///< grasp = centre of the frames within this of the closest approach
     int emMaxIterations = 30;
     EventEstimator events = EventEstimator::HandDwellBoundary;
+    unsigned thesisSeed = 0;  ///< ThesisPublished: seed of the k-means initialisation (sklearn's random_state)
     int restSamples = 6;               ///< hand detections fitted as the rest beside a boundary (>= 3)
     int moveSamples = 8;               ///< hand detections fitted as the smooth start beside a boundary (>= 3)
     double releaseReachTolerance_m = 0.02;  ///< release: |hand - p_final| within this of its minimum over the search
@@ -136,6 +158,8 @@ class Segmenter {
   const Config& config() const { return config_; }
 
  private:
+  Segmentation segmentThesisPublished(const core::PositionTrajectory& hand, const std::vector<ObjectTrack>& objects,
+                                      const std::vector<std::string>& planOrder) const;
   Config config_;
 };
 

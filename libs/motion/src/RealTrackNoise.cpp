@@ -185,18 +185,20 @@ RealTrackNoise::Result RealTrackNoise::apply(const LabelledDemo& clean) const {
     Eigen::Vector3d last = Eigen::Vector3d::Zero();
     bool haveLast = false;
     int jumpLeft = 0;
+    bool jumpedLast = false;
     Eigen::Vector3d jump = Eigen::Vector3d::Zero();
     for (int i = 0; i < m; ++i) {
       const auto& h = handAt(i);
       core::PositionSample s{h.frame, h.t_s, Eigen::Vector3d::Zero(), false};
       if (h.valid) {
         const Eigen::Vector3d noise(c.handNoiseXY_m * gauss(rng), c.handNoiseXY_m * gauss(rng), c.handNoiseZ_m * gauss(rng));
-        if (jumpLeft == 0 && uni(rng) < c.handJumpRate) {
+        if (jumpLeft == 0 && !jumpedLast && uni(rng) < c.handJumpRate) {
           jumpLeft = uni(rng) < 0.8 ? 1 : 2;
           Eigen::Vector3d dir = uni(rng) < 0.5 ? Eigen::Vector3d(h.p_m.normalized()) : perpendicular(h.p_m.normalized(), rng);
           if (uni(rng) < 0.5) dir = -dir;
           jump = dir * (c.handJumpMin_m + (c.handJumpMax_m - c.handJumpMin_m) * uni(rng));
         }
+        jumpedLast = jumpLeft > 0;  // a jump ends at the true hand: no new jump right after it
         if (jumpLeft > 0) {
           --jumpLeft;
           s.p_m = h.p_m + jump + noise;

@@ -7,8 +7,6 @@
 #include <opencv2/core.hpp>
 #include <opencv2/ml.hpp>
 #include <sstream>
-#include <iostream>
-#include <cstdlib>
 
 #include "srp/core/Error.h"
 
@@ -548,7 +546,9 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
         return std::min((p - seg.p_initial_m).norm(), (p - seg.p_final_m).norm());
       };
       auto away = [&](int i) {
-        return distanceFromRests(i) > config_.minExcursion_m &&
+        const auto& raw = track.positions[static_cast<std::size_t>(i)];
+        return detected(raw) && std::min((raw.p_m - seg.p_initial_m).norm(), (raw.p_m - seg.p_final_m).norm()) > config_.minExcursion_m &&
+               distanceFromRests(i) > config_.minExcursion_m &&
                (result.hand[static_cast<std::size_t>(i)].p_m - seg.smoothed[static_cast<std::size_t>(i)].p_m).norm() <=
                    config_.handReach_m;
       };
@@ -561,10 +561,25 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
           if (runTo - runFrom > bestTo - bestFrom) bestFrom = runFrom, bestTo = runTo;
         }
       }
-      const int lo = bestFrom >= 0 ? bestFrom : start, hi = bestFrom >= 0 ? bestTo + 1 : n;
+      // No such run (a detector that reports nothing while the part is in the
+      // hand, e.g. srp perceive): the farthest sample of the gated, smoothed
+      // track, which bridges the carry (the estimator before issue 18).
+      constexpr int kMinRun = 10;
+      const bool haveRun = bestFrom >= 0 && bestTo - bestFrom + 1 >= kMinRun;
+      core::PositionTrajectory bridged;
+      if (robust && !haveRun)
+        bridged = KalmanSmoother(config_.objectSmoother)
+                      .smooth(removeFlicker(dropMovesWithoutHand(track.positions, result.hand, config_.flickerGate_m,
+                                                                 config_.handReach_m, config_.maxObjectSpeed_mps),
+                                            config_.medianWindow, config_.flickerGate_m));
+      const int lo = haveRun ? bestFrom : start, hi = haveRun ? bestTo + 1 : n;
       double farthest = -1.0;
       for (int i = lo; i < hi; ++i) {
-        const double d = distanceFromRests(i);
+        double d = distanceFromRests(i);
+        if (!bridged.empty()) {
+          const Eigen::Vector3d& p = bridged[static_cast<std::size_t>(i)].p_m;
+          d = std::min((p - seg.p_initial_m).norm(), (p - seg.p_final_m).norm());
+        }
         if (d > farthest) farthest = d, searchFrom = i;
       }
     }
@@ -592,14 +607,14 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
           after -= inFinal(r) ? inAfter : outAfter;
         }
       }
-      // Margin: the best change point more than kMarginSamples away.
-      constexpr int kMarginSamples = 10;
-      double alternative = std::numeric_limits<double>::infinity();
-      for (int r = searchFrom; r < n; ++r)
-        if (std::abs(r - release) > kMarginSamples) alternative = std::min(alternative, costs[static_cast<std::size_t>(r - searchFrom)]);
-      if (robust) seg.releaseMargin = std::isfinite(alternative) ? alternative - bestCost : 0.0;
       // The change point lands on the first final-component sample of its run.
       while (release < n - 1 && !inFinal(release)) ++release;
+      // Margin: the best change point more than kMarginSamples away, in nats.
+      constexpr int kMarginSamples = 30;  // a competing release a second or more away (a nudge, a lingering hand)
+      double alternative = std::numeric_limits<double>::infinity();
+      for (int r = searchFrom; r < n; ++r)
+        if (std::abs(r - release) > kMarginSamples && detected(track.positions[static_cast<std::size_t>(r)])) alternative = std::min(alternative, costs[static_cast<std::size_t>(r - searchFrom)]);
+      if (robust) seg.releaseMargin = std::isfinite(alternative) ? alternative - bestCost : 0.0;
     }
     const int coarseRelease = release;
     int from = start;
@@ -644,7 +659,6 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
                                      +1, config_.restSamples, config_.moveSamples, [](int) { return true; },
                                      robust ? config_.boundaryMinMove_m : 0.0);
       if (g >= 0) grasp = restEnd(handEvents, g, +1, config_.restSamples, from, to - 1, restNoiseTol_m);
-      if (std::getenv("SRP_SEGMENT_DEBUG")) std::cerr << "DEBUG grasp boundary " << g << " -> " << grasp << "\n";
       // Release: the hand's rest at the object's final position starts where
       // the object stops moving with it (searched from the grasp on: the
       // object's detections, hence the mid-move sample, are unreliable while
@@ -663,13 +677,8 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
       int r = restMoveBoundary(handEvents, lo, hi, -1, config_.restSamples, config_.moveSamples, reachFits, minMove_m);
       if (r < 0)
         r = restMoveBoundary(handEvents, lo, hi, -1, config_.restSamples, config_.moveSamples, [](int) { return true; }, minMove_m);
-      if (std::getenv("SRP_SEGMENT_DEBUG")) std::cerr << "DEBUG release boundary " << r << " in " << lo << ".." << hi << " closest " << closest_m << "\n";
       if (r >= 0) release = restEnd(handEvents, r, -1, config_.restSamples, lo, n - 1);
     }
-    if (std::getenv("SRP_SEGMENT_DEBUG"))
-      std::cerr << "DEBUG " << name << " start " << start << " searchFrom " << searchFrom << " coarseRelease " << coarseRelease
-                << " valley " << valley.front() << ".." << valley.back() << " from " << from << " to " << to
-                << " grasp " << grasp << " release " << release << "\n";
     if (robust) {
       int outliers = 0, count = 0;
       for (int i = 0; i < n; ++i) {
@@ -679,8 +688,11 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
         outliers += (s.p_m - seg.smoothed[static_cast<std::size_t>(i)].p_m).norm() > 2 * config_.restTolerance_m;
       }
       seg.outlierFraction = count > 0 ? static_cast<double>(outliers) / count : 1.0;
-      seg.releaseCueGap = release - coarseRelease;
-      seg.lowConfidence = seg.outlierFraction > 0.3 || seg.releaseMargin < 3.0 || std::abs(seg.releaseCueGap) > 10;
+      // Counted in detections of the part: a part hidden under the open hand
+      // after the release (rendered demos) is not a disagreement.
+      for (int i = std::min(release, coarseRelease); i < std::max(release, coarseRelease); ++i)
+        seg.releaseCueGap += detected(track.positions[static_cast<std::size_t>(i)]) ? (release > coarseRelease ? 1 : -1) : 0;
+      seg.lowConfidence = seg.outlierFraction > 0.3 || seg.releaseMargin < 10.0 || std::abs(seg.releaseCueGap) > 10;
     }
     seg.graspIndex = grasp;
     seg.releaseIndex = release;

@@ -81,13 +81,15 @@ struct ObjectSegmentation {
   /// running median (outliers) ...
   double outlierFraction = std::numeric_limits<double>::quiet_NaN();
   /// ... the release change point's margin: -log-likelihood of the best
-  /// change point more than 10 samples away minus the chosen one's (nats; small
-  /// = another release time explains the detections almost as well) ...
+  /// change point more than 30 samples (1 s) away minus the chosen one's (nats;
+  /// small = another release time, e.g. a nudge, explains the detections almost
+  /// as well; about 26 when the detections are unambiguous) ...
   double releaseMargin = std::numeric_limits<double>::quiet_NaN();
   /// ... and release from the hand's rest minus release from the part's rest
-  /// (samples; two independent cues that should agree within a few samples).
+  /// (two independent cues that should agree within a few samples), counted in
+  /// the part's detections between them.
   int releaseCueGap = 0;
-  bool lowConfidence = false;  ///< any of: outlierFraction > 0.3, releaseMargin < 3, |releaseCueGap| > 10
+  bool lowConfidence = false;  ///< any of: outlierFraction > 0.3, releaseMargin < 10, |releaseCueGap| > 10
 };
 
 struct Segmentation {

@@ -139,7 +139,7 @@ TEST(RealTrackSegmentation, DevelopmentSeeds) {
   for (const auto& [label, config] : estimators()) {
     if (std::getenv("SRP_DEV_SEEDS") && !(config.robust && config.events == Segmenter::EventEstimator::HandDwellBoundary)) continue;
     const auto e = testing::evaluateNoisy(seeds, config, label, std::getenv("SRP_PRINT_EVENTS") != nullptr);
-    printSummary("dev seeds 1-20, " + label, e);
+    printSummary("dev seeds " + std::to_string(from) + "-" + std::to_string(from + count - 1) + ", " + label, e);
     if (config.robust && config.events == Segmenter::EventEstimator::HandDwellBoundary) {
       EXPECT_GE(e.within(kEventTol_frames), kWithinShare * e.count());
       EXPECT_LE(e.worst(), kWorstTol_frames);

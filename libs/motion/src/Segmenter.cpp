@@ -421,11 +421,19 @@ core::PositionTrajectory runningMedian(const core::PositionTrajectory& in, int h
   return out;
 }
 
-/// Per-axis median of the detections in [from, to).
-Eigen::Vector3d medianDetection(const core::PositionTrajectory& t, int from, int to) {
+/// Per-axis median of the detections among the first (fromEnd: last) `count`
+/// samples; when fewer than 5 are detected there (a part hidden at the start or
+/// end), of the first (last) `count` detections.
+Eigen::Vector3d medianDetection(const core::PositionTrajectory& t, int count, bool fromEnd) {
   core::PositionTrajectory part(t.frame());
-  for (int i = std::max(0, from); i < std::min(to, static_cast<int>(t.size())); ++i)
-    if (detected(t[static_cast<std::size_t>(i)])) part.append(t[static_cast<std::size_t>(i)]);
+  const int n = static_cast<int>(t.size());
+  constexpr int kMinDetections = 5;
+  for (int k = 0; k < n; ++k) {
+    if (k >= count && static_cast<int>(part.size()) >= kMinDetections) break;
+    if (static_cast<int>(part.size()) >= count) break;
+    const auto& s = t[static_cast<std::size_t>(fromEnd ? n - 1 - k : k)];
+    if (detected(s)) part.samples().push_back(s);  // order does not matter for the median
+  }
   Eigen::Vector3d m = Eigen::Vector3d::Zero();
   if (!part.empty()) windowMedian(part, 0, static_cast<int>(part.size()), 1, m);
   return m;
@@ -483,8 +491,8 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
       core::require(track.positions.validCount() > 0, "trajectory of '" + name + "' has no detection");
       seg.smoothed = runningMedian(track.positions, config_.objectMedianHalfWindow);
       const int wr = std::max(1, std::min(config_.restMedianSamples, n / 5));
-      seg.p_initial_m = medianDetection(track.positions, 0, wr);
-      seg.p_final_m = medianDetection(track.positions, n - wr, n);
+      seg.p_initial_m = medianDetection(track.positions, wr, false);
+      seg.p_final_m = medianDetection(track.positions, wr, true);
     } else {
       const core::PositionTrajectory filtered =
           removeFlicker(dropMovesWithoutHand(track.positions, result.hand, config_.flickerGate_m, config_.handReach_m,
@@ -564,7 +572,7 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
       // No such run (a detector that reports nothing while the part is in the
       // hand, e.g. srp perceive): the farthest sample of the gated, smoothed
       // track, which bridges the carry (the estimator before issue 18).
-      constexpr int kMinRun = 10;
+      constexpr int kMinRun = 30;  // a carry lasts 1-4 s (issue 18); shorter runs are occlusion artefacts
       const bool haveRun = bestFrom >= 0 && bestTo - bestFrom + 1 >= kMinRun;
       core::PositionTrajectory bridged;
       if (robust && !haveRun)

@@ -36,6 +36,13 @@
 /// it needs only the hand, which the glove tag detects reliably, not the
 /// object, whose detection is unreliable while the hand covers it.
 ///
+/// Robust mode (Config::robust, default; issue 18, real detector tracks): hand
+/// jumps and carried values are dropped first, the object's rests are medians
+/// of its raw detections, the coarse release is a Bernoulli change point into
+/// the final rest (a nudge after the release stays inside it), and each object
+/// reports its outlier fraction, release margin and cue gap (confidence).
+/// EventEstimator::ThesisPublished is the thesis' published code.
+///
 /// An object whose positions never leave its
 /// initial position by more than `minExcursion_m` is reported as not moved
 /// (no grasp/release, the search window is not advanced).

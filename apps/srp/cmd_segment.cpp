@@ -1,14 +1,19 @@
 // srp segment: grasp and release frames per object straight from a trajectory
 // table (libs/motion), for data recorded by other systems.
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "CommandRegistry.h"
 #include "srp/core/Error.h"
+#include "srp/core/Pose.h"
+#include "srp/motion/RealTrackNoise.h"
 #include "srp/motion/Segmenter.h"
 #include "srp/motion/SyntheticPickPlace.h"
 #include "srp/motion/TrajectoryTable.h"
+#include "srp/synth/DemoTimeline.h"
+#include "srp/synth/PickPlacePlan.h"
 
 namespace {
 
@@ -20,9 +25,64 @@ struct SegmentOptions {
   std::string writeExample;
   unsigned seed = 1;
   std::string events = "dwell";
+  unsigned thesisSeed = 0;
+  std::string noise = "detector";
 };
 
+// The synth module's choreography of the default scene and instruction 1 as
+// noise-free tracks (camera frame; hand zeros while out of view), truth from
+// its events (grasp = first frame the object moves with the hand, release = last).
+srp::motion::LabelledDemo cleanSynthDemo(unsigned seed) {
+  const auto scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
+  const auto catalogue = srp::core::ObjectCatalogue::load(scene.cataloguePath);
+  const auto steps = srp::synth::groundPlan(srp::synth::defaultPlanJson(), scene, catalogue);
+  srp::synth::DemoOptions options;
+  options.seed = seed;
+  const auto timeline = srp::synth::planDemonstration(scene, catalogue, steps, srp::synth::HandModel{}, options);
+  const srp::core::Pose3 X_camera_world = timeline.scene.X_world_camera.inverse();
+  srp::motion::LabelledDemo demo;
+  demo.hand = srp::core::PositionTrajectory("camera");
+  for (const auto& o : timeline.scene.objects) {
+    srp::motion::ObjectTrack t;
+    t.name = o.id;
+    t.positions = srp::core::PositionTrajectory("camera");
+    demo.objects.push_back(t);
+  }
+  for (const auto& f : timeline.frames) {
+    const bool inView = f.phase != "idle";
+    demo.hand.append({f.index, f.t_s, inView ? Eigen::Vector3d(X_camera_world * f.X_world_hand.translation())
+                                             : Eigen::Vector3d::Zero(), inView});
+    for (std::size_t j = 0; j < demo.objects.size(); ++j) {
+      const srp::core::Pose3 X_camera_object = X_camera_world * f.X_world_objects[j];
+      demo.objects[j].positions.append({f.index, f.t_s, X_camera_object.translation(), true});
+      demo.objects[j].yaw_rad.push_back(srp::core::yawOf(X_camera_object.linear()));
+    }
+  }
+  for (const auto& e : timeline.events) {
+    demo.planOrder.push_back(e.objectId);
+    demo.graspIndex.push_back(e.graspFrame);
+    demo.releaseIndex.push_back(e.releaseFrame);
+  }
+  return demo;
+}
+
 void writeExample(const SegmentOptions& o) {
+  if (o.noise == "real") {
+    srp::motion::RealTrackNoise::Config c;
+    c.seed = o.seed;
+    const auto r = srp::motion::RealTrackNoise(c).apply(cleanSynthDemo(o.seed));
+    srp::motion::TrajectoryTable{r.noisy.hand, r.noisy.objects}.writeCsv(o.writeExample);
+    std::cout << "wrote a synthetic demo with real-track noise (" << r.noisy.hand.size() << " frames at 30 FPS) to "
+              << o.writeExample << "\nground truth (frames):\n";
+    for (std::size_t i = 0; i < r.truth.planOrder.size(); ++i)
+      std::cout << "  " << r.truth.planOrder[i] << ": grasp " << r.truth.graspIndex[i] << ", release "
+                << r.truth.releaseIndex[i] << (r.nudgeIndex[i] >= 0 ? ", nudged at " + std::to_string(r.nudgeIndex[i]) : "")
+                << "\n";
+    std::cout << "segment it with: srp segment --trajectories " << o.writeExample << " --order ";
+    for (std::size_t i = 0; i < r.truth.planOrder.size(); ++i) std::cout << (i ? "," : "") << r.truth.planOrder[i];
+    std::cout << "\n";
+    return;
+  }
   srp::motion::SyntheticPickPlaceConfig c;
   c.seed = o.seed;
   const auto demo = srp::motion::SyntheticPickPlaceGenerator(c).generate();
@@ -46,8 +106,9 @@ void runSegment(const SegmentOptions& o) {
   if (o.order.empty()) throw srp::core::InvalidInputError("give --order with the objects in plan order, e.g. --order cuboid,star");
   const auto table = srp::motion::TrajectoryTable::readCsv(o.trajectories, o.fps);
   srp::motion::Segmenter::Config config;
-  config.events = o.events == "thesis" ? srp::motion::Segmenter::EventEstimator::Thesis
-                                       : srp::motion::Segmenter::EventEstimator::HandDwellBoundary;
+  using Events = srp::motion::Segmenter::EventEstimator;
+  config.events = o.events == "thesis" ? Events::ThesisPublished : o.events == "fig6.10" ? Events::Thesis : Events::HandDwellBoundary;
+  config.thesisSeed = o.thesisSeed;
   const auto seg = srp::motion::Segmenter(config).segment(table.hand, table.objects, o.order);
   if (o.json) {
     nlohmann::json objects = nlohmann::json::array();
@@ -56,16 +117,32 @@ void runSegment(const SegmentOptions& o) {
       j["grasp_frame"] = s.moved ? nlohmann::json(s.graspFrame) : nlohmann::json(nullptr);
       j["release_frame"] = s.moved ? nlohmann::json(s.releaseFrame) : nlohmann::json(nullptr);
       if (!s.note.empty()) j["note"] = s.note;
+      if (s.moved && !std::isnan(s.outlierFraction)) {
+        j["outlier_fraction"] = s.outlierFraction;
+        j["release_margin"] = s.releaseMargin;
+        j["release_cue_gap_frames"] = s.releaseCueGap;
+        j["confidence"] = s.lowConfidence ? "low" : "high";
+      }
       objects.push_back(j);
     }
     std::cout << nlohmann::json{{"objects", objects}}.dump(2) << "\n";
     return;
   }
-  std::cout << std::left << std::setw(18) << "object" << std::setw(8) << "grasp" << "release\n";
+  std::cout << std::left << std::setw(18) << "object" << std::setw(8) << "grasp" << std::setw(9) << "release"
+            << "confidence (outliers, release margin [nats], hand-vs-part release gap [frames])\n";
   for (const auto& s : seg.objects) {
     std::cout << std::setw(18) << s.name;
-    if (s.moved) std::cout << std::setw(8) << s.graspFrame << s.releaseFrame << "\n";
-    else std::cout << std::setw(8) << "-" << "-   (" << s.note << ")\n";
+    if (!s.moved) {
+      std::cout << std::setw(8) << "-" << "-   (" << s.note << ")\n";
+      continue;
+    }
+    std::cout << std::setw(8) << s.graspFrame << std::setw(9) << s.releaseFrame;
+    if (std::isnan(s.outlierFraction)) std::cout << "-";
+    else
+      std::cout << (s.lowConfidence ? "LOW  " : "high ") << "(" << std::fixed << std::setprecision(0)
+                << 100 * s.outlierFraction << " %, " << std::setprecision(1) << s.releaseMargin << ", "
+                << s.releaseCueGap << ")" << std::defaultfloat;
+    std::cout << "\n";
   }
   for (const auto& w : seg.warnings) std::cerr << "srp segment: warning: " << w << "\n";
 }
@@ -78,12 +155,24 @@ void setupSegment(CLI::App& app) {
   app.add_option("--order", o->order, "Target objects in plan order, comma separated (e.g. cuboid,star)")
       ->delimiter(',');
   app.add_option("--fps", o->fps, "Frame rate of the table [Hz]")->check(CLI::Range(0.1, 1000.0))->capture_default_str();
-  app.add_flag("--json", o->json, R"(Print {"objects":[{"name","grasp_frame","release_frame"}]})");
+  app.add_flag("--json", o->json,
+               R"(Print {"objects":[{"name","grasp_frame","release_frame","outlier_fraction","release_margin","release_cue_gap_frames","confidence"}]})");
   app.add_option("--write-example", o->writeExample, "Write a synthetic 4-object demo table to this CSV and exit");
   app.add_option("--events", o->events,
-                 "Grasp/release estimator: dwell (ends of the hand's rests at the object) or thesis "
-                 "(hand closest to the initial position; first sample of the final mixture component)")
-      ->check(CLI::IsMember({"dwell", "thesis"}))
+                 "Grasp/release estimator: dwell (default, robust: ends of the hand's rests at the object, release "
+                 "into the part's final rest), thesis (the thesis' published code: Kalman, 3-component GMM, first "
+                 "sample of the last sample's component, hand closest to the initial position) or fig6.10 (the "
+                 "robustified thesis-like estimator before issue 18)")
+      ->check(CLI::IsMember({"dwell", "thesis", "fig6.10"}))
+      ->capture_default_str();
+  app.add_option("--thesis-seed", o->thesisSeed,
+                 "--events thesis: seed of the mixture's k-means initialisation (the thesis' code used a random one; "
+                 "its release can change with it)")
+      ->capture_default_str();
+  app.add_option("--noise", o->noise,
+                 "--write-example: detector (the motion module's generator: Gaussian noise, dropouts, flicker) or real "
+                 "(the synth choreography with issue 18's real-track noise: outliers, jumps, lingering, nudges)")
+      ->check(CLI::IsMember({"detector", "real"}))
       ->capture_default_str();
   app.add_option("--seed", o->seed, "Random seed of --write-example")->capture_default_str();
   app.callback([o] { runSegment(*o); });

@@ -241,7 +241,7 @@ std::vector<int> mixtureLabels(const core::PositionTrajectory& t, const Eigen::V
 /// release). `allowed(b)` filters candidates.
 template <class Allowed>
 int restMoveBoundary(const core::PositionTrajectory& hand, int lo, int hi, int dir, int restCount, int moveCount,
-                     Allowed allowed) {
+                     Allowed allowed, double minMove_m = 0.0) {
   const int n = static_cast<int>(hand.size());
   lo = std::max(lo, 0);
   hi = std::min(hi, n - 1);
@@ -268,6 +268,13 @@ int restMoveBoundary(const core::PositionTrajectory& hand, int lo, int hi, int d
     p_rest /= static_cast<double>(rest.size());
     double sse = 0.0;
     for (int i : rest) sse += (at(i).p_m - p_rest).squaredNorm();
+    // The move side must move by itself (inside a long rest both sides fit a
+    // rest equally, and a rest next to a slow drift fits too).
+    if (minMove_m > 0.0) {
+      double extent = 0.0;
+      for (int i : move) extent = std::max(extent, (at(i).p_m - at(move.front()).p_m).norm());
+      if (extent < minMove_m) continue;
+    }
     // Move: least squares of y = β u2 + γ u3 per axis (u in tenths of a second for conditioning).
     double s22 = 0, s23 = 0, s33 = 0, syy = 0;
     Eigen::Vector3d s2y = Eigen::Vector3d::Zero(), s3y = Eigen::Vector3d::Zero();
@@ -300,7 +307,7 @@ int restMoveBoundary(const core::PositionTrajectory& hand, int lo, int hi, int d
 /// consecutive detections outside end the rest) and returns the last sample
 /// within. dir = +1: the rest's last sample (grasp), -1: its first (release).
 /// Samples outside [lo, hi] are not visited.
-int restEnd(const core::PositionTrajectory& hand, int b, int dir, int restCount, int lo, int hi) {
+int restEnd(const core::PositionTrajectory& hand, int b, int dir, int restCount, int lo, int hi, double noiseTol_m = 0.0) {
   const int n = static_cast<int>(hand.size());
   auto at = [&](int i) -> const core::PositionSample& { return hand[static_cast<std::size_t>(i)]; };
   std::vector<Eigen::Vector3d> rest;
@@ -319,7 +326,9 @@ int restEnd(const core::PositionTrajectory& hand, int b, int dir, int restCount,
   }
   double ss = 0.0;
   for (const auto& p : rest) ss += (p - p_rest).squaredNorm();
-  const double tol_m = std::clamp(2.0 * std::sqrt(ss / static_cast<double>(rest.size())), 0.0015, 0.004);
+  // noiseTol: from the whole track's noise (robust mode), as a few samples' spread can be small by chance.
+  const double tol_m = std::clamp(2.0 * std::sqrt(ss / static_cast<double>(rest.size())), std::max(0.0015, noiseTol_m),
+                                  std::max(0.004, noiseTol_m));
   auto within = [&](int i) { return (at(i).p_m - p_rest).norm() <= tol_m; };
   int end = b;
   // b itself past the rest (in the move): step back into it.
@@ -333,11 +342,110 @@ int restEnd(const core::PositionTrajectory& hand, int b, int dir, int restCount,
   return end;
 }
 
+/// Hand outliers (issue 18: single-frame jumps of up to 25 cm, carried-forward
+/// values): a detection is dropped when it is farther than max(sigmas x the
+/// robust spread, min_m) from the per-axis median of the linear interpolations
+/// between its neighbours p(i-a) and p(i+b), a, b = 1..4 (a jump of one or two
+/// frames contaminates at most half of them, smooth motion none), or when it
+/// repeats the previous detection exactly (a carried value, not a measurement).
+core::PositionTrajectory dropHandOutliers(const core::PositionTrajectory& in, double sigmas, double min_m,
+                                          double& spread_m) {
+  const int n = static_cast<int>(in.size());
+  auto at = [&](int i) -> const core::PositionSample& { return in[static_cast<std::size_t>(i)]; };
+  constexpr int kReach = 4;
+  std::vector<double> residual(static_cast<std::size_t>(n), -1.0);
+  std::vector<double> px, py, pz;
+  for (int i = 0; i < n; ++i) {
+    if (!detected(at(i))) continue;
+    px.clear(), py.clear(), pz.clear();
+    std::vector<int> before, after;
+    for (int j = i - 1; j >= 0 && static_cast<int>(before.size()) < kReach && i - j <= 2 * kReach; --j)
+      if (detected(at(j))) before.push_back(j);
+    for (int j = i + 1; j < n && static_cast<int>(after.size()) < kReach && j - i <= 2 * kReach; ++j)
+      if (detected(at(j))) after.push_back(j);
+    for (int a : before)
+      for (int b : after) {
+        const double w = (at(i).t_s - at(a).t_s) / (at(b).t_s - at(a).t_s);
+        const Eigen::Vector3d p = at(a).p_m + w * (at(b).p_m - at(a).p_m);
+        px.push_back(p.x()), py.push_back(p.y()), pz.push_back(p.z());
+      }
+    if (px.size() < 3) continue;
+    auto med = [](std::vector<double>& v) {
+      std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+      return v[v.size() / 2];
+    };
+    residual[static_cast<std::size_t>(i)] = (at(i).p_m - Eigen::Vector3d(med(px), med(py), med(pz))).norm();
+  }
+  std::vector<double> valid;
+  for (double r : residual)
+    if (r >= 0) valid.push_back(r);
+  double spread = 0.0;
+  if (!valid.empty()) {
+    std::nth_element(valid.begin(), valid.begin() + static_cast<long>(valid.size() / 2), valid.end());
+    spread = 1.4826 * valid[valid.size() / 2];
+  }
+  spread_m = spread;
+  const double gate_m = std::max(sigmas * spread, min_m);
+  core::PositionTrajectory out = in;
+  const core::PositionSample* previous = nullptr;
+  for (int i = 0; i < n; ++i) {
+    auto& s = out.samples()[static_cast<std::size_t>(i)];
+    if (!detected(at(i))) continue;
+    const bool repeat = previous && previous->p_m == at(i).p_m;
+    previous = &at(i);
+    if (repeat || residual[static_cast<std::size_t>(i)] > gate_m) s.valid = false, s.p_m.setZero();
+  }
+  return out;
+}
+
+/// Per-axis running median of the detections within +-half samples (the
+/// previous value where there is none): robust to outlier runs shorter than
+/// half the window.
+core::PositionTrajectory runningMedian(const core::PositionTrajectory& in, int half) {
+  core::PositionTrajectory out = in;
+  Eigen::Vector3d m, last = Eigen::Vector3d::Zero();
+  bool haveLast = false;
+  const int n = static_cast<int>(in.size());
+  for (int i = 0; i < n; ++i) {
+    auto& o = out.samples()[static_cast<std::size_t>(i)];
+    // Full-size windows at the ends too (a half window there is as weak as a short one).
+    const int centre = std::clamp(i, std::min(half, n - 1), std::max(0, n - 1 - half));
+    if (windowMedian(in, centre, half, 1, m)) last = m, haveLast = true;
+    o.p_m = last;
+    o.valid = haveLast;
+  }
+  // Leading samples before the first median: the first one.
+  for (auto& o : out.samples())
+    if (!o.valid) o.p_m = last;
+  for (auto& o : out.samples()) o.valid = true;
+  return out;
+}
+
+/// Per-axis median of the detections among the first (fromEnd: last) `count`
+/// samples; when fewer than 5 are detected there (a part hidden at the start or
+/// end), of the first (last) `count` detections.
+Eigen::Vector3d medianDetection(const core::PositionTrajectory& t, int count, bool fromEnd) {
+  core::PositionTrajectory part(t.frame());
+  const int n = static_cast<int>(t.size());
+  constexpr int kMinDetections = 5;
+  for (int k = 0; k < n; ++k) {
+    if (k >= count && static_cast<int>(part.size()) >= kMinDetections) break;
+    if (static_cast<int>(part.size()) >= count) break;
+    const auto& s = t[static_cast<std::size_t>(fromEnd ? n - 1 - k : k)];
+    if (detected(s)) part.samples().push_back(s);  // order does not matter for the median
+  }
+  Eigen::Vector3d m = Eigen::Vector3d::Zero();
+  if (!part.empty()) windowMedian(part, 0, static_cast<int>(part.size()), 1, m);
+  return m;
+}
+
 }  // namespace
 
 Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std::vector<ObjectTrack>& objects,
                                 const std::vector<std::string>& planOrder) const {
   core::require(!planOrder.empty(), "segmentation: the plan has no target object; give the ordered object names");
+  // Robust mode refines the default estimator; the thesis-like estimator keeps its published steps.
+  const bool robust = config_.robust && config_.events == EventEstimator::HandDwellBoundary;
   validateTrajectory(hand, "hand trajectory");
   std::map<std::string, const ObjectTrack*> byName;
   for (const auto& o : objects) byName[o.name] = &o;
@@ -356,8 +464,14 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
                                 std::to_string(track[i].frame) + ", the hand's is " + std::to_string(hand[i].frame));
   }
 
+  if (config_.events == EventEstimator::ThesisPublished) return segmentThesisPublished(hand, objects, planOrder);
   Segmentation result;
-  result.hand = KalmanSmoother(config_.handSmoother).smooth(hand);
+  // Robust mode: hand jumps and carried values dropped before anything uses the hand.
+  double handSpread_m = 0.0;
+  const core::PositionTrajectory handEvents =
+      robust ? dropHandOutliers(hand, config_.handOutlierSigmas, config_.handOutlierMin_m, handSpread_m) : hand;
+  const double restNoiseTol_m = robust ? std::min(config_.restNoiseFactor * handSpread_m, config_.restNoiseMax_m) : 0.0;
+  result.hand = KalmanSmoother(config_.handSmoother).smooth(handEvents);
   const int n = static_cast<int>(hand.size());
   result.firstHandIndex = 0;
   while (result.firstHandIndex < n - 1 && !detected(hand[static_cast<std::size_t>(result.firstHandIndex)])) ++result.firstHandIndex;
@@ -370,14 +484,25 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
     ObjectSegmentation seg;
     seg.name = name;
     seg.searchStartIndex = start;
-    const core::PositionTrajectory filtered =
-        removeFlicker(dropMovesWithoutHand(track.positions, result.hand, config_.flickerGate_m, config_.handReach_m,
-                                           config_.maxObjectSpeed_mps),
-                      config_.medianWindow, config_.flickerGate_m);
-    core::require(filtered.validCount() > 0, "trajectory of '" + name + "' has no detection");
-    seg.smoothed = KalmanSmoother(config_.objectSmoother).smooth(filtered);
-    seg.p_initial_m = medianPosition(seg.smoothed, 0, w);
-    seg.p_final_m = medianPosition(seg.smoothed, n - w, n);
+    if (robust) {
+      // Rest positions: medians of many detections (up to a fifth of them may
+      // be outliers); the trajectory: a long running median (outlier runs of
+      // a few frames vanish, the move is kept).
+      core::require(track.positions.validCount() > 0, "trajectory of '" + name + "' has no detection");
+      seg.smoothed = runningMedian(track.positions, config_.objectMedianHalfWindow);
+      const int wr = std::max(1, std::min(config_.restMedianSamples, n / 5));
+      seg.p_initial_m = medianDetection(track.positions, wr, false);
+      seg.p_final_m = medianDetection(track.positions, wr, true);
+    } else {
+      const core::PositionTrajectory filtered =
+          removeFlicker(dropMovesWithoutHand(track.positions, result.hand, config_.flickerGate_m, config_.handReach_m,
+                                             config_.maxObjectSpeed_mps),
+                        config_.medianWindow, config_.flickerGate_m);
+      core::require(filtered.validCount() > 0, "trajectory of '" + name + "' has no detection");
+      seg.smoothed = KalmanSmoother(config_.objectSmoother).smooth(filtered);
+      seg.p_initial_m = medianPosition(seg.smoothed, 0, w);
+      seg.p_final_m = medianPosition(seg.smoothed, n - w, n);
+    }
     for (const auto& s : seg.smoothed.samples())
       seg.maxExcursion_m = std::max(seg.maxExcursion_m, (s.p_m - seg.p_initial_m).norm());
     if (seg.maxExcursion_m < config_.minExcursion_m) {
@@ -391,8 +516,18 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
       continue;
     }
     seg.moved = true;
-    seg.component = mixtureLabels(seg.smoothed, seg.p_initial_m, seg.p_final_m, config_.emMaxIterations,
-                                  0.5 * config_.minExcursion_m);
+    if (robust) {
+      // In the final rest: a detection within restTolerance of the final
+      // position (a nudge after the release stays inside it).
+      seg.component.assign(static_cast<std::size_t>(n), 1);
+      for (int i = 0; i < n; ++i)
+        if (detected(track.positions[static_cast<std::size_t>(i)]) &&
+            (track.positions[static_cast<std::size_t>(i)].p_m - seg.p_final_m).norm() < config_.restTolerance_m)
+          seg.component[static_cast<std::size_t>(i)] = 2;
+    } else {
+      seg.component = mixtureLabels(seg.smoothed, seg.p_initial_m, seg.p_final_m, config_.emMaxIterations,
+                                    0.5 * config_.minExcursion_m);
+    }
 
     // Release: the change point after which the object is in the final
     // component (the one the trajectory ends in), placed where the fewest
@@ -401,34 +536,95 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
     // broken by a few flickering or occluded samples after the release.
     std::vector<int> tailCount(kComponents, 0);
     for (int i = n - w; i < n; ++i) ++tailCount[static_cast<std::size_t>(seg.component[static_cast<std::size_t>(i)])];
-    const int finalComponent = static_cast<int>(std::max_element(tailCount.begin(), tailCount.end()) - tailCount.begin());
+    const int finalComponent = robust ? 2 : static_cast<int>(std::max_element(tailCount.begin(), tailCount.end()) - tailCount.begin());
     auto inFinal = [&](int i) { return seg.component[static_cast<std::size_t>(i)] == finalComponent; };
     // The release comes after the moving part: search from the sample farthest
     // from both rest positions (mid-move, or the top of the lift when the
     // object is put back where it was and the components are out of temporal order).
     int searchFrom = start;
     {
-      double farthest = -1.0;
-      for (int i = start; i < n; ++i) {
+      // Robust: the object is away from its rests only in the hand, and for a
+      // whole carry (1-4 s); outlier clusters that survive the running median
+      // are shorter. So: the longest run (gaps of up to kGap samples) of
+      // samples away from both rests by minExcursion with the hand near, and
+      // the farthest sample in it.
+      constexpr int kGap = 3;
+      auto distanceFromRests = [&](int i) {
         const Eigen::Vector3d& p = seg.smoothed[static_cast<std::size_t>(i)].p_m;
-        const double d = std::min((p - seg.p_initial_m).norm(), (p - seg.p_final_m).norm());
+        return std::min((p - seg.p_initial_m).norm(), (p - seg.p_final_m).norm());
+      };
+      auto away = [&](int i) {
+        const auto& raw = track.positions[static_cast<std::size_t>(i)];
+        return detected(raw) && std::min((raw.p_m - seg.p_initial_m).norm(), (raw.p_m - seg.p_final_m).norm()) > config_.minExcursion_m &&
+               distanceFromRests(i) > config_.minExcursion_m &&
+               (result.hand[static_cast<std::size_t>(i)].p_m - seg.smoothed[static_cast<std::size_t>(i)].p_m).norm() <=
+                   config_.handReach_m;
+      };
+      int runFrom = -1, runTo = -1, bestFrom = -1, bestTo = -1;
+      if (robust) {
+        for (int i = start; i < n; ++i) {
+          if (!away(i)) continue;
+          if (runFrom >= 0 && i - runTo <= kGap + 1) runTo = i;
+          else runFrom = runTo = i;
+          if (runTo - runFrom > bestTo - bestFrom) bestFrom = runFrom, bestTo = runTo;
+        }
+      }
+      // No such run (a detector that reports nothing while the part is in the
+      // hand, e.g. srp perceive): the farthest sample of the gated, smoothed
+      // track, which bridges the carry (the estimator before issue 18).
+      constexpr int kMinRun = 30;  // a carry lasts 1-4 s (issue 18); shorter runs are occlusion artefacts
+      const bool haveRun = bestFrom >= 0 && bestTo - bestFrom + 1 >= kMinRun;
+      core::PositionTrajectory bridged;
+      if (robust && !haveRun)
+        bridged = KalmanSmoother(config_.objectSmoother)
+                      .smooth(removeFlicker(dropMovesWithoutHand(track.positions, result.hand, config_.flickerGate_m,
+                                                                 config_.handReach_m, config_.maxObjectSpeed_mps),
+                                            config_.medianWindow, config_.flickerGate_m));
+      const int lo = haveRun ? bestFrom : start, hi = haveRun ? bestTo + 1 : n;
+      double farthest = -1.0;
+      for (int i = lo; i < hi; ++i) {
+        double d = distanceFromRests(i);
+        if (!bridged.empty()) {
+          const Eigen::Vector3d& p = bridged[static_cast<std::size_t>(i)].p_m;
+          d = std::min((p - seg.p_initial_m).norm(), (p - seg.p_final_m).norm());
+        }
         if (d > farthest) farthest = d, searchFrom = i;
       }
     }
     int release = n - 1;
     {
-      int outsideAfter = 0;
-      for (int i = searchFrom; i < n; ++i) outsideAfter += inFinal(i) ? 0 : 1;
-      int insideBefore = 0, bestCost = std::numeric_limits<int>::max();
+      // Robust: a Bernoulli change point. While carried, a detection is in
+      // the final rest with probability carriedInRest (the last few frames of the
+      // descent); in the final rest with probability restInRest (outliers and
+      // the hand lingering over the part take the rest). Costs = -log likelihoods;
+      // the mixture's labels (not robust) weigh both kinds of disagreement alike.
+      const double qb = robust ? config_.carriedInRest : 0.5, qa = robust ? config_.restInRest : 0.5;
+      const double inBefore = -std::log(qb), outBefore = -std::log(1 - qb), inAfter = -std::log(qa),
+                   outAfter = -std::log(1 - qa);
+      double after = 0.0;
+      for (int i = searchFrom; i < n; ++i)
+        if (!robust || detected(track.positions[static_cast<std::size_t>(i)])) after += inFinal(i) ? inAfter : outAfter;
+      double before = 0.0, bestCost = std::numeric_limits<double>::infinity();
+      std::vector<double> costs;
       for (int r = searchFrom; r < n; ++r) {
-        const int cost = insideBefore + outsideAfter;
-        if (cost < bestCost) bestCost = cost, release = r;
-        insideBefore += inFinal(r) ? 1 : 0;
-        outsideAfter -= inFinal(r) ? 0 : 1;
+        const double cost = before + after;
+        costs.push_back(cost);
+        if (cost < bestCost - 1e-9) bestCost = cost, release = r;
+        if (!robust || detected(track.positions[static_cast<std::size_t>(r)])) {
+          before += inFinal(r) ? inBefore : outBefore;
+          after -= inFinal(r) ? inAfter : outAfter;
+        }
       }
       // The change point lands on the first final-component sample of its run.
       while (release < n - 1 && !inFinal(release)) ++release;
+      // Margin: the best change point more than kMarginSamples away, in nats.
+      constexpr int kMarginSamples = 30;  // a competing release a second or more away (a nudge, a lingering hand)
+      double alternative = std::numeric_limits<double>::infinity();
+      for (int r = searchFrom; r < n; ++r)
+        if (std::abs(r - release) > kMarginSamples && detected(track.positions[static_cast<std::size_t>(r)])) alternative = std::min(alternative, costs[static_cast<std::size_t>(r - searchFrom)]);
+      if (robust) seg.releaseMargin = std::isfinite(alternative) ? alternative - bestCost : 0.0;
     }
+    const int coarseRelease = release;
     int from = start;
     if (release <= start) {
       seg.note = "object '" + name + "' comes to rest (sample " + std::to_string(release) +
@@ -467,16 +663,17 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
     if (config_.events == EventEstimator::HandDwellBoundary) {
       // Grasp: the hand's rest at the object ends where the object starts to
       // move with it; the valley covers the rest and the start of the lift.
-      const int g = restMoveBoundary(hand, std::max(from, valley.front()), std::min(to - 1, valley.back() + config_.moveSamples),
-                                     +1, config_.restSamples, config_.moveSamples, [](int) { return true; });
-      if (g >= 0) grasp = restEnd(hand, g, +1, config_.restSamples, from, to - 1);
+      const int g = restMoveBoundary(handEvents, std::max(from, valley.front()), std::min(to - 1, valley.back() + config_.moveSamples),
+                                     +1, config_.restSamples, config_.moveSamples, [](int) { return true; },
+                                     robust ? config_.boundaryMinMove_m : 0.0);
+      if (g >= 0) grasp = restEnd(handEvents, g, +1, config_.restSamples, from, to - 1, restNoiseTol_m);
       // Release: the hand's rest at the object's final position starts where
       // the object stops moving with it (searched from the grasp on: the
       // object's detections, hence the mid-move sample, are unreliable while
       // it is in the hand). The hand releases where it is closest to the
       // object's final position (measured after the hand has left): this
       // excludes its stops above the place (lift top, end of the retract).
-      const int lo = grasp + 1, hi = std::min(n - 1, release + config_.moveSamples);
+      const int lo = grasp + 1, hi = std::min(n - 1, release + (robust ? config_.releaseRefineAfter : config_.moveSamples));
       double closest_m = std::numeric_limits<double>::infinity();
       for (int i = lo; i <= hi; ++i)
         closest_m = std::min(closest_m, (result.hand[static_cast<std::size_t>(i)].p_m - seg.p_final_m).norm());
@@ -484,9 +681,26 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
         return (result.hand[static_cast<std::size_t>(i)].p_m - seg.p_final_m).norm() <=
                closest_m + config_.releaseReachTolerance_m;
       };
-      int r = restMoveBoundary(hand, lo, hi, -1, config_.restSamples, config_.moveSamples, reachFits);
-      if (r < 0) r = restMoveBoundary(hand, lo, hi, -1, config_.restSamples, config_.moveSamples, [](int) { return true; });
-      if (r >= 0) release = restEnd(hand, r, -1, config_.restSamples, lo, n - 1);
+      const double minMove_m = robust ? config_.boundaryMinMove_m : 0.0;
+      int r = restMoveBoundary(handEvents, lo, hi, -1, config_.restSamples, config_.moveSamples, reachFits, minMove_m);
+      if (r < 0)
+        r = restMoveBoundary(handEvents, lo, hi, -1, config_.restSamples, config_.moveSamples, [](int) { return true; }, minMove_m);
+      if (r >= 0) release = restEnd(handEvents, r, -1, config_.restSamples, lo, n - 1);
+    }
+    if (robust) {
+      int outliers = 0, count = 0;
+      for (int i = 0; i < n; ++i) {
+        const auto& s = track.positions[static_cast<std::size_t>(i)];
+        if (!detected(s)) continue;
+        ++count;
+        outliers += (s.p_m - seg.smoothed[static_cast<std::size_t>(i)].p_m).norm() > 2 * config_.restTolerance_m;
+      }
+      seg.outlierFraction = count > 0 ? static_cast<double>(outliers) / count : 1.0;
+      // Counted in detections of the part: a part hidden under the open hand
+      // after the release (rendered demos) is not a disagreement.
+      for (int i = std::min(release, coarseRelease); i < std::max(release, coarseRelease); ++i)
+        seg.releaseCueGap += detected(track.positions[static_cast<std::size_t>(i)]) ? (release > coarseRelease ? 1 : -1) : 0;
+      seg.lowConfidence = seg.outlierFraction > 0.3 || seg.releaseMargin < 10.0 || std::abs(seg.releaseCueGap) > 10;
     }
     seg.graspIndex = grasp;
     seg.releaseIndex = release;

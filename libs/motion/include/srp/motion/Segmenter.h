@@ -36,6 +36,13 @@
 /// it needs only the hand, which the glove tag detects reliably, not the
 /// object, whose detection is unreliable while the hand covers it.
 ///
+/// Robust mode (Config::robust, default; issue 18, real detector tracks): hand
+/// jumps and carried values are dropped first, the object's rests are medians
+/// of its raw detections, the coarse release is a Bernoulli change point into
+/// the final rest (a nudge after the release stays inside it), and each object
+/// reports its outlier fraction, release margin and cue gap (confidence).
+/// EventEstimator::ThesisPublished is the thesis' published code.
+///
 /// An object whose positions never leave its
 /// initial position by more than `minExcursion_m` is reported as not moved
 /// (no grasp/release, the search window is not advanced).
@@ -44,6 +51,7 @@
 /// every object sample the same frames (same count, same frame numbers).
 
 #include <Eigen/Core>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -75,6 +83,20 @@ struct ObjectSegmentation {
   std::vector<int> component;        ///< mixture component per sample, ordered by time: 0 first
   core::PositionTrajectory smoothed; ///< the filled and smoothed object trajectory
   std::string note;                  ///< what was unusual (not moved, order conflict), empty if nothing
+  /// How much to trust the events (robust default estimator; NaN otherwise):
+  /// share of the object's detections farther than 2 x restTolerance from its
+  /// running median (outliers) ...
+  double outlierFraction = std::numeric_limits<double>::quiet_NaN();
+  /// ... the release change point's margin: -log-likelihood of the best
+  /// change point more than 30 samples (1 s) away minus the chosen one's (nats;
+  /// small = another release time, e.g. a nudge, explains the detections almost
+  /// as well; about 26 when the detections are unambiguous) ...
+  double releaseMargin = std::numeric_limits<double>::quiet_NaN();
+  /// ... and release from the hand's rest minus release from the part's rest
+  /// (two independent cues that should agree within a few samples), counted in
+  /// the part's detections between them.
+  int releaseCueGap = 0;
+  bool lowConfidence = false;  ///< any of: outlierFraction > 0.3, releaseMargin < 10, |releaseCueGap| > 10
 };
 
 struct Segmentation {
@@ -89,7 +111,15 @@ class Segmenter {
   /// How grasp and release are placed (see the file comment).
   enum class EventEstimator {
     HandDwellBoundary,  ///< default: the ends of the hand's rests at the object
-    Thesis,             ///< thesis ch. 6.4.3: hand closest to the initial position; first sample of the final component
+    Thesis,             ///< thesis ch. 6.4.3 made robust (flicker removal, seeded EM, change point): the estimator before issue 18
+    /// The thesis' published code (shuanglu2023/SemanticRobotProgramming env_module, `srp segment --events
+    /// thesis`): pykalman smoothing with identity models and unit covariances (missing object samples
+    /// carried forward first, the hand's zeros kept as measurements as there), a 3-component full-covariance
+    /// Gaussian mixture initialised by k-means (k-means++ seeding from `thesisSeed`) on the whole smoothed
+    /// track, release = the first sample anywhere whose component is the last sample's, grasp = the smoothed
+    /// hand sample closest to the mean object position before `start` within [start, release), start = the
+    /// first hand detection, then the previous release.
+    ThesisPublished,
   };
 
   struct Config {
@@ -104,9 +134,25 @@ class Segmenter {
     double graspValleyDepth_m = 0.01;  ///< grasp = centre of the frames within this of the closest approach
     int emMaxIterations = 30;
     EventEstimator events = EventEstimator::HandDwellBoundary;
+    unsigned thesisSeed = 0;  ///< ThesisPublished: seed of the k-means initialisation (sklearn's random_state)
     int restSamples = 6;               ///< hand detections fitted as the rest beside a boundary (>= 3)
     int moveSamples = 8;               ///< hand detections fitted as the smooth start beside a boundary (>= 3)
     double releaseReachTolerance_m = 0.02;  ///< release: |hand - p_final| within this of its minimum over the search
+    /// Robust mode (issue 18, real detector tracks; false = the estimator before it, for comparisons):
+    /// hand jumps and carried values dropped, object rests from medians of the raw detections, release = the
+    /// change point into the final rest (detections within restTolerance of the final position).
+    bool robust = true;
+    double handOutlierSigmas = 4.0;   ///< hand detection dropped beyond this many robust sigmas of its neighbours' interpolation
+    double handOutlierMin_m = 0.015;  ///< ... and beyond this distance
+    int objectMedianHalfWindow = 15;  ///< running median of the object's detections, +-samples
+    int restMedianSamples = 30;       ///< initial/final position = median of the first/last this many detections
+    double restTolerance_m = 0.025;   ///< a detection this close to the final position is in the final rest
+    double carriedInRest = 0.05;      ///< release change point: P(detection in the final rest) while carried
+    double restInRest = 0.6;          ///< ... and once placed (outliers, the lingering hand take the rest)
+    double restNoiseFactor = 2.0;     ///< a hand rest admits detections within this x the hand's robust noise of its median
+    double restNoiseMax_m = 0.006;    ///< ... at most this (a hand as noisy as the marker-free detector has no mm rests)
+    double boundaryMinMove_m = 0.005; ///< a rest/move boundary needs the move side to leave the rest by this
+    int releaseRefineAfter = 20;      ///< the hand's rest at the place is searched up to this many samples after the coarse release
   };
 
   Segmenter() = default;
@@ -121,6 +167,8 @@ class Segmenter {
   const Config& config() const { return config_; }
 
  private:
+  Segmentation segmentThesisPublished(const core::PositionTrajectory& hand, const std::vector<ObjectTrack>& objects,
+                                      const std::vector<std::string>& planOrder) const;
   Config config_;
 };
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
+#include <grp.h>
 #include <unistd.h>
 
 #include <SQLiteCpp/SQLiteCpp.h>
@@ -11,6 +12,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <random>
 #include <thread>
@@ -24,6 +26,42 @@ using namespace srp::taskdb;
 using srp::core::FileError;
 
 namespace {
+
+/// Permission bits do not stop root, and CI runs as root: there the check runs in a child process that
+/// has become the unprivileged user nobody (uid/gid 65534), where they apply. Returns the check's
+/// failure message ("" = passed).
+std::string asOrdinaryUser(const std::function<std::string()>& check) {
+  if (geteuid() != 0) return check();
+  int fds[2];
+  if (pipe(fds) != 0) return "pipe failed";
+  const pid_t pid = fork();
+  if (pid == 0) {
+    close(fds[0]);
+    std::string message;
+    constexpr uid_t kNobody = 65534;
+    if (setgroups(0, nullptr) != 0 || setgid(kNobody) != 0 || setuid(kNobody) != 0) {
+      message = "could not become the user nobody";
+    } else {
+      try {
+        message = check();
+      } catch (const std::exception& e) {
+        message = std::string("exception: ") + e.what();
+      }
+    }
+    if (!message.empty() && write(fds[1], message.data(), message.size()) < 0) message.clear();
+    _exit(0);  // no gtest teardown in the child
+  }
+  close(fds[1]);
+  std::string message;
+  char buffer[512];
+  for (ssize_t n; (n = read(fds[0], buffer, sizeof buffer)) > 0;) message.append(buffer, static_cast<std::size_t>(n));
+  close(fds[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (!WIFEXITED(status)) return "the unprivileged child died: " + message;
+  return message;
+}
+
 std::string errorOf(const std::string& path) {
   try {
     TaskDatabase::open(path);
@@ -291,28 +329,31 @@ TEST(Robustness, ReadOnlyOpenWritesNothing) {
 }
 
 TEST(Robustness, ReadOnlyOpenWorksInAReadOnlyFolder) {
-  // Permission bits do not stop root, so this case needs an ordinary user.
-  if (geteuid() == 0) GTEST_SKIP() << "running as root: folder permissions cannot be tested (ReadOnlyOpenWritesNothing covers the rest)";
-  const auto dir = std::filesystem::temp_directory_path() / ("srp_taskdb_rofolder_" + std::to_string(getpid()));
-  std::filesystem::create_directories(dir);
-  const std::string path = (dir / "task.db").string();
-  {
-    auto db = TaskDatabase::open(path);
-    TaskModelStore(db).write(test::bulkModel("kept", 10, 1));
-  }
-  std::filesystem::permissions(dir, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
-  std::string error;
-  std::size_t count = 0;
-  try {
-    auto db = TaskDatabase::open(path, TaskDatabase::Mode::ReadOnly);
-    count = TaskModelStore(db).list().size();
-  } catch (const std::exception& e) {
-    error = e.what();
-  }
-  std::filesystem::permissions(dir, std::filesystem::perms::owner_all);
-  std::filesystem::remove_all(dir);
-  EXPECT_EQ(error, "");
-  EXPECT_EQ(count, 1u);
+  const std::string failure = asOrdinaryUser([] {
+    const auto dir = std::filesystem::temp_directory_path() / ("srp_taskdb_rofolder_" + std::to_string(getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    const std::string path = (dir / "task.db").string();
+    {
+      auto db = TaskDatabase::open(path);
+      TaskModelStore(db).write(test::bulkModel("kept", 10, 1));
+    }
+    std::filesystem::permissions(dir, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+    std::string error;
+    std::size_t count = 0;
+    try {
+      auto db = TaskDatabase::open(path, TaskDatabase::Mode::ReadOnly);
+      count = TaskModelStore(db).list().size();
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+    std::filesystem::permissions(dir, std::filesystem::perms::owner_all);
+    std::filesystem::remove_all(dir);
+    if (!error.empty()) return "read-only open failed: " + error;
+    if (count != 1) return "listed " + std::to_string(count) + " task models, expected 1";
+    return std::string();
+  });
+  EXPECT_EQ(failure, "");
 }
 
 TEST(Robustness, ForeignSqliteFileIsRefusedAndLeftUnchanged) {
@@ -372,14 +413,20 @@ TEST(Robustness, LockContentionIsReportedAsALockNotAsCorruption) {
 }
 
 TEST(Robustness, NoPermissionIsReportedAsSuch) {
-  if (geteuid() == 0) GTEST_SKIP() << "running as root: file permissions cannot be tested";
-  test::TempDbPath path("noperm");
-  { TaskDatabase::open(path.str()); }
-  std::filesystem::permissions(path.str(), std::filesystem::perms::none);
-  const std::string what = errorOf(path.str());
-  std::filesystem::permissions(path.str(), std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
-  EXPECT_NE(what.find("permission"), std::string::npos) << what;
-  EXPECT_EQ(what.find("corrupt"), std::string::npos) << what;
+  const std::string failure = asOrdinaryUser([] {
+    const std::string path =
+        (std::filesystem::temp_directory_path() / ("srp_taskdb_noperm_" + std::to_string(getpid()) + ".db")).string();
+    for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(path + suffix);
+    { TaskDatabase::open(path); }
+    std::filesystem::permissions(path, std::filesystem::perms::none);
+    const std::string what = errorOf(path);
+    std::filesystem::permissions(path, std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
+    for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(path + suffix);
+    if (what.find("permission") == std::string::npos) return "no 'permission' in: " + what;
+    if (what.find("corrupt") != std::string::npos) return "'corrupt' in: " + what;
+    return std::string();
+  });
+  EXPECT_EQ(failure, "");
 }
 
 // Issue 21: seeded single-byte mutations and truncations of a small task

@@ -290,9 +290,9 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
     std::unique_ptr<SceneRenderer> renderer;
     std::vector<int> objectBodies, handBodies;
   };
-  auto makeLayer = [&](bool withTable, bool withHand) {
+  auto makeLayer = [&](const core::CameraIntrinsics& intrinsics, bool withTable, bool withHand) {
     Layer layer;
-    layer.renderer = std::make_unique<SceneRenderer>(K);
+    layer.renderer = std::make_unique<SceneRenderer>(intrinsics);
     SceneRenderer& r = *layer.renderer;
     r.setLighting(world.lighting);
     r.setBackground({0.3, 0.3, 0.32});
@@ -313,29 +313,14 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
     return layer;
   };
   const bool layered = options.layeredRendering;
-  Layer background = makeLayer(true, !layered);
-  Layer moving = layered ? makeLayer(false, true) : Layer{};
+  Layer background = makeLayer(K, true, !layered);
+  Layer moving = layered ? makeLayer(K, false, true) : Layer{};
   // Two-camera sensor: the depth camera renders the whole scene itself.
   const std::optional<SynthDepthCamera>& depthCamera = options.depthCamera;
   Layer depthLayer;
   if (depthCamera) {
     depthCamera->intrinsics.validate("synth-demo depth camera");
-    // As makeLayer, with the depth camera's intrinsics.
-    depthLayer.renderer = std::make_unique<SceneRenderer>(depthCamera->intrinsics);
-    SceneRenderer& r = *depthLayer.renderer;
-    r.setLighting(world.lighting);
-    r.setBackground({0.3, 0.3, 0.32});
-    const int table = r.addBody(
-        "table",
-        srp::kb::makeBoxMesh({-0.5 * world.tableSize_m.x(), -0.5 * world.tableSize_m.y(), -0.03},
-                             {0.5 * world.tableSize_m.x(), 0.5 * world.tableSize_m.y(), 0.0}),
-        world.tableRgb);
-    r.setBodyPose(table, srp::core::Pose3::Identity());
-    const int floor = r.addBody("floor", srp::kb::makeBoxMesh({-3, -3, -0.78}, {3, 3, -0.75}), {0.42, 0.4, 0.38});
-    r.setBodyPose(floor, srp::core::Pose3::Identity());
-    for (std::size_t i = 0; i < world.objects.size(); ++i)
-      depthLayer.objectBodies.push_back(r.addBody(world.objects[i].id, objectMeshes[i], timeline.objectRgb.at(world.objects[i].id)));
-    for (const auto& part : hand.parts()) depthLayer.handBodies.push_back(r.addBody("hand:" + part.name, part.mesh_part, part.triangleRgb));
+    depthLayer = makeLayer(depthCamera->intrinsics, true, true);
   }
   const srp::core::Pose3 X_world_depth =
       depthCamera ? srp::core::Pose3(world.X_world_camera * depthCamera->X_colour_depth) : world.X_world_camera;

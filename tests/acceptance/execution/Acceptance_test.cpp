@@ -255,5 +255,5 @@ TEST(Acceptance, FiftySeededRandomScenesWithLearnedDmps) {
   }
   std::cout << "random scenes with DMP paths: " << succeeded << "/50 succeeded, " << dmpSteps << " steps on DMP paths, "
             << simulated << " s simulated in " << wall << " s\n";
-  EXPECT_GE(succeeded, 45);  // >= 90 %: a refusal by the safety check is a correct outcome, not a crash
+  EXPECT_GE(succeeded, 49);  // >= 98 %, as with minimum-jerk paths (measured 50/50)
 }

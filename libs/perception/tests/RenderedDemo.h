@@ -2,6 +2,8 @@
 // The default synthetic demo (srp::synth: default scene, thesis instruction 1,
 // default sensor noise) rendered into the build folder with its ground truth,
 // for the tests that check perception against the truth.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <string>
 
@@ -18,8 +20,10 @@ struct RenderedDemo {
   core::ObjectCatalogue catalogue;
 };
 
-/// Renders `options` (seed: the scene's) to SRP_BINARY_DIR/<fileName>, or,
-/// when `existingRawlog` is given, loads that demo and its `.gt.json`.
+/// Renders `options` (seed: the scene's) to SRP_BINARY_DIR/<test name>_<fileName>, or,
+/// when `existingRawlog` is given, loads that demo and its `.gt.json`. The running
+/// test's name is part of the file name because CTest runs the tests of one program in
+/// parallel processes: a shared name would have one test read a file another is writing.
 inline RenderedDemo renderDefaultDemo(const std::string& fileName, synth::SynthDemoOptions options,
                                       const char* existingRawlog = nullptr) {
   const auto scene = core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
@@ -31,7 +35,9 @@ inline RenderedDemo renderDefaultDemo(const std::string& fileName, synth::SynthD
     return out;
   }
   options.demo.seed = static_cast<std::uint32_t>(scene.seed);
-  out.rawlog = (std::filesystem::path(SRP_BINARY_DIR) / fileName).string();
+  const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::string prefix = test ? std::string(test->test_suite_name()) + "." + test->name() + "_" : std::string();
+  out.rawlog = (std::filesystem::path(SRP_BINARY_DIR) / (prefix + fileName)).string();
   const auto r = synth::generateSyntheticDemo(scene, out.catalogue, synth::defaultPlanJson(), options, out.rawlog);
   out.gt = synth::DemoGroundTruth::load(r.groundTruthPath);
   return out;

@@ -67,9 +67,8 @@ TEST(TwoCameraDemo, AsAccurateAsTheRegisteredDemoOfTheSameSeed) {
   depthCamera.intrinsics = cameraJson.at("intrinsics").get<core::CameraIntrinsics>();
   depthCamera.X_colour_depth = core::poseFromJson(cameraJson.at("X_colour_depth"), "realsense_d435_depth.json");
   o.depthCamera = depthCamera;
-  const std::string folder = (std::filesystem::path(SRP_BINARY_DIR) / "perception_two_camera_demo").string();
-  std::filesystem::remove_all(folder);
   testing::RenderedDemo twoCamera = testing::renderDefaultDemo("perception_two_camera_demo", o);
+  const std::string folder = twoCamera.rawlog;  // a two-camera demo is an import folder
   twoCamera.rawlog = folder + ".rawlog";
   const calib::ImportSummary s = calib::importRecording(folder, twoCamera.rawlog);
   ASSERT_TRUE(s.depthRegistered);

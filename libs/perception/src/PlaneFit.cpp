@@ -21,6 +21,31 @@ core::Pose3 Plane::X_camera_plane() const {
   return X;
 }
 
+namespace {
+
+/// The least-squares plane through the points within tol_m of `plane`: their mean and the normal of
+/// least variance, unoriented (each caller picks the side). nullopt with fewer than 3 such points.
+struct InlierFit {
+  Eigen::Vector3d n, mean;
+  int inliers = 0;
+};
+std::optional<InlierFit> leastSquaresOnInliers(const std::vector<Eigen::Vector3d>& pts, const Plane& plane,
+                                               double tol_m) {
+  std::vector<Eigen::Vector3d> in;
+  for (const auto& p : pts)
+    if (std::abs(plane.height(p)) < tol_m) in.push_back(p);
+  if (in.size() < 3) return std::nullopt;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& p : in) mean += p;
+  mean /= static_cast<double>(in.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const auto& p : in) cov += (p - mean) * (p - mean).transpose();
+  return InlierFit{Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0), mean,
+                   static_cast<int>(in.size())};
+}
+
+}  // namespace
+
 std::optional<Plane> fitDominantPlane(const cv::Mat& cloud, const PlaneFitOptions& o) {
   std::vector<Eigen::Vector3d> pts;
   for (int v = 0; v < cloud.rows; v += o.sampleStride_px)
@@ -52,23 +77,15 @@ std::optional<Plane> fitDominantPlane(const cv::Mat& cloud, const PlaneFitOption
   if (best.inliers < 3) return std::nullopt;
   // Least-squares refinement on the inliers (twice, tightening).
   for (int pass = 0; pass < 2; ++pass) {
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    std::vector<Eigen::Vector3d> in;
-    for (const auto& p : pts)
-      if (std::abs(best.height(p)) < o.inlierTol_m) in.push_back(p);
-    if (in.size() < 3) break;
-    for (const auto& p : in) mean += p;
-    mean /= static_cast<double>(in.size());
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const auto& p : in) cov += (p - mean) * (p - mean).transpose();
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
-    Eigen::Vector3d n = es.eigenvectors().col(0);
-    double d = -n.dot(mean);
+    const auto fit = leastSquaresOnInliers(pts, best, o.inlierTol_m);
+    if (!fit) break;
+    Eigen::Vector3d n = fit->n;
+    double d = -n.dot(fit->mean);
     if (d < 0) {
       n = -n;
       d = -d;
     }
-    best = Plane{n, d, static_cast<int>(in.size())};
+    best = Plane{n, d, fit->inliers};
   }
   return best;
 }
@@ -107,18 +124,13 @@ std::optional<Plane> fitLocalPlane(const cv::Mat& cloud, const Plane& global, co
   }
   if (best.inliers < o.minInliers) return std::nullopt;
   // Least squares on the inliers.
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  std::vector<Eigen::Vector3d> in;
-  for (const auto& p : pts)
-    if (std::abs(best.height(p)) < o.inlierTol_m) in.push_back(p);
-  for (const auto& p : in) mean += p;
-  mean /= static_cast<double>(in.size());
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (const auto& p : in) cov += (p - mean) * (p - mean).transpose();
-  Eigen::Vector3d n = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
+  const auto fit = leastSquaresOnInliers(pts, best, o.inlierTol_m);
+  if (!fit) return std::nullopt;
+  const Eigen::Vector3d& mean = fit->mean;
+  Eigen::Vector3d n = fit->n;
   if (n.dot(global.n) < 0) n = -n;
   if (n.dot(global.n) < cosMaxTurn) return std::nullopt;
-  const Plane local{n, -n.dot(mean), static_cast<int>(in.size())};
+  const Plane local{n, -n.dot(mean), fit->inliers};
   // The shift where the part stands: the global plane's point below the roi's centre.
   const cv::Vec3f& centre = cloud.at<cv::Vec3f>(roi_px.y + roi_px.height / 2, roi_px.x + roi_px.width / 2);
   Eigen::Vector3d q = mean;

@@ -1,10 +1,13 @@
 // srp execute: run a stored task model on the simulated UR5 cell (libs/execution).
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "CommandRegistry.h"
 #include "srp/core/Error.h"
 #include "srp/execution/ExecutionSession.h"
+#include "srp/execution/RosTrajectoryExporter.h"
+#include "srp/execution/UrScriptExporter.h"
 
 namespace {
 
@@ -16,6 +19,11 @@ struct ExecuteOptions {
   std::string out = "execution";
   int framePeriod = 10;
   bool json = false;
+  std::string urscript;
+  std::string trajectoryYaml;
+  srp::execution::UrScriptOptions ur;
+  srp::execution::RosTrajectoryOptions ros;
+  double velocityFraction = 1.0;
 };
 
 void setupExecute(CLI::App& app) {
@@ -29,7 +37,31 @@ void setupExecute(CLI::App& app) {
   app.add_option("--frame-period", o->framePeriod, "Render every n-th 20 ms snapshot (0: no frames)")
       ->capture_default_str();
   app.add_flag("--json", o->json, "Print the report as JSON on stdout");
+  app.add_option("--urscript", o->urscript,
+                 "Write the checked joint trajectory as one URScript program (servoj at 125 Hz, gripper on a tool "
+                 "digital output); nothing is written when a step was refused or failed");
+  app.add_option("--trajectory-yaml", o->trajectoryYaml,
+                 "Write the checked joint trajectory as a ROS 2 trajectory_msgs/msg/JointTrajectory YAML "
+                 "(ros2 topic pub --yaml-file); nothing is written when a step was refused or failed");
+  app.add_option("--gripper-do", o->ur.gripperDigitalOut, "URScript: tool digital output of the gripper (0 or 1; True = grasp)")
+      ->capture_default_str();
+  app.add_option("--gripper-wait", o->ur.gripperWait_s, "URScript: seconds to wait after switching the gripper")
+      ->capture_default_str();
+  app.add_option("--servo-lookahead", o->ur.servoLookahead_s, "URScript: servoj lookahead_time [s] (0.03-0.2)")
+      ->capture_default_str();
+  app.add_option("--servo-gain", o->ur.servoGain, "URScript: servoj gain (100-2000)")->capture_default_str();
+  app.add_option("--ros-point-period", o->ros.pointPeriod_s,
+                 "ROS YAML: keep trajectory knots at least this many seconds apart (0: every 10 ms knot)")
+      ->capture_default_str();
+  app.add_option("--velocity-fraction", o->velocityFraction,
+                 "Safety check: allow this fraction of the URDF joint speed limits (e.g. 0.5 for a first run on the "
+                 "real cell); paths are slowed down to fit, up to 4x, else the step is refused")
+      ->capture_default_str()
+      ->check(CLI::Range(0.01, 1.0));
   app.callback([o] {
+    // Bad exporter options fail before the (long) execution.
+    const srp::execution::UrScriptExporter urExporter(o->ur);
+    const srp::execution::RosTrajectoryExporter rosExporter(o->ros);
     srp::execution::ExecuteRequest request;
     request.databasePath = o->db;
     request.taskModelId = o->task;
@@ -37,6 +69,7 @@ void setupExecute(CLI::App& app) {
     request.instruction = o->instruction;
     request.outputFolder = o->out;
     request.framePeriod = o->framePeriod;
+    request.options.safety.velocityFraction = o->velocityFraction;
     request.progress = [](const std::string& line) { std::cerr << line << "\n"; };
     const auto result = srp::execution::executeTask(request);
     if (o->json)
@@ -44,6 +77,23 @@ void setupExecute(CLI::App& app) {
     else
       std::cout << result.report.toText() << "outputs in " << o->out << "/\n";
     if (!result.report.allSucceeded()) srp::app::commandExitCode() = 2;
+    if (o->urscript.empty() && o->trajectoryYaml.empty()) return;
+    if (const auto why = result.executed.whyNotExportable()) {
+      for (const std::string& path : {o->urscript, o->trajectoryYaml})
+        if (!path.empty() && std::filesystem::remove(path))  // never leave an older program where this one was asked
+          std::cerr << "srp execute: removed " << path << " (from an earlier run)\n";
+      std::cerr << "srp execute: no URScript / trajectory YAML written: " << *why << "\n";
+      srp::app::commandExitCode() = 2;
+      return;
+    }
+    if (!o->urscript.empty()) {
+      urExporter.write(result.executed, o->urscript);
+      (o->json ? std::cerr : std::cout) << "URScript program: " << o->urscript << "\n";
+    }
+    if (!o->trajectoryYaml.empty()) {
+      rosExporter.write(result.executed, o->trajectoryYaml);
+      (o->json ? std::cerr : std::cout) << "ROS 2 JointTrajectory YAML: " << o->trajectoryYaml << "\n";
+    }
   });
 }
 

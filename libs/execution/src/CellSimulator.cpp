@@ -223,6 +223,8 @@ struct CellSimulator::Impl {
   std::vector<stk::Constraint::Weld> grasps;
   JointController* controller = nullptr;  // owned by the force subsystem
   Reference reference;
+  std::vector<Reference> commanded;           // every reference, in time order (commandedTrajectory)
+  std::vector<GripperEvent> gripperEvents;
   stk::State state;
   std::unique_ptr<stk::Integrator> integrator;
   std::optional<int> grasped;
@@ -421,6 +423,7 @@ CellSimulator::CellSimulator(const RobotModel& model, const CellDescription& cel
 
   m.reference.trajectory = JointTrajectory::hold(q_initial, 1.0);
   m.reference.tStart_s = 0.0;
+  m.commanded.push_back(m.reference);
   m.controller = new JointController(m.matter, m.arm, maxEffort, masses, coms, options.controllerBandwidth_radps,
                                      &m.reference);
   stk::Force::Custom(m.forces, m.controller);
@@ -477,6 +480,7 @@ TrackingResult CellSimulator::track(const JointTrajectory& trajectory, double se
   if (trajectory.empty()) throw srp::core::InvalidInputError("CellSimulator::track: empty trajectory");
   m.reference.trajectory = trajectory;
   m.reference.tStart_s = m.state.getTime();
+  m.commanded.push_back(m.reference);
   m.sleepRestingParts();
   m.restartIntegrator();  // the reference changed: forces cached in the integrator are stale
   TrackingResult r;
@@ -495,6 +499,7 @@ void CellSimulator::settle(double duration_s) {
   const JointVector qRef = m.reference.at(m.state.getTime()).q_rad;
   m.reference.trajectory = JointTrajectory::hold(qRef, duration_s);
   m.reference.tStart_s = m.state.getTime();
+  m.commanded.push_back(m.reference);
   m.sleepRestingParts();
   m.restartIntegrator();
   m.advance(m.state.getTime() + duration_s, nullptr);
@@ -527,6 +532,7 @@ std::optional<std::string> CellSimulator::grasp(const std::string& part, double 
   m.controller->payloadMass_kg = spec->mass_kg;
   m.controller->payloadCom_B = X_wrist3_part * stk::Vec3(0, 0, spec->size_m.z() / 2);
   m.grasped = index;
+  m.gripperEvents.push_back({GripperEvent::Kind::Grasp, m.state.getTime(), part});
   m.asleep[index] = false;
   m.wokeAt_s[index] = m.state.getTime();
   m.rebuildKeepingState(index);
@@ -536,6 +542,7 @@ std::optional<std::string> CellSimulator::grasp(const std::string& part, double 
 void CellSimulator::release() {
   Impl& m = *impl_;
   if (!m.grasped) return;
+  m.gripperEvents.push_back({GripperEvent::Kind::Release, m.state.getTime(), m.partNames[*m.grasped]});
   m.wokeAt_s[*m.grasped] = m.state.getTime();
   m.grasped.reset();
   m.controller->payloadMass_kg = 0.0;
@@ -543,6 +550,36 @@ void CellSimulator::release() {
 }
 
 const std::vector<CellSnapshot>& CellSimulator::log() const { return impl_->log; }
+
+JointTrajectory CellSimulator::commandedTrajectory() const {
+  const Impl& m = *impl_;
+  const double now = m.state.getTime();
+  std::vector<JointTrajectorySample> samples;
+  auto holdTo = [&](double t_s) {  // the controller holds the last reference until t_s
+    if (!samples.empty() && t_s > samples.back().t_s + 1e-9) {
+      JointTrajectorySample s = samples.back();
+      s.t_s = t_s;
+      s.qd_radps.setZero();
+      s.qdd_radps2.setZero();
+      samples.push_back(s);
+    }
+  };
+  for (std::size_t i = 0; i < m.commanded.size(); ++i) {
+    const Reference& r = m.commanded[i];
+    const double end = i + 1 < m.commanded.size() ? m.commanded[i + 1].tStart_s : now;
+    for (const auto& s0 : r.trajectory.samples()) {
+      JointTrajectorySample s = s0;
+      s.t_s += r.tStart_s;
+      if (s.t_s > end + 1e-9) break;  // a reference replaced before its end (not done by TaskExecutor)
+      if (!samples.empty() && s.t_s <= samples.back().t_s + 1e-9) continue;  // the joint of two pieces
+      samples.push_back(s);
+    }
+    holdTo(end);
+  }
+  return JointTrajectory::fromSamples(std::move(samples));
+}
+
+const std::vector<GripperEvent>& CellSimulator::gripperEvents() const { return impl_->gripperEvents; }
 
 void CellSimulator::setSnapshotCallback(std::function<void(const CellSnapshot&)> callback) {
   impl_->callback = std::move(callback);

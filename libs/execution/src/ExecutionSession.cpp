@@ -116,6 +116,12 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
     if (s.status == StepStatus::Done)
       result.report.minTableClearance_m = std::min(result.report.minTableClearance_m, s.minTableClearance_m);
 
+  result.executed = ExecutedTask::fromSimulation(robot, request.options.safety, executor.simulator(), result.report);
+  result.executed.taskName = model.info.name;
+  result.executed.taskModelId = request.taskModelId;
+  result.executed.instruction = request.instruction.empty() ? model.info.instruction : request.instruction;
+  result.executed.scene = scenePath;
+
   if (!request.outputFolder.empty()) {
     nlohmann::json j = result.report.toJson();
     j["task_model_id"] = request.taskModelId;

@@ -39,6 +39,25 @@ JointTrajectory JointTrajectory::fromPositions(const std::vector<double>& t_s,
   return tr;
 }
 
+JointTrajectory JointTrajectory::fromSamples(std::vector<JointTrajectorySample> samples) {
+  if (samples.size() < 2)
+    throw srp::core::InvalidInputError("JointTrajectory::fromSamples: need >= 2 samples (got " +
+                                       std::to_string(samples.size()) + ")");
+  const double t0 = samples.front().t_s;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    auto& s = samples[i];
+    if (!std::isfinite(s.t_s) || !s.q_rad.allFinite() || !s.qd_radps.allFinite() || !s.qdd_radps2.allFinite())
+      throw srp::core::InvalidInputError("JointTrajectory::fromSamples: sample " + std::to_string(i) + " is not finite");
+    if (i > 0 && !(s.t_s > samples[i - 1].t_s))
+      throw srp::core::InvalidInputError("JointTrajectory::fromSamples: time of sample " + std::to_string(i) +
+                                         " does not increase");
+  }
+  for (auto& s : samples) s.t_s -= t0;
+  JointTrajectory tr;
+  tr.samples_ = std::move(samples);
+  return tr;
+}
+
 JointTrajectory JointTrajectory::hold(const JointVector& q_rad, double duration_s) {
   return fromPositions({0.0, std::max(duration_s, 1e-3)}, {q_rad, q_rad});
 }

@@ -56,6 +56,15 @@ struct CellSnapshot {
   std::optional<std::string> graspedPart;
 };
 
+/// A grasp or release of the suction tool, at simulated time t_s (what an exporter
+/// turns into a tool digital output).
+struct GripperEvent {
+  enum class Kind { Grasp, Release };
+  Kind kind = Kind::Grasp;
+  double t_s = 0.0;   ///< simulated time of the event (same clock as CellSnapshot::t_s)
+  std::string part;   ///< the part grasped or released
+};
+
 /// Result of tracking one joint trajectory.
 struct TrackingResult {
   double simulated_s = 0.0;
@@ -95,6 +104,17 @@ class CellSimulator {
 
   /// Disables the grasp weld; the part falls under gravity and contact.
   void release();
+
+  /// The joint reference the controller was commanded from t = 0 (construction) to
+  /// now: every tracked trajectory at its start time and the holds between them, as
+  /// one trajectory whose spline equals each tracked one (knots and velocities kept).
+  /// What the safety checker saw, in simulated time: the exporters replay it. Where a
+  /// new trajectory starts a few micro-radians off the held reference (TaskExecutor
+  /// plans each step from the measured joints), the held position is kept: no jump.
+  JointTrajectory commandedTrajectory() const;
+
+  /// Every successful grasp and every release so far, in time order.
+  const std::vector<GripperEvent>& gripperEvents() const;
 
   /// The state log (every logPeriod_s) of everything simulated so far.
   const std::vector<CellSnapshot>& log() const;

@@ -11,6 +11,7 @@
 
 #include "srp/core/Scene.h"
 #include "srp/execution/ExecutionPlan.h"
+#include "srp/execution/ExecutedTask.h"
 #include "srp/execution/ExecutionReport.h"
 #include "srp/execution/TaskExecutor.h"
 
@@ -34,6 +35,9 @@ struct ExecuteRequest {
 struct ExecuteResult {
   ExecutionPlan plan;
   ExecutionReport report;
+  /// The commanded trajectory, gripper events and report for the exporters
+  /// (UrScriptExporter, RosTrajectoryExporter).
+  ExecutedTask executed;
   std::vector<std::string> writtenFiles;
 };
 

@@ -28,6 +28,11 @@ class JointTrajectory {
   static JointTrajectory fromPositions(const std::vector<double>& t_s,
                                        const std::vector<JointVector>& q_rad);
 
+  /// A trajectory from samples as they are (velocities kept: the spline through them
+  /// is theirs), times shifted to start at 0. Throws InvalidInputError on fewer than
+  /// two samples, non-increasing times or non-finite values.
+  static JointTrajectory fromSamples(std::vector<JointTrajectorySample> samples);
+
   /// A trajectory that holds q for duration_s.
   static JointTrajectory hold(const JointVector& q_rad, double duration_s);
 

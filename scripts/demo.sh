@@ -35,8 +35,8 @@ run_execute() {  # name, extra args...
   set -e
   [ $rc -le 2 ] || exit $rc   # 2 = done with skipped or failed steps: reported, keep going
 }
-step "3/5 execute the learned task on the simulated UR5"
-run_execute execute --scene "$scene"
+step "3/5 execute the learned task on the simulated UR5 (and export it for the real cell)"
+run_execute execute --scene "$scene" --urscript "$out/task.script" --trajectory-yaml "$out/trajectory.yaml"
 step "4/5 adaptation without a new demonstration: subset"
 run_execute subset --scene "$scene" --instruction "$subset"
 step "5/5 adaptation without a new demonstration: reversal (from the scene the first run left)"
@@ -50,3 +50,6 @@ done
 echo
 echo "Report of the programming run: $out/report/summary.md"
 echo "Execution reports and frames: $out/execute/ $out/subset/ $out/reversal/"
+for f in "$out/task.script" "$out/trajectory.yaml"; do
+  if [ -f "$f" ]; then echo "For the real cell: $f"; else echo "not written (see the execute step's message): $f"; fi
+done

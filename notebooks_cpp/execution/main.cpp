@@ -8,7 +8,9 @@
 //   rendered frames of it into one picture: the start, the first pick & place
 //   (grasp, carrying, release of the cuboid), the star, parallelogram and
 //   octagon being carried, and the end, with every part in the gray box.
-//   The arm is drawn as its collision spheres, the suction tool in black.
+//   The UR5 is drawn from its URDF link meshes (sim/ur5) at each simulated
+//   joint configuration, with the suction gripper on its flange and the parts
+//   with their catalogue meshes (CellRenderer; the safety spheres are off).
 //
 // The steps, as `srp motion` + `srp execute --instruction` run them:
 //   1. Skills: a 4-object pick & place demonstration (srp::motion's synthetic

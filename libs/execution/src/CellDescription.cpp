@@ -57,6 +57,7 @@ CellDescription CellDescription::fromScene(const srp::core::Scene& scene,
     o.className = c.name;
     o.noun = c.noun;
     o.classId = c.classId;
+    o.meshPath = c.meshPath;
     cell.objects.push_back(o);
   }
   return cell;

@@ -1,10 +1,19 @@
 #pragma once
 /// \file CellRenderer.h
 /// \brief Off-screen pictures of the simulated cell (MRPT's CFBORender, headless
-/// through EGL): table, containers, parts at their simulated poses and the arm
-/// drawn as its collision spheres, seen from an orbit camera around the table.
+/// through EGL), seen from an orbit camera around the table: the table, the
+/// containers, the parts with their catalogue meshes (boxes when a class has no
+/// mesh file), the UR5 drawn from its URDF link meshes at the snapshot's joints
+/// (forward kinematics through the URDF joint chain, UR light grey), the suction
+/// gripper on tool0, and, as an option, the safety checker's arm spheres.
+///
+/// Gripper model (the URDF's `suction_tool`, tool0 -> tcp = 0.10 m along z): a
+/// cylinder r = 20 mm from tool0 to 85 mm (dark grey), then a suction cup
+/// r = 12 -> 18 mm from 85 mm to the tcp at 100 mm (black).
 
+#include <Eigen/Core>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "srp/execution/CellDescription.h"
@@ -20,16 +29,27 @@ struct CellRendererOptions {
   double elevation_deg = 35.0;
   double distance_m = 1.5;
   Eigen::Vector3d lookAt_world_m = Eigen::Vector3d(0.0, 0.0, 0.1);
+  /// Draw the SafetyChecker's arm spheres (translucent blue) over the meshes.
+  bool drawSafetySpheres = false;
 };
 
 class CellRenderer {
  public:
-  /// Throws srp::core::Error when no off-screen OpenGL context can be created.
+  /// Loads the link meshes (RobotModel collision meshes; the UR5 has no separate
+  /// visual meshes in srp) and the part meshes. Throws FileError naming a link mesh
+  /// that cannot be read, srp::core::Error when no off-screen OpenGL context can be created.
   CellRenderer(RobotModel model, CellDescription cell, CellRendererOptions options = {});
   ~CellRenderer();
 
   /// Renders one snapshot into a PNG file; throws FileError when it cannot be written.
   void renderPng(const CellSnapshot& snapshot, const std::string& path);
+
+  /// Pixel (u right, v down, from the top-left corner) and depth [m] of a world point
+  /// in the pictures, from the camera of the last render; nullopt behind the camera.
+  /// Throws InvalidInputError before the first render.
+  std::optional<Eigen::Vector3d> project(const Eigen::Vector3d& p_world_m) const;
+
+  const CellRendererOptions& options() const;
 
  private:
   struct Impl;

@@ -24,6 +24,7 @@ struct ExecuteOptions {
   srp::execution::UrScriptOptions ur;
   srp::execution::RosTrajectoryOptions ros;
   double velocityFraction = 1.0;
+  bool safetySpheres = false;
 };
 
 void setupExecute(CLI::App& app) {
@@ -37,6 +38,7 @@ void setupExecute(CLI::App& app) {
   app.add_option("--frame-period", o->framePeriod, "Render every n-th 20 ms snapshot (0: no frames)")
       ->capture_default_str();
   app.add_flag("--json", o->json, "Print the report as JSON on stdout");
+  app.add_flag("--safety-spheres", o->safetySpheres, "Frames: overlay the safety checker's arm spheres on the UR5 meshes");
   app.add_option("--urscript", o->urscript,
                  "Write the checked joint trajectory as one URScript program (servoj at 125 Hz, gripper on a tool "
                  "digital output); nothing is written when a step was refused or failed");
@@ -69,6 +71,7 @@ void setupExecute(CLI::App& app) {
     request.instruction = o->instruction;
     request.outputFolder = o->out;
     request.framePeriod = o->framePeriod;
+    request.drawSafetySpheres = o->safetySpheres;
     request.options.safety.velocityFraction = o->velocityFraction;
     request.progress = [](const std::string& line) { std::cerr << line << "\n"; };
     const auto result = srp::execution::executeTask(request);

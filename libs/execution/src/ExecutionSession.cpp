@@ -84,7 +84,9 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
     if (request.framePeriod > 0) {
       framesFolder = request.outputFolder + "/frames";
       std::filesystem::create_directories(framesFolder);
-      renderer = std::make_unique<CellRenderer>(robot, cell);
+      CellRendererOptions view;
+      view.drawSafetySpheres = request.drawSafetySpheres;
+      renderer = std::make_unique<CellRenderer>(robot, cell, view);
       executor.simulator().setSnapshotCallback([&](const CellSnapshot& s) {
         if (snapshotCount++ % request.framePeriod != 0) return;
         std::ostringstream name;

@@ -23,6 +23,7 @@ struct ExecuteRequest {
   std::string scenePath;     ///< scene JSON; "" = sim/scenes/default.json
   std::string outputFolder;  ///< "" = write nothing
   int framePeriod = 10;      ///< render every n-th logged snapshot (0 = no frames)
+  bool drawSafetySpheres = false;  ///< frames: overlay the safety checker's arm spheres
   /// A new instruction: parsed by the Language Module (with the stored plan as the
   /// known steps, for "back to" and "only the star"), it replaces the stored plan.
   std::string instruction;

@@ -27,8 +27,8 @@ struct CellRendererOptions {
   int height_px = 480;
   double azimuth_deg = -60.0;   ///< orbit camera around the world z axis
   double elevation_deg = 35.0;
-  double distance_m = 1.5;
-  Eigen::Vector3d lookAt_world_m = Eigen::Vector3d(0.0, 0.0, 0.1);
+  double distance_m = 1.9;  ///< far enough for the whole UR5 above the default cell
+  Eigen::Vector3d lookAt_world_m = Eigen::Vector3d(0.0, -0.05, 0.22);
   /// Draw the SafetyChecker's arm spheres (translucent blue) over the meshes.
   bool drawSafetySpheres = false;
 };

@@ -79,6 +79,9 @@ std::string UrScriptExporter::toScript(const ExecutedTask& task) const {
 
   std::ostringstream s;
   s << std::fixed << std::setprecision(3);
+  // The header is inside the def: a controller reading the program from port 30002
+  // runs a script as one program only when it starts with `def`.
+  s << "def " << o.programName << "():\n";
   s << "# " << o.programName << ": URScript written by srp execute (semantic robot programming)\n";
   s << "# task model: " << (task.taskModelId ? std::to_string(task.taskModelId) : std::string("-")) << " '"
     << oneLine(task.taskName) << "'\n";
@@ -105,8 +108,6 @@ std::string UrScriptExporter::toScript(const ExecutedTask& task) const {
     << o.preambleAcceleration_radps2 << " rad/s^2\n";
   s << "# run: send to the controller's port 30002 (nc <robot-ip> 30002 < this file), or in PolyScope a Script\n"
     << "#   node (File) with this file followed by a Script expression '" << o.programName << "()'\n";
-
-  s << "def " << o.programName << "():\n";
   s << "  # preamble: gripper released, move slowly to the first configuration\n";
   s << "  set_tool_digital_out(" << o.gripperDigitalOut << ", False)\n";
   s << "  movej(" << jointList(q.front(), 7) << ", a=" << o.preambleAcceleration_radps2
@@ -136,7 +137,12 @@ std::string UrScriptExporter::toScript(const ExecutedTask& task) const {
   }
   s << "  stopj(" << o.stopDeceleration_radps2 << ")\n";
   s << "end\n";
-  return s.str();
+  // Indent the header comments to the def's body.
+  std::string text = s.str(), out;
+  out.reserve(text.size() + 2048);
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) out += (line.rfind("# ", 0) == 0 || line == "#" ? "  " : "") + line + "\n";
+  return out;
 }
 
 void UrScriptExporter::write(const ExecutedTask& task, const std::string& path) const {

@@ -180,6 +180,7 @@ TEST(TrajectoryExport, UrScriptReplaysTheCheckedTrajectory) {
   const std::string text = UrScriptExporter(options).toScript(task);
   const ParsedScript p = readScript(text);
   EXPECT_TRUE(p.defined && p.ended);
+  EXPECT_EQ(text.rfind("def srp_task():\n", 0), 0u) << "port 30002 runs one program only from a leading def";
   EXPECT_NE(text.find("# instruction: Put the cuboid in the gray box and the star next to it."), std::string::npos);
   EXPECT_NE(text.find("# task model: 7 'export test'"), std::string::npos);
 

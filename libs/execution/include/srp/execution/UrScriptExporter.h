@@ -12,8 +12,8 @@
 /// trapezoidal profiles and the blend radii cut the corners between waypoints: the
 /// path driven would not be the path checked (near a wall, 2 mm is less than a blend).
 ///
-/// Program layout: a header comment (task model, instruction, steps, limits used,
-/// servo parameters, gripper pin), then `def <name>():` with a preamble (tool output
+/// Program layout: `def <name>():`, a header comment (task model, instruction, steps,
+/// limits used, servo parameters, gripper pin), a preamble (tool output
 /// off = released, `movej` slowly to the first configuration), one `servoj` line per
 /// 8 ms tick, and at each grasp / release event: `stopj` (the arm is at rest there:
 /// the executor holds after every segment), `set_tool_digital_out(pin, True/False)`

@@ -1,6 +1,7 @@
 #include "srp/perception/DemoPerception.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -40,6 +41,11 @@ void checkFrame(const rawlog::RgbdFrame& f, const rawlog::RgbdFrame& first, int 
                                   "); a demo must come from one camera setting");
 }
 
+bool useModelBasedTracking(const PerceptionOptions& o) {
+  return o.objectTracking == PerceptionOptions::ObjectTracking::Mbt ||
+         (o.objectTracking == PerceptionOptions::ObjectTracking::Auto && o.movingCamera);
+}
+
 }  // namespace
 
 struct DemoPerceiver::Impl {
@@ -49,6 +55,7 @@ struct DemoPerceiver::Impl {
   std::unique_ptr<ObjectDetector> detector;
   std::unique_ptr<ObjectTracker> tracker;
   std::unique_ptr<HandDetector> hand;
+  std::map<std::string, std::unique_ptr<ModelBasedTracker>> mbt;  // per moving class, when tracking with ViSP
   std::optional<rawlog::RgbdFrame> first;  // images released: only size and intrinsics are kept
   std::optional<Plane> support;
   std::vector<int> frameIndex;
@@ -61,7 +68,59 @@ struct DemoPerceiver::Impl {
   const bool debug = std::getenv("SRP_PERCEPTION_DEBUG") != nullptr;
 
   Impl(const core::ObjectCatalogue& c, const PerceptionOptions& o) : catalogue(c), options(o) {}
+  void followWithModelBasedTracker(const rawlog::RgbdFrame& f, std::vector<ObjectDetection>& detections);
 };
+
+/// Moving classes followed by ViSP's model-based tracker: a tracked class's
+/// detection is replaced by the tracked pose; a class whose tracker is lost
+/// (or not started) keeps its detection, which (re)initialises the tracker.
+void DemoPerceiver::Impl::followWithModelBasedTracker(const rawlog::RgbdFrame& f,
+                                                      std::vector<ObjectDetection>& detections) {
+  Impl& m = *this;
+  const CameraModel camera(f.intrinsics);
+  cv::Mat cloud;
+  for (const auto& p : m.plan) {
+    if (p.isStatic) continue;
+    const ObjectPoseFitter* fitter = m.detector->fitterFor(p.className);
+    if (!fitter) continue;
+    auto& tracker = m.mbt[p.className];
+    if (!tracker) tracker = std::make_unique<ModelBasedTracker>(fitter->model().mesh, f.intrinsics, m.options.mbt);
+    auto detected = std::find_if(detections.begin(), detections.end(),
+                                 [&](const ObjectDetection& d) { return d.className == p.className; });
+    bool tracked = false;
+    if (tracker->initialised()) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const ModelBasedTracker::Result r = tracker->track(f);
+      const double track_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      double coverage = 0.0;
+      if (r.tracked) {
+        if (cloud.empty()) depthToCloud(f.depth_m, camera, cloud);
+        coverage = fitter->coverage(r.X_camera_mesh, cloud, camera);
+      }
+      tracked = r.tracked && coverage >= m.options.mbtMinCoverage;
+      if (m.debug)
+        std::fprintf(stderr,
+                     "frame %d: %s mbt %s in %.1f ms: %d klt, %d depth, %d edge features, projection error %.1f deg, "
+                     "coverage %.2f\n",
+                     f.index, p.className.c_str(), tracked ? "tracked" : "lost", track_ms, r.kltPoints, r.depthFeatures,
+                     r.edgeFeatures, r.projectionError_deg, coverage);
+      if (tracked) {
+        ObjectDetection d;
+        if (detected != detections.end()) d = *detected;
+        d.className = p.className;
+        d.classId = fitter->model().classId;
+        d.size_m = fitter->model().dimensions_m;
+        d.X_camera_object = r.X_camera_mesh;  // the tracker's model is the fitter's (model frame)
+        d.confidence = std::max(d.confidence, coverage);
+        if (detected != detections.end()) *detected = d;
+        else detections.push_back(d);
+      }
+    }
+    if (tracked) continue;
+    if (detected != detections.end()) tracker->initialise(f, detected->X_camera_object);
+    else tracker.reset();  // lost and nothing to restart from: a new tracker at the next detection
+  }
+}
 
 DemoPerceiver::DemoPerceiver(const core::ObjectCatalogue& catalogue, const PerceptionOptions& options)
     : impl_(std::make_unique<Impl>(catalogue, options)) {
@@ -125,6 +184,7 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
     if (s.valid) ++m.result.handDetected;
   }
   // Objects after the hand: the hand's segment (and a part it holds) explains no object.
+  const auto detectStart = std::chrono::steady_clock::now();  // plane fit and detection: the fitter's cost
   std::optional<Plane> movingPlane;
   if (m.options.movingCamera) {
     // The table turns little between frames: the plane is looked for near
@@ -139,12 +199,16 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
     if (!movingPlane) movingPlane = m.support;
     if (movingPlane) m.support = movingPlane;
   }
-  const auto detections =
+  auto detections =
       m.options.movingCamera
           ? (movingPlane ? m.detector->detect(f, &*movingPlane) : std::vector<ObjectDetection>{})
           : m.tracker->update(f, m.options.fixedSupportPlane && m.support ? &*m.support : nullptr,
                               h ? std::vector<Eigen::Vector2d>{h->palm_px} : std::vector<Eigen::Vector2d>{});
+  if (m.debug)
+    std::fprintf(stderr, "frame %d: detection in %.1f ms\n", f.index,
+                 std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - detectStart).count());
   if (m.options.onFrameDetections) m.options.onFrameDetections(f.index, detections);
+  if (useModelBasedTracking(m.options)) m.followWithModelBasedTracker(f, detections);
   if (!m.support) m.support = m.tracker->lastPlane();
   if (m.debug && !m.options.movingCamera) {
     const auto& st = m.tracker->lastStats();

@@ -5,11 +5,13 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <random>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 #include <string>
@@ -203,8 +205,10 @@ ModelBasedTracker::ModelBasedTracker(const kb::TriangleMesh& mesh, const core::C
   m.tracker = std::make_unique<vpMbGenericTracker>(names, types);
 
   // ViSP reads its model from a file: the CAO text goes through a temporary one.
+  // A name of its own per tracker and process (tests run in parallel processes).
   const auto path = std::filesystem::temp_directory_path() /
-                    ("srp_mbt_" + std::to_string(reinterpret_cast<std::uintptr_t>(this)) + ".cao");
+                    ("srp_mbt_" + std::to_string(std::random_device{}()) + "_" +
+                     std::to_string(reinterpret_cast<std::uintptr_t>(this)) + ".cao");
   {
     std::ofstream f(path);
     if (!f) throw core::FileError(path.string(), "cannot write the tracker's temporary CAO model");

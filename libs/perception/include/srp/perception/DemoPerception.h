@@ -93,7 +93,8 @@ struct PerceptionOptions {
   bool consolidateRests = true;
   double restRadius_m = 0.005;
   /// Called with each frame's index and its detections before any refinement
-  /// (the detector alone, e.g. for `srp experiment objects`); may be empty.
+  /// (the detector alone, e.g. for `srp experiment objects`); may be empty
+  /// (also when the model-based tracker followed every moving class: no detection ran).
   std::function<void(int, const std::vector<ObjectDetection>&)> onFrameDetections;
 };
 

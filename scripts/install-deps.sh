@@ -12,7 +12,7 @@ PACKAGES=(
   # taskdb
   libsqlite3-dev libsqlitecpp-dev sqlite3
   # perception and calibration (ViSP modules used, not the meta package)
-  libvisp-core-dev libvisp-detection-dev libvisp-vision-dev libvisp-io-dev
+  libvisp-core-dev libvisp-detection-dev libvisp-vision-dev libvisp-io-dev libvisp-mbt-dev libvisp-klt-dev
   libopencv-dev libopencv-contrib-dev
   # MRPT modules used (not libmrpt-dev, which pulls in ROS)
   libmrpt-poses-dev libmrpt-obs-dev libmrpt-opengl-dev libmrpt-img-dev

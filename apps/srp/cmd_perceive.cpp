@@ -29,6 +29,7 @@ struct PerceiveOptions {
   int tagId = 0;
   bool json = false;
   bool movingCamera = false;
+  std::string tracker = "auto";
 };
 
 void run(const PerceiveOptions& o) {
@@ -38,6 +39,9 @@ void run(const PerceiveOptions& o) {
            : o.hand == "none"      ? PerceptionOptions::HandMethod::None
                                    : PerceptionOptions::HandMethod::Marker;
   p.movingCamera = o.movingCamera;
+  p.objectTracking = o.tracker == "mbt"      ? PerceptionOptions::ObjectTracking::Mbt
+                     : o.tracker == "fitter" ? PerceptionOptions::ObjectTracking::Fitter
+                                             : PerceptionOptions::ObjectTracking::Auto;
   p.marker.tagSize_m = o.tagSize_m;
   p.marker.tagId = o.tagId;
   const auto statics = splitList(o.staticObjects);
@@ -106,6 +110,11 @@ void setupPerceive(CLI::App& app) {
       ->capture_default_str();
   app.add_flag("--moving-camera", o->movingCamera,
                "Hand-held camera: support plane fitted and objects detected in every frame on its own");
+  app.add_option("--tracker", o->tracker,
+                 "How a detected part is followed: mbt (ViSP model-based tracker, KLT + dense depth, back to "
+                 "detection when lost), fitter (detected in every frame), auto (mbt with --moving-camera, else fitter)")
+      ->check(CLI::IsMember({"auto", "mbt", "fitter"}))
+      ->capture_default_str();
   app.add_option("--tag-size", o->tagSize_m, "Glove tag (tag36h11) black square side [m]")->capture_default_str();
   app.add_option("--tag-id", o->tagId, "Glove tag id (-1: any)")->capture_default_str();
   app.add_option("--objects", o->objects, "Moving objects of interest, comma-separated class names (default: all classes)");

@@ -1,6 +1,7 @@
 #include "srp/perception/DemoPerception.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -40,6 +41,11 @@ void checkFrame(const rawlog::RgbdFrame& f, const rawlog::RgbdFrame& first, int 
                                   "); a demo must come from one camera setting");
 }
 
+bool useModelBasedTracking(const PerceptionOptions& o) {
+  return o.objectTracking == PerceptionOptions::ObjectTracking::Mbt ||
+         (o.objectTracking == PerceptionOptions::ObjectTracking::Auto && o.movingCamera);
+}
+
 }  // namespace
 
 struct DemoPerceiver::Impl {
@@ -49,6 +55,7 @@ struct DemoPerceiver::Impl {
   std::unique_ptr<ObjectDetector> detector;
   std::unique_ptr<ObjectTracker> tracker;
   std::unique_ptr<HandDetector> hand;
+  std::map<std::string, std::unique_ptr<ModelBasedTracker>> mbt;  // per moving class, when tracking with ViSP
   std::optional<rawlog::RgbdFrame> first;  // images released: only size and intrinsics are kept
   std::optional<Plane> support;
   std::vector<int> frameIndex;
@@ -61,7 +68,76 @@ struct DemoPerceiver::Impl {
   const bool debug = std::getenv("SRP_PERCEPTION_DEBUG") != nullptr;
 
   Impl(const core::ObjectCatalogue& c, const PerceptionOptions& o) : catalogue(c), options(o) {}
+  std::map<std::string, ObjectDetection> trackParts(const rawlog::RgbdFrame& f);
+  void mergeTracked(const rawlog::RgbdFrame& f, const std::map<std::string, ObjectDetection>& tracked,
+                    std::vector<ObjectDetection>& detections);
 };
+
+/// Moving classes followed by ViSP's model-based tracker, before detection:
+/// the pose of each class whose tracker is running and not lost this frame.
+std::map<std::string, ObjectDetection> DemoPerceiver::Impl::trackParts(const rawlog::RgbdFrame& f) {
+  Impl& m = *this;
+  std::map<std::string, ObjectDetection> out;
+  const CameraModel camera(f.intrinsics);
+  cv::Mat cloud;
+  for (const auto& p : m.plan) {
+    if (p.isStatic) continue;
+    const ObjectPoseFitter* fitter = m.detector->fitterFor(p.className);
+    auto it = m.mbt.find(p.className);
+    if (!fitter || it == m.mbt.end() || !it->second || !it->second->initialised()) continue;
+    const auto t0 = std::chrono::steady_clock::now();
+    const ModelBasedTracker::Result r = it->second->track(f);
+    const double track_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    double coverage = 0.0;
+    if (r.tracked) {
+      if (cloud.empty()) depthToCloud(f.depth_m, camera, cloud);
+      coverage = fitter->coverage(r.X_camera_mesh, cloud, camera);
+    }
+    const bool tracked = r.tracked && coverage >= m.options.mbtMinCoverage;
+    if (m.debug)
+      std::fprintf(stderr,
+                   "frame %d: %s mbt %s in %.1f ms: %d klt, %d depth, %d edge features, projection error %.1f deg, "
+                   "coverage %.2f\n",
+                   f.index, p.className.c_str(), tracked ? "tracked" : "lost", track_ms, r.kltPoints, r.depthFeatures,
+                   r.edgeFeatures, r.projectionError_deg, coverage);
+    if (!tracked) {
+      it->second.reset();  // lost: a new tracker from the next detection
+      continue;
+    }
+    ObjectDetection d;
+    d.className = p.className;
+    d.classId = fitter->model().classId;
+    d.size_m = fitter->model().dimensions_m;
+    d.X_camera_object = r.X_camera_mesh;  // the tracker's model is the fitter's (model frame)
+    d.confidence = coverage;
+    d.p_camera_median_m = r.X_camera_mesh.translation();
+    out[p.className] = d;
+  }
+  return out;
+}
+
+/// After detection: tracked classes report the tracked pose; the others
+/// (lost, or not started) keep their detection, which starts their tracker.
+void DemoPerceiver::Impl::mergeTracked(const rawlog::RgbdFrame& f, const std::map<std::string, ObjectDetection>& tracked,
+                                       std::vector<ObjectDetection>& detections) {
+  Impl& m = *this;
+  for (const auto& p : m.plan) {
+    if (p.isStatic) continue;
+    const ObjectPoseFitter* fitter = m.detector->fitterFor(p.className);
+    if (!fitter) continue;
+    auto detected = std::find_if(detections.begin(), detections.end(),
+                                 [&](const ObjectDetection& d) { return d.className == p.className; });
+    if (const auto t = tracked.find(p.className); t != tracked.end()) {
+      if (detected != detections.end()) *detected = t->second;
+      else detections.push_back(t->second);
+      continue;
+    }
+    if (detected == detections.end()) continue;
+    auto& tracker = m.mbt[p.className];
+    if (!tracker) tracker = std::make_unique<ModelBasedTracker>(fitter->model().mesh, f.intrinsics, m.options.mbt);
+    tracker->initialise(f, detected->X_camera_object);
+  }
+}
 
 DemoPerceiver::DemoPerceiver(const core::ObjectCatalogue& catalogue, const PerceptionOptions& options)
     : impl_(std::make_unique<Impl>(catalogue, options)) {
@@ -125,6 +201,7 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
     if (s.valid) ++m.result.handDetected;
   }
   // Objects after the hand: the hand's segment (and a part it holds) explains no object.
+  const auto detectStart = std::chrono::steady_clock::now();  // plane fit and detection: the fitter's cost
   std::optional<Plane> movingPlane;
   if (m.options.movingCamera) {
     // The table turns little between frames: the plane is looked for near
@@ -139,12 +216,23 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
     if (!movingPlane) movingPlane = m.support;
     if (movingPlane) m.support = movingPlane;
   }
-  const auto detections =
+  // Model-based tracking first: when every moving class is tracked, no detection is needed.
+  const bool useMbt = useModelBasedTracking(m.options);
+  const std::map<std::string, ObjectDetection> tracked = useMbt ? m.trackParts(f) : std::map<std::string, ObjectDetection>{};
+  const bool allTracked =
+      useMbt && m.options.movingCamera && std::all_of(m.plan.begin(), m.plan.end(), [&](const PlanObject& p) {
+        return p.isStatic || tracked.count(p.className) > 0;
+      });
+  auto detections =
       m.options.movingCamera
-          ? (movingPlane ? m.detector->detect(f, &*movingPlane) : std::vector<ObjectDetection>{})
+          ? (movingPlane && !allTracked ? m.detector->detect(f, &*movingPlane) : std::vector<ObjectDetection>{})
           : m.tracker->update(f, m.options.fixedSupportPlane && m.support ? &*m.support : nullptr,
                               h ? std::vector<Eigen::Vector2d>{h->palm_px} : std::vector<Eigen::Vector2d>{});
+  if (m.debug)
+    std::fprintf(stderr, "frame %d: %s in %.1f ms\n", f.index, allTracked ? "plane fit (all tracked)" : "detection",
+                 std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - detectStart).count());
   if (m.options.onFrameDetections) m.options.onFrameDetections(f.index, detections);
+  if (useMbt) m.mergeTracked(f, tracked, detections);
   if (!m.support) m.support = m.tracker->lastPlane();
   if (m.debug && !m.options.movingCamera) {
     const auto& st = m.tracker->lastStats();

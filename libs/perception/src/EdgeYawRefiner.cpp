@@ -26,11 +26,11 @@ EdgeYawRefiner::EdgeYawRefiner(const ObjectModel& model, const Options& options)
     std::complex<double> sum = 0.0;
     double weight = 0.0;
     for (const kb::SurfacePoint& s : model.surface) {
-      if (std::abs(s.n.z()) > 0.1) continue;  // side faces only
+      if (std::abs(s.n.z()) > options_.sideMaxNormalZ) continue;  // side faces only
       sum += std::polar(1.0, m * std::atan2(s.n.y(), s.n.x()));
       weight += 1.0;
     }
-    if (weight > 0 && std::abs(sum) / weight > 0.95) {
+    if (weight > 0 && std::abs(sum) / weight > options_.regularOutlineCoherence) {
       order_ = m;
       modelPhase_rad_ = std::arg(sum);
       break;
@@ -43,7 +43,7 @@ EdgeYawRefiner::EdgeYawRefiner(const ObjectModel& model, const Options& options)
   std::vector<double> hist(kBins, 0.0);
   double sides = 0.0;
   for (const kb::SurfacePoint& s : model.surface) {
-    if (std::abs(s.n.z()) > 0.1) continue;
+    if (std::abs(s.n.z()) > options_.sideMaxNormalZ) continue;
     const double a = std::fmod(std::atan2(s.n.y(), s.n.x()) + 2 * kPi, kPi);
     hist[static_cast<std::size_t>(std::min(kBins - 1.0, std::floor(a / kPi * kBins)))] += 1.0;
     sides += 1.0;
@@ -53,7 +53,7 @@ EdgeYawRefiner::EdgeYawRefiner(const ObjectModel& model, const Options& options)
   for (int b = 0; b < kBins; ++b) {
     const double h = hist[static_cast<std::size_t>(b)];
     const double left = hist[static_cast<std::size_t>((b + kBins - 1) % kBins)], right = hist[static_cast<std::size_t>((b + 1) % kBins)];
-    if (h < 0.03 * sides || h < left || h <= right) continue;  // local peaks only
+    if (h < options_.minDirectionShare * sides || h < left || h <= right) continue;  // local peaks only
     // Weighted mean over the peak and its neighbours (a face's normal may straddle two bins).
     const double c = (b + 0.5) * kPi / kBins;
     const double mean = c + (right - left) / (left + h + right) * kPi / kBins;
@@ -64,7 +64,8 @@ EdgeYawRefiner::EdgeYawRefiner(const ObjectModel& model, const Options& options)
   // Many short edges (the star's ten) give corner-dominated votes, and depth
   // fixes such a part's yaw well by itself (the star: 1.0 deg yaw median
   // without, 3.2 deg with): long straight edges in few directions only.
-  if (sideNormals_rad_.size() > static_cast<std::size_t>(options_.maxOutlineDirections) || covered < 0.9 * sides)
+  if (sideNormals_rad_.size() > static_cast<std::size_t>(options_.maxOutlineDirections) ||
+      covered < options_.minDirectionsCover * sides)
     sideNormals_rad_.clear();
 }
 
@@ -150,7 +151,7 @@ std::optional<core::Pose3> EdgeYawRefiner::refine(const core::Pose3& X_camera_ob
         if (!r[x]) continue;
         const double gx1 = lx.at<float>(y, x), gy1 = ly.at<float>(y, x);
         const double strength = gx1 * gx1 + gy1 * gy1;
-        if (strength < 25.0) continue;  // a full step gives ~48^2
+        if (strength < options_.minLikenessGradient2) continue;  // a full step gives ~48^2
         const double theta = std::atan2(gy1, gx1);  // gradient direction
         const Eigen::Vector3d t = -std::sin(theta) * ex + std::cos(theta) * ey;
         const double normal = std::fmod(std::atan2(t.y(), t.x()) + 0.5 * kPi + 4 * kPi, kPi);
@@ -216,7 +217,7 @@ std::optional<core::Pose3> EdgeYawRefiner::refine(const core::Pose3& X_camera_ob
         jxy += ax[x][c] * ay[x][c];
       }
       const double strength = std::sqrt((jxx - jyy) * (jxx - jyy) + 4 * jxy * jxy);
-      if (strength < 1e5) continue;  // flat (5x5 Sobel of 8-bit values: a 10-level step gives ~2.6e4 per channel)
+      if (strength < options_.minStructureStrength) continue;  // flat
       const double theta = 0.5 * std::atan2(2 * jxy, jxx - jyy);  // gradient direction, mod pi
       const Eigen::Vector3d t = -std::sin(theta) * ex + std::cos(theta) * ey;  // tangent on the plane
       const double tangent = std::atan2(t.y(), t.x());

@@ -14,10 +14,10 @@ namespace {
 
 /// Agreement [0, 1] of two RGB colours by chromaticity (brightness, i.e.
 /// shading, does not count).
-double colourAgreement(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+double colourAgreement(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double chromaSigma) {
   const Eigen::Vector3d ca = a / std::max(1e-6, a.sum()), cb = b / std::max(1e-6, b.sum());
   const double dChroma = (ca - cb).norm();
-  return std::exp(-0.5 * std::pow(dChroma / 0.1, 2));
+  return std::exp(-0.5 * std::pow(dChroma / chromaSigma, 2));
 }
 
 }  // namespace
@@ -164,7 +164,9 @@ std::vector<ObjectSegment> ObjectDetector::segments(const rawlog::RgbdFrame& fra
       for (int a = 0; a < 3; ++a) c[a].push_back(q[a]);
     }
     for (int a = 0; a < 3; ++a) {
-      const std::size_t n = c[a].size(), i0 = n / 50, i1 = n - 1 - n / 50;
+      const std::size_t n = c[a].size();
+      const std::size_t trim = static_cast<std::size_t>(options_.extentTrim * static_cast<double>(n));
+      const std::size_t i0 = trim, i1 = n - 1 - trim;
       std::nth_element(c[a].begin(), c[a].begin() + static_cast<long>(i0), c[a].end());
       seg.lo_plane_m[a] = c[a][i0];
       // Everything after i0 is >= it now: the upper percentile is in that part.
@@ -211,7 +213,7 @@ std::set<std::string> ObjectDetector::overlappingParts(const std::vector<ObjectD
 }
 
 double ObjectDetector::colourScore(const ObjectSegment& segment, const ObjectModel& model) const {
-  return model.useColour && segment.hasColour ? colourAgreement(segment.meanRgb, model.rgb) : 1.0;
+  return model.useColour && segment.hasColour ? colourAgreement(segment.meanRgb, model.rgb, options_.colourChromaSigma) : 1.0;
 }
 
 ObjectDetection ObjectDetector::makeDetection(const ObjectPoseFitter& fitter, const core::Pose3& X_camera_object,
@@ -283,15 +285,19 @@ std::optional<ObjectDetection> ObjectDetector::explain(const ObjectSegment& seg,
     if (excluded.count(model.name)) continue;
     const double modelDiag = model.dimensions_m.head<2>().norm();
     // Cheap gates before the fit: footprint size, height above the plane, colour.
-    if (segExtent > 1.5 * modelDiag + 0.02 || segExtent < 0.25 * model.dimensions_m.head<2>().minCoeff()) continue;
-    if (segTop_m > model.dimensions_m.z() + options_.maxElevation_m + 0.02 || segTop_m < 0.4 * model.dimensions_m.z())
+    if (segExtent > options_.maxExtentPerDiagonal * modelDiag + options_.extentSlack_m ||
+        segExtent < options_.minExtentPerSide * model.dimensions_m.head<2>().minCoeff())
+      continue;
+    if (segTop_m > model.dimensions_m.z() + options_.maxElevation_m + options_.extentSlack_m ||
+        segTop_m < options_.minTopPerHeight * model.dimensions_m.z())
       continue;
     const double colour = colourScore(seg, model);
-    if (colour < 0.05 || colour < options_.minConfidence || colour <= bestConfidence) continue;  // cannot win (score <= 1)
+    if (colour < options_.minColour || colour < options_.minConfidence || colour <= bestConfidence)
+      continue;  // cannot win (score <= 1)
     // A coarse score that even a perfect fine stage could not lift to half
     // the acceptance is not worth the fine stage.
     const ObjectPoseFit fit = fitter.fit(seg.points_camera_m, support, cloud, camera, nullptr,
-                                         0.5 * std::max(options_.minConfidence, bestConfidence) / colour);
+                                         options_.giveUpShare * std::max(options_.minConfidence, bestConfidence) / colour);
     const double confidence = fit.score * colour;
     if (std::getenv("SRP_PERCEPTION_DEBUG"))
       std::fprintf(stderr, "segment (%zu px) %s: inliers %.2f coverage %.2f colour %.2f at %.3f %.3f %.3f\n",

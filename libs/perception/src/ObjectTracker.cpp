@@ -46,56 +46,37 @@ bool ObjectTracker::placeVacated(const std::string& className, const core::Pose3
   return e.total() >= options_.vacatedMinEvidence && e.seenThrough >= options_.vacatedSeenThrough * e.total();
 }
 
-std::vector<ObjectDetection> ObjectTracker::update(const rawlog::RgbdFrame& frame, const Plane* support,
-                                                  const std::vector<Eigen::Vector2d>& hand_px) {
-  if (frame.depth_m.empty())
-    throw core::InvalidInputError("frame " + std::to_string(frame.index) + " has no depth image: objects need depth");
-  const int now = frame_++;
-  stats_ = Stats{};
-  const CameraModel camera(frame.intrinsics);
-  depthToCloud(frame.depth_m, camera, cloud_);
-  const cv::Mat& cloud = cloud_;
-  lastPlane_ = support ? std::optional<Plane>(*support) : fitDominantPlane(cloud, detector_.options().plane);
-  if (!lastPlane_) {
-    answers_.clear();
-    return {};
-  }
-  const Plane& plane = *lastPlane_;
-  const std::vector<ObjectSegment> segs = detector_.segments(frame, cloud, plane);
-  stats_.segments = static_cast<int>(segs.size());
+void ObjectTracker::answer(FrameAnswers& fa, const ObjectSegment& seg, int explainedAt,
+                           const std::optional<ObjectDetection>& d) const {
+  fa.next.push_back({seg.lo_plane_m, seg.hi_plane_m, static_cast<int>(seg.points_camera_m.size()), explainedAt, d});
+  if (!d) return;
+  ObjectDetection det = *d;
+  // A static object fixed since this answer was given reports its fixed pose.
+  if (const auto f = fixed_.find(det.className); f != fixed_.end()) det.X_camera_object = f->second.X_camera_object;
+  fa.assigned.insert(det.className);
+  fa.out.push_back(det);
+}
 
-  std::vector<Answer> next;
-  std::set<std::string> assigned;
-  std::vector<ObjectDetection> out;
-  auto answer = [&](const ObjectSegment& seg, int explainedAt, const std::optional<ObjectDetection>& d) {
-    next.push_back({seg.lo_plane_m, seg.hi_plane_m, static_cast<int>(seg.points_camera_m.size()), explainedAt, d});
-    if (!d) return;
-    ObjectDetection det = *d;
-    // A static object fixed since this answer was given reports its fixed pose.
-    if (const auto f = fixed_.find(det.className); f != fixed_.end()) det.X_camera_object = f->second.X_camera_object;
-    assigned.insert(det.className);
-    out.push_back(det);
-  };
-
-  // 0. The hand's segment (with what it holds) explains no object.
+bool ObjectTracker::isHand(const ObjectSegment& seg, const std::vector<Eigen::Vector2d>& hand_px) const {
   const double r2 = options_.handRadius_px * options_.handRadius_px;
-  auto isHand = [&](const ObjectSegment& seg) {
-    for (const Eigen::Vector2d& h : hand_px)
-      for (const cv::Point& p : seg.pixels)
-        if ((Eigen::Vector2d(p.x, p.y) - h).squaredNorm() <= r2) return true;
-    return false;
-  };
+  for (const Eigen::Vector2d& h : hand_px)
+    for (const cv::Point& p : seg.pixels)
+      if ((Eigen::Vector2d(p.x, p.y) - h).squaredNorm() <= r2) return true;
+  return false;
+}
 
-  // 1. Unchanged segments keep their answer.
+std::vector<std::size_t> ObjectTracker::keepUnchanged(const std::vector<ObjectSegment>& segs,
+                                                      const std::vector<Eigen::Vector2d>& hand_px, int now,
+                                                      FrameAnswers& fa) {
   std::vector<std::size_t> pending;
   for (std::size_t i = 0; i < segs.size(); ++i) {
-    if (isHand(segs[i])) {
+    if (isHand(segs[i], hand_px)) {
       ++stats_.hand;
       continue;
     }
     const auto a = std::find_if(answers_.begin(), answers_.end(), [&](const Answer& x) {
       return now - x.frame < options_.refreshFrames && same(x, segs[i]) &&
-             !(x.detection && assigned.count(x.detection->className));
+             !(x.detection && fa.assigned.count(x.detection->className));
     });
     if (a == answers_.end()) {
       pending.push_back(i);
@@ -103,39 +84,45 @@ std::vector<ObjectDetection> ObjectTracker::update(const rawlog::RgbdFrame& fram
     }
     ++stats_.unchanged;
     const Answer kept = *a;
-    answer(segs[i], kept.frame, kept.detection);
-    next.back().lo_plane_m = kept.lo_plane_m;  // the anchor stays: no drift by small steps
-    next.back().hi_plane_m = kept.hi_plane_m;
-    next.back().pixels = kept.pixels;
+    answer(fa, segs[i], kept.frame, kept.detection);
+    fa.next.back().lo_plane_m = kept.lo_plane_m;  // the anchor stays: no drift by small steps
+    fa.next.back().hi_plane_m = kept.hi_plane_m;
+    fa.next.back().pixels = kept.pixels;
   }
+  return pending;
+}
 
-  // 2. Fixed static objects: verified at their pose, no fit.
+void ObjectTracker::verifyFixedStatics(const std::vector<ObjectSegment>& segs, std::vector<std::size_t>& pending,
+                                       const Plane& plane, const cv::Mat& cloud, const CameraModel& camera, int now,
+                                       FrameAnswers& fa) {
   const core::Pose3 X_plane_camera = plane.X_camera_plane().inverse();
   for (auto it = pending.begin(); it != pending.end();) {
     const ObjectSegment& seg = segs[*it];
     bool taken = false;
     for (const auto& [name, det] : fixed_) {
-      if (assigned.count(name)) continue;
+      if (fa.assigned.count(name)) continue;
       const ObjectPoseFitter* fitter = detector_.fitterFor(name);
       const Eigen::Vector3d p = X_plane_camera * det.X_camera_object.translation();
       if ((p - seg.centre_plane_m()).head<2>().norm() > fitter->model().dimensions_m.head<2>().norm()) continue;
       const ObjectPoseFit fit = fitter->evaluate(seg.points_camera_m, det.X_camera_object, cloud, camera);
       const double confidence = fit.score * detector_.colourScore(seg, fitter->model());
       if (fit.inlierRatio < options_.staticVerifyInliers || confidence < detector_.options().minConfidence) continue;
-      answer(seg, now, detector_.makeDetection(*fitter, det.X_camera_object, confidence, seg, plane));
+      answer(fa, seg, now, detector_.makeDetection(*fitter, det.X_camera_object, confidence, seg, plane));
       ++stats_.staticVerified;
       taken = true;
       break;
     }
     it = taken ? pending.erase(it) : it + 1;
   }
+}
 
-  // 3. The rest: tracking from the last poses, else the full search; each
-  // class to its most confident segment.
+void ObjectTracker::explainPending(const std::vector<ObjectSegment>& segs, const std::vector<std::size_t>& pending,
+                                   const Plane& plane, const cv::Mat& cloud, const CameraModel& camera, int now,
+                                   FrameAnswers& fa) {
   std::map<std::string, core::Pose3> previous;
   for (const auto& [name, X] : lastPose_)
     if (!options_.staticClasses.count(name)) previous[name] = X;
-  std::set<std::string> excluded = assigned;
+  std::set<std::string> excluded = fa.assigned;
   for (const auto& [name, det] : fixed_) excluded.insert(name);
   std::vector<std::pair<std::size_t, std::optional<ObjectDetection>>> found;
   for (std::size_t i : pending) {
@@ -146,27 +133,19 @@ std::vector<ObjectDetection> ObjectTracker::update(const rawlog::RgbdFrame& fram
     return (a.second ? a.second->confidence : 0.0) > (b.second ? b.second->confidence : 0.0);
   });
   for (auto& [i, d] : found) {
-    if (d && assigned.count(d->className)) {
+    if (d && fa.assigned.count(d->className)) {
       // Its class went to a better segment: the next best class, if any.
-      for (const auto& n : assigned) excluded.insert(n);
+      for (const auto& n : fa.assigned) excluded.insert(n);
       d = detector_.explain(segs[i], plane, cloud, camera, previous, excluded);
       ++stats_.explained;
-      if (d && assigned.count(d->className)) d.reset();
+      if (d && fa.assigned.count(d->className)) d.reset();
     }
-    answer(segs[i], now, d);
+    answer(fa, segs[i], now, d);
   }
-  // Two parts cannot fill the same space (ObjectDetector::overlappingParts):
-  // the less confident goes, and its segment's answer with it.
-  const std::set<std::string> dropped = detector_.overlappingParts(out, plane);
-  if (!dropped.empty()) {
-    out.erase(std::remove_if(out.begin(), out.end(), [&](const auto& d) { return dropped.count(d.className) > 0; }),
-              out.end());
-    for (Answer& x : next)
-      if (x.detection && dropped.count(x.detection->className)) x.detection.reset();
-  }
-  answers_ = std::move(next);
+}
 
-  // A moving part far from where it was, with no grasp since: not believed yet.
+void ObjectTracker::dropUnheldJumps(std::vector<ObjectDetection>& out, const std::vector<Eigen::Vector2d>& hand_px,
+                                    const cv::Mat& cloud, const CameraModel& camera) {
   for (const auto& [name, X] : lastPose_) {
     if (options_.staticClasses.count(name)) continue;
     const Eigen::Vector2d at_px = camera.cameraToPixel(X.translation());
@@ -191,7 +170,9 @@ std::vector<ObjectDetection> ObjectTracker::update(const rawlog::RgbdFrame& fram
                              return jump.frames < options_.jumpConfirmFrames;
                            }),
             out.end());
+}
 
+void ObjectTracker::remember(const std::vector<ObjectDetection>& out) {
   for (const ObjectDetection& d : out) {
     handVisited_[d.className] = false;
     pendingJumps_.erase(d.className);
@@ -204,6 +185,50 @@ std::vector<ObjectDetection> ObjectTracker::update(const rawlog::RgbdFrame& fram
         return a.confidence < b.confidence;
       });
   }
+}
+
+std::vector<ObjectDetection> ObjectTracker::update(const rawlog::RgbdFrame& frame, const Plane* support,
+                                                  const std::vector<Eigen::Vector2d>& hand_px) {
+  if (frame.depth_m.empty())
+    throw core::InvalidInputError("frame " + std::to_string(frame.index) + " has no depth image: objects need depth");
+  const int now = frame_++;
+  stats_ = Stats{};
+  const CameraModel camera(frame.intrinsics);
+  depthToCloud(frame.depth_m, camera, cloud_);
+  const cv::Mat& cloud = cloud_;
+  lastPlane_ = support ? std::optional<Plane>(*support) : fitDominantPlane(cloud, detector_.options().plane);
+  if (!lastPlane_) {
+    answers_.clear();
+    return {};
+  }
+  const Plane& plane = *lastPlane_;
+  const std::vector<ObjectSegment> segs = detector_.segments(frame, cloud, plane);
+  stats_.segments = static_cast<int>(segs.size());
+
+  FrameAnswers fa;
+  // 0. The hand's segment (with what it holds) explains no object;
+  // 1. unchanged segments keep their answer.
+  std::vector<std::size_t> pending = keepUnchanged(segs, hand_px, now, fa);
+  // 2. Fixed static objects: verified at their pose, no fit.
+  verifyFixedStatics(segs, pending, plane, cloud, camera, now, fa);
+  // 3. The rest: tracking from the last poses, else the full search; each
+  // class to its most confident segment.
+  explainPending(segs, pending, plane, cloud, camera, now, fa);
+  std::vector<ObjectDetection>& out = fa.out;
+  // Two parts cannot fill the same space (ObjectDetector::overlappingParts):
+  // the less confident goes, and its segment's answer with it.
+  const std::set<std::string> dropped = detector_.overlappingParts(out, plane);
+  if (!dropped.empty()) {
+    out.erase(std::remove_if(out.begin(), out.end(), [&](const auto& d) { return dropped.count(d.className) > 0; }),
+              out.end());
+    for (Answer& x : fa.next)
+      if (x.detection && dropped.count(x.detection->className)) x.detection.reset();
+  }
+  answers_ = std::move(fa.next);
+
+  // A moving part far from where it was, with no grasp since: not believed yet.
+  dropUnheldJumps(out, hand_px, cloud, camera);
+  remember(out);
   std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.confidence > b.confidence; });
   return out;
 }

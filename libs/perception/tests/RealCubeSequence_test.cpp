@@ -25,12 +25,18 @@ constexpr double kPositionTol_m = 0.01;                // issue 17: 1 cm ...
 constexpr double kAngleTol_rad = 5.0 * M_PI / 180.0;   // ... and 5 deg, modulo the cube's 24 rotations
 constexpr double kMinDetectedShare = 0.95;             // of the 50 frames: issue 17's target
 // Issue 17 asks 95 % within tolerance and a 5 mm median; NOT reached against
-// this reference: where the hand-held camera moves fast (frames 10-21, 45-49;
-// motion blur, rolling shutter) the board-derived reference lies off the cube
-// in the colour image by 1-2.5 cm while the detection lies on it (overlays in
-// the perception README). These two guard today's figures (34/50, 6.6 mm).
-constexpr double kMinWithinToleranceShare = 0.66;      // of the 50 frames (a miss counts as outside)
-constexpr double kMaxMedianPosition_m = 0.0075;
+// this reference. Where the hand-held camera moves fast (frames 10-21,
+// 45-49) the per-frame depth fitter and ViSP's KLT tracker on the colour
+// image agree with each other (within 1-5 mm) and both lie 1-2.5 cm from the
+// board-derived reference; shifting the reference by up to a frame (a depth /
+// colour time offset) does not explain it (perception README). These guard
+// what the shipped path (CLI default: --tracker auto = ViSP KLT tracking with
+// a moving camera) reaches on frames 0-49: 38/50 within, median 6.34 mm.
+constexpr double kMinWithinToleranceShare = 0.76;      // 38 of the 50 frames (a miss counts as outside)
+constexpr double kMaxMedianPosition_m = 0.0065;
+// The fitter alone (--tracker fitter), printed side by side: 34/50, 6.59 mm.
+constexpr double kMinFitterWithinToleranceShare = 0.68;
+constexpr double kMaxFitterMedianPosition_m = 0.0068;
 constexpr std::size_t kFirstOwnHeldOutFrame = 30;
 
 TEST(RealCubeSequence, MeshOnlyClassWithinOneCentimetreAndFiveDegreesInFrames0To49) {
@@ -42,47 +48,66 @@ TEST(RealCubeSequence, MeshOnlyClassWithinOneCentimetreAndFiveDegreesInFrames0To
   const core::ObjectCatalogue catalogue = kb::loadCatalogue(testing::rbtFolder() + "/catalogue.json");
   ASSERT_TRUE(catalogue.at("cube").shape.empty()) << "a class given by its mesh alone";
 
-  PerceptionOptions options;
+  PerceptionOptions options;  // as `srp perceive --hand none --moving-camera --objects cube` sets them
   options.hand = PerceptionOptions::HandMethod::None;
   options.movingCamera = true;
   options.plan = {{"cube", false}};
-  const PerceptionResult r = perceiveFrames(frames, catalogue, options);
-  ASSERT_EQ(r.objects.size(), 1u);
-  const auto& samples = r.objects.front().samples;
-  ASSERT_EQ(samples.size(), frames.size());
+  ASSERT_EQ(options.objectTracking, PerceptionOptions::ObjectTracking::Auto) << "the CLI's default (--tracker auto)";
+  PerceptionOptions fitterOnly = options;
+  fitterOnly.objectTracking = PerceptionOptions::ObjectTracking::Fitter;
+  const PerceptionResult shipped = perceiveFrames(frames, catalogue, options);
+  const PerceptionResult fitter = perceiveFrames(frames, catalogue, fitterOnly);
+  ASSERT_EQ(shipped.objects.size(), 1u);
+  ASSERT_EQ(fitter.objects.size(), 1u);
 
-  int detected = 0, within = 0;
-  std::vector<double> positionErrors_m;
-  std::printf("[ figures  ] frame  detected  position [mm]  angle [deg]\n");
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    const ObjectPoseSample& s = samples[i];
-    EXPECT_EQ(s.frame, static_cast<int>(i));
-    if (!s.detected) {
-      std::printf("[ figures  ] %5zu  no%s\n", i, i >= kFirstOwnHeldOutFrame ? "  (own held-out)" : "");
-      ADD_FAILURE() << "frame " << i << ": cube not detected";
-      continue;
+  struct Figures {
+    int detected = 0, within = 0;
+    std::vector<double> positionErrors_m;
+    double median_m() const {
+      std::vector<double> v = positionErrors_m;
+      if (v.empty()) return 1e9;
+      std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+      return v[v.size() / 2];  // the upper median of an even count
     }
-    ++detected;
-    // The sample is the mesh's frame (the cube's centre), as the stored pose.
-    const core::Pose3 truth = testing::trueCubePose(boards, X_c0_cube, i);
-    const double dp = core::translationDistance(s.X_camera_object, truth);
-    const double da = testing::cubeAngleError(s.X_camera_object.linear(), truth.linear());
-    positionErrors_m.push_back(dp);
-    if (dp < kPositionTol_m && da < kAngleTol_rad) ++within;
-    std::printf("[ figures  ] %5zu  yes       %6.2f         %5.2f%s%s\n", i, dp * 1e3, da * 180 / M_PI,
-                dp < kPositionTol_m && da < kAngleTol_rad ? "" : "  OUTSIDE",
-                i >= kFirstOwnHeldOutFrame ? "  (own held-out)" : "");
+  };
+  Figures figures[2];
+  const std::vector<ObjectPoseSample>* runs[2] = {&shipped.objects.front().samples, &fitter.objects.front().samples};
+  std::printf("[ figures  ] frame  auto (MBT): position [mm] angle [deg]   fitter: position [mm] angle [deg]\n");
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    std::printf("[ figures  ] %5zu", i);
+    for (int k = 0; k < 2; ++k) {
+      ASSERT_EQ(runs[k]->size(), frames.size());
+      const ObjectPoseSample& s = (*runs[k])[i];
+      EXPECT_EQ(s.frame, static_cast<int>(i));
+      if (!s.detected) {
+        std::printf("   %-30s", "not detected");
+        if (k == 0) ADD_FAILURE() << "frame " << i << ": cube not detected";
+        continue;
+      }
+      ++figures[k].detected;
+      // The sample is the mesh's frame (the cube's centre), as the stored pose.
+      const core::Pose3 truth = testing::trueCubePose(boards, X_c0_cube, i);
+      const double dp = core::translationDistance(s.X_camera_object, truth);
+      const double da = testing::cubeAngleError(s.X_camera_object.linear(), truth.linear());
+      figures[k].positionErrors_m.push_back(dp);
+      const bool within = dp < kPositionTol_m && da < kAngleTol_rad;
+      if (within) ++figures[k].within;
+      std::printf("   %6.2f %5.2f %-17s", dp * 1e3, da * 180 / M_PI, within ? "" : "OUTSIDE");
+    }
+    std::printf("%s\n", i >= kFirstOwnHeldOutFrame ? "(own held-out)" : "");
   }
-  ASSERT_FALSE(positionErrors_m.empty());
-  std::nth_element(positionErrors_m.begin(), positionErrors_m.begin() + positionErrors_m.size() / 2,
-                   positionErrors_m.end());
-  const double median_m = positionErrors_m[positionErrors_m.size() / 2];
   const double n = static_cast<double>(frames.size());
-  std::printf("[ figures  ] cube frames 0-49: detected %d/%zu, within 1 cm / 5 deg %d/%zu, median %.2f mm\n", detected,
-              frames.size(), within, frames.size(), median_m * 1e3);
-  EXPECT_GE(detected, kMinDetectedShare * n);
-  EXPECT_GE(within, kMinWithinToleranceShare * n);
-  EXPECT_LE(median_m, kMaxMedianPosition_m);
+  const char* names[2] = {"auto (MBT)", "fitter"};
+  for (int k = 0; k < 2; ++k)
+    std::printf("[ figures  ] cube frames 0-49, %s: detected %d/%zu, within 1 cm / 5 deg %d/%zu, median %.2f mm\n",
+                names[k], figures[k].detected, frames.size(), figures[k].within, frames.size(),
+                figures[k].median_m() * 1e3);
+  EXPECT_GE(figures[0].detected, kMinDetectedShare * n);
+  EXPECT_GE(figures[0].within, kMinWithinToleranceShare * n);
+  EXPECT_LE(figures[0].median_m(), kMaxMedianPosition_m);
+  EXPECT_GE(figures[1].detected, kMinDetectedShare * n);
+  EXPECT_GE(figures[1].within, kMinFitterWithinToleranceShare * n);
+  EXPECT_LE(figures[1].median_m(), kMaxFitterMedianPosition_m);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "srp/core/PositionTrajectory.h"
 #include "srp/perception/MarkerFreeHandDetector.h"
 #include "srp/perception/MarkerHandDetector.h"
+#include "srp/perception/ModelBasedTracker.h"
 #include "srp/perception/ObjectDetector.h"
 #include "srp/perception/ObjectTracker.h"
 #include "srp/rawlog/RgbdFrame.h"
@@ -75,10 +76,25 @@ struct PerceptionOptions {
   /// with the rest's median yaw (modulo the model's symmetry; positions stay
   /// per detection). A single detection of a part half hidden by the
   /// reaching hand then neither turns the rest nor is carried through the grasp.
+  /// How a moving part is followed from frame to frame once detected:
+  /// Fitter: detected in every frame (ObjectDetector / ObjectPoseFitter);
+  /// Mbt: ViSP's model-based tracker (ModelBasedTracker) from the first
+  /// detection on, back to detection when it is lost or the depth disagrees
+  /// with its pose (coverage below mbtMinCoverage);
+  /// Auto: Mbt with a moving camera, Fitter with a fixed one (chosen on the
+  /// real cube's development frames, see the perception README).
+  enum class ObjectTracking { Fitter, Mbt, Auto };
+  ObjectTracking objectTracking = ObjectTracking::Auto;
+  ModelBasedTracker::Options mbt;
+  /// Mbt: share of the model's camera-facing surface samples with depth
+  /// evidence that the depth must confirm at the tracked pose (see
+  /// ObjectPoseFitter::coverage); below it the tracker is lost.
+  double mbtMinCoverage = 0.5;
   bool consolidateRests = true;
   double restRadius_m = 0.005;
   /// Called with each frame's index and its detections before any refinement
-  /// (the detector alone, e.g. for `srp experiment objects`); may be empty.
+  /// (the detector alone, e.g. for `srp experiment objects`); may be empty
+  /// (also when the model-based tracker followed every moving class: no detection ran).
   std::function<void(int, const std::vector<ObjectDetection>&)> onFrameDetections;
 };
 

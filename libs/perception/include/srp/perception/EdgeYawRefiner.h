@@ -45,6 +45,16 @@ class EdgeYawRefiner {
     /// at the best turn (0.63-0.65 on clean outlines; 0.35 where the outline
     /// seen is not the model's, e.g. seed 3's parallelogram against its box wall).
     double minOutlineCoherence = 0.5;
+    double sideMaxNormalZ = 0.1;            ///< a model sample is on a side face when |n.z| <= this
+    double regularOutlineCoherence = 0.95;  ///< |mean exp(i m angle)| of the side normals for an m-fold outline
+    double minDirectionShare = 0.03;        ///< order 0: a side direction holds at least this share of the side samples
+    double minDirectionsCover = 0.9;        ///< order 0: the directions found cover at least this share of them
+    /// Order 0: squared 5x5 Sobel gradient of the top-face likeness [0, 1]
+    /// an edge pixel needs (a full step gives ~48^2).
+    double minLikenessGradient2 = 25.0;
+    /// m-fold: structure-tensor strength of the colour gradient an edge pixel
+    /// needs (5x5 Sobel of 8-bit values: a 10-level step gives ~2.6e4 per channel).
+    double minStructureStrength = 1e5;
   };
 
   explicit EdgeYawRefiner(const ObjectModel& model);

@@ -62,6 +62,21 @@ class ObjectDetector {
     double minConfidence = 0.35;
     double trackConfidence = 0.75;  ///< a tracked refinement this good skips the full search
     double trackRadius_m = 0.04;    ///< previous pose to segment centre, along the plane
+    double colourChromaSigma = 0.1; ///< colour agreement exp(-d^2 / 2 sigma^2) of the chromaticity distance d [1]
+    double extentTrim = 0.02;       ///< a segment's extent from this to 1 minus this percentile (flying pixels)
+    /// Gates before a full fit: the segment's extent along the plane at most
+    /// maxExtentPerDiagonal x the model's footprint diagonal + extentSlack_m
+    /// and at least minExtentPerSide x its shorter side; its top at most the
+    /// model's height + maxElevation_m + extentSlack_m and at least
+    /// minTopPerHeight x the model's height; colour agreement at least minColour.
+    double maxExtentPerDiagonal = 1.5;
+    double extentSlack_m = 0.02;
+    double minExtentPerSide = 0.25;
+    double minTopPerHeight = 0.4;
+    double minColour = 0.05;
+    /// A full search gives up after the coarse stage when even a perfect fine
+    /// stage could not lift its score to this share of the acceptance.
+    double giveUpShare = 0.5;
     PlaneFitOptions plane;
     /// Each segment is fitted on the support plane refitted to the table
     /// around it (fitLocalPlane), when enough of the table is seen there.

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <optional>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -38,6 +39,26 @@ class ObjectPoseFitter {
     double gridCell_m = 0.002;
     bool refineTilt = true;      ///< finish with a 6-DOF ICP (tilt against the plane up to maxTilt_rad)
     double maxTilt_rad = 10.0 * 3.14159265358979323846 / 180.0;
+    int minPoints = 10;              ///< a segment with fewer points is not fitted (score 0)
+    double topPercentile = 0.98;     ///< the segment's top height: this percentile (flying pixels above edges)
+    double onPlaneStartMinHeight_m = 0.005;  ///< starts also on the plane when the top-derived height exceeds this
+    // 4-DOF ICP
+    double earlyGate_m = 0.05;       ///< first half of the iterations: matches within this [m]
+    double lateGate_tol = 4.0;       ///< second half: within this many inlierTol_m (outliers: other objects, the hand)
+    double pointToPointWeight = 0.1; ///< weak point-to-point term next to point-to-plane (keeps faces from sliding)
+    double heightPriorWeight = 0.05; ///< prior on the start's height, x the translation's information [1]
+    double icpDamping = 1e-6;        ///< added to the normal equations' diagonal
+    double maxYawStep_rad = 0.3;     ///< yaw change per iteration at most
+    double icpConvergence = 1e-5;    ///< stop when the step is below this [m] and [rad]
+    int coarseIterations = 12;       ///< coarse stage: iterations per start (several starts)
+    int coarseStride = 4;            ///< coarse stage: every this-many-th point
+    int fineStarts = 4;              ///< fine stage: this many best coarse starts, all points, `iterations`
+    double heightCheck_m = 0.003;    ///< a fine pose this far above the plane is also tried standing on it
+    // 6-DOF tilt refinement
+    double tiltGate_tol = 3.0;       ///< matches within this many inlierTol_m
+    double tiltDamping = 1e-4;       ///< added to the normal equations' diagonal
+    double tiltConvergence = 1e-6;   ///< stop when the step's norm is below this
+    double tiltScoreSlack = 0.01;    ///< kept when its score is at least the 4-DOF score minus this
   };
 
   ObjectPoseFitter(const ObjectModel& model, const Options& options);
@@ -93,6 +114,31 @@ class ObjectPoseFitter {
   const ObjectModel& model() const { return model_; }
 
  private:
+  /// The segment in the plane frame, evenly subsampled to Options::maxPoints,
+  /// with its centroid and robust top (Options::topPercentile) [m].
+  struct PlanePoints {
+    std::vector<Eigen::Vector3d> q;
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    double top_m = 0.0;
+  };
+  PlanePoints toPlaneFrame(const std::vector<Eigen::Vector3d>& points_camera, const core::Pose3& X_plane_camera) const;
+  /// ICP starts (x, y, z, yaw in the plane frame): `initial` alone, else every
+  /// yawStep_rad within the model's symmetry at the centroid, top-derived
+  /// height and on the plane.
+  std::vector<Eigen::Vector4d> startPoses(const PlanePoints& points, const core::Pose3& X_plane_camera,
+                                          const core::Pose3* initial) const;
+  /// 4-DOF ICP (x, y, z, yaw in the plane frame) from `start` on every
+  /// `stride`-th point of `q`.
+  Eigen::Vector4d icpFourDof(const std::vector<Eigen::Vector3d>& q, const Eigen::Vector4d& start, int iterations,
+                             std::size_t stride) const;
+  /// The fit (inliers, coverage, score) of the 4-DOF pose x.
+  ObjectPoseFit scoreFourDof(const std::vector<Eigen::Vector3d>& q, const Eigen::Vector4d& x,
+                             const core::Pose3& X_camera_plane, const cv::Mat& cloud, const CameraModel& camera) const;
+  /// 6-DOF ICP from `best`; nullopt when it tilts beyond maxTilt_rad.
+  std::optional<ObjectPoseFit> refineTiltSixDof(const std::vector<Eigen::Vector3d>& q, const ObjectPoseFit& best,
+                                                const core::Pose3& X_camera_plane, const cv::Mat& cloud,
+                                                const CameraModel& camera) const;
+
   struct Impl;
   ObjectModel model_;
   Options options_;

@@ -103,6 +103,37 @@ class ObjectTracker {
   };
   bool same(const Answer& a, const ObjectSegment& s) const;
 
+  /// One update's answers so far: per segment (for the next frame), the
+  /// classes given out, the detections.
+  struct FrameAnswers {
+    std::vector<Answer> next;
+    std::set<std::string> assigned;
+    std::vector<ObjectDetection> out;
+  };
+  /// Records a segment's answer (a static class fixed since reports its fixed pose).
+  void answer(FrameAnswers& fa, const ObjectSegment& seg, int explainedAt,
+              const std::optional<ObjectDetection>& d) const;
+  /// Step 0: a segment within handRadius_px of a hand point is the hand.
+  bool isHand(const ObjectSegment& seg, const std::vector<Eigen::Vector2d>& hand_px) const;
+  /// Steps 0 and 1: hand segments skipped, unchanged ones keep their answer;
+  /// returns the indices of the others.
+  std::vector<std::size_t> keepUnchanged(const std::vector<ObjectSegment>& segs,
+                                         const std::vector<Eigen::Vector2d>& hand_px, int now, FrameAnswers& fa);
+  /// Step 2: pending segments verified at a fixed static object's pose leave `pending`.
+  void verifyFixedStatics(const std::vector<ObjectSegment>& segs, std::vector<std::size_t>& pending,
+                          const Plane& plane, const cv::Mat& cloud, const CameraModel& camera, int now,
+                          FrameAnswers& fa);
+  /// Step 3: the rest explained (tracking, else full search), each class to its most confident segment.
+  void explainPending(const std::vector<ObjectSegment>& segs, const std::vector<std::size_t>& pending,
+                      const Plane& plane, const cv::Mat& cloud, const CameraModel& camera, int now,
+                      FrameAnswers& fa);
+  /// Moving classes reported far from their last pose without a grasp since
+  /// are dropped until believed (see Options::maxUnheldJump_m).
+  void dropUnheldJumps(std::vector<ObjectDetection>& out, const std::vector<Eigen::Vector2d>& hand_px,
+                       const cv::Mat& cloud, const CameraModel& camera);
+  /// Last poses, hand visits and the fixing of static classes after a frame.
+  void remember(const std::vector<ObjectDetection>& out);
+
   const ObjectDetector& detector_;
   Options options_;
   int frame_ = 0;

@@ -158,7 +158,7 @@ StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
   if (auto failure = executeSegments(part->name, segments, r)) return finish(StepStatus::Failed, *failure);
 
   // --- check the outcome
-  const bool holds = checkOutcome(scene, *part, placement, r);
+  const bool holds = checkOutcome(scene, *part, step, placement, r);
   return finish(StepStatus::Done, holds ? "" : "placed, but a target relation does not hold");
 }
 
@@ -267,7 +267,8 @@ std::optional<std::string> TaskExecutor::executeSegments(const std::string& part
   return std::nullopt;
 }
 
-bool TaskExecutor::checkOutcome(const CellDescription& scene, const CellObject& part, const Placement& placement,
+bool TaskExecutor::checkOutcome(const CellDescription& scene, const CellObject& part, const ExecutionStep& step,
+                                const Placement& placement,
                                 StepReport& r) const {
   const Pose3 X_final = sim_->X_world_part(part.name);
   r.X_world_final = X_final;
@@ -295,6 +296,10 @@ bool TaskExecutor::checkOutcome(const CellDescription& scene, const CellObject& 
     r.neighbourRelationHolds = gap > -1e-3 && gap <= placement_.options().neighbourGap_m + options_.neighbourTolerance_m;
     holds = holds && r.neighbourRelationHolds;
   }
+  // Every target relation on the scene as it is now (the other parts may have moved too).
+  CellDescription now = perceive();
+  r.relationChecks = placement_.check(now, *now.find(part.name), step);
+  for (const auto& c : r.relationChecks) holds = holds && c.holds;
   r.relationsHold = holds && r.minTableClearance_m > 0.0;
   return holds;
 }

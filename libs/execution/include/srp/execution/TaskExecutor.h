@@ -90,7 +90,8 @@ class TaskExecutor {
   std::optional<std::string> executeSegments(const std::string& part, const std::vector<Segment>& segments,
                                              StepReport& r);
   /// Fills the final pose and relation checks of `r`; true when the relations hold.
-  bool checkOutcome(const CellDescription& scene, const CellObject& part, const Placement& placement,
+  bool checkOutcome(const CellDescription& scene, const CellObject& part, const ExecutionStep& step,
+                    const Placement& placement,
                     StepReport& r) const;
   RobotModel model_;
   UrInverseKinematics ik_;

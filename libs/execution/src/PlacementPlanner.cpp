@@ -241,6 +241,7 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
   if (stackOn || directionLandmark || betweenA) neighbour = nullptr;
 
   const CellObject* landmark = stackOn ? stackOn : directionLandmark ? directionLandmark : betweenA ? betweenA : neighbour;
+  const bool containerNamed = container != nullptr;
   if (!container && landmark && landmark->kind == CellObjectKind::Part && !stackOn) {
     // "beside the star" with the star in a container: the part goes in there too.
     if (betweenA) {
@@ -259,8 +260,18 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
   if (container) out.container = container->name;
   if (neighbour) out.neighbour = neighbour->name;
 
-  const double yaw = container ? yawOfPose(container->X_world_object) : yawOfPose(landmark->X_world_object);
-  const double zSupport = container ? container->X_world_object.translation().z() + container->wallThickness_m : 0.0;
+  double yaw = container ? yawOfPose(container->X_world_object) : yawOfPose(landmark->X_world_object);
+  double zSupport = container ? container->X_world_object.translation().z() + container->wallThickness_m : 0.0;
+  // A landmark's container that has no room left: beside it on the table (the relation
+  // to the landmark still holds there), unless the instruction named the container.
+  auto moveToTable = [&]() {
+    if (containerNamed || !container) return false;
+    container = nullptr;
+    out.container.clear();
+    yaw = yawOfPose(landmark->X_world_object);
+    zSupport = 0.0;
+    return true;
+  };
   // Is the whole footprint (plus margin) inside the container's inner walls?
   auto fitsContainer = [&](const Pose3& X) {
     if (!container) return true;
@@ -335,17 +346,22 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
   };
 
   if (directionLandmark) {
-    const Eigen::Vector2d c = centre(*directionLandmark), perp(-direction.y(), direction.x());
-    const double d0 = support(*directionLandmark, direction) + support(part.size_m, yaw, direction) + options_.neighbourGap_m;
-    const Eigen::Vector2d p0 = c + d0 * direction;
-    std::vector<Eigen::Vector2d> candidates;
-    for (double extra = 0.0; extra <= 0.12 + 1e-9; extra += options_.gridStep_m)
-      for (double lateral = -0.08; lateral <= 0.08 + 1e-9; lateral += options_.gridStep_m)
-        candidates.push_back(c + (d0 + extra) * direction + lateral * perp);
-    // Within 45 degrees of the named direction, so "left of" still reads as left.
-    const auto X = search(candidates, p0, [&](const Eigen::Vector2d& p) {
-      return (p - c).dot(direction) > std::abs((p - c).dot(perp)) + 1e-6;
-    });
+    auto attempt = [&](double extraMax_m) {
+      const Eigen::Vector2d c = centre(*directionLandmark), perp(-direction.y(), direction.x());
+      const double d0 = support(*directionLandmark, direction) + support(part.size_m, yaw, direction) + options_.neighbourGap_m;
+      std::vector<Eigen::Vector2d> candidates;
+      for (double extra = 0.0; extra <= extraMax_m + 1e-9; extra += options_.gridStep_m)
+        for (double lateral = -0.08; lateral <= 0.08 + 1e-9; lateral += options_.gridStep_m)
+          candidates.push_back(c + (d0 + extra) * direction + lateral * perp);
+      // Within 45 degrees of the named direction, so "left of" still reads as left.
+      return search(candidates, c + d0 * direction, [&](const Eigen::Vector2d& p) {
+        return (p - c).dot(direction) > std::abs((p - c).dot(perp)) + 1e-6;
+      });
+    };
+    // Further out on the table: past a container in the way, as far as the cone allows.
+    constexpr double kInsideExtra_m = 0.12, kTableExtra_m = 0.30;
+    auto X = attempt(container ? kInsideExtra_m : kTableExtra_m);
+    if (!X && moveToTable()) X = attempt(kTableExtra_m);
     if (!X) {
       out.reason = "no free place " + directionText + " the " + directionLandmark->name + where() + " for the " +
                    part.name + " (blocked by other parts, the walls, the table edge or the arm's reach)";
@@ -359,27 +375,32 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
     const Eigen::Vector2d a = centre(*betweenA), b = centre(*betweenB);
     const double length = (b - a).norm();
     const Eigen::Vector2d u = (b - a) / std::max(length, 1e-9), perp(-u.y(), u.x());
-    const double sA = support(*betweenA, u), sB = support(*betweenB, u), sP = support(part.size_m, yaw, u);
-    const double room = length - sA - sB, needed = 2 * sP + 2 * options_.clearance_m;
-    if (room < needed) {
-      out.reason = "not enough room between the " + betweenA->name + " and the " + betweenB->name + " for the " +
-                   part.name + " (" + fmt(room) + " free, " + fmt(needed) + " needed)";
-      return out;
-    }
-    const Eigen::Vector2d p0 = a + (sA + room / 2) * u;
-    const double slack = (room - needed) / 2;
-    const double lateralLimit = std::max(support(*betweenA, perp), support(*betweenB, perp));
-    std::vector<Eigen::Vector2d> candidates;
-    for (double along = -slack; along <= slack + 1e-9; along += options_.gridStep_m / 2)
-      for (double lateral = -lateralLimit; lateral <= lateralLimit + 1e-9; lateral += options_.gridStep_m / 2)
-        candidates.push_back(p0 + along * u + lateral * perp);
-    candidates.push_back(p0);
-    const auto X = search(candidates, p0, [](const Eigen::Vector2d&) { return true; });
-    if (!X) {
-      out.reason = "no free place between the " + betweenA->name + " and the " + betweenB->name + where() +
-                   " for the " + part.name + " (blocked by other parts, the walls, the table edge or the arm's reach)";
-      return out;
-    }
+    const double sA = support(*betweenA, u), sB = support(*betweenB, u);
+    auto attempt = [&]() -> std::optional<Pose3> {
+      const double sP = support(part.size_m, yaw, u);
+      const double room = length - sA - sB, needed = 2 * sP + 2 * options_.clearance_m;
+      if (room < needed) {
+        out.reason = "not enough room between the " + betweenA->name + " and the " + betweenB->name + " for the " +
+                     part.name + " (" + fmt(room) + " free, " + fmt(needed) + " needed)";
+        return std::nullopt;
+      }
+      const Eigen::Vector2d p0 = a + (sA + room / 2) * u;
+      const double slack = (room - needed) / 2;
+      const double lateralLimit = std::max(support(*betweenA, perp), support(*betweenB, perp));
+      std::vector<Eigen::Vector2d> candidates;
+      for (double along = -slack; along <= slack + 1e-9; along += options_.gridStep_m / 2)
+        for (double lateral = -lateralLimit; lateral <= lateralLimit + 1e-9; lateral += options_.gridStep_m / 2)
+          candidates.push_back(p0 + along * u + lateral * perp);
+      candidates.push_back(p0);
+      const auto X = search(candidates, p0, [](const Eigen::Vector2d&) { return true; });
+      if (!X)
+        out.reason = "no free place between the " + betweenA->name + " and the " + betweenB->name + where() +
+                     " for the " + part.name + " (blocked by other parts, the walls, the table edge or the arm's reach)";
+      return X;
+    };
+    auto X = attempt();
+    if (!X && moveToTable()) X = attempt();
+    if (X) out.reason.clear();
     out.X_world_object = X;
     return out;
   }

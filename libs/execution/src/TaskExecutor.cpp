@@ -24,7 +24,9 @@ std::vector<WorldBox> containerWalls(const CellDescription& scene) {
 
 std::string describeRelations(const std::vector<SpatialRelation>& relations) {
   std::string s;
-  for (const auto& r : relations) s += (s.empty() ? "" : ", ") + r.relation + " " + r.landmark.describe();
+  for (const auto& r : relations)
+    s += (s.empty() ? "" : ", ") + (r.corner.empty() ? r.relation : "in the " + r.corner + " corner of") + " " +
+         r.landmark.describe() + (r.secondLandmark ? " and " + r.secondLandmark->describe() : "");
   return s.empty() ? "(no target)" : s;
 }
 
@@ -158,8 +160,7 @@ StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
   if (auto failure = executeSegments(part->name, segments, r)) return finish(StepStatus::Failed, *failure);
 
   // --- check the outcome
-  const bool holds = checkOutcome(scene, *part, step, placement, r);
-  return finish(StepStatus::Done, holds ? "" : "placed, but a target relation does not hold");
+  return finish(StepStatus::Done, checkOutcome(scene, *part, step, placement, r));
 }
 
 std::optional<std::string> TaskExecutor::checkSource(const CellDescription& scene, const CellObject& part,
@@ -267,9 +268,8 @@ std::optional<std::string> TaskExecutor::executeSegments(const std::string& part
   return std::nullopt;
 }
 
-bool TaskExecutor::checkOutcome(const CellDescription& scene, const CellObject& part, const ExecutionStep& step,
-                                const Placement& placement,
-                                StepReport& r) const {
+std::string TaskExecutor::checkOutcome(const CellDescription& scene, const CellObject& part,
+                                       const ExecutionStep& step, const Placement& placement, StepReport& r) const {
   const Pose3 X_final = sim_->X_world_part(part.name);
   r.X_world_final = X_final;
   r.placementError_m = (X_final.translation() - placement.X_world_object->translation()).norm();
@@ -301,7 +301,21 @@ bool TaskExecutor::checkOutcome(const CellDescription& scene, const CellObject& 
   r.relationChecks = placement_.check(now, *now.find(part.name), step);
   for (const auto& c : r.relationChecks) holds = holds && c.holds;
   r.relationsHold = holds && r.minTableClearance_m > 0.0;
-  return holds;
+  if (holds) return "";
+  // Say which check failed.
+  std::ostringstream why;
+  why << std::fixed << std::setprecision(1) << "placed, but";
+  std::string sep = " ";
+  if (r.placementError_m > options_.placementTolerance_m)
+    why << sep << r.placementError_m * 1000 << " mm from the planned pose (tolerance "
+        << options_.placementTolerance_m * 1000 << " mm)", sep = "; ";
+  if (!upright) why << sep << "not upright", sep = "; ";
+  if (!placement.container.empty() && !r.insideContainer) why << sep << "not inside the " << placement.container, sep = "; ";
+  if (!placement.neighbour.empty() && !r.neighbourRelationHolds)
+    why << sep << "not next to the " << placement.neighbour, sep = "; ";
+  for (const auto& c : r.relationChecks)
+    if (!c.holds) why << sep << c.relation << " " << c.landmarks << " does not hold (" << c.detail << ")", sep = "; ";
+  return why.str();
 }
 
 }  // namespace srp::execution

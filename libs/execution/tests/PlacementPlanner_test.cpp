@@ -203,9 +203,21 @@ TEST(PlacementPlanner, LandmarkInAContainerKeepsThePartInsideTheWalls) {
   // The star against the box's left inner wall: "left of" has no room inside the box.
   c = after(c, "star", at(0.16 - 0.11 + 0.006 + 0.03, 0.12, 0.006));
   const PlacementPlanner planner;
-  const Placement left = planner.place(c, get(c, "cuboid"), stepOf("cuboid", rel("left of", "star")));
-  EXPECT_FALSE(left.X_world_object);
-  EXPECT_NE(left.reason.find("inside the gray box"), std::string::npos) << left.reason;
+  ExecutionStep inBox = stepOf("cuboid", rel("left of", "star"));
+  inBox.target.push_back(rel("in", "box"));
+  const Placement refused = planner.place(c, get(c, "cuboid"), inBox);
+  EXPECT_FALSE(refused.X_world_object);
+  EXPECT_NE(refused.reason.find("no free place left of the star inside the gray box"), std::string::npos)
+      << refused.reason;
+  // Without the box named: on the table, left of the box's outer wall (plus the wall margin).
+  const ExecutionStep left = stepOf("cuboid", rel("left of", "star"));
+  const Placement table = planner.place(c, get(c, "cuboid"), left);
+  ASSERT_TRUE(table.X_world_object) << table.reason;
+  EXPECT_EQ(table.container, "");
+  EXPECT_NEAR(table.X_world_object->translation().z(), 0.0, kGeomTol_m);
+  EXPECT_LE(table.X_world_object->translation().x() + 0.025, 0.16 - 0.11 - planner.options().wallMargin_m + 1e-9);
+  expectHolds(planner, c, "cuboid", left, table);
+  // Room inside: the part stays in the box, inside the walls.
   const ExecutionStep right = stepOf("cuboid", rel("right of", "star"));
   const Placement p = planner.place(c, get(c, "cuboid"), right);
   ASSERT_TRUE(p.X_world_object) << p.reason;
@@ -220,8 +232,10 @@ TEST(PlacementPlanner, OnTheTableAPlaceMustNotOverlapAContainer) {
   const PlacementPlanner planner;
   const ExecutionStep s = stepOf("cuboid", rel("right of", "star"));
   const Placement p = planner.place(c, get(c, "cuboid"), s);
-  EXPECT_FALSE(p.X_world_object) << "placed at " << p.X_world_object->translation().transpose();
-  EXPECT_NE(p.reason.find("no free place right of the star on the table"), std::string::npos) << p.reason;
+  ASSERT_TRUE(p.X_world_object) << p.reason;
+  // Past the box (outer wall at x = 0.27), not on its wall.
+  EXPECT_GE(p.X_world_object->translation().x() - 0.025, 0.27 + planner.options().wallMargin_m - 1e-9);
+  expectHolds(planner, c, "cuboid", s, p);
 }
 
 TEST(PlacementPlanner, OutOfReachIsRefused) {

@@ -89,8 +89,9 @@ class TaskExecutor {
   /// Tracks the segments on the simulator with grasp and release; the reason of a failed grasp.
   std::optional<std::string> executeSegments(const std::string& part, const std::vector<Segment>& segments,
                                              StepReport& r);
-  /// Fills the final pose and relation checks of `r`; true when the relations hold.
-  bool checkOutcome(const CellDescription& scene, const CellObject& part, const ExecutionStep& step,
+  /// Fills the final pose and relation checks of `r`; "" when the relations hold, else
+  /// which check failed and by how much.
+  std::string checkOutcome(const CellDescription& scene, const CellObject& part, const ExecutionStep& step,
                     const Placement& placement,
                     StepReport& r) const;
   RobotModel model_;

@@ -273,8 +273,9 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
     return true;
   };
   // Is the whole footprint (plus margin) inside the container's inner walls?
-  auto fitsContainer = [&](const Pose3& X) {
-    if (!container) return true;
+  auto fitsIn = [&](const CellObject* box, const Pose3& X) {
+    if (!box) return true;
+    const CellObject* container = box;  // the inner footprint of `box`
     const Pose3 X_c = container->X_world_object.inverse() * X;
     const double c = std::abs(std::cos(yawOfPose(X_c))), s = std::abs(std::sin(yawOfPose(X_c)));
     const double ex = c * part.size_m.x() / 2 + s * part.size_m.y() / 2;
@@ -283,6 +284,7 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
     const double iy = container->size_m.y() / 2 - container->wallThickness_m - options_.wallMargin_m;
     return std::abs(X_c.translation().x()) + ex <= ix + 1e-9 && std::abs(X_c.translation().y()) + ey <= iy + 1e-9;
   };
+  auto fitsContainer = [&](const Pose3& X) { return fitsIn(container, X); };
   auto inReach = [&](const Pose3& X) {
     const double r = (X.translation().head<2>() - scene.X_world_base.translation().head<2>()).norm();
     return r >= options_.minReach_m && r <= options_.maxReach_m;
@@ -339,7 +341,15 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
                      [&](const auto& a, const auto& b) { return (a - p0).squaredNorm() < (b - p0).squaredNorm(); });
     for (const auto& p : candidates) {
       if (!keeps(p)) continue;
-      const Pose3 X = uprightPose(Eigen::Vector3d(p.x(), p.y(), zSupport), yaw);
+      Pose3 X = uprightPose(Eigen::Vector3d(p.x(), p.y(), zSupport), yaw);
+      if (!container) {
+        // A table place that falls wholly inside a container rests on its floor instead.
+        for (const auto& o : scene.objects)
+          if (o.kind == CellObjectKind::Container && fitsIn(&o, X)) {
+            X.translation().z() = o.X_world_object.translation().z() + o.wallThickness_m;
+            if (inReach(X) && isFree(scene, part, X)) return X;
+          }
+      }
       if (fitsContainer(X) && fitsTable(X) && inReach(X) && isFree(scene, part, X)) return X;
     }
     return std::nullopt;
@@ -377,6 +387,8 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
     const Eigen::Vector2d u = (b - a) / std::max(length, 1e-9), perp(-u.y(), u.x());
     const double sA = support(*betweenA, u), sB = support(*betweenB, u);
     auto attempt = [&]() -> std::optional<Pose3> {
+      // The part's narrower side along A-B: it needs the least room there.
+      yaw = std::atan2(u.y(), u.x()) + (part.size_m.x() <= part.size_m.y() ? 0.0 : M_PI / 2);
       const double sP = support(part.size_m, yaw, u);
       const double room = length - sA - sB, needed = 2 * sP + 2 * options_.clearance_m;
       if (room < needed) {

@@ -226,15 +226,17 @@ TEST(PlacementPlanner, LandmarkInAContainerKeepsThePartInsideTheWalls) {
   expectHolds(planner, c, "cuboid", right, p);
 }
 
-TEST(PlacementPlanner, OnTheTableAPlaceMustNotOverlapAContainer) {
+TEST(PlacementPlanner, APlaceMustNotOverlapAContainerWall) {
   CellDescription c = cell();
   c = after(c, "star", at(0.16 - 0.11 - 0.03, 0.12));  // 0.5 cm left of the box's outer wall
   const PlacementPlanner planner;
   const ExecutionStep s = stepOf("cuboid", rel("right of", "star"));
   const Placement p = planner.place(c, get(c, "cuboid"), s);
   ASSERT_TRUE(p.X_world_object) << p.reason;
-  // Past the box (outer wall at x = 0.27), not on its wall.
-  EXPECT_GE(p.X_world_object->translation().x() - 0.025, 0.27 + planner.options().wallMargin_m - 1e-9);
+  // Not on the box's left wall (outer face x = 0.05): a table place wholly inside the box
+  // rests on its floor, clear of the inner wall (x = 0.056) by the wall margin.
+  EXPECT_NEAR(p.X_world_object->translation().z(), 0.006, kGeomTol_m);
+  EXPECT_GE(p.X_world_object->translation().x() - 0.025, 0.056 + planner.options().wallMargin_m - 1e-9);
   expectHolds(planner, c, "cuboid", s, p);
 }
 

@@ -28,7 +28,9 @@
 ///   the offset along d, i.e. within 45 degrees of d).
 /// - "between A and B": on the segment A-B, centred in the free space between their
 ///   footprints; refused when that space is narrower than the part plus two clearances.
-/// The yaw of a placed part is its container's, else its landmark's.
+/// - a place on the table that lies wholly inside a container rests on its floor.
+/// The yaw of a placed part is its container's, else its landmark's; "between" turns the
+/// part's narrower side along A-B.
 /// An impossible placement gives the reason and no pose.
 
 #include <optional>

@@ -456,7 +456,7 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
         if (std::abs((p - c).dot(perp)) > facing) continue;
       }
       const Pose3 X = uprightPose(Eigen::Vector3d(p.x(), p.y(), zSupport), yaw);
-      if (fitsContainer(X) && isFree(scene, part, X)) {
+      if (fitsContainer(X) && fitsTable(X) && isFree(scene, part, X)) {
         out.X_world_object = X;
         return out;
       }

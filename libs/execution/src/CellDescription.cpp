@@ -41,6 +41,7 @@ CellDescription CellDescription::fromScene(const srp::core::Scene& scene,
   scene.validate(catalogue);
   CellDescription cell;
   cell.X_world_base = scene.X_world_base;
+  cell.X_world_camera = scene.X_world_camera;
   cell.tableHalfExtents_m = scene.tableSize_m / 2;
   cell.tableCentre_m.setZero();
   for (const auto& so : scene.objects) {

@@ -56,6 +56,7 @@ struct ContactBox {
 struct PartGeometry {
   stk::MobilizedBodyIndex body;
   std::vector<stk::Vec3> corners_B;  ///< contact points in the part frame
+  int bottomPoints = 4;              ///< how many of them lie on the bottom face (they share the weight)
   stk::Vec3 centre_B;
   double boundRadius = 0.0;
   double mass_kg = 0.0;
@@ -152,7 +153,9 @@ class BoxContact : public stk::Force::Custom::Implementation {
       const stk::MobilizedBody& P = matter_.getMobilizedBody(part.body);
       const stk::Transform& X_GP = X_GB_[part.body];
       const stk::Vec3 centre_G = X_GP * part.centre_B;
-      const double mCorner = part.mass_kg / 4.0;
+      // The bottom points share the part's mass: resting flat, the total spring is the same
+      // whatever the grid (g / omega^2 sink, omega ringing).
+      const double mCorner = part.mass_kg / part.bottomPoints;
       const double k = mCorner * kOmega_radps * kOmega_radps, c = 2.0 * kZeta * kOmega_radps * mCorner;
       const double cFriction = mCorner * kFrictionRate_1ps;
       for (const ContactBox& box : boxes_) {
@@ -405,9 +408,16 @@ CellSimulator::CellSimulator(const RobotModel& model, const CellDescription& cel
     g.centre_B = toVec3(com);
     g.mass_kg = o.mass_kg;
     g.boundRadius = 0.5 * s.norm() + 0.01;
-    for (double z : {0.0, s.z()})
-      for (double x : {-s.x() / 2, s.x() / 2})
-        for (double y : {-s.y() / 2, s.y() / 2}) g.corners_B.emplace_back(x, y, z);
+    // Bottom face: an n x n grid (corners, edge points, centre), so a part stacked
+    // crosswise on a narrower one (no corner of either inside the other) still rests
+    // on the points of its bottom that lie over the lower part. Top face: the corners.
+    const int n = std::max(2, options.bottomContactGrid);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        g.corners_B.emplace_back(s.x() * (double(i) / (n - 1) - 0.5), s.y() * (double(j) / (n - 1) - 0.5), 0.0);
+    g.bottomPoints = n * n;
+    for (double x : {-s.x() / 2, s.x() / 2})
+      for (double y : {-s.y() / 2, s.y() / 2}) g.corners_B.emplace_back(x, y, s.z());
     parts.push_back(g);
     ContactBox cb;
     cb.body = free.getMobilizedBodyIndex();

@@ -56,6 +56,10 @@ nlohmann::json ExecutionReport::toJson() const {
       js["inside_container"] = s.insideContainer;
       js["neighbour_relation_holds"] = s.neighbourRelationHolds;
       js["relations_hold"] = s.relationsHold;
+      js["relation_checks"] = nlohmann::json::array();
+      for (const auto& c : s.relationChecks)
+        js["relation_checks"].push_back({{"relation", c.relation}, {"landmarks", c.landmarks}, {"holds", c.holds},
+                                         {"quantity", c.quantity}, {"value_m", c.value_m}, {"detail", c.detail}});
       js["min_table_clearance_m"] = s.minTableClearance_m;
       js["max_joint_error_rad"] = s.maxJointError_rad;
       js["slow_down"] = s.slowDown;
@@ -81,6 +85,9 @@ std::string ExecutionReport::toText() const {
       o << ": " << s.reason;
     }
     o << "\n";
+    for (const auto& c : s.relationChecks)
+      o << "  " << c.relation << " " << c.landmarks << ": " << (c.holds ? "holds" : "DOES NOT HOLD") << " ("
+        << c.detail << ")\n";
   }
   o << std::setprecision(2) << done() << "/" << steps.size() << " steps done, " << simulated_s
     << " s simulated in " << simulationWall_s << " s (" << std::setprecision(1)

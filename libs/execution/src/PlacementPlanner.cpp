@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <functional>
+#include <sstream>
 
 namespace srp::execution {
 namespace {
@@ -56,6 +58,48 @@ double support(const Eigen::Vector3d& size, double yaw, const Eigen::Vector2d& d
   return std::abs(d.dot(ax)) * size.x() / 2 + std::abs(d.dot(ay)) * size.y() / 2;
 }
 
+double support(const CellObject& o, const Eigen::Vector2d& d) { return support(o.size_m, yawOfPose(o.X_world_object), d); }
+
+Eigen::Vector2d centre(const CellObject& o) { return o.X_world_object.translation().head<2>(); }
+
+/// Vertical extents [bottom, top] overlap (1 mm slack: parts resting on each other touch).
+bool verticalOverlap(const CellObject& a, double za, const CellObject& b) {
+  const double zb = b.X_world_object.translation().z();
+  return za < zb + b.size_m.z() - 1e-3 && zb < za + a.size_m.z() - 1e-3;
+}
+
+enum class Kind { Containment, Corner, Stack, Neighbour, Direction, Between, Unknown };
+
+bool isStackWord(const std::string& r) {
+  return r == "on" || r == "onto" || r == "on to" || r == "on top of" || r == "upon" || r == "atop" ||
+         r == "on the top of" || r == "stacked on";
+}
+
+Kind kindOf(const SpatialRelation& rel) {
+  const std::string r = normalise(rel.relation);
+  if (!rel.corner.empty() || r.find("corner") != std::string::npos) return Kind::Corner;
+  if (r == "between" || r == "in between") return Kind::Between;
+  if (!srp::core::ViewFrame::directionWord(r).empty()) return Kind::Direction;
+  if (isNeighbourRelation(r)) return Kind::Neighbour;
+  if (isStackWord(r)) return Kind::Stack;  // resolved to Containment when the landmark is a container
+  if (isContainmentRelation(r)) return Kind::Containment;
+  return Kind::Unknown;
+}
+
+/// The container holding `o` (its centre inside the inner footprint, resting on its floor level), or nullptr.
+const CellObject* containerOf(const CellDescription& scene, const CellObject& o) {
+  for (const auto& c : scene.objects)
+    if (c.kind == CellObjectKind::Container && PlacementPlanner::isInside(o, c)) return &c;
+  return nullptr;
+}
+
+std::string fmt(double v_m) {
+  std::ostringstream s;
+  s.precision(1);
+  s << std::fixed << v_m * 1000.0 << " mm";
+  return s.str();
+}
+
 }  // namespace
 
 const CellObject* PlacementPlanner::find(const CellDescription& scene, const ObjectReference& ref,
@@ -86,10 +130,17 @@ bool PlacementPlanner::isInside(const CellObject& part, const CellObject& contai
          std::abs(p.y()) <= container.size_m.y() / 2 - container.wallThickness_m;
 }
 
+srp::core::ViewFrame PlacementPlanner::viewFrame(const CellDescription& scene) const {
+  if (options_.view == ViewConvention::Camera && scene.X_world_camera)
+    return srp::core::ViewFrame::fromCamera(*scene.X_world_camera);
+  return srp::core::ViewFrame::fromRobot(scene.X_world_base, scene.tableCentre_m);
+}
+
 bool PlacementPlanner::isFree(const CellDescription& scene, const CellObject& part, const Pose3& X) const {
   const auto mine = footprint(part.size_m, X, options_.clearance_m / 2);
   for (const auto& o : scene.objects) {
     if (o.kind != CellObjectKind::Part || o.name == part.name) continue;
+    if (!verticalOverlap(part, X.translation().z(), o)) continue;  // stacked above or below
     if (overlaps(mine, X, footprint(o.size_m, o.X_world_object, options_.clearance_m / 2), o.X_world_object))
       return false;
   }
@@ -101,45 +152,130 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
   Placement out;
   const CellObject* container = nullptr;
   const CellObject* neighbour = nullptr;
+  const CellObject* stackOn = nullptr;
+  const CellObject* directionLandmark = nullptr;
+  const CellObject* betweenA = nullptr;
+  const CellObject* betweenB = nullptr;
+  std::vector<Eigen::Vector2d> cornerDirections;
+  Eigen::Vector2d direction = Eigen::Vector2d::Zero();
+  std::string directionText;
+  const srp::core::ViewFrame view = viewFrame(scene);
+  auto landmarkOf = [&](const SpatialRelation& rel, const ObjectReference& ref,
+                        std::optional<CellObjectKind> kind) -> const CellObject* {
+    const CellObject* o = find(scene, ref, kind);
+    if (!o) out.reason = "target landmark '" + ref.describe() + "' (" + rel.relation + ") is not in the scene";
+    else if (o->name == part.name) out.reason = "the " + part.name + " cannot be placed " + rel.relation + " itself";
+    return o && o->name != part.name ? o : nullptr;
+  };
   for (const auto& rel : step.target) {
-    if (isContainmentRelation(rel.relation)) {
-      container = find(scene, rel.landmark, CellObjectKind::Container);
-      if (!container) {
-        out.reason = "target location '" + rel.landmark.describe() + "' is not in the scene";
-        return out;
+    Kind kind = kindOf(rel);
+    if (kind == Kind::Stack) {
+      const CellObject* l = find(scene, rel.landmark);
+      kind = l && l->kind == CellObjectKind::Container ? Kind::Containment : Kind::Stack;
+    }
+    switch (kind) {
+      case Kind::Containment:
+        container = find(scene, rel.landmark, CellObjectKind::Container);
+        if (!container) {
+          out.reason = "target location '" + rel.landmark.describe() + "' is not in the scene";
+          return out;
+        }
+        break;
+      case Kind::Corner: {
+        container = find(scene, rel.landmark, CellObjectKind::Container);
+        if (!container) {
+          out.reason = "target container '" + rel.landmark.describe() + "' (corner) is not in the scene";
+          return out;
+        }
+        std::istringstream words(rel.corner);
+        for (std::string w; words >> w;)
+          if (auto d = view.direction(w == "back" || w == "rear" ? "behind" : w)) cornerDirections.push_back(*d);
+        if (cornerDirections.size() != 2 || std::abs(cornerDirections[0].dot(cornerDirections[1])) > 0.5) {
+          out.reason = "unknown corner '" + rel.corner + "' of the " + container->name +
+                       " (say front left, front right, back left or back right)";
+          return out;
+        }
+        break;
       }
-    } else if (isNeighbourRelation(rel.relation)) {
-      neighbour = find(scene, rel.landmark, CellObjectKind::Part);
-      if (!neighbour) {
-        out.reason = "target landmark '" + rel.landmark.describe() + "' (" + rel.relation + ") is not in the scene";
+      case Kind::Neighbour:
+        neighbour = landmarkOf(rel, rel.landmark, CellObjectKind::Part);
+        if (!neighbour) return out;
+        break;
+      case Kind::Stack:
+        stackOn = landmarkOf(rel, rel.landmark, CellObjectKind::Part);
+        if (!stackOn) return out;
+        break;
+      case Kind::Direction:
+        directionLandmark = landmarkOf(rel, rel.landmark, std::nullopt);
+        if (!directionLandmark) return out;
+        direction = *view.direction(normalise(rel.relation));
+        directionText = rel.relation;
+        break;
+      case Kind::Between:
+        if (!rel.secondLandmark) {
+          out.reason = "'between' needs two landmarks; the instruction names only the " + rel.landmark.describe();
+          return out;
+        }
+        betweenA = landmarkOf(rel, rel.landmark, std::nullopt);
+        if (!betweenA) return out;
+        betweenB = landmarkOf(rel, *rel.secondLandmark, std::nullopt);
+        if (!betweenB) return out;
+        if (betweenA->name == betweenB->name) {
+          out.reason = "'between' needs two different landmarks; both name the " + betweenA->name;
+          return out;
+        }
+        break;
+      case Kind::Unknown:
+        out.reason = "unknown target relation '" + rel.relation +
+                     "' (known: in/into/on/onto, on top of, next to/beside/adjacent to, left of, right of, in front "
+                     "of, behind, between, in the <front|back> <left|right> corner of)";
         return out;
-      }
-      if (neighbour->name == part.name) {
-        out.reason = "the " + part.name + " cannot be placed next to itself";
-        return out;
-      }
-    } else {
-      out.reason = "unknown target relation '" + rel.relation + "' (known: in/into/to, next to/beside/adjacent to)";
-      return out;
     }
   }
-  if (!container && neighbour) {
-    // "beside the star" with the star in a container: the part goes in there too.
-    for (const auto& o : scene.objects)
-      if (o.kind == CellObjectKind::Container && isInside(*neighbour, o)) container = &o;
+  // Several "next to" relations keep the last one (as before); other mixes are ambiguous.
+  const int others = (stackOn != nullptr) + (directionLandmark != nullptr) + (betweenA != nullptr);
+  if (others > 1 || (others == 1 && neighbour)) {
+    out.reason = "the target relations of the " + part.name + " name several landmarks to place it by; give one";
+    return out;
   }
-  if (!container && !neighbour) {
+  if (stackOn || directionLandmark || betweenA) neighbour = nullptr;
+
+  const CellObject* landmark = stackOn ? stackOn : directionLandmark ? directionLandmark : betweenA ? betweenA : neighbour;
+  const bool containerNamed = container != nullptr;
+  if (!container && landmark && landmark->kind == CellObjectKind::Part && !stackOn) {
+    // "beside the star" with the star in a container: the part goes in there too.
+    if (betweenA) {
+      const CellObject* ca = containerOf(scene, *betweenA);
+      const CellObject* cb = betweenB->kind == CellObjectKind::Part ? containerOf(scene, *betweenB) : nullptr;
+      if (ca && cb && ca->name == cb->name) container = ca;
+    } else {
+      for (const auto& o : scene.objects)
+        if (o.kind == CellObjectKind::Container && isInside(*landmark, o)) container = &o;
+    }
+  }
+  if (!container && !landmark) {
     out.reason = "the instruction gives no target location for the " + part.name;
     return out;
   }
   if (container) out.container = container->name;
   if (neighbour) out.neighbour = neighbour->name;
 
-  const double yaw = container ? yawOfPose(container->X_world_object) : yawOfPose(neighbour->X_world_object);
-  const double zSupport = container ? container->X_world_object.translation().z() + container->wallThickness_m : 0.0;
+  double yaw = container ? yawOfPose(container->X_world_object) : yawOfPose(landmark->X_world_object);
+  double zSupport = container ? container->X_world_object.translation().z() + container->wallThickness_m : 0.0;
+  // A landmark's container that has no room left: beside it on the table (the relation
+  // to the landmark still holds there), unless the instruction named the container.
+  auto moveToTable = [&]() {
+    if (containerNamed || !container) return false;
+    container = nullptr;
+    out.container.clear();
+    yaw = yawOfPose(landmark->X_world_object);
+    zSupport = 0.0;
+    return true;
+  };
   // Is the whole footprint (plus margin) inside the container's inner walls?
-  auto fitsContainer = [&](const Pose3& X) {
-    if (!container) return true;
+  auto fitsIn = [&](const CellObject* box, const Pose3& X) {
+    if (!box) return true;
+    const CellObject* container = box;  // the inner footprint of `box`
     const Pose3 X_c = container->X_world_object.inverse() * X;
     const double c = std::abs(std::cos(yawOfPose(X_c))), s = std::abs(std::sin(yawOfPose(X_c)));
     const double ex = c * part.size_m.x() / 2 + s * part.size_m.y() / 2;
@@ -148,6 +284,138 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
     const double iy = container->size_m.y() / 2 - container->wallThickness_m - options_.wallMargin_m;
     return std::abs(X_c.translation().x()) + ex <= ix + 1e-9 && std::abs(X_c.translation().y()) + ey <= iy + 1e-9;
   };
+  auto fitsContainer = [&](const Pose3& X) { return fitsIn(container, X); };
+  auto inReach = [&](const Pose3& X) {
+    const double r = (X.translation().head<2>() - scene.X_world_base.translation().head<2>()).norm();
+    return r >= options_.minReach_m && r <= options_.maxReach_m;
+  };
+  // On the table: inside its top, clear of every container's outer walls (plus margin).
+  auto fitsTable = [&](const Pose3& X) {
+    if (container) return true;
+    const Eigen::Vector2d p = X.translation().head<2>() - scene.tableCentre_m;
+    const double yawX = yawOfPose(X);
+    if (std::abs(p.x()) + support(part.size_m, yawX, Eigen::Vector2d::UnitX()) > scene.tableHalfExtents_m.x() ||
+        std::abs(p.y()) + support(part.size_m, yawX, Eigen::Vector2d::UnitY()) > scene.tableHalfExtents_m.y())
+      return false;
+    const auto mine = footprint(part.size_m, X, options_.wallMargin_m);
+    for (const auto& o : scene.objects)
+      if (o.kind == CellObjectKind::Container &&
+          overlaps(mine, X, footprint(o.size_m, o.X_world_object, 0.0), o.X_world_object))
+        return false;
+    return true;
+  };
+  auto where = [&]() { return container ? " inside the " + container->name : std::string(" on the table"); };
+
+  if (stackOn) {
+    if (container && !isInside(*stackOn, *container)) {
+      out.reason = "the " + stackOn->name + " is not in the " + container->name + ", so the " + part.name +
+                   " cannot go on it there";
+      return out;
+    }
+    const double top = stackOn->X_world_object.translation().z() + stackOn->size_m.z();
+    for (const auto& o : scene.objects) {
+      if (o.kind != CellObjectKind::Part || o.name == part.name || o.name == stackOn->name) continue;
+      if (std::abs(o.X_world_object.translation().z() - top) < 0.01 &&
+          overlaps(footprint(o.size_m, o.X_world_object, 0.0), o.X_world_object,
+                   footprint(stackOn->size_m, stackOn->X_world_object, 0.0), stackOn->X_world_object)) {
+        out.reason = "the " + o.name + " already lies on the " + stackOn->name + "; the " + part.name +
+                     " cannot be stacked there";
+        return out;
+      }
+    }
+    const Eigen::Vector2d c = centre(*stackOn);
+    const Pose3 X = uprightPose(Eigen::Vector3d(c.x(), c.y(), top), yawOfPose(stackOn->X_world_object));
+    if (!inReach(X)) {
+      out.reason = "the " + stackOn->name + " is out of the arm's reach for stacking the " + part.name;
+      return out;
+    }
+    out.stackedOn = stackOn->name;
+    out.X_world_object = X;
+    return out;
+  }
+
+  // Candidates around an ideal point p0, nearest first; the first that fits everything wins.
+  auto search = [&](std::vector<Eigen::Vector2d> candidates, const Eigen::Vector2d& p0,
+                    const std::function<bool(const Eigen::Vector2d&)>& keeps) -> std::optional<Pose3> {
+    std::stable_sort(candidates.begin(), candidates.end(),
+                     [&](const auto& a, const auto& b) { return (a - p0).squaredNorm() < (b - p0).squaredNorm(); });
+    for (const auto& p : candidates) {
+      if (!keeps(p)) continue;
+      Pose3 X = uprightPose(Eigen::Vector3d(p.x(), p.y(), zSupport), yaw);
+      if (!container) {
+        // A table place that falls wholly inside a container rests on its floor instead.
+        for (const auto& o : scene.objects)
+          if (o.kind == CellObjectKind::Container && fitsIn(&o, X)) {
+            X.translation().z() = o.X_world_object.translation().z() + o.wallThickness_m;
+            if (inReach(X) && isFree(scene, part, X)) return X;
+          }
+      }
+      if (fitsContainer(X) && fitsTable(X) && inReach(X) && isFree(scene, part, X)) return X;
+    }
+    return std::nullopt;
+  };
+
+  if (directionLandmark) {
+    auto attempt = [&](double extraMax_m) {
+      const Eigen::Vector2d c = centre(*directionLandmark), perp(-direction.y(), direction.x());
+      const double d0 = support(*directionLandmark, direction) + support(part.size_m, yaw, direction) + options_.neighbourGap_m;
+      std::vector<Eigen::Vector2d> candidates;
+      for (double extra = 0.0; extra <= extraMax_m + 1e-9; extra += options_.gridStep_m)
+        for (double lateral = -0.08; lateral <= 0.08 + 1e-9; lateral += options_.gridStep_m)
+          candidates.push_back(c + (d0 + extra) * direction + lateral * perp);
+      // Within 45 degrees of the named direction, so "left of" still reads as left.
+      return search(candidates, c + d0 * direction, [&](const Eigen::Vector2d& p) {
+        return (p - c).dot(direction) > std::abs((p - c).dot(perp)) + 1e-6;
+      });
+    };
+    // Further out on the table: past a container in the way, as far as the cone allows.
+    constexpr double kInsideExtra_m = 0.12, kTableExtra_m = 0.30;
+    auto X = attempt(container ? kInsideExtra_m : kTableExtra_m);
+    if (!X && moveToTable()) X = attempt(kTableExtra_m);
+    if (!X) {
+      out.reason = "no free place " + directionText + " the " + directionLandmark->name + where() + " for the " +
+                   part.name + " (blocked by other parts, the walls, the table edge or the arm's reach)";
+      return out;
+    }
+    out.X_world_object = X;
+    return out;
+  }
+
+  if (betweenA) {
+    const Eigen::Vector2d a = centre(*betweenA), b = centre(*betweenB);
+    const double length = (b - a).norm();
+    const Eigen::Vector2d u = (b - a) / std::max(length, 1e-9), perp(-u.y(), u.x());
+    const double sA = support(*betweenA, u), sB = support(*betweenB, u);
+    auto attempt = [&]() -> std::optional<Pose3> {
+      // The part's narrower side along A-B: it needs the least room there.
+      yaw = std::atan2(u.y(), u.x()) + (part.size_m.x() <= part.size_m.y() ? 0.0 : M_PI / 2);
+      const double sP = support(part.size_m, yaw, u);
+      const double room = length - sA - sB, needed = 2 * sP + 2 * options_.clearance_m;
+      if (room < needed) {
+        out.reason = "not enough room between the " + betweenA->name + " and the " + betweenB->name + " for the " +
+                     part.name + " (" + fmt(room) + " free, " + fmt(needed) + " needed)";
+        return std::nullopt;
+      }
+      const Eigen::Vector2d p0 = a + (sA + room / 2) * u;
+      const double slack = (room - needed) / 2;
+      const double lateralLimit = std::max(support(*betweenA, perp), support(*betweenB, perp));
+      std::vector<Eigen::Vector2d> candidates;
+      for (double along = -slack; along <= slack + 1e-9; along += options_.gridStep_m / 2)
+        for (double lateral = -lateralLimit; lateral <= lateralLimit + 1e-9; lateral += options_.gridStep_m / 2)
+          candidates.push_back(p0 + along * u + lateral * perp);
+      candidates.push_back(p0);
+      const auto X = search(candidates, p0, [](const Eigen::Vector2d&) { return true; });
+      if (!X)
+        out.reason = "no free place between the " + betweenA->name + " and the " + betweenB->name + where() +
+                     " for the " + part.name + " (blocked by other parts, the walls, the table edge or the arm's reach)";
+      return X;
+    };
+    auto X = attempt();
+    if (!X && moveToTable()) X = attempt();
+    if (X) out.reason.clear();
+    out.X_world_object = X;
+    return out;
+  }
 
   if (neighbour) {
     const Eigen::Vector2d c = neighbour->X_world_object.translation().head<2>();
@@ -188,7 +456,7 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
         if (std::abs((p - c).dot(perp)) > facing) continue;
       }
       const Pose3 X = uprightPose(Eigen::Vector3d(p.x(), p.y(), zSupport), yaw);
-      if (fitsContainer(X) && isFree(scene, part, X)) {
+      if (fitsContainer(X) && fitsTable(X) && isFree(scene, part, X)) {
         out.X_world_object = X;
         return out;
       }
@@ -206,25 +474,142 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
     return out;
   }
   // Without a demonstration: the inner corner nearest to where the part comes from,
-  // which leaves the rest of the container free for its neighbours.
+  // which leaves the rest of the container free for its neighbours. A named corner:
+  // the inner corner furthest along the corner's two view directions.
   const Eigen::Vector3d from_c = container->X_world_object.inverse() * part.X_world_object.translation();
-  const Eigen::Vector2d corner(from_c.x() < 0 ? -ix : ix, from_c.y() < 0 ? -iy : iy);
-  const Eigen::Vector2d preferred = step.demoPositionInContainer_m.value_or(corner);
+  Eigen::Vector2d corner(from_c.x() < 0 ? -ix : ix, from_c.y() < 0 ? -iy : iy);
+  if (!cornerDirections.empty()) {
+    const Eigen::Vector2d w = cornerDirections[0] + cornerDirections[1];
+    const Eigen::Matrix2d R_wc = container->X_world_object.linear().topLeftCorner<2, 2>();
+    const Eigen::Vector2d w_c = R_wc.transpose() * w;
+    corner = Eigen::Vector2d(w_c.x() < 0 ? -ix : ix, w_c.y() < 0 ? -iy : iy);
+  }
+  const Eigen::Vector2d preferred = cornerDirections.empty() ? step.demoPositionInContainer_m.value_or(corner) : corner;
   std::vector<Eigen::Vector2d> candidates;
   for (double x = -ix; x <= ix + 1e-9; x += options_.gridStep_m)
     for (double y = -iy; y <= iy + 1e-9; y += options_.gridStep_m) candidates.emplace_back(x, y);
   std::sort(candidates.begin(), candidates.end(), [&](const auto& a, const auto& b) {
     return (a - preferred).squaredNorm() < (b - preferred).squaredNorm();
   });
+  const Eigen::Vector2d cc = container->X_world_object.translation().head<2>();
   for (const auto& c : candidates) {
     Pose3 X = container->X_world_object * uprightPose(Eigen::Vector3d(c.x(), c.y(), container->wallThickness_m), 0.0);
-    if (isFree(scene, part, X)) {
+    // A named corner: stay in its quadrant.
+    bool inQuadrant = true;
+    for (const auto& d : cornerDirections) inQuadrant = inQuadrant && (X.translation().head<2>() - cc).dot(d) > 0.0;
+    if (inQuadrant && isFree(scene, part, X)) {
       out.X_world_object = X;
       return out;
     }
   }
-  out.reason = "the " + container->name + " has no free place left for the " + part.name;
+  out.reason = cornerDirections.empty()
+                   ? "the " + container->name + " has no free place left for the " + part.name
+                   : "the " + step.target.back().corner + " corner of the " + container->name +
+                         " has no free place left for the " + part.name;
   return out;
+}
+
+std::vector<RelationCheck> PlacementPlanner::check(const CellDescription& scene, const CellObject& part,
+                                                   const ExecutionStep& step) const {
+  std::vector<RelationCheck> checks;
+  const srp::core::ViewFrame view = viewFrame(scene);
+  const double tol = options_.relationTolerance_m;
+  const Pose3& X = part.X_world_object;
+  const Eigen::Vector2d p = X.translation().head<2>();
+  const double yaw = yawOfPose(X);
+  for (const auto& rel : step.target) {
+    RelationCheck c;
+    c.relation = rel.relation;
+    Kind kind = kindOf(rel);
+    const CellObject* a = find(scene, rel.landmark, kind == Kind::Containment || kind == Kind::Corner
+                                                        ? std::optional<CellObjectKind>(CellObjectKind::Container)
+                                                        : std::nullopt);
+    if (a && a->name == part.name) a = nullptr;
+    if (kind == Kind::Stack && a) kind = a->kind == CellObjectKind::Container ? Kind::Containment : Kind::Stack;
+    const CellObject* b = rel.secondLandmark ? find(scene, *rel.secondLandmark) : nullptr;
+    c.landmarks = a ? a->name : rel.landmark.describe();
+    if (!a || kind == Kind::Unknown || (kind == Kind::Between && !b)) {
+      c.detail = !a ? "landmark not in the scene" : "relation not checkable";
+      checks.push_back(c);
+      continue;
+    }
+    switch (kind) {
+      case Kind::Containment:
+      case Kind::Corner: {
+        // Smallest distance of the footprint to the inner walls (negative: over a wall).
+        const Pose3 X_c = a->X_world_object.inverse() * X;
+        const double yc = yawOfPose(X_c);
+        const double ex = std::abs(std::cos(yc)) * part.size_m.x() / 2 + std::abs(std::sin(yc)) * part.size_m.y() / 2;
+        const double ey = std::abs(std::sin(yc)) * part.size_m.x() / 2 + std::abs(std::cos(yc)) * part.size_m.y() / 2;
+        const double margin = std::min(a->size_m.x() / 2 - a->wallThickness_m - std::abs(X_c.translation().x()) - ex,
+                                       a->size_m.y() / 2 - a->wallThickness_m - std::abs(X_c.translation().y()) - ey);
+        c.quantity = "margin to the inner walls";
+        c.value_m = margin;
+        c.holds = isInside(part, *a) && margin >= -tol;
+        c.detail = "footprint " + fmt(margin) + " inside the walls";
+        if (kind == Kind::Corner) {
+          std::istringstream words(rel.corner);
+          double worst = 1e9;
+          for (std::string w; words >> w;)
+            if (auto d = view.direction(w == "back" || w == "rear" ? "behind" : w))
+              worst = std::min(worst, (p - centre(*a)).dot(*d));
+          c.holds = c.holds && worst > 0.0 && worst < 1e8;
+          c.detail += ", " + fmt(worst == 1e9 ? 0.0 : worst) + " into the " + rel.corner + " quadrant";
+        }
+        break;
+      }
+      case Kind::Stack: {
+        const double top = a->X_world_object.translation().z() + a->size_m.z();
+        const double height = X.translation().z() - top;
+        const Eigen::Vector3d p_a = a->X_world_object.inverse() * X.translation();
+        const bool over = std::abs(p_a.x()) <= a->size_m.x() / 2 && std::abs(p_a.y()) <= a->size_m.y() / 2;
+        c.quantity = "height above the lower part's top";
+        c.value_m = height;
+        c.holds = std::abs(height) <= tol && over && X.linear().col(2).z() > std::cos(10.0 * M_PI / 180.0);
+        c.detail = "bottom " + fmt(height) + " above the " + a->name + "'s top, centre " +
+                   fmt(p_a.head<2>().norm()) + " off its centre";
+        break;
+      }
+      case Kind::Neighbour:
+      case Kind::Direction: {
+        const Eigen::Vector2d off = p - centre(*a);
+        const Eigen::Vector2d dir = kind == Kind::Direction ? *view.direction(normalise(rel.relation))
+                                                            : off.normalized();
+        const Eigen::Vector2d perp(-dir.y(), dir.x());
+        const double along = off.dot(dir), lateral = std::abs(off.dot(perp));
+        const double gap = along - support(*a, dir) - support(part.size_m, yaw, dir);
+        c.quantity = "gap";
+        c.value_m = gap;
+        if (kind == Kind::Neighbour) {
+          c.holds = gap > -1e-3 && gap <= options_.neighbourGap_m + options_.neighbourTolerance_m;
+          c.detail = "gap " + fmt(gap) + " to the " + a->name;
+        } else {
+          c.holds = gap > -1e-3 && along > lateral;
+          c.detail = "gap " + fmt(gap) + " along '" + rel.relation + "', lateral offset " + fmt(lateral);
+        }
+        break;
+      }
+      case Kind::Between: {
+        c.landmarks = a->name + " and " + b->name;
+        const Eigen::Vector2d ca = centre(*a), cb = centre(*b);
+        const double length = (cb - ca).norm();
+        const Eigen::Vector2d u = (cb - ca) / std::max(length, 1e-9), perp(-u.y(), u.x());
+        const double t = (p - ca).dot(u), lateral = std::abs((p - ca).dot(perp));
+        const double sP = support(part.size_m, yaw, u);
+        const double gapA = t - support(*a, u) - sP, gapB = length - t - support(*b, u) - sP;
+        const double lateralLimit = std::max(support(*a, perp), support(*b, perp));
+        c.quantity = "lateral offset from the line";
+        c.value_m = lateral;
+        c.holds = gapA > -1e-3 && gapB > -1e-3 && lateral <= lateralLimit + tol;
+        c.detail = "gaps " + fmt(gapA) + " / " + fmt(gapB) + ", lateral offset " + fmt(lateral);
+        break;
+      }
+      case Kind::Unknown:
+        break;
+    }
+    checks.push_back(c);
+  }
+  return checks;
 }
 
 }  // namespace srp::execution

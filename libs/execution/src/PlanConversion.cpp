@@ -1,6 +1,9 @@
 #include "srp/execution/PlanConversion.h"
 
 #include <algorithm>
+#include <cctype>
+#include <iterator>
+#include <tuple>
 #include <map>
 
 #include "srp/core/Error.h"
@@ -123,17 +126,154 @@ void attachDemoOffsets(ExecutionPlan& plan, const srp::taskdb::TaskModel& model,
   }
 }
 
+namespace {
+
+// --- Spatial phrases the language model reads only in part ("to the left of the X"
+// gives landmark "left"; "between A and B" gives only A; "right of the X" and "in the
+// front left corner of X" give no target). They are re-read from the sentence's tokens.
+
+std::string lowerWord(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+bool isColourWord(const std::string& w) {
+  static const char* kWords[] = {"red", "green", "blue", "yellow", "gray", "grey", "black", "white",
+                                 "orange", "purple", "pink", "brown", "violet", "cyan", "magenta"};
+  return std::any_of(std::begin(kWords), std::end(kWords), [&](const char* c) { return w == c; });
+}
+
+bool isViewWord(const std::string& w) {
+  return w == "left" || w == "right" || w == "front" || w == "back" || w == "rear" || w == "top";
+}
+
+/// A noun phrase "[the|a|an] [colour] noun" starting at token i; the index after it.
+std::optional<std::pair<ObjectReference, std::size_t>> nounPhraseAt(const std::vector<std::string>& tokens, std::size_t i) {
+  while (i < tokens.size() && (tokens[i] == "the" || tokens[i] == "a" || tokens[i] == "an")) ++i;
+  ObjectReference ref;
+  if (i < tokens.size() && isColourWord(tokens[i])) ref.color = tokens[i++];
+  if (i >= tokens.size() || !std::isalpha(static_cast<unsigned char>(tokens[i][0])) || tokens[i] == "and" ||
+      tokens[i] == "of")
+    return std::nullopt;
+  ref.name = tokens[i];
+  return std::make_pair(ref, i + 1);
+}
+
+/// The relation named by view words before "of" ("left" -> "left of", "front" -> "in front of").
+std::string viewRelation(const std::string& w) {
+  if (w == "left" || w == "right") return w + " of";
+  if (w == "front") return "in front of";
+  if (w == "back" || w == "rear") return "behind";
+  return "on top of";
+}
+
+/// The first spatial phrase in tokens [from, end): the relation and the token range it spans.
+struct TokenRelation {
+  SpatialRelation relation;
+  std::size_t begin = 0, end = 0;
+};
+std::optional<TokenRelation> spatialPhraseIn(const std::vector<std::string>& t, std::size_t from) {
+  for (std::size_t i = from; i < t.size(); ++i) {
+    // "in the front left corner of the gray box"
+    if (t[i] == "corner" && i + 1 < t.size() && t[i + 1] == "of") {
+      std::string corner;
+      std::size_t b = i;
+      while (b > from && isViewWord(t[b - 1]) && t[b - 1] != "top") corner = t[--b] + (corner.empty() ? "" : " ") + corner;
+      const auto np = nounPhraseAt(t, i + 2);
+      if (!corner.empty() && np) {
+        while (b > from && (t[b - 1] == "the" || t[b - 1] == "in" || t[b - 1] == "at" || t[b - 1] == "into")) --b;
+        TokenRelation r{{"corner", np->first, std::nullopt, corner}, b, np->second};
+        return r;
+      }
+    }
+    // "(to|on|at) the left of X", "right of X", "in front of X", "on top of X"
+    if (isViewWord(t[i]) && i + 1 < t.size() && t[i + 1] == "of") {
+      if (const auto np = nounPhraseAt(t, i + 2)) {
+        std::size_t b = i;
+        while (b > from && (t[b - 1] == "the" || t[b - 1] == "to" || t[b - 1] == "on" || t[b - 1] == "in" ||
+                            t[b - 1] == "at"))
+          --b;
+        return TokenRelation{{viewRelation(t[i]), np->first, std::nullopt, ""}, b, np->second};
+      }
+    }
+    if (t[i] == "behind")
+      if (const auto np = nounPhraseAt(t, i + 1)) return TokenRelation{{"behind", np->first, std::nullopt, ""}, i, np->second};
+    // "between A and B"
+    if (t[i] == "between")
+      if (const auto a = nounPhraseAt(t, i + 1); a && a->second < t.size() && t[a->second] == "and")
+        if (const auto b = nounPhraseAt(t, a->second + 1))
+          return TokenRelation{{"between", a->first, b->first, ""}, i, b->second};
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 ExecutionPlan planFromLanguage(const srp::language::TaskPlan& plan) {
   auto ref = [](const srp::language::ObjectRef& o) { return ObjectReference{o.name, o.color}; };
+  auto tokensOf = [&](int sentence) -> std::vector<std::string> {
+    std::vector<std::string> t;
+    if (sentence < 0 || sentence >= static_cast<int>(plan.sentences.size())) return t;
+    for (const auto& w : plan.sentences[static_cast<std::size_t>(sentence)].tokens) t.push_back(lowerWord(w));
+    return t;
+  };
   ExecutionPlan out;
+  // Token spans (sentence, begin, end) taken by re-read relations: a "step" whose object
+  // lies inside one ("corner" of "in the front left corner of the box") is a misread.
+  std::vector<std::tuple<int, std::size_t, std::size_t>> consumed;
+  std::vector<int> objectSentence, objectToken;
   for (const auto& s : plan.steps) {
     ExecutionStep step;
     step.object = ref(s.object);
-    for (const auto& l : s.source) step.source.push_back({l.relation, ref(l.landmark)});
-    for (const auto& l : s.target) step.target.push_back({l.relation, ref(l.landmark)});
+    for (const auto& l : s.source) step.source.push_back({l.relation, ref(l.landmark), {}, ""});
+    for (std::size_t k = 0; k < s.target.size(); ++k) {
+      const auto& l = s.target[k];
+      SpatialRelation r{l.relation, ref(l.landmark), {}, ""};
+      const srp::language::TokenAnchor anchor = k < s.targetAnchors.size() ? s.targetAnchors[k] : srp::language::TokenAnchor{};
+      const std::vector<std::string> t = tokensOf(anchor.sentenceId);
+      if (anchor.tokenId >= 0 && static_cast<std::size_t>(anchor.tokenId) < t.size()) {
+        const std::size_t i = static_cast<std::size_t>(anchor.tokenId);
+        const bool viewLandmark = isViewWord(lowerWord(l.landmark.name)) && !l.landmark.color;
+        const bool lonelyBetween = lowerWord(l.relation) == "between";
+        if (viewLandmark || lonelyBetween) {
+          // Re-read from the relation word before the landmark.
+          std::size_t from = i;
+          while (from > 0 && from + 3 > i) --from;
+          if (const auto tr = spatialPhraseIn(t, from)) {
+            r = tr->relation;
+            consumed.emplace_back(anchor.sentenceId, tr->begin, tr->end);
+          }
+        }
+      }
+      step.target.push_back(r);
+    }
+    if (step.target.empty() && s.objectAnchor.sentenceId >= 0) {
+      // No target read: look for a spatial phrase after the object in its sentence.
+      const std::vector<std::string> t = tokensOf(s.objectAnchor.sentenceId);
+      if (const auto tr = spatialPhraseIn(t, static_cast<std::size_t>(std::max(0, s.objectAnchor.tokenId)))) {
+        step.target.push_back(tr->relation);
+        consumed.emplace_back(s.objectAnchor.sentenceId, tr->begin, tr->end);
+        // "star right" of "the star right of the cuboid": the view word is not part of the name.
+        const std::string name = lowerWord(step.object.name);
+        const auto space = name.rfind(' ');
+        if (space != std::string::npos && isViewWord(name.substr(space + 1))) step.object.name = step.object.name.substr(0, space);
+      }
+    }
+    objectSentence.push_back(s.objectAnchor.sentenceId);
+    objectToken.push_back(s.objectAnchor.tokenId);
     out.steps.push_back(step);
   }
-  return out;
+  ExecutionPlan kept;
+  for (std::size_t i = 0; i < out.steps.size(); ++i) {
+    const bool misread = out.steps[i].target.empty() && objectToken[i] >= 0 &&
+                         std::any_of(consumed.begin(), consumed.end(), [&](const auto& c) {
+                           return std::get<0>(c) == objectSentence[i] &&
+                                  static_cast<std::size_t>(objectToken[i]) >= std::get<1>(c) &&
+                                  static_cast<std::size_t>(objectToken[i]) < std::get<2>(c);
+                         });
+    if (!misread) kept.steps.push_back(out.steps[i]);
+  }
+  return kept;
 }
 
 }  // namespace srp::execution

@@ -24,7 +24,9 @@ std::vector<WorldBox> containerWalls(const CellDescription& scene) {
 
 std::string describeRelations(const std::vector<SpatialRelation>& relations) {
   std::string s;
-  for (const auto& r : relations) s += (s.empty() ? "" : ", ") + r.relation + " " + r.landmark.describe();
+  for (const auto& r : relations)
+    s += (s.empty() ? "" : ", ") + (r.corner.empty() ? r.relation : "in the " + r.corner + " corner of") + " " +
+         r.landmark.describe() + (r.secondLandmark ? " and " + r.secondLandmark->describe() : "");
   return s.empty() ? "(no target)" : s;
 }
 
@@ -110,6 +112,14 @@ ExecutionReport TaskExecutor::run(const ExecutionPlan& plan) {
   return report;
 }
 
+/// One planned segment of a step: its Cartesian path and the joint trajectory.
+struct TaskExecutor::Segment {
+  std::string what;
+  CartesianPath path;
+  JointTrajectory joints;
+  double slowDown = 1.0;  ///< > 1: retimed to respect the joint speed limits
+};
+
 StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
   StepReport r;
   r.index = index;
@@ -131,91 +141,15 @@ StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
   if (!part) return finish(StepStatus::Skipped, "no " + step.object.describe() + " in the current scene");
   r.object = part->name;
   r.X_world_start = part->X_world_object;
-  for (const auto& rel : step.source) {
-    const CellObject* landmark = PlacementPlanner::find(scene, rel.landmark);
-    if (!landmark)
-      return finish(StepStatus::Skipped, "source location '" + rel.landmark.describe() + "' is not in the scene");
-    if (landmark->kind == CellObjectKind::Container && !PlacementPlanner::isInside(*part, *landmark))
-      return finish(StepStatus::Skipped, "the " + part->name + " is not " + rel.relation + " the " + landmark->name +
-                                             " (source location of the instruction)");
-  }
+  if (auto why = checkSource(scene, *part, step)) return finish(StepStatus::Skipped, *why);
   const Placement placement = placement_.place(scene, *part, step);
   if (!placement.X_world_object) return finish(StepStatus::Skipped, placement.reason);
   r.X_world_planned = placement.X_world_object;
 
   // --- motion generation: Cartesian paths -> IK (nearest branch) -> safety check.
-  // The suction cup may take the part turned by 0 or pi about the tool axis (the
-  // part still ends at its planned yaw: the release turns by the same pi); both are
-  // planned and the one keeping the last wrist joint nearer zero is used, so wrist
-  // turns do not pile up over the steps until the joint limit forces a branch jump.
-  const double h = part->size_m.z();
-  const MinimumJerkPathGenerator straight(MinimumJerkOptions{});
-  const double dt = options_.sampleTime_s;
-  struct Segment {
-    std::string what;
-    CartesianPath path;
-    JointTrajectory joints;
-    double slowDown = 1.0;  ///< > 1: retimed to respect the joint speed limits
-  };
-  const Pose3 X_base_world = scene.X_world_base.inverse();
-  auto planVariant = [&](double turn_rad, std::vector<Segment>& segments) -> std::optional<std::string> {
-    const Eigen::AngleAxisd turn(turn_rad, Eigen::Vector3d::UnitZ());
-    const Pose3 grasp = toolDownAt(part->X_world_object, h) * turn;
-    const Pose3 preGrasp = raised(grasp, options_.approachOffset_m);
-    const Pose3 release = toolDownAt(*placement.X_world_object, h + options_.releaseHeight_m) * turn;
-    const Pose3 preRelease = raised(release, options_.approachOffset_m);
-    const Pose3 postRelease = raised(release, options_.retreat_m);
-    try {
-      segments.push_back({"Reach", generator_->generate(srp::core::SkillType::Reach, part->name, sim_->X_world_tcp(), preGrasp, dt), {}});
-      segments.push_back({"approach", straight.straight(preGrasp, grasp, dt), {}});
-      segments.push_back({"lift", straight.straight(grasp, preGrasp, dt), {}});
-      segments.push_back({"Move", generator_->generate(srp::core::SkillType::Move, part->name, preGrasp, preRelease, dt), {}});
-      segments.push_back({"lower", straight.straight(preRelease, release, dt), {}});
-      segments.push_back({"retreat", straight.straight(release, postRelease, dt), {}});
-    } catch (const srp::core::Error& e) {
-      return std::string("path generation: ") + e.what();
-    }
-    JointVector q = sim_->jointPositions();
-    for (auto& seg : segments) {
-      const std::string what = seg.what + " of the " + part->name;
-      std::vector<double> times;
-      std::vector<JointVector> qs;
-      for (const auto& s : seg.path) {
-        const auto sol = ik_.solveNearestTcp(X_base_world * s.X_world_tcp, q);
-        if (!sol) {
-          const Eigen::Vector3d p = s.X_world_tcp.translation();
-          std::ostringstream why;
-          why << what << ": tool pose at (" << p.x() << ", " << p.y() << ", " << p.z()
-              << ") m is out of the arm's reach (no inverse kinematics solution within the joint limits)";
-          return why.str();
-        }
-        q = *sol;
-        times.push_back(s.t_s);
-        qs.push_back(q);
-      }
-      seg.joints = JointTrajectory::fromPositions(times, qs);
-      // Same path, slower: retime a path that is too fast for the joints.
-      const double ratio = safety_.peakVelocityRatio(seg.joints) / options_.velocityMargin;
-      if (ratio > 1.0 && ratio <= options_.maxSlowDown) {
-        for (double& t : times) t = times.front() + (t - times.front()) * ratio;
-        seg.joints = JointTrajectory::fromPositions(times, qs);
-        seg.slowDown = ratio;
-      }
-      if (auto v = safety_.check(seg.joints, what)) return "safety: " + v->message;
-    }
-    return std::nullopt;
-  };
-  auto wristLoad = [](const std::vector<Segment>& segments) {
-    double m = 0.0;
-    for (const auto& seg : segments)
-      for (const auto& s : seg.joints.samples()) m = std::max(m, std::abs(s.q_rad[5]));
-    return m;
-  };
-  std::vector<Segment> segments, alternative;
-  const std::optional<std::string> failure = planVariant(0.0, segments);
-  const std::optional<std::string> failureTurned = planVariant(M_PI, alternative);
-  if (failure && failureTurned) return finish(StepStatus::Refused, *failure);
-  if (failure || (!failureTurned && wristLoad(alternative) < wristLoad(segments))) segments = std::move(alternative);
+  std::vector<Segment> segments;
+  if (auto failure = planMotion(scene, *part, *placement.X_world_object, segments))
+    return finish(StepStatus::Refused, *failure);
   r.planning_s = std::chrono::duration<double>(Clock::now() - planStart).count();
   for (const auto& seg : segments) r.slowDown = std::max(r.slowDown, seg.slowDown);
   const std::string reachSource = generator_->sourceFor(srp::core::SkillType::Reach, part->name);
@@ -223,6 +157,100 @@ StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
   r.pathSource = reachSource == moveSource ? reachSource : "Reach " + reachSource + ", Move " + moveSource;
 
   // --- execution on the simulated UR5
+  if (auto failure = executeSegments(part->name, segments, r)) return finish(StepStatus::Failed, *failure);
+
+  // --- check the outcome
+  return finish(StepStatus::Done, checkOutcome(scene, *part, step, placement, r));
+}
+
+std::optional<std::string> TaskExecutor::checkSource(const CellDescription& scene, const CellObject& part,
+                                                     const ExecutionStep& step) const {
+  for (const auto& rel : step.source) {
+    const CellObject* landmark = PlacementPlanner::find(scene, rel.landmark);
+    if (!landmark) return "source location '" + rel.landmark.describe() + "' is not in the scene";
+    if (landmark->kind == CellObjectKind::Container && !PlacementPlanner::isInside(part, *landmark))
+      return "the " + part.name + " is not " + rel.relation + " the " + landmark->name +
+             " (source location of the instruction)";
+  }
+  return std::nullopt;
+}
+
+// The suction cup may take the part turned by 0 or pi about the tool axis (the
+// part still ends at its planned yaw: the release turns by the same pi); both are
+// planned and the one keeping the last wrist joint nearer zero is used, so wrist
+// turns do not pile up over the steps until the joint limit forces a branch jump.
+std::optional<std::string> TaskExecutor::planMotion(const CellDescription& scene, const CellObject& part,
+                                                    const Pose3& X_world_target, std::vector<Segment>& segments) const {
+  auto wristLoad = [](const std::vector<Segment>& s) {
+    double m = 0.0;
+    for (const auto& seg : s)
+      for (const auto& sample : seg.joints.samples()) m = std::max(m, std::abs(sample.q_rad[5]));
+    return m;
+  };
+  std::vector<Segment> alternative;
+  const std::optional<std::string> failure = planVariant(scene, part, X_world_target, 0.0, segments);
+  const std::optional<std::string> failureTurned = planVariant(scene, part, X_world_target, M_PI, alternative);
+  if (failure && failureTurned) return failure;
+  if (failure || (!failureTurned && wristLoad(alternative) < wristLoad(segments))) segments = std::move(alternative);
+  return std::nullopt;
+}
+
+std::optional<std::string> TaskExecutor::planVariant(const CellDescription& scene, const CellObject& part,
+                                                     const Pose3& X_world_target, double turn_rad,
+                                                     std::vector<Segment>& segments) const {
+  const double h = part.size_m.z();
+  const MinimumJerkPathGenerator straight(MinimumJerkOptions{});
+  const double dt = options_.sampleTime_s;
+  const Pose3 X_base_world = scene.X_world_base.inverse();
+  const Eigen::AngleAxisd turn(turn_rad, Eigen::Vector3d::UnitZ());
+  const Pose3 grasp = toolDownAt(part.X_world_object, h) * turn;
+  const Pose3 preGrasp = raised(grasp, options_.approachOffset_m);
+  const Pose3 release = toolDownAt(X_world_target, h + options_.releaseHeight_m) * turn;
+  const Pose3 preRelease = raised(release, options_.approachOffset_m);
+  const Pose3 postRelease = raised(release, options_.retreat_m);
+  try {
+    segments.push_back({"Reach", generator_->generate(srp::core::SkillType::Reach, part.name, sim_->X_world_tcp(), preGrasp, dt), {}});
+    segments.push_back({"approach", straight.straight(preGrasp, grasp, dt), {}});
+    segments.push_back({"lift", straight.straight(grasp, preGrasp, dt), {}});
+    segments.push_back({"Move", generator_->generate(srp::core::SkillType::Move, part.name, preGrasp, preRelease, dt), {}});
+    segments.push_back({"lower", straight.straight(preRelease, release, dt), {}});
+    segments.push_back({"retreat", straight.straight(release, postRelease, dt), {}});
+  } catch (const srp::core::Error& e) {
+    return std::string("path generation: ") + e.what();
+  }
+  JointVector q = sim_->jointPositions();
+  for (auto& seg : segments) {
+    const std::string what = seg.what + " of the " + part.name;
+    std::vector<double> times;
+    std::vector<JointVector> qs;
+    for (const auto& s : seg.path) {
+      const auto sol = ik_.solveNearestTcp(X_base_world * s.X_world_tcp, q);
+      if (!sol) {
+        const Eigen::Vector3d p = s.X_world_tcp.translation();
+        std::ostringstream why;
+        why << what << ": tool pose at (" << p.x() << ", " << p.y() << ", " << p.z()
+            << ") m is out of the arm's reach (no inverse kinematics solution within the joint limits)";
+        return why.str();
+      }
+      q = *sol;
+      times.push_back(s.t_s);
+      qs.push_back(q);
+    }
+    seg.joints = JointTrajectory::fromPositions(times, qs);
+    // Same path, slower: retime a path that is too fast for the joints.
+    const double ratio = safety_.peakVelocityRatio(seg.joints) / options_.velocityMargin;
+    if (ratio > 1.0 && ratio <= options_.maxSlowDown) {
+      for (double& t : times) t = times.front() + (t - times.front()) * ratio;
+      seg.joints = JointTrajectory::fromPositions(times, qs);
+      seg.slowDown = ratio;
+    }
+    if (auto v = safety_.check(seg.joints, what)) return "safety: " + v->message;
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> TaskExecutor::executeSegments(const std::string& part, const std::vector<Segment>& segments,
+                                                         StepReport& r) {
   r.minTableClearance_m = std::numeric_limits<double>::infinity();
   auto track = [&](const Segment& seg) {
     const TrackingResult t = sim_->track(seg.joints, options_.settle_s);
@@ -231,21 +259,24 @@ StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
   };
   track(segments[0]);
   track(segments[1]);
-  if (auto failure = sim_->grasp(part->name)) return finish(StepStatus::Failed, "Grasp: " + *failure);
+  if (auto failure = sim_->grasp(part)) return "Grasp: " + *failure;
   track(segments[2]);
   track(segments[3]);
   track(segments[4]);
   sim_->release();
   track(segments[5]);
+  return std::nullopt;
+}
 
-  // --- check the outcome
-  const Pose3 X_final = sim_->X_world_part(part->name);
+std::string TaskExecutor::checkOutcome(const CellDescription& scene, const CellObject& part,
+                                       const ExecutionStep& step, const Placement& placement, StepReport& r) const {
+  const Pose3 X_final = sim_->X_world_part(part.name);
   r.X_world_final = X_final;
   r.placementError_m = (X_final.translation() - placement.X_world_object->translation()).norm();
   r.yawError_rad = srp::core::angleDifference(srp::core::yawOf(X_final.linear()),
                                               srp::core::yawOf(placement.X_world_object->linear()));
   const bool upright = X_final.linear().col(2).z() > std::cos(10.0 * M_PI / 180.0);
-  CellObject placed = *part;
+  CellObject placed = part;
   placed.X_world_object = X_final;
   bool holds = r.placementError_m <= options_.placementTolerance_m && upright;
   if (!placement.container.empty()) {
@@ -261,12 +292,30 @@ StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
       const Eigen::Vector2d ax = X.linear().col(0).head<2>().normalized(), ay = X.linear().col(1).head<2>().normalized();
       return std::abs(dir.dot(ax)) * size.x() / 2 + std::abs(dir.dot(ay)) * size.y() / 2;
     };
-    const double gap = d.norm() - extent(n.size_m, X_n) - extent(part->size_m, X_final);
+    const double gap = d.norm() - extent(n.size_m, X_n) - extent(part.size_m, X_final);
     r.neighbourRelationHolds = gap > -1e-3 && gap <= placement_.options().neighbourGap_m + options_.neighbourTolerance_m;
     holds = holds && r.neighbourRelationHolds;
   }
+  // Every target relation on the scene as it is now (the other parts may have moved too).
+  CellDescription now = perceive();
+  r.relationChecks = placement_.check(now, *now.find(part.name), step);
+  for (const auto& c : r.relationChecks) holds = holds && c.holds;
   r.relationsHold = holds && r.minTableClearance_m > 0.0;
-  return finish(StepStatus::Done, holds ? "" : "placed, but a target relation does not hold");
+  if (holds) return "";
+  // Say which check failed.
+  std::ostringstream why;
+  why << std::fixed << std::setprecision(1) << "placed, but";
+  std::string sep = " ";
+  if (r.placementError_m > options_.placementTolerance_m)
+    why << sep << r.placementError_m * 1000 << " mm from the planned pose (tolerance "
+        << options_.placementTolerance_m * 1000 << " mm)", sep = "; ";
+  if (!upright) why << sep << "not upright", sep = "; ";
+  if (!placement.container.empty() && !r.insideContainer) why << sep << "not inside the " << placement.container, sep = "; ";
+  if (!placement.neighbour.empty() && !r.neighbourRelationHolds)
+    why << sep << "not next to the " << placement.neighbour, sep = "; ";
+  for (const auto& c : r.relationChecks)
+    if (!c.holds) why << sep << c.relation << " " << c.landmarks << " does not hold (" << c.detail << ")", sep = "; ";
+  return why.str();
 }
 
 }  // namespace srp::execution

@@ -44,3 +44,40 @@ TEST(PlanConversion, DanglingReferenceIsAClearError) {
   model.targetObjectIds.push_back(99);
   EXPECT_THROW(planFromTaskModel(model), srp::core::InvalidInputError);
 }
+
+#include "srp/language/InstructionParser.h"
+
+namespace {
+std::string show(const ExecutionPlan& p) {
+  std::string s;
+  for (const auto& st : p.steps) {
+    s += st.object.describe() + " ->";
+    for (const auto& r : st.target)
+      s += " [" + r.relation + (r.corner.empty() ? "" : " " + r.corner) + " " + r.landmark.describe() +
+           (r.secondLandmark ? " & " + r.secondLandmark->describe() : "") + "]";
+    s += "; ";
+  }
+  return s;
+}
+}  // namespace
+
+// The language model reads these spatial phrases only in part; planFromLanguage re-reads
+// the relation from the sentence's tokens (the object phrases are left as parsed).
+TEST(PlanConversion, PlacementRelationsOfNewInstructions) {
+  const srp::language::InstructionParser parser;
+  const std::pair<const char*, const char*> cases[] = {
+      {"Put the star to the left of the cuboid.", "star -> [left of cuboid]; "},
+      {"Place the star to the right of the octagon.", "star -> [right of octagon]; "},
+      {"Stack the cuboid on the octagon.", "cuboid -> [on octagon]; "},
+      {"Put the star on top of the cuboid.", "star -> [on top of cuboid]; "},
+      {"Place the star between the cuboid and the octagon.", "star -> [between cuboid & octagon]; "},
+      {"Put the star in front of the octagon.", "star -> [in front of octagon]; "},
+      {"Put the star behind the octagon.", "star -> [behind octagon]; "},
+      {"Put the star right of the cuboid.", "star -> [right of cuboid]; "},
+      {"Put the cuboid in the front left corner of the gray box.", "cuboid -> [corner front left gray box]; "},
+  };
+  for (const auto& [text, expected] : cases) {
+    const ExecutionPlan plan = planFromLanguage(parser.parse(text));
+    EXPECT_EQ(show(plan), expected) << text;
+  }
+}

@@ -123,3 +123,116 @@ TEST(TaskExecutor, TooFastPathIsSlowedDownToTheJointSpeedLimits) {
   EXPECT_EQ(refused.steps[0].status, StepStatus::Refused);
   EXPECT_NE(refused.steps[0].reason.find("above its limit"), std::string::npos) << refused.steps[0].reason;
 }
+
+namespace {
+constexpr double kStackHeightTol_m = 2e-3;  // final bottom vs the lower part's top
+constexpr double kStackLateralTol_m = 5e-3; // no slide-off: centre offset from the lower part's centre
+
+/// The default cell with the parts on the table in front of the boxes.
+Cell tableCell() {
+  Cell c;
+  auto put = [&](const std::string& name, double x, double y) {
+    for (auto& o : c.cell.objects)
+      if (o.name == name) {
+        o.X_world_object = Pose3::Identity();
+        o.X_world_object.translation() = Eigen::Vector3d(x, y, 0.0);
+      }
+  };
+  put("star", -0.12, -0.06);
+  put("octagon", 0.12, -0.06);
+  put("cuboid", 0.0, -0.13);
+  put("parallelogram", -0.26, -0.1);
+  return c;
+}
+
+ExecutionReport runOne(const Cell& c, const ExecutionStep& step, TaskExecutor** keep = nullptr) {
+  static std::unique_ptr<TaskExecutor> last;
+  last = c.executor();
+  ExecutionPlan plan;
+  plan.steps.push_back(step);
+  const ExecutionReport report = last->run(plan);
+  if (keep) *keep = last.get();
+  std::cout << report.toText();
+  return report;
+}
+
+ExecutionStep placeStep(const std::string& object, const std::string& relation, const std::string& landmark,
+                        std::optional<std::string> second = {}) {
+  ExecutionStep s;
+  s.object = {object, {}};
+  SpatialRelation r{relation, {landmark, {}}, {}, ""};
+  if (second) r.secondLandmark = ObjectReference{*second, {}};
+  s.target.push_back(r);
+  return s;
+}
+
+void expectDoneAndHolds(const ExecutionReport& report) {
+  ASSERT_EQ(report.steps.size(), 1u);
+  const StepReport& s = report.steps[0];
+  EXPECT_EQ(s.status, StepStatus::Done) << s.reason;
+  ASSERT_EQ(s.relationChecks.size(), 1u);
+  EXPECT_TRUE(s.relationChecks[0].holds) << s.relationChecks[0].detail;
+  EXPECT_TRUE(s.relationsHold);
+  EXPECT_LT(s.placementError_m, kPlacementTol_m);
+}
+}  // namespace
+
+TEST(TaskExecutor, ViewRelationsHoldAfterTheSimulatedPlacement) {
+  const Cell c = tableCell();
+  for (const auto& [relation, landmark] : std::vector<std::pair<std::string, std::string>>{
+           {"left of", "octagon"}, {"right of", "star"}, {"in front of", "star"}, {"behind", "octagon"}}) {
+    SCOPED_TRACE(relation + " " + landmark);
+    const ExecutionReport report = runOne(c, placeStep("cuboid", relation, landmark));
+    expectDoneAndHolds(report);
+    // The camera view of the default scene: right = world +x, front = world -y.
+    const Eigen::Vector3d p = report.steps[0].X_world_final->translation();
+    const Eigen::Vector3d l = c.cell.find(landmark)->X_world_object.translation();
+    if (relation == "left of") EXPECT_LT(p.x(), l.x() - 0.04);
+    if (relation == "right of") EXPECT_GT(p.x(), l.x() + 0.04);
+    if (relation == "in front of") EXPECT_LT(p.y(), l.y() - 0.03);
+    if (relation == "behind") EXPECT_GT(p.y(), l.y() + 0.03);
+  }
+}
+
+TEST(TaskExecutor, BetweenHoldsAfterTheSimulatedPlacement) {
+  const Cell c = tableCell();
+  const ExecutionReport report = runOne(c, placeStep("cuboid", "between", "star", std::string("octagon")));
+  expectDoneAndHolds(report);
+  EXPECT_NEAR(report.steps[0].X_world_final->translation().x(), 0.0, kPlacementTol_m);
+}
+
+TEST(TaskExecutor, StackedPartStaysOnTheLowerPart) {
+  const Cell c = tableCell();
+  // Smaller on larger, larger on smaller, and a part on a part in a box.
+  for (const auto& [upper, lower] : std::vector<std::pair<std::string, std::string>>{
+           {"octagon", "star"}, {"star", "octagon"}, {"cuboid", "octagon"}}) {
+    SCOPED_TRACE(upper + " on " + lower);
+    TaskExecutor* ex = nullptr;
+    const ExecutionReport report = runOne(c, placeStep(upper, "on top of", lower), &ex);
+    expectDoneAndHolds(report);
+    ex->simulator().settle(1.0);  // no slow slide-off
+    const Pose3 X_up = ex->simulator().X_world_part(upper), X_low = ex->simulator().X_world_part(lower);
+    const double top = X_low.translation().z() + c.cell.find(lower)->size_m.z();
+    EXPECT_NEAR(X_up.translation().z(), top, kStackHeightTol_m);
+    EXPECT_LT((X_up.translation() - X_low.translation()).head<2>().norm(), kStackLateralTol_m);
+    EXPECT_GT(X_up.linear().col(2).z(), std::cos(2.0 * M_PI / 180.0));
+    EXPECT_NEAR(X_low.translation().z(), 0.0, kStackHeightTol_m);
+  }
+}
+
+TEST(TaskExecutor, ImpossiblePlacementIsSkippedAndChangesNothing) {
+  const Cell c = tableCell();
+  TaskExecutor* ex = nullptr;
+  // Star and octagon 24 cm apart, but with the parallelogram in the middle... use a too-narrow gap instead.
+  Cell narrow = c;
+  for (auto& o : narrow.cell.objects)
+    if (o.name == "octagon") o.X_world_object.translation() = Eigen::Vector3d(-0.12 + 0.045 + 0.02, -0.06, 0.0);
+  const Pose3 before = narrow.cell.find("cuboid")->X_world_object;
+  const ExecutionReport report = runOne(narrow, placeStep("cuboid", "between", "star", std::string("octagon")), &ex);
+  ASSERT_EQ(report.steps.size(), 1u);
+  EXPECT_EQ(report.steps[0].status, StepStatus::Skipped);
+  EXPECT_NE(report.steps[0].reason.find("not enough room between the star and the octagon"), std::string::npos)
+      << report.steps[0].reason;
+  EXPECT_LT((ex->simulator().X_world_part("cuboid").translation() - before.translation()).norm(), 1e-3);
+  EXPECT_FALSE(report.allSucceeded());
+}

@@ -49,6 +49,9 @@ struct CellDescription {
   srp::core::Pose3 X_world_base = srp::core::Pose3::Identity();  ///< robot base in the table frame
   Eigen::Vector2d tableHalfExtents_m = Eigen::Vector2d(1.0, 0.8);
   Eigen::Vector2d tableCentre_m = Eigen::Vector2d::Zero();
+  /// The demonstrator's camera (from the scene file), which fixes left/right/front/behind
+  /// (srp/core/ViewFrame.h); nullopt: the robot's view is used.
+  std::optional<srp::core::Pose3> X_world_camera;
   std::vector<CellObject> objects;
 
   /// The object called `name`, nullptr if absent.

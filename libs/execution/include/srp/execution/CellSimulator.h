@@ -10,7 +10,8 @@
 ///   tracks the current JointTrajectory and holds the last position afterwards.
 /// - Parts are free rigid bodies (box-shaped, catalogue size and mass); the table
 ///   top and every container's floor and walls are fixed boxes. Contact is a
-///   penalty model between each part's box corners and every other box (table,
+///   penalty model between each part's contact points (a grid on the bottom face, the
+///   top corners; see SimulationOptions::bottomContactGrid) and every other box (table,
 ///   container floor/walls, other parts): a spring-damper normal force and a
 ///   regularised Coulomb friction force. A released part falls and rests where it lands.
 /// - Grasp is a Simbody Weld constraint between the tool and the part, created at
@@ -39,6 +40,10 @@ struct SimulationOptions {
   double contactFrequency_radps = 600.0;
   double contactDampingRatio = 0.7;
   double frictionCoefficient = 0.6;
+  /// Contact points per side of a part's bottom face (2: the four corners only). With 3,
+  /// the edge midpoints and the centre too, so a part stacked across a narrower part
+  /// (no corner of either inside the other) is held; the points share the weight.
+  int bottomContactGrid = 3;
   double frictionRate_1ps = 300.0;  ///< viscous slope of the regularised friction, per unit corner mass
   double controllerBandwidth_radps = 25.0;  ///< closed-loop natural frequency of every joint
   /// Lock parts that came to rest (checked between trajectories) until they are

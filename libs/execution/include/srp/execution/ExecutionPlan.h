@@ -23,10 +23,15 @@ struct ObjectReference {
   std::string describe() const { return color ? *color + " " + name : name; }
 };
 
-/// A spatial relation: "in" / "into" / "from" / "next to" / "beside" / "adjacent to" / "near" ...
+/// A spatial relation: "in" / "into" / "from" / "next to" / "beside" / "adjacent to" / "near" /
+/// "on top of" / "left of" / "right of" / "in front of" / "behind" / "between" / "corner" ...
 struct SpatialRelation {
   std::string relation;
   ObjectReference landmark;
+  /// "between A and B": B (A is `landmark`); nullopt for every other relation.
+  std::optional<ObjectReference> secondLandmark;
+  /// "in the front left corner of X": "front left" (view words, see srp/core/ViewFrame.h); "" otherwise.
+  std::string corner;
 };
 
 struct ExecutionStep {

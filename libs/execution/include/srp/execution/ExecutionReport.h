@@ -16,6 +16,16 @@ namespace srp::execution {
 enum class StepStatus { Done, Skipped, Refused, Failed };
 std::string toString(StepStatus s);
 
+/// One target relation verified on the scene after the placement.
+struct RelationCheck {
+  std::string relation;   ///< as in the plan ("left of", "between", "on top of")
+  std::string landmarks;  ///< scene names ("star", "star and octagon")
+  bool holds = false;
+  std::string quantity;   ///< what was measured ("gap", "height above support", ...)
+  double value_m = 0.0;   ///< its value
+  std::string detail;     ///< readable summary of the measurement
+};
+
 struct StepReport {
   int index = 0;            ///< 0-based position in the plan
   std::string object;       ///< scene name of the part (or the instruction's name if not found)
@@ -30,6 +40,8 @@ struct StepReport {
   bool insideContainer = false;   ///< final pose inside the target container (when one is named)
   bool neighbourRelationHolds = false;  ///< footprints within the neighbour gap + tolerance
   bool relationsHold = false;     ///< every target relation verified on the final pose
+  /// Each target relation checked on the scene after the placement (PlacementPlanner::check).
+  std::vector<RelationCheck> relationChecks;
   /// Where the Reach and Move paths came from: "dmp" (the task model's learned
   /// skills), "minimum-jerk" (no learned skill for this part), or
   /// "Reach dmp, Move minimum-jerk" when they differ. Empty when not planned.

@@ -14,6 +14,9 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "srp/execution/CartesianPathGenerator.h"
 #include "srp/execution/CellSimulator.h"
@@ -70,7 +73,27 @@ class TaskExecutor {
                                  const srp::core::Pose3& X_world_target);
 
  private:
+  struct Segment;
+  /// One step of fig. 7.11: perceive, find, place, plan, execute, check.
   StepReport runStep(int index, const ExecutionStep& step);
+  /// Why the part is not at the step's source location, nullopt when it is.
+  std::optional<std::string> checkSource(const CellDescription& scene, const CellObject& part,
+                                         const ExecutionStep& step) const;
+  /// Plans the six segments (Reach, approach, lift, Move, lower, retreat) for both
+  /// suction turns and keeps the better; the reason when neither is feasible.
+  std::optional<std::string> planMotion(const CellDescription& scene, const CellObject& part,
+                                        const srp::core::Pose3& X_world_target, std::vector<Segment>& segments) const;
+  std::optional<std::string> planVariant(const CellDescription& scene, const CellObject& part,
+                                         const srp::core::Pose3& X_world_target, double turn_rad,
+                                         std::vector<Segment>& segments) const;
+  /// Tracks the segments on the simulator with grasp and release; the reason of a failed grasp.
+  std::optional<std::string> executeSegments(const std::string& part, const std::vector<Segment>& segments,
+                                             StepReport& r);
+  /// Fills the final pose and relation checks of `r`; "" when the relations hold, else
+  /// which check failed and by how much.
+  std::string checkOutcome(const CellDescription& scene, const CellObject& part, const ExecutionStep& step,
+                    const Placement& placement,
+                    StepReport& r) const;
   RobotModel model_;
   UrInverseKinematics ik_;
   CellDescription scene_;

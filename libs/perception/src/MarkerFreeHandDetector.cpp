@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <tuple>
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
@@ -262,8 +263,6 @@ void MarkerFreeHandDetector::decideBareForearms(const cv::Mat& bgHalf) {
 void MarkerFreeHandDetector::accumulateSkin(const cv::Mat& colour_bgr8, const cv::Mat& foreground, int step) {
   if (skinHistogram_.empty()) {
     skinHistogram_ = cv::Mat(256, 256, CV_32FC1, cv::Scalar(0));
-    skinLumaSum_ = cv::Mat(256, 256, CV_64FC1, cv::Scalar(0));
-    skinLumaSqSum_ = cv::Mat(256, 256, CV_64FC1, cv::Scalar(0));
   }
   cv::Mat ycrcb;
   cv::cvtColor(colour_bgr8, ycrcb, cv::COLOR_BGR2YCrCb);
@@ -276,8 +275,7 @@ void MarkerFreeHandDetector::accumulateSkin(const cv::Mat& colour_bgr8, const cv
           c[u][2] >= o.skinPriorCbMin && c[u][2] <= o.skinPriorCbMax)
       {
         skinHistogram_.at<float>(c[u][1], c[u][2]) += 1.f;
-        skinLumaSum_.at<double>(c[u][1], c[u][2]) += c[u][0];
-        skinLumaSqSum_.at<double>(c[u][1], c[u][2]) += static_cast<double>(c[u][0]) * c[u][0];
+        skinSamples_.push_back(c[u]);
       }
   }
 }
@@ -335,24 +333,45 @@ void MarkerFreeHandDetector::fitSkin() {
     cov = s2 / w2 - mean * mean.transpose() + Eigen::Matrix2d::Identity();
     w = w2;
   }
-  // The luma of the skin's pixels: its mean and spread (a bright toy face or
-  // table of the skin's chroma is far brighter than this person's skin in
-  // this light, or far darker).
+  // The luma of the skin's pixels (those inside the chroma ellipse): the
+  // mode of their luma histogram, then a trimmed mean and spread around it,
+  // so that a bright toy or table of the skin's chroma (a second luma mode)
+  // is not averaged in with this person's skin in this light.
   {
     const Eigen::Matrix2d info = cov.inverse();
-    double n = 0.0, sy = 0.0, syy = 0.0;
-    for (int cr = 0; cr < 256; ++cr)
-      for (int cb = 0; cb < 256; ++cb) {
-        const double c = skinHistogram_.at<float>(cr, cb);
-        if (c <= 0.0) continue;
-        const Eigen::Vector2d d = Eigen::Vector2d(cr, cb) - mean;
-        if (d.dot(info * d) > maxD2) continue;
-        n += c;
-        sy += skinLumaSum_.at<double>(cr, cb);
-        syy += skinLumaSqSum_.at<double>(cr, cb);
-      }
-    skin_.meanLuma = sy / n;
-    skin_.sdLuma = std::sqrt(std::max(0.0, syy / n - skin_.meanLuma * skin_.meanLuma)) + 1.0;
+    std::vector<std::uint8_t> lumas;
+    cv::Mat hist(1, 256, CV_32FC1, cv::Scalar(0));
+    for (const auto& c : skinSamples_) {
+      const Eigen::Vector2d d = Eigen::Vector2d(c[1], c[2]) - mean;
+      if (d.dot(info * d) > maxD2) continue;
+      lumas.push_back(c[0]);
+      hist.at<float>(0, c[0]) += 1.f;
+    }
+    // Mean and spread (+1: the 8-bit quantisation) of the lumas in [lo, hi].
+    auto meanSd = [&](double lo, double hi) {
+      double n = 0.0, sy = 0.0, syy = 0.0;
+      for (const auto y : lumas)
+        if (y >= lo && y <= hi) {
+          n += 1.0;
+          sy += y;
+          syy += static_cast<double>(y) * y;
+        }
+      const double m = n > 0 ? sy / n : 0.0;
+      return std::make_pair(m, n > 0 ? std::sqrt(std::max(0.0, syy / n - m * m)) + 1.0 : 255.0);
+    };
+    auto [meanY, sdY] = meanSd(0.0, 255.0);
+    if (options_.skinLumaFromMode && !lumas.empty()) {
+      cv::Mat smoothY;
+      cv::GaussianBlur(hist, smoothY, {0, 0}, options_.skinLumaBlur, 0.0);
+      cv::Point modeY;
+      cv::minMaxLoc(smoothY, nullptr, nullptr, nullptr, &modeY);
+      std::tie(meanY, sdY) = meanSd(modeY.x - options_.skinLumaModeRadius, modeY.x + options_.skinLumaModeRadius);
+      for (int it = 0; it < options_.skinRefinements; ++it)
+        std::tie(meanY, sdY) =
+            meanSd(meanY - options_.skinMaxMahalanobis * sdY, meanY + options_.skinMaxMahalanobis * sdY);
+    }
+    skin_.meanLuma = meanY;
+    skin_.sdLuma = sdY;
   }
   skin_.samples = static_cast<int>(w);
   skin_.covariance = cov;

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "srp/perception/HandDetector.h"
 
@@ -184,6 +185,18 @@ class MarkerFreeHandDetector : public HandDetector {
     /// Trimmed re-estimates of the skin Gaussian inside its
     /// skinMaxMahalanobis ellipse [iterations].
     int skinRefinements = 3;
+    /// Skin luma from the mode of the luma histogram of the pixels of skin
+    /// chroma (then a trimmed mean and spread around it, within
+    /// skinMaxMahalanobis sd) instead of their plain mean and spread: a
+    /// bright object of skin chroma (a toy's tan belly, a beige table) forms
+    /// a second mode and is left out of this person's skin in this light.
+    bool skinLumaFromMode = true;
+    /// Luma histogram smoothing before its mode is taken: Gaussian sigma
+    /// [8-bit Y units].
+    double skinLumaBlur = 3.0;
+    /// First luma estimate: the pixels within this distance of the mode
+    /// [8-bit Y units].
+    double skinLumaModeRadius = 20.0;
   };
 
   /// What the last detect() found, in pixels (for drawing and tests).
@@ -274,7 +287,7 @@ class MarkerFreeHandDetector : public HandDetector {
   cv::Mat previewColourSum_;
   int previewFrames_ = 0, previewStride_ = 1;
   cv::Mat skinHistogram_;  ///< 256x256 CV_32F over (Cr, Cb)
-  cv::Mat skinLumaSum_, skinLumaSqSum_;  ///< per (Cr, Cb) bin: sum of Y and of Y^2 (CV_64F)
+  std::vector<cv::Vec3b> skinSamples_;  ///< (Y, Cr, Cb) of the preview's foreground pixels inside the prior box
   SkinModel skin_;
   core::CameraIntrinsics previewIntrinsics_;
   bool bareForearms_ = false;  ///< the preview showed a bare forearm: the far end rule in every frame

@@ -526,6 +526,43 @@ cv::Mat MarkerFreeHandDetector::handMask(const rawlog::RgbdFrame& frame, const c
   const cv::Mat skin = !frame.colour_bgr8.empty() ? skinMask(frame.colour_bgr8, bareForearms_)
                                                   : cv::Mat(arm.size(), CV_8UC1, cv::Scalar(255));
   cv::Mat hand = arm & skin;
+  cv::Mat allowed = arm.clone();  // where the hand may lie: the arm, and skin the depth lags behind
+  if (bareForearms_ && options_.maxDepthLag_px > 0) {
+    // Depth lagging colour (a fast arm): skin within maxDepthLag_px of the
+    // arm, whose colour changed strongly from the background's, counts when
+    // it is connected to skin the depth puts on the arm (a dark hand over the
+    // bright wall changes by far more than a shadow moving on the wall).
+    cv::Mat distance_px;  // from the arm (a distance transform: a 61 px dilation costs ~8 ms)
+    cv::distanceTransform(~arm, distance_px, cv::DIST_L2, cv::DIST_MASK_5);
+    cv::Mat near = (distance_px <= options_.maxDepthLag_px) & skin;
+    if (!backgroundColour_.empty())
+      for (int v = 0; v < arm.rows; ++v) {
+        uchar* n = near.ptr<uchar>(v);
+        const uchar* a = arm.ptr<uchar>(v);
+        const cv::Vec3b* c = frame.colour_bgr8.ptr<cv::Vec3b>(v);
+        const cv::Vec3b* b = backgroundColour_.ptr<cv::Vec3b>(v);
+        for (int u = 0; u < arm.cols; ++u)
+          if (n[u] && !a[u] &&
+              std::abs(c[u][0] - b[u][0]) + std::abs(c[u][1] - b[u][1]) + std::abs(c[u][2] - b[u][2]) <=
+                  options_.minLagColourChange)
+            n[u] = 0;
+      }
+    cv::Mat cl;
+    const int nc = cv::connectedComponents(near, cl, 8, CV_32S);
+    std::vector<int> onArm(nc, 0);
+    for (int v = 0; v < arm.rows; ++v) {
+      const int* l = cl.ptr<int>(v);
+      const uchar* h = hand.ptr<uchar>(v);
+      for (int u = 0; u < arm.cols; ++u)
+        if (h[u]) ++onArm[l[u]];
+    }
+    for (int v = 0; v < arm.rows; ++v) {
+      const int* l = cl.ptr<int>(v);
+      uchar* h = hand.ptr<uchar>(v);
+      for (int u = 0; u < arm.cols; ++u)
+        if (l[u] > 0 && onArm[l[u]] >= options_.minHandPixels) h[u] = allowed.at<uchar>(v, u) = 255;
+    }
+  }
   cv::morphologyEx(hand, hand, cv::MORPH_OPEN, disc(options_.openDiameter_px));
   if (cv::countNonZero(hand) < options_.minHandPixels) return cv::Mat();
   // Fill holes (a held object, a badge on the glove): the palm disc's depth
@@ -533,7 +570,7 @@ cv::Mat MarkerFreeHandDetector::handMask(const rawlog::RgbdFrame& frame, const c
   std::vector<std::vector<cv::Point>> contours;
   cv::findContours(hand.clone(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
   cv::drawContours(hand, contours, -1, cv::Scalar(255), cv::FILLED);
-  hand &= arm;
+  hand &= allowed;
   return hand;
 }
 

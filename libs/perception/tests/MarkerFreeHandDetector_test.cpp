@@ -265,17 +265,15 @@ void checkRealTask(const std::string& task, double rate, double maxError_px) {
 // length of the label (~90 px at 1.1 m), short of the body.
 TEST(MarkerFreeHandDetector, RealDemonstratorHrt1Task2) { checkRealTask("task2", 0.90, 80.0); }
 
-// task3 (frames 9-35 developed on since session 6, frames 0-8 our held-out
-// block): the acceptance is NOT reached (28/36 = 77.8 %, see the perception
-// README: while only the arm is in view its forearm and hand are in shadow
-// (frames 1, 4, 5: no hand), a patch at the right border at shoulder height
-// is taken (frames 2-3), and while the toy is lifted the depth lags the colour
-// so the dark hand is not in the depth foreground (frames 18, 19, 21)). This
-// guards the reached level against regressions; raise it to 0.90 / 80 px
-// when those classes of problem are fixed.
+// task3 (frames 9-35 developed on since session 6: 27/27; frames 0-8 our
+// held-out block: 3/9): the acceptance is NOT reached (30/36 = 83.3 %, see
+// the perception README: in the held-out frames only the shadowed arm is in
+// view; frames 1, 4, 5 report no hand, frames 0, 2, 3 a palm near the right
+// border at shoulder height, ~150 px off). This guards the reached level
+// against regressions; raise it to 0.90 / 80 px when that class is fixed.
 TEST(MarkerFreeHandDetector, RealDemonstratorHrt1Task3) {
-  constexpr double kReachedRate = 0.77;   // regression guard (28 of 36 frames), not the acceptance
-  constexpr double kNoBound_px = 1e9;     // palms at the shoulder occur (frames 2, 3)
+  constexpr double kReachedRate = 0.83;   // regression guard (30 of 36 frames), not the acceptance
+  constexpr double kNoBound_px = 1e9;     // palms at the shoulder occur (frames 0, 2, 3)
   checkRealTask("task3", kReachedRate, kNoBound_px);
 }
 

@@ -197,6 +197,17 @@ class MarkerFreeHandDetector : public HandDetector {
     /// First luma estimate: the pixels within this distance of the mode
     /// [8-bit Y units].
     double skinLumaModeRadius = 20.0;
+    /// A recording with bare forearms, depth lagging colour (a real camera's
+    /// streams on a fast arm): how far the colour may lead the depth image
+    /// [px] (an arm moving 0.5 m/s, one 10 Hz frame, at 1 m: ~25 px). Skin
+    /// within this distance of the arm, off the arm, whose colour changed
+    /// from the background colour by more than minLagColourChange, and
+    /// connected to skin on the arm, is hand. 0: off.
+    int maxDepthLag_px = 30;
+    /// That colour change: sum of |BGR| changes [8-bit units] (a dark hand
+    /// over a bright wall: 150-300; a shadow moving on the wall beside the
+    /// demonstrator: below ~90).
+    int minLagColourChange = 100;
   };
 
   /// What the last detect() found, in pixels (for drawing and tests).

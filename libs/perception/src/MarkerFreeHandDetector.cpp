@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <tuple>
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
@@ -31,7 +32,54 @@ cv::Mat medianDepth(const std::vector<cv::Mat>& images) {
   return out;
 }
 
-bool onBorder(const cv::Mat& m, int u, int v) { return u <= 1 || v <= 1 || u >= m.cols - 2 || v >= m.rows - 2; }
+/// Within `margin` pixels of the image edge.
+bool onBorder(const cv::Mat& m, int u, int v, int margin) {
+  return u < margin || v < margin || u >= m.cols - margin || v >= m.rows - margin;
+}
+
+/// Does component `l`'s bounding box (connectedComponentsWithStats) reach within `margin` pixels of the edge?
+bool touchesBorder(const cv::Mat& stats, int l, cv::Size size, int margin) {
+  const int x = stats.at<int>(l, cv::CC_STAT_LEFT), y = stats.at<int>(l, cv::CC_STAT_TOP);
+  const int w = stats.at<int>(l, cv::CC_STAT_WIDTH), h = stats.at<int>(l, cv::CC_STAT_HEIGHT);
+  return x < margin || y < margin || x + w > size.width - margin || y + h > size.height - margin;
+}
+
+/// A disc-shaped structuring element of this diameter [px].
+cv::Mat disc(int diameter_px) { return cv::getStructuringElement(cv::MORPH_ELLIPSE, {diameter_px, diameter_px}); }
+
+/// Principal direction of a blob, oriented from `entry` inwards; its pixel
+/// mean; and whether it is elongated (else the direction means little).
+struct Axis {
+  Eigen::Vector2d dir, mean;
+  bool elongated;
+};
+
+/// Principal axis of the pixels of `a` or `b` (`b` may be empty), sampled
+/// every `stride` rows and columns; nullopt below 3 samples.
+std::optional<Axis> principalAxis(const cv::Mat& a, const cv::Mat& b, const Eigen::Vector2d& entry, int stride,
+                                  double minElongation) {
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+  int count = 0;
+  for (int v = 0; v < a.rows; v += stride) {
+    const uchar* ap = a.ptr<uchar>(v);
+    const uchar* bp = b.empty() ? nullptr : b.ptr<uchar>(v);
+    for (int u = 0; u < a.cols; u += stride) {
+      if (!ap[u] && !(bp && bp[u])) continue;
+      const Eigen::Vector2d p(u, v);
+      mean += p;
+      scatter += p * p.transpose();
+      ++count;
+    }
+  }
+  if (count < 3) return std::nullopt;
+  mean /= count;
+  scatter = scatter / count - mean * mean.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(scatter);
+  Axis out{eig.eigenvectors().col(1).normalized(), mean, eig.eigenvalues()(1) > minElongation * eig.eigenvalues()(0)};
+  if (out.dir.dot(mean - entry) < 0) out.dir = -out.dir;
+  return out;
+}
 
 /// Median of the valid depths of `mask` pixels within `radius_px` of `centre`; nullopt when fewer than `minCount`.
 std::optional<double> medianDepthInDisc(const cv::Mat& depth_m, const cv::Mat& mask, const Eigen::Vector2d& centre,
@@ -105,6 +153,31 @@ void MarkerFreeHandDetector::preview(const rawlog::RgbdFrame& frame) {
 }
 
 void MarkerFreeHandDetector::finishPreview() {
+  const cv::Mat background_mm = backgroundFromPreview();
+  // Skin from every sample's foreground (half size: plenty of pixels).
+  if (options_.useSkin) {
+    cv::Mat bgHalf;
+    cv::resize(background_mm, bgHalf, {}, 0.5, 0.5, cv::INTER_NEAREST);
+    const cv::Mat open = disc(options_.previewOpenDiameter_px);
+    for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
+      if (previewColour_[i].empty()) continue;
+      cv::Mat z;
+      cv::resize(previewDepth_mm_[i], z, {}, 0.5, 0.5, cv::INTER_NEAREST);
+      z.convertTo(z, CV_32FC1);
+      const cv::Mat fg = (z > 0) & (bgHalf - z > 1e3 * options_.minForeground_m);
+      cv::Mat fgOpen;
+      cv::morphologyEx(fg, fgOpen, cv::MORPH_OPEN, open);
+      accumulateSkin(previewColour_[i], fgOpen, 1);
+    }
+    fitSkin();
+    if (skin_.learnt) decideBareForearms(bgHalf);
+  }
+  previewDepth_mm_.clear();
+  previewColour_.clear();
+  previewColourSum_.release();
+}
+
+cv::Mat MarkerFreeHandDetector::backgroundFromPreview() {
   const cv::Size size = previewDepth_mm_[0].size();
   cv::Mat background_mm(size, CV_32FC1, cv::Scalar(0));
   std::vector<std::uint16_t> vals;
@@ -122,92 +195,74 @@ void MarkerFreeHandDetector::finishPreview() {
   background_mm.convertTo(backgroundDepth_m_, CV_32FC1, 1e-3);
   if (!previewColourSum_.empty())
     previewColourSum_.convertTo(backgroundColour_, CV_8UC3, 1.0 / static_cast<double>(previewFrames_));
-  // Skin from every sample's foreground (half size: plenty of pixels).
-  if (options_.useSkin) {
-    cv::Mat bgHalf;
-    cv::resize(background_mm, bgHalf, {}, 0.5, 0.5, cv::INTER_NEAREST);
-    const cv::Mat disc3 = cv::getStructuringElement(cv::MORPH_ELLIPSE, {3, 3});
-    for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
-      if (previewColour_[i].empty()) continue;
-      cv::Mat z;
-      cv::resize(previewDepth_mm_[i], z, {}, 0.5, 0.5, cv::INTER_NEAREST);
-      z.convertTo(z, CV_32FC1);
-      const cv::Mat fg = (z > 0) & (bgHalf - z > 1e3 * options_.minForeground_m);
-      cv::Mat fgOpen;
-      cv::morphologyEx(fg, fgOpen, cv::MORPH_OPEN, disc3);
-      accumulateSkin(previewColour_[i], fgOpen, 1);
-    }
-    fitSkin();
-    if (skin_.learnt) {
-      // Does this demonstrator show a bare forearm? The largest skin-coloured
-      // foreground component of each sample, longer than a hand in 3D.
-      core::CameraIntrinsics k = previewIntrinsics_;
-      k.fx_px /= 2;
-      k.fy_px /= 2;
-      k.cx_px /= 2;
-      k.cy_px /= 2;
-      int withSkin = 0, bare = 0;
-      for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
-        if (previewColour_[i].empty()) continue;
-        cv::Mat z_m;
-        cv::resize(previewDepth_mm_[i], z_m, {}, 0.5, 0.5, cv::INTER_NEAREST);
-        z_m.convertTo(z_m, CV_32FC1, 1e-3);
-        cv::Mat m = (z_m > 0) & (bgHalf - 1e3f * z_m > 1e3 * options_.minForeground_m) & skinMask(previewColour_[i], true);
-        cv::morphologyEx(m, m, cv::MORPH_OPEN, disc3);
-        cv::Mat cl, cs, cc;
-        const int nc = cv::connectedComponentsWithStats(m, cl, cs, cc, 8, CV_32S);
-        int best = -1, area = options_.minPixels / 8;  // a quarter of the pixels at half size, halved
-        for (int l = 1; l < nc; ++l)
-          if (cs.at<int>(l, cv::CC_STAT_AREA) > area) {
-            best = l;
-            area = cs.at<int>(l, cv::CC_STAT_AREA);
-          }
-        if (best < 0) continue;
-        ++withSkin;
-        const cv::Mat comp = cl == best;
-        std::vector<Eigen::Vector2d> pts;
-        Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-        for (int v = 0; v < comp.rows; ++v)
-          for (int u = 0; u < comp.cols; ++u)
-            if (comp.at<uchar>(v, u)) {
-              pts.emplace_back(u, v);
-              mean += pts.back();
-            }
-        mean /= static_cast<double>(pts.size());
-        Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-        for (const auto& p : pts) scatter += (p - mean) * (p - mean).transpose();
-        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(scatter);
-        const Eigen::Vector2d axis = eig.eigenvectors().col(1).normalized();
-        double sMin = 1e9, sMax = -1e9;
-        for (const auto& p : pts) {
-          sMin = std::min(sMin, (p - mean).dot(axis));
-          sMax = std::max(sMax, (p - mean).dot(axis));
-        }
-        const double zMean = medianDepthInDisc(z_m, comp, mean, 1e4, 5).value_or(0.0);
-        if (zMean <= 0.0) continue;
-        auto endPoint = [&](double sEnd) {
-          const Eigen::Vector2d e = mean + sEnd * axis;
-          const double z =
-              medianDepthInDisc(z_m, comp, e, options_.palmRadius_m * k.fx_px / zMean, 3).value_or(zMean);
-          return Eigen::Vector3d((e.x() - k.cx_px) * z / k.fx_px, (e.y() - k.cy_px) * z / k.fy_px, z);
-        };
-        if ((endPoint(sMax) - endPoint(sMin)).norm() > options_.maxHandLength_m) ++bare;
+  return background_mm;
+}
+
+void MarkerFreeHandDetector::decideBareForearms(const cv::Mat& bgHalf) {
+  // Does this demonstrator show a bare forearm? The largest skin-coloured
+  // foreground component of each sample, longer than a hand in 3D.
+  core::CameraIntrinsics k = previewIntrinsics_;
+  k.fx_px /= 2;
+  k.fy_px /= 2;
+  k.cx_px /= 2;
+  k.cy_px /= 2;
+  const cv::Mat open = disc(options_.previewOpenDiameter_px);
+  int withSkin = 0, bare = 0;
+  for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
+    if (previewColour_[i].empty()) continue;
+    cv::Mat z_m;
+    cv::resize(previewDepth_mm_[i], z_m, {}, 0.5, 0.5, cv::INTER_NEAREST);
+    z_m.convertTo(z_m, CV_32FC1, 1e-3);
+    cv::Mat m = (z_m > 0) & (bgHalf - 1e3f * z_m > 1e3 * options_.minForeground_m) & skinMask(previewColour_[i], true);
+    cv::morphologyEx(m, m, cv::MORPH_OPEN, open);
+    cv::Mat cl, cs, cc;
+    const int nc = cv::connectedComponentsWithStats(m, cl, cs, cc, 8, CV_32S);
+    int best = -1, area = options_.minPreviewSkinPixels;
+    for (int l = 1; l < nc; ++l)
+      if (cs.at<int>(l, cv::CC_STAT_AREA) > area) {
+        best = l;
+        area = cs.at<int>(l, cv::CC_STAT_AREA);
       }
-      bareForearms_ = withSkin > 0 && bare >= options_.bareForearmFraction * withSkin;
-      if (std::getenv("SRP_HAND_TRACE"))
-        std::fprintf(stderr, "bare forearm in %d of %d samples: %s\n", bare, withSkin, bareForearms_ ? "yes" : "no");
+    if (best < 0) continue;
+    ++withSkin;
+    const cv::Mat comp = cl == best;
+    std::vector<Eigen::Vector2d> pts;
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    for (int v = 0; v < comp.rows; ++v)
+      for (int u = 0; u < comp.cols; ++u)
+        if (comp.at<uchar>(v, u)) {
+          pts.emplace_back(u, v);
+          mean += pts.back();
+        }
+    mean /= static_cast<double>(pts.size());
+    Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+    for (const auto& p : pts) scatter += (p - mean) * (p - mean).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(scatter);
+    const Eigen::Vector2d axis = eig.eigenvectors().col(1).normalized();
+    double sMin = 1e9, sMax = -1e9;
+    for (const auto& p : pts) {
+      sMin = std::min(sMin, (p - mean).dot(axis));
+      sMax = std::max(sMax, (p - mean).dot(axis));
     }
+    const double zMean = medianDepthInDisc(z_m, comp, mean, 1e4, options_.minDepthSamples).value_or(0.0);
+    if (zMean <= 0.0) continue;
+    auto endPoint = [&](double sEnd) {
+      const Eigen::Vector2d e = mean + sEnd * axis;
+      const double z = medianDepthInDisc(z_m, comp, e, options_.palmRadius_m * k.fx_px / zMean,
+                                         options_.minPreviewDepthSamples)
+                           .value_or(zMean);
+      return Eigen::Vector3d((e.x() - k.cx_px) * z / k.fx_px, (e.y() - k.cy_px) * z / k.fy_px, z);
+    };
+    if ((endPoint(sMax) - endPoint(sMin)).norm() > options_.maxHandLength_m) ++bare;
   }
-  previewDepth_mm_.clear();
-  previewColour_.clear();
-  previewColourSum_.release();
+  bareForearms_ = withSkin > 0 && bare >= options_.bareForearmFraction * withSkin;
+  if (std::getenv("SRP_HAND_TRACE"))
+    std::fprintf(stderr, "bare forearm in %d of %d samples: %s\n", bare, withSkin, bareForearms_ ? "yes" : "no");
 }
 
 void MarkerFreeHandDetector::accumulateSkin(const cv::Mat& colour_bgr8, const cv::Mat& foreground, int step) {
   if (skinHistogram_.empty()) {
     skinHistogram_ = cv::Mat(256, 256, CV_32FC1, cv::Scalar(0));
-    skinLumaSum_ = cv::Mat(256, 256, CV_64FC1, cv::Scalar(0));
-    skinLumaSqSum_ = cv::Mat(256, 256, CV_64FC1, cv::Scalar(0));
   }
   cv::Mat ycrcb;
   cv::cvtColor(colour_bgr8, ycrcb, cv::COLOR_BGR2YCrCb);
@@ -220,18 +275,17 @@ void MarkerFreeHandDetector::accumulateSkin(const cv::Mat& colour_bgr8, const cv
           c[u][2] >= o.skinPriorCbMin && c[u][2] <= o.skinPriorCbMax)
       {
         skinHistogram_.at<float>(c[u][1], c[u][2]) += 1.f;
-        skinLumaSum_.at<double>(c[u][1], c[u][2]) += c[u][0];
-        skinLumaSqSum_.at<double>(c[u][1], c[u][2]) += static_cast<double>(c[u][0]) * c[u][0];
+        skinSamples_.push_back(c[u]);
       }
   }
 }
 
 void MarkerFreeHandDetector::fitSkin() {
   if (skinHistogram_.empty()) return;
-  // The mode of the smoothed histogram (sigma 2 units: JPEG chroma noise),
+  // The mode of the smoothed histogram (JPEG chroma noise),
   // then mean and covariance of the counts within skinModeRadius of it.
   cv::Mat smooth;
-  cv::GaussianBlur(skinHistogram_, smooth, {0, 0}, 2.0);
+  cv::GaussianBlur(skinHistogram_, smooth, {0, 0}, options_.skinHistogramBlur);
   cv::Point mode;
   cv::minMaxLoc(smooth, nullptr, nullptr, nullptr, &mode);
   const double r = options_.skinModeRadius;
@@ -258,9 +312,8 @@ void MarkerFreeHandDetector::fitSkin() {
   // the chroma along the skin line); re-estimate from the counts inside the
   // skinMaxMahalanobis ellipse of the current fit, a few times (a trimmed
   // estimate: stable for a Gaussian, it grows to the skin's real extent).
-  constexpr int kRefinements = 3;
   const double maxD2 = options_.skinMaxMahalanobis * options_.skinMaxMahalanobis;
-  for (int it = 0; it < kRefinements; ++it) {
+  for (int it = 0; it < options_.skinRefinements; ++it) {
     const Eigen::Matrix2d info = cov.inverse();
     double w2 = 0.0;
     Eigen::Vector2d m2 = Eigen::Vector2d::Zero();
@@ -280,24 +333,45 @@ void MarkerFreeHandDetector::fitSkin() {
     cov = s2 / w2 - mean * mean.transpose() + Eigen::Matrix2d::Identity();
     w = w2;
   }
-  // The luma of the skin's pixels: its mean and spread (a bright toy face or
-  // table of the skin's chroma is far brighter than this person's skin in
-  // this light, or far darker).
+  // The luma of the skin's pixels (those inside the chroma ellipse): the
+  // mode of their luma histogram, then a trimmed mean and spread around it,
+  // so that a bright toy or table of the skin's chroma (a second luma mode)
+  // is not averaged in with this person's skin in this light.
   {
     const Eigen::Matrix2d info = cov.inverse();
-    double n = 0.0, sy = 0.0, syy = 0.0;
-    for (int cr = 0; cr < 256; ++cr)
-      for (int cb = 0; cb < 256; ++cb) {
-        const double c = skinHistogram_.at<float>(cr, cb);
-        if (c <= 0.0) continue;
-        const Eigen::Vector2d d = Eigen::Vector2d(cr, cb) - mean;
-        if (d.dot(info * d) > maxD2) continue;
-        n += c;
-        sy += skinLumaSum_.at<double>(cr, cb);
-        syy += skinLumaSqSum_.at<double>(cr, cb);
-      }
-    skin_.meanLuma = sy / n;
-    skin_.sdLuma = std::sqrt(std::max(0.0, syy / n - skin_.meanLuma * skin_.meanLuma)) + 1.0;
+    std::vector<std::uint8_t> lumas;
+    cv::Mat hist(1, 256, CV_32FC1, cv::Scalar(0));
+    for (const auto& c : skinSamples_) {
+      const Eigen::Vector2d d = Eigen::Vector2d(c[1], c[2]) - mean;
+      if (d.dot(info * d) > maxD2) continue;
+      lumas.push_back(c[0]);
+      hist.at<float>(0, c[0]) += 1.f;
+    }
+    // Mean and spread (+1: the 8-bit quantisation) of the lumas in [lo, hi].
+    auto meanSd = [&](double lo, double hi) {
+      double n = 0.0, sy = 0.0, syy = 0.0;
+      for (const auto y : lumas)
+        if (y >= lo && y <= hi) {
+          n += 1.0;
+          sy += y;
+          syy += static_cast<double>(y) * y;
+        }
+      const double m = n > 0 ? sy / n : 0.0;
+      return std::make_pair(m, n > 0 ? std::sqrt(std::max(0.0, syy / n - m * m)) + 1.0 : 255.0);
+    };
+    auto [meanY, sdY] = meanSd(0.0, 255.0);
+    if (options_.skinLumaFromMode && !lumas.empty()) {
+      cv::Mat smoothY;
+      cv::GaussianBlur(hist, smoothY, {0, 0}, options_.skinLumaBlur, 0.0);
+      cv::Point modeY;
+      cv::minMaxLoc(smoothY, nullptr, nullptr, nullptr, &modeY);
+      std::tie(meanY, sdY) = meanSd(modeY.x - options_.skinLumaModeRadius, modeY.x + options_.skinLumaModeRadius);
+      for (int it = 0; it < options_.skinRefinements; ++it)
+        std::tie(meanY, sdY) =
+            meanSd(meanY - options_.skinMaxMahalanobis * sdY, meanY + options_.skinMaxMahalanobis * sdY);
+    }
+    skin_.meanLuma = meanY;
+    skin_.sdLuma = sdY;
   }
   skin_.samples = static_cast<int>(w);
   skin_.covariance = cov;
@@ -361,11 +435,72 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
     colourHistory_.clear();
     return std::nullopt;  // background frames show no hand by assumption
   }
-  const cv::Mat& depth = frame.depth_m;
-  const auto& k = frame.intrinsics;
-  const bool hasColour = !frame.colour_bgr8.empty();
+
+  // ---- the arm: the largest foreground component, preferring one at the border
+  const cv::Mat mask = foregroundMask(frame);
+  cv::Mat labels, stats, centroids;
+  const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+  int bestLabel = -1, bestArea = 0;
+  bool bestTouches = false;
+  for (int l = 1; l < n; ++l) {
+    const int area = stats.at<int>(l, cv::CC_STAT_AREA);
+    if (area < options_.minPixels) continue;
+    const bool touches = touchesBorder(stats, l, mask.size(), options_.borderMargin_px);
+    // Prefer components the arm connects to the border; then size.
+    if ((touches && !bestTouches) || (touches == bestTouches && area > bestArea)) {
+      bestLabel = l;
+      bestArea = area;
+      bestTouches = touches;
+    }
+  }
+  if (bestLabel < 0) return std::nullopt;
+  const cv::Mat arm = (labels == bestLabel);
+
+  // ---- the hand: the arm's skin part
+  HandBlob hand;
+  hand.mask = handMask(frame, arm);
+  if (hand.mask.empty()) return std::nullopt;
+  lastMask_ = hand.mask;
+
+  // Entry point: mean of the arm's border pixels (none: the arm's centroid).
+  Eigen::Vector2d entry = Eigen::Vector2d::Zero();
+  int nBorder = 0;
+  for (int v = 0; v < arm.rows; ++v) {
+    const uchar* a = arm.ptr<uchar>(v);
+    for (int u = 0; u < arm.cols; ++u)
+      if (a[u] && onBorder(arm, u, v, options_.borderMargin_px)) {
+        entry += Eigen::Vector2d(u, v);
+        ++nBorder;
+      }
+  }
+  if (nBorder > 0) entry /= nBorder;
+  else entry = {centroids.at<double>(bestLabel, 0), centroids.at<double>(bestLabel, 1)};
+  geometry_.entry_px = entry;
+
+  const cv::Mat sleeve = sleeveMask(arm, hand.mask);
+  const auto handAxis = principalAxis(hand.mask, cv::Mat(), entry, options_.axisStride_px, options_.minElongation);
+  if (!handAxis) return std::nullopt;
+  const Eigen::Vector2d handMean = handAxis->mean;
+  // Depth of the hand (median of its valid pixels) for the pixel scale.
+  std::optional<double> z_hand = medianDepthInDisc(frame.depth_m, hand.mask, handMean, 1e4, options_.minDepthSamples);
+  if (!z_hand && lastDepth_m_ > 0.0) z_hand = lastDepth_m_;
+  if (!z_hand) return std::nullopt;  // no scale yet: the first frames of the hand are all depth holes
+  hand.z_m = *z_hand;
+  hand.pxPerM = frame.intrinsics.fx_px / hand.z_m;
+
+  // ---- the palm's anchor: far end of a bare forearm, else the cuff, else the fingertips
+  std::optional<Anchor> anchor = bareForearmAnchor(frame, entry, hand);
+  if (!anchor) anchor = cuffAnchor(hand.mask, sleeve, entry);
+  if (!anchor) anchor = fingertipAnchor(hand.mask, entry, handMean, handAxis->dir, handAxis->elongated);
+  geometry_.axis = anchor->dir;
+  return placePalm(frame, *anchor, hand, handMean, bestArea);
+}
+
+cv::Mat MarkerFreeHandDetector::foregroundMask(const rawlog::RgbdFrame& frame) const {
   // Foreground by depth (the whole arm, sleeve included, reaches the border);
   // the hand is its skin-coloured part.
+  const cv::Mat& depth = frame.depth_m;
+  const bool hasColour = !frame.colour_bgr8.empty();
   cv::Mat mask(depth.size(), CV_8UC1, cv::Scalar(0));
   for (int v = 0; v < depth.rows; ++v) {
     const float* z = depth.ptr<float>(v);
@@ -381,268 +516,260 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
       }
     }
   }
-  const cv::Mat disc5 = cv::getStructuringElement(cv::MORPH_ELLIPSE, {5, 5});
-  cv::morphologyEx(mask, mask, cv::MORPH_OPEN, disc5);
-  cv::Mat labels, stats, centroids;
-  const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
-  int bestLabel = -1, bestArea = 0;
-  bool bestTouches = false;
-  auto touchesBorder = [&](const cv::Mat& s, int l) {
-    const int x = s.at<int>(l, cv::CC_STAT_LEFT), y = s.at<int>(l, cv::CC_STAT_TOP);
-    const int w = s.at<int>(l, cv::CC_STAT_WIDTH), hgt = s.at<int>(l, cv::CC_STAT_HEIGHT);
-    return x <= 1 || y <= 1 || x + w >= mask.cols - 1 || y + hgt >= mask.rows - 1;
-  };
-  for (int l = 1; l < n; ++l) {
-    const int area = stats.at<int>(l, cv::CC_STAT_AREA);
-    if (area < options_.minPixels) continue;
-    const bool touches = touchesBorder(stats, l);
-    // Prefer components the arm connects to the border; then size.
-    if ((touches && !bestTouches) || (touches == bestTouches && area > bestArea)) {
-      bestLabel = l;
-      bestArea = area;
-      bestTouches = touches;
-    }
-  }
-  if (bestLabel < 0) return std::nullopt;
-  const cv::Mat arm = (labels == bestLabel);
+  cv::morphologyEx(mask, mask, cv::MORPH_OPEN, disc(options_.openDiameter_px));
+  return mask;
+}
+
+cv::Mat MarkerFreeHandDetector::handMask(const rawlog::RgbdFrame& frame, const cv::Mat& arm) const {
   // The recording's skin model for a bare forearm; the prior box for a glove
   // and sleeve (the cuff rule's lengths were measured with it).
-  const cv::Mat skin =
-      hasColour ? skinMask(frame.colour_bgr8, bareForearms_) : cv::Mat(depth.size(), CV_8UC1, cv::Scalar(255));
+  const cv::Mat skin = !frame.colour_bgr8.empty() ? skinMask(frame.colour_bgr8, bareForearms_)
+                                                  : cv::Mat(arm.size(), CV_8UC1, cv::Scalar(255));
   cv::Mat hand = arm & skin;
-  cv::morphologyEx(hand, hand, cv::MORPH_OPEN, disc5);
-  if (cv::countNonZero(hand) < options_.minPixels / 2) return std::nullopt;
-  {
-    // Fill holes (a held object, a badge on the glove): the palm disc's depth
-    // and the sleeve (the arm's non-skin part) must not include them.
-    std::vector<std::vector<cv::Point>> contours;
-    cv::findContours(hand.clone(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
-    cv::drawContours(hand, contours, -1, cv::Scalar(255), cv::FILLED);
-    hand &= arm;
-  }
-  lastMask_ = hand;
-
-  // Entry point: mean of the arm's border pixels (none: the arm's centroid).
-  Eigen::Vector2d entry = Eigen::Vector2d::Zero();
-  int nBorder = 0;
-  for (int v = 0; v < arm.rows; ++v) {
-    const uchar* a = arm.ptr<uchar>(v);
-    for (int u = 0; u < arm.cols; ++u)
-      if (a[u] && onBorder(arm, u, v)) {
-        entry += Eigen::Vector2d(u, v);
-        ++nBorder;
+  cv::Mat allowed = arm.clone();  // where the hand may lie: the arm, and skin the depth lags behind
+  if (bareForearms_ && options_.maxDepthLag_px > 0) {
+    // Depth lagging colour (a fast arm): skin within maxDepthLag_px of the
+    // arm, whose colour changed strongly from the background's, counts when
+    // it is connected to skin the depth puts on the arm (a dark hand over the
+    // bright wall changes by far more than a shadow moving on the wall).
+    cv::Mat distance_px;  // from the arm (a distance transform: a 61 px dilation costs ~8 ms)
+    cv::distanceTransform(~arm, distance_px, cv::DIST_L2, cv::DIST_MASK_5);
+    cv::Mat near = (distance_px <= options_.maxDepthLag_px) & skin;
+    if (!backgroundColour_.empty())
+      for (int v = 0; v < arm.rows; ++v) {
+        uchar* n = near.ptr<uchar>(v);
+        const uchar* a = arm.ptr<uchar>(v);
+        const cv::Vec3b* c = frame.colour_bgr8.ptr<cv::Vec3b>(v);
+        const cv::Vec3b* b = backgroundColour_.ptr<cv::Vec3b>(v);
+        for (int u = 0; u < arm.cols; ++u)
+          if (n[u] && !a[u] &&
+              std::abs(c[u][0] - b[u][0]) + std::abs(c[u][1] - b[u][1]) + std::abs(c[u][2] - b[u][2]) <=
+                  options_.minLagColourChange)
+            n[u] = 0;
       }
+    cv::Mat cl;
+    const int nc = cv::connectedComponents(near, cl, 8, CV_32S);
+    std::vector<int> onArm(nc, 0);
+    for (int v = 0; v < arm.rows; ++v) {
+      const int* l = cl.ptr<int>(v);
+      const uchar* h = hand.ptr<uchar>(v);
+      for (int u = 0; u < arm.cols; ++u)
+        if (h[u]) ++onArm[l[u]];
+    }
+    for (int v = 0; v < arm.rows; ++v) {
+      const int* l = cl.ptr<int>(v);
+      uchar* h = hand.ptr<uchar>(v);
+      for (int u = 0; u < arm.cols; ++u)
+        if (l[u] > 0 && onArm[l[u]] >= options_.minHandPixels) h[u] = allowed.at<uchar>(v, u) = 255;
+    }
   }
-  if (nBorder > 0) entry /= nBorder;
-  else entry = {centroids.at<double>(bestLabel, 0), centroids.at<double>(bestLabel, 1)};
-  geometry_.entry_px = entry;
+  cv::morphologyEx(hand, hand, cv::MORPH_OPEN, disc(options_.openDiameter_px));
+  if (cv::countNonZero(hand) < options_.minHandPixels) return cv::Mat();
+  // Fill holes (a held object, a badge on the glove): the palm disc's depth
+  // and the sleeve (the arm's non-skin part) must not include them.
+  std::vector<std::vector<cv::Point>> contours;
+  cv::findContours(hand.clone(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
+  cv::drawContours(hand, contours, -1, cv::Scalar(255), cv::FILLED);
+  hand &= allowed;
+  return hand;
+}
 
+cv::Mat MarkerFreeHandDetector::sleeveMask(const cv::Mat& arm, const cv::Mat& hand) const {
   // The sleeve: the non-skin part of the arm that reaches the border (a
   // carried object under the hand does not).
-  cv::Mat sleeve;
-  {
-    const cv::Mat rest = arm & ~hand;
-    cv::Mat sl, ss, sc;
-    const int ns = cv::connectedComponentsWithStats(rest, sl, ss, sc, 8, CV_32S);
-    int best = -1, area = options_.minPixels / 2;
-    for (int l = 1; l < ns; ++l)
-      if (ss.at<int>(l, cv::CC_STAT_AREA) > area && touchesBorder(ss, l)) {
-        best = l;
-        area = ss.at<int>(l, cv::CC_STAT_AREA);
-      }
-    sleeve = best > 0 ? cv::Mat(sl == best) : cv::Mat(arm.size(), CV_8UC1, cv::Scalar(0));
-  }
-
-  // Principal direction of a mask's pixels (every 2nd row and column),
-  // oriented from the border inwards; also the pixel mean and whether the
-  // blob is elongated (else the direction means little).
-  struct Axis {
-    Eigen::Vector2d dir, mean;
-    bool elongated;
-  };
-  auto principalAxis = [&](const cv::Mat& a, const cv::Mat& b) -> std::optional<Axis> {
-    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-    Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-    int count = 0;
-    for (int v = 0; v < a.rows; v += 2) {
-      const uchar* ap = a.ptr<uchar>(v);
-      const uchar* bp = b.empty() ? nullptr : b.ptr<uchar>(v);
-      for (int u = 0; u < a.cols; u += 2) {
-        if (!ap[u] && !(bp && bp[u])) continue;
-        const Eigen::Vector2d p(u, v);
-        mean += p;
-        scatter += p * p.transpose();
-        ++count;
-      }
+  const cv::Mat rest = arm & ~hand;
+  cv::Mat sl, ss, sc;
+  const int ns = cv::connectedComponentsWithStats(rest, sl, ss, sc, 8, CV_32S);
+  int best = -1, area = options_.minSleevePixels;
+  for (int l = 1; l < ns; ++l)
+    if (ss.at<int>(l, cv::CC_STAT_AREA) > area && touchesBorder(ss, l, arm.size(), options_.borderMargin_px)) {
+      best = l;
+      area = ss.at<int>(l, cv::CC_STAT_AREA);
     }
-    if (count < 3) return std::nullopt;
-    mean /= count;
-    scatter = scatter / count - mean * mean.transpose();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(scatter);
-    Axis out{eig.eigenvectors().col(1).normalized(), mean, eig.eigenvalues()(1) > 2.0 * eig.eigenvalues()(0)};
-    if (out.dir.dot(mean - entry) < 0) out.dir = -out.dir;
-    return out;
-  };
-  const auto handAxis = principalAxis(hand, cv::Mat());
-  if (!handAxis) return std::nullopt;
-  const Eigen::Vector2d handMean = handAxis->mean;
-  // Depth of the hand (median of its valid pixels) for the pixel scale.
-  std::optional<double> z_hand = medianDepthInDisc(depth, hand, handMean, 1e4, 5);
-  if (!z_hand && lastDepth_m_ > 0.0) z_hand = lastDepth_m_;
-  if (!z_hand) return std::nullopt;  // no scale yet: the first frames of the hand are all depth holes
-  double pxPerM = k.fx_px / *z_hand;
+  return best > 0 ? cv::Mat(sl == best) : cv::Mat(arm.size(), CV_8UC1, cv::Scalar(0));
+}
 
+std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::bareForearmAnchor(
+    const rawlog::RgbdFrame& frame, const Eigen::Vector2d& entry, HandBlob& hand) {
   // Bare forearm: the largest skin component, when it is longer than a hand
   // (skin from the elbow or a short sleeve to the fingers), ends in the hand
   // at the end farther from the arm's entry (the body).
-  Eigen::Vector2d anchor_px, dir;
-  double length_m = 0.0;
-  {
-    cv::Mat cl, cs, cc;
-    const int nc = cv::connectedComponentsWithStats(hand, cl, cs, cc, 8, CV_32S);
-    int best = -1, bestArea2 = 0;
-    for (int l = 1; l < nc; ++l)
-      if (cs.at<int>(l, cv::CC_STAT_AREA) > bestArea2) {
-        best = l;
-        bestArea2 = cs.at<int>(l, cv::CC_STAT_AREA);
-      }
-    const cv::Mat comp = best > 0 ? cv::Mat(cl == best) : cv::Mat();
-    const auto ax = best > 0 && bestArea2 >= options_.minPixels / 2 ? principalAxis(comp, cv::Mat()) : std::nullopt;
-    if (ax) {
-      std::vector<Eigen::Vector2d> pts;
-      for (int v = 0; v < comp.rows; v += 2) {
-        const uchar* p = comp.ptr<uchar>(v);
-        for (int u = 0; u < comp.cols; u += 2)
-          if (p[u]) pts.emplace_back(u, v);
-      }
-      Eigen::Vector2d axis = ax->dir;
-      double sMin = 1e9, sMax = -1e9;
-      for (const auto& p : pts) {
-        sMin = std::min(sMin, (p - ax->mean).dot(axis));
-        sMax = std::max(sMax, (p - ax->mean).dot(axis));
-      }
-      if ((ax->mean + sMin * axis - entry).norm() > (ax->mean + sMax * axis - entry).norm()) {
-        axis = -axis;
-        std::swap(sMin, sMax);
-        sMin = -sMin;
-        sMax = -sMax;
-      }
-      const double z_comp = medianDepthInDisc(depth, comp, ax->mean, 1e4, 5).value_or(*z_hand);
-      const double compPxPerM = k.fx_px / z_comp;
-      if (std::getenv("SRP_HAND_TRACE"))
-        std::fprintf(stderr, "frame %d: comp area %d of %d, extent %.0f px = %.3f m at z %.2f, entry %.0f %.0f\n",
-                     frame.index, bestArea2, nc - 1, sMax - sMin, (sMax - sMin) / compPxPerM, z_comp, entry.x(), entry.y());
-      // Its length in 3D (a forearm pointing at the camera looks short).
-      auto endPoint = [&](double sEnd) {
-        const Eigen::Vector2d e = ax->mean + sEnd * axis;
-        const double z = medianDepthInDisc(depth, comp, e, options_.palmRadius_m * compPxPerM, 5).value_or(z_comp);
-        return Eigen::Vector3d((e.x() - k.cx_px) * z / k.fx_px, (e.y() - k.cy_px) * z / k.fy_px, z);
-      };
-      const double length3d_m = (endPoint(sMax) - endPoint(sMin)).norm();
-      if (std::getenv("SRP_HAND_TRACE")) std::fprintf(stderr, "  3D length %.3f m\n", length3d_m);
-      if (length3d_m > options_.maxHandLength_m || bareForearms_) {
-        // The hand's own axis and centre line: the last maxHandLength_m.
-        const double from = sMax - options_.maxHandLength_m * compPxPerM;
-        Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-        Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-        int count = 0;
-        for (const auto& p : pts)
-          if ((p - ax->mean).dot(axis) >= from) {
-            mean += p;
-            scatter += p * p.transpose();
-            ++count;
-          }
-        mean /= count;
-        scatter = scatter / count - mean * mean.transpose();
-        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(scatter);
-        Eigen::Vector2d local = eig.eigenvectors().col(1).normalized();
-        if (local.dot(axis) < 0) local = -local;
-        double tip = -1e9;
-        for (const auto& p : pts)
-          if ((p - ax->mean).dot(axis) >= from) tip = std::max(tip, (p - mean).dot(local));
-        anchor_px = mean + tip * local;
-        dir = local;
-        length_m = -options_.palmFromFarEnd_m;
-        hand = comp;
-        lastMask_ = hand;
-        z_hand = z_comp;
-        pxPerM = compPxPerM;
-        geometry_.bareForearm = true;
-        geometry_.farEnd_px = anchor_px;
-      }
+  const auto& k = frame.intrinsics;
+  cv::Mat cl, cs, cc;
+  const int nc = cv::connectedComponentsWithStats(hand.mask, cl, cs, cc, 8, CV_32S);
+  int best = -1, bestArea = 0;
+  for (int l = 1; l < nc; ++l)
+    if (cs.at<int>(l, cv::CC_STAT_AREA) > bestArea) {
+      best = l;
+      bestArea = cs.at<int>(l, cv::CC_STAT_AREA);
     }
+  if (best <= 0 || bestArea < options_.minHandPixels) return std::nullopt;
+  const cv::Mat comp = cl == best;
+  const auto ax = principalAxis(comp, cv::Mat(), entry, options_.axisStride_px, options_.minElongation);
+  if (!ax) return std::nullopt;
+  const int stride = options_.axisStride_px;
+  std::vector<Eigen::Vector2d> pts;
+  for (int v = 0; v < comp.rows; v += stride) {
+    const uchar* p = comp.ptr<uchar>(v);
+    for (int u = 0; u < comp.cols; u += stride)
+      if (p[u]) pts.emplace_back(u, v);
   }
+  Eigen::Vector2d axis = ax->dir;
+  double sMin = 1e9, sMax = -1e9;
+  for (const auto& p : pts) {
+    sMin = std::min(sMin, (p - ax->mean).dot(axis));
+    sMax = std::max(sMax, (p - ax->mean).dot(axis));
+  }
+  if ((ax->mean + sMin * axis - entry).norm() > (ax->mean + sMax * axis - entry).norm()) {
+    axis = -axis;
+    std::swap(sMin, sMax);
+    sMin = -sMin;
+    sMax = -sMax;
+  }
+  const double z_comp = medianDepthInDisc(frame.depth_m, comp, ax->mean, 1e4, options_.minDepthSamples).value_or(hand.z_m);
+  const double compPxPerM = k.fx_px / z_comp;
+  if (std::getenv("SRP_HAND_TRACE"))
+    std::fprintf(stderr, "frame %d: comp area %d of %d, extent %.0f px = %.3f m at z %.2f, entry %.0f %.0f\n",
+                 frame.index, bestArea, nc - 1, sMax - sMin, (sMax - sMin) / compPxPerM, z_comp, entry.x(), entry.y());
+  // Its length in 3D (a forearm pointing at the camera looks short).
+  auto endPoint = [&](double sEnd) {
+    const Eigen::Vector2d e = ax->mean + sEnd * axis;
+    const double z = medianDepthInDisc(frame.depth_m, comp, e, options_.palmRadius_m * compPxPerM, options_.minDepthSamples)
+                         .value_or(z_comp);
+    return Eigen::Vector3d((e.x() - k.cx_px) * z / k.fx_px, (e.y() - k.cy_px) * z / k.fy_px, z);
+  };
+  const double length3d_m = (endPoint(sMax) - endPoint(sMin)).norm();
+  if (std::getenv("SRP_HAND_TRACE")) std::fprintf(stderr, "  3D length %.3f m\n", length3d_m);
+  if (!(length3d_m > options_.maxHandLength_m || bareForearms_)) return std::nullopt;
+  // The hand's own axis and centre line: the last maxHandLength_m.
+  const double from = sMax - options_.maxHandLength_m * compPxPerM;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+  int count = 0;
+  for (const auto& p : pts)
+    if ((p - ax->mean).dot(axis) >= from) {
+      mean += p;
+      scatter += p * p.transpose();
+      ++count;
+    }
+  mean /= count;
+  scatter = scatter / count - mean * mean.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(scatter);
+  Eigen::Vector2d local = eig.eigenvectors().col(1).normalized();
+  if (local.dot(axis) < 0) local = -local;
+  double tip = -1e9;
+  for (const auto& p : pts)
+    if ((p - ax->mean).dot(axis) >= from) tip = std::max(tip, (p - mean).dot(local));
+  Anchor a;
+  a.anchor_px = mean + tip * local;
+  a.dir = local;
+  a.length_m = -options_.palmFromFarEnd_m;
+  hand.mask = comp;
+  hand.z_m = z_comp;
+  hand.pxPerM = compPxPerM;
+  lastMask_ = hand.mask;
+  geometry_.bareForearm = true;
+  geometry_.farEnd_px = a.anchor_px;
+  return a;
+}
 
+std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::cuffAnchor(const cv::Mat& hand,
+                                                                                  const cv::Mat& sleeve,
+                                                                                  const Eigen::Vector2d& entry) {
   // Wrist: the cuff line, skin pixels next to the sleeve. Not when the skin
   // itself reaches the border (the hand entering or leaving: the cuff is out
   // of view, the "sleeve" may be something else).
+  const int margin = options_.borderMargin_px;
   int handOnBorder = 0;
   for (int v = 0; v < hand.rows; ++v) {
     const uchar* p = hand.ptr<uchar>(v);
-    if (v <= 1 || v >= hand.rows - 2) handOnBorder += cv::countNonZero(hand.row(v));
-    else handOnBorder += (p[0] || p[1]) + (p[hand.cols - 1] || p[hand.cols - 2]);
+    if (v < margin || v >= hand.rows - margin) {
+      handOnBorder += cv::countNonZero(hand.row(v));
+    } else {
+      bool left = false, right = false;
+      for (int i = 0; i < margin; ++i) {
+        left = left || p[i];
+        right = right || p[hand.cols - 1 - i];
+      }
+      handOnBorder += left + right;
+    }
   }
-  constexpr int kMinCuffPixels = 10;
+  if (handOnBorder >= options_.minCuffPixels || cv::countNonZero(sleeve) == 0) return std::nullopt;
+  cv::Mat near;
+  cv::dilate(sleeve, near, disc(options_.openDiameter_px));
+  near &= hand;
   Eigen::Vector2d wrist = Eigen::Vector2d::Zero();
   int nCuff = 0;
-  if (!geometry_.bareForearm && handOnBorder < kMinCuffPixels && cv::countNonZero(sleeve) > 0) {
-    cv::Mat near;
-    cv::dilate(sleeve, near, disc5);
-    near &= hand;
-    for (int v = 0; v < near.rows; ++v) {
-      const uchar* p = near.ptr<uchar>(v);
-      for (int u = 0; u < near.cols; ++u)
-        if (p[u]) {
-          wrist += Eigen::Vector2d(u, v);
-          ++nCuff;
-        }
-    }
+  for (int v = 0; v < near.rows; ++v) {
+    const uchar* p = near.ptr<uchar>(v);
+    for (int u = 0; u < near.cols; ++u)
+      if (p[u]) {
+        wrist += Eigen::Vector2d(u, v);
+        ++nCuff;
+      }
   }
-  // The palm is placed in metres: the anchor (cuff line or fingertips)
-  // back-projected at the palm's depth, then a fixed length along the axis
-  // in that plane. (The cuff's own depth is no help: the median there is the
-  // sleeve's, centimetres above the wrist's skin.)
-  if (geometry_.bareForearm) {
-    // anchor, axis and length set above
-  } else if (nCuff >= kMinCuffPixels) {
-    // The palm a fixed length from the cuff along the arm (sleeve + hand) axis.
-    anchor_px = wrist / nCuff;
-    dir = principalAxis(hand, sleeve)->dir;
-    length_m = options_.palmFromWrist_m;
-    geometry_.haveWrist = true;
-    geometry_.wrist_px = anchor_px;
-  } else {
-    // The palm a fixed length back from the fingertips along the hand's axis
-    // (or, for a short blob, the inward normal of the border the arm enters
-    // from), on the hand's centre line.
-    dir = handAxis->dir;
-    if (!handAxis->elongated) {
-      const double du = std::min(entry.x(), hand.cols - 1 - entry.x()), dv = std::min(entry.y(), hand.rows - 1 - entry.y());
-      dir = du < dv ? Eigen::Vector2d(entry.x() < hand.cols / 2 ? 1 : -1, 0) : Eigen::Vector2d(0, entry.y() < hand.rows / 2 ? 1 : -1);
-    }
-    double tip = -1e9;
-    for (int v = 0; v < hand.rows; v += 2) {
-      const uchar* p = hand.ptr<uchar>(v);
-      for (int u = 0; u < hand.cols; u += 2)
-        if (p[u]) tip = std::max(tip, (Eigen::Vector2d(u, v) - handMean).dot(dir));
-    }
-    anchor_px = handMean + tip * dir;
-    length_m = -options_.palmFromFingertips_m;
+  if (nCuff < options_.minCuffPixels) return std::nullopt;
+  // The palm a fixed length from the cuff along the arm (sleeve + hand) axis.
+  Anchor a;
+  a.anchor_px = wrist / nCuff;
+  a.dir = principalAxis(hand, sleeve, entry, options_.axisStride_px, options_.minElongation)->dir;
+  a.length_m = options_.palmFromWrist_m;
+  geometry_.haveWrist = true;
+  geometry_.wrist_px = a.anchor_px;
+  return a;
+}
+
+MarkerFreeHandDetector::Anchor MarkerFreeHandDetector::fingertipAnchor(const cv::Mat& hand,
+                                                                       const Eigen::Vector2d& entry,
+                                                                       const Eigen::Vector2d& handMean,
+                                                                       const Eigen::Vector2d& handDir,
+                                                                       bool elongated) const {
+  // The palm a fixed length back from the fingertips along the hand's axis
+  // (or, for a short blob, the inward normal of the border the arm enters
+  // from), on the hand's centre line.
+  Eigen::Vector2d dir = handDir;
+  if (!elongated) {
+    const double du = std::min(entry.x(), hand.cols - 1 - entry.x()), dv = std::min(entry.y(), hand.rows - 1 - entry.y());
+    dir = du < dv ? Eigen::Vector2d(entry.x() < hand.cols / 2 ? 1 : -1, 0)
+                  : Eigen::Vector2d(0, entry.y() < hand.rows / 2 ? 1 : -1);
   }
-  geometry_.axis = dir;
-  const Eigen::Vector2d dir_m = Eigen::Vector2d(dir.x() / k.fx_px, dir.y() / k.fy_px).normalized();
+  double tip = -1e9;
+  const int stride = options_.axisStride_px;
+  for (int v = 0; v < hand.rows; v += stride) {
+    const uchar* p = hand.ptr<uchar>(v);
+    for (int u = 0; u < hand.cols; u += stride)
+      if (p[u]) tip = std::max(tip, (Eigen::Vector2d(u, v) - handMean).dot(dir));
+  }
+  Anchor a;
+  a.anchor_px = handMean + tip * dir;
+  a.dir = dir;
+  a.length_m = -options_.palmFromFingertips_m;
+  return a;
+}
+
+HandObservation MarkerFreeHandDetector::placePalm(const rawlog::RgbdFrame& frame, const Anchor& a,
+                                                  const HandBlob& hand, const Eigen::Vector2d& handMean,
+                                                  int armArea) {
+  // The palm is placed in metres: the anchor (far end, cuff line or
+  // fingertips) back-projected at the palm's depth, then a fixed length along
+  // the axis in that plane. (The cuff's own depth is no help: the median
+  // there is the sleeve's, centimetres above the wrist's skin.)
+  const auto& k = frame.intrinsics;
+  const Eigen::Vector2d dir_m = Eigen::Vector2d(a.dir.x() / k.fx_px, a.dir.y() / k.fy_px).normalized();
   auto palmAt = [&](double z_m) {  // palm centre if it lies at depth z_m
-    return Eigen::Vector3d((anchor_px.x() - k.cx_px) * z_m / k.fx_px + length_m * dir_m.x(),
-                           (anchor_px.y() - k.cy_px) * z_m / k.fy_px + length_m * dir_m.y(), z_m);
+    return Eigen::Vector3d((a.anchor_px.x() - k.cx_px) * z_m / k.fx_px + a.length_m * dir_m.x(),
+                           (a.anchor_px.y() - k.cy_px) * z_m / k.fy_px + a.length_m * dir_m.y(), z_m);
   };
   auto project = [&](const Eigen::Vector3d& p) {
     return Eigen::Vector2d(k.fx_px * p.x() / p.z() + k.cx_px, k.fy_px * p.y() / p.z() + k.cy_px);
   };
   // First at the hand's depth (for the palm disc), then at the palm's own.
-  Eigen::Vector2d palm = project(palmAt(*z_hand + options_.palmDepth_m));
+  Eigen::Vector2d palm = project(palmAt(hand.z_m + options_.palmDepth_m));
   HandObservation h;
-  h.confidence = std::min(1.0, bestArea / 3000.0) * (geometry_.haveWrist ? 1.0 : 0.5);
-  std::optional<double> z = medianDepthInDisc(depth, hand, palm, options_.palmRadius_m * pxPerM, 5);
+  h.confidence = std::min(1.0, armArea / options_.confidenceFullArea_px) *
+                 (geometry_.haveWrist ? 1.0 : options_.noWristConfidence);
+  std::optional<double> z =
+      medianDepthInDisc(frame.depth_m, hand.mask, palm, options_.palmRadius_m * hand.pxPerM, options_.minDepthSamples);
   // No depth on the palm (a hole, or the palm out of view while the fingers
   // enter or leave): the last palm depth if it is a few frames old (the caller
   // carries it along the ray), else the whole hand's (biased by the fingers'
@@ -650,7 +777,7 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   if (!z && lastDepth_m_ > 0.0 && frameCount_ - lastDepthFrame_ <= options_.maxCarryFrames) {
     palm = project(palmAt(lastDepth_m_ + options_.palmDepth_m));
   } else {
-    if (!z) z = medianDepthInDisc(depth, hand, handMean, 1e4, 5);
+    if (!z) z = medianDepthInDisc(frame.depth_m, hand.mask, handMean, 1e4, options_.minDepthSamples);
     if (z) {
       h.p_camera_palm_m = palmAt(*z + options_.palmDepth_m);
       palm = project(h.p_camera_palm_m);

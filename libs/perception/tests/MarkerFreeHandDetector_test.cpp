@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <ctime>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
@@ -179,11 +180,19 @@ std::vector<RealFrameError> palmErrorsOnHrt1(const std::string& task) {
   for (const auto& l : labels.at("visible")) label[l[0].get<int>()] = {l[1].get<double>(), l[2].get<double>()};
   const auto frames = readRgbdFolder(root + "/" + task);
   MarkerFreeHandDetector detector({});
+  // CPU time (a figure, not asserted): the preview pass, the first detect()
+  // (it builds the background and the skin model) and the other detections.
+  const std::clock_t c0 = std::clock();
   for (const auto& f : frames) detector.preview(f);
+  const std::clock_t c1 = std::clock();
+  std::clock_t cFirst = c1, cDetect = 0;
   const char* debugDir = std::getenv("SRP_HAND_DEBUG_DIR");
   std::vector<RealFrameError> out;
   for (const auto& f : frames) {
+    const std::clock_t t0 = std::clock();
     const auto h = detector.detect(f);
+    if (&f == &frames.front()) cFirst = std::clock() - t0;
+    else cDetect += std::clock() - t0;
     const auto it = label.find(f.index);
     if (debugDir) {
       std::filesystem::create_directories(debugDir);
@@ -215,6 +224,11 @@ std::vector<RealFrameError> palmErrorsOnHrt1(const std::string& task) {
     }
     out.push_back(e);
   }
+  auto ms = [](std::clock_t c) { return 1e3 * static_cast<double>(c) / CLOCKS_PER_SEC; };
+  std::printf("[ figures  ] %s: CPU preview %.1f ms/frame, first detect (background, skin model) %.0f ms, "
+              "detect %.1f ms/frame over the other %zu frames\n",
+              task.c_str(), ms(c1 - c0) / static_cast<double>(frames.size()), ms(cFirst),
+              ms(cDetect) / static_cast<double>(frames.size() - 1), frames.size() - 1);
   return out;
 }
 
@@ -251,15 +265,15 @@ void checkRealTask(const std::string& task, double rate, double maxError_px) {
 // length of the label (~90 px at 1.1 m), short of the body.
 TEST(MarkerFreeHandDetector, RealDemonstratorHrt1Task2) { checkRealTask("task2", 0.90, 80.0); }
 
-// task3 (our held-out check): the acceptance is NOT reached (26/36 = 72 %,
-// see the perception README: while only the arm is in view its forearm and
-// hand are in shadow, and the largest skin-coloured component is the toy's
-// tan belly (frames 17-21) or a patch at the right border (frames 2-3, the
-// shoulder)). This guards the reached level against regressions; raise it to
-// 0.90 / 80 px when that class of problem is fixed.
+// task3 (frames 9-35 developed on since session 6: 27/27; frames 0-8 our
+// held-out block: 3/9): the acceptance is NOT reached (30/36 = 83.3 %, see
+// the perception README: in the held-out frames only the shadowed arm is in
+// view; frames 1, 4, 5 report no hand, frames 0, 2, 3 a palm near the right
+// border at shoulder height, ~150 px off). This guards the reached level
+// against regressions; raise it to 0.90 / 80 px when that class is fixed.
 TEST(MarkerFreeHandDetector, RealDemonstratorHrt1Task3) {
-  constexpr double kReachedRate = 0.70;   // regression guard, not the acceptance
-  constexpr double kNoBound_px = 1e9;     // palms at the shoulder occur (frames 2, 3)
+  constexpr double kReachedRate = 0.83;   // regression guard (30 of 36 frames), not the acceptance
+  constexpr double kNoBound_px = 1e9;     // palms at the shoulder occur (frames 0, 2, 3)
   checkRealTask("task3", kReachedRate, kNoBound_px);
 }
 

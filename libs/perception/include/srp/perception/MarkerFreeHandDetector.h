@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "srp/perception/HandDetector.h"
 
@@ -141,6 +142,72 @@ class MarkerFreeHandDetector : public HandDetector {
     /// The last palm depth is carried along the palm's ray for at most this
     /// many frames (the caller does it, see DemoPerception) [frames].
     int maxCarryFrames = 3;
+
+    // ---- gates and strides (were literals; defaults keep the old output) ----
+    /// A pixel within this many pixels of the image edge is on the border
+    /// (where the arm enters, where a hand leaves the view) [px].
+    int borderMargin_px = 2;
+    /// Diameter of the disc that opens (de-speckles) the foreground and the
+    /// skin masks at full resolution [px].
+    int openDiameter_px = 5;
+    /// The same in the preview, whose samples are at half resolution [px].
+    int previewOpenDiameter_px = 3;
+    /// The hand (the arm's skin part) needs at least this many pixels [px].
+    int minHandPixels = 150;
+    /// A sleeve (the arm's non-skin part at the border) needs more than this
+    /// many pixels [px].
+    int minSleevePixels = 150;
+    /// Preview: the largest skin component of a sample (half resolution)
+    /// counts when larger than this many pixels [px at half size].
+    int minPreviewSkinPixels = 37;
+    /// A cuff line is the wrist when at least this many skin pixels touch the
+    /// sleeve, and it is not used when this many skin pixels lie on the
+    /// image border (the hand entering or leaving) [px].
+    int minCuffPixels = 10;
+    /// Principal axes are estimated from every n-th row and column [px].
+    int axisStride_px = 2;
+    /// A blob's principal direction is used when its variance along it is
+    /// more than this times the variance across it [ratio].
+    double minElongation = 2.0;
+    /// Valid depth pixels a median depth needs (hand, palm disc, arm end) [px].
+    int minDepthSamples = 5;
+    /// The same for the arm ends in the preview (half resolution) [px].
+    int minPreviewDepthSamples = 3;
+    /// Confidence 1 when the arm has this many pixels, proportionally less
+    /// below [px].
+    double confidenceFullArea_px = 3000.0;
+    /// Confidence factor of a palm placed without a wrist (far end or
+    /// fingertips: the palm's position along the hand is less certain) [0..1].
+    double noWristConfidence = 0.5;
+    /// Skin histogram smoothing before its mode is taken: Gaussian sigma
+    /// (JPEG chroma noise) [8-bit Cr/Cb units].
+    double skinHistogramBlur = 2.0;
+    /// Trimmed re-estimates of the skin Gaussian inside its
+    /// skinMaxMahalanobis ellipse [iterations].
+    int skinRefinements = 3;
+    /// Skin luma from the mode of the luma histogram of the pixels of skin
+    /// chroma (then a trimmed mean and spread around it, within
+    /// skinMaxMahalanobis sd) instead of their plain mean and spread: a
+    /// bright object of skin chroma (a toy's tan belly, a beige table) forms
+    /// a second mode and is left out of this person's skin in this light.
+    bool skinLumaFromMode = true;
+    /// Luma histogram smoothing before its mode is taken: Gaussian sigma
+    /// [8-bit Y units].
+    double skinLumaBlur = 3.0;
+    /// First luma estimate: the pixels within this distance of the mode
+    /// [8-bit Y units].
+    double skinLumaModeRadius = 20.0;
+    /// A recording with bare forearms, depth lagging colour (a real camera's
+    /// streams on a fast arm): how far the colour may lead the depth image
+    /// [px] (an arm moving 0.5 m/s, one 10 Hz frame, at 1 m: ~25 px). Skin
+    /// within this distance of the arm, off the arm, whose colour changed
+    /// from the background colour by more than minLagColourChange, and
+    /// connected to skin on the arm, is hand. 0: off.
+    int maxDepthLag_px = 30;
+    /// That colour change: sum of |BGR| changes [8-bit units] (a dark hand
+    /// over a bright wall: 150-300; a shadow moving on the wall beside the
+    /// demonstrator: below ~90).
+    int minLagColourChange = 100;
   };
 
   /// What the last detect() found, in pixels (for drawing and tests).
@@ -177,8 +244,47 @@ class MarkerFreeHandDetector : public HandDetector {
   const SkinModel& skinModel() const { return skin_; }
 
  private:
+  /// Palm anchor: the pixel the palm is measured from (far end, cuff line or
+  /// fingertips), the unit direction in the image and the signed length
+  /// from the anchor to the palm centre along it [m].
+  struct Anchor {
+    Eigen::Vector2d anchor_px = Eigen::Vector2d::Zero();
+    Eigen::Vector2d dir = Eigen::Vector2d::UnitX();
+    double length_m = 0.0;
+  };
+  /// The hand's pixels with their depth and pixel scale.
+  struct HandBlob {
+    cv::Mat mask;             ///< CV_8UC1
+    double z_m = 0.0;         ///< median depth of its valid pixels
+    double pxPerM = 0.0;      ///< pixels per metre at z_m
+  };
+
   Options options_;
   void finishPreview();
+  /// Whole-recording background depth [mm, CV_32FC1] from the preview samples
+  /// (also sets backgroundDepth_m_ and backgroundColour_).
+  cv::Mat backgroundFromPreview();
+  /// Does the preview show a bare forearm (sets bareForearms_)?
+  void decideBareForearms(const cv::Mat& backgroundHalf_mm);
+  /// Foreground by depth (and colour change in depth holes), opened.
+  cv::Mat foregroundMask(const rawlog::RgbdFrame& frame) const;
+  /// The hand: skin part of the arm, opened, holes filled; empty when too small.
+  cv::Mat handMask(const rawlog::RgbdFrame& frame, const cv::Mat& arm) const;
+  /// The non-skin part of the arm that reaches the border (empty mask: none).
+  cv::Mat sleeveMask(const cv::Mat& arm, const cv::Mat& hand) const;
+  /// Bare forearm: the largest skin component, when longer than a hand (or
+  /// the recording shows bare forearms), ends in the hand at its far end.
+  /// Sets geometry_ and replaces `hand` by that component.
+  std::optional<Anchor> bareForearmAnchor(const rawlog::RgbdFrame& frame, const Eigen::Vector2d& entry,
+                                          HandBlob& hand);
+  /// Glove and sleeve: the cuff line and the arm axis (nullopt: no cuff).
+  std::optional<Anchor> cuffAnchor(const cv::Mat& hand, const cv::Mat& sleeve, const Eigen::Vector2d& entry);
+  /// No cuff: back from the fingertips along the hand's axis.
+  Anchor fingertipAnchor(const cv::Mat& hand, const Eigen::Vector2d& entry, const Eigen::Vector2d& handMean,
+                         const Eigen::Vector2d& handDir, bool elongated) const;
+  /// Places the palm from the anchor at the palm's depth (step 7).
+  HandObservation placePalm(const rawlog::RgbdFrame& frame, const Anchor& a, const HandBlob& hand,
+                            const Eigen::Vector2d& handMean, int armArea);
   /// Skin pixels: the learnt model when `learnt` and there is one, else the prior box.
   cv::Mat skinMask(const cv::Mat& colour_bgr8, bool learnt) const;
   /// Adds the (Cr, Cb) of the foreground pixels inside the prior box.
@@ -192,7 +298,7 @@ class MarkerFreeHandDetector : public HandDetector {
   cv::Mat previewColourSum_;
   int previewFrames_ = 0, previewStride_ = 1;
   cv::Mat skinHistogram_;  ///< 256x256 CV_32F over (Cr, Cb)
-  cv::Mat skinLumaSum_, skinLumaSqSum_;  ///< per (Cr, Cb) bin: sum of Y and of Y^2 (CV_64F)
+  std::vector<cv::Vec3b> skinSamples_;  ///< (Y, Cr, Cb) of the preview's foreground pixels inside the prior box
   SkinModel skin_;
   core::CameraIntrinsics previewIntrinsics_;
   bool bareForearms_ = false;  ///< the preview showed a bare forearm: the far end rule in every frame

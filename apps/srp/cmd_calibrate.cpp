@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "CommandRegistry.h"
+#include "ProgressLine.h"
 #include "srp/calib/CalibrationPattern.h"
 #include "srp/calib/CameraExtrinsics.h"
 #include "srp/calib/CameraFiles.h"
@@ -64,9 +65,10 @@ void runIntrinsics(const IntrinsicArgs& a) {
   options.estimateDistortion = !a.noDistortion;
   options.cameraName = a.name;
   options.drawDir = a.drawDir;
-  options.progress = [](int i, int n, const std::string& name) {
-    std::cerr << "\r[" << i + 1 << "/" << n << "] " << name << std::string(10, ' ') << std::flush;
-    if (i + 1 == n) std::cerr << "\n";
+  auto line = std::make_shared<srp::app::ProgressLine>();
+  options.progress = [line](int i, int n, const std::string& name) {
+    line->show("calibrate", static_cast<std::size_t>(i + 1), static_cast<std::size_t>(n), name);
+    if (i + 1 == n) line->finish();
   };
   const auto r = srp::calib::calibrateIntrinsicsFromFiles(files, pattern, options);
   srp::calib::saveCameraXml(a.out, r.camera, "srp calibrate --pattern " + a.pattern + ": RMS reprojection " +

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "CommandRegistry.h"
+#include "ProgressLine.h"
 #include "srp/calib/RgbdImporter.h"
 
 namespace {
@@ -52,9 +53,10 @@ void setupImport(CLI::App& cmd) {
     if (a->depthScale_m > 0.0) o.depthScale_m = a->depthScale_m;
     o.fps = a->fps;
     o.maxTimeDifference_s = a->maxDt_s;
-    o.progress = [](int done, int total) {
-      std::cerr << "\rimporting " << done << "/" << total << std::flush;
-      if (done == total) std::cerr << "\n";
+    srp::app::ProgressLine line;
+    o.progress = [&line](int done, int total) {
+      line.show("importing", static_cast<std::size_t>(done), static_cast<std::size_t>(total));
+      if (done == total) line.finish();
     };
     const auto s = a->layout == "tum"      ? srp::calib::importTum(a->folder, a->out, o)
                    : a->layout == "folder" ? srp::calib::importImageFolder(a->folder, a->out, o)

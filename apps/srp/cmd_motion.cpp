@@ -39,9 +39,10 @@ void runMotion(const MotionOptions& o) {
   std::cerr << "srp motion: task model " << id << " '" << model.info.name << "': segmenting "
             << model.handPositions.size() << " hand positions\n";
   const motion::MotionInputs inputs = motion::motionInputsFromTaskModel(model);
-  const motion::Segmentation seg = motion::Segmenter().segment(inputs.hand, inputs.objects, inputs.planOrder);
-  std::cerr << "srp motion: learning DMPs\n";
-  const auto skills = motion::SkillLearner().learn(seg, inputs.objects);
+  std::cerr << "srp motion: segmenting and learning DMPs\n";
+  const motion::LearnedSkills learned = motion::learnSkills(inputs);
+  const auto& seg = learned.segmentation;
+  const auto& skills = learned.skills;
   const auto rows = motion::skillRows(skills, inputs);
   motion::storeSkills(db, id, skills, inputs);  // one transaction, after everything above succeeded
 

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "CommandRegistry.h"
+#include "ProgressLine.h"
 #include "srp/core/Json.h"
 #include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/DemoPerception.h"
@@ -47,11 +48,11 @@ void run(const PerceiveOptions& o) {
   const auto statics = splitList(o.staticObjects);
   for (const auto& n : splitList(o.objects)) p.plan.push_back({n, false});
   for (const auto& n : statics) p.plan.push_back({n, true});
-  const PerceptionResult r = perceiveRawlog(o.demo, catalogue, p, [](int i, int n) {
-    (void)n;
-    if ((i + 1) % 30 == 0) std::fprintf(stderr, "\rperceive: frame %d", i + 1);
+  srp::app::ProgressLine line;
+  const PerceptionResult r = perceiveRawlog(o.demo, catalogue, p, [&line](int i, int) {
+    if ((i + 1) % 30 == 0) line.show("perceive: frame", static_cast<std::size_t>(i + 1));
   });
-  std::fprintf(stderr, "\rperceive: %d frames done\n", r.frames);
+  line.finish("perceive: " + std::to_string(r.frames) + " frames done");
   if (!o.csv.empty()) writeSegmentCsv(r, o.csv);
 
   if (o.json) {

@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "CommandRegistry.h"
+#include "ProgressLine.h"
 #include "srp/calib/CameraFiles.h"
 #include "srp/core/Error.h"
 #include "srp/programming/ProgrammingPipeline.h"
@@ -16,36 +17,6 @@ namespace {
 struct ProgramArgs {
   std::string instruction, demo, kb, calib, db = "task.db", name = "task", report, hand = "marker";
   bool json = false, quiet = false, allowTruncated = false;
-};
-
-// One progress line per stage on a terminal, redrawn in place; silent otherwise.
-class ProgressBar {
- public:
-  explicit ProgressBar(bool enabled) : enabled_(enabled && isatty(STDERR_FILENO)) {}
-  void operator()(const std::string& stage, std::size_t done, std::size_t total) {
-    if (!enabled_) return;
-    const auto now = std::chrono::steady_clock::now();
-    if (stage == stage_ && now - last_ < std::chrono::milliseconds(100) && done != total) return;
-    if (stage != stage_ && !stage_.empty()) std::fputc('\n', stderr);
-    stage_ = stage;
-    last_ = now;
-    if (total > 0) {
-      const int width = 30, filled = static_cast<int>(width * done / total);
-      std::fprintf(stderr, "\r%-12s [%s%s] %3d%%", stage.c_str(), std::string(filled, '#').c_str(),
-                   std::string(width - filled, '-').c_str(), static_cast<int>(100 * done / total));
-    } else {
-      std::fprintf(stderr, "\r%-12s %zu frames", stage.c_str(), done);
-    }
-    std::fflush(stderr);
-  }
-  ~ProgressBar() {
-    if (enabled_ && !stage_.empty()) std::fputc('\n', stderr);
-  }
-
- private:
-  bool enabled_;
-  std::string stage_;
-  std::chrono::steady_clock::time_point last_;
 };
 
 void setupProgram(CLI::App& cmd) {
@@ -78,8 +49,9 @@ void setupProgram(CLI::App& cmd) {
     o.reportDir = a->report;
     o.allowTruncated = a->allowTruncated;
     o.markerFreeHand = a->hand == "marker-free";
-    ProgressBar bar(!a->quiet && !a->json);
-    o.progress = [&bar](const std::string& s, std::size_t d, std::size_t t) { bar(s, d, t); };
+    // One line per stage on a terminal, redrawn at most every 100 ms; silent otherwise.
+    srp::app::ProgressLine bar(!a->quiet && !a->json && isatty(STDERR_FILENO), std::chrono::milliseconds(100));
+    o.progress = [&bar](const std::string& s, std::size_t d, std::size_t t) { bar.show(s, d, t, t ? "" : "frames"); };
     const srp::programming::ProgramResult r = srp::programming::programTask(o);
     if (a->json) {
       std::cout << srp::programming::toJsonText(r) << "\n";

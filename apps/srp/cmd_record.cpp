@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "CommandRegistry.h"
+#include "ProgressLine.h"
 #include "srp/calib/RgbdRecorder.h"
 
 namespace {
@@ -22,11 +23,12 @@ void setupRecord(CLI::App& cmd) {
   cmd.add_option("--depth-unit", a->options.depthUnit_m, "depth step stored in the rawlog [m]")->capture_default_str();
   cmd.footer("Example: srp record demo.rawlog --duration 20\nNo camera? Convert recorded images: srp import FOLDER OUT.rawlog");
   cmd.callback([a] {
-    a->options.progress = [](int frames, double elapsed_s) {
-      std::cerr << "\rrecording: " << frames << " frames, " << static_cast<int>(elapsed_s) << " s" << std::flush;
+    srp::app::ProgressLine line;
+    a->options.progress = [&line](int frames, double elapsed_s) {
+      line.show("recording:", static_cast<std::size_t>(frames), 0, "frames, " + std::to_string(static_cast<int>(elapsed_s)) + " s");
     };
     const auto s = srp::calib::recordOpenNI2(a->out, a->options);
-    std::cerr << "\n";
+    line.finish();
     std::printf("%s: %d frames, %.2f s, %dx%d fx %.2f\n", a->out.c_str(), s.frames, s.duration_s, s.intrinsics.width_px,
                 s.intrinsics.height_px, s.intrinsics.fx_px);
   });

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "CommandRegistry.h"
+#include "ProgressLine.h"
 #include "srp/calib/RawlogReplay.h"
 #include "srp/calib/TaskModelOverlay.h"
 #include "srp/core/Error.h"
@@ -60,11 +61,12 @@ void setupReplay(CLI::App& cmd) {
       o.exportOverlay = true;
     }
     const bool slow = !o.exportDir.empty() || !o.videoPath.empty();
-    o.progress = [slow](int frames) {
-      if (slow && frames % 10 == 0) std::cerr << "\rreplayed " << frames << " frames" << std::flush;
+    srp::app::ProgressLine line(slow);
+    o.progress = [&line](int frames) {
+      if (frames % 10 == 0) line.show("replayed", static_cast<std::size_t>(frames), 0, "frames");
     };
     const auto s = srp::calib::replayRawlog(a->rawlog, o);
-    if (slow) std::cerr << "\rreplayed " << s.frames << " frames\n";
+    line.finish("replayed " + std::to_string(s.frames) + " frames");
     if (a->json) std::cout << s.toJson().dump(2) << "\n";
     else std::cout << s.toText();
     if (!a->exportDir.empty() && !a->json) std::cout << "  exported to " << a->exportDir << "\n";

@@ -12,8 +12,7 @@
 #include "srp/motion/Segmenter.h"
 #include "srp/motion/SyntheticPickPlace.h"
 #include "srp/motion/TrajectoryTable.h"
-#include "srp/synth/DemoTimeline.h"
-#include "srp/synth/PickPlacePlan.h"
+#include "srp/synth/LabelledDemo.h"
 
 namespace {
 
@@ -29,48 +28,11 @@ struct SegmentOptions {
   std::string noise = "detector";
 };
 
-// The synth module's choreography of the default scene and instruction 1 as
-// noise-free tracks (camera frame; hand zeros while out of view), truth from
-// its events (grasp = first frame the object moves with the hand, release = last).
-srp::motion::LabelledDemo cleanSynthDemo(unsigned seed) {
-  const auto scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-  const auto catalogue = srp::core::ObjectCatalogue::load(scene.cataloguePath);
-  const auto steps = srp::synth::groundPlan(srp::synth::defaultPlanJson(), scene, catalogue);
-  srp::synth::DemoOptions options;
-  options.seed = seed;
-  const auto timeline = srp::synth::planDemonstration(scene, catalogue, steps, srp::synth::HandModel{}, options);
-  const srp::core::Pose3 X_camera_world = timeline.scene.X_world_camera.inverse();
-  srp::motion::LabelledDemo demo;
-  demo.hand = srp::core::PositionTrajectory("camera");
-  for (const auto& o : timeline.scene.objects) {
-    srp::motion::ObjectTrack t;
-    t.name = o.id;
-    t.positions = srp::core::PositionTrajectory("camera");
-    demo.objects.push_back(t);
-  }
-  for (const auto& f : timeline.frames) {
-    const bool inView = f.phase != "idle";
-    demo.hand.append({f.index, f.t_s, inView ? Eigen::Vector3d(X_camera_world * f.X_world_hand.translation())
-                                             : Eigen::Vector3d::Zero(), inView});
-    for (std::size_t j = 0; j < demo.objects.size(); ++j) {
-      const srp::core::Pose3 X_camera_object = X_camera_world * f.X_world_objects[j];
-      demo.objects[j].positions.append({f.index, f.t_s, X_camera_object.translation(), true});
-      demo.objects[j].yaw_rad.push_back(srp::core::yawOf(X_camera_object.linear()));
-    }
-  }
-  for (const auto& e : timeline.events) {
-    demo.planOrder.push_back(e.objectId);
-    demo.graspIndex.push_back(e.graspFrame);
-    demo.releaseIndex.push_back(e.releaseFrame);
-  }
-  return demo;
-}
-
 void writeExample(const SegmentOptions& o) {
   if (o.noise == "real") {
     srp::motion::RealTrackNoise::Config c;
     c.seed = o.seed;
-    const auto r = srp::motion::RealTrackNoise(c).apply(cleanSynthDemo(o.seed));
+    const auto r = srp::motion::RealTrackNoise(c).apply(srp::synth::cleanLabelledDemo(o.seed));
     srp::motion::TrajectoryTable{r.noisy.hand, r.noisy.objects}.writeCsv(o.writeExample);
     std::cout << "wrote a synthetic demo with real-track noise (" << r.noisy.hand.size() << " frames at 30 FPS) to "
               << o.writeExample << "\nground truth (frames):\n";

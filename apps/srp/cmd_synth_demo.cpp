@@ -5,6 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "CommandRegistry.h"
+#include "ProgressLine.h"
+#include "srp/core/DefaultScene.h"
 #include "srp/core/Json.h"
 #include "srp/core/ObjectCatalogue.h"
 #include "srp/core/Scene.h"
@@ -14,7 +16,7 @@
 namespace {
 
 struct SynthDemoArgs {
-  std::string scenePath = std::string(SRP_SIM_DIR) + "/scenes/default.json";
+  std::string scenePath = srp::core::defaultScenePath();
   std::string planPath;
   std::string outPath = "demo.rawlog";
   std::string contactSheet, depthCamera;
@@ -49,14 +51,11 @@ void run(const SynthDemoArgs& a) {
     if (j.contains("X_colour_depth")) d.X_colour_depth = srp::core::poseFromJson(j.at("X_colour_depth"), context);
     options.depthCamera = d;
   }
-  const bool quiet = a.quiet;
-  const auto result = srp::synth::generateSyntheticDemo(scene, catalogue, plan, options, a.outPath,
-                                                        [quiet](int k, int n) {
-                                                          if (!quiet && (k % 30 == 0 || k + 1 == n))
-                                                            std::cerr << "\rsynth-demo: frame " << k + 1 << "/" << n
-                                                                      << std::flush;
-                                                        });
-  if (!quiet) std::cerr << "\n";
+  srp::app::ProgressLine line(!a.quiet);
+  const auto result = srp::synth::generateSyntheticDemo(scene, catalogue, plan, options, a.outPath, [&line](int k, int n) {
+    if (k % 30 == 0 || k + 1 == n) line.show("synth-demo: frame", static_cast<std::size_t>(k + 1), static_cast<std::size_t>(n));
+  });
+  line.finish();
   const double fps = result.frameCount / result.totalTime_s;
   const double n = std::max(1, result.frameCount);
   const double rawlogMBPerMin = result.duration_s > 0.0 ? result.rawlogBytes / 1e6 / (result.duration_s / 60.0) : 0.0;

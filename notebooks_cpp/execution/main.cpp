@@ -83,10 +83,7 @@ int run(int argc, char** argv) {
   // each Reach and Move segment is learned as a DMP.
   const auto demo = srp::motion::SyntheticPickPlaceGenerator(srp::motion::SyntheticPickPlaceConfig{}).generate();
   srp::taskdb::TaskModel learned = srp::motion::taskModelFromSyntheticDemo(demo, "notebook-execution");
-  const auto inputs = srp::motion::motionInputsFromTaskModel(learned);
-  const auto segmentation = srp::motion::Segmenter().segment(inputs.hand, inputs.objects, inputs.planOrder);
-  const auto skills = srp::motion::SkillLearner().learn(segmentation, inputs.objects);
-  learned.skills = srp::motion::skillRows(skills, inputs);
+  srp::motion::learnSkills(learned);
 
   // Step 2: the task database. A fresh file each run; execution reads the
   // task model back from it, as `srp execute --db` does.

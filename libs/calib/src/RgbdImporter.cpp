@@ -16,6 +16,7 @@
 #include "srp/calib/CameraFiles.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
+#include "srp/core/Text.h"
 #include "srp/rawlog/DepthRegistration.h"
 #include "srp/rawlog/RawlogWriter.h"
 
@@ -197,8 +198,7 @@ ImportSummary writePairs(ImportSummary summary, const std::vector<double>& times
 }
 
 bool isImage(const fs::path& p, bool depth) {
-  std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  const std::string ext = core::toLowerAscii(p.extension().string());
   return ext == ".png" || (!depth && (ext == ".jpg" || ext == ".jpeg"));
 }
 

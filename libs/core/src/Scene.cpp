@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <set>
 
+#include "srp/core/DefaultScene.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 
@@ -21,6 +22,8 @@ const SceneObject* Scene::findObject(const std::string& id) const {
     if (o.id == id) return &o;
   return nullptr;
 }
+
+std::string defaultScenePath() { return std::string(SRP_SIM_DIR) + "/scenes/default.json"; }
 
 Scene Scene::load(const std::string& path) {
   const nlohmann::json j = readJsonFile(path);

@@ -1,3 +1,4 @@
+#include "srp/core/DefaultScene.h"
 #include "srp/execution/CellDescription.h"
 
 #include <algorithm>
@@ -66,7 +67,7 @@ CellDescription CellDescription::fromScene(const srp::core::Scene& scene,
 
 CellDescription CellDescription::loadScene(const std::string& scenePath) {
   const srp::core::Scene scene =
-      srp::core::Scene::load(scenePath.empty() ? std::string(SRP_SIM_DIR) + "/scenes/default.json" : scenePath);
+      srp::core::Scene::load(scenePath.empty() ? srp::core::defaultScenePath() : scenePath);
   return fromScene(scene, srp::core::ObjectCatalogue::load(scene.cataloguePath));
 }
 

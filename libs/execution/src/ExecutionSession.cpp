@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "srp/core/DefaultScene.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/execution/CellRenderer.h"
@@ -39,7 +40,7 @@ srp::core::Scene sceneAfter(const srp::core::Scene& before, const CellDescriptio
 ExecuteResult executeTask(const ExecuteRequest& request) {
   ExecuteResult result;
   const std::string scenePath =
-      request.scenePath.empty() ? std::string(SRP_SIM_DIR) + "/scenes/default.json" : request.scenePath;
+      request.scenePath.empty() ? core::defaultScenePath() : request.scenePath;
   const srp::core::Scene scene = srp::core::Scene::load(scenePath);
   const srp::core::ObjectCatalogue catalogue = srp::core::ObjectCatalogue::load(scene.cataloguePath);
   const CellDescription cell = CellDescription::fromScene(scene, catalogue);

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "srp/core/Error.h"
+#include "srp/core/Pose.h"
 #include "srp/execution/MinimumJerkPathGenerator.h"
 
 namespace srp::execution {
@@ -41,8 +42,6 @@ Pose3 raised(Pose3 X, double dz_m) {
   return X;
 }
 
-double wrap(double a) { return std::remainder(a, 2.0 * M_PI); }
-
 }  // namespace
 
 TaskExecutor::TaskExecutor(const RobotModel& model, const CellDescription& scene, const JointVector& q_home,
@@ -67,7 +66,7 @@ JointVector TaskExecutor::defaultHome(const RobotModel& model, const Pose3& X_wo
   const Eigen::Vector3d p_base = X_world_base.inverse() * X_world_target.translation();
   JointVector seed;
   // At q1 = 0 the UR arm reaches along -x of its base: turn it towards the target.
-  seed << wrap(std::atan2(p_base.y(), p_base.x()) - M_PI), -1.6, 1.6, -1.57, -1.57, 0.0;
+  seed << core::angleDifference(std::atan2(p_base.y(), p_base.x()), M_PI), -1.6, 1.6, -1.57, -1.57, 0.0;
   const auto q = ik.solveNearestTcp(X_world_base.inverse() * X_world_target, seed);
   if (!q)
     throw srp::core::InvalidInputError("TaskExecutor::defaultHome: the home pose is out of the arm's reach; "

@@ -55,10 +55,7 @@ struct ArcDemo {
 srp::taskdb::TaskModel learnedTaskModel() {
   const auto demo = srp::motion::SyntheticPickPlaceGenerator(srp::motion::SyntheticPickPlaceConfig{}).generate();
   srp::taskdb::TaskModel model = srp::motion::taskModelFromSyntheticDemo(demo, "synthetic");
-  const auto inputs = srp::motion::motionInputsFromTaskModel(model);
-  const auto seg = srp::motion::Segmenter().segment(inputs.hand, inputs.objects, inputs.planOrder);
-  const auto skills = srp::motion::SkillLearner().learn(seg, inputs.objects);
-  model.skills = srp::motion::skillRows(skills, inputs);
+  srp::motion::learnSkills(model);
   return model;
 }
 

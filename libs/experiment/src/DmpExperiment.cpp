@@ -11,6 +11,7 @@
 #include "srp/experiment/Experiments.h"
 #include "srp/experiment/ExperimentSupport.h"
 #include "srp/motion/Dmp.h"
+#include "srp/motion/LearnSkills.h"
 #include "srp/motion/Segmenter.h"
 #include "srp/motion/SkillLearner.h"
 #include "srp/motion/SkillPlots.h"
@@ -164,8 +165,9 @@ ExperimentResult runDmpExperiment(const ExperimentOptions& options)
   for (int d = 0; d < count; ++d) {
     const AnalysedDemo demo = analyseDemo(options, d, result.name);
     const auto& in = demo.inputs;
-    const auto seg = motion::Segmenter().segment(in.hand, in.objects, in.planOrder);
-    const auto skills = motion::SkillLearner().learn(seg, in.objects);
+    const motion::LearnedSkills learned = motion::learnSkills(in);
+    const auto& seg = learned.segmentation;
+    const auto& skills = learned.skills;
     const auto& hand = seg.hand;
     for (const auto& s : skills) {
       const auto make = [&](const std::string& skill, int from, int to) {

@@ -2,12 +2,13 @@
 
 #include <cmath>
 
+#include "srp/core/Angles.h"
 #include "srp/core/Error.h"
 
 namespace srp::kb {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using core::kPi;
 
 // Scales and centres an outline so that its bounding box is exactly size_m.
 std::vector<Eigen::Vector2d> fitToBox(std::vector<Eigen::Vector2d> polygon, const Eigen::Vector2d& size_m) {

@@ -5,14 +5,15 @@
 #include <set>
 #include <string>
 
+#include "srp/core/Text.h"
+
 using namespace srp::language;
 
 namespace {
 std::string lowerWords(const AnnotatedSentence& s, const EntitySpan& e) {
   std::string t;
   for (int k = e.start; k < e.end; ++k) {
-    std::string w = s.tokens[k];
-    for (auto& c : w) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const std::string w = srp::core::toLowerAscii(s.tokens[k]);
     t += (k > e.start ? " " : "") + w;
   }
   return t;

@@ -6,6 +6,7 @@
 #include <map>
 #include <random>
 
+#include "srp/core/Angles.h"
 #include "srp/core/Error.h"
 
 namespace srp::motion {
@@ -62,7 +63,7 @@ RealTrackNoise::Result RealTrackNoise::apply(const LabelledDemo& clean) const {
   std::mt19937 rng(c.seed);
   std::uniform_real_distribution<double> uni(0.0, 1.0);
   std::normal_distribution<double> gauss(0.0, 1.0);
-  const double kPi = std::acos(-1.0);
+  using core::kPi;
 
   // ---- 1. Choreography: a lingering block after each release's pause --------
   struct Block {

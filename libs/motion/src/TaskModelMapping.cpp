@@ -80,6 +80,13 @@ std::vector<taskdb::SkillRow> skillRows(const std::vector<SkillSet>& skills, con
   return rows;
 }
 
+LearnedSkills learnSkills(taskdb::TaskModel& model) {
+  const MotionInputs inputs = motionInputsFromTaskModel(model);
+  LearnedSkills learned = learnSkills(inputs);
+  model.skills = skillRows(learned.skills, inputs);
+  return learned;
+}
+
 bool setSkillFlags(taskdb::ProductPoseRow& row, const SkillSet& s) {
   const bool reach = row.timeId >= s.reachStartFrame && row.timeId < s.graspFrame;
   const bool grasp = row.timeId == s.graspFrame, release = row.timeId == s.releaseFrame;

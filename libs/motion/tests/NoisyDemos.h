@@ -12,47 +12,12 @@
 
 #include "srp/motion/RealTrackNoise.h"
 #include "srp/motion/Segmenter.h"
-#include "srp/synth/DemoTimeline.h"
-#include "srp/synth/PickPlacePlan.h"
+#include "srp/synth/LabelledDemo.h"
 
 namespace srp::motion::testing {
 
-/// Palm and object positions in the camera frame, hand invalid (zeros) while
-/// idle (out of view); truth = the timeline's events (grasp = first frame the
-/// object moves with the hand, release = last such frame).
-inline LabelledDemo cleanSynthDemo(std::uint32_t seed) {
-  const auto scene = core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-  const auto catalogue = core::ObjectCatalogue::load(scene.cataloguePath);
-  const auto steps = synth::groundPlan(synth::defaultPlanJson(), scene, catalogue);
-  synth::DemoOptions options;
-  options.seed = seed;
-  const auto timeline = synth::planDemonstration(scene, catalogue, steps, synth::HandModel{}, options);
-  const core::Pose3 X_camera_world = timeline.scene.X_world_camera.inverse();
-  LabelledDemo demo;
-  demo.hand = core::PositionTrajectory("camera");
-  for (const auto& o : timeline.scene.objects) {
-    ObjectTrack t;
-    t.name = o.id;
-    t.positions = core::PositionTrajectory("camera");
-    demo.objects.push_back(t);
-  }
-  for (const auto& f : timeline.frames) {
-    const bool inView = f.phase != "idle";
-    demo.hand.append({f.index, f.t_s, inView ? Eigen::Vector3d(X_camera_world * f.X_world_hand.translation())
-                                             : Eigen::Vector3d::Zero(), inView});
-    for (std::size_t j = 0; j < demo.objects.size(); ++j) {
-      const core::Pose3 X_camera_object = X_camera_world * f.X_world_objects[j];
-      demo.objects[j].positions.append({f.index, f.t_s, X_camera_object.translation(), true});
-      demo.objects[j].yaw_rad.push_back(core::yawOf(X_camera_object.linear()));
-    }
-  }
-  for (const auto& e : timeline.events) {
-    demo.planOrder.push_back(e.objectId);
-    demo.graspIndex.push_back(e.graspFrame);
-    demo.releaseIndex.push_back(e.releaseFrame);
-  }
-  return demo;
-}
+/// The synth module's choreography as noise-free labelled tracks (libs/synth LabelledDemo.h).
+inline LabelledDemo cleanSynthDemo(std::uint32_t seed) { return synth::cleanLabelledDemo(seed); }
 
 /// The tracks a segmenter sees (plan objects first, then the others, like a perception CSV).
 inline RealTrackNoise::Result noisySynthDemo(std::uint32_t seed) {

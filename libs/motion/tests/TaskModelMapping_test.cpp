@@ -36,12 +36,13 @@ TEST(TaskModelMapping, StoredDemoSegmentsLearnsAndStoresSkillsThatRollOutIdentic
   ASSERT_EQ(in.hand.size(), demo.hand.size());
   Segmenter::Config thesis;  // the generator's truth is the thesis' grasp definition (mid-hold)
   thesis.events = Segmenter::EventEstimator::Thesis;
-  const auto seg = Segmenter(thesis).segment(in.hand, in.objects, in.planOrder);
+  const LearnedSkills learned = learnSkills(in, Segmenter(thesis));
+  const auto& seg = learned.segmentation;
+  const auto& skills = learned.skills;
   for (std::size_t i = 0; i < seg.objects.size(); ++i) {
     EXPECT_LE(std::abs(seg.objects[i].graspIndex - demo.graspIndex[i]), kFrameTol);
     EXPECT_LE(std::abs(seg.objects[i].releaseIndex - demo.releaseIndex[i]), kFrameTol);
   }
-  const auto skills = SkillLearner().learn(seg, in.objects);
   const auto rows = skillRows(skills, in);
   ASSERT_EQ(rows.size(), 16u);
   storeSkills(db, id, skills, in);

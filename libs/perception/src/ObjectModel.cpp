@@ -2,13 +2,14 @@
 
 #include <cmath>
 
+#include "srp/core/Angles.h"
 #include "srp/core/Error.h"
 #include "srp/kb/KnowledgeBase.h"
 
 namespace srp::perception {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using core::kPi;
 
 /// Yaw symmetry order n (2 pi / n maps the samples onto themselves).
 int yawSymmetryOrder(const std::vector<kb::SurfacePoint>& pts, double tol_m) {

@@ -141,38 +141,3 @@ TEST(DemoPerception, CameraYawIsTheRotationAboutTheOpticalAxis) {
 
 }  // namespace
 }  // namespace srp::perception
-
-#include "srp/perception/TaskDbMapping.h"
-
-namespace srp::perception {
-namespace {
-
-TEST(TaskDbMapping, HandCarriedForwardAndObjectRows) {
-  PerceptionResult r;
-  for (int i = 0; i < 4; ++i) r.hand.append({i, i / 30.0, Eigen::Vector3d(0.1 * i, 0, 0.8), i == 1 || i == 2});
-  ObjectTrajectory box;
-  box.className = "gray box";
-  box.classId = 0;
-  box.isStatic = true;
-  for (int i = 0; i < 4; ++i) box.samples.push_back({i, i / 30.0, core::makePoseYPR({0.1, 0.2, 0.85}, 0.5, 0, 0), i == 0, 0.9});
-  r.objects.push_back(box);
-  r.objects.push_back(ObjectTrajectory{"star", 5, false, {}});  // never seen: no rows
-  const PerceptionRows rows = toTaskDbRows(r, catalogue());
-  ASSERT_EQ(rows.handPositions.size(), 4u);
-  EXPECT_FALSE(rows.handPositions[0].detected);
-  EXPECT_NEAR(rows.handPositions[0].p_m.x(), 0.1, 1e-12);  // before the first: the first
-  EXPECT_NEAR(rows.handPositions[3].p_m.x(), 0.2, 1e-12);  // after the last: the last
-  EXPECT_TRUE(rows.handPositions[2].detected);
-  ASSERT_EQ(rows.groundedProducts.size(), 1u);
-  EXPECT_EQ(rows.groundedProducts[0].objectName, "gray box");
-  EXPECT_EQ(rows.groundedProducts[0].color.value_or(""), "gray");
-  ASSERT_EQ(rows.productPoses.size(), 4u);
-  EXPECT_NEAR(rows.productPoses[2].yaw_rad(), 0.5, 1e-9);
-  EXPECT_FALSE(rows.productPoses[2].detected);
-  PerceptionResult none;
-  none.hand.append({0, 0.0, Eigen::Vector3d::Zero(), false});
-  EXPECT_THROW(toTaskDbRows(none, catalogue()), core::InvalidInputError);
-}
-
-}  // namespace
-}  // namespace srp::perception

@@ -6,22 +6,14 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <nlohmann/json.hpp>
-#include <set>
 
 #include "srp/core/Error.h"
 #include "srp/core/ObjectCatalogue.h"
-#include "srp/language/InstructionParser.h"
-#include "srp/language/PlanTables.h"
-#include "srp/motion/Segmenter.h"
-#include "srp/motion/SkillLearner.h"
 #include "srp/motion/SkillPlots.h"
-#include "srp/motion/TaskModelMapping.h"
 #include "srp/perception/DemoPerception.h"
-#include "srp/perception/TaskDbMapping.h"
 #include "srp/programming/ProgramReport.h"
-#include "srp/rawlog/RawlogReader.h"
+#include "srp/programming/ProgrammingStages.h"
 #include "srp/taskdb/TaskModelStore.h"
 
 namespace srp::programming {
@@ -50,32 +42,6 @@ class StageClock {
   std::string stage_;
   std::chrono::steady_clock::time_point t0_;
 };
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
-
-// Grounds an instruction's object in the knowledge base, or says which names it knows.
-const core::ObjectClass& ground(const core::ObjectCatalogue& kb, const language::ObjectRef& o) {
-  if (const core::ObjectClass* c = kb.ground(lower(o.name), o.color ? lower(*o.color) : "")) return *c;
-  std::string known;
-  for (const auto& c : kb.classes()) known += (known.empty() ? "" : ", ") + c.name;
-  throw InvalidInputError("the instruction names '" + language::describe(o) +
-                          "', which the knowledge base does not know (it knows: " + known +
-                          "); add a mesh and a catalogue entry, or rephrase");
-}
-
-// Reach/Grasp/Move/Release flags of the ProductPose rows from the segmentation.
-void setSkillFlags(taskdb::TaskModel& model, const std::vector<motion::SkillSet>& skills,
-                   const std::map<std::string, int>& classIdByName) {
-  for (const auto& s : skills) {
-    const auto it = classIdByName.find(s.objectName);
-    if (it == classIdByName.end()) continue;
-    for (auto& row : model.productPoses)
-      if (row.classId == it->second) motion::setSkillFlags(row, s);
-  }
-}
 
 }  // namespace
 
@@ -128,111 +94,38 @@ ProgramResult programTask(const ProgrammingOptions& o) {
   { auto db = taskdb::TaskDatabase::open(o.dbPath); }
   if (!o.reportDir.empty()) checkReportFolder(o.reportDir);
 
-  // 1. Language.
+  // 1. Language, 2. grounding (once; from here on an object is its class name).
   clock.start("language");
   progress("language", 0, 1);
-  const language::InstructionParser parser;
-  const language::TaskPlan plan = parser.parse(o.instruction);
-  if (plan.steps.empty()) {
-    std::string why;
-    for (const auto& w : plan.warnings) why += (why.empty() ? "" : "; ") + w;
-    throw InvalidInputError("the instruction gives no pick & place step, nothing was stored" +
-                            (why.empty() ? std::string() : " (" + why + ")"));
-  }
-  result.warnings = plan.warnings;
-  for (const auto& step : plan.steps) {
-    std::string line = language::describe(step.object);
-    for (const auto& s : step.source) line += ", " + s.relation + " " + language::describe(s.landmark);
-    line += " ->";
-    for (const auto& t : step.target) line += " " + t.relation + " " + language::describe(t.landmark) + ";";
-    result.planLines.push_back(line);
-  }
-  progress("language", 1, 1);
-
-  // 2. Grounding: step objects move, landmarks stay where they are.
+  const language::TaskPlan plan = parsePlan(o.instruction);
   const core::ObjectCatalogue kb =
       core::ObjectCatalogue::load(o.cataloguePath.empty() ? core::ObjectCatalogue::defaultPath() : o.cataloguePath);
-  std::vector<std::string> movingOrder;
-  std::set<std::string> moving, landmarks;
-  for (const auto& step : plan.steps) {
-    const std::string& cls = ground(kb, step.object).name;
-    if (moving.insert(cls).second) movingOrder.push_back(cls);
-    for (const auto* list : {&step.source, &step.target})
-      for (const auto& loc : *list) landmarks.insert(ground(kb, loc.landmark).name);
-  }
-  perception::PerceptionOptions popt;
-  popt.hand = o.markerFreeHand ? perception::PerceptionOptions::HandMethod::MarkerFree
-                               : perception::PerceptionOptions::HandMethod::Marker;
-  for (const auto& cls : movingOrder) popt.plan.push_back({cls, false});
-  for (const auto& cls : landmarks)
-    if (!moving.count(cls)) popt.plan.push_back({cls, true});
+  const GroundedPlan grounded = groundPlan(plan, kb);
+  result.warnings = grounded.plan.warnings;
+  result.planLines = planLines(grounded.plan);
+  progress("language", 1, 1);
 
   // 3. Environment.
   clock.start("environment");
-  perception::DemoPerceiver perceiver(kb, popt);
-  {
-    rawlog::RawlogReader reader(o.demoPath);
-    while (auto f = reader.next()) {
-      if (o.intrinsics) f->intrinsics = *o.intrinsics;
-      perceiver.add(*f);
-      progress("environment", static_cast<std::size_t>(perceiver.framesAdded()), 0);
-    }
-    if (reader.damage() && !o.allowTruncated)
-      throw core::FileError(o.demoPath, "unreadable demonstration, " + *reader.damage() +
-                                            "; nothing was stored (--allow-truncated uses the frames before the damage)");
-    if (reader.damage())
-      result.warnings.push_back("demonstration " + *reader.damage() + "; using the " +
-                                std::to_string(reader.framesRead()) + " frames before it (--allow-truncated)");
-    if (perceiver.framesAdded() == 0)
-      throw core::FileError(o.demoPath, "no RGB-D frames with depth in this rawlog; record one with 'srp record' "
-                                        "or make one with 'srp synth-demo'");
-  }
-  const perception::PerceptionResult seen = perceiver.finish();
+  const perception::PerceptionResult seen = perceive(grounded, kb, o, result.warnings);
   result.frames = seen.frames;
   result.handDetectedFrames = seen.handDetected;
-  for (const auto& cls : movingOrder) {
-    const auto it = std::find_if(seen.objects.begin(), seen.objects.end(),
-                                 [&](const auto& t) { return t.className == cls; });
-    if (it == seen.objects.end() || it->detectedFrames() == 0)
-      throw InvalidInputError("the instruction moves the " + cls + ", but the demonstration '" + o.demoPath +
-                              "' never shows it; nothing was stored");
-  }
 
-  // 4. The task model: instruction tables + perception rows, ids linked.
+  // 4. Motion: the perception result handed over in memory, segmented, DMPs learned.
   clock.start("motion");
-  taskdb::TaskModel model = language::planToTaskModel(plan, o.name, o.instruction);
-  model.info.frameRate_hz = frameRateOf(seen.hand);
-  model.info.intrinsics = seen.intrinsics;
-  const perception::PerceptionRows rows = perception::toTaskDbRows(seen, kb);
-  model.handPositions = rows.handPositions;
-  model.groundedProducts = rows.groundedProducts;
-  model.productPoses = rows.productPoses;
-  for (auto& p : model.products) {
-    const language::ObjectRef ref{p.objectName, p.color};
-    const core::ObjectClass& cls = ground(kb, ref);
-    if (model.findGrounded(cls.classId)) p.classId = cls.classId;
-  }
-  // A grounded object takes the source/target location of its plan step.
-  for (auto& g : model.groundedProducts)
-    for (int id : model.targetObjectIds)
-      if (const auto* p = model.findProduct(id); p && p->classId == g.classId) {
-        if (p->sourceLocationId && !g.sourceLocationId) g.sourceLocationId = p->sourceLocationId;
-        if (p->targetLocationId && !g.targetLocationId) g.targetLocationId = p->targetLocationId;
-      }
-
-  // 5. Motion: segmentation, skills, DMPs.
   progress("motion", 0, 1);
-  const motion::MotionInputs inputs = motion::motionInputsFromTaskModel(model);
-  const motion::Segmentation segmentation = motion::Segmenter().segment(inputs.hand, inputs.objects, inputs.planOrder);
-  const std::vector<motion::SkillSet> skills = motion::SkillLearner().learn(segmentation, inputs.objects);
-  model.skills = motion::skillRows(skills, inputs);
-  setSkillFlags(model, skills, inputs.classIdByName);
+  const motion::DemoTracks tracks = demoTracks(seen, grounded, frameRateOf(seen.hand));
+  const motion::LearnedSkills learned = motion::learnSkills(tracks);
+  const motion::Segmentation& segmentation = learned.segmentation;
+  const std::vector<motion::SkillSet>& skills = learned.skills;
+  // 5. The rows: instruction tables, perception rows, skills.
+  const taskdb::TaskModel model = buildTaskModel(grounded, o, seen, kb, tracks, skills);
   result.skillCount = model.skills.size();
   for (const auto& w : segmentation.warnings) result.warnings.push_back(w);
   for (const auto& seg : segmentation.objects) {
     ObjectOutcome out;
     out.name = seg.name;
-    out.classId = inputs.classIdByName.count(seg.name) ? inputs.classIdByName.at(seg.name) : -1;
+    out.classId = kb.find(seg.name) ? kb.find(seg.name)->classId : -1;
     out.moved = seg.moved;
     out.graspFrame = seg.graspFrame;
     out.releaseFrame = seg.releaseFrame;

@@ -237,6 +237,96 @@ void writeTwoCameraFolderFrame(const std::string& folder, int k, const cv::Mat& 
     throw srp::core::FileError(folder, "cannot write frame " + std::to_string(k) + " of the two-camera demo");
 }
 
+// One renderer with the scene's bodies: optionally the table and floor, every
+// scene object (its mesh, the timeline's colour), optionally the hand's parts.
+struct Layer {
+  std::unique_ptr<SceneRenderer> renderer;
+  std::vector<int> objectBodies, handBodies;
+};
+
+Layer makeLayer(const core::CameraIntrinsics& intrinsics, const DemoTimeline& timeline,
+                const std::vector<srp::kb::TriangleMesh>& objectMeshes, const HandModel& hand, bool withTable,
+                bool withHand) {
+  const srp::core::Scene& world = timeline.scene;
+  Layer layer;
+  layer.renderer = std::make_unique<SceneRenderer>(intrinsics);
+  SceneRenderer& r = *layer.renderer;
+  r.setLighting(world.lighting);
+  r.setBackground({0.3, 0.3, 0.32});
+  if (withTable) {
+    const int table = r.addBody(
+        "table",
+        srp::kb::makeBoxMesh({-0.5 * world.tableSize_m.x(), -0.5 * world.tableSize_m.y(), -0.03},
+                             {0.5 * world.tableSize_m.x(), 0.5 * world.tableSize_m.y(), 0.0}),
+        world.tableRgb);
+    r.setBodyPose(table, srp::core::Pose3::Identity());
+    const int floor = r.addBody("floor", srp::kb::makeBoxMesh({-3, -3, -0.78}, {3, 3, -0.75}), {0.42, 0.4, 0.38});
+    r.setBodyPose(floor, srp::core::Pose3::Identity());
+  }
+  for (std::size_t i = 0; i < world.objects.size(); ++i)
+    layer.objectBodies.push_back(r.addBody(world.objects[i].id, objectMeshes[i], timeline.objectRgb.at(world.objects[i].id)));
+  if (withHand)
+    for (const auto& part : hand.parts()) layer.handBodies.push_back(r.addBody("hand:" + part.name, part.mesh_part, part.triangleRgb));
+  return layer;
+}
+
+// The ground truth's header: scene, camera, hand tag, objects (initial and
+// final poses) and the plan's events; the frames are appended as they are made.
+DemoGroundTruth groundTruthHeader(const DemoTimeline& timeline, const srp::core::ObjectCatalogue& catalogue,
+                                  const HandModel& hand, const nlohmann::json& plan, const SynthDemoOptions& options,
+                                  const std::string& rawlogFile) {
+  const srp::core::Scene& world = timeline.scene;
+  DemoGroundTruth gt;
+  gt.sceneName = world.name;
+  gt.rawlogFile = rawlogFile;
+  gt.seed = options.demo.seed;
+  gt.fps = world.fps;
+  gt.speedFactor = timeline.speedFactor;
+  gt.instruction = plan.value("instruction", std::string());
+  gt.intrinsics = world.intrinsics;
+  gt.X_world_camera = world.X_world_camera;
+  gt.X_world_base = world.X_world_base;
+  gt.tagId = options.hand.tagId;
+  gt.tagSize_m = options.hand.tagSize_m;
+  gt.X_hand_tag = hand.X_hand_tag();
+  gt.sensorRealism = options.sensor.enabled;
+  for (std::size_t i = 0; i < world.objects.size(); ++i) {
+    const auto& o = world.objects[i];
+    GroundTruthObject g{o.id, o.className, catalogue.at(o.className).classId, o.X_world_object,
+                        timeline.frames.back().X_world_objects[i]};
+    gt.objects.push_back(g);
+  }
+  for (const auto& e : timeline.events)
+    gt.events.push_back({e.objectId, e.step, e.graspFrame, e.releaseFrame, e.sourceId, e.targetId, e.referenceId,
+                         e.X_hand_object});
+  return gt;
+}
+
+// The contact sheet PNG: colour | depth of each chosen frame, two frames per row, labelled.
+void writeContactSheet(const std::string& path, const std::vector<std::pair<int, srp::rawlog::RgbdFrame>>& sheet,
+                       const DemoGroundTruth& gt) {
+  const cv::Size tile(256, 192);
+  const int perRow = 2, rows = (static_cast<int>(sheet.size()) + perRow - 1) / perRow;
+  cv::Mat canvas(rows * tile.height, perRow * 2 * tile.width, CV_8UC3, cv::Scalar(255, 255, 255));
+  for (std::size_t i = 0; i < sheet.size(); ++i) {
+    const auto& [index, fr] = sheet[i];
+    const int r = static_cast<int>(i) / perRow, c = static_cast<int>(i) % perRow;
+    cv::Mat colour, depth;
+    cv::resize(fr.colour_bgr8, colour, tile, 0, 0, cv::INTER_AREA);
+    cv::resize(colourMapDepth(fr.depth_m, 0.55, 0.95), depth, tile, 0, 0, cv::INTER_NEAREST);
+    colour.copyTo(canvas(cv::Rect(2 * c * tile.width, r * tile.height, tile.width, tile.height)));
+    depth.copyTo(canvas(cv::Rect((2 * c + 1) * tile.width, r * tile.height, tile.width, tile.height)));
+    const std::string label = "frame " + std::to_string(index) + "  t=" +
+                              cv::format("%.1f", gt.frames[index].t_s) + " s  " + gt.frames[index].phase;
+    cv::putText(canvas, label, {2 * c * tile.width + 6, r * tile.height + 18}, cv::FONT_HERSHEY_SIMPLEX, 0.5,
+                cv::Scalar(255, 255, 255), 2);
+    cv::putText(canvas, label, {2 * c * tile.width + 6, r * tile.height + 18}, cv::FONT_HERSHEY_SIMPLEX, 0.5,
+                cv::Scalar(0, 0, 0), 1);
+  }
+  if (!cv::imwrite(path, canvas))
+    throw srp::core::FileError(path, "cannot write the contact sheet PNG");
+}
+
 }  // namespace
 
 std::string groundTruthPathFor(const std::string& rawlogPath) {
@@ -286,41 +376,15 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
     objectBounds.push_back(objectMeshes.back().bounds());
     isPart.push_back(cls.kind == srp::core::ObjectKind::Part);
   }
-  struct Layer {
-    std::unique_ptr<SceneRenderer> renderer;
-    std::vector<int> objectBodies, handBodies;
-  };
-  auto makeLayer = [&](const core::CameraIntrinsics& intrinsics, bool withTable, bool withHand) {
-    Layer layer;
-    layer.renderer = std::make_unique<SceneRenderer>(intrinsics);
-    SceneRenderer& r = *layer.renderer;
-    r.setLighting(world.lighting);
-    r.setBackground({0.3, 0.3, 0.32});
-    if (withTable) {
-      const int table = r.addBody(
-          "table",
-          srp::kb::makeBoxMesh({-0.5 * world.tableSize_m.x(), -0.5 * world.tableSize_m.y(), -0.03},
-                               {0.5 * world.tableSize_m.x(), 0.5 * world.tableSize_m.y(), 0.0}),
-          world.tableRgb);
-      r.setBodyPose(table, srp::core::Pose3::Identity());
-      const int floor = r.addBody("floor", srp::kb::makeBoxMesh({-3, -3, -0.78}, {3, 3, -0.75}), {0.42, 0.4, 0.38});
-      r.setBodyPose(floor, srp::core::Pose3::Identity());
-    }
-    for (std::size_t i = 0; i < world.objects.size(); ++i)
-      layer.objectBodies.push_back(r.addBody(world.objects[i].id, objectMeshes[i], timeline.objectRgb.at(world.objects[i].id)));
-    if (withHand)
-      for (const auto& part : hand.parts()) layer.handBodies.push_back(r.addBody("hand:" + part.name, part.mesh_part, part.triangleRgb));
-    return layer;
-  };
   const bool layered = options.layeredRendering;
-  Layer background = makeLayer(K, true, !layered);
-  Layer moving = layered ? makeLayer(K, false, true) : Layer{};
+  Layer background = makeLayer(K, timeline, objectMeshes, hand, true, !layered);
+  Layer moving = layered ? makeLayer(K, timeline, objectMeshes, hand, false, true) : Layer{};
   // Two-camera sensor: the depth camera renders the whole scene itself.
   const std::optional<SynthDepthCamera>& depthCamera = options.depthCamera;
   Layer depthLayer;
   if (depthCamera) {
     depthCamera->intrinsics.validate("synth-demo depth camera");
-    depthLayer = makeLayer(depthCamera->intrinsics, true, true);
+    depthLayer = makeLayer(depthCamera->intrinsics, timeline, objectMeshes, hand, true, true);
   }
   const srp::core::Pose3 X_world_depth =
       depthCamera ? srp::core::Pose3(world.X_world_camera * depthCamera->X_colour_depth) : world.X_world_camera;
@@ -332,29 +396,8 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
   srp::rawlog::RgbdFrame backgroundFrame;
 
   // ---- Ground truth header -----------------------------------------------------
-  DemoGroundTruth gt;
-  gt.sceneName = world.name;
-  gt.rawlogFile = (options.depthCamera ? folderPath : std::filesystem::path(rawlogPath)).filename().string();
-  gt.seed = options.demo.seed;
-  gt.fps = world.fps;
-  gt.speedFactor = timeline.speedFactor;
-  gt.instruction = plan.value("instruction", std::string());
-  gt.intrinsics = K;
-  gt.X_world_camera = world.X_world_camera;
-  gt.X_world_base = world.X_world_base;
-  gt.tagId = options.hand.tagId;
-  gt.tagSize_m = options.hand.tagSize_m;
-  gt.X_hand_tag = hand.X_hand_tag();
-  gt.sensorRealism = options.sensor.enabled;
-  for (std::size_t i = 0; i < world.objects.size(); ++i) {
-    const auto& o = world.objects[i];
-    GroundTruthObject g{o.id, o.className, catalogue.at(o.className).classId, o.X_world_object,
-                        timeline.frames.back().X_world_objects[i]};
-    gt.objects.push_back(g);
-  }
-  for (const auto& e : timeline.events)
-    gt.events.push_back({e.objectId, e.step, e.graspFrame, e.releaseFrame, e.sourceId, e.targetId, e.referenceId,
-                         e.X_hand_object});
+  DemoGroundTruth gt = groundTruthHeader(timeline, catalogue, hand, plan, options,
+                                         (options.depthCamera ? folderPath : std::filesystem::path(rawlogPath)).filename().string());
 
   // Contact-sheet frames: evenly spread, first and last included.
   const int frameCount = options.maxFrames >= 0 ? std::min<int>(options.maxFrames, static_cast<int>(timeline.frames.size()))
@@ -616,26 +659,7 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
 
   // ---- Contact sheet: colour | depth per frame, two frames per row ----------------
   if (!options.contactSheetPath.empty() && !sheet.empty()) {
-    const cv::Size tile(256, 192);
-    const int perRow = 2, rows = (static_cast<int>(sheet.size()) + perRow - 1) / perRow;
-    cv::Mat canvas(rows * tile.height, perRow * 2 * tile.width, CV_8UC3, cv::Scalar(255, 255, 255));
-    for (std::size_t i = 0; i < sheet.size(); ++i) {
-      const auto& [index, fr] = sheet[i];
-      const int r = static_cast<int>(i) / perRow, c = static_cast<int>(i) % perRow;
-      cv::Mat colour, depth;
-      cv::resize(fr.colour_bgr8, colour, tile, 0, 0, cv::INTER_AREA);
-      cv::resize(colourMapDepth(fr.depth_m, 0.55, 0.95), depth, tile, 0, 0, cv::INTER_NEAREST);
-      colour.copyTo(canvas(cv::Rect(2 * c * tile.width, r * tile.height, tile.width, tile.height)));
-      depth.copyTo(canvas(cv::Rect((2 * c + 1) * tile.width, r * tile.height, tile.width, tile.height)));
-      const std::string label = "frame " + std::to_string(index) + "  t=" +
-                                cv::format("%.1f", gt.frames[index].t_s) + " s  " + gt.frames[index].phase;
-      cv::putText(canvas, label, {2 * c * tile.width + 6, r * tile.height + 18}, cv::FONT_HERSHEY_SIMPLEX, 0.5,
-                  cv::Scalar(255, 255, 255), 2);
-      cv::putText(canvas, label, {2 * c * tile.width + 6, r * tile.height + 18}, cv::FONT_HERSHEY_SIMPLEX, 0.5,
-                  cv::Scalar(0, 0, 0), 1);
-    }
-    if (!cv::imwrite(options.contactSheetPath, canvas))
-      throw srp::core::FileError(options.contactSheetPath, "cannot write the contact sheet PNG");
+    writeContactSheet(options.contactSheetPath, sheet, gt);
     result.contactSheetPath = options.contactSheetPath;
   }
   result.totalTime_s = secondsSince(tStart);

@@ -6,12 +6,14 @@
 #include <limits>
 #include <random>
 
+#include "srp/core/Angles.h"
 #include "srp/core/Error.h"
+#include "srp/core/Pose.h"
 
 namespace srp::synth {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using core::kPi;
 constexpr double kGraspPalmAboveTop_m = 0.022;   // palm centre above the object's top at grasp
 constexpr double kGraspPalmBehind_m = 0.05;      // palm centre behind the object (fingers over it)
 constexpr double kPalmPitch_rad = 8.0 * kPi / 180.0;  // fingers tilted down
@@ -44,6 +46,8 @@ srp::core::Pose3 handPose(const Key& k) {
   return X;
 }
 
+// atan2(sin, cos), not core::angleDifference: the two differ in the last bits and
+// the rendered demos (rawlogs, ground truth) are kept byte-identical.
 double wrapAngle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
 
 double footprintRadius(const srp::core::ObjectClass& c) { return 0.5 * c.dimensions_m.head<2>().norm(); }
@@ -104,81 +108,79 @@ double minimumJerk(double tau) {
   return t * t * t * (10.0 - 15.0 * t + 6.0 * t * t);
 }
 
-DemoTimeline planDemonstration(const srp::core::Scene& sceneIn, const srp::core::ObjectCatalogue& catalogue,
-                               const std::vector<PickPlaceStep>& steps, const HandModel& hand,
-                               const DemoOptions& options) {
-  using srp::core::InvalidInputError;
-  srp::core::require(!steps.empty(), "planDemonstration: the plan has no steps");
-  srp::core::require(sceneIn.fps > 0.0, "planDemonstration: scene camera fps must be positive");
-  std::mt19937 rng(options.seed);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+namespace {
 
-  DemoTimeline out;
-  out.scene = sceneIn;
+using Uniform = std::uniform_real_distribution<double>;
+
+const srp::core::ObjectClass& classOf(const srp::core::ObjectCatalogue& catalogue, const srp::core::SceneObject& o) {
+  return catalogue.at(o.className);
+}
+
+int indexOf(const srp::core::Scene& scene, const std::string& id) {
+  for (std::size_t i = 0; i < scene.objects.size(); ++i)
+    if (scene.objects[i].id == id) return static_cast<int>(i);
+  throw srp::core::InvalidInputError("planDemonstration: no object '" + id + "' in the scene");
+}
+
+// Randomisation by seed: speed, camera pose jitter, lighting and colours, and
+// the moved parts re-placed at random free spots of their source container.
+void randomiseScene(DemoTimeline& out, const srp::core::ObjectCatalogue& catalogue,
+                    const std::vector<PickPlaceStep>& steps, std::mt19937& rng, Uniform& unit) {
   srp::core::Scene& scene = out.scene;
-  out.steps = steps;
-  auto classOf = [&](const srp::core::SceneObject& o) -> const srp::core::ObjectClass& {
-    return catalogue.at(o.className);
-  };
-  auto indexOf = [&](const std::string& id) {
-    for (std::size_t i = 0; i < scene.objects.size(); ++i)
-      if (scene.objects[i].id == id) return static_cast<int>(i);
-    throw InvalidInputError("planDemonstration: no object '" + id + "' in the scene");
-  };
-  for (const auto& o : scene.objects) out.objectRgb[o.id] = classOf(o).rgb;
-
-  // ---- Randomisation by seed -------------------------------------------------
-  out.speedFactor = options.speedFactor;
-  if (options.randomise) {
-    out.speedFactor *= 1.0 + 0.15 * unit(rng);
-    Eigen::Vector3d dt(unit(rng), unit(rng), unit(rng));
-    const Eigen::Vector3d axis = Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized();
-    srp::core::Pose3 jitter = srp::core::Pose3::Identity();
-    jitter.translation() = 0.005 * dt;
-    jitter.linear() = Eigen::AngleAxisd(0.5 * kPi / 180.0 * unit(rng), axis).toRotationMatrix();
-    scene.X_world_camera = scene.X_world_camera * jitter;
-    scene.lighting.ambient *= 1.0 + 0.1 * unit(rng);
-    scene.lighting.diffuse *= 1.0 + 0.1 * unit(rng);
-    scene.lighting.direction_world += Eigen::Vector3d(0.15 * unit(rng), 0.15 * unit(rng), 0.0);
-    scene.tableRgb = (scene.tableRgb * (1.0 + 0.06 * unit(rng))).cwiseMin(1.0);
-    for (auto& [id, rgb] : out.objectRgb) rgb = (rgb * (1.0 + 0.1 * unit(rng))).cwiseMin(1.0).cwiseMax(0.0);
-    // Re-place the moved parts at random free spots of their source container.
-    std::vector<int> placed, seen;
-    for (const auto& s : steps) {
-      if (s.sourceId.empty()) continue;
-      const int oi = indexOf(s.objectId);
-      // Only where an object starts: a later step moving it again starts where the previous one put it.
-      if (std::find(seen.begin(), seen.end(), oi) != seen.end()) continue;
-      seen.push_back(oi);
-      const auto& box = *scene.findObject(s.sourceId);
-      const auto& boxClass = classOf(box);
-      const double r = footprintRadius(classOf(scene.objects[oi]));
-      const double hx = 0.5 * boxClass.dimensions_m.x() - boxClass.wallThickness_m - kWallMargin_m - r;
-      const double hy = 0.5 * boxClass.dimensions_m.y() - boxClass.wallThickness_m - kWallMargin_m - r;
-      if (hx <= 0.0 || hy <= 0.0) continue;
-      const auto& cls = classOf(scene.objects[oi]);
-      for (int attempt = 0; attempt < 500; ++attempt) {
-        const Eigen::Vector3d p_box(hx * unit(rng), hy * unit(rng), boxClass.wallThickness_m);
-        const Eigen::Vector3d p_world = box.X_world_object * p_box;
-        const double yaw = srp::core::yawOf(box.X_world_object.linear()) + kPi * unit(rng);
-        bool free = true;
-        for (int other : placed) {
-          const auto& X = scene.objects[other].X_world_object;
-          if (overlaps(footprintOf(cls, p_world, yaw),
-                       footprintOf(classOf(scene.objects[other]), X.translation(), srp::core::yawOf(X.linear())),
-                       kSpotGap_m))
-            free = false;
-        }
-        if (!free) continue;
-        scene.objects[oi].X_world_object = srp::core::makePoseYPR(p_world, yaw, 0.0, 0.0);
-        placed.push_back(oi);
-        break;
+  out.speedFactor *= 1.0 + 0.15 * unit(rng);
+  Eigen::Vector3d dt(unit(rng), unit(rng), unit(rng));
+  const Eigen::Vector3d axis = Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized();
+  srp::core::Pose3 jitter = srp::core::Pose3::Identity();
+  jitter.translation() = 0.005 * dt;
+  jitter.linear() = Eigen::AngleAxisd(0.5 * kPi / 180.0 * unit(rng), axis).toRotationMatrix();
+  scene.X_world_camera = scene.X_world_camera * jitter;
+  scene.lighting.ambient *= 1.0 + 0.1 * unit(rng);
+  scene.lighting.diffuse *= 1.0 + 0.1 * unit(rng);
+  scene.lighting.direction_world += Eigen::Vector3d(0.15 * unit(rng), 0.15 * unit(rng), 0.0);
+  scene.tableRgb = (scene.tableRgb * (1.0 + 0.06 * unit(rng))).cwiseMin(1.0);
+  for (auto& [id, rgb] : out.objectRgb) rgb = (rgb * (1.0 + 0.1 * unit(rng))).cwiseMin(1.0).cwiseMax(0.0);
+  // Re-place the moved parts at random free spots of their source container.
+  std::vector<int> placed, seen;
+  for (const auto& s : steps) {
+    if (s.sourceId.empty()) continue;
+    const int oi = indexOf(scene, s.objectId);
+    // Only where an object starts: a later step moving it again starts where the previous one put it.
+    if (std::find(seen.begin(), seen.end(), oi) != seen.end()) continue;
+    seen.push_back(oi);
+    const auto& box = *scene.findObject(s.sourceId);
+    const auto& boxClass = classOf(catalogue, box);
+    const double r = footprintRadius(classOf(catalogue, scene.objects[oi]));
+    const double hx = 0.5 * boxClass.dimensions_m.x() - boxClass.wallThickness_m - kWallMargin_m - r;
+    const double hy = 0.5 * boxClass.dimensions_m.y() - boxClass.wallThickness_m - kWallMargin_m - r;
+    if (hx <= 0.0 || hy <= 0.0) continue;
+    const auto& cls = classOf(catalogue, scene.objects[oi]);
+    for (int attempt = 0; attempt < 500; ++attempt) {
+      const Eigen::Vector3d p_box(hx * unit(rng), hy * unit(rng), boxClass.wallThickness_m);
+      const Eigen::Vector3d p_world = box.X_world_object * p_box;
+      const double yaw = srp::core::yawOf(box.X_world_object.linear()) + kPi * unit(rng);
+      bool free = true;
+      for (int other : placed) {
+        const auto& X = scene.objects[other].X_world_object;
+        if (overlaps(footprintOf(cls, p_world, yaw),
+                     footprintOf(classOf(catalogue, scene.objects[other]), X.translation(), srp::core::yawOf(X.linear())),
+                     kSpotGap_m))
+          free = false;
       }
+      if (!free) continue;
+      scene.objects[oi].X_world_object = srp::core::makePoseYPR(p_world, yaw, 0.0, 0.0);
+      placed.push_back(oi);
+      break;
     }
   }
-  const double speed = std::max(out.speedFactor, 0.1);
+}
 
-  // ---- Where the demonstrator stands: opposite the robot ---------------------
+// Where the demonstrator stands: opposite the robot, the hand's rest just out of view.
+struct Stance {
+  Key rest;
+  Eigen::Vector3d shoulder;
+};
+
+Stance demonstratorStance(const srp::core::Scene& scene, const HandModel& hand) {
   const Eigen::Vector3d cameraFoot(scene.X_world_camera.translation().x(), scene.X_world_camera.translation().y(), 0.0);
   Eigen::Vector3d away = cameraFoot - Eigen::Vector3d(scene.X_world_base.translation().x(),
                                                       scene.X_world_base.translation().y(), 0.0);
@@ -188,17 +190,26 @@ DemoTimeline planDemonstration(const srp::core::Scene& sceneIn, const srp::core:
   Key rest{cameraFoot + Eigen::Vector3d(0, 0, 0.22), restYaw, 0.0};
   for (int i = 0; i < 200 && !handOutOfView(hand, handPose(rest), scene); ++i) rest.p_world += 0.02 * away;
   const Eigen::Vector3d shoulder = rest.p_world + 0.25 * away + Eigen::Vector3d(0, 0, 0.15);
+  return {rest, shoulder};
+}
+
+// The demonstration as hand key-pose segments: idle at rest; per step reach,
+// grasp, move (carrying the object) to a free spot of the target container,
+// release, retract; back to rest; idle.
+std::vector<Segment> planSegments(const srp::core::Scene& scene, const srp::core::ObjectCatalogue& catalogue,
+                                  const std::vector<PickPlaceStep>& steps, const DemoOptions& options,
+                                  const Stance& stance, double speed, std::mt19937& rng, Uniform& unit) {
+  using srp::core::InvalidInputError;
+  const Key& rest = stance.rest;
   auto yawToward = [&](const Eigen::Vector3d& target) {
-    const Eigen::Vector3d d = target - shoulder;
+    const Eigen::Vector3d d = target - stance.shoulder;
     return std::atan2(d.y(), d.x());
   };
-
   double wallTop_m = 0.0;
   for (const auto& o : scene.objects)
-    if (classOf(o).kind == srp::core::ObjectKind::Container)
-      wallTop_m = std::max(wallTop_m, o.X_world_object.translation().z() + classOf(o).dimensions_m.z());
+    if (classOf(catalogue, o).kind == srp::core::ObjectKind::Container)
+      wallTop_m = std::max(wallTop_m, o.X_world_object.translation().z() + classOf(catalogue, o).dimensions_m.z());
 
-  // ---- Segments ----------------------------------------------------------------
   std::vector<Segment> segments;
   std::vector<srp::core::Pose3> X_world_objects;
   for (const auto& o : scene.objects) X_world_objects.push_back(o.X_world_object);
@@ -209,8 +220,8 @@ DemoTimeline planDemonstration(const srp::core::Scene& sceneIn, const srp::core:
   for (std::size_t si = 0; si < steps.size(); ++si) {
     const auto& s = steps[si];
     const int step = static_cast<int>(si);
-    const int oi = indexOf(s.objectId);
-    const auto& cls = classOf(scene.objects[oi]);
+    const int oi = indexOf(scene, s.objectId);
+    const auto& cls = classOf(catalogue, scene.objects[oi]);
     const double h = cls.dimensions_m.z();
     const srp::core::Pose3 X_world_start = finalPoses[oi];
     const Eigen::Vector3d p_start = X_world_start.translation();
@@ -232,12 +243,12 @@ DemoTimeline planDemonstration(const srp::core::Scene& sceneIn, const srp::core:
 
     // Free spot in the target container, beside the reference when given.
     const auto& box = *scene.findObject(s.targetId);
-    const auto& boxClass = classOf(box);
+    const auto& boxClass = classOf(catalogue, box);
     const double r = footprintRadius(cls);
     const double hx = 0.5 * boxClass.dimensions_m.x() - boxClass.wallThickness_m - kWallMargin_m - r;
     const double hy = 0.5 * boxClass.dimensions_m.y() - boxClass.wallThickness_m - kWallMargin_m - r;
     Eigen::Vector3d goal_world = box.X_world_object * Eigen::Vector3d(-0.25 * boxClass.dimensions_m.x(), 0, 0);
-    if (!s.referenceId.empty()) goal_world = finalPoses[indexOf(s.referenceId)].translation();
+    if (!s.referenceId.empty()) goal_world = finalPoses[indexOf(scene, s.referenceId)].translation();
     const Eigen::Vector2d spotJitter = options.randomise ? Eigen::Vector2d(0.003 * unit(rng), 0.003 * unit(rng))
                                                          : Eigen::Vector2d::Zero();
     double bestScore = std::numeric_limits<double>::infinity();
@@ -249,9 +260,9 @@ DemoTimeline planDemonstration(const srp::core::Scene& sceneIn, const srp::core:
         const double yawEnd = yawObject + yawToward(p_world) + yawTurn - yawGrasp;
         bool free = true;
         for (std::size_t j = 0; j < scene.objects.size() && free; ++j) {
-          if (static_cast<int>(j) == oi || classOf(scene.objects[j]).kind != srp::core::ObjectKind::Part) continue;
+          if (static_cast<int>(j) == oi || classOf(catalogue, scene.objects[j]).kind != srp::core::ObjectKind::Part) continue;
           if (overlaps(footprintOf(cls, p_world, yawEnd),
-                       footprintOf(classOf(scene.objects[j]), finalPoses[j].translation(),
+                       footprintOf(classOf(catalogue, scene.objects[j]), finalPoses[j].translation(),
                                    srp::core::yawOf(finalPoses[j].linear())),
                        kSpotGap_m))
             free = false;
@@ -303,8 +314,17 @@ DemoTimeline planDemonstration(const srp::core::Scene& sceneIn, const srp::core:
   Key restEnd = rest;
   segments.push_back({(0.8 + 1.2 * (restEnd.p_world - current.p_world).norm()) / speed, current, restEnd, "retract", -1, true, -1});
   segments.push_back({options.idleEnd_s, restEnd, restEnd, "idle", -1, false, -1});
+  return segments;
+}
 
-  // ---- Sampling at the camera rate ----------------------------------------------
+// Sampling at the camera rate: minimum-jerk interpolation within each
+// segment, tremor, and the carried object attached to the hand from the
+// first to the last frame of its carrying segments (the events).
+void sampleFrames(DemoTimeline& out, const std::vector<Segment>& segments, const std::vector<PickPlaceStep>& steps,
+                  const DemoOptions& options, std::mt19937& rng, Uniform& unit) {
+  const srp::core::Scene& scene = out.scene;
+  std::vector<srp::core::Pose3> X_world_objects;
+  for (const auto& o : scene.objects) X_world_objects.push_back(o.X_world_object);
   double total_s = 0.0;
   for (const auto& seg : segments) total_s += seg.duration_s;
   const int frameCount = static_cast<int>(std::floor(total_s * scene.fps)) + 1;
@@ -377,6 +397,28 @@ DemoTimeline planDemonstration(const srp::core::Scene& sceneIn, const srp::core:
     f.X_world_objects = X_world_objects;
     out.frames.push_back(std::move(f));
   }
+}
+
+}  // namespace
+
+DemoTimeline planDemonstration(const srp::core::Scene& sceneIn, const srp::core::ObjectCatalogue& catalogue,
+                               const std::vector<PickPlaceStep>& steps, const HandModel& hand,
+                               const DemoOptions& options) {
+  srp::core::require(!steps.empty(), "planDemonstration: the plan has no steps");
+  srp::core::require(sceneIn.fps > 0.0, "planDemonstration: scene camera fps must be positive");
+  std::mt19937 rng(options.seed);
+  Uniform unit(-1.0, 1.0);
+
+  DemoTimeline out;
+  out.scene = sceneIn;
+  out.steps = steps;
+  for (const auto& o : out.scene.objects) out.objectRgb[o.id] = classOf(catalogue, o).rgb;
+  out.speedFactor = options.speedFactor;
+  if (options.randomise) randomiseScene(out, catalogue, steps, rng, unit);
+  const double speed = std::max(out.speedFactor, 0.1);
+  const Stance stance = demonstratorStance(out.scene, hand);
+  const std::vector<Segment> segments = planSegments(out.scene, catalogue, steps, options, stance, speed, rng, unit);
+  sampleFrames(out, segments, steps, options, rng, unit);
   return out;
 }
 

@@ -5,14 +5,11 @@
 #include <map>
 #include <sstream>
 
+#include "srp/core/Text.h"
+
 namespace srp::taskdb {
 
 namespace {
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
 
 std::string describe(const TaskModel& m, int objectId) {
   const ProductRow* p = m.findProduct(objectId);
@@ -68,7 +65,7 @@ std::vector<PlanStepView> planSteps(const TaskModel& m) {
   for (int id : m.targetObjectIds) {
     const ProductRow* p = m.findProduct(id);
     const std::string name = p ? p->objectName : "?";
-    if (steps.empty() || lower(steps.back().objectName) != lower(name)) {
+    if (steps.empty() || core::toLowerAscii(steps.back().objectName) != core::toLowerAscii(name)) {
       steps.push_back({});
       steps.back().objectName = name;
     }

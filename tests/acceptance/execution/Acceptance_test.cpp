@@ -232,9 +232,7 @@ TEST(Acceptance, FiftySeededRandomScenes) {
 TEST(Acceptance, FiftySeededRandomScenesWithLearnedDmps) {
   const auto demo = srp::motion::SyntheticPickPlaceGenerator(srp::motion::SyntheticPickPlaceConfig{}).generate();
   srp::taskdb::TaskModel model = srp::motion::taskModelFromSyntheticDemo(demo, "synthetic");
-  const auto inputs = srp::motion::motionInputsFromTaskModel(model);
-  const auto seg = srp::motion::Segmenter().segment(inputs.hand, inputs.objects, inputs.planOrder);
-  model.skills = srp::motion::skillRows(srp::motion::SkillLearner().learn(seg, inputs.objects), inputs);
+  srp::motion::learnSkills(model);
   const srp::core::Scene scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
   const auto generator = std::make_shared<DmpPathGenerator>(DmpPathGenerator::fromTaskModel(model, scene.X_world_camera));
   const RobotModel robot = RobotModel::defaultUr5();

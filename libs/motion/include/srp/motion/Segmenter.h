@@ -106,6 +106,23 @@ struct Segmentation {
   std::vector<std::string> warnings;          ///< one line per unusual object
 };
 
+/// The segmenter's hand smoother: KalmanSmoother's defaults (noise estimated
+/// from the data, missing samples predicted, no gate) with a process noise of
+/// 2 m/s^2.
+inline KalmanSmoother::Config handSmootherDefaults() {
+  KalmanSmoother::Config c;
+  c.accelerationStd_mps2 = 2.0;
+  return c;
+}
+
+/// The segmenter's object smoother: the hand's, with an outlier gate at 5
+/// sigma (gateMin_m, gateReset: KalmanSmoother's defaults) against detector flicker.
+inline KalmanSmoother::Config objectSmootherDefaults() {
+  KalmanSmoother::Config c = handSmootherDefaults();
+  c.gateSigma = 5.0;
+  return c;
+}
+
 class Segmenter {
  public:
   /// How grasp and release are placed (see the file comment).
@@ -123,9 +140,9 @@ class Segmenter {
   };
 
   struct Config {
-    KalmanSmoother::Config handSmoother{std::nullopt, 1e-4, 2.0, KalmanSmoother::Missing::Predict, std::nullopt, 0.03, 6};
+    KalmanSmoother::Config handSmoother = handSmootherDefaults();
     /// Objects: gated against flicker; no measurement while occluded (the smoother bridges).
-    KalmanSmoother::Config objectSmoother{std::nullopt, 1e-4, 2.0, KalmanSmoother::Missing::Predict, 5.0, 0.03, 6};
+    KalmanSmoother::Config objectSmoother = objectSmootherDefaults();
     int medianWindow = 9;              ///< samples; removes flicker of up to 4 samples
     double flickerGate_m = 0.04;       ///< a detection this far from its neighbours' median is dropped
     double handReach_m = 0.15;         ///< an object jumping this far from the hand is a false detection

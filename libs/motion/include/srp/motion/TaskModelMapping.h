@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "srp/motion/LearnSkills.h"
 #include "srp/motion/Segmenter.h"
 #include "srp/motion/SyntheticPickPlace.h"
 #include "srp/motion/SkillSet.h"
@@ -18,10 +19,9 @@ namespace srp::motion {
 /// What segmentation needs from a task model. Samples are the union of the
 /// TimeIds of HandPositions and of the plan objects' ProductPose rows (frame =
 /// TimeId, t = TimeId / frame rate); a TimeId without a row is "not detected".
-struct MotionInputs {
-  core::PositionTrajectory hand;
-  std::vector<ObjectTrack> objects;          ///< one per plan object with ProductPose rows
-  std::vector<std::string> planOrder;        ///< grounded object names, TaskModelTargetObjects order
+/// `objects`: one per plan object with ProductPose rows; `planOrder`: grounded
+/// object names, TaskModelTargetObjects order.
+struct MotionInputs : DemoTracks {
   std::map<std::string, int> classIdByName;  ///< GroundedProducts
 };
 
@@ -30,6 +30,12 @@ struct MotionInputs {
 /// A plan object without ProductPose rows has no track (Segmenter then
 /// reports it).
 MotionInputs motionInputsFromTaskModel(const taskdb::TaskModel& model);
+
+/// Learns the skills of a task model held in memory (its hand positions and
+/// plan objects' ProductPose rows; e.g. taskModelFromSyntheticDemo) and sets
+/// its Skills rows; the ProductPose flags are left as they are. Throws as
+/// motionInputsFromTaskModel and learnSkills(DemoTracks) do.
+LearnedSkills learnSkills(taskdb::TaskModel& model);
 
 /// Skills rows of the learned skill sets (TimeIds = the demo's frame numbers).
 std::vector<taskdb::SkillRow> skillRows(const std::vector<SkillSet>& skills, const MotionInputs& inputs);

@@ -1,7 +1,9 @@
 #pragma once
-/// \file TaskDbMapping.h
-/// \brief The Environment module's output as task-database rows
-/// (HandPositions, GroundedProducts, ProductPose; libs/taskdb Rows.h).
+/// \file PerceptionRows.h
+/// \brief The Environment module's output (libs/perception) as task-database
+/// rows (HandPositions, GroundedProducts, ProductPose; libs/taskdb Rows.h),
+/// made by the programming module's store stage: perception itself knows
+/// nothing of the database.
 
 #include <vector>
 
@@ -9,7 +11,7 @@
 #include "srp/perception/DemoPerception.h"
 #include "srp/taskdb/Rows.h"
 
-namespace srp::perception {
+namespace srp::programming {
 
 struct PerceptionRows {
   std::vector<taskdb::HandPositionRow> handPositions;
@@ -24,6 +26,6 @@ struct PerceptionRows {
 /// module's to fill); one ProductPose row per object and frame (skill flags
 /// false: the motion module sets them). Camera frame, metres. Throws
 /// InvalidInputError when the hand has no valid sample.
-PerceptionRows toTaskDbRows(const PerceptionResult& result, const core::ObjectCatalogue& catalogue);
+PerceptionRows toTaskDbRows(const perception::PerceptionResult& result, const core::ObjectCatalogue& catalogue);
 
-}  // namespace srp::perception
+}  // namespace srp::programming

@@ -1,10 +1,10 @@
-#include "srp/perception/TaskDbMapping.h"
+#include "srp/programming/PerceptionRows.h"
 
 #include "srp/core/Error.h"
 
-namespace srp::perception {
+namespace srp::programming {
 
-PerceptionRows toTaskDbRows(const PerceptionResult& result, const core::ObjectCatalogue& catalogue) {
+PerceptionRows toTaskDbRows(const perception::PerceptionResult& result, const core::ObjectCatalogue& catalogue) {
   PerceptionRows rows;
   const auto& samples = result.hand.samples();
   std::size_t first = 0;
@@ -37,4 +37,4 @@ PerceptionRows toTaskDbRows(const PerceptionResult& result, const core::ObjectCa
   return rows;
 }
 
-}  // namespace srp::perception
+}  // namespace srp::programming

@@ -1,0 +1,13 @@
+#pragma once
+/// \file DefaultScene.h
+/// \brief Where the bundled thesis scene is (the default of every command
+/// and session that takes a scene), next to ObjectCatalogue::defaultPath().
+
+#include <string>
+
+namespace srp::core {
+
+/// sim/scenes/default.json of the source tree (SRP_SIM_DIR).
+std::string defaultScenePath();
+
+}  // namespace srp::core

@@ -1,0 +1,13 @@
+#pragma once
+/// \file Text.h
+/// \brief Small text helpers shared by the modules.
+
+#include <string>
+
+namespace srp::core {
+
+/// `text` with the ASCII letters A-Z lower-cased; every other byte (UTF-8
+/// included) unchanged, independent of the C locale.
+std::string toLowerAscii(std::string text);
+
+}  // namespace srp::core

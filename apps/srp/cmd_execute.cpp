@@ -4,6 +4,7 @@
 
 #include "CommandRegistry.h"
 #include "srp/core/Error.h"
+#include "srp/core/ViewFrame.h"
 #include "srp/execution/ExecutionSession.h"
 
 namespace {
@@ -16,6 +17,7 @@ struct ExecuteOptions {
   std::string out = "execution";
   int framePeriod = 10;
   bool json = false;
+  std::string view = "demonstrator";
 };
 
 void setupExecute(CLI::App& app) {
@@ -29,6 +31,10 @@ void setupExecute(CLI::App& app) {
   app.add_option("--frame-period", o->framePeriod, "Render every n-th 20 ms snapshot (0: no frames)")
       ->capture_default_str();
   app.add_flag("--json", o->json, "Print the report as JSON on stdout");
+  app.add_option("--view", o->view,
+                 "Frame of left/right/front/behind and of 'the second ...' (counted left to right): demonstrator "
+                 "(the camera's image axes on the table) or robot (standing at the robot base)")
+      ->capture_default_str();
   app.callback([o] {
     srp::execution::ExecuteRequest request;
     request.databasePath = o->db;
@@ -37,6 +43,7 @@ void setupExecute(CLI::App& app) {
     request.instruction = o->instruction;
     request.outputFolder = o->out;
     request.framePeriod = o->framePeriod;
+    request.options.placement.grounding.viewpoint = srp::core::viewpointFromString(o->view);
     request.progress = [](const std::string& line) { std::cerr << line << "\n"; };
     const auto result = srp::execution::executeTask(request);
     if (o->json)

@@ -43,6 +43,7 @@ CellDescription CellDescription::fromScene(const srp::core::Scene& scene,
   cell.X_world_base = scene.X_world_base;
   cell.tableHalfExtents_m = scene.tableSize_m / 2;
   cell.tableCentre_m.setZero();
+  cell.X_world_camera = scene.X_world_camera;
   for (const auto& so : scene.objects) {
     const srp::core::ObjectClass& c = catalogue.at(so.className);
     CellObject o;
@@ -52,8 +53,8 @@ CellDescription CellDescription::fromScene(const srp::core::Scene& scene,
     o.mass_kg = c.mass_kg;
     o.wallThickness_m = c.wallThickness_m;
     o.X_world_object = so.X_world_object;
-    o.rgb = c.rgb;
-    o.color = c.colorName;
+    o.rgb = srp::core::instanceRgb(so, c);
+    o.color = srp::core::instanceColor(so, c);
     o.className = c.name;
     o.noun = c.noun;
     o.classId = c.classId;

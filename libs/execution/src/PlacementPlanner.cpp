@@ -9,14 +9,6 @@ namespace {
 
 using srp::core::Pose3;
 
-std::string normalise(std::string s) {
-  for (char& c : s) c = (c == '_' || c == '-') ? ' ' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  const auto b = s.find_first_not_of(' '), e = s.find_last_not_of(' ');
-  s = b == std::string::npos ? "" : s.substr(b, e - b + 1);
-  for (std::size_t p; (p = s.find("grey")) != std::string::npos;) s.replace(p, 4, "gray");
-  return s;
-}
-
 double yawOfPose(const Pose3& X) { return srp::core::yawOf(X.linear()); }
 
 Pose3 uprightPose(const Eigen::Vector3d& p, double yaw) {
@@ -58,28 +50,6 @@ double support(const Eigen::Vector3d& size, double yaw, const Eigen::Vector2d& d
 
 }  // namespace
 
-const CellObject* PlacementPlanner::find(const CellDescription& scene, const ObjectReference& ref,
-                                         std::optional<CellObjectKind> kind) {
-  const std::string name = normalise(ref.name);
-  const std::optional<std::string> color = ref.color ? std::optional<std::string>(normalise(*ref.color)) : std::nullopt;
-  const std::string full = color ? *color + " " + name : name;
-  const CellObject* weak = nullptr;
-  for (const auto& o : scene.objects) {
-    if (kind && o.kind != *kind) continue;
-    const std::string n = normalise(o.name);
-    if (n == full) return &o;
-    if (n == name && (!color || normalise(o.color) == *color)) return &o;
-    // By knowledge-base class or noun (instances named "cuboid_2").
-    if (normalise(o.className) == full) return &o;
-    if (normalise(o.noun) == name && (!color || normalise(o.color) == *color)) return &o;
-    // "the box" without a colour: any "<colour> box".
-    if (!color && !weak && n.size() > name.size() && n.compare(n.size() - name.size(), name.size(), name) == 0 &&
-        n[n.size() - name.size() - 1] == ' ')
-      weak = &o;
-  }
-  return weak;
-}
-
 bool PlacementPlanner::isInside(const CellObject& part, const CellObject& container) {
   const Eigen::Vector3d p = container.X_world_object.inverse() * part.X_world_object.translation();
   return std::abs(p.x()) <= container.size_m.x() / 2 - container.wallThickness_m &&
@@ -101,19 +71,22 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
   Placement out;
   const CellObject* container = nullptr;
   const CellObject* neighbour = nullptr;
+  const SceneGrounder grounder(scene, options_.grounding);
+  auto landmarkOf = [&](const SpatialRelation& rel, CellObjectKind kind) -> const CellObject* {
+    try {
+      return &grounder.ground(rel.landmark, {}, kind);
+    } catch (const GroundingError& e) {
+      out.reason = "target '" + rel.relation + " the " + rel.landmark.describe() + "': " + e.what();
+      return nullptr;
+    }
+  };
   for (const auto& rel : step.target) {
     if (isContainmentRelation(rel.relation)) {
-      container = find(scene, rel.landmark, CellObjectKind::Container);
-      if (!container) {
-        out.reason = "target location '" + rel.landmark.describe() + "' is not in the scene";
-        return out;
-      }
+      container = landmarkOf(rel, CellObjectKind::Container);
+      if (!container) return out;
     } else if (isNeighbourRelation(rel.relation)) {
-      neighbour = find(scene, rel.landmark, CellObjectKind::Part);
-      if (!neighbour) {
-        out.reason = "target landmark '" + rel.landmark.describe() + "' (" + rel.relation + ") is not in the scene";
-        return out;
-      }
+      neighbour = landmarkOf(rel, CellObjectKind::Part);
+      if (!neighbour) return out;
       if (neighbour->name == part.name) {
         out.reason = "the " + part.name + " cannot be placed next to itself";
         return out;

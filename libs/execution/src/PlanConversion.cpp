@@ -124,13 +124,14 @@ void attachDemoOffsets(ExecutionPlan& plan, const srp::taskdb::TaskModel& model,
 }
 
 ExecutionPlan planFromLanguage(const srp::language::TaskPlan& plan) {
-  auto ref = [](const srp::language::ObjectRef& o) { return ObjectReference{o.name, o.color}; };
   ExecutionPlan out;
   for (const auto& s : plan.steps) {
     ExecutionStep step;
-    step.object = ref(s.object);
-    for (const auto& l : s.source) step.source.push_back({l.relation, ref(l.landmark)});
-    for (const auto& l : s.target) step.target.push_back({l.relation, ref(l.landmark)});
+    // One type (language::ObjectRef): colour, ordinal, superlative and the
+    // noun phrase's own relations reach SceneGrounder unchanged.
+    step.object = s.object;
+    for (const auto& l : s.source) step.source.push_back(l);
+    for (const auto& l : s.target) step.target.push_back(l);
     out.steps.push_back(step);
   }
   return out;

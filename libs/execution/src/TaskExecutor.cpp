@@ -127,18 +127,16 @@ StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
 
   // --- perceive and find the source and target locations (fig. 7.11, lines 3-5)
   const CellDescription scene = perceive();
-  const CellObject* part = PlacementPlanner::find(scene, step.object, CellObjectKind::Part);
-  if (!part) return finish(StepStatus::Skipped, "no " + step.object.describe() + " in the current scene");
+  // One instance: name, colour, ordinal, superlative, the phrase's relations and
+  // the step's source locations (SceneGrounder); else the candidates or the reason.
+  const CellObject* part = nullptr;
+  try {
+    part = &SceneGrounder(scene, options_.placement.grounding).ground(step.object, step.source, CellObjectKind::Part);
+  } catch (const GroundingError& e) {
+    return finish(StepStatus::Skipped, e.what());
+  }
   r.object = part->name;
   r.X_world_start = part->X_world_object;
-  for (const auto& rel : step.source) {
-    const CellObject* landmark = PlacementPlanner::find(scene, rel.landmark);
-    if (!landmark)
-      return finish(StepStatus::Skipped, "source location '" + rel.landmark.describe() + "' is not in the scene");
-    if (landmark->kind == CellObjectKind::Container && !PlacementPlanner::isInside(*part, *landmark))
-      return finish(StepStatus::Skipped, "the " + part->name + " is not " + rel.relation + " the " + landmark->name +
-                                             " (source location of the instruction)");
-  }
   const Placement placement = placement_.place(scene, *part, step);
   if (!placement.X_world_object) return finish(StepStatus::Skipped, placement.reason);
   r.X_world_planned = placement.X_world_object;

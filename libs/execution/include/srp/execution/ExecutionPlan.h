@@ -10,28 +10,26 @@
 #include <Eigen/Core>
 
 #include "srp/core/SpatialRelations.h"
+#include "srp/language/TaskPlan.h"
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace srp::execution {
 
-/// An object named in the instruction ("box" + colour "blue"; "cuboid").
-struct ObjectReference {
-  std::string name;
-  std::optional<std::string> color;
-  std::string describe() const { return color ? *color + " " + name : name; }
-};
+/// An object named in the instruction ("box" + colour "blue"; "cuboid"; "the
+/// second red cube"; "the cube behind the star"): the Language Module's ObjectRef,
+/// one type for the whole stack (name, colour, ordinal, superlative, relations).
+/// SceneGrounder resolves it to one instance of the scene.
+using ObjectReference = srp::language::ObjectRef;
 
-/// A spatial relation: "in" / "into" / "from" / "next to" / "beside" / "adjacent to" / "near" ...
-struct SpatialRelation {
-  std::string relation;
-  ObjectReference landmark;
-};
+/// A spatial relation: "in" / "into" / "from" / "next to" / "beside" / "left of" ...
+/// and its landmark (the Language Module's LocationRef).
+using SpatialRelation = srp::language::LocationRef;
 
 struct ExecutionStep {
   ObjectReference object;
-  std::vector<SpatialRelation> source;  ///< where it is now (may be empty: anywhere)
+  std::vector<SpatialRelation> source;  ///< where it is now (may be empty: anywhere); grounding uses them
   std::vector<SpatialRelation> target;  ///< where it must go (must not be empty)
   /// Demonstrated final offset of the object from its neighbour landmark (world x, y
   /// [m]), used to choose the side for "next to"; nullopt: no demonstration.

@@ -1,8 +1,9 @@
 #pragma once
 /// \file PlacementPlanner.h
-/// \brief Finds objects of a plan in the current scene and computes where a part
+/// \brief Computes where a part
 /// must be put so that the target relations hold (thesis ch. 7.4: the target pose
-/// estimated from the landmark's pose and the spatial relation).
+/// estimated from the landmark's pose and the spatial relation). Landmarks are
+/// found by SceneGrounder (one instance, or the reason naming the candidates).
 ///
 /// "in X": inside X's inner footprint (walls and a margin excluded), clear of the
 /// parts already there, nearest to the demonstrated position in X when known, else
@@ -18,6 +19,7 @@
 
 #include "srp/execution/CellDescription.h"
 #include "srp/execution/ExecutionPlan.h"
+#include "srp/execution/SceneGrounder.h"
 
 namespace srp::execution {
 
@@ -26,6 +28,7 @@ struct PlacementOptions {
   double wallMargin_m = 0.008;    ///< free space between a placed part and a wall
   double clearance_m = 0.008;     ///< minimum gap to any other part
   double gridStep_m = 0.005;      ///< candidate spacing for "in X"
+  GroundingOptions grounding;     ///< how landmarks are found (SceneGrounder) and the view frame
 };
 
 /// The result of placement: a pose, or the reason there is none.
@@ -39,11 +42,6 @@ struct Placement {
 class PlacementPlanner {
  public:
   explicit PlacementPlanner(PlacementOptions options = {}) : options_(options) {}
-
-  /// The scene object matching `ref` ("box" + "blue" matches "blue box", "blue_box" or
-  /// name "box" with colour "blue"); among several, the first. nullptr if none.
-  static const CellObject* find(const CellDescription& scene, const ObjectReference& ref,
-                                std::optional<CellObjectKind> kind = std::nullopt);
 
   /// True when the footprint centre of `part` lies inside `container`'s inner footprint.
   static bool isInside(const CellObject& part, const CellObject& container);

@@ -125,7 +125,8 @@ DemoTimeline planDemonstration(const srp::core::Scene& sceneIn, const srp::core:
       if (scene.objects[i].id == id) return static_cast<int>(i);
     throw InvalidInputError("planDemonstration: no object '" + id + "' in the scene");
   };
-  for (const auto& o : scene.objects) out.objectRgb[o.id] = classOf(o).rgb;
+  // Each instance in its own colour (the scene's "color"/"rgb", else its class').
+  for (const auto& o : scene.objects) out.objectRgb[o.id] = srp::core::instanceRgb(o, classOf(o));
 
   // ---- Randomisation by seed -------------------------------------------------
   out.speedFactor = options.speedFactor;

@@ -60,12 +60,14 @@ ViewFrame ViewFrame::fromRobot(const Pose3& X_world_base, const Eigen::Vector2d&
 }
 
 std::string ViewFrame::directionWord(const std::string& wordOrRelation) {
-  const std::string r = " " + lower(wordOrRelation) + " ";
+  const std::string w = lower(wordOrRelation);
+  if (w == "back") return "behind";  // the bare word only: "back to the box" is a return, not a direction
+  const std::string r = " " + w + " ";
   if (contains(r, " corner")) return "";
   if (contains(r, " left ")) return "left";
   if (contains(r, " right ")) return "right";
   if (contains(r, " front ")) return "front";
-  if (contains(r, " behind ") || contains(r, " back ") || contains(r, " rear of ")) return "behind";
+  if (contains(r, " behind ") || contains(r, " back of ") || contains(r, " rear of ")) return "behind";
   return "";
 }
 

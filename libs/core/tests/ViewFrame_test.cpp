@@ -35,6 +35,7 @@ TEST(ViewFrame, CameraLookingDownGivesImageAxesOnTheTable) {
   EXPECT_FALSE(v.direction("next to"));
   EXPECT_FALSE(v.direction("in"));
   EXPECT_FALSE(v.direction("in the front left corner of"));
+  EXPECT_FALSE(v.direction("back to"));  // a return to where the part was, not "behind"
 }
 
 TEST(ViewFrame, DefaultSceneCameraAndRobotAgreeRightIsWorldX) {

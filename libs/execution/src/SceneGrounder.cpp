@@ -338,7 +338,18 @@ std::vector<std::string> groundingProblems(const ExecutionPlan& plan, const Cell
       for (const auto& rel : step.target) {
         if (!moved.empty() && touchesMoved(rel.landmark)) continue;
         if (rel.relation.rfind("between", 0) == 0) {
-          if (grounder.candidates(rel.landmark).empty()) grounder.ground(rel.landmark);  // throws the reason
+          // "between the stars": a plural landmark; "between A and B": A and B each one instance.
+          if (rel.secondLandmark) {
+            for (const ObjectReference* l : {&rel.landmark, &*rel.secondLandmark}) {
+              try {
+                grounder.ground(*l);
+              } catch (const GroundingError& e) {
+                throw GroundingError("target 'between' the " + l->describe() + ": " + e.what(), e.candidates());
+              }
+            }
+          } else if (grounder.candidates(rel.landmark).empty()) {
+            grounder.ground(rel.landmark);  // throws the reason
+          }
           continue;
         }
         // Any kind: "on the star" stacks on a part, "in the box" names a container anyway;

@@ -57,7 +57,7 @@ struct ViewFrame {
   /// words "left", "right", "front", "behind"/"back" and the phrases "left of"/"to
   /// the left of" -> -right, "right of" -> right, "in front of" -> front,
   /// "behind"/"in back of"/"at the back of" -> -front. nullopt for anything else
-  /// ("next to", "in", "in the front left corner of", "up").
+  /// ("next to", "in", "back to", "in the front left corner of", "up").
   std::optional<Eigen::Vector2d> direction(const std::string& wordOrRelation) const;
 
   /// "left", "right", "front", "behind" for a direction word or relation phrase, "" otherwise.

@@ -114,7 +114,7 @@ class SceneGrounder {
 
 /// Grounds every step of `plan` in `scene` before anything moves (`srp execute
 /// --instruction`): the object (with its source locations) and each target
-/// landmark ("between" landmarks need at least one instance, the rest exactly one,
+/// landmark ("between A and B": each exactly one; a plural "between the stars" at least one; the rest exactly one,
 /// of any kind). Returns one message per failing step,
 /// "step 2 ('the cuboid'): two cuboids match ...". A later step whose phrase may
 /// name an instance an earlier step moves (same name) is left to the executor,

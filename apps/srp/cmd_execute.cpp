@@ -5,6 +5,7 @@
 
 #include "CommandRegistry.h"
 #include "srp/core/Error.h"
+#include "srp/core/ViewFrame.h"
 #include "srp/execution/ExecutionSession.h"
 #include "srp/execution/RosTrajectoryExporter.h"
 #include "srp/execution/UrScriptExporter.h"
@@ -25,6 +26,7 @@ struct ExecuteOptions {
   srp::execution::RosTrajectoryOptions ros;
   double velocityFraction = 1.0;
   bool safetySpheres = false;
+  std::string view = "demonstrator";
 };
 
 void setupExecute(CLI::App& app) {
@@ -60,6 +62,10 @@ void setupExecute(CLI::App& app) {
                  "real cell); paths are slowed down to fit, up to 4x, else the step is refused")
       ->capture_default_str()
       ->check(CLI::Range(0.01, 1.0));
+  app.add_option("--view", o->view,
+                 "Frame of left/right/front/behind and of 'the second ...' (counted left to right): demonstrator "
+                 "(the camera's image axes on the table) or robot (standing at the robot base)")
+      ->capture_default_str();
   app.callback([o] {
     // Bad exporter options fail before the (long) execution.
     const srp::execution::UrScriptExporter urExporter(o->ur);
@@ -73,6 +79,7 @@ void setupExecute(CLI::App& app) {
     request.framePeriod = o->framePeriod;
     request.drawSafetySpheres = o->safetySpheres;
     request.options.safety.velocityFraction = o->velocityFraction;
+    request.options.placement.grounding.viewpoint = srp::core::viewpointFromString(o->view);
     request.progress = [](const std::string& line) { std::cerr << line << "\n"; };
     const auto result = srp::execution::executeTask(request);
     if (o->json)

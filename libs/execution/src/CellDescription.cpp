@@ -13,6 +13,12 @@ double WorldBox::signedDistance(const Eigen::Vector3d& p_world_m) const {
   return outside + inside;
 }
 
+srp::core::ViewFrame CellDescription::viewFrame(srp::core::Viewpoint viewpoint) const {
+  if (viewpoint == srp::core::Viewpoint::Demonstrator && X_world_camera)
+    return srp::core::ViewFrame::fromCamera(*X_world_camera);
+  return srp::core::ViewFrame::fromRobot(X_world_base, tableCentre_m);
+}
+
 const CellObject* CellDescription::find(const std::string& name) const {
   for (const auto& o : objects)
     if (o.name == name) return &o;
@@ -54,8 +60,8 @@ CellDescription CellDescription::fromScene(const srp::core::Scene& scene,
     o.mass_kg = c.mass_kg;
     o.wallThickness_m = c.wallThickness_m;
     o.X_world_object = so.X_world_object;
-    o.rgb = c.rgb;
-    o.color = c.colorName;
+    o.rgb = srp::core::instanceRgb(so, c);
+    o.color = srp::core::instanceColor(so, c);
     o.className = c.name;
     o.noun = c.noun;
     o.classId = c.classId;

@@ -12,6 +12,7 @@
 #include "srp/execution/CellRenderer.h"
 #include "srp/execution/DmpPathGenerator.h"
 #include "srp/execution/PlanConversion.h"
+#include "srp/execution/SceneGrounder.h"
 #include "srp/language/InstructionParser.h"
 #include "srp/language/PlanTables.h"
 #include "srp/taskdb/TaskModelStore.h"
@@ -63,6 +64,13 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
       throw srp::core::InvalidInputError("the instruction gives no pick & place step: " +
                                          (parsed.warnings.empty() ? std::string("(no reason)") : parsed.warnings.front()));
     result.plan = planFromLanguage(parsed);
+    // An ambiguous or impossible noun phrase stops here: nothing moved, nothing written.
+    const std::vector<std::string> problems = groundingProblems(result.plan, cell, request.options.placement.grounding);
+    if (!problems.empty()) {
+      std::string message = "the instruction cannot be grounded in the scene, nothing was executed: ";
+      for (std::size_t i = 0; i < problems.size(); ++i) message += (i ? "; " : "") + problems[i];
+      throw GroundingError(message, {});
+    }
     attachDemoOffsets(result.plan, model, X_world_camera);
   } else {
     result.plan = planFromTaskModel(model, X_world_camera);

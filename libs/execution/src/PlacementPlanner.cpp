@@ -14,9 +14,7 @@ using srp::core::Pose3;
 std::string normalise(std::string s) {
   for (char& c : s) c = (c == '_' || c == '-') ? ' ' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   const auto b = s.find_first_not_of(' '), e = s.find_last_not_of(' ');
-  s = b == std::string::npos ? "" : s.substr(b, e - b + 1);
-  for (std::size_t p; (p = s.find("grey")) != std::string::npos;) s.replace(p, 4, "gray");
-  return s;
+  return b == std::string::npos ? "" : s.substr(b, e - b + 1);
 }
 
 double yawOfPose(const Pose3& X) { return srp::core::yawOf(X.linear()); }
@@ -102,28 +100,6 @@ std::string fmt(double v_m) {
 
 }  // namespace
 
-const CellObject* PlacementPlanner::find(const CellDescription& scene, const ObjectReference& ref,
-                                         std::optional<CellObjectKind> kind) {
-  const std::string name = normalise(ref.name);
-  const std::optional<std::string> color = ref.color ? std::optional<std::string>(normalise(*ref.color)) : std::nullopt;
-  const std::string full = color ? *color + " " + name : name;
-  const CellObject* weak = nullptr;
-  for (const auto& o : scene.objects) {
-    if (kind && o.kind != *kind) continue;
-    const std::string n = normalise(o.name);
-    if (n == full) return &o;
-    if (n == name && (!color || normalise(o.color) == *color)) return &o;
-    // By knowledge-base class or noun (instances named "cuboid_2").
-    if (normalise(o.className) == full) return &o;
-    if (normalise(o.noun) == name && (!color || normalise(o.color) == *color)) return &o;
-    // "the box" without a colour: any "<colour> box".
-    if (!color && !weak && n.size() > name.size() && n.compare(n.size() - name.size(), name.size(), name) == 0 &&
-        n[n.size() - name.size() - 1] == ' ')
-      weak = &o;
-  }
-  return weak;
-}
-
 bool PlacementPlanner::isInside(const CellObject& part, const CellObject& container) {
   const Eigen::Vector3d p = container.X_world_object.inverse() * part.X_world_object.translation();
   return std::abs(p.x()) <= container.size_m.x() / 2 - container.wallThickness_m &&
@@ -131,9 +107,7 @@ bool PlacementPlanner::isInside(const CellObject& part, const CellObject& contai
 }
 
 srp::core::ViewFrame PlacementPlanner::viewFrame(const CellDescription& scene) const {
-  if (options_.view == ViewConvention::Camera && scene.X_world_camera)
-    return srp::core::ViewFrame::fromCamera(*scene.X_world_camera);
-  return srp::core::ViewFrame::fromRobot(scene.X_world_base, scene.tableCentre_m);
+  return scene.viewFrame(options_.grounding.viewpoint);
 }
 
 bool PlacementPlanner::isFree(const CellDescription& scene, const CellObject& part, const Pose3& X) const {
@@ -160,36 +134,44 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
   Eigen::Vector2d direction = Eigen::Vector2d::Zero();
   std::string directionText;
   const srp::core::ViewFrame view = viewFrame(scene);
-  auto landmarkOf = [&](const SpatialRelation& rel, const ObjectReference& ref,
-                        std::optional<CellObjectKind> kind) -> const CellObject* {
-    const CellObject* o = find(scene, ref, kind);
-    if (!o) out.reason = "target landmark '" + ref.describe() + "' (" + rel.relation + ") is not in the scene";
-    else if (o->name == part.name) out.reason = "the " + part.name + " cannot be placed " + rel.relation + " itself";
-    return o && o->name != part.name ? o : nullptr;
+  const SceneGrounder grounder(scene, options_.grounding);
+  // One instance for a landmark phrase (SceneGrounder), or the reason naming the candidates.
+  auto groundLandmark = [&](const SpatialRelation& rel, const ObjectReference& ref,
+                            std::optional<CellObjectKind> kind) -> const CellObject* {
+    const CellObject* o = nullptr;
+    try {
+      o = &grounder.ground(ref, {}, kind);
+    } catch (const GroundingError& e) {
+      out.reason = "target '" + rel.relation + " the " + ref.describe() + "': " + e.what();
+      return nullptr;
+    }
+    if (o->name == part.name) {
+      out.reason = "the " + part.name + " cannot be placed " + rel.relation + " itself";
+      return nullptr;
+    }
+    return o;
   };
   for (const auto& rel : step.target) {
     Kind kind = kindOf(rel);
+    std::pair<std::string, std::string> ids;
     if (kind == Kind::Stack) {
-      const CellObject* l = find(scene, rel.landmark);
-      kind = l && l->kind == CellObjectKind::Container ? Kind::Containment : Kind::Stack;
+      const CellObject* l = groundLandmark(rel, rel.landmark, std::nullopt);
+      if (!l) return out;
+      kind = l->kind == CellObjectKind::Container ? Kind::Containment : Kind::Stack;
     }
     switch (kind) {
       case Kind::Containment:
-        container = find(scene, rel.landmark, CellObjectKind::Container);
-        if (!container) {
-          out.reason = "target location '" + rel.landmark.describe() + "' is not in the scene";
-          return out;
-        }
+        container = groundLandmark(rel, rel.landmark, CellObjectKind::Container);
+        if (!container) return out;
+        ids.first = container->name;
         break;
       case Kind::Corner: {
-        container = find(scene, rel.landmark, CellObjectKind::Container);
-        if (!container) {
-          out.reason = "target container '" + rel.landmark.describe() + "' (corner) is not in the scene";
-          return out;
-        }
+        container = groundLandmark(rel, rel.landmark, CellObjectKind::Container);
+        if (!container) return out;
+        ids.first = container->name;
         std::istringstream words(rel.corner);
         for (std::string w; words >> w;)
-          if (auto d = view.direction(w == "back" || w == "rear" ? "behind" : w)) cornerDirections.push_back(*d);
+          if (auto d = view.direction(w == "rear" ? "behind" : w)) cornerDirections.push_back(*d);
         if (cornerDirections.size() != 2 || std::abs(cornerDirections[0].dot(cornerDirections[1])) > 0.5) {
           out.reason = "unknown corner '" + rel.corner + "' of the " + container->name +
                        " (say front left, front right, back left or back right)";
@@ -198,32 +180,46 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
         break;
       }
       case Kind::Neighbour:
-        neighbour = landmarkOf(rel, rel.landmark, CellObjectKind::Part);
+        neighbour = groundLandmark(rel, rel.landmark, CellObjectKind::Part);
         if (!neighbour) return out;
+        ids.first = neighbour->name;
         break;
       case Kind::Stack:
-        stackOn = landmarkOf(rel, rel.landmark, CellObjectKind::Part);
+        stackOn = groundLandmark(rel, rel.landmark, CellObjectKind::Part);
         if (!stackOn) return out;
+        ids.first = stackOn->name;
         break;
       case Kind::Direction:
-        directionLandmark = landmarkOf(rel, rel.landmark, std::nullopt);
+        directionLandmark = groundLandmark(rel, rel.landmark, std::nullopt);
         if (!directionLandmark) return out;
+        ids.first = directionLandmark->name;
         direction = *view.direction(normalise(rel.relation));
         directionText = rel.relation;
         break;
       case Kind::Between:
-        if (!rel.secondLandmark) {
-          out.reason = "'between' needs two landmarks; the instruction names only the " + rel.landmark.describe();
-          return out;
+        if (rel.secondLandmark) {
+          betweenA = groundLandmark(rel, rel.landmark, std::nullopt);
+          if (!betweenA) return out;
+          betweenB = groundLandmark(rel, *rel.secondLandmark, std::nullopt);
+          if (!betweenB) return out;
+        } else {
+          // "between the stars": a plural landmark naming exactly two instances (the part excluded).
+          std::vector<const CellObject*> both;
+          for (const CellObject* o : grounder.candidates(rel.landmark))
+            if (o->name != part.name) both.push_back(o);
+          if (both.size() != 2) {
+            out.reason = "'between' needs two landmarks; 'the " + rel.landmark.describe() + "' names " +
+                         std::to_string(both.size()) + " instance(s) in the scene";
+            return out;
+          }
+          betweenA = both[0];
+          betweenB = both[1];
         }
-        betweenA = landmarkOf(rel, rel.landmark, std::nullopt);
-        if (!betweenA) return out;
-        betweenB = landmarkOf(rel, *rel.secondLandmark, std::nullopt);
-        if (!betweenB) return out;
         if (betweenA->name == betweenB->name) {
           out.reason = "'between' needs two different landmarks; both name the " + betweenA->name;
           return out;
         }
+        ids = {betweenA->name, betweenB->name};
         break;
       case Kind::Unknown:
         out.reason = "unknown target relation '" + rel.relation +
@@ -231,6 +227,7 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
                      "of, behind, between, in the <front|back> <left|right> corner of)";
         return out;
     }
+    out.landmarkIds.push_back(ids);
   }
   // Several "next to" relations keep the last one (as before); other mixes are ambiguous.
   const int others = (stackOn != nullptr) + (directionLandmark != nullptr) + (betweenA != nullptr);
@@ -510,23 +507,44 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
 }
 
 std::vector<RelationCheck> PlacementPlanner::check(const CellDescription& scene, const CellObject& part,
-                                                   const ExecutionStep& step) const {
+                                                   const ExecutionStep& step,
+                                                   const std::vector<std::pair<std::string, std::string>>& landmarkIds) const {
   std::vector<RelationCheck> checks;
   const srp::core::ViewFrame view = viewFrame(scene);
+  const SceneGrounder grounder(scene, options_.grounding);
   const double tol = options_.relationTolerance_m;
   const Pose3& X = part.X_world_object;
   const Eigen::Vector2d p = X.translation().head<2>();
   const double yaw = yawOfPose(X);
-  for (const auto& rel : step.target) {
+  // The landmark instance: the one placement grounded (landmarkIds), else grounded now.
+  auto landmarkOf = [&](std::size_t i, bool second, const ObjectReference& ref,
+                        std::optional<CellObjectKind> kind) -> const CellObject* {
+    if (i < landmarkIds.size()) {
+      const std::string& id = second ? landmarkIds[i].second : landmarkIds[i].first;
+      if (!id.empty()) return scene.find(id);
+    }
+    try {
+      return &grounder.ground(ref, {}, kind);
+    } catch (const GroundingError&) {
+      return nullptr;
+    }
+  };
+  for (std::size_t i = 0; i < step.target.size(); ++i) {
+    const SpatialRelation& rel = step.target[i];
     RelationCheck c;
     c.relation = rel.relation;
     Kind kind = kindOf(rel);
-    const CellObject* a = find(scene, rel.landmark, kind == Kind::Containment || kind == Kind::Corner
-                                                        ? std::optional<CellObjectKind>(CellObjectKind::Container)
-                                                        : std::nullopt);
+    const CellObject* a = landmarkOf(i, false, rel.landmark,
+                                     kind == Kind::Containment || kind == Kind::Corner
+                                         ? std::optional<CellObjectKind>(CellObjectKind::Container)
+                                         : std::nullopt);
     if (a && a->name == part.name) a = nullptr;
     if (kind == Kind::Stack && a) kind = a->kind == CellObjectKind::Container ? Kind::Containment : Kind::Stack;
-    const CellObject* b = rel.secondLandmark ? find(scene, *rel.secondLandmark) : nullptr;
+    const CellObject* b = nullptr;
+    if (kind == Kind::Between) {
+      if (i < landmarkIds.size() && !landmarkIds[i].second.empty()) b = scene.find(landmarkIds[i].second);
+      else if (rel.secondLandmark) b = landmarkOf(i, true, *rel.secondLandmark, std::nullopt);
+    }
     c.landmarks = a ? a->name : rel.landmark.describe();
     if (!a || kind == Kind::Unknown || (kind == Kind::Between && !b)) {
       c.detail = !a ? "landmark not in the scene" : "relation not checkable";

@@ -210,7 +210,6 @@ std::optional<TokenRelation> spatialPhraseIn(const std::vector<std::string>& t, 
 }  // namespace
 
 ExecutionPlan planFromLanguage(const srp::language::TaskPlan& plan) {
-  auto ref = [](const srp::language::ObjectRef& o) { return ObjectReference{o.name, o.color}; };
   auto tokensOf = [&](int sentence) -> std::vector<std::string> {
     std::vector<std::string> t;
     if (sentence < 0 || sentence >= static_cast<int>(plan.sentences.size())) return t;
@@ -224,17 +223,19 @@ ExecutionPlan planFromLanguage(const srp::language::TaskPlan& plan) {
   std::vector<int> objectSentence, objectToken;
   for (const auto& s : plan.steps) {
     ExecutionStep step;
-    step.object = ref(s.object);
-    for (const auto& l : s.source) step.source.push_back({l.relation, ref(l.landmark), {}, ""});
+    // One type (language::ObjectRef): colour, ordinal, superlative and the
+    // noun phrase's own relations reach SceneGrounder unchanged.
+    step.object = s.object;
+    for (const auto& l : s.source) step.source.push_back(l);
     for (std::size_t k = 0; k < s.target.size(); ++k) {
       const auto& l = s.target[k];
-      SpatialRelation r{l.relation, ref(l.landmark), {}, ""};
+      SpatialRelation r = l;
       const srp::language::TokenAnchor anchor = k < s.targetAnchors.size() ? s.targetAnchors[k] : srp::language::TokenAnchor{};
       const std::vector<std::string> t = tokensOf(anchor.sentenceId);
       if (anchor.tokenId >= 0 && static_cast<std::size_t>(anchor.tokenId) < t.size()) {
         const std::size_t i = static_cast<std::size_t>(anchor.tokenId);
         const bool viewLandmark = isViewWord(lowerWord(l.landmark.name)) && !l.landmark.color;
-        const bool lonelyBetween = lowerWord(l.relation) == "between";
+        const bool lonelyBetween = lowerWord(l.relation) == "between" && !l.secondLandmark;
         if (viewLandmark || lonelyBetween) {
           // Re-read from the relation word before the landmark.
           std::size_t from = i;

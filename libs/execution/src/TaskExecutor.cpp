@@ -136,11 +136,16 @@ StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
 
   // --- perceive and find the source and target locations (fig. 7.11, lines 3-5)
   const CellDescription scene = perceive();
-  const CellObject* part = PlacementPlanner::find(scene, step.object, CellObjectKind::Part);
-  if (!part) return finish(StepStatus::Skipped, "no " + step.object.describe() + " in the current scene");
+  // One instance: name, colour, ordinal, superlative, the phrase's relations and
+  // the step's source locations (SceneGrounder); else the candidates or the reason.
+  const CellObject* part = nullptr;
+  try {
+    part = &SceneGrounder(scene, options_.placement.grounding).ground(step.object, step.source, CellObjectKind::Part);
+  } catch (const GroundingError& e) {
+    return finish(StepStatus::Skipped, e.what());
+  }
   r.object = part->name;
   r.X_world_start = part->X_world_object;
-  if (auto why = checkSource(scene, *part, step)) return finish(StepStatus::Skipped, *why);
   const Placement placement = placement_.place(scene, *part, step);
   if (!placement.X_world_object) return finish(StepStatus::Skipped, placement.reason);
   r.X_world_planned = placement.X_world_object;
@@ -160,18 +165,6 @@ StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
 
   // --- check the outcome
   return finish(StepStatus::Done, checkOutcome(scene, *part, step, placement, r));
-}
-
-std::optional<std::string> TaskExecutor::checkSource(const CellDescription& scene, const CellObject& part,
-                                                     const ExecutionStep& step) const {
-  for (const auto& rel : step.source) {
-    const CellObject* landmark = PlacementPlanner::find(scene, rel.landmark);
-    if (!landmark) return "source location '" + rel.landmark.describe() + "' is not in the scene";
-    if (landmark->kind == CellObjectKind::Container && !PlacementPlanner::isInside(part, *landmark))
-      return "the " + part.name + " is not " + rel.relation + " the " + landmark->name +
-             " (source location of the instruction)";
-  }
-  return std::nullopt;
 }
 
 // The suction cup may take the part turned by 0 or pi about the tool axis (the
@@ -297,7 +290,7 @@ std::string TaskExecutor::checkOutcome(const CellDescription& scene, const CellO
   }
   // Every target relation on the scene as it is now (the other parts may have moved too).
   CellDescription now = perceive();
-  r.relationChecks = placement_.check(now, *now.find(part.name), step);
+  r.relationChecks = placement_.check(now, *now.find(part.name), step, placement.landmarkIds);
   for (const auto& c : r.relationChecks) holds = holds && c.holds;
   r.relationsHold = holds && r.minTableClearance_m > 0.0;
   if (holds) return "";

@@ -101,7 +101,7 @@ TEST(PlacementPlanner, RobotViewTurnsWithTheRobot) {
   CellDescription c = cell();
   c.X_world_base = at(-0.5, 0.0, 0.0, 0.0);  // robot on the left edge, looking at the table centre along +x
   PlacementOptions o;
-  o.view = ViewConvention::Robot;
+  o.grounding.viewpoint = srp::core::Viewpoint::Robot;
   const PlacementPlanner planner(o);
   const ExecutionStep s = stepOf("cuboid", rel("left of", "star"));
   const Placement p = planner.place(c, get(c, "cuboid"), s);
@@ -259,7 +259,7 @@ TEST(PlacementPlanner, UnknownRelationAndMissingLandmarkGiveReasons) {
   EXPECT_NE(u.reason.find("unknown target relation 'underneath'"), std::string::npos) << u.reason;
   const Placement m = planner.place(c, get(c, "cuboid"), stepOf("cuboid", rel("left of", "hexagon")));
   EXPECT_FALSE(m.X_world_object);
-  EXPECT_NE(m.reason.find("'hexagon'"), std::string::npos) << m.reason;
+  EXPECT_NE(m.reason.find("no hexagon"), std::string::npos) << m.reason;
   const Placement self = planner.place(c, get(c, "cuboid"), stepOf("cuboid", rel("left of", "cuboid")));
   EXPECT_FALSE(self.X_world_object);
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <map>
 #include <optional>
 #include <set>
 
@@ -34,6 +35,21 @@ const std::vector<std::vector<std::string>> kIndicatorPhrases{
     {"behind"},            {"above"},           {"below"},                   {"under"},
     {"over"},              {"between"},         {"inside"},                  {"atop"},
     {"to"},                {"toward"},          {"towards"},                 {"underneath"}};
+
+// Noun-phrase modifiers that pick one of several objects of a kind (ObjectRef).
+const std::map<std::string, int> kOrdinals{{"first", 1},  {"second", 2}, {"third", 3},  {"fourth", 4},
+                                           {"fifth", 5},  {"sixth", 6},  {"seventh", 7}, {"eighth", 8},
+                                           {"ninth", 9},  {"tenth", 10}, {"1st", 1},     {"2nd", 2},
+                                           {"3rd", 3},    {"4th", 4},    {"5th", 5},     {"last", -1}};
+const std::map<std::string, std::string> kSuperlatives{
+    {"leftmost", "leftmost"},   {"rightmost", "rightmost"}, {"frontmost", "frontmost"}, {"foremost", "frontmost"},
+    {"backmost", "backmost"},   {"rearmost", "backmost"},   {"hindmost", "backmost"},   {"biggest", "biggest"},
+    {"largest", "biggest"},     {"smallest", "smallest"},   {"highest", "highest"},     {"topmost", "highest"},
+    {"lowest", "lowest"},       {"closest", "closest"},     {"nearest", "closest"},     {"farthest", "farthest"},
+    {"furthest", "farthest"}};
+// "the left cube": a side adjective before the name reads as the superlative.
+const std::map<std::string, std::string> kSideAdjectives{
+    {"left", "leftmost"}, {"right", "rightmost"}, {"front", "frontmost"}, {"back", "backmost"}, {"rear", "backmost"}};
 
 enum class VerbKind { Pick, Place, Move };
 
@@ -169,7 +185,20 @@ class SentenceView {
     std::vector<std::string> name, colors;
     int lastNameToken = -1;
     while (i < n_) {
-      if (isColorWord(i)) {
+      if (name.empty() && typeAt(i) != "Action" && kOrdinals.count(lower_[i]) && i + 1 < n_) {
+        m.object.ordinal = kOrdinals.at(lower_[i]);
+        ++i;
+      } else if (name.empty() && typeAt(i) != "Action" && kSuperlatives.count(lower_[i]) && i + 1 < n_ &&
+                 isNameWord(i + 1)) {
+        m.object.superlative = kSuperlatives.at(lower_[i]);
+        ++i;
+      } else if (name.empty() && kSideAdjectives.count(lower_[i]) && typeAt(i).empty() && i + 1 < n_ &&
+                 (isNameWord(i + 1, false) || isColorWord(i + 1)) && !isIndicatorStart(i + 1)) {
+        m.object.superlative = kSideAdjectives.at(lower_[i]);
+        ++i;
+      } else if (!name.empty() && kSuperlatives.count(lower_[i])) {
+        break;  // "the cube closest to the box": the modifier follows the name
+      } else if (isColorWord(i)) {
         colors.push_back(lower_[i]);
         ++i;
       } else if (isNameWord(i, false)) {
@@ -188,9 +217,45 @@ class SentenceView {
       m.object.color = c;
     }
     m.anchor = {id_, lastNameToken};
+    i = objectModifiers(i, m.object);
     np.mention = m;
     np.end = i;
     return np;
+  }
+
+  /// Modifiers after an object's name that say which one it is; returns the
+  /// token after them. "closest to the box" / "nearest the box" / "farthest from
+  /// the box" -> relation {"closest to"/"farthest from", box}; "that is behind the
+  /// star" / "which is in the blue box" -> relation {"behind"/"in", star/box}.
+  int objectModifiers(int i, ObjectRef& object) const {
+    for (;;) {
+      // Only right after the name: in "move the nearest cube to the box" the "to" is the goal.
+      const std::string word = i < n_ && kSuperlatives.count(lower_[i]) ? kSuperlatives.at(lower_[i]) : "";
+      if ((word == "closest" || word == "farthest") && i + 1 < n_) {
+        int j = i + 1;
+        if (lower_[j] == "to" || lower_[j] == "from") ++j;
+        if (const auto lm = nounPhrase(j); lm && lm->mention) {
+          object.relations.push_back({word == "closest" ? "closest to" : "farthest from", lm->mention->object});
+          i = lm->end;
+          continue;
+        }
+      }
+      if (i + 2 < n_ && (lower_[i] == "that" || lower_[i] == "which") &&
+          (lower_[i + 1] == "is" || lower_[i + 1] == "are" || lower_[i + 1] == "stands" || lower_[i + 1] == "lies" ||
+           lower_[i + 1] == "sits")) {
+        const int len = indicatorLength(i + 2);
+        if (len > 0) {
+          std::string relation;
+          for (int j = i + 2; j < i + 2 + len; ++j) relation += (j > i + 2 ? " " : "") + lower_[j];
+          if (const auto lm = nounPhrase(i + 2 + len); lm && lm->mention) {
+            object.relations.push_back({relation, lm->mention->object});
+            i = lm->end;
+            continue;
+          }
+        }
+      }
+      return i;
+    }
   }
 
  private:
@@ -207,7 +272,10 @@ struct Referent {
 };
 
 bool sameObject(const ObjectRef& a, const ObjectRef& b) {
-  return a.name == b.name && (!a.color || !b.color || *a.color == *b.color);
+  // "the first cube" and "the second cube" are two objects; "the cube" may be either.
+  return a.name == b.name && (!a.color || !b.color || *a.color == *b.color) &&
+         (!a.ordinal || !b.ordinal || *a.ordinal == *b.ordinal) &&
+         (a.superlative.empty() || b.superlative.empty() || a.superlative == b.superlative);
 }
 
 }  // namespace

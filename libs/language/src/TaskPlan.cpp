@@ -10,7 +10,29 @@ namespace srp::language {
 using nlohmann::json;
 
 json toJson(const ObjectRef& o) {
-  return json{{"name", o.name}, {"color", o.color ? json(*o.color) : json(nullptr)}};
+  json j{{"name", o.name}, {"color", o.color ? json(*o.color) : json(nullptr)}};
+  // Modifiers only when given: plans without them keep their JSON form.
+  if (o.ordinal) j["ordinal"] = *o.ordinal;
+  if (!o.superlative.empty()) j["superlative"] = o.superlative;
+  if (!o.relations.empty()) {
+    j["relations"] = json::array();
+    for (const auto& r : o.relations) j["relations"].push_back(toJson(r));
+  }
+  return j;
+}
+
+std::string ObjectRef::describe() const {
+  static const char* kOrdinals[] = {"", "first", "second", "third", "fourth", "fifth",
+                                    "sixth", "seventh", "eighth", "ninth", "tenth"};
+  std::string s;
+  if (ordinal) s += *ordinal == -1 ? std::string("last ")
+                    : (*ordinal >= 1 && *ordinal <= 10) ? std::string(kOrdinals[*ordinal]) + " "
+                                                        : "#" + std::to_string(*ordinal) + " ";
+  if (!superlative.empty()) s += superlative + " ";
+  if (color) s += *color + " ";
+  s += name;
+  for (const auto& r : relations) s += " " + r.relation + " the " + r.landmark.describe();
+  return s;
 }
 
 json toJson(const LocationRef& l) { return json{{"relation", l.relation}, {"landmark", toJson(l.landmark)}}; }
@@ -40,6 +62,12 @@ ObjectRef objectRefFromJson(const json& j) {
   ObjectRef o;
   o.name = core::requireField(j, "name", "object").get<std::string>();
   if (j.contains("color") && !j.at("color").is_null()) o.color = j.at("color").get<std::string>();
+  if (j.contains("ordinal") && !j.at("ordinal").is_null()) o.ordinal = j.at("ordinal").get<int>();
+  o.superlative = j.value("superlative", std::string());
+  if (j.contains("relations"))
+    for (const auto& l : j.at("relations"))
+      o.relations.push_back({core::requireField(l, "relation", "object relations").get<std::string>(),
+                             objectRefFromJson(core::requireField(l, "landmark", "object relations"))});
   return o;
 }
 
@@ -102,7 +130,7 @@ TaskPlan taskPlanFromJson(const json& j) {
   return plan;
 }
 
-std::string describe(const ObjectRef& o) { return o.color ? *o.color + " " + o.name : o.name; }
+std::string describe(const ObjectRef& o) { return o.describe(); }
 
 std::string describe(const TaskPlan& plan) {
   std::ostringstream out;

@@ -412,7 +412,7 @@ DemoTimeline planDemonstration(const srp::core::Scene& sceneIn, const srp::core:
   DemoTimeline out;
   out.scene = sceneIn;
   out.steps = steps;
-  for (const auto& o : out.scene.objects) out.objectRgb[o.id] = classOf(catalogue, o).rgb;
+  for (const auto& o : out.scene.objects) out.objectRgb[o.id] = srp::core::instanceRgb(o, classOf(catalogue, o));  // each instance in its own colour
   out.speedFactor = options.speedFactor;
   if (options.randomise) randomiseScene(out, catalogue, steps, rng, unit);
   const double speed = std::max(out.speedFactor, 0.1);

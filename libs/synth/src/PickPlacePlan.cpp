@@ -55,9 +55,16 @@ std::vector<PickPlaceStep> groundPlan(const nlohmann::json& plan, const srp::cor
     if (!cls)
       throw InvalidInputError(where + ": '" + (color.empty() ? "" : color + " ") + noun +
                               "' is not in the knowledge base (datasets/kb/catalogue.json)");
+    // Several instances of the class: the colour picks among them (the scene's
+    // per-instance "color"), when any instance has it.
+    const bool byInstanceColour =
+        !color.empty() && std::any_of(scene.objects.begin(), scene.objects.end(), [&](const srp::core::SceneObject& o) {
+          return o.className == cls->name && srp::core::instanceColor(o, *cls) == color;
+        });
     const srp::core::SceneObject* chosen = nullptr;
     for (const auto& o : scene.objects) {
       if (o.className != cls->name) continue;
+      if (byInstanceColour && srp::core::instanceColor(o, *cls) != color) continue;
       const bool isMoved = std::find(moved.begin(), moved.end(), o.id) != moved.end();
       if (!chosen || (preferUnmoved && !isMoved && std::find(moved.begin(), moved.end(), chosen->id) != moved.end()))
         chosen = &o;

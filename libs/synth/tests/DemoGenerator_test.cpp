@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <iostream>
+#include <map>
 
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
@@ -203,3 +204,46 @@ TEST(DemoGenerator, BadSceneFailsNamingTheField) {
 }
 
 }  // namespace
+
+// Issue 19: several instances of one class, each rendered in its scene colour
+// (sim/scenes/two_cuboids_two_stars.json: red and blue cuboid, yellow and green star).
+TEST(DemoGenerator, InstancesOfOneClassRenderInTheirOwnColour) {
+  const auto scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/two_cuboids_two_stars.json");
+  const auto catalogue = srp::core::ObjectCatalogue::load(scene.cataloguePath);
+  nlohmann::json plan = {{"steps",
+                          {{{"object", {{"name", "star"}, {"color", "green"}}},
+                            {"target", {{{"relation", "in"}, {"landmark", {{"name", "box"}, {"color", "gray"}}}}}}}}}};
+  auto options = quickOptions();
+  options.sensor.enabled = false;
+  options.demo.randomise = false;
+  options.maxFrames = 1;
+  const std::string rawlog = tempPath("instances.rawlog");
+  srp::synth::generateSyntheticDemo(scene, catalogue, plan, options, rawlog);
+  const auto frames = srp::rawlog::RawlogReader::readAll(rawlog);
+  const auto gt = srp::synth::DemoGroundTruth::load(srp::synth::groundTruthPathFor(rawlog));
+  ASSERT_EQ(frames.size(), 1u);
+  const std::vector<std::string> ids{"cuboid_red", "cuboid_blue", "star_yellow", "star_green"};
+  auto chroma = [](const Eigen::Vector3d& rgb) -> Eigen::Vector3d { return rgb / std::max(rgb.sum(), 1e-9); };
+  std::map<std::string, Eigen::Vector3d> expected;
+  for (const auto& id : ids) {
+    const auto* o = scene.findObject(id);
+    ASSERT_NE(o, nullptr) << id;
+    expected[id] = chroma(srp::core::instanceRgb(*o, catalogue.at(o->className)));
+  }
+  for (const auto& id : ids) {
+    // Mean colour of a 3x3 patch at the centre of the top face.
+    const auto* o = scene.findObject(id);
+    const double h = catalogue.at(o->className).dimensions_m.z();
+    const auto uv = gt.intrinsics.project(gt.X_camera_object(0, id) * Eigen::Vector3d(0, 0, h));
+    ASSERT_TRUE(uv) << id;
+    const cv::Rect patch(static_cast<int>(std::lround(uv->x())) - 1, static_cast<int>(std::lround(uv->y())) - 1, 3, 3);
+    const cv::Scalar bgr = cv::mean(frames[0].colour_bgr8(patch));
+    const Eigen::Vector3d seen = chroma(Eigen::Vector3d(bgr[2], bgr[1], bgr[0]) / 255.0);
+    // Nearest of the four instance colours (chromaticity: the lighting scales brightness).
+    std::string nearest;
+    double best = 1e9;
+    for (const auto& [other, c] : expected)
+      if ((c - seen).norm() < best) best = (c - seen).norm(), nearest = other;
+    EXPECT_EQ(nearest, id) << id << " rendered with chromaticity " << seen.transpose();
+  }
+}

@@ -7,7 +7,7 @@ using namespace detail;
 
 namespace {
 constexpr const char* kSelect =
-    "SELECT ClassId, ObjectName, SourceLocationId, TargetLocationId, Color FROM GroundedProducts";
+    "SELECT ClassId, ObjectName, SourceLocationId, TargetLocationId, Color, InstanceId FROM GroundedProducts";
 
 GroundedProductRow readRow(const SQLite::Statement& st) {
   GroundedProductRow r;
@@ -16,6 +16,7 @@ GroundedProductRow readRow(const SQLite::Statement& st) {
   r.sourceLocationId = optionalInt(st.getColumn(2));
   r.targetLocationId = optionalInt(st.getColumn(3));
   r.color = optionalText(st.getColumn(4));
+  r.instanceId = st.getColumn(5).getString();
   return r;
 }
 }  // namespace
@@ -23,20 +24,23 @@ GroundedProductRow readRow(const SQLite::Statement& st) {
 void GroundedProductDao::add(int tm, const GroundedProductRow& r) {
   SQLite::Statement st(db_.connection(),
                        "INSERT INTO GroundedProducts (TaskModelId, ClassId, ObjectName, SourceLocationId, "
-                       "TargetLocationId, Color) VALUES (?, ?, ?, ?, ?, ?)");
+                       "TargetLocationId, Color, InstanceId) VALUES (?, ?, ?, ?, ?, ?, ?)");
   st.bind(1, tm);
   st.bind(2, r.classId);
   st.bind(3, r.objectName);
   bindOptional(st, 4, r.sourceLocationId);
   bindOptional(st, 5, r.targetLocationId);
   bindOptional(st, 6, r.color);
+  st.bind(7, r.instanceId);
   st.exec();
 }
 
-std::optional<GroundedProductRow> GroundedProductDao::get(int tm, int classId) const {
-  SQLite::Statement st(db_.connection(), std::string(kSelect) + " WHERE TaskModelId = ? AND ClassId = ?");
+std::optional<GroundedProductRow> GroundedProductDao::get(int tm, int classId, const std::string& instanceId) const {
+  SQLite::Statement st(db_.connection(),
+                       std::string(kSelect) + " WHERE TaskModelId = ? AND ClassId = ? AND InstanceId = ?");
   st.bind(1, tm);
   st.bind(2, classId);
+  st.bind(3, instanceId);
   if (!st.executeStep()) return std::nullopt;
   return readRow(st);
 }
@@ -44,25 +48,28 @@ std::optional<GroundedProductRow> GroundedProductDao::get(int tm, int classId) c
 void GroundedProductDao::update(int tm, const GroundedProductRow& r) {
   SQLite::Statement st(db_.connection(),
                        "UPDATE GroundedProducts SET ObjectName = ?, SourceLocationId = ?, TargetLocationId = ?, "
-                       "Color = ? WHERE TaskModelId = ? AND ClassId = ?");
+                       "Color = ? WHERE TaskModelId = ? AND ClassId = ? AND InstanceId = ?");
   st.bind(1, r.objectName);
   bindOptional(st, 2, r.sourceLocationId);
   bindOptional(st, 3, r.targetLocationId);
   bindOptional(st, 4, r.color);
   st.bind(5, tm);
   st.bind(6, r.classId);
+  st.bind(7, r.instanceId);
   execExpectingRow(st, "no grounded product " + std::to_string(r.classId) + " in task model " + std::to_string(tm));
 }
 
-bool GroundedProductDao::remove(int tm, int classId) {
-  SQLite::Statement st(db_.connection(), "DELETE FROM GroundedProducts WHERE TaskModelId = ? AND ClassId = ?");
+bool GroundedProductDao::remove(int tm, int classId, const std::string& instanceId) {
+  SQLite::Statement st(db_.connection(),
+                       "DELETE FROM GroundedProducts WHERE TaskModelId = ? AND ClassId = ? AND InstanceId = ?");
   st.bind(1, tm);
   st.bind(2, classId);
+  st.bind(3, instanceId);
   return st.exec() > 0;
 }
 
 std::vector<GroundedProductRow> GroundedProductDao::list(int tm) const {
-  SQLite::Statement st(db_.connection(), std::string(kSelect) + " WHERE TaskModelId = ? ORDER BY ClassId");
+  SQLite::Statement st(db_.connection(), std::string(kSelect) + " WHERE TaskModelId = ? ORDER BY ClassId, InstanceId");
   st.bind(1, tm);
   std::vector<GroundedProductRow> rows;
   while (st.executeStep()) rows.push_back(readRow(st));

@@ -7,7 +7,7 @@ using namespace detail;
 
 namespace {
 constexpr const char* kColumns =
-    "ObjectId, ObjectName, SourceLocationId, TargetLocationId, Color, TokenId, SentenceId, ClassId";
+    "ObjectId, ObjectName, SourceLocationId, TargetLocationId, Color, TokenId, SentenceId, ClassId, InstanceId";
 
 void bindRow(SQLite::Statement& st, int first, const ProductRow& r) {
   st.bind(first, r.objectName);
@@ -17,6 +17,7 @@ void bindRow(SQLite::Statement& st, int first, const ProductRow& r) {
   bindOptional(st, first + 4, r.tokenId);
   bindOptional(st, first + 5, r.sentenceId);
   bindOptional(st, first + 6, r.classId);
+  st.bind(first + 7, r.instanceId);
 }
 
 ProductRow readRow(const SQLite::Statement& st) {
@@ -29,13 +30,14 @@ ProductRow readRow(const SQLite::Statement& st) {
   r.tokenId = optionalInt(st.getColumn(5));
   r.sentenceId = optionalInt(st.getColumn(6));
   r.classId = optionalInt(st.getColumn(7));
+  r.instanceId = st.getColumn(8).getString();
   return r;
 }
 }  // namespace
 
 void ProductDao::add(int tm, const ProductRow& r) {
   SQLite::Statement st(db_.connection(), std::string("INSERT INTO Products (TaskModelId, ") + kColumns +
-                                             ") VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)");
+                                             ") VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   st.bind(1, tm);
   st.bind(2, r.objectId);
   bindRow(st, 3, r);
@@ -54,10 +56,10 @@ std::optional<ProductRow> ProductDao::get(int tm, int objectId) const {
 void ProductDao::update(int tm, const ProductRow& r) {
   SQLite::Statement st(db_.connection(),
                        "UPDATE Products SET ObjectName = ?, SourceLocationId = ?, TargetLocationId = ?, Color = ?, "
-                       "TokenId = ?, SentenceId = ?, ClassId = ? WHERE TaskModelId = ? AND ObjectId = ?");
+                       "TokenId = ?, SentenceId = ?, ClassId = ?, InstanceId = ? WHERE TaskModelId = ? AND ObjectId = ?");
   bindRow(st, 1, r);
-  st.bind(8, tm);
-  st.bind(9, r.objectId);
+  st.bind(9, tm);
+  st.bind(10, r.objectId);
   execExpectingRow(st, "no product " + std::to_string(r.objectId) + " in task model " + std::to_string(tm));
 }
 

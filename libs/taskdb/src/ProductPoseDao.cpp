@@ -7,11 +7,11 @@ using namespace detail;
 
 namespace {
 constexpr const char* kSelect =
-    "SELECT ClassId, TimeId, X, Y, Z, QW, QX, QY, QZ, Reach, Grasp, Move, Release, Detected, Confidence "
+    "SELECT ClassId, TimeId, X, Y, Z, QW, QX, QY, QZ, Reach, Grasp, Move, Release, Detected, Confidence, InstanceId "
     "FROM ProductPose";
 constexpr const char* kInsert =
     "INSERT INTO ProductPose (TaskModelId, ClassId, TimeId, X, Y, Z, QW, QX, QY, QZ, Reach, Grasp, Move, Release, "
-    "Detected, Confidence) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)";
+    "Detected, Confidence, InstanceId) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)";
 
 // Binds the value columns X..Confidence starting at `first`.
 void bindValues(SQLite::Statement& st, int first, const ProductPoseRow& r) {
@@ -35,6 +35,7 @@ ProductPoseRow readRow(const SQLite::Statement& st) {
   r.release = st.getColumn(12).getInt() != 0;
   r.detected = st.getColumn(13).getInt() != 0;
   r.confidence = optionalDouble(st.getColumn(14));
+  r.instanceId = st.getColumn(15).getString();
   return r;
 }
 
@@ -56,15 +57,18 @@ void ProductPoseDao::addMany(int tm, const std::vector<ProductPoseRow>& rows) {
     st.bind(2, r.classId);
     st.bind(3, r.timeId);
     bindValues(st, 4, r);
+    st.bind(17, r.instanceId);
     st.exec();
   }
 }
 
-std::optional<ProductPoseRow> ProductPoseDao::get(int tm, int classId, int timeId) const {
-  SQLite::Statement st(db_.connection(), std::string(kSelect) + " WHERE TaskModelId = ? AND ClassId = ? AND TimeId = ?");
+std::optional<ProductPoseRow> ProductPoseDao::get(int tm, int classId, int timeId, const std::string& instanceId) const {
+  SQLite::Statement st(db_.connection(), std::string(kSelect) +
+                                             " WHERE TaskModelId = ? AND ClassId = ? AND TimeId = ? AND InstanceId = ?");
   st.bind(1, tm);
   st.bind(2, classId);
   st.bind(3, timeId);
+  st.bind(4, instanceId);
   if (!st.executeStep()) return std::nullopt;
   return readRow(st);
 }
@@ -74,50 +78,58 @@ void ProductPoseDao::update(int tm, const ProductPoseRow& r) {
   SQLite::Statement st(db_.connection(),
                        "UPDATE ProductPose SET X = ?, Y = ?, Z = ?, QW = ?, QX = ?, QY = ?, QZ = ?, Reach = ?, "
                        "Grasp = ?, Move = ?, Release = ?, Detected = ?, Confidence = ? "
-                       "WHERE TaskModelId = ? AND ClassId = ? AND TimeId = ?");
+                       "WHERE TaskModelId = ? AND ClassId = ? AND TimeId = ? AND InstanceId = ?");
   bindValues(st, 1, r);
   st.bind(14, tm);
   st.bind(15, r.classId);
   st.bind(16, r.timeId);
+  st.bind(17, r.instanceId);
   execExpectingRow(st, "no pose of class " + std::to_string(r.classId) + " at TimeId " + std::to_string(r.timeId) +
                            " in task model " + std::to_string(tm));
 }
 
-bool ProductPoseDao::remove(int tm, int classId, int timeId) {
-  SQLite::Statement st(db_.connection(), "DELETE FROM ProductPose WHERE TaskModelId = ? AND ClassId = ? AND TimeId = ?");
+bool ProductPoseDao::remove(int tm, int classId, int timeId, const std::string& instanceId) {
+  SQLite::Statement st(db_.connection(),
+                       "DELETE FROM ProductPose WHERE TaskModelId = ? AND ClassId = ? AND TimeId = ? AND InstanceId = ?");
   st.bind(1, tm);
   st.bind(2, classId);
   st.bind(3, timeId);
+  st.bind(4, instanceId);
   return st.exec() > 0;
 }
 
-std::vector<ProductPoseRow> ProductPoseDao::inFrameRange(int tm, int classId, int first, int last) const {
+std::vector<ProductPoseRow> ProductPoseDao::inFrameRange(int tm, int classId, int first, int last,
+                                                        const std::string& instanceId) const {
   SQLite::Statement st(db_.connection(), std::string(kSelect) +
-                                             " WHERE TaskModelId = ? AND ClassId = ? AND TimeId BETWEEN ? AND ? "
-                                             "ORDER BY TimeId");
+                                             " WHERE TaskModelId = ? AND ClassId = ? AND InstanceId = ? AND TimeId "
+                                             "BETWEEN ? AND ? ORDER BY TimeId");
   st.bind(1, tm);
   st.bind(2, classId);
-  st.bind(3, first);
-  st.bind(4, last);
+  st.bind(3, instanceId);
+  st.bind(4, first);
+  st.bind(5, last);
   std::vector<ProductPoseRow> rows;
   while (st.executeStep()) rows.push_back(readRow(st));
   return rows;
 }
 
 std::vector<ProductPoseRow> ProductPoseDao::list(int tm) const {
-  SQLite::Statement st(db_.connection(), std::string(kSelect) + " WHERE TaskModelId = ? ORDER BY ClassId, TimeId");
+  SQLite::Statement st(db_.connection(), std::string(kSelect) + " WHERE TaskModelId = ? ORDER BY ClassId, InstanceId, TimeId");
   st.bind(1, tm);
   std::vector<ProductPoseRow> rows;
   while (st.executeStep()) rows.push_back(readRow(st));
   return rows;
 }
 
-GraspReleaseFrames ProductPoseDao::graspReleaseFrames(int tm, int classId) const {
+GraspReleaseFrames ProductPoseDao::graspReleaseFrames(int tm, int classId, const std::string& instanceId) const {
   SQLite::Statement st(db_.connection(),
-                       "SELECT (SELECT MIN(TimeId) FROM ProductPose WHERE TaskModelId = ?1 AND ClassId = ?2 AND Grasp = 1), "
-                       "(SELECT MIN(TimeId) FROM ProductPose WHERE TaskModelId = ?1 AND ClassId = ?2 AND Release = 1)");
+                       "SELECT (SELECT MIN(TimeId) FROM ProductPose WHERE TaskModelId = ?1 AND ClassId = ?2 AND "
+                       "InstanceId = ?3 AND Grasp = 1), "
+                       "(SELECT MIN(TimeId) FROM ProductPose WHERE TaskModelId = ?1 AND ClassId = ?2 AND "
+                       "InstanceId = ?3 AND Release = 1)");
   st.bind(1, tm);
   st.bind(2, classId);
+  st.bind(3, instanceId);
   st.executeStep();
   return {optionalInt(st.getColumn(0)), optionalInt(st.getColumn(1))};
 }

@@ -103,8 +103,90 @@ CREATE TABLE Skills (
 );
 )SQL";
 
+// Version 2: several instances of one class (issue 19). GroundedProducts,
+// ProductPose and Skills are keyed by (ClassId, InstanceId) instead of ClassId
+// alone; Products name the instance they were grounded to (and are rebuilt
+// too: their foreign key to GroundedProducts gains the InstanceId). InstanceId is the
+// scene's object id ("cuboid_red"); '' is the one instance of a class, which
+// is what every version-1 row meant. SQLite cannot change a primary key in
+// place, so the three tables are rebuilt (create, copy, drop, rename; the
+// migration runs with foreign keys off, inside the opening transaction).
+static const char* kSchemaV2 = R"SQL(
+CREATE TABLE Products_v2 (
+  TaskModelId      INTEGER NOT NULL REFERENCES TaskModels(TaskModelId) ON DELETE CASCADE,
+  ObjectId         INTEGER NOT NULL,
+  ObjectName       TEXT    NOT NULL,
+  SourceLocationId INTEGER,
+  TargetLocationId INTEGER,
+  Color            TEXT,
+  TokenId          INTEGER,
+  SentenceId       INTEGER,
+  ClassId          INTEGER,
+  InstanceId       TEXT    NOT NULL DEFAULT '',
+  PRIMARY KEY (TaskModelId, ObjectId),
+  FOREIGN KEY (TaskModelId, SourceLocationId) REFERENCES SourceLocations(TaskModelId, LocationId) DEFERRABLE INITIALLY DEFERRED,
+  FOREIGN KEY (TaskModelId, TargetLocationId) REFERENCES TargetLocations(TaskModelId, LocationId) DEFERRABLE INITIALLY DEFERRED,
+  FOREIGN KEY (TaskModelId, ClassId, InstanceId) REFERENCES GroundedProducts(TaskModelId, ClassId, InstanceId) DEFERRABLE INITIALLY DEFERRED
+);
+INSERT INTO Products_v2 (TaskModelId, ObjectId, ObjectName, SourceLocationId, TargetLocationId, Color, TokenId, SentenceId, ClassId, InstanceId)
+  SELECT TaskModelId, ObjectId, ObjectName, SourceLocationId, TargetLocationId, Color, TokenId, SentenceId, ClassId, '' FROM Products;
+CREATE TABLE GroundedProducts_v2 (
+  TaskModelId      INTEGER NOT NULL REFERENCES TaskModels(TaskModelId) ON DELETE CASCADE,
+  ClassId          INTEGER NOT NULL,
+  InstanceId       TEXT    NOT NULL DEFAULT '',
+  ObjectName       TEXT    NOT NULL,
+  SourceLocationId INTEGER,
+  TargetLocationId INTEGER,
+  Color            TEXT,
+  PRIMARY KEY (TaskModelId, ClassId, InstanceId),
+  FOREIGN KEY (TaskModelId, SourceLocationId) REFERENCES SourceLocations(TaskModelId, LocationId) DEFERRABLE INITIALLY DEFERRED,
+  FOREIGN KEY (TaskModelId, TargetLocationId) REFERENCES TargetLocations(TaskModelId, LocationId) DEFERRABLE INITIALLY DEFERRED
+);
+INSERT INTO GroundedProducts_v2 (TaskModelId, ClassId, InstanceId, ObjectName, SourceLocationId, TargetLocationId, Color)
+  SELECT TaskModelId, ClassId, '', ObjectName, SourceLocationId, TargetLocationId, Color FROM GroundedProducts;
+CREATE TABLE ProductPose_v2 (
+  TaskModelId INTEGER NOT NULL REFERENCES TaskModels(TaskModelId) ON DELETE CASCADE,
+  ClassId     INTEGER NOT NULL,
+  InstanceId  TEXT    NOT NULL DEFAULT '',
+  TimeId      INTEGER NOT NULL,
+  X REAL NOT NULL, Y REAL NOT NULL, Z REAL NOT NULL,
+  QW REAL NOT NULL, QX REAL NOT NULL, QY REAL NOT NULL, QZ REAL NOT NULL,
+  Reach   INTEGER NOT NULL DEFAULT 0 CHECK (Reach IN (0, 1)),
+  Grasp   INTEGER NOT NULL DEFAULT 0 CHECK (Grasp IN (0, 1)),
+  Move    INTEGER NOT NULL DEFAULT 0 CHECK (Move IN (0, 1)),
+  Release INTEGER NOT NULL DEFAULT 0 CHECK (Release IN (0, 1)),
+  Detected   INTEGER NOT NULL DEFAULT 1 CHECK (Detected IN (0, 1)),
+  Confidence REAL,
+  PRIMARY KEY (TaskModelId, ClassId, InstanceId, TimeId),
+  FOREIGN KEY (TaskModelId, ClassId, InstanceId) REFERENCES GroundedProducts(TaskModelId, ClassId, InstanceId) DEFERRABLE INITIALLY DEFERRED
+) WITHOUT ROWID;
+INSERT INTO ProductPose_v2 (TaskModelId, ClassId, InstanceId, TimeId, X, Y, Z, QW, QX, QY, QZ, Reach, Grasp, Move, Release, Detected, Confidence)
+  SELECT TaskModelId, ClassId, '', TimeId, X, Y, Z, QW, QX, QY, QZ, Reach, Grasp, Move, Release, Detected, Confidence FROM ProductPose;
+CREATE TABLE Skills_v2 (
+  TaskModelId INTEGER NOT NULL REFERENCES TaskModels(TaskModelId) ON DELETE CASCADE,
+  ClassId     INTEGER NOT NULL,
+  InstanceId  TEXT    NOT NULL DEFAULT '',
+  Skill       TEXT    NOT NULL CHECK (Skill IN ('Reach', 'Grasp', 'Move', 'Release')),
+  StartTimeId INTEGER NOT NULL,
+  EndTimeId   INTEGER NOT NULL CHECK (EndTimeId >= StartTimeId),
+  Parameters  TEXT    NOT NULL DEFAULT '{}' CHECK (json_valid(Parameters)),
+  PRIMARY KEY (TaskModelId, ClassId, InstanceId, Skill),
+  FOREIGN KEY (TaskModelId, ClassId, InstanceId) REFERENCES GroundedProducts(TaskModelId, ClassId, InstanceId) DEFERRABLE INITIALLY DEFERRED
+);
+INSERT INTO Skills_v2 (TaskModelId, ClassId, InstanceId, Skill, StartTimeId, EndTimeId, Parameters)
+  SELECT TaskModelId, ClassId, '', Skill, StartTimeId, EndTimeId, Parameters FROM Skills;
+DROP TABLE Skills;
+DROP TABLE ProductPose;
+DROP TABLE Products;
+DROP TABLE GroundedProducts;
+ALTER TABLE GroundedProducts_v2 RENAME TO GroundedProducts;
+ALTER TABLE Products_v2 RENAME TO Products;
+ALTER TABLE ProductPose_v2 RENAME TO ProductPose;
+ALTER TABLE Skills_v2 RENAME TO Skills;
+)SQL";
+
 const std::vector<std::string>& migrations() {
-  static const std::vector<std::string> m = {kSchemaV1};
+  static const std::vector<std::string> m = {kSchemaV1, kSchemaV2};
   return m;
 }
 

@@ -6,7 +6,7 @@ namespace srp::taskdb {
 using namespace detail;
 
 namespace {
-constexpr const char* kSelect = "SELECT ClassId, Skill, StartTimeId, EndTimeId, Parameters FROM Skills";
+constexpr const char* kSelect = "SELECT ClassId, Skill, StartTimeId, EndTimeId, Parameters, InstanceId FROM Skills";
 
 SkillRow readRow(const SQLite::Statement& st) {
   SkillRow r;
@@ -15,28 +15,32 @@ SkillRow readRow(const SQLite::Statement& st) {
   r.startTimeId = st.getColumn(2).getInt();
   r.endTimeId = st.getColumn(3).getInt();
   r.parameters = nlohmann::json::parse(st.getColumn(4).getString());
+  r.instanceId = st.getColumn(5).getString();
   return r;
 }
 }  // namespace
 
 void SkillDao::add(int tm, const SkillRow& r) {
   SQLite::Statement st(db_.connection(),
-                       "INSERT INTO Skills (TaskModelId, ClassId, Skill, StartTimeId, EndTimeId, Parameters) "
-                       "VALUES (?, ?, ?, ?, ?, ?)");
+                       "INSERT INTO Skills (TaskModelId, ClassId, Skill, StartTimeId, EndTimeId, Parameters, InstanceId) "
+                       "VALUES (?, ?, ?, ?, ?, ?, ?)");
   st.bind(1, tm);
   st.bind(2, r.classId);
   st.bind(3, core::toString(r.skill));
   st.bind(4, r.startTimeId);
   st.bind(5, r.endTimeId);
   st.bind(6, r.parameters.dump());
+  st.bind(7, r.instanceId);
   st.exec();
 }
 
-std::optional<SkillRow> SkillDao::get(int tm, int classId, core::SkillType skill) const {
-  SQLite::Statement st(db_.connection(), std::string(kSelect) + " WHERE TaskModelId = ? AND ClassId = ? AND Skill = ?");
+std::optional<SkillRow> SkillDao::get(int tm, int classId, core::SkillType skill, const std::string& instanceId) const {
+  SQLite::Statement st(db_.connection(), std::string(kSelect) +
+                                             " WHERE TaskModelId = ? AND ClassId = ? AND Skill = ? AND InstanceId = ?");
   st.bind(1, tm);
   st.bind(2, classId);
   st.bind(3, core::toString(skill));
+  st.bind(4, instanceId);
   if (!st.executeStep()) return std::nullopt;
   return readRow(st);
 }
@@ -44,29 +48,32 @@ std::optional<SkillRow> SkillDao::get(int tm, int classId, core::SkillType skill
 void SkillDao::update(int tm, const SkillRow& r) {
   SQLite::Statement st(db_.connection(),
                        "UPDATE Skills SET StartTimeId = ?, EndTimeId = ?, Parameters = ? "
-                       "WHERE TaskModelId = ? AND ClassId = ? AND Skill = ?");
+                       "WHERE TaskModelId = ? AND ClassId = ? AND Skill = ? AND InstanceId = ?");
   st.bind(1, r.startTimeId);
   st.bind(2, r.endTimeId);
   st.bind(3, r.parameters.dump());
   st.bind(4, tm);
   st.bind(5, r.classId);
   st.bind(6, core::toString(r.skill));
+  st.bind(7, r.instanceId);
   execExpectingRow(st, "no " + core::toString(r.skill) + " skill of class " + std::to_string(r.classId) +
                            " in task model " + std::to_string(tm));
 }
 
-bool SkillDao::remove(int tm, int classId, core::SkillType skill) {
-  SQLite::Statement st(db_.connection(), "DELETE FROM Skills WHERE TaskModelId = ? AND ClassId = ? AND Skill = ?");
+bool SkillDao::remove(int tm, int classId, core::SkillType skill, const std::string& instanceId) {
+  SQLite::Statement st(db_.connection(),
+                       "DELETE FROM Skills WHERE TaskModelId = ? AND ClassId = ? AND Skill = ? AND InstanceId = ?");
   st.bind(1, tm);
   st.bind(2, classId);
   st.bind(3, core::toString(skill));
+  st.bind(4, instanceId);
   return st.exec() > 0;
 }
 
 std::vector<SkillRow> SkillDao::list(int tm) const {
   SQLite::Statement st(db_.connection(),
                        std::string(kSelect) +
-                           " WHERE TaskModelId = ? ORDER BY ClassId, CASE Skill WHEN 'Reach' THEN 0 "
+                           " WHERE TaskModelId = ? ORDER BY ClassId, InstanceId, CASE Skill WHEN 'Reach' THEN 0 "
                            "WHEN 'Grasp' THEN 1 WHEN 'Move' THEN 2 ELSE 3 END");
   st.bind(1, tm);
   std::vector<SkillRow> rows;

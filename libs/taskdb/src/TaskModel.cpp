@@ -57,6 +57,11 @@ json toJson(const TaskModel& m) {
                              {"target_location_id", opt(p.targetLocationId)}, {"color", opt(p.color)},
                              {"token_id", opt(p.tokenId)}, {"sentence_id", opt(p.sentenceId)},
                              {"class_id", opt(p.classId)}});
+  // Instance ids only when set: files of single-instance tasks keep their form.
+  auto addInstance = [](json& row, const std::string& instanceId) {
+    if (!instanceId.empty()) row["instance_id"] = instanceId;
+  };
+  for (std::size_t k = 0; k < m.products.size(); ++k) addInstance(j["products"][k], m.products[k].instanceId);
   for (const auto& s : m.sourceLocations)
     j["source_locations"].push_back({{"location_id", s.locationId}, {"trajector_object_id", s.trajectorObjectId},
                                      {"description", s.description}});
@@ -68,17 +73,21 @@ json toJson(const TaskModel& m) {
     j["grounded_products"].push_back({{"class_id", g.classId}, {"object_name", g.objectName},
                                       {"source_location_id", opt(g.sourceLocationId)},
                                       {"target_location_id", opt(g.targetLocationId)}, {"color", opt(g.color)}});
+  for (std::size_t k = 0; k < m.groundedProducts.size(); ++k)
+    addInstance(j["grounded_products"][k], m.groundedProducts[k].instanceId);
   for (const auto& p : m.productPoses)
     j["product_poses"].push_back({{"class_id", p.classId}, {"time_id", p.timeId}, {"p_m", vec(p.p_m)},
                                   {"q_wxyz", {p.q.w(), p.q.x(), p.q.y(), p.q.z()}}, {"reach", p.reach},
                                   {"grasp", p.grasp}, {"move", p.move}, {"release", p.release},
                                   {"detected", p.detected}, {"confidence", opt(p.confidence)}});
+  for (std::size_t k = 0; k < m.productPoses.size(); ++k) addInstance(j["product_poses"][k], m.productPoses[k].instanceId);
   for (const auto& h : m.handPositions)
     j["hand_positions"].push_back({{"time_id", h.timeId}, {"p_m", vec(h.p_m)}, {"detected", h.detected}});
   for (const auto& s : m.skills)
     j["skills"].push_back({{"class_id", s.classId}, {"skill", core::toString(s.skill)},
                            {"start_time_id", s.startTimeId}, {"end_time_id", s.endTimeId},
                            {"parameters", s.parameters}});
+  for (std::size_t k = 0; k < m.skills.size(); ++k) addInstance(j["skills"][k], m.skills[k].instanceId);
   for (const char* key : {"products", "source_locations", "target_locations", "grounded_products", "product_poses",
                           "hand_positions", "skills"})
     if (!j.contains(key)) j[key] = json::array();
@@ -108,7 +117,8 @@ TaskModel taskModelFromJson(const json& j, const std::string& ctx) {
       m.products.push_back({p.at("object_id").get<int>(), p.at("object_name").get<std::string>(),
                             optFrom<int>(p, "source_location_id"), optFrom<int>(p, "target_location_id"),
                             optFrom<std::string>(p, "color"), optFrom<int>(p, "token_id"),
-                            optFrom<int>(p, "sentence_id"), optFrom<int>(p, "class_id")});
+                            optFrom<int>(p, "sentence_id"), optFrom<int>(p, "class_id"),
+                            p.value("instance_id", std::string())});
     for (const auto& s : j.value("source_locations", json::array()))
       m.sourceLocations.push_back({s.at("location_id").get<int>(), s.at("trajector_object_id").get<int>(),
                                    s.at("description").get<std::string>()});
@@ -119,7 +129,7 @@ TaskModel taskModelFromJson(const json& j, const std::string& ctx) {
     for (const auto& g : j.value("grounded_products", json::array()))
       m.groundedProducts.push_back({g.at("class_id").get<int>(), g.at("object_name").get<std::string>(),
                                     optFrom<int>(g, "source_location_id"), optFrom<int>(g, "target_location_id"),
-                                    optFrom<std::string>(g, "color")});
+                                    optFrom<std::string>(g, "color"), g.value("instance_id", std::string())});
     for (const auto& p : j.value("product_poses", json::array())) {
       ProductPoseRow r;
       r.classId = p.at("class_id").get<int>();
@@ -133,6 +143,7 @@ TaskModel taskModelFromJson(const json& j, const std::string& ctx) {
       r.release = p.value("release", false);
       r.detected = p.value("detected", true);
       r.confidence = optFrom<double>(p, "confidence");
+      r.instanceId = p.value("instance_id", std::string());
       m.productPoses.push_back(r);
     }
     for (const auto& h : j.value("hand_positions", json::array()))
@@ -140,7 +151,7 @@ TaskModel taskModelFromJson(const json& j, const std::string& ctx) {
     for (const auto& s : j.value("skills", json::array()))
       m.skills.push_back({s.at("class_id").get<int>(), core::skillTypeFromString(s.at("skill").get<std::string>()),
                           s.at("start_time_id").get<int>(), s.at("end_time_id").get<int>(),
-                          s.value("parameters", json::object())});
+                          s.value("parameters", json::object()), s.value("instance_id", std::string())});
   } catch (const json::exception& e) {
     throw core::InvalidInputError(ctx + ": not a task model (" + e.what() + ")");
   }

@@ -5,12 +5,17 @@
 // on top of, next to, in a box, in a named corner of a box) with random parts as mover
 // and landmarks, executed on the simulated UR5 and checked after the placement
 // (PlacementPlanner::check). Prints the table of every placement and the failures
-// with their reason. Until scenes hold several instances of a class, the parts are of
-// distinct classes.
+// with their reason. RandomScenesAndRelations: the default scene (parts of distinct
+// classes, named by id). RandomScenesWithTwoInstancesPerClass: the scene with two
+// cuboids and two stars (sim/scenes/two_cuboids_two_stars.json), every part and
+// landmark named by "<colour> <noun>" ("the red cuboid") and grounded by SceneGrounder
+// (grounding asserted for every step, the placement rate only printed).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <iomanip>
 #include <map>
+#include <optional>
 #include <random>
 
 #include "srp/execution/ExecutionSession.h"
@@ -35,9 +40,9 @@ Pose3 upright(double x, double y, double z, double yaw) {
 /// Footprint of `o` at X as a bounding circle (centre, radius), for the scatter only.
 double radius(const CellObject& o) { return 0.5 * std::hypot(o.size_m.x(), o.size_m.y()); }
 
-CellDescription randomScene(std::mt19937& rng) {
+CellDescription randomScene(std::mt19937& rng, const std::string& scenePath = "") {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  CellDescription cell = CellDescription::loadScene();
+  CellDescription cell = scenePath.empty() ? CellDescription::loadScene() : CellDescription::loadScene(scenePath);
   for (auto& o : cell.objects)
     if (o.kind == CellObjectKind::Container)
       o.X_world_object = upright(o.X_world_object.translation().x() + 0.06 * (unit(rng) - 0.5),
@@ -80,23 +85,25 @@ CellDescription randomScene(std::mt19937& rng) {
   return cell;
 }
 
-ExecutionStep randomStep(std::mt19937& rng, const CellDescription& cell) {
+/// byColour: parts named "<colour> <noun>" (grounded among instances of one class), else by id.
+ExecutionStep randomStep(std::mt19937& rng, const CellDescription& cell, bool byColour = false) {
   std::uniform_int_distribution<int> kindOf(0, 8);
-  std::vector<std::string> parts;
+  std::vector<ObjectReference> parts;
   for (const auto& o : cell.objects)
-    if (o.kind == CellObjectKind::Part) parts.push_back(o.name);
+    if (o.kind == CellObjectKind::Part)
+      parts.push_back(byColour ? ObjectReference{o.noun, o.color} : ObjectReference{o.name, {}});
   std::shuffle(parts.begin(), parts.end(), rng);
   ExecutionStep s;
-  s.object = {parts[0], {}};
+  s.object = parts[0];
   const int kind = kindOf(rng);
   const char* views[] = {"left of", "right of", "in front of", "behind"};
   const char* corners[] = {"front left", "front right", "back left", "back right"};
   std::uniform_int_distribution<int> four(0, 3), two(0, 1);
   const std::string box = two(rng) ? "gray" : "blue";
-  if (kind < 4) s.target.push_back({views[kind], {parts[1], {}}, {}, ""});
-  else if (kind == 4) s.target.push_back({"between", {parts[1], {}}, ObjectReference{parts[2], {}}, ""});
-  else if (kind == 5) s.target.push_back({"on top of", {parts[1], {}}, {}, ""});
-  else if (kind == 6) s.target.push_back({"next to", {parts[1], {}}, {}, ""});
+  if (kind < 4) s.target.push_back({views[kind], parts[1], {}, ""});
+  else if (kind == 4) s.target.push_back({"between", parts[1], parts[2], ""});
+  else if (kind == 5) s.target.push_back({"on top of", parts[1], {}, ""});
+  else if (kind == 6) s.target.push_back({"next to", parts[1], {}, ""});
   else if (kind == 7) s.target.push_back({"in", {"box", box}, {}, ""});
   else s.target.push_back({"corner", {"box", box}, {}, corners[four(rng)]});
   return s;
@@ -109,7 +116,11 @@ std::string describe(const ExecutionStep& s) {
 }
 }  // namespace
 
-TEST(PlacementRelations, RandomScenesAndRelations) {
+/// Runs kScenes random scenes of `scenePath` ("" = default) with kPlacementsPerScene
+/// random placements each; expects >= kMinSuccessRate done with the relation holding.
+/// byColour: every moved part must be grounded to the instance its "<colour> <noun>"
+/// names (asserted); the success rate is asserted only when minSuccessRate is given.
+void runRandomPlacements(const std::string& scenePath, bool byColour, std::optional<double> minSuccessRate) {
   const RobotModel model = RobotModel::defaultUr5();
   int succeeded = 0, total = 0;
   std::map<std::string, std::pair<int, int>> byRelation;  // relation -> (succeeded, total)
@@ -118,14 +129,20 @@ TEST(PlacementRelations, RandomScenesAndRelations) {
             << std::setw(9) << "status" << std::setw(7) << "holds" << "measured\n";
   for (int seed = 1; seed <= kScenes; ++seed) {
     std::mt19937 rng(static_cast<std::uint32_t>(seed));
-    const CellDescription cell = randomScene(rng);
+    const CellDescription cell = randomScene(rng, scenePath);
     const JointVector home = TaskExecutor::defaultHome(model, cell.X_world_base, defaultHomeTcp(cell));
     TaskExecutor ex(model, cell, home, std::make_shared<MinimumJerkPathGenerator>());
     for (int k = 0; k < kPlacementsPerScene; ++k) {
-      const ExecutionStep step = randomStep(rng, ex.perceive());
+      const CellDescription now = ex.perceive();
+      const ExecutionStep step = randomStep(rng, now, byColour);
+      std::string expectedId = step.object.name;
+      for (const auto& o : now.objects)
+        if (byColour && o.noun == step.object.name && step.object.color && o.color == *step.object.color)
+          expectedId = o.name;
       ExecutionPlan plan;
       plan.steps.push_back(step);
       const StepReport r = ex.run(plan).steps.at(0);
+      EXPECT_EQ(r.object, expectedId) << "seed " << seed << ": 'the " << step.object.describe() << "' grounded wrongly";
       const bool ok = r.status == StepStatus::Done && r.relationsHold;
       const std::string relation = step.target[0].relation;
       ++total;
@@ -147,5 +164,14 @@ TEST(PlacementRelations, RandomScenesAndRelations) {
   std::cout << "\nplacement relations on " << kScenes << " random scenes: " << succeeded << "/" << total
             << " succeeded (" << std::fixed << std::setprecision(1) << 100.0 * succeeded / total << " %)\n";
   for (const auto& f : failures) std::cout << "  FAILED " << f << "\n";
-  EXPECT_GE(succeeded, kMinSuccessRate * total);
+  if (minSuccessRate) EXPECT_GE(succeeded, *minSuccessRate * total);
+}
+
+TEST(PlacementRelations, RandomScenesAndRelations) { runRandomPlacements("", false, kMinSuccessRate); }
+
+TEST(PlacementRelations, RandomScenesWithTwoInstancesPerClass) {
+  // Asserts the grounding of every moved part; the placement rate is printed, not
+  // asserted (90/100 at the merge of s6-ground and s6-place: the failures are
+  // placement limits, "between" too narrow, a part on a star not upright, a full corner).
+  runRandomPlacements(std::string(SRP_SIM_DIR) + "/scenes/two_cuboids_two_stars.json", true, std::nullopt);
 }

@@ -23,9 +23,17 @@
 ///  "objects": [{"id": "blue_box", "class": "blue box", "X_world_object": {...}}, ...]}
 /// \endcode
 /// Optional fields: name, seed, catalogue (default: the bundled one), table.rgb,
-/// lighting. Relative paths resolve against the scene file's folder.
+/// lighting, and per object "color" and "rgb". Relative paths resolve against the
+/// scene file's folder.
+///
+/// Instances: a scene may hold several objects of one class (ids "cuboid_red",
+/// "cuboid_blue"); the catalogue gives the class' default colour (colour word
+/// `color_name` and `rgb`), an object may override it with
+/// `"color": "blue"` (the colour word instructions use; its rgb then comes from
+/// `rgbOfColorName` unless `"rgb": [r, g, b]` is given too) and/or `"rgb"`.
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,7 +48,22 @@ struct SceneObject {
   std::string id;         ///< unique in the scene, e.g. "cuboid" or "cuboid_2"
   std::string className;  ///< catalogue class name
   Pose3 X_world_object = Pose3::Identity();
+  std::string color;                   ///< colour word of this instance; "" = the class' colour
+  std::optional<Eigen::Vector3d> rgb;  ///< linear RGB in [0, 1]; nullopt = from `color` or the class
 };
+
+/// The colour word of an instance: its own, else its class' (`colorName`, may be "").
+std::string instanceColor(const SceneObject& object, const ObjectClass& cls);
+/// The rendering colour of an instance: its "rgb", else the rgb of its own colour
+/// word, else its class' rgb.
+Eigen::Vector3d instanceRgb(const SceneObject& object, const ObjectClass& cls);
+/// Linear RGB of a basic colour word (red, green, blue, yellow, orange, purple,
+/// pink, brown, black, white, gray/grey, cyan); nullopt for any other word.
+std::optional<Eigen::Vector3d> rgbOfColorName(const std::string& color);
+/// The basic colour word whose rgb is nearest to `rgb` (Euclidean in linear RGB),
+/// "" when none is within `maxDistance`: names the colour of an instance whose
+/// class gives no colour word (the catalogue's red cuboid is "red").
+std::string nearestColorName(const Eigen::Vector3d& rgb, double maxDistance = 0.25);
 
 struct SceneLighting {
   double ambient = 0.45;
@@ -71,7 +94,8 @@ struct Scene {
                         const std::string& baseFolder);
   nlohmann::json toJson() const;
   /// Throws InvalidInputError naming the object/field when an object's class is
-  /// unknown, an id repeats, or an object's footprint lies outside the table.
+  /// unknown, an id repeats, an object's footprint lies outside the table, or
+  /// an object's "color" is no known colour word and it gives no "rgb".
   void validate(const ObjectCatalogue& catalogue) const;
 };
 

@@ -16,20 +16,21 @@
 #include "srp/core/ObjectCatalogue.h"
 #include "srp/core/Pose.h"
 #include "srp/core/Scene.h"
+#include "srp/core/ViewFrame.h"
 
 namespace srp::execution {
 
 enum class CellObjectKind { Part, Container };
 
 struct CellObject {
-  std::string name;  ///< instance name used by the planner ("cuboid", "gray box")
+  std::string name;  ///< instance id from the scene, used by the planner ("cuboid", "gray box", "cuboid_red")
   CellObjectKind kind = CellObjectKind::Part;
   Eigen::Vector3d size_m = Eigen::Vector3d::Constant(0.04);
   double mass_kg = 0.05;
   double wallThickness_m = 0.006;  ///< containers only
   srp::core::Pose3 X_world_object = srp::core::Pose3::Identity();
   Eigen::Vector3d rgb = Eigen::Vector3d(0.8, 0.5, 0.2);  ///< colour in [0, 1] for rendering
-  std::string color;  ///< colour word from the knowledge base ("blue"), "" if none
+  std::string color;  ///< colour word of this instance (the scene's, else its class'), "" if none
   std::string className;  ///< knowledge-base class ("blue box"), "" if unknown
   std::string noun;       ///< head noun in instructions ("box"), "" if unknown
   int classId = -1;       ///< knowledge-base class id
@@ -50,9 +51,15 @@ struct CellDescription {
   Eigen::Vector2d tableHalfExtents_m = Eigen::Vector2d(1.0, 0.8);
   Eigen::Vector2d tableCentre_m = Eigen::Vector2d::Zero();
   /// The demonstrator's camera (from the scene file), which fixes left/right/front/behind
-  /// (srp/core/ViewFrame.h); nullopt: the robot's view is used.
+  /// and "the second cube" (srp/core/ViewFrame.h); nullopt when the cell was not built
+  /// from a scene: the robot's view is used.
   std::optional<srp::core::Pose3> X_world_camera;
   std::vector<CellObject> objects;
+
+  /// The view frame of this cell for `viewpoint`: the camera's (Demonstrator, when the
+  /// cell has a camera) or the robot's, from the base looking at the table centre.
+  /// Grounding and placement both read left/right/front/behind in it.
+  srp::core::ViewFrame viewFrame(srp::core::Viewpoint viewpoint) const;
 
   /// The object called `name`, nullptr if absent.
   const CellObject* find(const std::string& name) const;

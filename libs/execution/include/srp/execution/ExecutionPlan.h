@@ -10,33 +10,29 @@
 #include <Eigen/Core>
 
 #include "srp/core/SpatialRelations.h"
+#include "srp/language/TaskPlan.h"
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace srp::execution {
 
-/// An object named in the instruction ("box" + colour "blue"; "cuboid").
-struct ObjectReference {
-  std::string name;
-  std::optional<std::string> color;
-  std::string describe() const { return color ? *color + " " + name : name; }
-};
+/// An object named in the instruction ("box" + colour "blue"; "cuboid"; "the
+/// second red cube"; "the cube behind the star"): the Language Module's ObjectRef,
+/// one type for the whole stack (name, colour, ordinal, superlative, relations).
+/// SceneGrounder resolves it to one instance of the scene.
+using ObjectReference = srp::language::ObjectRef;
 
 /// A spatial relation: "in" / "into" / "from" / "next to" / "beside" / "adjacent to" / "near" /
 /// "on top of" / "left of" / "right of" / "in front of" / "behind" / "between" / "corner" ...
-struct SpatialRelation {
-  std::string relation;
-  ObjectReference landmark;
-  /// "between A and B": B (A is `landmark`); nullopt for every other relation.
-  std::optional<ObjectReference> secondLandmark;
-  /// "in the front left corner of X": "front left" (view words, see srp/core/ViewFrame.h); "" otherwise.
-  std::string corner;
-};
+/// and its landmark (the Language Module's LocationRef): `secondLandmark` is B of
+/// "between A and B" (A is `landmark`), `corner` the view words of "in the front
+/// left corner of X" ("front left", see srp/core/ViewFrame.h), "" otherwise.
+using SpatialRelation = srp::language::LocationRef;
 
 struct ExecutionStep {
   ObjectReference object;
-  std::vector<SpatialRelation> source;  ///< where it is now (may be empty: anywhere)
+  std::vector<SpatialRelation> source;  ///< where it is now (may be empty: anywhere); grounding uses them
   std::vector<SpatialRelation> target;  ///< where it must go (must not be empty)
   /// Demonstrated final offset of the object from its neighbour landmark (world x, y
   /// [m]), used to choose the side for "next to"; nullopt: no demonstration.

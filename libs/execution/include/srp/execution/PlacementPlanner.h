@@ -1,9 +1,9 @@
 #pragma once
 /// \file PlacementPlanner.h
-/// \brief Finds objects of a plan in the current scene, computes where a part must
-/// be put so that the target relations hold (thesis ch. 7.4: the target pose
-/// estimated from the landmark's pose and the spatial relation), and checks after
-/// the placement whether they do.
+/// \brief Computes where a part must be put so that the target relations hold
+/// (thesis ch. 7.4: the target pose estimated from the landmark's pose and the
+/// spatial relation), and checks after the placement whether they do. Landmarks
+/// are found by SceneGrounder (one instance, or the reason naming the candidates).
 ///
 /// Geometry rules (world = table frame, z up, metres; every placed part is upright,
 /// rests on the table, a container floor or the part it is stacked on, keeps
@@ -35,20 +35,16 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "srp/core/ViewFrame.h"
 #include "srp/execution/CellDescription.h"
 #include "srp/execution/ExecutionPlan.h"
 #include "srp/execution/ExecutionReport.h"
+#include "srp/execution/SceneGrounder.h"
 
 namespace srp::execution {
-
-/// Which view left/right/front/behind are read in (srp/core/ViewFrame.h).
-enum class ViewConvention {
-  Camera,  ///< the demonstrator's view: camera image axes on the table (the robot's when the cell has no camera)
-  Robot    ///< a viewer at the robot base looking at the table centre
-};
 
 struct PlacementOptions {
   double neighbourGap_m = 0.015;  ///< gap between footprints of neighbours
@@ -59,7 +55,9 @@ struct PlacementOptions {
   double maxReach_m = 0.80;       ///< and at most (UR5: 0.85 m)
   double neighbourTolerance_m = 0.015;  ///< extra gap allowed when checking "next to"
   double relationTolerance_m = 0.005;  ///< slack of the after-placement relation checks
-  ViewConvention view = ViewConvention::Camera;
+  /// How landmarks are found (SceneGrounder) and the view (grounding.viewpoint) in
+  /// which left/right/front/behind/corners are read, for grounding and placement alike.
+  GroundingOptions grounding;
 };
 
 /// The result of placement: a pose, or the reason there is none.
@@ -68,6 +66,9 @@ struct Placement {
   std::string container;  ///< name of the containing object, "" for the table
   std::string neighbour;  ///< name of the "next to" landmark, "" if none
   std::string stackedOn;  ///< name of the part it is stacked on, "" if none
+  /// The instance ids the target relations' landmarks were grounded to, in
+  /// step.target order (second: B of "between A and B", else ""), for check().
+  std::vector<std::pair<std::string, std::string>> landmarkIds;
   std::string reason;     ///< why there is no placement
 };
 
@@ -75,15 +76,10 @@ class PlacementPlanner {
  public:
   explicit PlacementPlanner(PlacementOptions options = {}) : options_(options) {}
 
-  /// The scene object matching `ref` ("box" + "blue" matches "blue box", "blue_box" or
-  /// name "box" with colour "blue"); among several, the first. nullptr if none.
-  static const CellObject* find(const CellDescription& scene, const ObjectReference& ref,
-                                std::optional<CellObjectKind> kind = std::nullopt);
-
   /// True when the footprint centre of `part` lies inside `container`'s inner footprint.
   static bool isInside(const CellObject& part, const CellObject& container);
 
-  /// The view frame of `scene` under options().view.
+  /// The view frame of `scene` under options().grounding.viewpoint (viewFrameOf).
   srp::core::ViewFrame viewFrame(const CellDescription& scene) const;
 
   /// Target pose for `part` satisfying `target` in `scene` (which holds the other
@@ -92,9 +88,11 @@ class PlacementPlanner {
 
   /// Each target relation of `step` checked on `scene` (the scene after the
   /// placement; `part` at its final pose in it). A landmark missing from the scene
-  /// gives a check that does not hold.
-  std::vector<RelationCheck> check(const CellDescription& scene, const CellObject& part,
-                                   const ExecutionStep& step) const;
+  /// gives a check that does not hold. `landmarkIds` (Placement::landmarkIds) names the
+  /// instances placement used; without them the landmarks are grounded in `scene`
+  /// (an ordinal may then count the moved part).
+  std::vector<RelationCheck> check(const CellDescription& scene, const CellObject& part, const ExecutionStep& step,
+                                   const std::vector<std::pair<std::string, std::string>>& landmarkIds = {}) const;
 
   const PlacementOptions& options() const { return options_; }
 

@@ -76,9 +76,6 @@ class TaskExecutor {
   struct Segment;
   /// One step of fig. 7.11: perceive, find, place, plan, execute, check.
   StepReport runStep(int index, const ExecutionStep& step);
-  /// Why the part is not at the step's source location, nullopt when it is.
-  std::optional<std::string> checkSource(const CellDescription& scene, const CellObject& part,
-                                         const ExecutionStep& step) const;
   /// Plans the six segments (Reach, approach, lift, Move, lower, retreat) for both
   /// suction turns and keeps the better; the reason when neither is feasible.
   std::optional<std::string> planMotion(const CellDescription& scene, const CellObject& part,

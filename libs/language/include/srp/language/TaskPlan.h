@@ -6,7 +6,7 @@
 /// This is the contract other modules (synthetic demos, programming, execution)
 /// consume; its JSON form (toJson/taskPlanFromJson) is stable:
 /// \code{.json}
-/// {"steps": [{"object": {"name": "cuboid", "color": null},
+/// {"steps": [{"object": {"name": "cuboid", "color": null},  // + "ordinal", "superlative", "relations" when given
 ///             "source": [{"relation": "from", "landmark": {"name": "box", "color": "blue"}}],
 ///             "target": [{"relation": "in",   "landmark": {"name": "box", "color": "gray"}}]}],
 ///  "sentences": [{"tokens": [...], "entities": [...], "relations": [...]}],
@@ -23,24 +23,52 @@
 
 namespace srp::language {
 
+struct LocationRef;
+
 /// A physical object named in the instruction: its name (multi-word names kept,
-/// e.g. "aluminum workpiece", "item A", "Location 2"; common nouns lower-cased)
-/// and its colour adjective when one is given ("blue").
+/// e.g. "aluminum workpiece", "item A", "Location 2"; common nouns lower-cased),
+/// its colour adjective when one is given ("blue"), and the modifiers that pick
+/// one of several such objects (resolved by execution::SceneGrounder):
+/// - `ordinal`: "the second cube" -> 2, "the first" -> 1, "the last" -> -1;
+/// - `superlative`: "the leftmost star" -> "leftmost" (also rightmost, frontmost,
+///   backmost, biggest, smallest, highest, lowest, closest, farthest);
+/// - `relations`: where the object is now, said inside its noun phrase: "the cube
+///   that is behind the star" -> {"behind", star}; "the cube closest to the box"
+///   -> {"closest to", box} (a superlative relative to a landmark).
 struct ObjectRef {
   std::string name;
   std::optional<std::string> color;
-  bool operator==(const ObjectRef& o) const { return name == o.name && color == o.color; }
+  std::optional<int> ordinal;
+  std::string superlative;
+  std::vector<LocationRef> relations;
+  /// "[ordinal ][superlative ][color ]name[ relation landmark...]", e.g. "second red cube".
+  std::string describe() const;
+  bool operator==(const ObjectRef& o) const;
   bool operator!=(const ObjectRef& o) const { return !(*this == o); }
 };
 
 /// A location relative to a landmark object: `relation` is the indicator phrase
 /// as written, lower-cased ("from", "in", "next to", "on top of"), `landmark`
 /// the object after it.
+/// `secondLandmark` and `corner` are filled by execution::planFromLanguage, which
+/// re-reads those phrases from the tokens (the parser reads them only partly):
+/// "between A and B" -> landmark A, secondLandmark B; "in the front left corner
+/// of X" -> corner "front left" (view words, srp/core/ViewFrame.h). Not in the JSON form.
 struct LocationRef {
   std::string relation;
   ObjectRef landmark;
-  bool operator==(const LocationRef& o) const { return relation == o.relation && landmark == o.landmark; }
+  std::optional<ObjectRef> secondLandmark;
+  std::string corner;
+  bool operator==(const LocationRef& o) const {
+    return relation == o.relation && landmark == o.landmark && secondLandmark == o.secondLandmark &&
+           corner == o.corner;
+  }
 };
+
+inline bool ObjectRef::operator==(const ObjectRef& o) const {
+  return name == o.name && color == o.color && ordinal == o.ordinal && superlative == o.superlative &&
+         relations == o.relations;
+}
 
 /// Where a plan element came from in the text (0-based sentence and token index).
 struct TokenAnchor {
@@ -107,7 +135,7 @@ AnnotatedSentence annotatedSentenceFromJson(const nlohmann::json& j);
 /// Inverse of toJson(TaskPlan) (anchors are not stored); throws InvalidInputError.
 TaskPlan taskPlanFromJson(const nlohmann::json& j);
 
-/// "the blue box" style text for people: "[color ]name".
+/// "the blue box" style text for people: "[color ]name" (ObjectRef::describe, with modifiers).
 std::string describe(const ObjectRef& o);
 /// A readable multi-line rendering of the plan (steps, then warnings).
 std::string describe(const TaskPlan& plan);

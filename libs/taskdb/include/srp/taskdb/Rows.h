@@ -29,6 +29,7 @@ struct ProductRow {
   std::optional<int> tokenId;           ///< token index in its sentence
   std::optional<int> sentenceId;
   std::optional<int> classId;           ///< knowledge-base class once grounded
+  std::string instanceId;               ///< scene instance once grounded ("cuboid_red"); "" = the class' one instance
   bool operator==(const ProductRow&) const;
 };
 
@@ -51,20 +52,23 @@ struct TargetLocationRow {
   bool operator==(const TargetLocationRow&) const;
 };
 
-/// Table GroundedProducts: the object classes seen in the demonstration and
-/// linked to the instruction.
+/// Table GroundedProducts: the object instances seen in the demonstration and
+/// linked to the instruction, keyed by (ClassId, InstanceId) since schema 2.
 struct GroundedProductRow {
   int classId = 0;
   std::string objectName;
   std::optional<int> sourceLocationId;
   std::optional<int> targetLocationId;
   std::optional<std::string> color;
+  /// Which instance of the class (the scene's object id, e.g. "cuboid_red");
+  /// "" = the one instance of its class (every schema-1 row).
+  std::string instanceId;
   bool operator==(const GroundedProductRow&) const;
 };
 
 /// Table ProductPose (normalised: one table keyed by TaskModelId, ClassId,
-/// TimeId instead of the thesis' table per object): the object's pose in one
-/// frame and the skill it is in.
+/// InstanceId, TimeId instead of the thesis' table per object): the object's
+/// pose in one frame and the skill it is in.
 struct ProductPoseRow {
   int classId = 0;
   int timeId = 0;
@@ -73,6 +77,7 @@ struct ProductPoseRow {
   bool reach = false, grasp = false, move = false, release = false;
   bool detected = true;     ///< false: carried forward, not seen in this frame
   std::optional<double> confidence;
+  std::string instanceId;   ///< instance of the class ("" = its one instance)
   /// Yaw [rad] about the frame's z axis (the thesis' Rz column).
   double yaw_rad() const;
   bool operator==(const ProductPoseRow&) const;
@@ -96,6 +101,7 @@ struct SkillRow {
   int startTimeId = 0;
   int endTimeId = 0;
   nlohmann::json parameters = nlohmann::json::object();
+  std::string instanceId;  ///< instance of the class ("" = its one instance)
   bool operator==(const SkillRow&) const;
 };
 

@@ -1,0 +1,102 @@
+// Schema 1 -> 2 (instance ids, issue 19): a database file written by srp before
+// the change (tests/data/schema_v1.db, see tests/data/README.md) still opens,
+// keeps every row, and then stores two instances of one class.
+#include <gtest/gtest.h>
+
+#include <SQLiteCpp/SQLiteCpp.h>
+
+#include <filesystem>
+
+#include "TestDb.h"
+#include "srp/core/Error.h"
+#include "srp/core/Json.h"
+#include "srp/taskdb/GroundedProductDao.h"
+#include "srp/taskdb/ProductPoseDao.h"
+#include "srp/taskdb/SkillDao.h"
+#include "srp/taskdb/TaskModelStore.h"
+
+using namespace srp::taskdb;
+
+namespace {
+const std::string kFixture = std::string(SRP_SOURCE_DIR) + "/libs/taskdb/tests/data/schema_v1.db";
+const std::string kFixtureSource = std::string(SRP_SOURCE_DIR) + "/libs/taskdb/tests/data/schema_v1_source.json";
+
+int userVersion(const std::string& path) {
+  SQLite::Database raw(path, SQLite::OPEN_READONLY);
+  return raw.execAndGet("PRAGMA user_version").getInt();
+}
+}  // namespace
+
+TEST(Migration, SchemaOneFileOpensWithEveryRowAndGainsInstanceIds) {
+  ASSERT_TRUE(std::filesystem::exists(kFixture)) << kFixture;
+  ASSERT_EQ(userVersion(kFixture), 1) << "the fixture must stay a schema-1 file";
+  test::TempDbPath path("migrate_v1");
+  std::filesystem::copy_file(kFixture, path.str());
+
+  // Read-only cannot migrate: it says how to.
+  try {
+    TaskDatabase::open(path.str(), TaskDatabase::Mode::ReadOnly);
+    ADD_FAILURE() << "a schema-1 file opened read-only without migration";
+  } catch (const srp::core::FileError& e) {
+    EXPECT_NE(std::string(e.what()).find("read-write to migrate"), std::string::npos) << e.what();
+  }
+
+  auto db = TaskDatabase::open(path.str());
+  EXPECT_EQ(db.schemaVersion(), 2);
+  const TaskModel expected = taskModelFromJson(srp::core::readJsonFile(kFixtureSource), kFixtureSource);
+  const TaskModel read = TaskModelStore(db).read(1);
+  EXPECT_EQ(read.products, expected.products);
+  EXPECT_EQ(read.sourceLocations, expected.sourceLocations);
+  EXPECT_EQ(read.targetLocations, expected.targetLocations);
+  EXPECT_EQ(read.targetObjectIds, expected.targetObjectIds);
+  EXPECT_EQ(read.groundedProducts, expected.groundedProducts);
+  EXPECT_EQ(read.productPoses, expected.productPoses);
+  EXPECT_EQ(read.handPositions, expected.handPositions);
+  ASSERT_EQ(read.skills.size(), 1u);
+  EXPECT_EQ(read.skills, expected.skills);
+  for (const auto& g : read.groundedProducts) EXPECT_EQ(g.instanceId, "");
+
+  // The migrated file now holds two instances of one class, with their own poses and skills.
+  TaskModel two;
+  two.info.name = "two cuboids";
+  two.groundedProducts = {{3, "cuboid", {}, {}, std::string("red"), "cuboid_red"},
+                          {3, "cuboid", {}, {}, std::string("blue"), "cuboid_blue"}};
+  ProductPoseRow red, blue;
+  red.classId = blue.classId = 3;
+  red.timeId = blue.timeId = 1;
+  red.instanceId = "cuboid_red";
+  blue.instanceId = "cuboid_blue";
+  red.p_m = {0.1, 0.0, 0.5};
+  blue.p_m = {-0.1, 0.0, 0.5};
+  two.productPoses = {red, blue};
+  two.skills = {{3, srp::core::SkillType::Grasp, 1, 1, nlohmann::json::object(), "cuboid_red"},
+                {3, srp::core::SkillType::Grasp, 1, 1, nlohmann::json::object(), "cuboid_blue"}};
+  two.products = {{0, "cuboid", {}, {}, std::string("red"), {}, {}, 3, "cuboid_red"}};
+  two.targetObjectIds = {0};
+  const int id = TaskModelStore(db).write(two);
+  const TaskModel back = TaskModelStore(db).read(id);
+  EXPECT_EQ(back.groundedProducts.size(), 2u);
+  EXPECT_EQ(back.productPoses.size(), 2u);
+  EXPECT_EQ(back.products, two.products);
+  const auto bluePose = ProductPoseDao(db).get(id, 3, 1, "cuboid_blue");
+  ASSERT_TRUE(bluePose.has_value());
+  EXPECT_EQ(bluePose->p_m, blue.p_m);
+  EXPECT_TRUE(GroundedProductDao(db).get(id, 3, "cuboid_red").has_value());
+  EXPECT_FALSE(GroundedProductDao(db).get(id, 3).has_value());  // no instance-less row in this model
+  EXPECT_TRUE(SkillDao(db).get(id, 3, srp::core::SkillType::Grasp, "cuboid_blue").has_value());
+  // A product grounded to an instance that has no GroundedProducts row is refused.
+  TaskModel dangling = two;
+  dangling.info.name = "dangling";
+  dangling.products[0].instanceId = "cuboid_green";
+  EXPECT_THROW(TaskModelStore(db).write(dangling), srp::core::Error);
+}
+
+TEST(Migration, ReopeningAMigratedFileKeepsItAsItIs) {
+  test::TempDbPath path("migrate_twice");
+  std::filesystem::copy_file(kFixture, path.str());
+  { TaskDatabase::open(path.str()); }
+  { auto db = TaskDatabase::open(path.str()); EXPECT_EQ(TaskModelStore(db).list().size(), 1u); }
+  auto ro = TaskDatabase::open(path.str(), TaskDatabase::Mode::ReadOnly);
+  EXPECT_EQ(ro.schemaVersion(), kSchemaVersion);
+  EXPECT_EQ(TaskModelStore(ro).read(1).productPoses.size(), 9u);
+}

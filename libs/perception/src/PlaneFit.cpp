@@ -44,6 +44,30 @@ std::optional<InlierFit> leastSquaresOnInliers(const std::vector<Eigen::Vector3d
                    static_cast<int>(in.size())};
 }
 
+/// RANSAC over `pts`: per iteration three random points give a normal; `hypothesis(n, a)` orients it
+/// (a: one of the three points) and returns the plane, or nullopt to reject it. The plane with the
+/// most points within tol_m wins (inliers 0 when every hypothesis was rejected).
+template <typename Hypothesis>
+Plane ransacPlane(const std::vector<Eigen::Vector3d>& pts, int iterations, unsigned seed, double tol_m,
+                  Hypothesis hypothesis) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<std::size_t> pick(0, pts.size() - 1);
+  Plane best;
+  best.inliers = 0;
+  for (int it = 0; it < iterations; ++it) {
+    const Eigen::Vector3d a = pts[pick(rng)], b = pts[pick(rng)], c = pts[pick(rng)];
+    Eigen::Vector3d n = (b - a).cross(c - a);
+    if (n.norm() < 1e-9) continue;
+    n.normalize();
+    const std::optional<Plane> h = hypothesis(n, a);
+    if (!h) continue;
+    int count = 0;
+    for (const auto& p : pts) count += std::abs(h->n.dot(p) + h->d) < tol_m;
+    if (count > best.inliers) best = Plane{h->n, h->d, count};
+  }
+  return best;
+}
+
 }  // namespace
 
 std::optional<Plane> fitDominantPlane(const cv::Mat& cloud, const PlaneFitOptions& o) {
@@ -54,26 +78,18 @@ std::optional<Plane> fitDominantPlane(const cv::Mat& cloud, const PlaneFitOption
       if (p[2] > 0.f) pts.emplace_back(p[0], p[1], p[2]);
     }
   if (pts.size() < 3) return std::nullopt;
-  std::mt19937 rng(o.seed);
-  std::uniform_int_distribution<std::size_t> pick(0, pts.size() - 1);
-  Plane best;
-  best.inliers = 0;
-  for (int it = 0; it < o.iterations; ++it) {
-    const Eigen::Vector3d a = pts[pick(rng)], b = pts[pick(rng)], c = pts[pick(rng)];
-    Eigen::Vector3d n = (b - a).cross(c - a);
-    if (n.norm() < 1e-9) continue;
-    n.normalize();
-    double d = -n.dot(a);
-    if (d < 0) {
-      n = -n;
-      d = -d;
-    }
-    if (o.expectedNormal && std::acos(std::clamp(n.dot(o.expectedNormal->normalized()), -1.0, 1.0)) > o.maxTilt_rad)
-      continue;
-    int count = 0;
-    for (const auto& p : pts) count += std::abs(n.dot(p) + d) < o.inlierTol_m;
-    if (count > best.inliers) best = Plane{n, d, count};
-  }
+  Plane best = ransacPlane(pts, o.iterations, o.seed, o.inlierTol_m,
+                           [&](Eigen::Vector3d n, const Eigen::Vector3d& a) -> std::optional<Plane> {
+                             double d = -n.dot(a);
+                             if (d < 0) {
+                               n = -n;
+                               d = -d;
+                             }
+                             if (o.expectedNormal &&
+                                 std::acos(std::clamp(n.dot(o.expectedNormal->normalized()), -1.0, 1.0)) > o.maxTilt_rad)
+                               return std::nullopt;
+                             return Plane{n, d, 0};
+                           });
   if (best.inliers < 3) return std::nullopt;
   // Least-squares refinement on the inliers (twice, tightening).
   for (int pass = 0; pass < 2; ++pass) {
@@ -105,23 +121,13 @@ std::optional<Plane> fitLocalPlane(const cv::Mat& cloud, const Plane& global, co
     }
   }
   if (static_cast<int>(pts.size()) < o.minInliers) return std::nullopt;
-  std::mt19937 rng(o.seed);
-  std::uniform_int_distribution<std::size_t> pick(0, pts.size() - 1);
   const double cosMaxTurn = std::cos(o.maxTurn_rad);
-  Plane best;
-  best.inliers = 0;
-  for (int it = 0; it < o.iterations; ++it) {
-    const Eigen::Vector3d a = pts[pick(rng)], b = pts[pick(rng)], c = pts[pick(rng)];
-    Eigen::Vector3d n = (b - a).cross(c - a);
-    if (n.norm() < 1e-9) continue;
-    n.normalize();
-    if (n.dot(global.n) < 0) n = -n;  // the camera's side, as the global plane
-    if (n.dot(global.n) < cosMaxTurn) continue;
-    const double d = -n.dot(a);
-    int count = 0;
-    for (const auto& p : pts) count += std::abs(n.dot(p) + d) < o.inlierTol_m;
-    if (count > best.inliers) best = Plane{n, d, count};
-  }
+  const Plane best = ransacPlane(pts, o.iterations, o.seed, o.inlierTol_m,
+                                 [&](Eigen::Vector3d n, const Eigen::Vector3d& a) -> std::optional<Plane> {
+                                   if (n.dot(global.n) < 0) n = -n;  // the camera's side, as the global plane
+                                   if (n.dot(global.n) < cosMaxTurn) return std::nullopt;
+                                   return Plane{n, -n.dot(a), 0};
+                                 });
   if (best.inliers < o.minInliers) return std::nullopt;
   // Least squares on the inliers.
   const auto fit = leastSquaresOnInliers(pts, best, o.inlierTol_m);

@@ -1,5 +1,6 @@
 #include "srp/perception/EdgeYawRefiner.h"
 
+#include "srp/core/Angles.h"
 #include "srp/perception/SegmentColour.h"
 
 #include <cmath>
@@ -10,11 +11,7 @@
 #include <opencv2/imgproc.hpp>
 
 namespace srp::perception {
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-}  // namespace
+using srp::core::kPi;
 
 EdgeYawRefiner::EdgeYawRefiner(const ObjectModel& model) : EdgeYawRefiner(model, Options{}) {}
 

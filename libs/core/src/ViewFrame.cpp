@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <cctype>
 
+#include "srp/core/Text.h"
 #include "srp/core/Error.h"
 
 namespace srp::core {
@@ -10,11 +11,6 @@ namespace {
 
 // Below this horizontal length an axis is too steep to give a table direction.
 constexpr double kMinHorizontal = 0.2;
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 bool contains(const std::string& s, const std::string& word) { return s.find(word) != std::string::npos; }
 
@@ -60,7 +56,7 @@ ViewFrame ViewFrame::fromRobot(const Pose3& X_world_base, const Eigen::Vector2d&
 }
 
 std::string ViewFrame::directionWord(const std::string& wordOrRelation) {
-  const std::string w = lower(wordOrRelation);
+  const std::string w = toLowerAscii(wordOrRelation);
   if (w == "back") return "behind";  // the bare word only: "back to the box" is a return, not a direction
   const std::string r = " " + w + " ";
   if (contains(r, " corner")) return "";

@@ -1,5 +1,7 @@
 #include "srp/execution/PlacementPlanner.h"
 
+#include "srp/core/Text.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -11,11 +13,7 @@ namespace {
 
 using srp::core::Pose3;
 
-std::string normalise(std::string s) {
-  for (char& c : s) c = (c == '_' || c == '-') ? ' ' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  const auto b = s.find_first_not_of(' '), e = s.find_last_not_of(' ');
-  return b == std::string::npos ? "" : s.substr(b, e - b + 1);
-}
+using srp::core::normaliseName;
 
 double yawOfPose(const Pose3& X) { return srp::core::yawOf(X.linear()); }
 
@@ -74,7 +72,7 @@ bool isStackWord(const std::string& r) {
 }
 
 Kind kindOf(const SpatialRelation& rel) {
-  const std::string r = normalise(rel.relation);
+  const std::string r = normaliseName(rel.relation);
   if (!rel.corner.empty() || r.find("corner") != std::string::npos) return Kind::Corner;
   if (r == "between" || r == "in between") return Kind::Between;
   if (!srp::core::ViewFrame::directionWord(r).empty()) return Kind::Direction;
@@ -193,7 +191,7 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
         directionLandmark = groundLandmark(rel, rel.landmark, std::nullopt);
         if (!directionLandmark) return out;
         ids.first = directionLandmark->name;
-        direction = *view.direction(normalise(rel.relation));
+        direction = *view.direction(normaliseName(rel.relation));
         directionText = rel.relation;
         break;
       case Kind::Between:
@@ -591,7 +589,7 @@ std::vector<RelationCheck> PlacementPlanner::check(const CellDescription& scene,
       case Kind::Neighbour:
       case Kind::Direction: {
         const Eigen::Vector2d off = p - centre(*a);
-        const Eigen::Vector2d dir = kind == Kind::Direction ? *view.direction(normalise(rel.relation))
+        const Eigen::Vector2d dir = kind == Kind::Direction ? *view.direction(normaliseName(rel.relation))
                                                             : off.normalized();
         const Eigen::Vector2d perp(-dir.y(), dir.x());
         const double along = off.dot(dir), lateral = std::abs(off.dot(perp));

@@ -6,6 +6,7 @@
 #include <tuple>
 #include <map>
 
+#include "srp/core/Text.h"
 #include "srp/core/Error.h"
 
 namespace srp::execution {
@@ -132,11 +133,6 @@ namespace {
 // gives landmark "left"; "between A and B" gives only A; "right of the X" and "in the
 // front left corner of X" give no target). They are re-read from the sentence's tokens.
 
-std::string lowerWord(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
 bool isColourWord(const std::string& w) {
   static const char* kWords[] = {"red", "green", "blue", "yellow", "gray", "grey", "black", "white",
                                  "orange", "purple", "pink", "brown", "violet", "cyan", "magenta"};
@@ -213,7 +209,7 @@ ExecutionPlan planFromLanguage(const srp::language::TaskPlan& plan) {
   auto tokensOf = [&](int sentence) -> std::vector<std::string> {
     std::vector<std::string> t;
     if (sentence < 0 || sentence >= static_cast<int>(plan.sentences.size())) return t;
-    for (const auto& w : plan.sentences[static_cast<std::size_t>(sentence)].tokens) t.push_back(lowerWord(w));
+    for (const auto& w : plan.sentences[static_cast<std::size_t>(sentence)].tokens) t.push_back(srp::core::toLowerAscii(w));
     return t;
   };
   ExecutionPlan out;
@@ -234,8 +230,8 @@ ExecutionPlan planFromLanguage(const srp::language::TaskPlan& plan) {
       const std::vector<std::string> t = tokensOf(anchor.sentenceId);
       if (anchor.tokenId >= 0 && static_cast<std::size_t>(anchor.tokenId) < t.size()) {
         const std::size_t i = static_cast<std::size_t>(anchor.tokenId);
-        const bool viewLandmark = isViewWord(lowerWord(l.landmark.name)) && !l.landmark.color;
-        const bool lonelyBetween = lowerWord(l.relation) == "between" && !l.secondLandmark;
+        const bool viewLandmark = isViewWord(srp::core::toLowerAscii(l.landmark.name)) && !l.landmark.color;
+        const bool lonelyBetween = srp::core::toLowerAscii(l.relation) == "between" && !l.secondLandmark;
         if (viewLandmark || lonelyBetween) {
           // Re-read from the relation word before the landmark.
           std::size_t from = i;
@@ -255,7 +251,7 @@ ExecutionPlan planFromLanguage(const srp::language::TaskPlan& plan) {
         step.target.push_back(tr->relation);
         consumed.emplace_back(s.objectAnchor.sentenceId, tr->begin, tr->end);
         // "star right" of "the star right of the cuboid": the view word is not part of the name.
-        const std::string name = lowerWord(step.object.name);
+        const std::string name = srp::core::toLowerAscii(step.object.name);
         const auto space = name.rfind(' ');
         if (space != std::string::npos && isViewWord(name.substr(space + 1))) step.object.name = step.object.name.substr(0, space);
       }

@@ -6,6 +6,7 @@
 #include <functional>
 #include <limits>
 
+#include "srp/core/Text.h"
 #include "srp/core/Scene.h"
 #include "srp/core/SpatialRelations.h"
 #include "srp/execution/PlacementPlanner.h"
@@ -14,9 +15,7 @@ namespace srp::execution {
 namespace {
 
 std::string normalise(std::string s) {
-  for (char& c : s) c = (c == '_' || c == '-') ? ' ' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  const auto b = s.find_first_not_of(' '), e = s.find_last_not_of(' ');
-  s = b == std::string::npos ? "" : s.substr(b, e - b + 1);
+  s = srp::core::normaliseName(std::move(s));
   for (std::size_t p; (p = s.find("grey")) != std::string::npos;) s.replace(p, 4, "gray");
   return s;
 }

@@ -10,4 +10,9 @@ namespace srp::core {
 /// included) unchanged, independent of the C locale.
 std::string toLowerAscii(std::string text);
 
+/// A name as written in scenes, catalogues and instructions, made comparable:
+/// lower-cased (toLowerAscii), '_' and '-' read as spaces, outer spaces trimmed
+/// ("Blue_Box " -> "blue box").
+std::string normaliseName(std::string name);
+
 }  // namespace srp::core

@@ -14,7 +14,8 @@ using namespace srp::execution;
 
 namespace {
 
-mrpt::img::CImage renderGrey(CellRenderer& renderer, const Eigen::Matrix<double, 6, 1>& q_rad, const std::string& name) {
+/// Renders the arm at q_rad into SRP_BINARY_DIR/name (a stale file removed first) and reads it back.
+mrpt::img::CImage renderColour(CellRenderer& renderer, const JointVector& q_rad, const std::string& name) {
   CellSnapshot snap;
   snap.q_rad = q_rad;
   const std::string path = std::string(SRP_BINARY_DIR) + "/" + name;
@@ -22,7 +23,11 @@ mrpt::img::CImage renderGrey(CellRenderer& renderer, const Eigen::Matrix<double,
   renderer.renderPng(snap, path);
   mrpt::img::CImage img;
   EXPECT_TRUE(img.loadFromFile(path)) << path;
-  return img.grayscale();
+  return img;
+}
+
+mrpt::img::CImage renderGrey(CellRenderer& renderer, const JointVector& q_rad, const std::string& name) {
+  return renderColour(renderer, q_rad, name).grayscale();
 }
 
 /// Fraction of pixels whose grey level differs by more than kGreyStep.
@@ -82,17 +87,6 @@ struct Rgb {
 Rgb pixel(const mrpt::img::CImage& img, const Eigen::Vector3d& uv) {
   const int u = static_cast<int>(std::lround(uv.x())), v = static_cast<int>(std::lround(uv.y()));
   return {img.at<uint8_t>(u, v, 2), img.at<uint8_t>(u, v, 1), img.at<uint8_t>(u, v, 0)};  // CImage is BGR
-}
-
-mrpt::img::CImage renderColour(CellRenderer& renderer, const JointVector& q_rad, const std::string& name) {
-  CellSnapshot snap;
-  snap.q_rad = q_rad;
-  const std::string path = std::string(SRP_BINARY_DIR) + "/" + name;
-  std::filesystem::remove(path);
-  renderer.renderPng(snap, path);
-  mrpt::img::CImage img;
-  EXPECT_TRUE(img.loadFromFile(path)) << path;
-  return img;
 }
 
 /// The link's lumped centre of mass in the world: a point inside its mesh.

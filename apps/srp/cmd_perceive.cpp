@@ -112,8 +112,9 @@ void setupPerceive(CLI::App& app) {
   app.add_flag("--moving-camera", o->movingCamera,
                "Hand-held camera: support plane fitted and objects detected in every frame on its own");
   app.add_option("--tracker", o->tracker,
-                 "How a detected part is followed: mbt (ViSP model-based tracker, KLT + dense depth, back to "
-                 "detection when lost), fitter (detected in every frame), auto (mbt with --moving-camera, else fitter)")
+                 "How a detected part is followed: mbt (ViSP model-based tracker on KLT points of the colour image; "
+                 "back to detection when too few points remain or the depth does not confirm the part), fitter "
+                 "(detected in every frame), auto (mbt with --moving-camera, else fitter)")
       ->check(CLI::IsMember({"auto", "mbt", "fitter"}))
       ->capture_default_str();
   app.add_option("--tag-size", o->tagSize_m, "Glove tag (tag36h11) black square side [m]")->capture_default_str();

@@ -33,7 +33,8 @@
 // scene odometry agrees with the board within 1 mm (so it is a usable
 // reference); in the fast frames 16-21 the shipped estimate is within 6 mm of
 // the scene-derived pose in every frame while the board-derived reference is
-// more than 10 mm from it (the reference, not the tracker, departs there).
+// more than 10 mm from it (the reference, not the tracker, departs there); the
+// shipped estimate is within 1 cm of the scene-derived pose in >= 47/50 frames.
 
 #include <algorithm>
 #include <chrono>
@@ -41,6 +42,7 @@
 #include <fstream>
 #include <limits>
 #include <string>
+#include <time.h>
 #include <vector>
 
 #include <Eigen/Core>
@@ -239,11 +241,11 @@ int body(int argc, char** argv) {
 
   // Step 4: per frame, both references, both estimates, the image's evidence.
   std::ofstream csv(out / "real_cube.csv");
-  csv << "frame,ref_vs_scene_mm,shipped_vs_ref_mm,shipped_vs_scene_mm,fitter_vs_ref_mm,fitter_vs_scene_mm,"
+  csv << "frame,board_vs_scene_turn_deg,ref_vs_scene_mm,shipped_vs_ref_mm,shipped_vs_scene_mm,fitter_vs_ref_mm,fitter_vs_scene_mm,"
          "edge_ref_px,edge_shipped_px,edge_fitter_px,depth_ref_mm,depth_shipped_mm,depth_fitter_mm,"
          "depth_within_ref,depth_within_shipped,depth_within_fitter\n";
   std::vector<core::Pose3> refs(n), scenes(n);
-  std::vector<double> refVsScene(n), shippedVsScene(n), shippedVsRef(n);
+  std::vector<double> refVsScene(n), shippedVsScene(n), shippedVsRef(n), boardTurn_deg(n);
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();  // shipped - scene, camera frame, still frames 0-8
   for (int i = 0; i < n; ++i) {
     const auto& f = frames[i];
@@ -262,6 +264,8 @@ int body(int argc, char** argv) {
       }
     }
     scenes[i] = X_ci_c0 * X_c0_cube;
+    // How far the board's camera motion turns from the scene's.
+    boardTurn_deg[i] = core::rotationAngleBetween((boards[i] * boards[0].inverse()).linear(), X_ci_c0.linear()) * 180 / M_PI;
     if (std::getenv("SRP_REAL_CUBE_SCENE_POSES")) {
       static std::ofstream poses(std::getenv("SRP_REAL_CUBE_SCENE_POSES"));
       poses.precision(12);
@@ -279,8 +283,8 @@ int body(int argc, char** argv) {
     shippedVsRef[i] = core::translationDistance(shipped[i].X_camera_object, refs[i]) * 1e3;
     if (i <= 8) offset += (shipped[i].X_camera_object.translation() - scenes[i].translation()) * 1e3 / 9.0;
     char line[512];
-    std::snprintf(line, sizeof line, "%d,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.3f,%.3f,%.3f\n", i,
-                  refVsScene[i], shippedVsRef[i], shippedVsScene[i],
+    std::snprintf(line, sizeof line, "%d,%.3f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.3f,%.3f,%.3f\n", i,
+                  boardTurn_deg[i], refVsScene[i], shippedVsRef[i], shippedVsScene[i],
                   core::translationDistance(fitter[i].X_camera_object, refs[i]) * 1e3,
                   core::translationDistance(fitter[i].X_camera_object, scenes[i]) * 1e3, er.edge_px, es.edge_px,
                   ef.edge_px, er.depthMedian_mm, es.depthMedian_mm, ef.depthMedian_mm, er.depthWithin, es.depthWithin,
@@ -294,10 +298,15 @@ int body(int argc, char** argv) {
   perception::ModelBasedTracker tracker(model.mesh, in, perception::PerceptionOptions{}.mbt);
   tracker.initialise(frames[0], X_c0_cube * model.X_model_mesh.inverse());
   std::vector<double> cost_ms;
+  auto cpu_ms = [] {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+  };
   for (int i = 1; i < n && tracker.initialised(); ++i) {
-    const auto t0 = std::chrono::steady_clock::now();
+    const double t0 = cpu_ms();
     tracker.track(frames[i]);
-    cost_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    cost_ms.push_back(cpu_ms() - t0);
   }
 
   // Step 6: the figure: crops around the cube, 2x, one frame still, four moving fast.
@@ -344,8 +353,11 @@ int body(int argc, char** argv) {
   // Step 7: the numbers and the checks.
   double stillWorst = 0;
   for (int i = 0; i <= 8; ++i) stillWorst = std::max(stillWorst, refVsScene[i]);
-  double fastShippedWorst = 0, fastRefBest = 1e9;
+  double fastShippedWorst = 0, fastRefBest = 1e9, fastTurnMin = 1e9, fastTurnMax = 0, stillTurnMax = 0;
+  for (int i = 0; i <= 8; ++i) stillTurnMax = std::max(stillTurnMax, boardTurn_deg[i]);
   for (int i = 16; i <= 21; ++i) {
+    fastTurnMin = std::min(fastTurnMin, boardTurn_deg[i]);
+    fastTurnMax = std::max(fastTurnMax, boardTurn_deg[i]);
     fastShippedWorst = std::max(fastShippedWorst, shippedVsScene[i]);
     fastRefBest = std::min(fastRefBest, refVsScene[i]);
   }
@@ -363,13 +375,16 @@ int body(int argc, char** argv) {
                 "shipped - scene-derived in frames 0-8 (camera frame, mm): (%.1f, %.1f, %.1f) = the depth's offset from the "
                 "colour-derived frame-0 pose\n"
                 "median position: shipped vs reference %.2f mm, shipped vs scene %.2f mm, reference vs scene %.2f mm\n"
-                "ViSP tracker (KLT) per frame: median %.1f ms, max %.1f ms (wall, %zu frames)\n",
+                "camera turn from frame 0, board vs scene odometry: frames 0-8 within %.2f deg, frames 16-21 %.2f-%.2f deg\n"
+                "ViSP tracker (KLT) per frame: median %.1f ms, max %.1f ms (CPU, %zu frames)\n",
                 stillWorst, fastShippedWorst, fastRefBest, refWithin, n, shippedWithin, n, offset.x(), offset.y(),
-                offset.z(), median(shippedVsRef), median(shippedVsScene), median(refVsScene), median(cost_ms),
+                offset.z(), median(shippedVsRef), median(shippedVsScene), median(refVsScene), stillTurnMax, fastTurnMin, fastTurnMax,
+                median(cost_ms),
                 cost_ms.empty() ? 0.0 : *std::max_element(cost_ms.begin(), cost_ms.end()), cost_ms.size());
   txt << summary;
   std::printf("%s", summary);
   checks.require(stillWorst < 1.0, "frames 0-8: the scene odometry agrees with the board within 1 mm");
+  checks.require(shippedWithin >= 47, "the shipped estimate within 1 cm of the scene-derived pose in >= 47 of 50 frames");
   checks.require(fastShippedWorst < 6.0 && fastRefBest > 10.0,
                  "frames 16-21: shipped within 6 mm of the scene-derived pose, reference more than 10 mm from it");
   return checks.exitCode();

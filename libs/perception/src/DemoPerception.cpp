@@ -92,6 +92,14 @@ std::map<std::string, ObjectDetection> DemoPerceiver::Impl::trackParts(const raw
     if (r.tracked) {
       if (cloud.empty()) depthToCloud(f.depth_m, camera, cloud);
       coverage = fitter->coverage(r.X_camera_mesh, cloud, camera);
+      const Eigen::Vector3d ray = r.X_camera_mesh.translation().normalized();
+      const int steps = static_cast<int>(std::lround(m.options.mbtDepthShiftTolerance_m / 0.001));
+      for (int s = -steps; s <= steps; ++s) {
+        if (s == 0) continue;
+        core::Pose3 shifted = r.X_camera_mesh;
+        shifted.translation() += ray * (0.001 * s);
+        coverage = std::max(coverage, fitter->coverage(shifted, cloud, camera));
+      }
     }
     const bool tracked = r.tracked && coverage >= m.options.mbtMinCoverage;
     if (m.debug)

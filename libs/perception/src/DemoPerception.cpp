@@ -92,6 +92,16 @@ std::map<std::string, ObjectDetection> DemoPerceiver::Impl::trackParts(const raw
     if (r.tracked) {
       if (cloud.empty()) depthToCloud(f.depth_m, camera, cloud);
       coverage = fitter->coverage(r.X_camera_mesh, cloud, camera);
+      // A depth offset from the colour along the ray must not lose a pose that follows the colour.
+      constexpr double kShiftStep_m = 0.001;
+      const Eigen::Vector3d ray = r.X_camera_mesh.translation().normalized();
+      const int steps = static_cast<int>(std::lround(m.options.mbtDepthShiftTolerance_m / kShiftStep_m));
+      for (int s = -steps; s <= steps; ++s) {
+        if (s == 0) continue;
+        core::Pose3 shifted = r.X_camera_mesh;
+        shifted.translation() += ray * (kShiftStep_m * s);
+        coverage = std::max(coverage, fitter->coverage(shifted, cloud, camera));
+      }
     }
     const bool tracked = r.tracked && coverage >= m.options.mbtMinCoverage;
     if (m.debug)

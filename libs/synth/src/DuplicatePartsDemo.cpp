@@ -33,7 +33,7 @@ DuplicatePartsDemo makeDuplicatePartsDemo(const srp::core::Scene& base, const sr
   const Eigen::Vector2d side = Eigen::Vector2d(-way.y(), way.x()).normalized();
   const double sign = uniform(0.0, 1.0) < 0.5 ? -1.0 : 1.0;
   const Eigen::Vector2d other = start + uniform(o.wayMin, o.wayMax) * way + sign * uniform(o.sideMin_m, o.sideMax_m) * side;
-  const int moved = uniform(0.0, 1.0) < 0.5 ? 0 : 1;
+  const int moved = static_cast<int>(seed % 2);  // both colours moved over consecutive seeds
 
   const auto place = [&](const Eigen::Vector2d& p_xy, int colour) {
     srp::core::SceneObject s;

@@ -47,8 +47,7 @@ TEST(DuplicatePartsDemo, TwoColouredInstancesOnTheWayAndThePlanMovesTheNamedOne)
     // Deterministic in the seed.
     EXPECT_EQ(makeDuplicatePartsDemo(b.scene, b.catalogue, seed).scene.toJson(), d.scene.toJson());
   }
-  EXPECT_GT(movedRed, 0);
-  EXPECT_LT(movedRed, 10);
+  EXPECT_EQ(movedRed, 5) << "even seeds move the red cuboid, odd ones the blue";
 }
 
 TEST(DuplicatePartsDemo, UnknownTargetIsAClearError) {

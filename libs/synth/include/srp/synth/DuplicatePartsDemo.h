@@ -38,7 +38,8 @@ struct DuplicatePartsDemo {
 /// removed) with two parts of `options.className`, ids "<class>_<colour>"
 /// (spaces as '_'), placed and turned at random from `seed`, and the plan
 /// "pick up the <colour> <class> and place it in the <target>" for one of
-/// them (which one also from `seed`). Deterministic in `seed`. Throws
+/// them (the first colour's for even seeds, the second's for odd ones).
+/// Deterministic in `seed`. Throws
 /// InvalidInputError when the class or the target is unknown, or the
 /// scene does not validate.
 DuplicatePartsDemo makeDuplicatePartsDemo(const srp::core::Scene& base, const srp::core::ObjectCatalogue& catalogue,

@@ -101,8 +101,9 @@ ProgramResult programTask(const ProgrammingOptions& o) {
   const core::ObjectCatalogue kb =
       core::ObjectCatalogue::load(o.cataloguePath.empty() ? core::ObjectCatalogue::defaultPath() : o.cataloguePath);
   GroundedPlan grounded = groundPlan(plan, kb);
+  // The instances: the scene file's, else those the instruction's colour words name.
   const std::optional<core::Scene> scene =
-      o.scenePath.empty() ? std::nullopt : std::optional<core::Scene>(core::Scene::load(o.scenePath));
+      o.scenePath.empty() ? instructionInstances(grounded, kb) : std::optional<core::Scene>(core::Scene::load(o.scenePath));
   result.warnings = grounded.plan.warnings;
   result.planLines = planLines(grounded.plan);
   progress("language", 1, 1);

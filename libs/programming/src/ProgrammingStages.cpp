@@ -47,6 +47,22 @@ void setSkillFlags(taskdb::TaskModel& model, const std::vector<motion::SkillSet>
     }
 }
 
+// The colour word a class answers to: its own, else the basic colour nearest its rgb.
+std::string classColourWord(const core::ObjectClass& c) {
+  return !c.colorName.empty() ? c.colorName : core::nearestColorName(c.rgb);
+}
+
+// Per part class of the plan: the basic colour words its phrases use.
+std::map<std::string, std::set<std::string>> partColourWords(const GroundedPlan& g, const core::ObjectCatalogue& kb) {
+  std::map<std::string, std::set<std::string>> out;
+  for (const auto& [words, cls] : g.classByWords) {
+    const core::ObjectClass* c = kb.find(cls);
+    if (!c || c->kind != core::ObjectKind::Part || words.second.empty() || !core::rgbOfColorName(words.second)) continue;
+    out[cls].insert(words.second);
+  }
+  return out;
+}
+
 // The colour word of each scene instance (core::instanceColor), for the rows and the grounding.
 std::map<std::string, std::string> instanceColours(const std::optional<core::Scene>& scene,
                                                    const core::ObjectCatalogue& kb) {
@@ -81,6 +97,24 @@ std::vector<std::string> planLines(const language::TaskPlan& plan) {
     lines.push_back(line);
   }
   return lines;
+}
+
+std::optional<core::Scene> instructionInstances(const GroundedPlan& grounded, const core::ObjectCatalogue& kb) {
+  core::Scene scene;
+  scene.name = "instruction";
+  for (const auto& [cls, colours] : partColourWords(grounded, kb)) {
+    if (colours.size() < 2) continue;
+    for (const auto& colour : colours) {
+      core::SceneObject o;
+      o.id = cls + "_" + colour;
+      std::replace(o.id.begin(), o.id.end(), ' ', '_');
+      o.className = cls;
+      o.color = colour;
+      scene.objects.push_back(o);
+    }
+  }
+  if (scene.objects.empty()) return std::nullopt;
+  return scene;
 }
 
 const std::string& GroundedPlan::objectOf(const std::string& name, const std::optional<std::string>& colour) const {
@@ -131,6 +165,18 @@ perception::PerceptionResult perceive(const GroundedPlan& grounded, const core::
     if (std::find(grounded.movingClasses.begin(), grounded.movingClasses.end(), cls) == grounded.movingClasses.end())
       popt.plan.push_back({cls, true});
   if (scene) popt.plan = perception::withSceneInstances(popt.plan, *scene, kb);
+  if (o.scenePath.empty()) {
+    // No scene file: a part the instruction names in one colour that is not
+    // its class's ("the blue cuboid", the catalogue's cuboid being red) is
+    // looked for in that colour.
+    const auto words = partColourWords(grounded, kb);
+    for (auto& p : popt.plan) {
+      const auto w = words.find(p.className);
+      if (!p.instanceId.empty() || w == words.end() || w->second.size() != 1) continue;
+      const std::string& colour = *w->second.begin();
+      if (colour != classColourWord(kb.at(p.className))) p.rgb = core::rgbOfColorName(colour);
+    }
+  }
 
   perception::DemoPerceiver perceiver(kb, popt);
   {

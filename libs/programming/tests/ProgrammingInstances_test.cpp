@@ -17,6 +17,7 @@
 #include "srp/core/Scene.h"
 #include "srp/execution/SceneGrounder.h"
 #include "srp/programming/ProgrammingPipeline.h"
+#include "srp/programming/ProgrammingStages.h"
 #include "srp/synth/DemoGenerator.h"
 #include "srp/synth/DuplicatePartsDemo.h"
 #include "srp/taskdb/TaskModelStore.h"
@@ -128,6 +129,67 @@ TEST(ProgrammingInstances, StoresTheInstanceTheColourNames) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     expectInstanceStored(seed);
   }
+}
+
+// Grounding is the scene grounder's, not a colour lookup: "the leftmost /
+// rightmost cuboid" (the demonstrator's view = the camera's image axes on the
+// table) names the moved instance, read in the perceived scene.
+TEST(ProgrammingInstances, GroundsASuperlativeInThePerceivedScene) {
+  const Demo& d = demo(2);
+  const core::Pose3 X_camera_world = d.gt.X_world_camera.inverse();
+  const auto& first = d.gt.frames.front().X_world_objects;
+  const double movedX = (X_camera_world * first.at(d.scene.movedId)).translation().x();
+  const double otherX = (X_camera_world * first.at(d.scene.otherId)).translation().x();
+  const std::string word = movedX < otherX ? "leftmost" : "rightmost";
+  const auto o = options("Pick up the " + word + " cuboid and place it in the gray box.", "superlative.db", d);
+  const programming::ProgramResult r = programming::programTask(o);
+  ASSERT_EQ(r.objects.size(), 1u);
+  EXPECT_EQ(r.objects[0].instanceId, d.scene.movedId) << word;
+  EXPECT_TRUE(r.objects[0].moved);
+  auto db = taskdb::TaskDatabase::open(o.dbPath);
+  const taskdb::TaskModel m = taskdb::TaskModelStore(db).read(r.taskModelId);
+  for (const auto& p : m.products)
+    if (p.objectName == "cuboid") EXPECT_EQ(p.instanceId, d.scene.movedId);
+}
+
+// No scene file: "the blue cuboid" (the catalogue's cuboid is red) is looked
+// for in blue, so the demo's moved blue cuboid is learned, not the red one
+// that stays (seed 1 moves the blue one). Its one instance: InstanceId "".
+TEST(ProgrammingInstances, WithoutASceneTheInstructionsColourIsLookedFor) {
+  const Demo& d = demo(1);
+  ASSERT_EQ(d.scene.scene.findObject(d.scene.movedId)->color, "blue");
+  auto o = options("Pick up the blue cuboid and place it in the gray box.", "noscene.db", d);
+  o.scenePath.clear();
+  const programming::ProgramResult r = programming::programTask(o);
+  ASSERT_EQ(r.objects.size(), 1u);
+  EXPECT_EQ(r.objects[0].instanceId, "");
+  EXPECT_TRUE(r.objects[0].moved);
+  const auto* event = d.gt.eventFor(d.scene.movedId);
+  ASSERT_NE(event, nullptr);
+  EXPECT_NEAR(r.objects[0].graspFrame, event->graspFrame, kEventTol_frames);
+  EXPECT_NEAR(r.objects[0].releaseFrame, event->releaseFrame, kEventTol_frames);
+}
+
+// No scene file, two colours of one part class named: two instances.
+TEST(ProgrammingInstances, InstructionNamingTwoColoursOfAPartGivesTwoInstances) {
+  const auto kb = core::ObjectCatalogue::load(core::ObjectCatalogue::defaultPath());
+  const auto grounded = programming::groundPlan(
+      programming::parsePlan("Pick up the red cuboid and place it in the gray box. Then pick up the blue cuboid and "
+                             "place it in the blue box."),
+      kb);
+  const auto scene = programming::instructionInstances(grounded, kb);
+  ASSERT_TRUE(scene.has_value());
+  std::set<std::string> ids;
+  for (const auto& o : scene->objects) {
+    ids.insert(o.id);
+    EXPECT_EQ(o.className, "cuboid");
+    EXPECT_EQ(o.id, "cuboid_" + o.color);
+  }
+  EXPECT_EQ(ids, (std::set<std::string>{"cuboid_blue", "cuboid_red"}));
+  // One colour, or none: no instances.
+  EXPECT_FALSE(programming::instructionInstances(
+                   programming::groundPlan(programming::parsePlan("Put the blue cuboid in the gray box."), kb), kb)
+                   .has_value());
 }
 
 TEST(ProgrammingInstances, AnAmbiguousPhraseNamesTheCandidatesAndStoresNothing) {

@@ -72,11 +72,21 @@ struct GroundedPlan {
 /// knows when one is unknown.
 GroundedPlan groundPlan(const language::TaskPlan& plan, const core::ObjectCatalogue& kb);
 
+/// Without a scene file: the instances the instruction's own colour words
+/// name, as a scene of ids "<class>_<colour>" (no poses; colour = the word,
+/// its rgb core::rgbOfColorName) for each part class named in two or more
+/// basic colours ("the red cuboid ... the blue cuboid"); nullopt when there
+/// is none. perceive and groundInstances then use it as the scene.
+std::optional<core::Scene> instructionInstances(const GroundedPlan& grounded, const core::ObjectCatalogue& kb);
+
 /// Stage 3: the Environment module on the demonstration, guided by the plan
 /// (step objects move, the other landmarks are static). With a `scene` (the
 /// demo's scene file, ProgrammingOptions::scenePath), a plan class the scene
 /// holds several times is tracked per instance, with the instance's colour
-/// (perception::withSceneInstances). Appends a warning when a damaged rawlog
+/// (perception::withSceneInstances). Without a scene file
+/// (ProgrammingOptions::scenePath empty), a part class the instruction names
+/// in exactly one basic colour other than its class's is looked for in that
+/// colour (its one instance, InstanceId ""). Appends a warning when a damaged rawlog
 /// is used with allowTruncated. Throws FileError for an unreadable or empty
 /// rawlog, InvalidInputError when no instance of a moved class is ever detected.
 perception::PerceptionResult perceive(const GroundedPlan& grounded, const core::ObjectCatalogue& kb,

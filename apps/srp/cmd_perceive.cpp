@@ -25,7 +25,7 @@ std::vector<std::string> splitList(const std::string& s) {
 
 struct PerceiveOptions {
   std::string demo, kb = srp::core::ObjectCatalogue::defaultPath(), csv, hand = "marker";
-  std::string objects, staticObjects;
+  std::string objects, staticObjects, scene;
   double tagSize_m = 0.05;
   int tagId = 0;
   bool json = false;
@@ -48,6 +48,7 @@ void run(const PerceiveOptions& o) {
   const auto statics = splitList(o.staticObjects);
   for (const auto& n : splitList(o.objects)) p.plan.push_back({n, false});
   for (const auto& n : statics) p.plan.push_back({n, true});
+  if (!o.scene.empty()) p.plan = withSceneInstances(p.plan, srp::core::Scene::load(o.scene), catalogue);
   srp::app::ProgressLine line;
   const PerceptionResult r = perceiveRawlog(o.demo, catalogue, p, [&line](int i, int) {
     if ((i + 1) % 30 == 0) line.show("perceive: frame", static_cast<std::size_t>(i + 1));
@@ -66,7 +67,7 @@ void run(const PerceiveOptions& o) {
                            {"p_m", s.valid ? std::vector<double>{s.p_m.x(), s.p_m.y(), s.p_m.z()} : std::vector<double>{}}});
     j["objects"] = nlohmann::json::array();
     for (const auto& obj : r.objects) {
-      nlohmann::json jo{{"name", obj.className}, {"class_id", obj.classId}, {"static", obj.isStatic},
+      nlohmann::json jo{{"name", obj.className}, {"instance", obj.instanceId}, {"class_id", obj.classId}, {"static", obj.isStatic},
                         {"detected_frames", obj.detectedFrames()}, {"samples", nlohmann::json::array()}};
       for (const auto& s : obj.samples) {
         nlohmann::json js = srp::core::poseToJson(s.X_camera_object);
@@ -84,7 +85,7 @@ void run(const PerceiveOptions& o) {
   std::printf("%d frames, hand detected in %d (%d with carried depth); camera frame, metres\n", r.frames,
               r.handDetected, r.handDepthCarried);
   for (const auto& obj : r.objects)
-    std::printf("  %-14s %-7s detected in %d frames\n", obj.className.c_str(), obj.isStatic ? "static" : "moving",
+    std::printf("  %-14s %-7s detected in %d frames\n", obj.key().c_str(), obj.isStatic ? "static" : "moving",
                 obj.detectedFrames());
   for (std::size_t i = 0; i < r.hand.size(); ++i) {
     const auto& h = r.hand[i];
@@ -94,7 +95,7 @@ void run(const PerceiveOptions& o) {
       if (i >= obj.samples.size()) continue;
       const auto& s = obj.samples[i];
       const Eigen::Vector3d t = s.X_camera_object.translation();
-      std::printf(" | %s%s %+.3f %+.3f %.3f rz %+.2f", obj.className.c_str(), s.detected ? "" : "*", t.x(), t.y(), t.z(),
+      std::printf(" | %s%s %+.3f %+.3f %.3f rz %+.2f", obj.key().c_str(), s.detected ? "" : "*", t.x(), t.y(), t.z(),
                   cameraYaw(s.X_camera_object));
     }
     std::printf("\n");
@@ -121,6 +122,9 @@ void setupPerceive(CLI::App& app) {
   app.add_option("--tag-id", o->tagId, "Glove tag id (-1: any)")->capture_default_str();
   app.add_option("--objects", o->objects, "Moving objects of interest, comma-separated class names (default: all classes)");
   app.add_option("--static", o->staticObjects, "Static objects (containers, landmarks), comma-separated class names");
+  app.add_option("--scene", o->scene,
+                 "Scene JSON of the demo (srp synth-demo --scene): a listed class the scene holds several times is "
+                 "tracked per instance (its id and colour; JSON 'instance', CSV columns named by the instance id)");
   app.add_flag("--json", o->json, "Print JSON");
   app.add_option("--csv", o->csv,
                  "Write the per-frame CSV in the 'srp segment' format (a sample not detected in its frame, "

@@ -15,7 +15,7 @@
 namespace {
 
 struct ProgramArgs {
-  std::string instruction, demo, kb, calib, db = "task.db", name = "task", report, hand = "marker";
+  std::string instruction, demo, kb, calib, db = "task.db", name = "task", report, hand = "marker", scene;
   bool json = false, quiet = false, allowTruncated = false;
 };
 
@@ -27,6 +27,10 @@ void setupProgram(CLI::App& cmd) {
   // so a failed recording can never leave a half-programmed task.
   cmd.add_option("--demo", a->demo, "Demonstration rawlog (srp record / srp import / srp synth-demo)")->required();
   cmd.add_option("--kb", a->kb, "Knowledge base catalogue (default: datasets/kb/catalogue.json)");
+  cmd.add_option("--scene", a->scene,
+                 "The demo's scene JSON (srp synth-demo --scene; for a recording, one listing its instances and "
+                 "their colours): a class it holds several times is perceived per instance, and the instruction's "
+                 "phrases ('the red cuboid') are grounded to instances (stored as InstanceId)");
   cmd.add_option("--calib", a->calib, "Camera intrinsics (ViSP XML, e.g. calib/camera.xml) overriding the rawlog's");
   cmd.add_option("--db", a->db, "Task database to store the task model in")->capture_default_str();
   cmd.add_option("--name", a->name, "Task model name; an existing name gets a new version")->capture_default_str();
@@ -43,6 +47,7 @@ void setupProgram(CLI::App& cmd) {
     o.instruction = a->instruction;
     o.demoPath = a->demo;
     o.cataloguePath = a->kb;
+    o.scenePath = a->scene;
     if (!a->calib.empty()) o.intrinsics = srp::calib::loadCameraFile(a->calib).camera.intrinsics;
     o.dbPath = a->db;
     o.name = a->name;
@@ -64,7 +69,7 @@ void setupProgram(CLI::App& cmd) {
     std::cout << std::left << std::setw(16) << "object" << std::setw(8) << "grasp" << std::setw(9) << "release"
               << std::setw(12) << "reach λ" << std::setw(12) << "move λ" << "note\n";
     for (const auto& ob : r.objects)
-      std::cout << std::setw(16) << ob.name << std::setw(8) << ob.graspFrame << std::setw(9) << ob.releaseFrame
+      std::cout << std::setw(16) << (ob.instanceId.empty() ? ob.name : ob.instanceId) << std::setw(8) << ob.graspFrame << std::setw(9) << ob.releaseFrame
                 << std::setw(12) << std::setprecision(3) << ob.reachLambda << std::setw(12) << ob.moveLambda << ob.note
                 << "\n";
     std::cout << "\n" << r.skillCount << " skills learned (Reach/Move as DMPs). Timing:";

@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 
 #include "srp/core/Error.h"
 #include "srp/perception/DepthCloud.h"
@@ -39,6 +40,32 @@ void checkFrame(const rawlog::RgbdFrame& f, const rawlog::RgbdFrame& first, int 
                                   std::to_string(f.depth_m.cols) + "x" + std::to_string(f.depth_m.rows) + " vs " +
                                   std::to_string(first.depth_m.cols) + "x" + std::to_string(first.depth_m.rows) +
                                   "); a demo must come from one camera setting");
+}
+
+// One detector model per plan object, named by its key: the class's shape,
+// the instance's colour when it has one (its colour is then evidence, also
+// for a class whose catalogue colour is not discriminative). Throws
+// InvalidInputError for a repeated key or an unknown class.
+std::vector<ObjectModel> instanceModels(const core::ObjectCatalogue& catalogue, const std::vector<PlanObject>& plan) {
+  std::set<std::string> keys, classes;
+  for (const auto& p : plan) classes.insert(p.className);
+  std::map<std::string, ObjectModel> byClass;  // a class's model is built once
+  std::vector<ObjectModel> models;
+  for (const auto& p : plan) {
+    if (!keys.insert(p.key()).second || (!p.instanceId.empty() && p.instanceId != p.className && classes.count(p.instanceId)))
+      throw core::InvalidInputError("perception plan: object '" + p.key() + "' (class '" + p.className +
+                                    "') is named twice or after another class; give each instance a unique id");
+    auto it = byClass.find(p.className);
+    if (it == byClass.end()) it = byClass.emplace(p.className, ObjectModel::fromCatalogue(catalogue.at(p.className))).first;
+    ObjectModel model = it->second;
+    model.name = p.key();
+    if (p.rgb) {
+      model.rgb = *p.rgb;
+      model.useColour = true;
+    }
+    models.push_back(std::move(model));
+  }
+  return models;
 }
 
 bool useModelBasedTracking(const PerceptionOptions& o) {
@@ -82,8 +109,8 @@ std::map<std::string, ObjectDetection> DemoPerceiver::Impl::trackParts(const raw
   cv::Mat cloud;
   for (const auto& p : m.plan) {
     if (p.isStatic) continue;
-    const ObjectPoseFitter* fitter = m.detector->fitterFor(p.className);
-    auto it = m.mbt.find(p.className);
+    const ObjectPoseFitter* fitter = m.detector->fitterFor(p.key());
+    auto it = m.mbt.find(p.key());
     if (!fitter || it == m.mbt.end() || !it->second || !it->second->initialised()) continue;
     const auto t0 = std::chrono::steady_clock::now();
     const ModelBasedTracker::Result r = it->second->track(f);
@@ -108,20 +135,20 @@ std::map<std::string, ObjectDetection> DemoPerceiver::Impl::trackParts(const raw
       std::fprintf(stderr,
                    "frame %d: %s mbt %s in %.1f ms: %d klt, %d depth, %d edge features, projection error %.1f deg, "
                    "coverage %.2f\n",
-                   f.index, p.className.c_str(), tracked ? "tracked" : "lost", track_ms, r.kltPoints, r.depthFeatures,
+                   f.index, p.key().c_str(), tracked ? "tracked" : "lost", track_ms, r.kltPoints, r.depthFeatures,
                    r.edgeFeatures, r.projectionError_deg, coverage);
     if (!tracked) {
       it->second.reset();  // lost: a new tracker from the next detection
       continue;
     }
     ObjectDetection d;
-    d.className = p.className;
+    d.className = p.key();  // the detector's model name
     d.classId = fitter->model().classId;
     d.size_m = fitter->model().dimensions_m;
     d.X_camera_object = r.X_camera_mesh;  // the tracker's model is the fitter's (model frame)
     d.confidence = coverage;
     d.p_camera_median_m = r.X_camera_mesh.translation();
-    out[p.className] = d;
+    out[p.key()] = d;
   }
   return out;
 }
@@ -133,17 +160,17 @@ void DemoPerceiver::Impl::mergeTracked(const rawlog::RgbdFrame& f, const std::ma
   Impl& m = *this;
   for (const auto& p : m.plan) {
     if (p.isStatic) continue;
-    const ObjectPoseFitter* fitter = m.detector->fitterFor(p.className);
+    const ObjectPoseFitter* fitter = m.detector->fitterFor(p.key());
     if (!fitter) continue;
     auto detected = std::find_if(detections.begin(), detections.end(),
-                                 [&](const ObjectDetection& d) { return d.className == p.className; });
-    if (const auto t = tracked.find(p.className); t != tracked.end()) {
+                                 [&](const ObjectDetection& d) { return d.className == p.key(); });
+    if (const auto t = tracked.find(p.key()); t != tracked.end()) {
       if (detected != detections.end()) *detected = t->second;
       else detections.push_back(t->second);
       continue;
     }
     if (detected == detections.end()) continue;
-    auto& tracker = m.mbt[p.className];
+    auto& tracker = m.mbt[p.key()];
     if (!tracker) tracker = std::make_unique<ModelBasedTracker>(fitter->model().mesh, f.intrinsics, m.options.mbt);
     tracker->initialise(f, detected->X_camera_object);
   }
@@ -155,17 +182,15 @@ DemoPerceiver::DemoPerceiver(const core::ObjectCatalogue& catalogue, const Perce
   impl_->plan = options.plan;
   if (impl_->plan.empty())
     for (const auto& c : catalogue.classes()) impl_->plan.push_back({c.name, false});
-  std::vector<std::string> names;
-  for (const auto& p : impl_->plan) names.push_back(p.className);
-  impl_->detector = std::make_unique<ObjectDetector>(ObjectDetector::modelsFromCatalogue(catalogue, names), options.objects);
+  impl_->detector = std::make_unique<ObjectDetector>(instanceModels(catalogue, impl_->plan), options.objects);
   ObjectTracker::Options tracking = options.tracking;
   for (const auto& p : impl_->plan)
-    if (p.isStatic) tracking.staticClasses.insert(p.className);
+    if (p.isStatic) tracking.staticClasses.insert(p.key());
   impl_->tracker = std::make_unique<ObjectTracker>(*impl_->detector, tracking);
   if (options.hand == PerceptionOptions::HandMethod::Marker) impl_->hand = std::make_unique<MarkerHandDetector>(options.marker);
   else if (options.hand == PerceptionOptions::HandMethod::MarkerFree)
     impl_->hand = std::make_unique<MarkerFreeHandDetector>(options.markerFree);
-  for (const auto& p : impl_->plan) impl_->perClass[p.className];
+  for (const auto& p : impl_->plan) impl_->perClass[p.key()];
 }
 
 DemoPerceiver::~DemoPerceiver() = default;
@@ -231,7 +256,7 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
   const std::map<std::string, ObjectDetection> tracked = useMbt ? m.trackParts(f) : std::map<std::string, ObjectDetection>{};
   const bool allTracked =
       useMbt && m.options.movingCamera && std::all_of(m.plan.begin(), m.plan.end(), [&](const PlanObject& p) {
-        return p.isStatic || tracked.count(p.className) > 0;
+        return p.isStatic || tracked.count(p.key()) > 0;
       });
   auto detections =
       m.options.movingCamera
@@ -275,15 +300,17 @@ PerceptionResult DemoPerceiver::finish() const {
                                   "); nothing written");
   PerceptionResult result = m.result;
   result.frames = static_cast<int>(m.frameIndex.size());
+  if (m.support && !m.options.movingCamera) result.X_camera_table = m.support->X_camera_plane();
 
   // Language-guided refinement: static objects fixed at their most confident
   // detection; moving objects follow their detections, gaps carried from the
   // nearest earlier detection (before the first: the first).
   for (const auto& p : m.plan) {
-    const auto& dets = m.perClass.at(p.className);
+    const auto& dets = m.perClass.at(p.key());
     const core::ObjectClass& cls = m.catalogue.at(p.className);
     ObjectTrajectory traj;
     traj.className = p.className;
+    traj.instanceId = p.instanceId;
     traj.classId = cls.classId;
     traj.isStatic = p.isStatic;
     int bestFrame = -1, firstFrame = -1;
@@ -300,7 +327,7 @@ PerceptionResult DemoPerceiver::finish() const {
     // Rests of a moving part: runs of detections near their running median.
     std::vector<std::optional<ObjectDetection>> rested = dets;
     if (!p.isStatic && m.options.consolidateRests && !m.options.movingCamera) {
-      const ObjectPoseFitter* fitter = m.detector->fitterFor(p.className);
+      const ObjectPoseFitter* fitter = m.detector->fitterFor(p.key());
       const double symmetry_rad = fitter ? fitter->model().yawSymmetry_rad : 2 * M_PI;
       const core::Pose3 X_plane_camera = m.support ? m.support->X_camera_plane().inverse() : core::Pose3::Identity();
       auto yawInPlane = [&](const core::Pose3& X) { return core::yawOf((X_plane_camera * X).linear()); };
@@ -347,7 +374,7 @@ PerceptionResult DemoPerceiver::finish() const {
       close();
     }
     // Reported in the class's object frame (its mesh's), not the model frame the detector fits in.
-    const ObjectPoseFitter* classFitter = m.detector->fitterFor(p.className);
+    const ObjectPoseFitter* classFitter = m.detector->fitterFor(p.key());
     const core::Pose3 X_model_mesh = classFitter ? classFitter->model().X_model_mesh : core::Pose3::Identity();
     const ObjectDetection* carried = &*rested[static_cast<std::size_t>(firstFrame)];
     for (std::size_t i = 0; i < dets.size(); ++i) {
@@ -371,6 +398,23 @@ PerceptionResult DemoPerceiver::finish() const {
     result.objects.push_back(traj);
   }
   return result;
+}
+
+std::vector<PlanObject> withSceneInstances(const std::vector<PlanObject>& plan, const core::Scene& scene,
+                                           const core::ObjectCatalogue& catalogue) {
+  std::vector<PlanObject> out;
+  for (const PlanObject& p : plan) {
+    std::vector<const core::SceneObject*> instances;
+    for (const auto& o : scene.objects)
+      if (o.className == p.className) instances.push_back(&o);
+    if (instances.size() < 2 || !p.instanceId.empty()) {
+      out.push_back(p);
+      continue;
+    }
+    const core::ObjectClass& cls = catalogue.at(p.className);
+    for (const core::SceneObject* o : instances) out.push_back({p.className, p.isStatic, o->id, core::instanceRgb(*o, cls)});
+  }
+  return out;
 }
 
 PerceptionResult perceiveFrames(const std::vector<rawlog::RgbdFrame>& frames, const core::ObjectCatalogue& catalogue,
@@ -414,7 +458,7 @@ void writeSegmentCsv(const PerceptionResult& result, const std::string& path) {
     if (!out) throw core::FileError(path, "cannot write the CSV (folder missing or read-only?)");
     out << "frame,hand_x,hand_y,hand_z";
     for (const auto& o : result.objects) {
-      std::string n = o.className;
+      std::string n = o.key();
       std::replace(n.begin(), n.end(), ' ', '_');
       out << ',' << n << "_x," << n << "_y," << n << "_z," << n << "_rz";
     }

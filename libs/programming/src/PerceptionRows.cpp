@@ -4,7 +4,8 @@
 
 namespace srp::programming {
 
-PerceptionRows toTaskDbRows(const perception::PerceptionResult& result, const core::ObjectCatalogue& catalogue) {
+PerceptionRows toTaskDbRows(const perception::PerceptionResult& result, const core::ObjectCatalogue& catalogue,
+                            const std::map<std::string, std::string>& instanceColours) {
   PerceptionRows rows;
   const auto& samples = result.hand.samples();
   std::size_t first = 0;
@@ -21,7 +22,11 @@ PerceptionRows toTaskDbRows(const perception::PerceptionResult& result, const co
     taskdb::GroundedProductRow g;
     g.classId = o.classId;
     g.objectName = o.className;
-    if (const auto* cls = catalogue.find(o.className); cls && !cls->colorName.empty()) g.color = cls->colorName;
+    g.instanceId = o.instanceId;
+    if (const auto c = instanceColours.find(o.instanceId); !o.instanceId.empty() && c != instanceColours.end())
+      g.color = c->second;
+    else if (const auto* cls = catalogue.find(o.className); cls && !cls->colorName.empty())
+      g.color = cls->colorName;
     rows.groundedProducts.push_back(g);
     for (const auto& s : o.samples) {
       taskdb::ProductPoseRow p;
@@ -31,6 +36,7 @@ PerceptionRows toTaskDbRows(const perception::PerceptionResult& result, const co
       p.q = Eigen::Quaterniond(s.X_camera_object.linear()).normalized();
       p.detected = s.detected;
       p.confidence = s.confidence;
+      p.instanceId = o.instanceId;
       rows.productPoses.push_back(p);
     }
   }

@@ -90,7 +90,7 @@ std::vector<std::string> writeProgramReport(const std::string& dir, const Progra
          "|---|---|---|---|---|---|---|\n";
   out << std::setprecision(3) << std::defaultfloat;
   for (const auto& o : r.objects)
-    out << "| " << o.name << " | " << o.detectedFrames << " | " << o.graspFrame << " | " << o.releaseFrame << " | "
+    out << "| " << (o.instanceId.empty() ? o.name : o.instanceId) << " | " << o.detectedFrames << " | " << o.graspFrame << " | " << o.releaseFrame << " | "
         << o.reachLambda << " | " << o.moveLambda << " | " << o.note << " |\n";
   out << "\n";
   for (const auto& f : files)

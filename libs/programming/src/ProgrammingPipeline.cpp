@@ -100,14 +100,19 @@ ProgramResult programTask(const ProgrammingOptions& o) {
   const language::TaskPlan plan = parsePlan(o.instruction);
   const core::ObjectCatalogue kb =
       core::ObjectCatalogue::load(o.cataloguePath.empty() ? core::ObjectCatalogue::defaultPath() : o.cataloguePath);
-  const GroundedPlan grounded = groundPlan(plan, kb);
+  GroundedPlan grounded = groundPlan(plan, kb);
+  // The instances: the scene file's, else those the instruction's colour words name.
+  const std::optional<core::Scene> scene =
+      o.scenePath.empty() ? instructionInstances(grounded, kb) : std::optional<core::Scene>(core::Scene::load(o.scenePath));
   result.warnings = grounded.plan.warnings;
   result.planLines = planLines(grounded.plan);
   progress("language", 1, 1);
 
   // 3. Environment.
   clock.start("environment");
-  const perception::PerceptionResult seen = perceive(grounded, kb, o, result.warnings);
+  const perception::PerceptionResult seen = perceive(grounded, kb, o, result.warnings, scene);
+  // 3b. Each phrase -> the perceived instance it means (several of one class).
+  grounded = groundInstances(grounded, seen, kb, scene);
   result.frames = seen.frames;
   result.handDetectedFrames = seen.handDetected;
 
@@ -119,7 +124,7 @@ ProgramResult programTask(const ProgrammingOptions& o) {
   const motion::Segmentation& segmentation = learned.segmentation;
   const std::vector<motion::SkillSet>& skills = learned.skills;
   // 5. The rows: instruction tables, perception rows, skills.
-  const taskdb::TaskModel model = buildTaskModel(grounded, o, seen, kb, tracks, skills);
+  const taskdb::TaskModel model = buildTaskModel(grounded, o, seen, kb, tracks, skills, scene);
   result.skillCount = model.skills.size();
   for (const auto& w : segmentation.warnings) result.warnings.push_back(w);
   for (const auto& seg : segmentation.objects) {
@@ -131,7 +136,12 @@ ProgramResult programTask(const ProgrammingOptions& o) {
     out.releaseFrame = seg.releaseFrame;
     out.note = seg.note;
     for (const auto& t : seen.objects)
-      if (t.className == seg.name) out.detectedFrames = t.detectedFrames();
+      if (t.key() == seg.name) {  // seg.name: the perception key (class, or instance id)
+        out.detectedFrames = t.detectedFrames();
+        out.name = t.className;
+        out.instanceId = t.instanceId;
+        out.classId = t.classId;
+      }
     for (const auto& s : skills)
       if (s.objectName == seg.name) {
         if (s.reach) out.reachLambda = s.reach->lambda();
@@ -173,7 +183,7 @@ std::string toJsonText(const ProgramResult& r) {
   j["skills"] = r.skillCount;
   j["objects"] = nlohmann::json::array();
   for (const auto& o : r.objects)
-    j["objects"].push_back({{"name", o.name}, {"class_id", o.classId}, {"moved", o.moved},
+    j["objects"].push_back({{"name", o.name}, {"instance", o.instanceId}, {"class_id", o.classId}, {"moved", o.moved},
                             {"grasp_frame", o.graspFrame}, {"release_frame", o.releaseFrame},
                             {"detected_frames", o.detectedFrames}, {"reach_lambda", o.reachLambda},
                             {"move_lambda", o.moveLambda}, {"note", o.note}});

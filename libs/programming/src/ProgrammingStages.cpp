@@ -5,6 +5,7 @@
 #include "srp/core/Error.h"
 #include "srp/core/Pose.h"
 #include "srp/core/Text.h"
+#include "srp/execution/SceneGrounder.h"
 #include "srp/language/InstructionParser.h"
 #include "srp/language/PlanTables.h"
 #include "srp/motion/TaskModelMapping.h"
@@ -32,15 +33,44 @@ const core::ObjectClass& ground(const core::ObjectCatalogue& kb, const language:
                           "); add a mesh and a catalogue entry, or rephrase");
 }
 
-// Reach/Grasp/Move/Release flags of the ProductPose rows from the skills.
-void setSkillFlags(taskdb::TaskModel& model, const std::vector<motion::SkillSet>& skills,
-                   const std::map<std::string, int>& classIdByName) {
-  for (const auto& s : skills) {
-    const auto it = classIdByName.find(s.objectName);
-    if (it == classIdByName.end()) continue;
-    for (auto& row : model.productPoses)
-      if (row.classId == it->second) motion::setSkillFlags(row, s);
+// A perceived object's key (perception::PlanObject::key) from its grounded row.
+std::string keyOf(const taskdb::GroundedProductRow& g) { return g.instanceId.empty() ? g.objectName : g.instanceId; }
+
+// Reach/Grasp/Move/Release flags of the ProductPose rows from the skills
+// (rows of the skill set's object: its class and instance).
+void setSkillFlags(taskdb::TaskModel& model, const std::vector<motion::SkillSet>& skills) {
+  for (const auto& s : skills)
+    for (const auto& g : model.groundedProducts) {
+      if (keyOf(g) != s.objectName) continue;
+      for (auto& row : model.productPoses)
+        if (row.classId == g.classId && row.instanceId == g.instanceId) motion::setSkillFlags(row, s);
+    }
+}
+
+// The colour word a class answers to: its own, else the basic colour nearest its rgb.
+std::string classColourWord(const core::ObjectClass& c) {
+  return !c.colorName.empty() ? c.colorName : core::nearestColorName(c.rgb);
+}
+
+// Per part class of the plan: the basic colour words its phrases use.
+std::map<std::string, std::set<std::string>> partColourWords(const GroundedPlan& g, const core::ObjectCatalogue& kb) {
+  std::map<std::string, std::set<std::string>> out;
+  for (const auto& [words, cls] : g.classByWords) {
+    const core::ObjectClass* c = kb.find(cls);
+    if (!c || c->kind != core::ObjectKind::Part || words.second.empty() || !core::rgbOfColorName(words.second)) continue;
+    out[cls].insert(words.second);
   }
+  return out;
+}
+
+// The colour word of each scene instance (core::instanceColor), for the rows and the grounding.
+std::map<std::string, std::string> instanceColours(const std::optional<core::Scene>& scene,
+                                                   const core::ObjectCatalogue& kb) {
+  std::map<std::string, std::string> out;
+  if (!scene) return out;
+  for (const auto& o : scene->objects)
+    if (const auto* cls = kb.find(o.className)) out[o.id] = core::instanceColor(o, *cls);
+  return out;
 }
 
 }  // namespace
@@ -69,6 +99,31 @@ std::vector<std::string> planLines(const language::TaskPlan& plan) {
   return lines;
 }
 
+std::optional<core::Scene> instructionInstances(const GroundedPlan& grounded, const core::ObjectCatalogue& kb) {
+  core::Scene scene;
+  scene.name = "instruction";
+  for (const auto& [cls, colours] : partColourWords(grounded, kb)) {
+    if (colours.size() < 2) continue;
+    for (const auto& colour : colours) {
+      core::SceneObject o;
+      o.id = cls + "_" + colour;
+      std::replace(o.id.begin(), o.id.end(), ' ', '_');
+      o.className = cls;
+      o.color = colour;
+      scene.objects.push_back(o);
+    }
+  }
+  if (scene.objects.empty()) return std::nullopt;
+  return scene;
+}
+
+const std::string& GroundedPlan::objectOf(const std::string& name, const std::optional<std::string>& colour) const {
+  const auto it = objectByWords.find(wordsOf(name, colour));
+  if (it == objectByWords.end())
+    throw InvalidInputError("'" + name + "' is not an object of the grounded plan; ground the plan it comes from");
+  return it->second;
+}
+
 const std::string& GroundedPlan::classOf(const std::string& name, const std::optional<std::string>& colour) const {
   const auto it = classByWords.find(wordsOf(name, colour));
   if (it == classByWords.end())
@@ -92,11 +147,16 @@ GroundedPlan groundPlan(const language::TaskPlan& plan, const core::ObjectCatalo
     for (const auto* list : {&step.source, &step.target})
       for (const auto& loc : *list) g.landmarkClasses.insert(add(loc.landmark));
   }
+  // One instance per class until groundInstances says otherwise.
+  g.stepObjects = g.stepClasses;
+  g.movingObjects = g.movingClasses;
+  g.objectByWords = g.classByWords;
   return g;
 }
 
 perception::PerceptionResult perceive(const GroundedPlan& grounded, const core::ObjectCatalogue& kb,
-                                      const ProgrammingOptions& o, std::vector<std::string>& warnings) {
+                                      const ProgrammingOptions& o, std::vector<std::string>& warnings,
+                                      const std::optional<core::Scene>& scene) {
   perception::PerceptionOptions popt;
   popt.hand = o.markerFreeHand ? perception::PerceptionOptions::HandMethod::MarkerFree
                                : perception::PerceptionOptions::HandMethod::Marker;
@@ -104,6 +164,19 @@ perception::PerceptionResult perceive(const GroundedPlan& grounded, const core::
   for (const auto& cls : grounded.landmarkClasses)
     if (std::find(grounded.movingClasses.begin(), grounded.movingClasses.end(), cls) == grounded.movingClasses.end())
       popt.plan.push_back({cls, true});
+  if (scene) popt.plan = perception::withSceneInstances(popt.plan, *scene, kb);
+  if (o.scenePath.empty()) {
+    // No scene file: a part the instruction names in one colour that is not
+    // its class's ("the blue cuboid", the catalogue's cuboid being red) is
+    // looked for in that colour.
+    const auto words = partColourWords(grounded, kb);
+    for (auto& p : popt.plan) {
+      const auto w = words.find(p.className);
+      if (!p.instanceId.empty() || w == words.end() || w->second.size() != 1) continue;
+      const std::string& colour = *w->second.begin();
+      if (colour != classColourWord(kb.at(p.className))) p.rgb = core::rgbOfColorName(colour);
+    }
+  }
 
   perception::DemoPerceiver perceiver(kb, popt);
   {
@@ -125,26 +198,93 @@ perception::PerceptionResult perceive(const GroundedPlan& grounded, const core::
   }
   perception::PerceptionResult seen = perceiver.finish();
   for (const auto& cls : grounded.movingClasses) {
-    const auto it = std::find_if(seen.objects.begin(), seen.objects.end(),
-                                 [&](const auto& t) { return t.className == cls; });
-    if (it == seen.objects.end() || it->detectedFrames() == 0)
+    const bool shown = std::any_of(seen.objects.begin(), seen.objects.end(),
+                                   [&](const auto& t) { return t.className == cls && t.detectedFrames() > 0; });
+    if (!shown)
       throw InvalidInputError("the instruction moves the " + cls + ", but the demonstration '" + o.demoPath +
                               "' never shows it; nothing was stored");
   }
   return seen;
 }
 
+execution::CellDescription perceivedScene(const perception::PerceptionResult& seen, const core::ObjectCatalogue& kb,
+                                          const std::optional<core::Scene>& scene) {
+  if (!seen.X_camera_table)
+    throw InvalidInputError("the demonstration's perception found no table plane (or the camera moves): the "
+                            "instruction's objects cannot be grounded among several instances");
+  const core::Pose3 X_table_camera = seen.X_camera_table->inverse();
+  const std::map<std::string, std::string> colours = instanceColours(scene, kb);
+  execution::CellDescription cell;
+  cell.X_world_camera = X_table_camera;  // world = the table frame
+  for (const auto& t : seen.objects) {
+    const auto first = std::find_if(t.samples.begin(), t.samples.end(), [](const auto& s) { return s.detected; });
+    const core::ObjectClass* cls = kb.find(t.className);
+    if (first == t.samples.end() || !cls) continue;
+    execution::CellObject c;
+    c.name = t.key();
+    c.className = t.className;
+    c.noun = cls->noun.empty() ? cls->name : cls->noun;
+    c.classId = cls->classId;
+    c.kind = cls->kind == core::ObjectKind::Container ? execution::CellObjectKind::Container : execution::CellObjectKind::Part;
+    c.size_m = cls->dimensions_m;
+    c.X_world_object = X_table_camera * first->X_camera_object;
+    c.rgb = cls->rgb;
+    const auto word = colours.find(t.instanceId);
+    c.color = !t.instanceId.empty() && word != colours.end() ? word->second
+              : !cls->colorName.empty()                       ? cls->colorName
+                                                              : core::nearestColorName(cls->rgb);
+    cell.objects.push_back(c);
+  }
+  return cell;
+}
+
+GroundedPlan groundInstances(const GroundedPlan& grounded, const perception::PerceptionResult& seen,
+                             const core::ObjectCatalogue& kb, const std::optional<core::Scene>& scene) {
+  GroundedPlan g = grounded;
+  const auto perInstance = [&](const std::string& cls) {
+    return std::any_of(seen.objects.begin(), seen.objects.end(),
+                       [&](const auto& t) { return t.className == cls && !t.instanceId.empty(); });
+  };
+  if (std::none_of(g.classByWords.begin(), g.classByWords.end(), [&](const auto& kv) { return perInstance(kv.second); }))
+    return g;  // one instance per class: the classes are the objects
+  const execution::CellDescription cell = perceivedScene(seen, kb, scene);
+  const execution::SceneGrounder grounder(cell);
+  const auto objectOf = [&](const language::ObjectRef& ref, const std::vector<language::LocationRef>& where) {
+    const std::string& cls = g.classOf(ref.name, ref.color);
+    if (!perInstance(cls)) return cls;
+    return grounder.ground(ref, where).name;
+  };
+  g.stepObjects.clear();
+  g.movingObjects.clear();
+  for (const auto& step : g.plan.steps) {
+    const std::string key = objectOf(step.object, step.source);
+    g.objectByWords[wordsOf(step.object.name, step.object.color)] = key;
+    g.stepObjects.push_back(key);
+    if (std::find(g.movingObjects.begin(), g.movingObjects.end(), key) == g.movingObjects.end())
+      g.movingObjects.push_back(key);
+    for (const auto* list : {&step.source, &step.target})
+      for (const auto& loc : *list) g.objectByWords[wordsOf(loc.landmark.name, loc.landmark.color)] = objectOf(loc.landmark, {});
+  }
+  for (const auto& key : g.movingObjects) {
+    const bool shown = std::any_of(seen.objects.begin(), seen.objects.end(),
+                                   [&](const auto& t) { return t.key() == key && t.detectedFrames() > 0; });
+    if (!shown)
+      throw InvalidInputError("the instruction moves the " + key + ", but the demonstration never shows it; nothing was stored");
+  }
+  return g;
+}
+
 motion::DemoTracks demoTracks(const perception::PerceptionResult& seen, const GroundedPlan& grounded,
                               double frameRate_hz) {
   core::require(frameRate_hz > 0, "the demonstration's frame rate must be positive");
   motion::DemoTracks tracks;
-  tracks.planOrder = grounded.stepClasses;
-  // The moved objects' trajectories by class name (the sorted order motion's
+  tracks.planOrder = grounded.stepObjects;
+  // The moved objects' trajectories by key (the sorted order motion's
   // inputs have always had); an object never sampled has no track.
   std::map<std::string, const perception::ObjectTrajectory*> moved;
-  for (const auto& cls : grounded.movingClasses)
+  for (const auto& key : grounded.movingObjects)
     for (const auto& t : seen.objects)
-      if (t.className == cls && !t.samples.empty()) moved[cls] = &t;
+      if (t.key() == key && !t.samples.empty()) moved[key] = &t;
 
   std::set<int> frames;
   for (const auto& s : seen.hand.samples()) frames.insert(s.frame);
@@ -186,31 +326,46 @@ motion::DemoTracks demoTracks(const perception::PerceptionResult& seen, const Gr
 
 taskdb::TaskModel buildTaskModel(const GroundedPlan& grounded, const ProgrammingOptions& o,
                                  const perception::PerceptionResult& seen, const core::ObjectCatalogue& kb,
-                                 const motion::DemoTracks& tracks, const std::vector<motion::SkillSet>& skills) {
+                                 const motion::DemoTracks& tracks, const std::vector<motion::SkillSet>& skills,
+                                 const std::optional<core::Scene>& scene) {
   taskdb::TaskModel model = language::planToTaskModel(grounded.plan, o.name, o.instruction);
   model.info.frameRate_hz = frameRateOf(seen.hand);
   model.info.intrinsics = seen.intrinsics;
-  PerceptionRows rows = toTaskDbRows(seen, kb);
+  PerceptionRows rows = toTaskDbRows(seen, kb, instanceColours(scene, kb));
   model.handPositions = std::move(rows.handPositions);
   model.groundedProducts = std::move(rows.groundedProducts);
   model.productPoses = std::move(rows.productPoses);
-  // Class names become class ids here, in the rows.
+  // Class names become class ids here, in the rows; a phrase grounded to an
+  // instance names it (Products.InstanceId).
   for (auto& p : model.products) {
     const int classId = kb.at(grounded.classOf(p.objectName, p.color)).classId;
-    if (model.findGrounded(classId)) p.classId = classId;
+    if (!model.findGrounded(classId)) continue;
+    p.classId = classId;
+    const std::string& key = grounded.objectOf(p.objectName, p.color);
+    for (const auto& g : model.groundedProducts)
+      if (g.classId == classId && !g.instanceId.empty() && g.instanceId == key) p.instanceId = key;
   }
   // A grounded object takes the source/target location of its plan step.
   for (auto& g : model.groundedProducts)
     for (int id : model.targetObjectIds)
-      if (const auto* p = model.findProduct(id); p && p->classId == g.classId) {
+      if (const auto* p = model.findProduct(id); p && p->classId == g.classId && p->instanceId == g.instanceId) {
         if (p->sourceLocationId && !g.sourceLocationId) g.sourceLocationId = p->sourceLocationId;
         if (p->targetLocationId && !g.targetLocationId) g.targetLocationId = p->targetLocationId;
       }
   motion::MotionInputs inputs;
   static_cast<motion::DemoTracks&>(inputs) = tracks;
-  for (const auto& g : model.groundedProducts) inputs.classIdByName[g.objectName] = g.classId;
-  model.skills = motion::skillRows(skills, inputs);
-  setSkillFlags(model, skills, inputs.classIdByName);
+  std::map<std::string, std::string> instanceOf;  // key -> instance id
+  for (const auto& g : model.groundedProducts) {
+    inputs.classIdByName[keyOf(g)] = g.classId;
+    instanceOf[keyOf(g)] = g.instanceId;
+  }
+  // Per skill set, so that each row can be given its object's instance.
+  for (const auto& s : skills)
+    for (auto& row : motion::skillRows({s}, inputs)) {
+      row.instanceId = instanceOf[s.objectName];
+      model.skills.push_back(std::move(row));
+    }
+  setSkillFlags(model, skills);
   return model;
 }
 

@@ -45,5 +45,27 @@ TEST(TaskDbMapping, HandCarriedForwardAndObjectRows) {
   EXPECT_THROW(toTaskDbRows(none, catalogue()), core::InvalidInputError);
 }
 
+// Two cuboid instances: one GroundedProducts row each with its InstanceId and
+// the colour word the scene gives it; every ProductPose row carries the id.
+TEST(TaskDbMapping, InstancesKeepTheirIdAndColour) {
+  PerceptionResult r;
+  r.hand.append({0, 0.0, Eigen::Vector3d(0, 0, 0.8), true});
+  for (const char* id : {"cuboid_red", "cuboid_blue"}) {
+    ObjectTrajectory t{"cuboid", 3, false, {}};
+    t.instanceId = id;
+    t.samples.push_back({0, 0.0, core::makePoseYPR({0.1, 0.2, 0.85}, 0.5, 0, 0), true, 0.9});
+    r.objects.push_back(t);
+  }
+  const PerceptionRows rows = toTaskDbRows(r, catalogue(), {{"cuboid_red", "red"}, {"cuboid_blue", "blue"}});
+  ASSERT_EQ(rows.groundedProducts.size(), 2u);
+  EXPECT_EQ(rows.groundedProducts[0].instanceId, "cuboid_red");
+  EXPECT_EQ(rows.groundedProducts[0].color.value_or(""), "red");
+  EXPECT_EQ(rows.groundedProducts[1].instanceId, "cuboid_blue");
+  EXPECT_EQ(rows.groundedProducts[1].color.value_or(""), "blue");
+  ASSERT_EQ(rows.productPoses.size(), 2u);
+  EXPECT_EQ(rows.productPoses[0].instanceId, "cuboid_red");
+  EXPECT_EQ(rows.productPoses[1].instanceId, "cuboid_blue");
+}
+
 }  // namespace
 }  // namespace srp::programming

@@ -327,6 +327,221 @@ void writeContactSheet(const std::string& path, const std::vector<std::pair<int,
     throw srp::core::FileError(path, "cannot write the contact sheet PNG");
 }
 
+// The scene's object meshes (for the renderers), their bounds and which
+// are parts (for the masks and the ground truth), in scene order.
+struct SceneBodies {
+  std::vector<srp::kb::TriangleMesh> meshes;
+  std::vector<Eigen::AlignedBox3d> bounds;
+  std::vector<bool> isPart;
+};
+
+SceneBodies loadSceneBodies(const srp::core::Scene& world, const srp::core::ObjectCatalogue& catalogue) {
+  SceneBodies b;
+  for (const auto& o : world.objects) {
+    const auto& cls = catalogue.at(o.className);
+    b.meshes.push_back(srp::kb::loadClassMesh(cls));
+    b.bounds.push_back(b.meshes.back().bounds());
+    b.isPart.push_back(cls.kind == srp::core::ObjectKind::Part);
+  }
+  return b;
+}
+
+// The renderers of one demo. Two with the same bodies: `background` holds the
+// table, floor and resting objects and is re-rendered only when that set
+// changes; `moving` draws the hand and the carried object on an empty
+// background every frame; a per-pixel depth test composes them. Software
+// rendering costs per covered pixel, so this skips re-shading the table.
+// Without layering, `background` draws everything every frame. A two-camera
+// sensor's depth camera (`depthLayer`) renders the whole scene itself.
+struct Renderers {
+  bool layered = true;
+  Layer background, moving, depthLayer;
+  srp::core::Pose3 X_world_depth = srp::core::Pose3::Identity();
+  std::vector<int> backgroundState;  // per object: 0 hidden, 1 shown; with the poses below
+  std::vector<srp::core::Pose3> backgroundPoses;
+  srp::rawlog::RgbdFrame backgroundFrame;
+};
+
+Renderers setUpRenderers(const DemoTimeline& timeline, const SceneBodies& bodies, const HandModel& hand,
+                         const SynthDemoOptions& options) {
+  const srp::core::Scene& world = timeline.scene;
+  Renderers r;
+  r.layered = options.layeredRendering;
+  r.background = makeLayer(world.intrinsics, timeline, bodies.meshes, hand, true, !r.layered);
+  if (r.layered) r.moving = makeLayer(world.intrinsics, timeline, bodies.meshes, hand, false, true);
+  if (options.depthCamera) {
+    options.depthCamera->intrinsics.validate("synth-demo depth camera");
+    r.depthLayer = makeLayer(options.depthCamera->intrinsics, timeline, bodies.meshes, hand, true, true);
+  }
+  r.X_world_depth = options.depthCamera ? srp::core::Pose3(world.X_world_camera * options.depthCamera->X_colour_depth)
+                                        : world.X_world_camera;
+  return r;
+}
+
+// Contact-sheet frames: evenly spread, first and last included; none without a sheet.
+std::vector<int> contactSheetFrames(const SynthDemoOptions& options, int frameCount) {
+  std::vector<int> frames;
+  if (options.contactSheetPath.empty()) return frames;
+  const int n = std::max(2, options.contactSheetFrames);
+  for (int i = 0; i < n; ++i) frames.push_back(static_cast<int>(std::lround(i * (frameCount - 1.0) / (n - 1))));
+  return frames;
+}
+
+// Frame k of the colour camera: everything in one pass, or (layered) the
+// cached background composed by depth with the moving bodies.
+srp::rawlog::RgbdFrame renderColourFrame(Renderers& r, const DemoTimeline& timeline, int k,
+                                         const std::vector<srp::core::Pose3>& partPoses) {
+  const srp::core::Scene& world = timeline.scene;
+  const auto& K = world.intrinsics;
+  const FrameState& f = timeline.frames[k];
+  const FrameState& prev = timeline.frames[std::max(k - 1, 0)];
+  srp::rawlog::RgbdFrame frame;
+  if (!r.layered) {
+    for (std::size_t i = 0; i < world.objects.size(); ++i)
+      r.background.renderer->setBodyPose(r.background.objectBodies[i], f.X_world_objects[i]);
+    for (std::size_t i = 0; i < r.background.handBodies.size(); ++i)
+      r.background.renderer->setBodyPose(r.background.handBodies[i], f.X_world_hand * partPoses[i]);
+    return r.background.renderer->render(world.X_world_camera);
+  }
+  // Objects in motion (carried, or moved since the last frame) go to the moving layer.
+  std::vector<int> state(world.objects.size());
+  bool anyMoving = false;
+  for (std::size_t i = 0; i < world.objects.size(); ++i) {
+    const bool isMoving = static_cast<int>(i) == f.carriedObject ||
+                          !f.X_world_objects[i].matrix().isApprox(prev.X_world_objects[i].matrix(), 0.0);
+    state[i] = isMoving ? 0 : 1;
+    anyMoving = anyMoving || isMoving;
+  }
+  bool backgroundChanged = state != r.backgroundState;
+  for (std::size_t i = 0; i < world.objects.size() && !backgroundChanged; ++i)
+    backgroundChanged = state[i] && !f.X_world_objects[i].matrix().isApprox(r.backgroundPoses[i].matrix(), 0.0);
+  if (backgroundChanged) {
+    for (std::size_t i = 0; i < world.objects.size(); ++i) {
+      r.background.renderer->setBodyVisible(r.background.objectBodies[i], state[i] == 1);
+      r.background.renderer->setBodyPose(r.background.objectBodies[i], f.X_world_objects[i]);
+    }
+    r.backgroundFrame = r.background.renderer->render(world.X_world_camera);
+    r.backgroundState = state;
+    r.backgroundPoses = f.X_world_objects;
+  }
+  frame.intrinsics = K;
+  frame.colour_bgr8 = r.backgroundFrame.colour_bgr8.clone();
+  frame.depth_m = r.backgroundFrame.depth_m.clone();
+  // The hand is out of view while idle (the timeline guarantees it): nothing moves then.
+  if (f.phase == "idle" && !anyMoving) return frame;
+  for (std::size_t i = 0; i < world.objects.size(); ++i) {
+    r.moving.renderer->setBodyVisible(r.moving.objectBodies[i], state[i] == 0);
+    r.moving.renderer->setBodyPose(r.moving.objectBodies[i], f.X_world_objects[i]);
+  }
+  for (std::size_t i = 0; i < r.moving.handBodies.size(); ++i)
+    r.moving.renderer->setBodyPose(r.moving.handBodies[i], f.X_world_hand * partPoses[i]);
+  const auto front = r.moving.renderer->render(world.X_world_camera);
+  for (int row = 0; row < K.height_px; ++row) {
+    const float* dFront = front.depth_m.ptr<float>(row);
+    const cv::Vec3b* cFront = front.colour_bgr8.ptr<cv::Vec3b>(row);
+    float* d = frame.depth_m.ptr<float>(row);
+    cv::Vec3b* c = frame.colour_bgr8.ptr<cv::Vec3b>(row);
+    for (int col = 0; col < K.width_px; ++col)
+      if (dFront[col] > 0.f && (d[col] <= 0.f || dFront[col] < d[col])) {
+        d[col] = dFront[col];
+        c[col] = cFront[col];
+      }
+  }
+  return frame;
+}
+
+// Frame k of the two-camera sensor's depth camera (the whole scene).
+srp::rawlog::RgbdFrame renderDepthCameraFrame(Renderers& r, const DemoTimeline& timeline, int k,
+                                              const std::vector<srp::core::Pose3>& partPoses) {
+  const FrameState& f = timeline.frames[k];
+  for (std::size_t i = 0; i < timeline.scene.objects.size(); ++i)
+    r.depthLayer.renderer->setBodyPose(r.depthLayer.objectBodies[i], f.X_world_objects[i]);
+  for (std::size_t i = 0; i < r.depthLayer.handBodies.size(); ++i)
+    r.depthLayer.renderer->setBodyPose(r.depthLayer.handBodies[i], f.X_world_hand * partPoses[i]);
+  return r.depthLayer.renderer->render(r.X_world_depth);
+}
+
+// Hand, resting-part and moving-part masks of one camera's rendered depth in
+// frame k, and the fastest part's speed [m/s].
+struct FrameMasks {
+  cv::Mat hand, part, moving;
+  double movingSpeed = 0.0;
+};
+
+FrameMasks frameMasks(const DemoTimeline& timeline, const SceneBodies& bodies, const HandModel& hand, int k,
+                      const std::vector<srp::core::Pose3>& partPoses, const srp::core::CameraIntrinsics& Kcam,
+                      const srp::core::Pose3& X_cam_world, const cv::Mat& depth) {
+  const srp::core::Scene& world = timeline.scene;
+  const FrameState& f = timeline.frames[k];
+  const FrameState& prev = timeline.frames[std::max(k - 1, 0)];
+  const double dt = 1.0 / world.fps;
+  FrameMasks m;
+  m.hand = cv::Mat(Kcam.height_px, Kcam.width_px, CV_8UC1, cv::Scalar(0));
+  m.part = m.hand.clone();
+  m.moving = m.hand.clone();
+  for (std::size_t i = 0; i < hand.parts().size(); ++i)
+    markBox(hand.parts()[i].bounds_part, X_cam_world * f.X_world_hand * partPoses[i], Kcam, depth, m.hand);
+  for (std::size_t i = 0; i < world.objects.size(); ++i) {
+    if (!bodies.isPart[i]) continue;
+    const double speed = (f.X_world_objects[i].translation() - prev.X_world_objects[i].translation()).norm() / dt;
+    markBox(bodies.bounds[i], X_cam_world * f.X_world_objects[i], Kcam, depth, speed > 0.0 ? m.moving : m.part);
+    m.movingSpeed = std::max(m.movingSpeed, speed);
+  }
+  m.part.setTo(0, m.hand);
+  m.moving.setTo(0, m.hand);
+  return m;
+}
+
+// The ground truth of frame k: phase, hand and tag (corners, visibility:
+// `tagVisible` from the clean depth), objects, hand occlusions, and the
+// share of valid depth on the hand and the parts in the degraded `frame`.
+GroundTruthFrame groundTruthFrame(const DemoTimeline& timeline, const SceneBodies& bodies, const HandModel& hand,
+                                  int k, const srp::core::Pose3& X_camera_tag, double tagVisible,
+                                  const FrameMasks& masks, const srp::rawlog::RgbdFrame& frame) {
+  const srp::core::Scene& world = timeline.scene;
+  const auto& K = world.intrinsics;
+  const FrameState& f = timeline.frames[k];
+  const srp::core::Pose3 X_camera_world = world.X_world_camera.inverse();
+  GroundTruthFrame g;
+  g.index = k;
+  g.t_s = f.t_s;
+  g.phase = f.phase;
+  g.step = f.step;
+  g.grip = f.grip;
+  g.handPixels = cv::countNonZero(masks.hand);
+  g.handInView = g.handPixels > 0;
+  g.X_world_hand = f.X_world_hand;
+  g.p_camera_palm_m = X_camera_world * f.X_world_hand.translation();
+  g.X_camera_tag = X_camera_tag;
+  const auto corners = hand.tagCorners_tag();
+  for (int c = 0; c < 4; ++c) {
+    const auto uv = K.project(g.X_camera_tag * corners[c]);
+    g.tagCorners_px[c] = uv ? *uv : Eigen::Vector2d(-1, -1);
+  }
+  // "In view" = a detector could read it: the whole plate (black square and
+  // white margin) is in the image, seen at most kMaxTagViewAngle_rad off its
+  // normal, and nothing hides any of its pixels.
+  const double cosView = X_camera_tag.linear().col(2).dot(X_camera_tag.translation().normalized());
+  g.tagVisibleFraction = tagVisible;
+  g.tagInView = tagVisible >= 1.0 && cosView >= std::cos(kMaxTagViewAngle_rad);
+  if (f.carriedObject >= 0) g.carriedObject = world.objects[f.carriedObject].id;
+  for (std::size_t i = 0; i < world.objects.size(); ++i) g.X_world_objects[world.objects[i].id] = f.X_world_objects[i];
+  g.handOccludedObjects.emplace();
+  if (g.handInView)
+    for (std::size_t i = 0; i < world.objects.size(); ++i)
+      if (boxCoversMaskPixels(bodies.bounds[i], X_camera_world * f.X_world_objects[i], K, masks.hand))
+        g.handOccludedObjects->insert(world.objects[i].id);
+  auto validFraction = [&](const cv::Mat& mask) -> std::optional<double> {
+    const int n = cv::countNonZero(mask);
+    if (n == 0) return std::nullopt;
+    cv::Mat valid = (frame.depth_m > 0.f) & mask;
+    return static_cast<double>(cv::countNonZero(valid)) / n;
+  };
+  g.handValidDepthFraction = validFraction(masks.hand);
+  g.objectsValidDepthFraction = validFraction(masks.part | masks.moving);
+  return g;
+}
+
 }  // namespace
 
 std::string groundTruthPathFor(const std::string& rawlogPath) {
@@ -362,51 +577,20 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
   const auto& K = world.intrinsics;
 
   // ---- Renderer set-up ----------------------------------------------------------
-  // Two renderers with the same bodies: `layers.background` holds the table,
-  // floor and resting objects and is re-rendered only when that set changes;
-  // `layers.moving` draws the hand and the carried object on an empty
-  // background every frame; a per-pixel depth test composes them. Software
-  // rendering costs per covered pixel, so this skips re-shading the table.
-  std::vector<srp::kb::TriangleMesh> objectMeshes;
-  std::vector<Eigen::AlignedBox3d> objectBounds;
-  std::vector<bool> isPart;
-  for (const auto& o : world.objects) {
-    const auto& cls = catalogue.at(o.className);
-    objectMeshes.push_back(srp::kb::loadClassMesh(cls));
-    objectBounds.push_back(objectMeshes.back().bounds());
-    isPart.push_back(cls.kind == srp::core::ObjectKind::Part);
-  }
-  const bool layered = options.layeredRendering;
-  Layer background = makeLayer(K, timeline, objectMeshes, hand, true, !layered);
-  Layer moving = layered ? makeLayer(K, timeline, objectMeshes, hand, false, true) : Layer{};
-  // Two-camera sensor: the depth camera renders the whole scene itself.
+  const SceneBodies bodies = loadSceneBodies(world, catalogue);
+  Renderers renderers = setUpRenderers(timeline, bodies, hand, options);
   const std::optional<SynthDepthCamera>& depthCamera = options.depthCamera;
-  Layer depthLayer;
-  if (depthCamera) {
-    depthCamera->intrinsics.validate("synth-demo depth camera");
-    depthLayer = makeLayer(depthCamera->intrinsics, timeline, objectMeshes, hand, true, true);
-  }
-  const srp::core::Pose3 X_world_depth =
-      depthCamera ? srp::core::Pose3(world.X_world_camera * depthCamera->X_colour_depth) : world.X_world_camera;
   std::filesystem::path folderPath = std::filesystem::path(rawlogPath).lexically_normal();
   if (!folderPath.has_filename()) folderPath = folderPath.parent_path();  // "demo/" -> "demo"
   const std::string folder = depthCamera ? folderPath.string() : std::string();
-  std::vector<int> backgroundState;  // per object: 0 hidden, 1 shown; with the poses below
-  std::vector<srp::core::Pose3> backgroundPoses;
-  srp::rawlog::RgbdFrame backgroundFrame;
 
   // ---- Ground truth header -----------------------------------------------------
   DemoGroundTruth gt = groundTruthHeader(timeline, catalogue, hand, plan, options,
                                          (options.depthCamera ? folderPath : std::filesystem::path(rawlogPath)).filename().string());
 
-  // Contact-sheet frames: evenly spread, first and last included.
   const int frameCount = options.maxFrames >= 0 ? std::min<int>(options.maxFrames, static_cast<int>(timeline.frames.size()))
                                                 : static_cast<int>(timeline.frames.size());
-  std::vector<int> sheetFrames;
-  if (!options.contactSheetPath.empty()) {
-    const int n = std::max(2, options.contactSheetFrames);
-    for (int i = 0; i < n; ++i) sheetFrames.push_back(static_cast<int>(std::lround(i * (frameCount - 1.0) / (n - 1))));
-  }
+  const std::vector<int> sheetFrames = contactSheetFrames(options, frameCount);
   std::vector<std::pair<int, srp::rawlog::RgbdFrame>> sheet;
 
   // ---- Frames -------------------------------------------------------------------
@@ -451,90 +635,27 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
         const int k = item->k;
         const FrameState& f = timeline.frames[k];
         const FrameState& prev = timeline.frames[std::max(k - 1, 0)];
-        const auto& partPoses = item->partPoses;
         srp::rawlog::RgbdFrame& frame = item->frame;
         const double cpu0 = threadCpuTime_s();
         auto t0 = Clock::now();
         frame.index = k;
         frame.t_s = kRawlogEpoch_s + f.t_s;
-        // Hand, resting-part and moving-part masks of a camera's rendered depth.
-        struct Masks {
-          cv::Mat hand, part, moving;
-          double movingSpeed = 0.0;
-        };
-        const auto masksOf = [&](const srp::core::CameraIntrinsics& Kcam, const srp::core::Pose3& X_cam_world,
-                                 const cv::Mat& depth) {
-          Masks m;
-          m.hand = cv::Mat(Kcam.height_px, Kcam.width_px, CV_8UC1, cv::Scalar(0));
-          m.part = m.hand.clone();
-          m.moving = m.hand.clone();
-          for (std::size_t i = 0; i < hand.parts().size(); ++i)
-            markBox(hand.parts()[i].bounds_part, X_cam_world * f.X_world_hand * partPoses[i], Kcam, depth, m.hand);
-          for (std::size_t i = 0; i < world.objects.size(); ++i) {
-            if (!isPart[i]) continue;
-            const double speed = (f.X_world_objects[i].translation() - prev.X_world_objects[i].translation()).norm() / dt;
-            markBox(objectBounds[i], X_cam_world * f.X_world_objects[i], Kcam, depth, speed > 0.0 ? m.moving : m.part);
-            m.movingSpeed = std::max(m.movingSpeed, speed);
-          }
-          m.part.setTo(0, m.hand);
-          m.moving.setTo(0, m.hand);
-          return m;
-        };
-        const Masks masks = masksOf(K, X_camera_world, frame.depth_m);
-        const cv::Mat& handMask = masks.hand;
-        const cv::Mat& partMask = masks.part;
-        const cv::Mat& movingMask = masks.moving;
-        const double movingSpeed = masks.movingSpeed;
+        const FrameMasks masks = frameMasks(timeline, bodies, hand, k, item->partPoses, K, X_camera_world, frame.depth_m);
         // Tag visibility from the clean rendered depth (before the sensor model punches holes).
         const srp::core::Pose3 X_camera_tag = X_camera_world * f.X_world_hand * hand.X_hand_tag();
         const double tagVisible = tagVisibleFraction(X_camera_tag, hand.tagPlateHalfSize_m() - kTagRim_m, K, frame.depth_m);
         const double handSpeed = (f.X_world_hand.translation() - prev.X_world_hand.translation()).norm() / dt;
         const cv::Mat cleanColour = options.sensor.motionBlur ? frame.colour_bgr8.clone() : cv::Mat();
-        sensor.apply(frame, handMask, handSpeed, partMask, movingMask, movingSpeed, previousColour);
+        sensor.apply(frame, masks.hand, handSpeed, masks.part, masks.moving, masks.movingSpeed, previousColour);
         previousColour = cleanColour;
         if (depthCamera) {  // the depth camera's own image, degraded the same way
           srp::rawlog::RgbdFrame& d = item->depthCameraFrame;
-          const Masks dm = masksOf(depthCamera->intrinsics, X_world_depth.inverse(), d.depth_m);
+          const FrameMasks dm = frameMasks(timeline, bodies, hand, k, item->partPoses, depthCamera->intrinsics,
+                                           renderers.X_world_depth.inverse(), d.depth_m);
           depthSensor.apply(d, dm.hand, handSpeed, dm.part, dm.moving, dm.movingSpeed, cv::Mat());
         }
 
-        GroundTruthFrame g;
-        g.index = k;
-        g.t_s = f.t_s;
-        g.phase = f.phase;
-        g.step = f.step;
-        g.grip = f.grip;
-        g.handPixels = cv::countNonZero(handMask);
-        g.handInView = g.handPixels > 0;
-        g.X_world_hand = f.X_world_hand;
-        g.p_camera_palm_m = X_camera_world * f.X_world_hand.translation();
-        g.X_camera_tag = X_camera_tag;
-        const auto corners = hand.tagCorners_tag();
-        for (int c = 0; c < 4; ++c) {
-          const auto uv = K.project(g.X_camera_tag * corners[c]);
-          g.tagCorners_px[c] = uv ? *uv : Eigen::Vector2d(-1, -1);
-        }
-        // "In view" = a detector could read it: the whole plate (black square and
-        // white margin) is in the image, seen at most kMaxTagViewAngle_rad off its
-        // normal, and nothing hides any of its pixels.
-        const double cosView = X_camera_tag.linear().col(2).dot(X_camera_tag.translation().normalized());
-        g.tagVisibleFraction = tagVisible;
-        g.tagInView = tagVisible >= 1.0 && cosView >= std::cos(kMaxTagViewAngle_rad);
-        if (f.carriedObject >= 0) g.carriedObject = world.objects[f.carriedObject].id;
-        for (std::size_t i = 0; i < world.objects.size(); ++i) g.X_world_objects[world.objects[i].id] = f.X_world_objects[i];
-        g.handOccludedObjects.emplace();
-        if (g.handInView)
-          for (std::size_t i = 0; i < world.objects.size(); ++i)
-            if (boxCoversMaskPixels(objectBounds[i], X_camera_world * f.X_world_objects[i], K, handMask))
-              g.handOccludedObjects->insert(world.objects[i].id);
-        auto validFraction = [&](const cv::Mat& mask) -> std::optional<double> {
-          const int n = cv::countNonZero(mask);
-          if (n == 0) return std::nullopt;
-          cv::Mat valid = (frame.depth_m > 0.f) & mask;
-          return static_cast<double>(cv::countNonZero(valid)) / n;
-        };
-        g.handValidDepthFraction = validFraction(handMask);
-        g.objectsValidDepthFraction = validFraction(partMask | movingMask);
+        GroundTruthFrame g = groundTruthFrame(timeline, bodies, hand, k, X_camera_tag, tagVisible, masks, frame);
         if (g.handValidDepthFraction && g.handPixels > 200) {
           handValidSum += *g.handValidDepthFraction;
           ++handValidFrames;
@@ -561,72 +682,11 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
 
   try {
     for (int k = 0; k < frameCount; ++k) {
-      const FrameState& f = timeline.frames[k];
-      const FrameState& prev = timeline.frames[std::max(k - 1, 0)];
       auto t0 = Clock::now();
-      auto partPoses = hand.partPoses(f.grip);
-      srp::rawlog::RgbdFrame frame;
-      if (!layered) {
-        for (std::size_t i = 0; i < world.objects.size(); ++i)
-          background.renderer->setBodyPose(background.objectBodies[i], f.X_world_objects[i]);
-        for (std::size_t i = 0; i < background.handBodies.size(); ++i)
-          background.renderer->setBodyPose(background.handBodies[i], f.X_world_hand * partPoses[i]);
-        frame = background.renderer->render(world.X_world_camera);
-      } else {
-        // Objects in motion (carried, or moved since the last frame) go to the moving layer.
-        std::vector<int> state(world.objects.size());
-        bool anyMoving = false;
-        for (std::size_t i = 0; i < world.objects.size(); ++i) {
-          const bool isMoving = static_cast<int>(i) == f.carriedObject ||
-                                !f.X_world_objects[i].matrix().isApprox(prev.X_world_objects[i].matrix(), 0.0);
-          state[i] = isMoving ? 0 : 1;
-          anyMoving = anyMoving || isMoving;
-        }
-        bool backgroundChanged = state != backgroundState;
-        for (std::size_t i = 0; i < world.objects.size() && !backgroundChanged; ++i)
-          backgroundChanged = state[i] && !f.X_world_objects[i].matrix().isApprox(backgroundPoses[i].matrix(), 0.0);
-        if (backgroundChanged) {
-          for (std::size_t i = 0; i < world.objects.size(); ++i) {
-            background.renderer->setBodyVisible(background.objectBodies[i], state[i] == 1);
-            background.renderer->setBodyPose(background.objectBodies[i], f.X_world_objects[i]);
-          }
-          backgroundFrame = background.renderer->render(world.X_world_camera);
-          backgroundState = state;
-          backgroundPoses = f.X_world_objects;
-        }
-        frame.intrinsics = K;
-        frame.colour_bgr8 = backgroundFrame.colour_bgr8.clone();
-        frame.depth_m = backgroundFrame.depth_m.clone();
-        // The hand is out of view while idle (the timeline guarantees it): nothing moves then.
-        if (f.phase != "idle" || anyMoving) {
-          for (std::size_t i = 0; i < world.objects.size(); ++i) {
-            moving.renderer->setBodyVisible(moving.objectBodies[i], state[i] == 0);
-            moving.renderer->setBodyPose(moving.objectBodies[i], f.X_world_objects[i]);
-          }
-          for (std::size_t i = 0; i < moving.handBodies.size(); ++i)
-            moving.renderer->setBodyPose(moving.handBodies[i], f.X_world_hand * partPoses[i]);
-          const auto front = moving.renderer->render(world.X_world_camera);
-          for (int r = 0; r < K.height_px; ++r) {
-            const float* dFront = front.depth_m.ptr<float>(r);
-            const cv::Vec3b* cFront = front.colour_bgr8.ptr<cv::Vec3b>(r);
-            float* d = frame.depth_m.ptr<float>(r);
-            cv::Vec3b* c = frame.colour_bgr8.ptr<cv::Vec3b>(r);
-            for (int col = 0; col < K.width_px; ++col)
-              if (dFront[col] > 0.f && (d[col] <= 0.f || dFront[col] < d[col])) {
-                d[col] = dFront[col];
-                c[col] = cFront[col];
-              }
-          }
-        }
-      }
+      auto partPoses = hand.partPoses(timeline.frames[k].grip);
+      srp::rawlog::RgbdFrame frame = renderColourFrame(renderers, timeline, k, partPoses);
       srp::rawlog::RgbdFrame depthCameraFrame;
-      if (depthCamera) {
-        for (std::size_t i = 0; i < world.objects.size(); ++i)
-          depthLayer.renderer->setBodyPose(depthLayer.objectBodies[i], f.X_world_objects[i]);
-        for (std::size_t i = 0; i < depthLayer.handBodies.size(); ++i)
-          depthLayer.renderer->setBodyPose(depthLayer.handBodies[i], f.X_world_hand * partPoses[i]);
-        depthCameraFrame = depthLayer.renderer->render(X_world_depth);
-      }
+      if (depthCamera) depthCameraFrame = renderDepthCameraFrame(renderers, timeline, k, partPoses);
       result.renderTime_s += secondsSince(t0);
       if (!rendered.push({k, std::move(frame), std::move(partPoses), std::move(depthCameraFrame)}))
         break;  // the sensor thread failed

@@ -106,12 +106,14 @@ void printTaskModel(const TaskModel& m, std::ostream& out) {
       std::size_t count = 0;
       std::optional<int> grasp, release;
       for (const auto& p : m.productPoses) {
-        if (p.classId != g.classId) continue;
+        if (p.classId != g.classId || p.instanceId != g.instanceId) continue;
         ++count;
         if (p.grasp && !grasp) grasp = p.timeId;
         if (p.release && !release) release = p.timeId;
       }
-      out << "  class " << g.classId << " " << g.objectName << ": " << count << " poses";
+      out << "  class " << g.classId << " " << g.objectName;
+      if (!g.instanceId.empty()) out << " (instance " << g.instanceId << ")";
+      out << ": " << count << " poses";
       if (grasp) out << ", grasp at frame " << *grasp;
       if (release) out << ", release at frame " << *release;
       out << "\n";
@@ -121,7 +123,8 @@ void printTaskModel(const TaskModel& m, std::ostream& out) {
     out << "\nSkills:\n";
     for (const auto& s : m.skills) {
       const GroundedProductRow* g = m.findGrounded(s.classId);
-      out << "  " << (g ? g->objectName : std::to_string(s.classId)) << " " << core::toString(s.skill) << ": frames "
+      out << "  " << (g ? g->objectName : std::to_string(s.classId)) << (s.instanceId.empty() ? "" : " " + s.instanceId)
+          << " " << core::toString(s.skill) << ": frames "
           << s.startTimeId << "-" << s.endTimeId;
       if (s.parameters.contains("class")) out << " (" << s.parameters.at("class").get<std::string>() << ")";
       out << "\n";

@@ -6,11 +6,13 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "srp/core/ObjectCatalogue.h"
 #include "srp/core/PositionTrajectory.h"
+#include "srp/core/Scene.h"
 #include "srp/perception/MarkerFreeHandDetector.h"
 #include "srp/perception/MarkerHandDetector.h"
 #include "srp/perception/ModelBasedTracker.h"
@@ -23,9 +25,25 @@ namespace srp::perception {
 /// An object the task plan names, and whether the instruction moves it.
 /// Static objects (containers, landmarks) are fixed at their most confident
 /// detection; moving ones are tracked frame by frame.
+///
+/// Instances: a scene may hold several parts of one class (two cuboids, red
+/// and blue). Each is a PlanObject of its own with an `instanceId` (unique in
+/// the plan, e.g. the scene's "cuboid_red") and, when known, its colour
+/// `rgb` (linear RGB [0, 1], the scene's or the catalogue's). Each instance
+/// is detected and tracked with a model of its own: the class's shape with
+/// the instance's colour, so that the colour of a segment (its mean against
+/// `rgb`, ObjectDetector::colourScore) is evidence for which instance it is,
+/// alongside the last pose (tracking, "parts move only in the hand"). An
+/// empty `instanceId` is the class's one instance, tracked as before instances
+/// existed (its catalogue colour).
 struct PlanObject {
   std::string className;
   bool isStatic = false;
+  std::string instanceId;              ///< "" = the class's one instance
+  std::optional<Eigen::Vector3d> rgb;  ///< instance colour; nullopt = the class's
+  /// The key of this object in the tracker and the detector: its instance
+  /// id, else its class name.
+  const std::string& key() const { return instanceId.empty() ? className : instanceId; }
 };
 
 /// One object's pose in one frame.
@@ -45,7 +63,10 @@ struct ObjectTrajectory {
   int classId = -1;
   bool isStatic = false;
   std::vector<ObjectPoseSample> samples;
+  std::string instanceId;  ///< PlanObject::instanceId ("" = the class's one instance)
   int detectedFrames() const;
+  /// PlanObject::key(): the instance id, else the class name.
+  const std::string& key() const { return instanceId.empty() ? className : instanceId; }
 };
 
 struct PerceptionOptions {
@@ -58,7 +79,9 @@ struct PerceptionOptions {
   ObjectDetector::Options objects;
   /// Frame-to-frame reuse (static classes are taken from `plan`).
   ObjectTracker::Options tracking;
-  /// Objects of interest (from the task plan); empty = every catalogue class, all moving.
+  /// Objects of interest (from the task plan); empty = every catalogue class, all
+  /// moving. Keys (PlanObject::key) must be unique and differ from the other
+  /// plan objects' class names.
   std::vector<PlanObject> plan;
   /// Fit the support plane once on the first frame (the camera is fixed).
   bool fixedSupportPlane = true;
@@ -113,6 +136,11 @@ struct PerceptionResult {
   int frames = 0;
   int handDetected = 0;        ///< frames with a hand detection
   int handDepthCarried = 0;    ///< of those, frames whose depth was carried forward
+  /// The support plane's frame (PlaneFit.h: z = the plane normal towards the
+  /// camera, x = the camera x axis on the plane) with a fixed camera; nullopt
+  /// when no plane was found or the camera moves. Relations such as "on" or
+  /// "left of" between perceived objects are read in it (programming's grounding).
+  std::optional<core::Pose3> X_camera_table;
 };
 
 /// The module as a stream: add() frames in time order (each is checked
@@ -142,6 +170,14 @@ class DemoPerceiver {
   std::unique_ptr<Impl> impl_;
 };
 
+/// `plan` with the scene's instances: a class of the plan that the scene
+/// holds several times is replaced by one PlanObject per instance (the
+/// scene's id, its colour: core::instanceRgb; static as the class was), in
+/// scene order; a class the scene holds once or not at all stays as it is
+/// (its one instance, as before instances existed).
+std::vector<PlanObject> withSceneInstances(const std::vector<PlanObject>& plan, const core::Scene& scene,
+                                           const core::ObjectCatalogue& catalogue);
+
 /// Runs the module on frames (in time order; previewed first for the
 /// marker-free hand). Throws InvalidInputError when
 /// there are no frames, a frame lacks depth or colour, the sizes or
@@ -160,8 +196,9 @@ PerceptionResult perceiveRawlog(const std::string& rawlogPath, const core::Objec
                                 const std::function<void(int, int)>& progress = {});
 
 /// Writes the `srp segment` CSV: frame,hand_x,hand_y,hand_z,<name>_x,<name>_y,
-/// <name>_z,<name>_rz,... (camera frame, metres, radians; names with spaces
-/// written with '_'; rz = yaw of the object about the camera's z axis). A
+/// <name>_z,<name>_rz,... (camera frame, metres, radians; <name> = the
+/// object's key, i.e. its instance id when it has one, else its class name;
+/// names with spaces written with '_'; rz = yaw of the object about the camera's z axis). A
 /// sample not detected in its frame is written as exact zeros (0,0,0 and rz 0,
 /// motion::TrajectoryTable's "not detected"): the hand when it was not seen,
 /// an object when it was not detected in that frame (carried in the hand,

@@ -33,6 +33,14 @@ namespace srp::perception {
 /// Each class is given to at most one segment per frame, the most confident
 /// first (a part is never reported at another part's segment because it is
 /// missing from its own, e.g. while it is carried).
+///
+/// "Class" here is the detector's model name (ObjectModel::name). For several
+/// parts of one class (two cuboids, red and blue) DemoPerceiver gives each
+/// instance a model of its own, named by its instance id, with the instance's
+/// colour: the tracker then keys by (class, instance), detects every instance
+/// in a frame, and tells them apart by colour (the fit's confidence carries
+/// the colour agreement, ObjectDetector::colourScore) and by their last poses
+/// (tracking, unchanged segments, the unheld-jump rule below).
 class ObjectTracker {
  public:
   struct Options {

@@ -5,6 +5,8 @@
 /// made by the programming module's store stage: perception itself knows
 /// nothing of the database.
 
+#include <map>
+#include <string>
 #include <vector>
 
 #include "srp/core/ObjectCatalogue.h"
@@ -24,8 +26,12 @@ struct PerceptionRows {
 /// first, with detected = false); one GroundedProducts row per object seen
 /// (colour from the catalogue; source/target locations are the programming
 /// module's to fill); one ProductPose row per object and frame (skill flags
-/// false: the motion module sets them). Camera frame, metres. Throws
-/// InvalidInputError when the hand has no valid sample.
-PerceptionRows toTaskDbRows(const perception::PerceptionResult& result, const core::ObjectCatalogue& catalogue);
+/// false: the motion module sets them). Camera frame, metres. Rows of an
+/// object tracked per instance carry its InstanceId (ObjectTrajectory::
+/// instanceId) and the colour word `instanceColours` gives it (instance id ->
+/// word), else the catalogue's. Throws InvalidInputError when the hand has no
+/// valid sample.
+PerceptionRows toTaskDbRows(const perception::PerceptionResult& result, const core::ObjectCatalogue& catalogue,
+                            const std::map<std::string, std::string>& instanceColours = {});
 
 }  // namespace srp::programming

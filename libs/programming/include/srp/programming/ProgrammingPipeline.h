@@ -35,6 +35,11 @@ struct ProgrammingOptions {
   std::string instruction;
   std::string demoPath;           ///< MRPT rawlog of the demonstration
   std::string cataloguePath;      ///< empty: the bundled knowledge base
+  /// The demo's scene file (srp synth-demo --scene; for a recording, one that
+  /// lists its instances and their colours); empty: none. A class the scene
+  /// holds several times is perceived per instance and the instruction's
+  /// phrases are grounded to instances (ProgrammingStages.h groundInstances).
+  std::string scenePath;
   std::optional<core::CameraIntrinsics> intrinsics;  ///< overrides the rawlog's (e.g. from calib/*.xml)
   std::string dbPath = "task.db";
   std::string name = "task";      ///< re-using a name makes a new version
@@ -49,6 +54,7 @@ struct ProgrammingOptions {
 /// What was learned for one object of the plan.
 struct ObjectOutcome {
   std::string name;        ///< knowledge-base class
+  std::string instanceId;  ///< the perceived instance ("" = the class's one instance)
   int classId = -1;
   bool moved = false;
   int graspFrame = -1, releaseFrame = -1;

@@ -5,21 +5,28 @@
 ///
 ///   parsePlan (instruction -> plan) -> groundPlan (every object the plan
 ///   names -> a knowledge-base class, once) -> perceive (demonstration ->
-///   hand and object trajectories) -> demoTracks (the in-memory hand-off to
-///   motion) -> motion::learnSkills (segmentation + DMPs) -> buildTaskModel
-///   (the task-database rows, made here and only here) -> TaskModelStore.
+///   hand and object trajectories, per instance when a scene holds a class
+///   several times) -> groundInstances (every phrase -> the perceived
+///   instance it means) -> demoTracks (the in-memory hand-off to motion) ->
+///   motion::learnSkills (segmentation + DMPs) -> buildTaskModel (the
+///   task-database rows, made here and only here) -> TaskModelStore.
 ///
-/// From the grounding to the rows an object is keyed by its knowledge-base
-/// class name (motion's ObjectTrack::name, SkillSet::objectName); class ids
-/// and the instruction's ObjectIds appear only in the rows.
+/// From the grounding to the rows an object is keyed by its perception key
+/// (perception::PlanObject::key: the instance id when its class is tracked
+/// per instance, else the knowledge-base class name; motion's
+/// ObjectTrack::name, SkillSet::objectName); class ids, instance ids and the
+/// instruction's ObjectIds appear only in the rows.
 
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "srp/core/ObjectCatalogue.h"
+#include "srp/core/Scene.h"
+#include "srp/execution/CellDescription.h"
 #include "srp/language/TaskPlan.h"
 #include "srp/motion/LearnSkills.h"
 #include "srp/perception/DemoPerception.h"
@@ -44,6 +51,16 @@ struct GroundedPlan {
   /// The class of each object as the instruction words it: (lower-case
   /// name, lower-case colour or "") -> class name.
   std::map<std::pair<std::string, std::string>, std::string> classByWords;
+  /// The perceived object (perception key) each step moves, step order;
+  /// without repeats; per wording. groundPlan sets them to the classes
+  /// (one instance per class), groundInstances to the instances.
+  std::vector<std::string> stepObjects;
+  std::vector<std::string> movingObjects;
+  std::map<std::pair<std::string, std::string>, std::string> objectByWords;
+
+  /// The perceived object (key) of a phrase of the plan. Throws
+  /// InvalidInputError for an object the plan does not name.
+  const std::string& objectOf(const std::string& name, const std::optional<std::string>& colour) const;
 
   /// The class of an object of the plan. Throws InvalidInputError for an
   /// object the plan does not name.
@@ -55,13 +72,47 @@ struct GroundedPlan {
 /// knows when one is unknown.
 GroundedPlan groundPlan(const language::TaskPlan& plan, const core::ObjectCatalogue& kb);
 
+/// Without a scene file: the instances the instruction's own colour words
+/// name, as a scene of ids "<class>_<colour>" (no poses; colour = the word,
+/// its rgb core::rgbOfColorName) for each part class named in two or more
+/// basic colours ("the red cuboid ... the blue cuboid"); nullopt when there
+/// is none. perceive and groundInstances then use it as the scene.
+std::optional<core::Scene> instructionInstances(const GroundedPlan& grounded, const core::ObjectCatalogue& kb);
+
 /// Stage 3: the Environment module on the demonstration, guided by the plan
-/// (step objects move, the other landmarks are static). Appends a warning
-/// when a damaged rawlog is used with allowTruncated. Throws FileError for
-/// an unreadable or empty rawlog, InvalidInputError when a moved object is
-/// never detected.
+/// (step objects move, the other landmarks are static). With a `scene` (the
+/// demo's scene file, ProgrammingOptions::scenePath), a plan class the scene
+/// holds several times is tracked per instance, with the instance's colour
+/// (perception::withSceneInstances). Without a scene file
+/// (ProgrammingOptions::scenePath empty), a part class the instruction names
+/// in exactly one basic colour other than its class's is looked for in that
+/// colour (its one instance, InstanceId ""). Appends a warning when a damaged rawlog
+/// is used with allowTruncated. Throws FileError for an unreadable or empty
+/// rawlog, InvalidInputError when no instance of a moved class is ever detected.
 perception::PerceptionResult perceive(const GroundedPlan& grounded, const core::ObjectCatalogue& kb,
-                                      const ProgrammingOptions& options, std::vector<std::string>& warnings);
+                                      const ProgrammingOptions& options, std::vector<std::string>& warnings,
+                                      const std::optional<core::Scene>& scene = std::nullopt);
+
+/// The perceived demo scene at the demo's start, for grounding: one object
+/// per perceived trajectory with a detection (name = its key, pose = its
+/// first detected pose in the table frame PerceptionResult::X_camera_table,
+/// size, kind and noun from the knowledge base, colour word = the scene
+/// instance's, else its class's, else the basic colour nearest its rgb).
+/// Throws InvalidInputError when the result has no table frame.
+execution::CellDescription perceivedScene(const perception::PerceptionResult& seen, const core::ObjectCatalogue& kb,
+                                          const std::optional<core::Scene>& scene);
+
+/// Stage 3b: every object phrase of the plan -> the perceived object it
+/// means. A phrase of a class tracked as one instance is that instance (no
+/// grounding needed, as before instances); a phrase of a class tracked per
+/// instance is grounded by execution::SceneGrounder (colour, ordinal,
+/// superlative, relation to a landmark; the step's source locations) in the
+/// perceivedScene. Sets stepObjects, movingObjects, objectByWords. Throws
+/// execution::GroundingError naming the candidates when a phrase fits none or
+/// several instances ("two cuboids match 'the cuboid' ...; say which"), and
+/// InvalidInputError when a moved instance is never detected.
+GroundedPlan groundInstances(const GroundedPlan& grounded, const perception::PerceptionResult& seen,
+                             const core::ObjectCatalogue& kb, const std::optional<core::Scene>& scene);
 
 /// Stage 4: the hand-off from perception to motion, in memory. The samples
 /// are the frames of the hand and of the moved objects' poses; time =
@@ -69,16 +120,19 @@ perception::PerceptionResult perceive(const GroundedPlan& grounded, const core::
 /// quaternion (as the ProductPose row stores it, so `srp motion` re-learning
 /// from the database sees the same inputs); a frame without a detection is a
 /// sample with valid = false (position zero, the previous yaw). Tracks are
-/// keyed and sorted by class name; planOrder = the step classes.
+/// keyed and sorted by perception key (class name, or instance id); planOrder
+/// = the step objects.
 motion::DemoTracks demoTracks(const perception::PerceptionResult& seen, const GroundedPlan& grounded,
                               double frameRate_hz);
 
 /// Stage 5 (rows): the task model to store: the instruction's tables, the
-/// perception rows (toTaskDbRows), the plan objects' class ids and
-/// locations, the Skills rows and the ProductPose skill flags. Does not
-/// touch the database.
+/// perception rows (toTaskDbRows), the plan objects' class ids, instance ids
+/// (Products.InstanceId: the instance each phrase was grounded to, "" for a
+/// class's one instance) and locations, the Skills rows and the ProductPose
+/// skill flags. Does not touch the database.
 taskdb::TaskModel buildTaskModel(const GroundedPlan& grounded, const ProgrammingOptions& options,
                                  const perception::PerceptionResult& seen, const core::ObjectCatalogue& kb,
-                                 const motion::DemoTracks& tracks, const std::vector<motion::SkillSet>& skills);
+                                 const motion::DemoTracks& tracks, const std::vector<motion::SkillSet>& skills,
+                                 const std::optional<core::Scene>& scene = std::nullopt);
 
 }  // namespace srp::programming

@@ -7,7 +7,7 @@
 #include "srp/core/Text.h"
 #include "srp/language/InstructionParser.h"
 #include "srp/language/PlanTables.h"
-#include "srp/motion/TaskModelMapping.h"
+#include "srp/programming/MotionRows.h"
 #include "srp/programming/PerceptionRows.h"
 #include "srp/rawlog/RawlogReader.h"
 
@@ -39,7 +39,7 @@ void setSkillFlags(taskdb::TaskModel& model, const std::vector<motion::SkillSet>
     const auto it = classIdByName.find(s.objectName);
     if (it == classIdByName.end()) continue;
     for (auto& row : model.productPoses)
-      if (row.classId == it->second) motion::setSkillFlags(row, s);
+      if (row.classId == it->second) programming::setSkillFlags(row, s);
   }
 }
 
@@ -206,10 +206,10 @@ taskdb::TaskModel buildTaskModel(const GroundedPlan& grounded, const Programming
         if (p->sourceLocationId && !g.sourceLocationId) g.sourceLocationId = p->sourceLocationId;
         if (p->targetLocationId && !g.targetLocationId) g.targetLocationId = p->targetLocationId;
       }
-  motion::MotionInputs inputs;
+  MotionInputs inputs;
   static_cast<motion::DemoTracks&>(inputs) = tracks;
   for (const auto& g : model.groundedProducts) inputs.classIdByName[g.objectName] = g.classId;
-  model.skills = motion::skillRows(skills, inputs);
+  model.skills = skillRows(skills, inputs);
   setSkillFlags(model, skills, inputs.classIdByName);
   return model;
 }

@@ -19,7 +19,8 @@
 #   <case>.taskmodel.json    `srp db export --format json` of the stored task model, without its
 #                            creation time
 #   sha256sums.txt           one line per compared file
-# --compare prints the files that differ between two such folders and exits 1 if any does.
+# --compare prints the files that differ between two such folders and exits 1 if a perception
+# or programming output does (a differing ground truth is printed, not counted).
 # Each build uses its own datasets/ (knowledge base, language model) as it ships.
 # About 1-2 minutes per case on 2 cores.
 set -euo pipefail
@@ -31,6 +32,7 @@ if [ "${1:-}" = "--compare" ]; then
     name=$(basename "$f")
     if [ ! -f "$b/$name" ] && [ "${name%.gt.json}" != "$name" ]; then echo "no demo: $name (DEMO_DIR reused)"
     elif [ ! -f "$b/$name" ]; then echo "missing in $b: $name"; differ=1
+    elif ! cmp -s "$f" "$b/$name" && [ "${name%.gt.json}" != "$name" ]; then echo "differs: $name (the demo's ground truth: not a perception or programming output)"
     elif ! cmp -s "$f" "$b/$name"; then echo "differs: $name"; differ=1
     else echo "same:    $name"; fi
   done

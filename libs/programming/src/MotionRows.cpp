@@ -129,7 +129,10 @@ taskdb::TaskModel taskModelFromTracks(const motion::DemoTracks& demo, const std:
     p.objectName = demo.objects[k].name;
     p.classId = id;
     m.products.push_back(p);
-    m.groundedProducts.push_back({id, demo.objects[k].name, std::nullopt, std::nullopt, std::nullopt});
+    taskdb::GroundedProductRow g;  // no locations, colour or instance
+    g.classId = id;
+    g.objectName = demo.objects[k].name;
+    m.groundedProducts.push_back(g);
     for (std::size_t i = 0; i < demo.objects[k].positions.size(); ++i) {
       const auto& s = demo.objects[k].positions[i];
       taskdb::ProductPoseRow r;

@@ -9,7 +9,8 @@
 #include "srp/core/Error.h"
 #include "srp/motion/SkillLearner.h"
 #include "srp/motion/SkillPlots.h"
-#include "srp/motion/TaskModelMapping.h"
+#include "srp/programming/MotionRows.h"
+#include "srp/synth/SyntheticPickPlace.h"
 #include "srp/taskdb/TaskModelStore.h"
 
 namespace {
@@ -29,8 +30,8 @@ void runMotion(const MotionOptions& o) {
   taskdb::TaskModelStore store(db);
   int id = o.id;
   if (o.syntheticDemo) {
-    const auto demo = motion::SyntheticPickPlaceGenerator(motion::SyntheticPickPlaceConfig{}).generate();
-    id = store.write(motion::taskModelFromSyntheticDemo(demo, "synthetic-demo"));
+    const auto demo = synth::SyntheticPickPlaceGenerator(synth::SyntheticPickPlaceConfig{}).generate();
+    id = store.write(programming::taskModelFromTracks(demo, "synthetic-demo", demo.instruction()));
     std::cerr << "srp motion: stored a synthetic 4-object demo as task model " << id << "\n";
   } else if (id <= 0) {
     throw core::InvalidInputError("give a TaskModelId (see 'srp db list') or --synthetic-demo");
@@ -38,13 +39,13 @@ void runMotion(const MotionOptions& o) {
   const taskdb::TaskModel model = store.read(id);
   std::cerr << "srp motion: task model " << id << " '" << model.info.name << "': segmenting "
             << model.handPositions.size() << " hand positions\n";
-  const motion::MotionInputs inputs = motion::motionInputsFromTaskModel(model);
+  const programming::MotionInputs inputs = programming::motionInputsFromTaskModel(model);
   std::cerr << "srp motion: segmenting and learning DMPs\n";
   const motion::LearnedSkills learned = motion::learnSkills(inputs);
   const auto& seg = learned.segmentation;
   const auto& skills = learned.skills;
-  const auto rows = motion::skillRows(skills, inputs);
-  motion::storeSkills(db, id, skills, inputs);  // one transaction, after everything above succeeded
+  const auto rows = programming::skillRows(skills, inputs);
+  programming::storeSkills(db, id, skills, inputs);  // one transaction, after everything above succeeded
 
   std::vector<std::string> pngs;
   if (!o.noPlots) {

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "srp/core/Error.h"
+#include "srp/core/Pose.h"
 
 namespace srp::execution {
 namespace {
@@ -20,12 +21,6 @@ Eigen::Matrix4d dhLink(double theta, double d, double a, double alpha) {
       0, sa, ca, d,                    //
       0, 0, 0, 1;
   return T;
-}
-
-double wrapToPi(double a) {
-  a = std::fmod(a + M_PI, 2.0 * M_PI);
-  if (a <= 0.0) a += 2.0 * M_PI;
-  return a - M_PI;
 }
 
 struct Dh {
@@ -118,7 +113,7 @@ std::vector<JointVector> UrInverseKinematics::solveAll(const srp::core::Pose3& X
         const double q4 = std::atan2(T34(1, 0), T34(0, 0));
         JointVector q;
         q << q1, q2, q3, q4, q5, q6;
-        for (int i = 0; i < 6; ++i) q[i] = wrapToPi(q[i]);
+        for (int i = 0; i < 6; ++i) q[i] = core::angleDifference(q[i], 0.0);  // to (-pi, pi]
         out.push_back(q);
       }
     }
@@ -134,7 +129,7 @@ std::optional<JointVector> UrInverseKinematics::solveNearest(const srp::core::Po
     bool ok = true;
     for (int i = 0; i < 6 && ok; ++i) {
       // Shift by 2 pi k towards the current joint, then back inside the limits.
-      q[i] = q_current[i] + wrapToPi(q[i] - q_current[i]);
+      q[i] = q_current[i] + core::angleDifference(q[i], q_current[i]);
       const auto& jl = model_.joints()[i];
       while (q[i] > jl.upper_rad) q[i] -= 2.0 * M_PI;
       while (q[i] < jl.lower_rad) q[i] += 2.0 * M_PI;

@@ -8,8 +8,8 @@
 #include "srp/execution/ExecutionSession.h"
 #include "srp/execution/TaskExecutor.h"
 #include "srp/motion/SkillLearner.h"
-#include "srp/motion/SyntheticPickPlace.h"
-#include "srp/motion/TaskModelMapping.h"
+#include "srp/programming/MotionRows.h"
+#include "srp/synth/SyntheticPickPlace.h"
 
 using srp::core::Pose3;
 using srp::core::SkillType;
@@ -53,9 +53,9 @@ struct ArcDemo {
 /// Task model of a synthetic 4-object demo with its skills learned and mapped to
 /// Skills rows, as `srp motion` stores them.
 srp::taskdb::TaskModel learnedTaskModel() {
-  const auto demo = srp::motion::SyntheticPickPlaceGenerator(srp::motion::SyntheticPickPlaceConfig{}).generate();
-  srp::taskdb::TaskModel model = srp::motion::taskModelFromSyntheticDemo(demo, "synthetic");
-  srp::motion::learnSkills(model);
+  const auto demo = srp::synth::SyntheticPickPlaceGenerator(srp::synth::SyntheticPickPlaceConfig{}).generate();
+  srp::taskdb::TaskModel model = srp::programming::taskModelFromTracks(demo, "synthetic", demo.instruction());
+  srp::programming::learnSkills(model);
   return model;
 }
 

@@ -33,7 +33,7 @@ AnalysedDemo analyseDemo(const ExperimentOptions& options, int index, const std:
   out.groundTruth = synth::DemoGroundTruth::load(out.programmed.demo.groundTruthPath.string());
   auto db = taskdb::TaskDatabase::open(out.programmed.databasePath.string(), taskdb::TaskDatabase::Mode::ReadOnly);
   out.model = taskdb::TaskModelStore(db).read(out.programmed.taskModelId);
-  out.inputs = motion::motionInputsFromTaskModel(out.model);
+  out.inputs = programming::motionInputsFromTaskModel(out.model);
   return out;
 }
 

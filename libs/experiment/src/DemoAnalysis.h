@@ -7,7 +7,7 @@
 
 #include "srp/experiment/DemoCache.h"
 #include "srp/experiment/ExperimentResult.h"
-#include "srp/motion/TaskModelMapping.h"
+#include "srp/programming/MotionRows.h"
 #include "srp/synth/DemoGroundTruth.h"
 #include "srp/taskdb/TaskModel.h"
 
@@ -19,7 +19,7 @@ struct AnalysedDemo
   ProgrammedDemo programmed;
   synth::DemoGroundTruth groundTruth;
   taskdb::TaskModel model;      ///< as stored by programTask
-  motion::MotionInputs inputs;  ///< hand and object tracks, plan order (frame = TimeId)
+  programming::MotionInputs inputs;  ///< hand and object tracks, plan order (frame = TimeId)
 };
 
 /// Standard demo `index` of the run (standardDemoRequest), rendered and

@@ -86,6 +86,30 @@ void integrateDefault(const DefaultIntegration& in, DmpRollout& out) {
   }
 }
 
+
+// The "demo" and "configured" blocks of the JSON: start, goal, normalised
+// start/goal velocities and duration (the demo block adds its sample period).
+nlohmann::json endpointsJson(const Eigen::VectorXd& start, const Eigen::VectorXd& goal, const Eigen::VectorXd& startVel_s,
+                             const Eigen::VectorXd& goalVel_s, double duration_s) {
+  using detail::toJson;
+  return {{"start", toJson(start)},
+          {"goal", toJson(goal)},
+          {"start_velocity_normalised", toJson(startVel_s)},
+          {"goal_velocity_normalised", toJson(goalVel_s)},
+          {"duration_s", duration_s}};
+}
+
+void endpointsFromJson(const nlohmann::json& block, Eigen::Index D, const std::string& ctx, Eigen::VectorXd& start,
+                       Eigen::VectorXd& goal, Eigen::VectorXd& startVel_s, Eigen::VectorXd& goalVel_s, double& duration_s) {
+  using core::requireField;
+  using detail::vectorFromJson;
+  start = vectorFromJson(requireField(block, "start", ctx), D, ctx + ".start");
+  goal = vectorFromJson(requireField(block, "goal", ctx), D, ctx + ".goal");
+  startVel_s = vectorFromJson(requireField(block, "start_velocity_normalised", ctx), D, ctx + ".start_velocity_normalised");
+  goalVel_s = vectorFromJson(requireField(block, "goal_velocity_normalised", ctx), D, ctx + ".goal_velocity_normalised");
+  duration_s = requireField(block, "duration_s", ctx).get<double>();
+}
+
 }  // namespace
 
 Dmp Dmp::imitate(const Eigen::VectorXd& t_s, const Eigen::MatrixXd& Y, const DmpConfig& config) {
@@ -302,26 +326,21 @@ Eigen::VectorXd Dmp::basisWidths() const {
 
 nlohmann::json Dmp::toJson() const {
   using detail::toJson;
+  nlohmann::json demo = endpointsJson(demoStart_, demoGoal_, demoStartVel_s_, demoGoalVel_s_, demoDuration_s_);
+  demo["sample_period_s"] = demoDt_s_;
   return {{"class", "srp::motion::Dmp"},
           {"schema_version", 1},
           {"config", config_},
           {"weights", toJson(weights_)},
           {"lambda", lambda_},
           {"gcv_error", gcv_},
-          {"demo", {{"start", toJson(demoStart_)}, {"goal", toJson(demoGoal_)},
-                    {"start_velocity_normalised", toJson(demoStartVel_s_)},
-                    {"goal_velocity_normalised", toJson(demoGoalVel_s_)},
-                    {"duration_s", demoDuration_s_}, {"sample_period_s", demoDt_s_}}},
-          {"configured", {{"start", toJson(start_)}, {"goal", toJson(goal_)},
-                          {"start_velocity_normalised", toJson(startVel_s_)},
-                          {"goal_velocity_normalised", toJson(goalVel_s_)},
-                          {"duration_s", duration_s_}}}};
+          {"demo", demo},
+          {"configured", endpointsJson(start_, goal_, startVel_s_, goalVel_s_, duration_s_)}};
 }
 
 Dmp Dmp::fromJson(const nlohmann::json& j) {
   using core::requireField;
   using detail::matrixFromJson;
-  using detail::vectorFromJson;
   const std::string ctx = "DMP JSON";
   detail::requireClassAndVersion(j, "srp::motion::Dmp", 1, ctx);
   Dmp dmp;
@@ -333,18 +352,11 @@ Dmp Dmp::fromJson(const nlohmann::json& j) {
   dmp.lambda_ = requireField(j, "lambda", ctx).get<double>();
   dmp.gcv_ = requireField(j, "gcv_error", ctx).get<double>();
   const auto& demo = requireField(j, "demo", ctx);
-  dmp.demoStart_ = vectorFromJson(requireField(demo, "start", ctx), D, ctx + " demo.start");
-  dmp.demoGoal_ = vectorFromJson(requireField(demo, "goal", ctx), D, ctx + " demo.goal");
-  dmp.demoStartVel_s_ = vectorFromJson(requireField(demo, "start_velocity_normalised", ctx), D, ctx);
-  dmp.demoGoalVel_s_ = vectorFromJson(requireField(demo, "goal_velocity_normalised", ctx), D, ctx);
-  dmp.demoDuration_s_ = requireField(demo, "duration_s", ctx).get<double>();
+  endpointsFromJson(demo, D, ctx + " demo", dmp.demoStart_, dmp.demoGoal_, dmp.demoStartVel_s_, dmp.demoGoalVel_s_,
+                    dmp.demoDuration_s_);
   dmp.demoDt_s_ = requireField(demo, "sample_period_s", ctx).get<double>();
-  const auto& c = requireField(j, "configured", ctx);
-  dmp.start_ = vectorFromJson(requireField(c, "start", ctx), D, ctx + " configured.start");
-  dmp.goal_ = vectorFromJson(requireField(c, "goal", ctx), D, ctx + " configured.goal");
-  dmp.startVel_s_ = vectorFromJson(requireField(c, "start_velocity_normalised", ctx), D, ctx);
-  dmp.goalVel_s_ = vectorFromJson(requireField(c, "goal_velocity_normalised", ctx), D, ctx);
-  dmp.duration_s_ = requireField(c, "duration_s", ctx).get<double>();
+  endpointsFromJson(requireField(j, "configured", ctx), D, ctx + " configured", dmp.start_, dmp.goal_, dmp.startVel_s_,
+                    dmp.goalVel_s_, dmp.duration_s_);
   require(dmp.duration_s_ > 0 && dmp.demoDuration_s_ > 0 && dmp.demoDt_s_ > 0,
           ctx + ": durations must be positive");
   require(dmp.weights_.allFinite(), ctx + ": weights contain NaN/inf");

@@ -8,7 +8,7 @@
 #include "srp/execution/SceneGrounder.h"
 #include "srp/language/InstructionParser.h"
 #include "srp/language/PlanTables.h"
-#include "srp/motion/TaskModelMapping.h"
+#include "srp/programming/MotionRows.h"
 #include "srp/programming/PerceptionRows.h"
 #include "srp/rawlog/RawlogReader.h"
 
@@ -43,7 +43,7 @@ void setSkillFlags(taskdb::TaskModel& model, const std::vector<motion::SkillSet>
     for (const auto& g : model.groundedProducts) {
       if (keyOf(g) != s.objectName) continue;
       for (auto& row : model.productPoses)
-        if (row.classId == g.classId && row.instanceId == g.instanceId) motion::setSkillFlags(row, s);
+        if (row.classId == g.classId && row.instanceId == g.instanceId) programming::setSkillFlags(row, s);
     }
 }
 
@@ -352,7 +352,7 @@ taskdb::TaskModel buildTaskModel(const GroundedPlan& grounded, const Programming
         if (p->sourceLocationId && !g.sourceLocationId) g.sourceLocationId = p->sourceLocationId;
         if (p->targetLocationId && !g.targetLocationId) g.targetLocationId = p->targetLocationId;
       }
-  motion::MotionInputs inputs;
+  MotionInputs inputs;
   static_cast<motion::DemoTracks&>(inputs) = tracks;
   std::map<std::string, std::string> instanceOf;  // key -> instance id
   for (const auto& g : model.groundedProducts) {
@@ -361,7 +361,7 @@ taskdb::TaskModel buildTaskModel(const GroundedPlan& grounded, const Programming
   }
   // Per skill set, so that each row can be given its object's instance.
   for (const auto& s : skills)
-    for (auto& row : motion::skillRows({s}, inputs)) {
+    for (auto& row : skillRows({s}, inputs)) {
       row.instanceId = instanceOf[s.objectName];
       model.skills.push_back(std::move(row));
     }

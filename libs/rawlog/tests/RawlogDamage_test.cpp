@@ -16,6 +16,7 @@
 #include "srp/core/Error.h"
 #include "srp/rawlog/RawlogReader.h"
 #include "srp/rawlog/RawlogWriter.h"
+#include "TestFrames.h"
 
 using namespace srp::rawlog;
 
@@ -24,17 +25,7 @@ const srp::core::CameraIntrinsics kSmallK{40.0, 41.0, 15.5, 11.5, 32, 24};
 constexpr double kUnit_m = 1e-3;
 
 RgbdFrame smallFrame(int i) {
-  RgbdFrame f;
-  f.index = i;
-  f.t_s = 1700000000.0 + i / 30.0;
-  f.intrinsics = kSmallK;
-  f.colour_bgr8 = cv::Mat(kSmallK.height_px, kSmallK.width_px, CV_8UC3);
-  cv::RNG rng(99 + i);
-  rng.fill(f.colour_bgr8, cv::RNG::UNIFORM, cv::Scalar::all(0), cv::Scalar::all(256));
-  f.depth_m = cv::Mat(kSmallK.height_px, kSmallK.width_px, CV_32FC1);
-  for (int r = 0; r < f.depth_m.rows; ++r)
-    for (int c = 0; c < f.depth_m.cols; ++c) f.depth_m.at<float>(r, c) = 0.5f + 0.01f * ((r * 7 + c * 3 + i) % 50);
-  return f;
+  return srp::rawlog::testing::testFrame(i, kSmallK, 99 + i, [i](int r, int c) { return 0.5f + 0.01f * ((r * 7 + c * 3 + i) % 50); });
 }
 
 std::string tempPath(const std::string& name) {

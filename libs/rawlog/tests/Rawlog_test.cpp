@@ -12,6 +12,7 @@
 #include "srp/core/Error.h"
 #include "srp/rawlog/RawlogReader.h"
 #include "srp/rawlog/RawlogWriter.h"
+#include "TestFrames.h"
 
 using namespace srp::rawlog;
 
@@ -21,18 +22,9 @@ constexpr double kDepthTol_m = kDepthUnit_m / 2 + 1e-7;  // quantisation to the 
 const srp::core::CameraIntrinsics kK{525.0, 526.0, 159.5, 119.5, 320, 240};
 
 RgbdFrame makeFrame(int i) {
-  RgbdFrame f;
-  f.index = i;
-  f.t_s = 1700000000.0 + i / 30.0;
-  f.intrinsics = kK;
-  f.colour_bgr8 = cv::Mat(kK.height_px, kK.width_px, CV_8UC3);
-  cv::RNG rng(1234 + i);  // the same frame every call
-  rng.fill(f.colour_bgr8, cv::RNG::UNIFORM, cv::Scalar::all(0), cv::Scalar::all(256));
-  f.depth_m = cv::Mat(kK.height_px, kK.width_px, CV_32FC1);
-  for (int r = 0; r < f.depth_m.rows; ++r)
-    for (int c = 0; c < f.depth_m.cols; ++c)
-      f.depth_m.at<float>(r, c) = (c % 17 == 0) ? 0.0f : 0.4f + 0.001f * r + 0.0003f * c + 0.01f * i;
-  return f;
+  return srp::rawlog::testing::testFrame(i, kK, 1234 + i, [i](int r, int c) {
+    return (c % 17 == 0) ? 0.0f : 0.4f + 0.001f * r + 0.0003f * c + 0.01f * i;
+  });
 }
 
 std::string tempPath(const std::string& name) {

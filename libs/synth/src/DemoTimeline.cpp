@@ -46,10 +46,6 @@ srp::core::Pose3 handPose(const Key& k) {
   return X;
 }
 
-// atan2(sin, cos), not core::angleDifference: the two differ in the last bits and
-// the rendered demos (rawlogs, ground truth) are kept byte-identical.
-double wrapAngle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
-
 double footprintRadius(const srp::core::ObjectClass& c) { return 0.5 * c.dimensions_m.head<2>().norm(); }
 
 // Oriented rectangle of an object's footprint on the table (its bounding box seen from above).
@@ -283,7 +279,7 @@ std::vector<Segment> planSegments(const srp::core::Scene& scene, const srp::core
     Key prePlace = place;
     prePlace.p_world.z() = std::max(travelZ, place.p_world.z() + 0.05);
     const srp::core::Pose3 X_world_end =
-        srp::core::makePoseYPR(best_world, wrapAngle(yawObject + yawPlace - yawGrasp), 0.0, 0.0);
+        srp::core::makePoseYPR(best_world, core::angleDifference(yawObject + yawPlace - yawGrasp, 0.0), 0.0, 0.0);
     finalPoses[oi] = X_world_end;
 
     // Durations grow with distance; the final approach is slow (slow-down before grasp).
@@ -353,7 +349,7 @@ void sampleFrames(DemoTimeline& out, const std::vector<Segment>& segments, const
     const double m = minimumJerk(tau);
     Key key;
     key.p_world = seg.from.p_world + m * (seg.to.p_world - seg.from.p_world);
-    key.yaw_rad = seg.from.yaw_rad + m * wrapAngle(seg.to.yaw_rad - seg.from.yaw_rad);
+    key.yaw_rad = seg.from.yaw_rad + m * core::angleDifference(seg.to.yaw_rad, seg.from.yaw_rad);
     key.grip = seg.from.grip + m * (seg.to.grip - seg.from.grip);
     if (seg.tremor) {
       const double envelope = std::sin(kPi * std::clamp(tau, 0.0, 1.0));

@@ -6,7 +6,8 @@
 #include "srp/execution/DmpPathGenerator.h"
 #include "srp/execution/RandomScene.h"
 #include "srp/motion/SkillLearner.h"
-#include "srp/motion/TaskModelMapping.h"
+#include "srp/programming/MotionRows.h"
+#include "srp/synth/SyntheticPickPlace.h"
 #include "srp/execution/TaskExecutor.h"
 #include "srp/execution/ExecutionSession.h"
 #include "srp/execution/PlanConversion.h"
@@ -230,9 +231,9 @@ TEST(Acceptance, FiftySeededRandomScenes) {
 // The same 50 scenes with DMP paths: skills learned from a synthetic 4-object demo
 // (Segmenter + SkillLearner, Skills rows as `srp motion` stores them).
 TEST(Acceptance, FiftySeededRandomScenesWithLearnedDmps) {
-  const auto demo = srp::motion::SyntheticPickPlaceGenerator(srp::motion::SyntheticPickPlaceConfig{}).generate();
-  srp::taskdb::TaskModel model = srp::motion::taskModelFromSyntheticDemo(demo, "synthetic");
-  srp::motion::learnSkills(model);
+  const auto demo = srp::synth::SyntheticPickPlaceGenerator(srp::synth::SyntheticPickPlaceConfig{}).generate();
+  srp::taskdb::TaskModel model = srp::programming::taskModelFromTracks(demo, "synthetic", demo.instruction());
+  srp::programming::learnSkills(model);
   const srp::core::Scene scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
   const auto generator = std::make_shared<DmpPathGenerator>(DmpPathGenerator::fromTaskModel(model, scene.X_world_camera));
   const RobotModel robot = RobotModel::defaultUr5();

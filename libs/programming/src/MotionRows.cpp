@@ -1,4 +1,4 @@
-#include "srp/motion/TaskModelMapping.h"
+#include "srp/programming/MotionRows.h"
 
 #include <set>
 
@@ -7,7 +7,7 @@
 #include "srp/taskdb/SkillDao.h"
 #include "srp/taskdb/TaskModelDao.h"
 
-namespace srp::motion {
+namespace srp::programming {
 
 MotionInputs motionInputsFromTaskModel(const taskdb::TaskModel& model) {
   using core::InvalidInputError;
@@ -47,7 +47,7 @@ MotionInputs motionInputsFromTaskModel(const taskdb::TaskModel& model) {
     for (const auto& r : model.productPoses)
       if (r.classId == classId) at[r.timeId] = &r;
     if (at.empty()) continue;
-    ObjectTrack track;
+    motion::ObjectTrack track;
     track.name = name;
     track.positions = core::PositionTrajectory(frame);
     for (int t : times) {
@@ -61,13 +61,13 @@ MotionInputs motionInputsFromTaskModel(const taskdb::TaskModel& model) {
   return in;
 }
 
-std::vector<taskdb::SkillRow> skillRows(const std::vector<SkillSet>& skills, const MotionInputs& inputs) {
+std::vector<taskdb::SkillRow> skillRows(const std::vector<motion::SkillSet>& skills, const MotionInputs& inputs) {
   std::vector<taskdb::SkillRow> rows;
   for (const auto& s : skills) {
     const auto it = inputs.classIdByName.find(s.objectName);
     if (it == inputs.classIdByName.end())
       throw core::InvalidInputError("skill object '" + s.objectName + "' is not a grounded product");
-    for (const auto& r : skillRecords(s)) {
+    for (const auto& r : motion::skillRecords(s)) {
       taskdb::SkillRow row;
       row.classId = it->second;
       row.skill = r.skill;
@@ -80,14 +80,14 @@ std::vector<taskdb::SkillRow> skillRows(const std::vector<SkillSet>& skills, con
   return rows;
 }
 
-LearnedSkills learnSkills(taskdb::TaskModel& model) {
+motion::LearnedSkills learnSkills(taskdb::TaskModel& model) {
   const MotionInputs inputs = motionInputsFromTaskModel(model);
-  LearnedSkills learned = learnSkills(inputs);
+  motion::LearnedSkills learned = motion::learnSkills(inputs);
   model.skills = skillRows(learned.skills, inputs);
   return learned;
 }
 
-bool setSkillFlags(taskdb::ProductPoseRow& row, const SkillSet& s) {
+bool setSkillFlags(taskdb::ProductPoseRow& row, const motion::SkillSet& s) {
   const bool reach = row.timeId >= s.reachStartFrame && row.timeId < s.graspFrame;
   const bool grasp = row.timeId == s.graspFrame, release = row.timeId == s.releaseFrame;
   const bool move = row.timeId > s.graspFrame && row.timeId < s.releaseFrame;
@@ -96,7 +96,7 @@ bool setSkillFlags(taskdb::ProductPoseRow& row, const SkillSet& s) {
   return true;
 }
 
-void storeSkills(taskdb::TaskDatabase& db, int taskModelId, const std::vector<SkillSet>& skills,
+void storeSkills(taskdb::TaskDatabase& db, int taskModelId, const std::vector<motion::SkillSet>& skills,
                  const MotionInputs& inputs) {
   const std::vector<taskdb::SkillRow> rows = skillRows(skills, inputs);
   taskdb::ScopedTransaction tx(db);
@@ -115,12 +115,11 @@ void storeSkills(taskdb::TaskDatabase& db, int taskModelId, const std::vector<Sk
   tx.commit();
 }
 
-taskdb::TaskModel taskModelFromSyntheticDemo(const SyntheticPickPlace& demo, const std::string& name) {
+taskdb::TaskModel taskModelFromTracks(const motion::DemoTracks& demo, const std::string& name,
+                                      const std::string& instruction) {
   taskdb::TaskModel m;
   m.info.name = name;
-  m.info.instruction = "Synthetic demo: pick and place";
-  for (std::size_t i = 0; i < demo.planOrder.size(); ++i)
-    m.info.instruction += std::string(i ? ", then " : " ") + "the " + demo.planOrder[i];
+  m.info.instruction = instruction;
   m.info.frame = demo.hand.frame();
   m.info.frameRate_hz = demo.hand.size() > 1 ? 1.0 / (demo.hand[1].t_s - demo.hand[0].t_s) : 30.0;
   for (std::size_t k = 0; k < demo.objects.size(); ++k) {
@@ -130,7 +129,10 @@ taskdb::TaskModel taskModelFromSyntheticDemo(const SyntheticPickPlace& demo, con
     p.objectName = demo.objects[k].name;
     p.classId = id;
     m.products.push_back(p);
-    m.groundedProducts.push_back({id, demo.objects[k].name, std::nullopt, std::nullopt, std::nullopt});
+    taskdb::GroundedProductRow g;  // no locations, colour or instance
+    g.classId = id;
+    g.objectName = demo.objects[k].name;
+    m.groundedProducts.push_back(g);
     for (std::size_t i = 0; i < demo.objects[k].positions.size(); ++i) {
       const auto& s = demo.objects[k].positions[i];
       taskdb::ProductPoseRow r;
@@ -150,4 +152,4 @@ taskdb::TaskModel taskModelFromSyntheticDemo(const SyntheticPickPlace& demo, con
   return m;
 }
 
-}  // namespace srp::motion
+}  // namespace srp::programming

@@ -1,27 +1,28 @@
 #pragma once
-/// \file TaskModelMapping.h
-/// \brief The mapping between a stored task model (srp::taskdb rows) and the
-/// motion module's types: trajectories and plan order in, Skills rows out.
+/// \file MotionRows.h
+/// \brief The mapping between a task model's rows (srp::taskdb) and the motion
+/// module's types: hand/object tracks and plan order out of the rows
+/// (`srp motion`), Skills rows and ProductPose flags in; and tracks into rows
+/// (synthetic demos for examples and tests). PerceptionRows.h is the
+/// perception side; motion itself knows no rows.
 
 #include <map>
 #include <string>
 #include <vector>
 
 #include "srp/motion/LearnSkills.h"
-#include "srp/motion/Segmenter.h"
-#include "srp/motion/SyntheticPickPlace.h"
 #include "srp/motion/SkillSet.h"
 #include "srp/taskdb/TaskDatabase.h"
 #include "srp/taskdb/TaskModel.h"
 
-namespace srp::motion {
+namespace srp::programming {
 
 /// What segmentation needs from a task model. Samples are the union of the
 /// TimeIds of HandPositions and of the plan objects' ProductPose rows (frame =
 /// TimeId, t = TimeId / frame rate); a TimeId without a row is "not detected".
 /// `objects`: one per plan object with ProductPose rows; `planOrder`: grounded
 /// object names, TaskModelTargetObjects order.
-struct MotionInputs : DemoTracks {
+struct MotionInputs : motion::DemoTracks {
   std::map<std::string, int> classIdByName;  ///< GroundedProducts
 };
 
@@ -32,32 +33,35 @@ struct MotionInputs : DemoTracks {
 MotionInputs motionInputsFromTaskModel(const taskdb::TaskModel& model);
 
 /// Learns the skills of a task model held in memory (its hand positions and
-/// plan objects' ProductPose rows; e.g. taskModelFromSyntheticDemo) and sets
+/// plan objects' ProductPose rows; e.g. taskModelFromTracks) and sets
 /// its Skills rows; the ProductPose flags are left as they are. Throws as
 /// motionInputsFromTaskModel and learnSkills(DemoTracks) do.
-LearnedSkills learnSkills(taskdb::TaskModel& model);
+motion::LearnedSkills learnSkills(taskdb::TaskModel& model);
 
 /// Skills rows of the learned skill sets (TimeIds = the demo's frame numbers).
-std::vector<taskdb::SkillRow> skillRows(const std::vector<SkillSet>& skills, const MotionInputs& inputs);
+std::vector<taskdb::SkillRow> skillRows(const std::vector<motion::SkillSet>& skills, const MotionInputs& inputs);
 
 /// Sets the Reach/Grasp/Move/Release flags of one ProductPose row of the
 /// skill set's object (Reach: reach start <= TimeId < grasp, Grasp: the grasp
 /// frame, Move: between, Release: the release frame; other flags cleared).
 /// Returns true when a flag changed.
-bool setSkillFlags(taskdb::ProductPoseRow& row, const SkillSet& skills);
+bool setSkillFlags(taskdb::ProductPoseRow& row, const motion::SkillSet& skills);
 
 /// Stores learned skills in one transaction: replaces the task model's Skills
 /// rows and sets the Reach/Grasp/Move/Release flags of the moved objects'
 /// ProductPose rows (Reach: reach start <= TimeId < grasp, Grasp: the grasp
 /// frame, Move: between, Release: the release frame; other flags cleared).
 /// Throws InvalidInputError for an unknown task model; on any error nothing changes.
-void storeSkills(taskdb::TaskDatabase& db, int taskModelId, const std::vector<SkillSet>& skills,
+void storeSkills(taskdb::TaskDatabase& db, int taskModelId, const std::vector<motion::SkillSet>& skills,
                  const MotionInputs& inputs);
 
-/// A task model holding a synthetic demo (SyntheticPickPlaceGenerator): one
-/// Product and GroundedProduct per object (ObjectId = ClassId = index), the
-/// moved objects as the plan, their poses and the hand positions (undetected
-/// samples stored with Detected = false), no skills. For examples and tests.
-taskdb::TaskModel taskModelFromSyntheticDemo(const SyntheticPickPlace& demo, const std::string& name);
+/// A task model holding a demo's tracks (e.g. synth::SyntheticPickPlace): one
+/// Product and GroundedProduct per track (ObjectId = ClassId = index), the
+/// plan order as the plan, the tracks' poses (yaw about the camera z axis) and
+/// the hand positions (invalid samples stored with Detected = false), frame
+/// rate from the first two hand samples (30 Hz with fewer), no skills.
+/// For examples and tests; motionInputsFromTaskModel reads it back.
+taskdb::TaskModel taskModelFromTracks(const motion::DemoTracks& tracks, const std::string& name,
+                                      const std::string& instruction);
 
-}  // namespace srp::motion
+}  // namespace srp::programming

@@ -3,7 +3,8 @@
 /// \brief Generates hand and object trajectories of a one-hand multi-step pick
 /// & place demonstration with known grasp/release frames, with detector-like
 /// noise, dropouts, occlusion and flicker. Used by the tests, the benchmark
-/// and `srp segment` examples; it is test data, not a model of real hands.
+/// and the `srp segment` / `srp motion` examples; it is test data, not a model
+/// of real hands (rendered RGB-D demos: DemoGenerator).
 ///
 /// Camera frame (x right, y down, z forward = depth), metres, radians; table
 /// at depth ~0.9 m. Timeline: no hand for `handAbsent_s`, then per object
@@ -17,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "srp/motion/Segmenter.h"
+#include "srp/motion/LearnSkills.h"
 
-namespace srp::motion {
+namespace srp::synth {
 
 struct SyntheticPickPlaceConfig {
   std::vector<std::string> movedObjects = {"cuboid", "star", "parallelogram", "octagon"};  ///< in plan order
@@ -40,11 +41,13 @@ struct SyntheticPickPlaceConfig {
   std::uint32_t seed = 1;
 };
 
-struct SyntheticPickPlace {
-  core::PositionTrajectory hand;   ///< invalid samples have p = (0, 0, 0) as the CSV convention
-  std::vector<ObjectTrack> objects;
+/// The demo's tracks (hand: invalid samples have p = (0, 0, 0) as the CSV
+/// convention; objects; plan order = the moved objects) and the truth.
+struct SyntheticPickPlace : motion::DemoTracks {
   std::vector<int> graspIndex, releaseIndex;  ///< truth per moved object, plan order
-  std::vector<std::string> planOrder;
+
+  /// "Synthetic demo: pick and place the cuboid, then the star, ..." (plan order).
+  std::string instruction() const;
 };
 
 class SyntheticPickPlaceGenerator {
@@ -56,4 +59,4 @@ class SyntheticPickPlaceGenerator {
   SyntheticPickPlaceConfig config_;
 };
 
-}  // namespace srp::motion
+}  // namespace srp::synth

@@ -1,4 +1,4 @@
-#include "srp/motion/TaskModelMapping.h"
+#include "srp/programming/MotionRows.h"
 
 #include <gtest/gtest.h>
 
@@ -8,35 +8,36 @@
 
 #include "srp/core/Error.h"
 #include "srp/motion/SkillLearner.h"
+#include "srp/synth/SyntheticPickPlace.h"
 #include "srp/taskdb/ProductPoseDao.h"
 #include "srp/taskdb/TaskModelStore.h"
 
-namespace srp::motion {
+namespace srp::programming {
 namespace {
 
 constexpr int kFrameTol = 3;
 
-std::string tempPath(const std::string& name) { return std::string(SRP_BINARY_DIR) + "/motion_test_" + name; }
+std::string tempPath(const std::string& name) { return std::string(SRP_BINARY_DIR) + "/programming_test_motion_rows_" + name; }
 
 void removeDb(const std::string& path) {
   for (const char* suffix : {"", "-wal", "-shm"}) std::remove((path + suffix).c_str());
 }
 
-TEST(TaskModelMapping, StoredDemoSegmentsLearnsAndStoresSkillsThatRollOutIdentically) {
-  const auto demo = SyntheticPickPlaceGenerator(SyntheticPickPlaceConfig{}).generate();
+TEST(MotionRows, StoredDemoSegmentsLearnsAndStoresSkillsThatRollOutIdentically) {
+  const auto demo = synth::SyntheticPickPlaceGenerator(synth::SyntheticPickPlaceConfig{}).generate();
   const std::string path = tempPath("mapping.db");
   removeDb(path);
   auto db = taskdb::TaskDatabase::open(path);
   taskdb::TaskModelStore store(db);
-  const int id = store.write(taskModelFromSyntheticDemo(demo, "synthetic"));
+  const int id = store.write(taskModelFromTracks(demo, "synthetic", demo.instruction()));
   const taskdb::TaskModel model = store.read(id);
 
   const MotionInputs in = motionInputsFromTaskModel(model);
   ASSERT_EQ(in.planOrder, demo.planOrder);
   ASSERT_EQ(in.hand.size(), demo.hand.size());
-  Segmenter::Config thesis;  // the generator's truth is the thesis' grasp definition (mid-hold)
-  thesis.events = Segmenter::EventEstimator::Thesis;
-  const LearnedSkills learned = learnSkills(in, Segmenter(thesis));
+  motion::Segmenter::Config thesis;  // the generator's truth is the thesis' grasp definition (mid-hold)
+  thesis.events = motion::Segmenter::EventEstimator::Thesis;
+  const motion::LearnedSkills learned = motion::learnSkills(in, motion::Segmenter(thesis));
   const auto& seg = learned.segmentation;
   const auto& skills = learned.skills;
   for (std::size_t i = 0; i < seg.objects.size(); ++i) {
@@ -62,42 +63,42 @@ TEST(TaskModelMapping, StoredDemoSegmentsLearnsAndStoresSkillsThatRollOutIdentic
     const auto& s = skills[static_cast<std::size_t>(moves++)];
     EXPECT_EQ(row.startTimeId, in.hand[s.graspIndex].frame);
     EXPECT_EQ(row.endTimeId, in.hand[s.releaseIndex].frame);
-    const Dmp stored = Dmp::fromJson(row.parameters.at("dmp"));
+    const motion::Dmp stored = motion::Dmp::fromJson(row.parameters.at("dmp"));
     EXPECT_TRUE(stored.rollout(0.01).y == s.move->rollout(0.01).y) << s.objectName;
   }
   EXPECT_EQ(moves, 4);
   removeDb(path);
 }
 
-TEST(TaskModelMapping, PlanObjectWithoutPosesIsAnErrorAndNothingIsStored) {
-  const auto demo = SyntheticPickPlaceGenerator(SyntheticPickPlaceConfig{}).generate();
-  taskdb::TaskModel model = taskModelFromSyntheticDemo(demo, "broken");
+TEST(MotionRows, PlanObjectWithoutPosesIsAnErrorAndNothingIsStored) {
+  const auto demo = synth::SyntheticPickPlaceGenerator(synth::SyntheticPickPlaceConfig{}).generate();
+  taskdb::TaskModel model = taskModelFromTracks(demo, "broken", demo.instruction());
   // The star has no ProductPose rows.
   std::vector<taskdb::ProductPoseRow> kept;
   for (const auto& r : model.productPoses)
     if (r.classId != 1) kept.push_back(r);
   model.productPoses = kept;
   const MotionInputs in = motionInputsFromTaskModel(model);
-  EXPECT_THROW(Segmenter().segment(in.hand, in.objects, in.planOrder), core::InvalidInputError);
+  EXPECT_THROW(motion::Segmenter().segment(in.hand, in.objects, in.planOrder), core::InvalidInputError);
 
-  taskdb::TaskModel ungrounded = taskModelFromSyntheticDemo(demo, "ungrounded");
+  taskdb::TaskModel ungrounded = taskModelFromTracks(demo, "ungrounded", demo.instruction());
   ungrounded.products[2].classId.reset();
   EXPECT_THROW(motionInputsFromTaskModel(ungrounded), core::InvalidInputError);
 }
 
 // End-to-end: the `srp motion` command on a stored synthetic demo (skipped
 // when the srp executable has not been built).
-TEST(TaskModelMapping, SrpMotionCommandStoresSkillsAndWritesPlots) {
+TEST(MotionRows, SrpMotionCommandStoresSkillsAndWritesPlots) {
   const std::string srp = std::string(SRP_BINARY_DIR) + "/apps/srp";
   if (!std::filesystem::exists(srp)) FAIL() << srp << " missing: build the srp target (make build) before this test";
-  const auto demo = SyntheticPickPlaceGenerator(SyntheticPickPlaceConfig{}).generate();
+  const auto demo = synth::SyntheticPickPlaceGenerator(synth::SyntheticPickPlaceConfig{}).generate();
   const std::string path = tempPath("cmd.db"), outDir = tempPath("cmd_plots");
   removeDb(path);
   std::filesystem::remove_all(outDir);
   int id = 0;
   {
     auto db = taskdb::TaskDatabase::open(path);
-    id = taskdb::TaskModelStore(db).write(taskModelFromSyntheticDemo(demo, "synthetic"));
+    id = taskdb::TaskModelStore(db).write(taskModelFromTracks(demo, "synthetic", demo.instruction()));
   }
   const std::string cmd = srp + " motion " + std::to_string(id) + " --db " + path + " --out-dir " + outDir + " > /dev/null 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
@@ -117,4 +118,4 @@ TEST(TaskModelMapping, SrpMotionCommandStoresSkillsAndWritesPlots) {
 }
 
 }  // namespace
-}  // namespace srp::motion
+}  // namespace srp::programming

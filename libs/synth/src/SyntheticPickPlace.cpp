@@ -1,11 +1,11 @@
-#include "srp/motion/SyntheticPickPlace.h"
+#include "srp/synth/SyntheticPickPlace.h"
 
 #include <cmath>
 #include <random>
 
 #include "srp/core/Error.h"
 
-namespace srp::motion {
+namespace srp::synth {
 namespace {
 
 double minJerk(double s) { return s * s * s * (10 - 15 * s + 6 * s * s); }
@@ -106,7 +106,7 @@ SyntheticPickPlace SyntheticPickPlaceGenerator::generate() const {
     out.hand.append(s);
   }
   for (std::size_t i = 0; i < nAll; ++i) {
-    ObjectTrack t;
+    motion::ObjectTrack t;
     t.name = i < nMoved ? c.movedObjects[i] : c.staticObjects[i - nMoved];
     t.positions = core::PositionTrajectory("camera");
     int flicker = 0;
@@ -141,4 +141,10 @@ SyntheticPickPlace SyntheticPickPlaceGenerator::generate() const {
   return out;
 }
 
-}  // namespace srp::motion
+std::string SyntheticPickPlace::instruction() const {
+  std::string text = "Synthetic demo: pick and place";
+  for (std::size_t i = 0; i < planOrder.size(); ++i) text += std::string(i ? ", then " : " ") + "the " + planOrder[i];
+  return text;
+}
+
+}  // namespace srp::synth

@@ -32,16 +32,33 @@ cv::Mat medianDepth(const std::vector<cv::Mat>& images) {
   return out;
 }
 
-/// Within `margin` pixels of the image edge.
-bool onBorder(const cv::Mat& m, int u, int v, int margin) {
-  return u < margin || v < margin || u >= m.cols - margin || v >= m.rows - margin;
+/// For each label of `labels` (n labels), does it have a pixel in `zone`?
+std::vector<char> labelsInZone(const cv::Mat& labels, int n, const cv::Mat& zone) {
+  std::vector<char> in(static_cast<std::size_t>(n), 0);
+  for (int v = 0; v < labels.rows; ++v) {
+    const int* l = labels.ptr<int>(v);
+    const uchar* z = zone.ptr<uchar>(v);
+    for (int u = 0; u < labels.cols; ++u)
+      if (z[u]) in[static_cast<std::size_t>(l[u])] = 1;
+  }
+  return in;
 }
 
-/// Does component `l`'s bounding box (connectedComponentsWithStats) reach within `margin` pixels of the edge?
-bool touchesBorder(const cv::Mat& stats, int l, cv::Size size, int margin) {
-  const int x = stats.at<int>(l, cv::CC_STAT_LEFT), y = stats.at<int>(l, cv::CC_STAT_TOP);
-  const int w = stats.at<int>(l, cv::CC_STAT_WIDTH), h = stats.at<int>(l, cv::CC_STAT_HEIGHT);
-  return x < margin || y < margin || x + w > size.width - margin || y + h > size.height - margin;
+/// The rows and columns where at least `minValid` of the pixels have a valid
+/// (> 0) depth in `depth`: the depth camera's field of view in a registered
+/// depth image (a band at the image's edge that the depth camera does not see
+/// is no place an arm can be seen entering from).
+cv::Rect depthFieldOfView(const cv::Mat& depth, double minValid) {
+  cv::Mat valid = depth > 0, cols, rows;
+  cv::reduce(valid, cols, 0, cv::REDUCE_AVG, CV_32F);  // 1 x W: share of valid rows per column (x255)
+  cv::reduce(valid, rows, 1, cv::REDUCE_AVG, CV_32F);  // H x 1
+  const float t = static_cast<float>(255.0 * minValid);
+  int u0 = 0, u1 = depth.cols - 1, v0 = 0, v1 = depth.rows - 1;
+  while (u0 < u1 && cols.at<float>(0, u0) < t) ++u0;
+  while (u1 > u0 && cols.at<float>(0, u1) < t) --u1;
+  while (v0 < v1 && rows.at<float>(v0, 0) < t) ++v0;
+  while (v1 > v0 && rows.at<float>(v1, 0) < t) --v1;
+  return {u0, v0, u1 - u0 + 1, v1 - v0 + 1};
 }
 
 /// A disc-shaped structuring element of this diameter [px].
@@ -193,6 +210,7 @@ cv::Mat MarkerFreeHandDetector::backgroundFromPreview() {
       background_mm.at<float>(v, u) = vals[k];
     }
   background_mm.convertTo(backgroundDepth_m_, CV_32FC1, 1e-3);
+  view_ = depthFieldOfView(backgroundDepth_m_, options_.minFieldOfViewValid);
   if (!previewColourSum_.empty())
     previewColourSum_.convertTo(backgroundColour_, CV_8UC3, 1.0 / static_cast<double>(previewFrames_));
   return background_mm;
@@ -427,6 +445,7 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
     colourHistory_.push_back(frame.colour_bgr8.clone());
     if (static_cast<int>(depthHistory_.size()) < options_.backgroundFrames) return std::nullopt;
     backgroundDepth_m_ = medianDepth(depthHistory_);
+    view_ = depthFieldOfView(backgroundDepth_m_, options_.minFieldOfViewValid);
     // Colour background: the mean is enough (it is only used where depth is missing).
     cv::Mat acc(frame.colour_bgr8.size(), CV_32FC3, cv::Scalar::all(0));
     for (const auto& c : colourHistory_) cv::accumulate(c, acc);
@@ -440,12 +459,14 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   const cv::Mat mask = foregroundMask(frame);
   cv::Mat labels, stats, centroids;
   const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+  zone_ = borderZone(frame.depth_m);
+  const std::vector<char> atBorder = labelsInZone(labels, n, zone_);
   int bestLabel = -1, bestArea = 0;
   bool bestTouches = false;
   for (int l = 1; l < n; ++l) {
     const int area = stats.at<int>(l, cv::CC_STAT_AREA);
     if (area < options_.minPixels) continue;
-    const bool touches = touchesBorder(stats, l, mask.size(), options_.borderMargin_px);
+    const bool touches = atBorder[static_cast<std::size_t>(l)];
     // Prefer components the arm connects to the border; then size.
     if ((touches && !bestTouches) || (touches == bestTouches && area > bestArea)) {
       bestLabel = l;
@@ -453,13 +474,27 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
       bestTouches = touches;
     }
   }
-  if (bestLabel < 0) return std::nullopt;
+  const bool trace = std::getenv("SRP_HAND_TRACE") != nullptr;
+  if (trace)
+    for (int l = 1; l < n; ++l)
+      if (stats.at<int>(l, cv::CC_STAT_AREA) >= options_.minPixels)
+        std::fprintf(stderr, "frame %d: component %d px, box %d %d %d %d, view %d %d %d %d\n", frame.index,
+                     stats.at<int>(l, cv::CC_STAT_AREA), stats.at<int>(l, 0), stats.at<int>(l, 1), stats.at<int>(l, 2),
+                     stats.at<int>(l, 3), view_.x, view_.y, view_.width, view_.height);
+  if (bestLabel < 0) {
+    if (trace) std::fprintf(stderr, "frame %d: no foreground component of %d px\n", frame.index, options_.minPixels);
+    return std::nullopt;
+  }
   const cv::Mat arm = (labels == bestLabel);
 
   // ---- the hand: the arm's skin part
   HandBlob hand;
   hand.mask = handMask(frame, arm);
-  if (hand.mask.empty()) return std::nullopt;
+  if (hand.mask.empty()) {
+    if (trace) std::fprintf(stderr, "frame %d: arm %d px (border %d), skin on it below %d px\n", frame.index, bestArea,
+                            bestTouches, options_.minHandPixels);
+    return std::nullopt;
+  }
   lastMask_ = hand.mask;
 
   // Entry point: mean of the arm's border pixels (none: the arm's centroid).
@@ -467,8 +502,9 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   int nBorder = 0;
   for (int v = 0; v < arm.rows; ++v) {
     const uchar* a = arm.ptr<uchar>(v);
+    const uchar* z = zone_.ptr<uchar>(v);
     for (int u = 0; u < arm.cols; ++u)
-      if (a[u] && onBorder(arm, u, v, options_.borderMargin_px)) {
+      if (a[u] && z[u]) {
         entry += Eigen::Vector2d(u, v);
         ++nBorder;
       }
@@ -496,6 +532,37 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   return placePalm(frame, *anchor, hand, handMean, bestArea);
 }
 
+cv::Mat MarkerFreeHandDetector::borderZone(const cv::Mat& depth_m) const {
+  // Within borderMargin_px of the image edge, and where the depth's field of
+  // view ends inside the image (view_ leaves a band on that side), within
+  // borderMargin_px of this frame's band: the run of depth-less pixels from
+  // the image edge along each row (column). The band's inner edge moves with
+  // the depth (the depth camera sees from beside the colour camera): an arm
+  // 1 m away ends 7 px farther out than the wall behind it on HRT1's camera.
+  const int m = options_.borderMargin_px, W = depth_m.cols, H = depth_m.rows;
+  cv::Mat zone(depth_m.size(), CV_8UC1, cv::Scalar(255));
+  zone(cv::Rect(m, m, std::max(0, W - 2 * m), std::max(0, H - 2 * m))).setTo(0);
+  const bool left = view_.x > 0, right = view_.x + view_.width < W, top = view_.y > 0, bottom = view_.y + view_.height < H;
+  if (!(left || right || top || bottom)) return zone;
+  cv::Mat band(depth_m.size(), CV_8UC1, cv::Scalar(0));
+  for (int v = 0; v < H; ++v) {
+    const float* z = depth_m.ptr<float>(v);
+    uchar* b = band.ptr<uchar>(v);
+    if (left)
+      for (int u = 0; u < W && z[u] <= 0.f; ++u) b[u] = 255;
+    if (right)
+      for (int u = W - 1; u >= 0 && z[u] <= 0.f; --u) b[u] = 255;
+  }
+  for (int u = 0; u < W; ++u) {
+    if (top)
+      for (int v = 0; v < H && depth_m.at<float>(v, u) <= 0.f; ++v) band.at<uchar>(v, u) = 255;
+    if (bottom)
+      for (int v = H - 1; v >= 0 && depth_m.at<float>(v, u) <= 0.f; --v) band.at<uchar>(v, u) = 255;
+  }
+  cv::dilate(band, band, cv::getStructuringElement(cv::MORPH_RECT, {2 * m + 1, 2 * m + 1}));
+  return zone | band;
+}
+
 cv::Mat MarkerFreeHandDetector::foregroundMask(const rawlog::RgbdFrame& frame) const {
   // Foreground by depth (the whole arm, sleeve included, reaches the border);
   // the hand is its skin-coloured part.
@@ -516,6 +583,10 @@ cv::Mat MarkerFreeHandDetector::foregroundMask(const rawlog::RgbdFrame& frame) c
       }
     }
   }
+  // Outside the depth's field of view every pixel is a hole: no evidence there.
+  cv::Mat outside(mask.size(), CV_8UC1, cv::Scalar(255));
+  outside(view_).setTo(0);
+  mask.setTo(0, outside);
   cv::morphologyEx(mask, mask, cv::MORPH_OPEN, disc(options_.openDiameter_px));
   return mask;
 }
@@ -580,9 +651,10 @@ cv::Mat MarkerFreeHandDetector::sleeveMask(const cv::Mat& arm, const cv::Mat& ha
   const cv::Mat rest = arm & ~hand;
   cv::Mat sl, ss, sc;
   const int ns = cv::connectedComponentsWithStats(rest, sl, ss, sc, 8, CV_32S);
+  const std::vector<char> atBorder = labelsInZone(sl, ns, zone_);
   int best = -1, area = options_.minSleevePixels;
   for (int l = 1; l < ns; ++l)
-    if (ss.at<int>(l, cv::CC_STAT_AREA) > area && touchesBorder(ss, l, arm.size(), options_.borderMargin_px)) {
+    if (ss.at<int>(l, cv::CC_STAT_AREA) > area && atBorder[static_cast<std::size_t>(l)]) {
       best = l;
       area = ss.at<int>(l, cv::CC_STAT_AREA);
     }
@@ -681,15 +753,16 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::cuffAnchor
   // of view, the "sleeve" may be something else).
   const int margin = options_.borderMargin_px;
   int handOnBorder = 0;
-  for (int v = 0; v < hand.rows; ++v) {
+  const cv::Rect& w = view_;
+  for (int v = w.y; v < w.y + w.height; ++v) {
     const uchar* p = hand.ptr<uchar>(v);
-    if (v < margin || v >= hand.rows - margin) {
-      handOnBorder += cv::countNonZero(hand.row(v));
+    if (v < w.y + margin || v >= w.y + w.height - margin) {
+      handOnBorder += cv::countNonZero(hand.row(v).colRange(w.x, w.x + w.width));
     } else {
       bool left = false, right = false;
       for (int i = 0; i < margin; ++i) {
-        left = left || p[i];
-        right = right || p[hand.cols - 1 - i];
+        left = left || p[w.x + i];
+        right = right || p[w.x + w.width - 1 - i];
       }
       handOnBorder += left + right;
     }

@@ -144,9 +144,17 @@ class MarkerFreeHandDetector : public HandDetector {
     int maxCarryFrames = 3;
 
     // ---- gates and strides (were literals; defaults keep the old output) ----
-    /// A pixel within this many pixels of the image edge is on the border
-    /// (where the arm enters, where a hand leaves the view) [px].
+    /// A pixel within this many pixels of the edge of the depth's field of
+    /// view is on the border (where the arm enters, where a hand leaves the
+    /// view) [px].
     int borderMargin_px = 2;
+    /// The depth's field of view in the (registered) image: the rows and
+    /// columns where at least this share of the background's pixels have a
+    /// depth [0..1]. A registered depth image has a band at its edges the
+    /// depth camera does not see (HRT1's Fetch camera: ~20 px at the right
+    /// and the top); an arm entering there reaches that band's edge, not the
+    /// image's, and nothing is foreground inside the band.
+    double minFieldOfViewValid = 0.5;
     /// Diameter of the disc that opens (de-speckles) the foreground and the
     /// skin masks at full resolution [px].
     int openDiameter_px = 5;
@@ -266,6 +274,10 @@ class MarkerFreeHandDetector : public HandDetector {
   cv::Mat backgroundFromPreview();
   /// Does the preview show a bare forearm (sets bareForearms_)?
   void decideBareForearms(const cv::Mat& backgroundHalf_mm);
+  /// Pixels where an arm enters the view: near the image edge, and near
+  /// this frame's depth-less band where the depth's field of view ends
+  /// inside the image (CV_8UC1).
+  cv::Mat borderZone(const cv::Mat& depth_m) const;
   /// Foreground by depth (and colour change in depth holes), opened.
   cv::Mat foregroundMask(const rawlog::RgbdFrame& frame) const;
   /// The hand: skin part of the arm, opened, holes filled; empty when too small.
@@ -303,6 +315,8 @@ class MarkerFreeHandDetector : public HandDetector {
   core::CameraIntrinsics previewIntrinsics_;
   bool bareForearms_ = false;  ///< the preview showed a bare forearm: the far end rule in every frame
   cv::Mat backgroundDepth_m_, backgroundColour_;
+  cv::Rect view_;  ///< the depth's field of view in the image (depthFieldOfView of the background)
+  cv::Mat zone_;   ///< this frame's border zone (borderZone), CV_8UC1
   cv::Mat lastMask_;
   Geometry geometry_;
   double lastDepth_m_ = 0.0;  ///< last measured depth of the palm's visible back

@@ -525,7 +525,7 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   hand.pxPerM = frame.intrinsics.fx_px / hand.z_m;
 
   // ---- the palm's anchor: far end of a bare forearm, else the cuff, else the fingertips
-  std::optional<Anchor> anchor = bareForearmAnchor(frame, entry, hand);
+  std::optional<Anchor> anchor = bareForearmAnchor(frame, arm, entry, hand);
   if (!anchor) anchor = cuffAnchor(hand.mask, sleeve, entry);
   if (!anchor) anchor = fingertipAnchor(hand.mask, entry, handMean, handAxis->dir, handAxis->elongated);
   geometry_.axis = anchor->dir;
@@ -662,10 +662,11 @@ cv::Mat MarkerFreeHandDetector::sleeveMask(const cv::Mat& arm, const cv::Mat& ha
 }
 
 std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::bareForearmAnchor(
-    const rawlog::RgbdFrame& frame, const Eigen::Vector2d& entry, HandBlob& hand) {
-  // Bare forearm: the largest skin component, when it is longer than a hand
-  // (skin from the elbow or a short sleeve to the fingers), ends in the hand
-  // at the end farther from the arm's entry (the body).
+    const rawlog::RgbdFrame& frame, const cv::Mat& arm, const Eigen::Vector2d& entry, HandBlob& hand) {
+  // Bare forearm: the skin component that reaches farthest from the body
+  // (see farthestSkinComponent; the largest when the geodesic is off), when it
+  // is longer than a hand (skin from the elbow or a short sleeve to the
+  // fingers), ends in the hand at the end farther from the arm's entry.
   const auto& k = frame.intrinsics;
   cv::Mat cl, cs, cc;
   const int nc = cv::connectedComponentsWithStats(hand.mask, cl, cs, cc, 8, CV_32S);
@@ -675,6 +676,13 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::bareForear
       best = l;
       bestArea = cs.at<int>(l, cv::CC_STAT_AREA);
     }
+  if (options_.geodesicStep_px > 0 && nc > 2) {
+    const int far = farthestSkinComponent(arm | hand.mask, cl, nc, cs);
+    if (far > 0) {
+      best = far;
+      bestArea = cs.at<int>(far, cv::CC_STAT_AREA);
+    }
+  }
   if (best <= 0 || bestArea < options_.minHandPixels) return std::nullopt;
   const cv::Mat comp = cl == best;
   const auto ax = principalAxis(comp, cv::Mat(), entry, options_.axisStride_px, options_.minElongation);
@@ -743,6 +751,62 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::bareForear
   geometry_.bareForearm = true;
   geometry_.farEnd_px = a.anchor_px;
   return a;
+}
+
+int MarkerFreeHandDetector::farthestSkinComponent(const cv::Mat& region, const cv::Mat& labels, int n,
+                                                  const cv::Mat& stats) const {
+  // Geodesic distance inside the body's foreground (arm and hand) from where
+  // it enters the view (the border zone), on a grid of geodesicStep_px
+  // (a cell belongs to the region when any of its pixels does; 8-neighbour
+  // steps). The hand is the far end of the arm reaching over the workspace:
+  // trousers, a face or a neck of skin colour lie near where the body enters.
+  const int step = options_.geodesicStep_px;
+  const int W = (region.cols + step - 1) / step, H = (region.rows + step - 1) / step;
+  cv::Mat cellRegion, cellZone;
+  cv::resize(region, cellRegion, {W, H}, 0, 0, cv::INTER_AREA);
+  cv::resize(zone_ & region, cellZone, {W, H}, 0, 0, cv::INTER_AREA);
+  std::vector<int> dist(static_cast<std::size_t>(W * H), -1), queue;
+  queue.reserve(dist.size());
+  for (int v = 0; v < H; ++v)
+    for (int u = 0; u < W; ++u)
+      if (cellZone.at<uchar>(v, u) && cellRegion.at<uchar>(v, u)) {
+        dist[static_cast<std::size_t>(v * W + u)] = 0;
+        queue.push_back(v * W + u);
+      }
+  if (queue.empty()) return -1;  // the body does not enter the view here: no direction to go by
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    const int c = queue[head], cu = c % W, cv_ = c / W;
+    for (int dv = -1; dv <= 1; ++dv)
+      for (int du = -1; du <= 1; ++du) {
+        const int u = cu + du, v = cv_ + dv;
+        if (u < 0 || v < 0 || u >= W || v >= H || !cellRegion.at<uchar>(v, u)) continue;
+        int& d = dist[static_cast<std::size_t>(v * W + u)];
+        if (d >= 0) continue;
+        d = dist[static_cast<std::size_t>(c)] + 1;
+        queue.push_back(v * W + u);
+      }
+  }
+  // Each component's farthest cell; the largest component among those that
+  // reach within one cell of the farthest.
+  std::vector<int> reach(static_cast<std::size_t>(n), -1);
+  for (int v = 0; v < labels.rows; ++v) {
+    const int* l = labels.ptr<int>(v);
+    for (int u = 0; u < labels.cols; ++u)
+      if (l[u] > 0) {
+        const int d = dist[static_cast<std::size_t>((v / step) * W + u / step)];
+        reach[static_cast<std::size_t>(l[u])] = std::max(reach[static_cast<std::size_t>(l[u])], d);
+      }
+  }
+  int best = -1;
+  for (int l = 1; l < n; ++l) {
+    if (stats.at<int>(l, cv::CC_STAT_AREA) < options_.minHandPixels || reach[static_cast<std::size_t>(l)] < 0) continue;
+    if (best < 0 || reach[static_cast<std::size_t>(l)] > reach[static_cast<std::size_t>(best)]) best = l;
+  }
+  if (std::getenv("SRP_HAND_TRACE"))
+    for (int l = 1; l < n; ++l)
+      std::fprintf(stderr, "  skin component %d: %d px, reach %d cells%s\n", l, stats.at<int>(l, cv::CC_STAT_AREA),
+                   reach[static_cast<std::size_t>(l)], l == best ? " (picked)" : "");
+  return best;
 }
 
 std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::cuffAnchor(const cv::Mat& hand,

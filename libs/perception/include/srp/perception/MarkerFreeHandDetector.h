@@ -155,6 +155,13 @@ class MarkerFreeHandDetector : public HandDetector {
     /// and the top); an arm entering there reaches that band's edge, not the
     /// image's, and nothing is foreground inside the band.
     double minFieldOfViewValid = 0.5;
+    /// Bare forearm: the skin component taken for the forearm and hand is the
+    /// one reaching farthest from where the body enters the view, along the
+    /// geodesic inside the body's foreground, measured on a grid of this many
+    /// pixels (trousers, a face, a neck of skin colour lie near where the
+    /// body enters; the hand is the far end of the arm over the workspace).
+    /// 0: the largest skin component instead.
+    int geodesicStep_px = 4;
     /// Diameter of the disc that opens (de-speckles) the foreground and the
     /// skin masks at full resolution [px].
     int openDiameter_px = 5;
@@ -287,8 +294,12 @@ class MarkerFreeHandDetector : public HandDetector {
   /// Bare forearm: the largest skin component, when longer than a hand (or
   /// the recording shows bare forearms), ends in the hand at its far end.
   /// Sets geometry_ and replaces `hand` by that component.
-  std::optional<Anchor> bareForearmAnchor(const rawlog::RgbdFrame& frame, const Eigen::Vector2d& entry,
+  std::optional<Anchor> bareForearmAnchor(const rawlog::RgbdFrame& frame, const cv::Mat& arm, const Eigen::Vector2d& entry,
                                           HandBlob& hand);
+  /// The label (of `labels`, n labels, their `stats`) of the skin component
+  /// of at least minHandPixels that reaches farthest from the border zone
+  /// along the geodesic inside `region`; -1 when the region meets no border.
+  int farthestSkinComponent(const cv::Mat& region, const cv::Mat& labels, int n, const cv::Mat& stats) const;
   /// Glove and sleeve: the cuff line and the arm axis (nullopt: no cuff).
   std::optional<Anchor> cuffAnchor(const cv::Mat& hand, const cv::Mat& sleeve, const Eigen::Vector2d& entry);
   /// No cuff: back from the fingertips along the hand's axis.

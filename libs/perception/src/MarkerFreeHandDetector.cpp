@@ -32,15 +32,10 @@ cv::Mat medianDepth(const std::vector<cv::Mat>& images) {
   return out;
 }
 
-/// For each label of `labels` (n labels), does it have a pixel in `zone`?
-std::vector<char> labelsInZone(const cv::Mat& labels, int n, const cv::Mat& zone) {
+/// For each label of `labels` (n labels), does it have a pixel among `zone` (the zone's pixels)?
+std::vector<char> labelsInZone(const cv::Mat& labels, int n, const std::vector<cv::Point>& zone) {
   std::vector<char> in(static_cast<std::size_t>(n), 0);
-  for (int v = 0; v < labels.rows; ++v) {
-    const int* l = labels.ptr<int>(v);
-    const uchar* z = zone.ptr<uchar>(v);
-    for (int u = 0; u < labels.cols; ++u)
-      if (z[u]) in[static_cast<std::size_t>(l[u])] = 1;
-  }
+  for (const auto& p : zone) in[static_cast<std::size_t>(labels.at<int>(p))] = 1;
   return in;
 }
 
@@ -459,8 +454,8 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   const cv::Mat mask = foregroundMask(frame);
   cv::Mat labels, stats, centroids;
   const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
-  zone_ = borderZone(frame.depth_m);
-  const std::vector<char> atBorder = labelsInZone(labels, n, zone_);
+  zonePoints_ = borderZone(frame.depth_m);
+  const std::vector<char> atBorder = labelsInZone(labels, n, zonePoints_);
   int bestLabel = -1, bestArea = 0;
   bool bestTouches = false;
   for (int l = 1; l < n; ++l) {
@@ -500,15 +495,11 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   // Entry point: mean of the arm's border pixels (none: the arm's centroid).
   Eigen::Vector2d entry = Eigen::Vector2d::Zero();
   int nBorder = 0;
-  for (int v = 0; v < arm.rows; ++v) {
-    const uchar* a = arm.ptr<uchar>(v);
-    const uchar* z = zone_.ptr<uchar>(v);
-    for (int u = 0; u < arm.cols; ++u)
-      if (a[u] && z[u]) {
-        entry += Eigen::Vector2d(u, v);
-        ++nBorder;
-      }
-  }
+  for (const auto& p : zonePoints_)
+    if (arm.at<uchar>(p)) {
+      entry += Eigen::Vector2d(p.x, p.y);
+      ++nBorder;
+    }
   if (nBorder > 0) entry /= nBorder;
   else entry = {centroids.at<double>(bestLabel, 0), centroids.at<double>(bestLabel, 1)};
   geometry_.entry_px = entry;
@@ -532,7 +523,7 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   return placePalm(frame, *anchor, hand, handMean, bestArea);
 }
 
-cv::Mat MarkerFreeHandDetector::borderZone(const cv::Mat& depth_m) const {
+std::vector<cv::Point> MarkerFreeHandDetector::borderZone(const cv::Mat& depth_m) const {
   // Within borderMargin_px of the image edge, and where the depth's field of
   // view ends inside the image (view_ leaves a band on that side), within
   // borderMargin_px of this frame's band: the run of depth-less pixels from
@@ -540,27 +531,53 @@ cv::Mat MarkerFreeHandDetector::borderZone(const cv::Mat& depth_m) const {
   // the depth (the depth camera sees from beside the colour camera): an arm
   // 1 m away ends 7 px farther out than the wall behind it on HRT1's camera.
   const int m = options_.borderMargin_px, W = depth_m.cols, H = depth_m.rows;
-  cv::Mat zone(depth_m.size(), CV_8UC1, cv::Scalar(255));
-  zone(cv::Rect(m, m, std::max(0, W - 2 * m), std::max(0, H - 2 * m))).setTo(0);
-  const bool left = view_.x > 0, right = view_.x + view_.width < W, top = view_.y > 0, bottom = view_.y + view_.height < H;
-  if (!(left || right || top || bottom)) return zone;
-  cv::Mat band(depth_m.size(), CV_8UC1, cv::Scalar(0));
+  cv::Mat zone(depth_m.size(), CV_8UC1, cv::Scalar(0));
+  std::vector<cv::Point> points;
+  auto add = [&](int u, int v) {
+    if (!view_.contains({u, v})) return;  // no foreground outside the field of view
+    uchar& z = zone.ptr<uchar>(v)[u];
+    if (!z) {
+      z = 255;
+      points.emplace_back(u, v);
+    }
+  };
   for (int v = 0; v < H; ++v) {
-    const float* z = depth_m.ptr<float>(v);
-    uchar* b = band.ptr<uchar>(v);
-    if (left)
-      for (int u = 0; u < W && z[u] <= 0.f; ++u) b[u] = 255;
-    if (right)
-      for (int u = W - 1; u >= 0 && z[u] <= 0.f; --u) b[u] = 255;
+    if (v < m || v >= H - m) {
+      for (int u = 0; u < W; ++u) add(u, v);
+    } else {
+      for (int u = 0; u < std::min(m, W); ++u) add(u, v);
+      for (int u = std::max(0, W - m); u < W; ++u) add(u, v);
+    }
   }
-  for (int u = 0; u < W; ++u) {
-    if (top)
-      for (int v = 0; v < H && depth_m.at<float>(v, u) <= 0.f; ++v) band.at<uchar>(v, u) = 255;
-    if (bottom)
-      for (int v = H - 1; v >= 0 && depth_m.at<float>(v, u) <= 0.f; --v) band.at<uchar>(v, u) = 255;
-  }
-  cv::dilate(band, band, cv::getStructuringElement(cv::MORPH_RECT, {2 * m + 1, 2 * m + 1}));
-  return zone | band;
+  // Runs of depth-less pixels from each side with a band; the zone takes the
+  // pixels within m of a run (a (2m+1)-square dilation of the staircase the
+  // runs form: per row the longest run of the rows within m, plus m).
+  auto mark = [&](bool alongRows, bool fromEnd) {
+    const int n = alongRows ? H : W, len = alongRows ? W : H;
+    auto depthAt = [&](int i, int j) { return alongRows ? depth_m.ptr<float>(i)[j] : depth_m.ptr<float>(j)[i]; };
+    std::vector<int> run(static_cast<std::size_t>(n), 0);
+    for (int i = 0; i < n; ++i) {
+      int k = 0;
+      while (k < len && depthAt(i, fromEnd ? len - 1 - k : k) <= 0.f) ++k;
+      run[static_cast<std::size_t>(i)] = k;
+    }
+    for (int i = 0; i < n; ++i) {
+      int longest = 0;
+      for (int d = std::max(0, i - m); d <= std::min(n - 1, i + m); ++d)
+        longest = std::max(longest, run[static_cast<std::size_t>(d)]);
+      if (longest == 0) continue;
+      for (int k = 0; k < std::min(len, longest + m); ++k) {
+        const int j = fromEnd ? len - 1 - k : k;
+        if (alongRows) add(j, i);
+        else add(i, j);
+      }
+    }
+  };
+  if (view_.x > 0) mark(true, false);
+  if (view_.x + view_.width < W) mark(true, true);
+  if (view_.y > 0) mark(false, false);
+  if (view_.y + view_.height < H) mark(false, true);
+  return points;
 }
 
 cv::Mat MarkerFreeHandDetector::foregroundMask(const rawlog::RgbdFrame& frame) const {
@@ -584,9 +601,10 @@ cv::Mat MarkerFreeHandDetector::foregroundMask(const rawlog::RgbdFrame& frame) c
     }
   }
   // Outside the depth's field of view every pixel is a hole: no evidence there.
-  cv::Mat outside(mask.size(), CV_8UC1, cv::Scalar(255));
-  outside(view_).setTo(0);
-  mask.setTo(0, outside);
+  mask.rowRange(0, view_.y).setTo(0);
+  mask.rowRange(view_.y + view_.height, mask.rows).setTo(0);
+  mask.colRange(0, view_.x).setTo(0);
+  mask.colRange(view_.x + view_.width, mask.cols).setTo(0);
   cv::morphologyEx(mask, mask, cv::MORPH_OPEN, disc(options_.openDiameter_px));
   return mask;
 }
@@ -651,7 +669,7 @@ cv::Mat MarkerFreeHandDetector::sleeveMask(const cv::Mat& arm, const cv::Mat& ha
   const cv::Mat rest = arm & ~hand;
   cv::Mat sl, ss, sc;
   const int ns = cv::connectedComponentsWithStats(rest, sl, ss, sc, 8, CV_32S);
-  const std::vector<char> atBorder = labelsInZone(sl, ns, zone_);
+  const std::vector<char> atBorder = labelsInZone(sl, ns, zonePoints_);
   int best = -1, area = options_.minSleevePixels;
   for (int l = 1; l < ns; ++l)
     if (ss.at<int>(l, cv::CC_STAT_AREA) > area && atBorder[static_cast<std::size_t>(l)]) {
@@ -761,18 +779,19 @@ int MarkerFreeHandDetector::farthestSkinComponent(const cv::Mat& region, const c
   // steps). The hand is the far end of the arm reaching over the workspace:
   // trousers, a face or a neck of skin colour lie near where the body enters.
   const int step = options_.geodesicStep_px;
-  const int W = (region.cols + step - 1) / step, H = (region.rows + step - 1) / step;
-  cv::Mat cellRegion, cellZone;
-  cv::resize(region, cellRegion, {W, H}, 0, 0, cv::INTER_AREA);
-  cv::resize(zone_ & region, cellZone, {W, H}, 0, 0, cv::INTER_AREA);
+  const cv::Rect box = cv::boundingRect(region);  // cells on the region's box only
+  const int W = (box.width + step - 1) / step, H = (box.height + step - 1) / step;
+  cv::Mat cellRegion;
+  cv::resize(region(box), cellRegion, {W, H}, 0, 0, cv::INTER_AREA);
   std::vector<int> dist(static_cast<std::size_t>(W * H), -1), queue;
   queue.reserve(dist.size());
-  for (int v = 0; v < H; ++v)
-    for (int u = 0; u < W; ++u)
-      if (cellZone.at<uchar>(v, u) && cellRegion.at<uchar>(v, u)) {
-        dist[static_cast<std::size_t>(v * W + u)] = 0;
-        queue.push_back(v * W + u);
-      }
+  for (const auto& p : zonePoints_) {
+    if (!box.contains(p) || !region.at<uchar>(p)) continue;
+    const int c = ((p.y - box.y) / step) * W + (p.x - box.x) / step;
+    if (dist[static_cast<std::size_t>(c)] == 0) continue;
+    dist[static_cast<std::size_t>(c)] = 0;
+    queue.push_back(c);
+  }
   if (queue.empty()) return -1;  // the body does not enter the view here: no direction to go by
   for (std::size_t head = 0; head < queue.size(); ++head) {
     const int c = queue[head], cu = c % W, cv_ = c / W;
@@ -789,13 +808,17 @@ int MarkerFreeHandDetector::farthestSkinComponent(const cv::Mat& region, const c
   // Each component's farthest cell; the largest component among those that
   // reach within one cell of the farthest.
   std::vector<int> reach(static_cast<std::size_t>(n), -1);
-  for (int v = 0; v < labels.rows; ++v) {
-    const int* l = labels.ptr<int>(v);
-    for (int u = 0; u < labels.cols; ++u)
-      if (l[u] > 0) {
-        const int d = dist[static_cast<std::size_t>((v / step) * W + u / step)];
-        reach[static_cast<std::size_t>(l[u])] = std::max(reach[static_cast<std::size_t>(l[u])], d);
-      }
+  for (int k = 1; k < n; ++k) {
+    if (stats.at<int>(k, cv::CC_STAT_AREA) < options_.minHandPixels) continue;
+    const int x0 = stats.at<int>(k, cv::CC_STAT_LEFT), y0 = stats.at<int>(k, cv::CC_STAT_TOP);
+    for (int v = y0; v < y0 + stats.at<int>(k, cv::CC_STAT_HEIGHT); ++v) {
+      const int* l = labels.ptr<int>(v);
+      for (int u = x0; u < x0 + stats.at<int>(k, cv::CC_STAT_WIDTH); ++u)
+        if (l[u] == k)
+          reach[static_cast<std::size_t>(k)] =
+              std::max(reach[static_cast<std::size_t>(k)],
+                       dist[static_cast<std::size_t>(((v - box.y) / step) * W + (u - box.x) / step)]);
+    }
   }
   int best = -1;
   for (int l = 1; l < n; ++l) {

@@ -281,10 +281,10 @@ class MarkerFreeHandDetector : public HandDetector {
   cv::Mat backgroundFromPreview();
   /// Does the preview show a bare forearm (sets bareForearms_)?
   void decideBareForearms(const cv::Mat& backgroundHalf_mm);
-  /// Pixels where an arm enters the view: near the image edge, and near
-  /// this frame's depth-less band where the depth's field of view ends
-  /// inside the image (CV_8UC1).
-  cv::Mat borderZone(const cv::Mat& depth_m) const;
+  /// Pixels where an arm enters the view, inside the depth's field of view:
+  /// near the image edge, and near this frame's depth-less band where the
+  /// field of view ends inside the image (row-major when there is no band).
+  std::vector<cv::Point> borderZone(const cv::Mat& depth_m) const;
   /// Foreground by depth (and colour change in depth holes), opened.
   cv::Mat foregroundMask(const rawlog::RgbdFrame& frame) const;
   /// The hand: skin part of the arm, opened, holes filled; empty when too small.
@@ -327,7 +327,7 @@ class MarkerFreeHandDetector : public HandDetector {
   bool bareForearms_ = false;  ///< the preview showed a bare forearm: the far end rule in every frame
   cv::Mat backgroundDepth_m_, backgroundColour_;
   cv::Rect view_;  ///< the depth's field of view in the image (depthFieldOfView of the background)
-  cv::Mat zone_;   ///< this frame's border zone (borderZone), CV_8UC1
+  std::vector<cv::Point> zonePoints_;  ///< this frame's border zone (borderZone)
   cv::Mat lastMask_;
   Geometry geometry_;
   double lastDepth_m_ = 0.0;  ///< last measured depth of the palm's visible back

@@ -41,12 +41,17 @@ namespace srp::perception {
 ///    depth hole where the colour changed by more than `holeColourChange`
 ///    (the moving hand's holes: on a ToF camera more than half of the hand has
 ///    no depth);
-/// 2. the arm = the largest foreground component touching the image border
-///    (where it enters; a demonstrator's whole body);
+/// 2. the arm = the largest foreground component touching the border (where
+///    it enters; a demonstrator's whole body): the image edge, or where the
+///    depth's field of view ends inside a registered image, this frame's
+///    depth-less band at the edge (`minFieldOfViewValid`; nothing outside the
+///    field of view is foreground);
 /// 3. the hand = its skin-coloured part, holes filled (a held object, a
 ///    badge); the sleeve = the largest non-skin part of the arm that reaches
 ///    the border (a carried object does not);
-/// 4. bare forearm: when the largest skin component is longer than
+/// 4. bare forearm: when the skin component reaching farthest from the
+///    border along the geodesic inside the arm (`geodesicStep_px`; 0: the
+///    largest skin component) is longer than
 ///    `maxHandLength_m` between the ends of its principal axis (in 3D; skin
 ///    from the elbow or a short sleeve to the fingers), the hand is its far
 ///    end: the axis end

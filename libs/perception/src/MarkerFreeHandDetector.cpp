@@ -32,16 +32,28 @@ cv::Mat medianDepth(const std::vector<cv::Mat>& images) {
   return out;
 }
 
-/// Within `margin` pixels of the image edge.
-bool onBorder(const cv::Mat& m, int u, int v, int margin) {
-  return u < margin || v < margin || u >= m.cols - margin || v >= m.rows - margin;
+/// For each label of `labels` (n labels), does it have a pixel among `zone` (the zone's pixels)?
+std::vector<char> labelsInZone(const cv::Mat& labels, int n, const std::vector<cv::Point>& zone) {
+  std::vector<char> in(static_cast<std::size_t>(n), 0);
+  for (const auto& p : zone) in[static_cast<std::size_t>(labels.at<int>(p))] = 1;
+  return in;
 }
 
-/// Does component `l`'s bounding box (connectedComponentsWithStats) reach within `margin` pixels of the edge?
-bool touchesBorder(const cv::Mat& stats, int l, cv::Size size, int margin) {
-  const int x = stats.at<int>(l, cv::CC_STAT_LEFT), y = stats.at<int>(l, cv::CC_STAT_TOP);
-  const int w = stats.at<int>(l, cv::CC_STAT_WIDTH), h = stats.at<int>(l, cv::CC_STAT_HEIGHT);
-  return x < margin || y < margin || x + w > size.width - margin || y + h > size.height - margin;
+/// The rows and columns where at least `minValid` of the pixels have a valid
+/// (> 0) depth in `depth`: the depth camera's field of view in a registered
+/// depth image (a band at the image's edge that the depth camera does not see
+/// is no place an arm can be seen entering from).
+cv::Rect depthFieldOfView(const cv::Mat& depth, double minValid) {
+  cv::Mat valid = depth > 0, cols, rows;
+  cv::reduce(valid, cols, 0, cv::REDUCE_AVG, CV_32F);  // 1 x W: share of valid rows per column (x255)
+  cv::reduce(valid, rows, 1, cv::REDUCE_AVG, CV_32F);  // H x 1
+  const float t = static_cast<float>(255.0 * minValid);
+  int u0 = 0, u1 = depth.cols - 1, v0 = 0, v1 = depth.rows - 1;
+  while (u0 < u1 && cols.at<float>(0, u0) < t) ++u0;
+  while (u1 > u0 && cols.at<float>(0, u1) < t) --u1;
+  while (v0 < v1 && rows.at<float>(v0, 0) < t) ++v0;
+  while (v1 > v0 && rows.at<float>(v1, 0) < t) --v1;
+  return {u0, v0, u1 - u0 + 1, v1 - v0 + 1};
 }
 
 /// A disc-shaped structuring element of this diameter [px].
@@ -193,6 +205,7 @@ cv::Mat MarkerFreeHandDetector::backgroundFromPreview() {
       background_mm.at<float>(v, u) = vals[k];
     }
   background_mm.convertTo(backgroundDepth_m_, CV_32FC1, 1e-3);
+  view_ = depthFieldOfView(backgroundDepth_m_, options_.minFieldOfViewValid);
   if (!previewColourSum_.empty())
     previewColourSum_.convertTo(backgroundColour_, CV_8UC3, 1.0 / static_cast<double>(previewFrames_));
   return background_mm;
@@ -427,6 +440,7 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
     colourHistory_.push_back(frame.colour_bgr8.clone());
     if (static_cast<int>(depthHistory_.size()) < options_.backgroundFrames) return std::nullopt;
     backgroundDepth_m_ = medianDepth(depthHistory_);
+    view_ = depthFieldOfView(backgroundDepth_m_, options_.minFieldOfViewValid);
     // Colour background: the mean is enough (it is only used where depth is missing).
     cv::Mat acc(frame.colour_bgr8.size(), CV_32FC3, cv::Scalar::all(0));
     for (const auto& c : colourHistory_) cv::accumulate(c, acc);
@@ -440,12 +454,14 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   const cv::Mat mask = foregroundMask(frame);
   cv::Mat labels, stats, centroids;
   const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+  zonePoints_ = borderZone(frame.depth_m);
+  const std::vector<char> atBorder = labelsInZone(labels, n, zonePoints_);
   int bestLabel = -1, bestArea = 0;
   bool bestTouches = false;
   for (int l = 1; l < n; ++l) {
     const int area = stats.at<int>(l, cv::CC_STAT_AREA);
     if (area < options_.minPixels) continue;
-    const bool touches = touchesBorder(stats, l, mask.size(), options_.borderMargin_px);
+    const bool touches = atBorder[static_cast<std::size_t>(l)];
     // Prefer components the arm connects to the border; then size.
     if ((touches && !bestTouches) || (touches == bestTouches && area > bestArea)) {
       bestLabel = l;
@@ -453,26 +469,37 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
       bestTouches = touches;
     }
   }
-  if (bestLabel < 0) return std::nullopt;
+  const bool trace = std::getenv("SRP_HAND_TRACE") != nullptr;
+  if (trace)
+    for (int l = 1; l < n; ++l)
+      if (stats.at<int>(l, cv::CC_STAT_AREA) >= options_.minPixels)
+        std::fprintf(stderr, "frame %d: component %d px, box %d %d %d %d, view %d %d %d %d\n", frame.index,
+                     stats.at<int>(l, cv::CC_STAT_AREA), stats.at<int>(l, 0), stats.at<int>(l, 1), stats.at<int>(l, 2),
+                     stats.at<int>(l, 3), view_.x, view_.y, view_.width, view_.height);
+  if (bestLabel < 0) {
+    if (trace) std::fprintf(stderr, "frame %d: no foreground component of %d px\n", frame.index, options_.minPixels);
+    return std::nullopt;
+  }
   const cv::Mat arm = (labels == bestLabel);
 
   // ---- the hand: the arm's skin part
   HandBlob hand;
   hand.mask = handMask(frame, arm);
-  if (hand.mask.empty()) return std::nullopt;
+  if (hand.mask.empty()) {
+    if (trace) std::fprintf(stderr, "frame %d: arm %d px (border %d), skin on it below %d px\n", frame.index, bestArea,
+                            bestTouches, options_.minHandPixels);
+    return std::nullopt;
+  }
   lastMask_ = hand.mask;
 
   // Entry point: mean of the arm's border pixels (none: the arm's centroid).
   Eigen::Vector2d entry = Eigen::Vector2d::Zero();
   int nBorder = 0;
-  for (int v = 0; v < arm.rows; ++v) {
-    const uchar* a = arm.ptr<uchar>(v);
-    for (int u = 0; u < arm.cols; ++u)
-      if (a[u] && onBorder(arm, u, v, options_.borderMargin_px)) {
-        entry += Eigen::Vector2d(u, v);
-        ++nBorder;
-      }
-  }
+  for (const auto& p : zonePoints_)
+    if (arm.at<uchar>(p)) {
+      entry += Eigen::Vector2d(p.x, p.y);
+      ++nBorder;
+    }
   if (nBorder > 0) entry /= nBorder;
   else entry = {centroids.at<double>(bestLabel, 0), centroids.at<double>(bestLabel, 1)};
   geometry_.entry_px = entry;
@@ -489,11 +516,68 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   hand.pxPerM = frame.intrinsics.fx_px / hand.z_m;
 
   // ---- the palm's anchor: far end of a bare forearm, else the cuff, else the fingertips
-  std::optional<Anchor> anchor = bareForearmAnchor(frame, entry, hand);
+  std::optional<Anchor> anchor = bareForearmAnchor(frame, arm, entry, hand);
   if (!anchor) anchor = cuffAnchor(hand.mask, sleeve, entry);
   if (!anchor) anchor = fingertipAnchor(hand.mask, entry, handMean, handAxis->dir, handAxis->elongated);
   geometry_.axis = anchor->dir;
   return placePalm(frame, *anchor, hand, handMean, bestArea);
+}
+
+std::vector<cv::Point> MarkerFreeHandDetector::borderZone(const cv::Mat& depth_m) const {
+  // Within borderMargin_px of the image edge, and where the depth's field of
+  // view ends inside the image (view_ leaves a band on that side), within
+  // borderMargin_px of this frame's band: the run of depth-less pixels from
+  // the image edge along each row (column). The band's inner edge moves with
+  // the depth (the depth camera sees from beside the colour camera): an arm
+  // 1 m away ends 7 px farther out than the wall behind it on HRT1's camera.
+  const int m = options_.borderMargin_px, W = depth_m.cols, H = depth_m.rows;
+  cv::Mat zone(depth_m.size(), CV_8UC1, cv::Scalar(0));
+  std::vector<cv::Point> points;
+  auto add = [&](int u, int v) {
+    if (!view_.contains({u, v})) return;  // no foreground outside the field of view
+    uchar& z = zone.ptr<uchar>(v)[u];
+    if (!z) {
+      z = 255;
+      points.emplace_back(u, v);
+    }
+  };
+  for (int v = 0; v < H; ++v) {
+    if (v < m || v >= H - m) {
+      for (int u = 0; u < W; ++u) add(u, v);
+    } else {
+      for (int u = 0; u < std::min(m, W); ++u) add(u, v);
+      for (int u = std::max(0, W - m); u < W; ++u) add(u, v);
+    }
+  }
+  // Runs of depth-less pixels from each side with a band; the zone takes the
+  // pixels within m of a run (a (2m+1)-square dilation of the staircase the
+  // runs form: per row the longest run of the rows within m, plus m).
+  auto mark = [&](bool alongRows, bool fromEnd) {
+    const int n = alongRows ? H : W, len = alongRows ? W : H;
+    auto depthAt = [&](int i, int j) { return alongRows ? depth_m.ptr<float>(i)[j] : depth_m.ptr<float>(j)[i]; };
+    std::vector<int> run(static_cast<std::size_t>(n), 0);
+    for (int i = 0; i < n; ++i) {
+      int k = 0;
+      while (k < len && depthAt(i, fromEnd ? len - 1 - k : k) <= 0.f) ++k;
+      run[static_cast<std::size_t>(i)] = k;
+    }
+    for (int i = 0; i < n; ++i) {
+      int longest = 0;
+      for (int d = std::max(0, i - m); d <= std::min(n - 1, i + m); ++d)
+        longest = std::max(longest, run[static_cast<std::size_t>(d)]);
+      if (longest == 0) continue;
+      for (int k = 0; k < std::min(len, longest + m); ++k) {
+        const int j = fromEnd ? len - 1 - k : k;
+        if (alongRows) add(j, i);
+        else add(i, j);
+      }
+    }
+  };
+  if (view_.x > 0) mark(true, false);
+  if (view_.x + view_.width < W) mark(true, true);
+  if (view_.y > 0) mark(false, false);
+  if (view_.y + view_.height < H) mark(false, true);
+  return points;
 }
 
 cv::Mat MarkerFreeHandDetector::foregroundMask(const rawlog::RgbdFrame& frame) const {
@@ -516,6 +600,11 @@ cv::Mat MarkerFreeHandDetector::foregroundMask(const rawlog::RgbdFrame& frame) c
       }
     }
   }
+  // Outside the depth's field of view every pixel is a hole: no evidence there.
+  mask.rowRange(0, view_.y).setTo(0);
+  mask.rowRange(view_.y + view_.height, mask.rows).setTo(0);
+  mask.colRange(0, view_.x).setTo(0);
+  mask.colRange(view_.x + view_.width, mask.cols).setTo(0);
   cv::morphologyEx(mask, mask, cv::MORPH_OPEN, disc(options_.openDiameter_px));
   return mask;
 }
@@ -580,9 +669,10 @@ cv::Mat MarkerFreeHandDetector::sleeveMask(const cv::Mat& arm, const cv::Mat& ha
   const cv::Mat rest = arm & ~hand;
   cv::Mat sl, ss, sc;
   const int ns = cv::connectedComponentsWithStats(rest, sl, ss, sc, 8, CV_32S);
+  const std::vector<char> atBorder = labelsInZone(sl, ns, zonePoints_);
   int best = -1, area = options_.minSleevePixels;
   for (int l = 1; l < ns; ++l)
-    if (ss.at<int>(l, cv::CC_STAT_AREA) > area && touchesBorder(ss, l, arm.size(), options_.borderMargin_px)) {
+    if (ss.at<int>(l, cv::CC_STAT_AREA) > area && atBorder[static_cast<std::size_t>(l)]) {
       best = l;
       area = ss.at<int>(l, cv::CC_STAT_AREA);
     }
@@ -590,10 +680,11 @@ cv::Mat MarkerFreeHandDetector::sleeveMask(const cv::Mat& arm, const cv::Mat& ha
 }
 
 std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::bareForearmAnchor(
-    const rawlog::RgbdFrame& frame, const Eigen::Vector2d& entry, HandBlob& hand) {
-  // Bare forearm: the largest skin component, when it is longer than a hand
-  // (skin from the elbow or a short sleeve to the fingers), ends in the hand
-  // at the end farther from the arm's entry (the body).
+    const rawlog::RgbdFrame& frame, const cv::Mat& arm, const Eigen::Vector2d& entry, HandBlob& hand) {
+  // Bare forearm: the skin component that reaches farthest from the body
+  // (see farthestSkinComponent; the largest when the geodesic is off), when it
+  // is longer than a hand (skin from the elbow or a short sleeve to the
+  // fingers), ends in the hand at the end farther from the arm's entry.
   const auto& k = frame.intrinsics;
   cv::Mat cl, cs, cc;
   const int nc = cv::connectedComponentsWithStats(hand.mask, cl, cs, cc, 8, CV_32S);
@@ -603,6 +694,13 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::bareForear
       best = l;
       bestArea = cs.at<int>(l, cv::CC_STAT_AREA);
     }
+  if (options_.geodesicStep_px > 0 && nc > 2) {
+    const int far = farthestSkinComponent(arm | hand.mask, cl, nc, cs);
+    if (far > 0) {
+      best = far;
+      bestArea = cs.at<int>(far, cv::CC_STAT_AREA);
+    }
+  }
   if (best <= 0 || bestArea < options_.minHandPixels) return std::nullopt;
   const cv::Mat comp = cl == best;
   const auto ax = principalAxis(comp, cv::Mat(), entry, options_.axisStride_px, options_.minElongation);
@@ -673,6 +771,67 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::bareForear
   return a;
 }
 
+int MarkerFreeHandDetector::farthestSkinComponent(const cv::Mat& region, const cv::Mat& labels, int n,
+                                                  const cv::Mat& stats) const {
+  // Geodesic distance inside the body's foreground (arm and hand) from where
+  // it enters the view (the border zone), on a grid of geodesicStep_px
+  // (a cell belongs to the region when any of its pixels does; 8-neighbour
+  // steps). The hand is the far end of the arm reaching over the workspace:
+  // trousers, a face or a neck of skin colour lie near where the body enters.
+  const int step = options_.geodesicStep_px;
+  const cv::Rect box = cv::boundingRect(region);  // cells on the region's box only
+  const int W = (box.width + step - 1) / step, H = (box.height + step - 1) / step;
+  cv::Mat cellRegion;
+  cv::resize(region(box), cellRegion, {W, H}, 0, 0, cv::INTER_AREA);
+  std::vector<int> dist(static_cast<std::size_t>(W * H), -1), queue;
+  queue.reserve(dist.size());
+  for (const auto& p : zonePoints_) {
+    if (!box.contains(p) || !region.at<uchar>(p)) continue;
+    const int c = ((p.y - box.y) / step) * W + (p.x - box.x) / step;
+    if (dist[static_cast<std::size_t>(c)] == 0) continue;
+    dist[static_cast<std::size_t>(c)] = 0;
+    queue.push_back(c);
+  }
+  if (queue.empty()) return -1;  // the body does not enter the view here: no direction to go by
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    const int c = queue[head], cu = c % W, cv_ = c / W;
+    for (int dv = -1; dv <= 1; ++dv)
+      for (int du = -1; du <= 1; ++du) {
+        const int u = cu + du, v = cv_ + dv;
+        if (u < 0 || v < 0 || u >= W || v >= H || !cellRegion.at<uchar>(v, u)) continue;
+        int& d = dist[static_cast<std::size_t>(v * W + u)];
+        if (d >= 0) continue;
+        d = dist[static_cast<std::size_t>(c)] + 1;
+        queue.push_back(v * W + u);
+      }
+  }
+  // Each component's farthest cell; the largest component among those that
+  // reach within one cell of the farthest.
+  std::vector<int> reach(static_cast<std::size_t>(n), -1);
+  for (int k = 1; k < n; ++k) {
+    if (stats.at<int>(k, cv::CC_STAT_AREA) < options_.minHandPixels) continue;
+    const int x0 = stats.at<int>(k, cv::CC_STAT_LEFT), y0 = stats.at<int>(k, cv::CC_STAT_TOP);
+    for (int v = y0; v < y0 + stats.at<int>(k, cv::CC_STAT_HEIGHT); ++v) {
+      const int* l = labels.ptr<int>(v);
+      for (int u = x0; u < x0 + stats.at<int>(k, cv::CC_STAT_WIDTH); ++u)
+        if (l[u] == k)
+          reach[static_cast<std::size_t>(k)] =
+              std::max(reach[static_cast<std::size_t>(k)],
+                       dist[static_cast<std::size_t>(((v - box.y) / step) * W + (u - box.x) / step)]);
+    }
+  }
+  int best = -1;
+  for (int l = 1; l < n; ++l) {
+    if (stats.at<int>(l, cv::CC_STAT_AREA) < options_.minHandPixels || reach[static_cast<std::size_t>(l)] < 0) continue;
+    if (best < 0 || reach[static_cast<std::size_t>(l)] > reach[static_cast<std::size_t>(best)]) best = l;
+  }
+  if (std::getenv("SRP_HAND_TRACE"))
+    for (int l = 1; l < n; ++l)
+      std::fprintf(stderr, "  skin component %d: %d px, reach %d cells%s\n", l, stats.at<int>(l, cv::CC_STAT_AREA),
+                   reach[static_cast<std::size_t>(l)], l == best ? " (picked)" : "");
+  return best;
+}
+
 std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::cuffAnchor(const cv::Mat& hand,
                                                                                   const cv::Mat& sleeve,
                                                                                   const Eigen::Vector2d& entry) {
@@ -681,15 +840,16 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::cuffAnchor
   // of view, the "sleeve" may be something else).
   const int margin = options_.borderMargin_px;
   int handOnBorder = 0;
-  for (int v = 0; v < hand.rows; ++v) {
+  const cv::Rect& w = view_;
+  for (int v = w.y; v < w.y + w.height; ++v) {
     const uchar* p = hand.ptr<uchar>(v);
-    if (v < margin || v >= hand.rows - margin) {
-      handOnBorder += cv::countNonZero(hand.row(v));
+    if (v < w.y + margin || v >= w.y + w.height - margin) {
+      handOnBorder += cv::countNonZero(hand.row(v).colRange(w.x, w.x + w.width));
     } else {
       bool left = false, right = false;
       for (int i = 0; i < margin; ++i) {
-        left = left || p[i];
-        right = right || p[hand.cols - 1 - i];
+        left = left || p[w.x + i];
+        right = right || p[w.x + w.width - 1 - i];
       }
       handOnBorder += left + right;
     }

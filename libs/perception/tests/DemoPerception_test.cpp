@@ -8,6 +8,7 @@
 #include "SyntheticFrames.h"
 #include "srp/core/Error.h"
 #include "srp/motion/TrajectoryTable.h"
+#include "srp/rawlog/RawlogReader.h"
 #include "srp/rawlog/RawlogWriter.h"
 
 namespace srp::perception {
@@ -99,6 +100,27 @@ TEST(DemoPerception, RawlogToHandTrajectoryAndCsv) {
     ++rows;
   }
   EXPECT_EQ(rows, 20);
+}
+
+// The marker-free path reads the rawlog once and holds the frames between its
+// preview and perception passes (depth as 16-bit units where lossless): the
+// result is that of the frames themselves, sample for sample.
+TEST(DemoPerception, RawlogReadOnceGivesTheResultOfItsFrames) {
+  const std::string rawlogPath = tempPath("read_once.rawlog");
+  {
+    rawlog::RawlogWriter writer(rawlogPath);
+    for (const auto& f : testing::handFrames(20, 10)) writer.write(f);
+  }
+  const PerceptionResult fromFile = perceiveRawlog(rawlogPath, catalogue(), markerFreeOptions());
+  const PerceptionResult fromFrames =
+      perceiveFrames(rawlog::RawlogReader::readAll(rawlogPath), catalogue(), markerFreeOptions());
+  ASSERT_EQ(fromFile.hand.size(), fromFrames.hand.size());
+  ASSERT_EQ(fromFile.handDetected, 10);
+  EXPECT_EQ(fromFile.handDetected, fromFrames.handDetected);
+  for (std::size_t i = 0; i < fromFile.hand.size(); ++i) {
+    EXPECT_EQ(fromFile.hand[i].valid, fromFrames.hand[i].valid) << "frame " << i;
+    EXPECT_EQ(fromFile.hand[i].p_m, fromFrames.hand[i].p_m) << "frame " << i;  // bit for bit
+  }
 }
 
 // `srp perceive --csv` -> `srp segment --trajectories`: the same samples are

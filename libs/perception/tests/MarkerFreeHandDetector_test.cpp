@@ -260,21 +260,24 @@ void checkRealTask(const std::string& task, double rate, double maxError_px) {
   EXPECT_LE(worst, kMaxError_px) << task;
 }
 
-// task2 (developed on): issue 17's acceptance, >= 90 % within 40 px, and no
-// palm on the torso or the upper arm: even the worst stays within a hand
-// length of the label (~90 px at 1.1 m), short of the body.
-TEST(MarkerFreeHandDetector, RealDemonstratorHrt1Task2) { checkRealTask("task2", 0.90, 80.0); }
+// Both recordings are development data (all frames; task3 frames 0-8 were
+// held out in session 6 and scored then). Issue 17's acceptance is >= 90 %
+// within 40 px and no palm on the torso; the tests hold the level reached in
+// session 7 (every frame within 40 px; the worst within a label's
+// uncertainty, +-10 px, of the reached worst, far short of a hand length,
+// ~90 px at 1.1 m, let alone the body).
+TEST(MarkerFreeHandDetector, RealDemonstratorHrt1Task2) {
+  constexpr double kTask2Rate = 1.0;        // reached 42/42 (acceptance 0.90)
+  constexpr double kTask2Worst_px = 30.0;   // reached 19.0 px
+  checkRealTask("task2", kTask2Rate, kTask2Worst_px);
+}
 
-// task3 (frames 9-35 developed on since session 6: 27/27; frames 0-8 our
-// held-out block: 3/9): the acceptance is NOT reached (30/36 = 83.3 %, see
-// the perception README: in the held-out frames only the shadowed arm is in
-// view; frames 1, 4, 5 report no hand, frames 0, 2, 3 a palm near the right
-// border at shoulder height, ~150 px off). This guards the reached level
-// against regressions; raise it to 0.90 / 80 px when that class is fixed.
+// task3: the arm alone in view, in shadow, entering through the band at the
+// image's right edge that the depth camera does not see (frames 0-8).
 TEST(MarkerFreeHandDetector, RealDemonstratorHrt1Task3) {
-  constexpr double kReachedRate = 0.83;   // regression guard (30 of 36 frames), not the acceptance
-  constexpr double kNoBound_px = 1e9;     // palms at the shoulder occur (frames 0, 2, 3)
-  checkRealTask("task3", kReachedRate, kNoBound_px);
+  constexpr double kTask3Rate = 1.0;        // reached 36/36 (acceptance 0.90)
+  constexpr double kTask3Worst_px = 32.0;   // reached 22.1 px
+  checkRealTask("task3", kTask3Rate, kTask3Worst_px);
 }
 
 // ---- rendered synthetic demo ---------------------------------------------

@@ -41,12 +41,17 @@ namespace srp::perception {
 ///    depth hole where the colour changed by more than `holeColourChange`
 ///    (the moving hand's holes: on a ToF camera more than half of the hand has
 ///    no depth);
-/// 2. the arm = the largest foreground component touching the image border
-///    (where it enters; a demonstrator's whole body);
+/// 2. the arm = the largest foreground component touching the border (where
+///    it enters; a demonstrator's whole body): the image edge, or where the
+///    depth's field of view ends inside a registered image, this frame's
+///    depth-less band at the edge (`minFieldOfViewValid`; nothing outside the
+///    field of view is foreground);
 /// 3. the hand = its skin-coloured part, holes filled (a held object, a
 ///    badge); the sleeve = the largest non-skin part of the arm that reaches
 ///    the border (a carried object does not);
-/// 4. bare forearm: when the largest skin component is longer than
+/// 4. bare forearm: when the skin component reaching farthest from the
+///    border along the geodesic inside the arm (`geodesicStep_px`; 0: the
+///    largest skin component) is longer than
 ///    `maxHandLength_m` between the ends of its principal axis (in 3D; skin
 ///    from the elbow or a short sleeve to the fingers), the hand is its far
 ///    end: the axis end
@@ -144,9 +149,24 @@ class MarkerFreeHandDetector : public HandDetector {
     int maxCarryFrames = 3;
 
     // ---- gates and strides (were literals; defaults keep the old output) ----
-    /// A pixel within this many pixels of the image edge is on the border
-    /// (where the arm enters, where a hand leaves the view) [px].
+    /// A pixel within this many pixels of the edge of the depth's field of
+    /// view is on the border (where the arm enters, where a hand leaves the
+    /// view) [px].
     int borderMargin_px = 2;
+    /// The depth's field of view in the (registered) image: the rows and
+    /// columns where at least this share of the background's pixels have a
+    /// depth [0..1]. A registered depth image has a band at its edges the
+    /// depth camera does not see (HRT1's Fetch camera: ~20 px at the right
+    /// and the top); an arm entering there reaches that band's edge, not the
+    /// image's, and nothing is foreground inside the band.
+    double minFieldOfViewValid = 0.5;
+    /// Bare forearm: the skin component taken for the forearm and hand is the
+    /// one reaching farthest from where the body enters the view, along the
+    /// geodesic inside the body's foreground, measured on a grid of this many
+    /// pixels (trousers, a face, a neck of skin colour lie near where the
+    /// body enters; the hand is the far end of the arm over the workspace).
+    /// 0: the largest skin component instead.
+    int geodesicStep_px = 4;
     /// Diameter of the disc that opens (de-speckles) the foreground and the
     /// skin masks at full resolution [px].
     int openDiameter_px = 5;
@@ -266,6 +286,10 @@ class MarkerFreeHandDetector : public HandDetector {
   cv::Mat backgroundFromPreview();
   /// Does the preview show a bare forearm (sets bareForearms_)?
   void decideBareForearms(const cv::Mat& backgroundHalf_mm);
+  /// Pixels where an arm enters the view, inside the depth's field of view:
+  /// near the image edge, and near this frame's depth-less band where the
+  /// field of view ends inside the image (row-major when there is no band).
+  std::vector<cv::Point> borderZone(const cv::Mat& depth_m) const;
   /// Foreground by depth (and colour change in depth holes), opened.
   cv::Mat foregroundMask(const rawlog::RgbdFrame& frame) const;
   /// The hand: skin part of the arm, opened, holes filled; empty when too small.
@@ -275,8 +299,12 @@ class MarkerFreeHandDetector : public HandDetector {
   /// Bare forearm: the largest skin component, when longer than a hand (or
   /// the recording shows bare forearms), ends in the hand at its far end.
   /// Sets geometry_ and replaces `hand` by that component.
-  std::optional<Anchor> bareForearmAnchor(const rawlog::RgbdFrame& frame, const Eigen::Vector2d& entry,
+  std::optional<Anchor> bareForearmAnchor(const rawlog::RgbdFrame& frame, const cv::Mat& arm, const Eigen::Vector2d& entry,
                                           HandBlob& hand);
+  /// The label (of `labels`, n labels, their `stats`) of the skin component
+  /// of at least minHandPixels that reaches farthest from the border zone
+  /// along the geodesic inside `region`; -1 when the region meets no border.
+  int farthestSkinComponent(const cv::Mat& region, const cv::Mat& labels, int n, const cv::Mat& stats) const;
   /// Glove and sleeve: the cuff line and the arm axis (nullopt: no cuff).
   std::optional<Anchor> cuffAnchor(const cv::Mat& hand, const cv::Mat& sleeve, const Eigen::Vector2d& entry);
   /// No cuff: back from the fingertips along the hand's axis.
@@ -303,6 +331,8 @@ class MarkerFreeHandDetector : public HandDetector {
   core::CameraIntrinsics previewIntrinsics_;
   bool bareForearms_ = false;  ///< the preview showed a bare forearm: the far end rule in every frame
   cv::Mat backgroundDepth_m_, backgroundColour_;
+  cv::Rect view_;  ///< the depth's field of view in the image (depthFieldOfView of the background)
+  std::vector<cv::Point> zonePoints_;  ///< this frame's border zone (borderZone)
   cv::Mat lastMask_;
   Geometry geometry_;
   double lastDepth_m_ = 0.0;  ///< last measured depth of the palm's visible back

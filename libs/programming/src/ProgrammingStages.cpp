@@ -179,6 +179,18 @@ perception::PerceptionResult perceive(const GroundedPlan& grounded, const core::
   }
 
   perception::DemoPerceiver perceiver(kb, popt);
+  if (o.markerFreeHand) {
+    // The marker-free hand learns its background and skin colour from the
+    // whole recording (a demonstrator may be in view from the first frame).
+    // A first read of the rawlog keeps memory flat on long demos, where
+    // holding every frame would cost ~1.5 MB per 640x480 frame.
+    rawlog::RawlogReader reader(o.demoPath);
+    while (auto f = reader.next()) {
+      if (o.intrinsics) f->intrinsics = *o.intrinsics;
+      perceiver.preview(*f);
+      if (o.progress) o.progress("environment preview", static_cast<std::size_t>(reader.framesRead()), 0);
+    }
+  }
   {
     rawlog::RawlogReader reader(o.demoPath);
     while (auto f = reader.next()) {

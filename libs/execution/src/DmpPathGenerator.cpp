@@ -128,8 +128,16 @@ CartesianPath DmpPathGenerator::rollout(const srp::motion::Dmp& learned, const s
   const Eigen::Vector3d residual_demo = (X_demo_world * p_world_goal) - Eigen::Vector3d(r.y.row(n - 1).transpose());
   const Eigen::Quaterniond q_start(X_world_start.linear()), q_goal(X_world_goal.linear());
   const double T = r.t_s(n - 1);
-  const Eigen::Vector3d v_end = r.yd.row(n - 1).transpose();
-  const Eigen::Vector3d a_end = (r.yd.row(n - 1) - r.yd.row(n - 2)).transpose() / (r.t_s(n - 1) - r.t_s(n - 2));
+  // End velocity and acceleration from the positions themselves (backward differences),
+  // as the joint spline through the samples sees them.
+  Eigen::Vector3d v_end = Eigen::Vector3d::Zero(), a_end = Eigen::Vector3d::Zero();
+  if (n >= 3) {
+    const double h1 = r.t_s(n - 1) - r.t_s(n - 2), h2 = r.t_s(n - 2) - r.t_s(n - 3);
+    const Eigen::Vector3d v1 = (r.y.row(n - 1) - r.y.row(n - 2)).transpose() / h1;
+    const Eigen::Vector3d v2 = (r.y.row(n - 2) - r.y.row(n - 3)).transpose() / h2;
+    v_end = v1 + 0.5 * h1 * (v1 - v2) / (0.5 * (h1 + h2));
+    a_end = (v1 - v2) / (0.5 * (h1 + h2));
+  }
   auto correction = [&](double tau) -> Eigen::Vector3d {
     const double t3 = tau * tau * tau, t4 = t3 * tau, t5 = t4 * tau;
     return minimumJerk(tau) * residual_demo + (-4 * t3 + 7 * t4 - 3 * t5) * (-v_end * T) +
@@ -149,6 +157,11 @@ CartesianPath DmpPathGenerator::rollout(const srp::motion::Dmp& learned, const s
   // The rollout converges to the goal; the path contract is start and goal exactly.
   path.front().X_world_tcp = X_world_start;
   path.back().X_world_tcp = X_world_goal;
+  // The rollout's last sample lands at T even when T is a hair past the previous
+  // sample: two knots microseconds apart made the joint spline's acceleration there
+  // 982 rad/s^2 (a random scene's Move). Drop the one before the goal.
+  if (path.size() >= 3 && path[path.size() - 1].t_s - path[path.size() - 2].t_s < 0.5 * dt_s)
+    path.erase(path.end() - 2);
   return path;
 }
 

@@ -14,7 +14,8 @@
 /// which refuses the step naming the unreachable tool pose):
 /// - "in X" / "into X" / "on X" (X a container): inside X's inner footprint, nearest
 ///   to the demonstrated position in X when known, else to the inner corner nearest to
-///   where the part comes from (leaving room for neighbours).
+///   where the part comes from (leaving room for neighbours); an oblong part is turned
+///   by 90 degrees when no place is free along X's axes (also for a named corner).
 /// - "in the <front|back> <left|right> corner of X": inside X, nearest to that inner
 ///   corner, the corner named in the view frame (see srp/core/ViewFrame.h).
 /// - "on Y" / "onto Y" / "on top of Y" (Y a part): stacked, centred on Y with Y's yaw,

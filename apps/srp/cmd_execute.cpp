@@ -25,6 +25,7 @@ struct ExecuteOptions {
   srp::execution::UrScriptOptions ur;
   srp::execution::RosTrajectoryOptions ros;
   double velocityFraction = 1.0;
+  double maxAcceleration_radps2 = srp::execution::SafetyLimits{}.maxAcceleration_radps2;
   bool safetySpheres = false;
   std::string view = "demonstrator";
 };
@@ -62,6 +63,12 @@ void setupExecute(CLI::App& app) {
                  "real cell); paths are slowed down to fit, up to 4x, else the step is refused")
       ->capture_default_str()
       ->check(CLI::Range(0.01, 1.0));
+  app.add_option("--max-acceleration", o->maxAcceleration_radps2,
+                 "Safety check: largest joint acceleration [rad/s^2], every joint, on the spline that is exported "
+                 "(default: Universal Robots' MoveIt limit for UR arms, ur_moveit_config joint_limits.yaml); paths "
+                 "are slowed down to fit, up to 4x with the speeds, else the step is refused")
+      ->capture_default_str()
+      ->check(CLI::Range(0.1, 40.0));
   app.add_option("--view", o->view,
                  "Frame of left/right/front/behind and of 'the second ...' (counted left to right): demonstrator "
                  "(the camera's image axes on the table) or robot (standing at the robot base)")
@@ -79,6 +86,7 @@ void setupExecute(CLI::App& app) {
     request.framePeriod = o->framePeriod;
     request.drawSafetySpheres = o->safetySpheres;
     request.options.safety.velocityFraction = o->velocityFraction;
+    request.options.safety.maxAcceleration_radps2 = o->maxAcceleration_radps2;
     request.options.placement.grounding.viewpoint = srp::core::viewpointFromString(o->view);
     request.progress = [](const std::string& line) { std::cerr << line << "\n"; };
     const auto result = srp::execution::executeTask(request);

@@ -411,13 +411,15 @@ CellSimulator::CellSimulator(const RobotModel& model, const CellDescription& cel
     // Bottom face: an n x n grid (corners, edge points, centre), so a part stacked
     // crosswise on a narrower one (no corner of either inside the other) still rests
     // on the points of its bottom that lie over the lower part. Top face: the corners.
+    // The points lie contactInset_m inside the edges (see SimulationOptions).
     const int n = std::max(2, options.bottomContactGrid);
+    const double ex = std::max(0.0, s.x() - 2 * options.contactInset_m), ey = std::max(0.0, s.y() - 2 * options.contactInset_m);
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j)
-        g.corners_B.emplace_back(s.x() * (double(i) / (n - 1) - 0.5), s.y() * (double(j) / (n - 1) - 0.5), 0.0);
+        g.corners_B.emplace_back(ex * (double(i) / (n - 1) - 0.5), ey * (double(j) / (n - 1) - 0.5), 0.0);
     g.bottomPoints = n * n;
-    for (double x : {-s.x() / 2, s.x() / 2})
-      for (double y : {-s.y() / 2, s.y() / 2}) g.corners_B.emplace_back(x, y, s.z());
+    for (double x : {-ex / 2, ex / 2})
+      for (double y : {-ey / 2, ey / 2}) g.corners_B.emplace_back(x, y, s.z());
     parts.push_back(g);
     ContactBox cb;
     cb.body = free.getMobilizedBodyIndex();

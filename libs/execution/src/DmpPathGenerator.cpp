@@ -119,12 +119,30 @@ CartesianPath DmpPathGenerator::rollout(const srp::motion::Dmp& learned, const s
   const long n = r.t_s.size();
   if (n < 2) throw srp::core::InvalidInputError("DmpPathGenerator: the " + object + " DMP rollout has < 2 samples");
 
-  // The rollout ends near, not at, the goal (the forcing term is not quite zero at
-  // t = T, and the re-targeted system lags): spread the remaining offset over the
-  // path with the minimum-jerk law, so the path ends exactly at the goal, without a jump.
+  // The rollout ends near, not at, the goal and still moving (the forcing term is not
+  // quite zero at t = T, and the re-targeted system lags). A quintic correction spread
+  // over the path (zero, with zero velocity and acceleration, at the start) cancels the
+  // remaining offset, the end velocity and the end acceleration, so the path ends
+  // exactly at the goal and at rest: the next segment starts from rest, and a path
+  // stopped abruptly demanded up to 87 rad/s^2 of a wrist on the demo task's steps.
   const Eigen::Vector3d residual_demo = (X_demo_world * p_world_goal) - Eigen::Vector3d(r.y.row(n - 1).transpose());
   const Eigen::Quaterniond q_start(X_world_start.linear()), q_goal(X_world_goal.linear());
   const double T = r.t_s(n - 1);
+  // End velocity and acceleration from the positions themselves (backward differences),
+  // as the joint spline through the samples sees them.
+  Eigen::Vector3d v_end = Eigen::Vector3d::Zero(), a_end = Eigen::Vector3d::Zero();
+  if (n >= 3) {
+    const double h1 = r.t_s(n - 1) - r.t_s(n - 2), h2 = r.t_s(n - 2) - r.t_s(n - 3);
+    const Eigen::Vector3d v1 = (r.y.row(n - 1) - r.y.row(n - 2)).transpose() / h1;
+    const Eigen::Vector3d v2 = (r.y.row(n - 2) - r.y.row(n - 3)).transpose() / h2;
+    v_end = v1 + 0.5 * h1 * (v1 - v2) / (0.5 * (h1 + h2));
+    a_end = (v1 - v2) / (0.5 * (h1 + h2));
+  }
+  auto correction = [&](double tau) -> Eigen::Vector3d {
+    const double t3 = tau * tau * tau, t4 = t3 * tau, t5 = t4 * tau;
+    return minimumJerk(tau) * residual_demo + (-4 * t3 + 7 * t4 - 3 * t5) * (-v_end * T) +
+           (0.5 * t3 - t4 + 0.5 * t5) * (-a_end * T * T);
+  };
   CartesianPath path;
   path.reserve(static_cast<std::size_t>(n));
   for (long i = 0; i < n; ++i) {
@@ -133,12 +151,17 @@ CartesianPath DmpPathGenerator::rollout(const srp::motion::Dmp& learned, const s
     s.X_world_tcp = srp::core::Pose3::Identity();
     s.X_world_tcp.linear() = q_start.slerp(minimumJerk(s.t_s / T), q_goal).toRotationMatrix();
     s.X_world_tcp.translation() =
-        X_world_demo_ * (Eigen::Vector3d(r.y.row(i).transpose()) + minimumJerk(s.t_s / T) * residual_demo);
+        X_world_demo_ * (Eigen::Vector3d(r.y.row(i).transpose()) + correction(s.t_s / T));
     path.push_back(s);
   }
   // The rollout converges to the goal; the path contract is start and goal exactly.
   path.front().X_world_tcp = X_world_start;
   path.back().X_world_tcp = X_world_goal;
+  // The rollout's last sample lands at T even when T is a hair past the previous
+  // sample: two knots microseconds apart made the joint spline's acceleration there
+  // 982 rad/s^2 (a random scene's Move). Drop the one before the goal.
+  if (path.size() >= 3 && path[path.size() - 1].t_s - path[path.size() - 2].t_s < 0.5 * dt_s)
+    path.erase(path.end() - 2);
   return path;
 }
 

@@ -12,6 +12,7 @@ ExecutedTask ExecutedTask::fromSimulation(const RobotModel& model, const SafetyL
   t.upper_rad = model.upperLimits_rad();
   t.velocityFraction = limits.velocityFraction;
   t.maxVelocity_radps = model.maxVelocities_radps() * limits.velocityFraction;
+  t.maxAcceleration_radps2 = limits.maxAcceleration_radps2;
   t.trajectory = simulator.commandedTrajectory();
   t.gripperEvents = simulator.gripperEvents();
   t.report = std::move(report);

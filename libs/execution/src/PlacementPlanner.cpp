@@ -108,12 +108,14 @@ srp::core::ViewFrame PlacementPlanner::viewFrame(const CellDescription& scene) c
   return scene.viewFrame(options_.grounding.viewpoint);
 }
 
-bool PlacementPlanner::isFree(const CellDescription& scene, const CellObject& part, const Pose3& X) const {
-  const auto mine = footprint(part.size_m, X, options_.clearance_m / 2);
+bool PlacementPlanner::isFree(const CellDescription& scene, const CellObject& part, const Pose3& X,
+                              const std::vector<std::string>& near, double nearClearance_m) const {
   for (const auto& o : scene.objects) {
     if (o.kind != CellObjectKind::Part || o.name == part.name) continue;
     if (!verticalOverlap(part, X.translation().z(), o)) continue;  // stacked above or below
-    if (overlaps(mine, X, footprint(o.size_m, o.X_world_object, options_.clearance_m / 2), o.X_world_object))
+    const bool isNear = std::find(near.begin(), near.end(), o.name) != near.end();
+    const double half = (isNear ? nearClearance_m : options_.clearance_m) / 2;
+    if (overlaps(footprint(part.size_m, X, half), X, footprint(o.size_m, o.X_world_object, half), o.X_world_object))
       return false;
   }
   return true;
@@ -329,6 +331,9 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
     return out;
   }
 
+  // "between": its two landmarks may be nearer than clearance_m (set below).
+  std::vector<std::string> near;
+  double nearClearance_m = options_.clearance_m;
   // Candidates around an ideal point p0, nearest first; the first that fits everything wins.
   auto search = [&](std::vector<Eigen::Vector2d> candidates, const Eigen::Vector2d& p0,
                     const std::function<bool(const Eigen::Vector2d&)>& keeps) -> std::optional<Pose3> {
@@ -342,10 +347,10 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
         for (const auto& o : scene.objects)
           if (o.kind == CellObjectKind::Container && fitsIn(&o, X)) {
             X.translation().z() = o.X_world_object.translation().z() + o.wallThickness_m;
-            if (inReach(X) && isFree(scene, part, X)) return X;
+            if (inReach(X) && isFree(scene, part, X, near, nearClearance_m)) return X;
           }
       }
-      if (fitsContainer(X) && fitsTable(X) && inReach(X) && isFree(scene, part, X)) return X;
+      if (fitsContainer(X) && fitsTable(X) && inReach(X) && isFree(scene, part, X, near, nearClearance_m)) return X;
     }
     return std::nullopt;
   };
@@ -385,14 +390,19 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
       // The part's narrower side along A-B: it needs the least room there.
       yaw = std::atan2(u.y(), u.x()) + (part.size_m.x() <= part.size_m.y() ? 0.0 : M_PI / 2);
       const double sP = support(part.size_m, yaw, u);
-      const double room = length - sA - sB, needed = 2 * sP + 2 * options_.clearance_m;
+      const double room = length - sA - sB, needed = 2 * sP + 2 * options_.betweenMinClearance_m;
       if (room < needed) {
         out.reason = "not enough room between the " + betweenA->name + " and the " + betweenB->name + " for the " +
-                     part.name + " (" + fmt(room) + " free, " + fmt(needed) + " needed)";
+                     part.name + " (" + fmt(room) + " free along the line between them, " + fmt(needed) +
+                     " needed: its narrower side " + fmt(2 * sP) + " and " + fmt(options_.betweenMinClearance_m) +
+                     " on each side)";
         return std::nullopt;
       }
+      // A tight gap: the part in the middle, nearer A and B than clearance_m.
+      nearClearance_m = std::min(options_.clearance_m, (room - 2 * sP) / 2 - 1e-4);  // 0.1 mm: exactly centred touches
+      near = {betweenA->name, betweenB->name};
       const Eigen::Vector2d p0 = a + (sA + room / 2) * u;
-      const double slack = (room - needed) / 2;
+      const double slack = std::max(0.0, (room - 2 * sP - 2 * nearClearance_m) / 2);
       const double lateralLimit = std::max(support(*betweenA, perp), support(*betweenB, perp));
       std::vector<Eigen::Vector2d> candidates;
       for (double along = -slack; along <= slack + 1e-9; along += options_.gridStep_m / 2)
@@ -461,40 +471,53 @@ Placement PlacementPlanner::place(const CellDescription& scene, const CellObject
     return out;
   }
 
-  // "in X": grid over the inner footprint, nearest to the preferred point first.
-  const double ix = container->size_m.x() / 2 - container->wallThickness_m - options_.wallMargin_m - part.size_m.x() / 2;
-  const double iy = container->size_m.y() / 2 - container->wallThickness_m - options_.wallMargin_m - part.size_m.y() / 2;
-  if (ix < 0 || iy < 0) {
+  // "in X": grid over the inner footprint, nearest to the preferred point first; the
+  // part along the container's axes, then (an oblong part, when that found no place)
+  // turned by 90 degrees, which may fit where the first did not (a cuboid across a
+  // corner another part narrows).
+  const double wx = container->size_m.x() / 2 - container->wallThickness_m - options_.wallMargin_m;
+  const double wy = container->size_m.y() / 2 - container->wallThickness_m - options_.wallMargin_m;
+  if (std::min(wx, wy) < std::min(part.size_m.x(), part.size_m.y()) / 2 ||
+      std::max(wx, wy) < std::max(part.size_m.x(), part.size_m.y()) / 2) {
     out.reason = "the " + part.name + " does not fit in the " + container->name;
     return out;
   }
-  // Without a demonstration: the inner corner nearest to where the part comes from,
-  // which leaves the rest of the container free for its neighbours. A named corner:
-  // the inner corner furthest along the corner's two view directions.
-  const Eigen::Vector3d from_c = container->X_world_object.inverse() * part.X_world_object.translation();
-  Eigen::Vector2d corner(from_c.x() < 0 ? -ix : ix, from_c.y() < 0 ? -iy : iy);
-  if (!cornerDirections.empty()) {
-    const Eigen::Vector2d w = cornerDirections[0] + cornerDirections[1];
-    const Eigen::Matrix2d R_wc = container->X_world_object.linear().topLeftCorner<2, 2>();
-    const Eigen::Vector2d w_c = R_wc.transpose() * w;
-    corner = Eigen::Vector2d(w_c.x() < 0 ? -ix : ix, w_c.y() < 0 ? -iy : iy);
-  }
-  const Eigen::Vector2d preferred = cornerDirections.empty() ? step.demoPositionInContainer_m.value_or(corner) : corner;
-  std::vector<Eigen::Vector2d> candidates;
-  for (double x = -ix; x <= ix + 1e-9; x += options_.gridStep_m)
-    for (double y = -iy; y <= iy + 1e-9; y += options_.gridStep_m) candidates.emplace_back(x, y);
-  std::sort(candidates.begin(), candidates.end(), [&](const auto& a, const auto& b) {
-    return (a - preferred).squaredNorm() < (b - preferred).squaredNorm();
-  });
   const Eigen::Vector2d cc = container->X_world_object.translation().head<2>();
-  for (const auto& c : candidates) {
-    Pose3 X = container->X_world_object * uprightPose(Eigen::Vector3d(c.x(), c.y(), container->wallThickness_m), 0.0);
-    // A named corner: stay in its quadrant.
-    bool inQuadrant = true;
-    for (const auto& d : cornerDirections) inQuadrant = inQuadrant && (X.translation().head<2>() - cc).dot(d) > 0.0;
-    if (inQuadrant && isFree(scene, part, X)) {
-      out.X_world_object = X;
-      return out;
+  const bool oblong = std::abs(part.size_m.x() - part.size_m.y()) > 1e-3;
+  for (const double turn : {0.0, M_PI / 2}) {
+    if (turn != 0.0 && !oblong) break;
+    const double hx = turn == 0.0 ? part.size_m.x() / 2 : part.size_m.y() / 2;
+    const double hy = turn == 0.0 ? part.size_m.y() / 2 : part.size_m.x() / 2;
+    const double ix = wx - hx, iy = wy - hy;
+    if (ix < 0 || iy < 0) continue;
+    // Without a demonstration: the inner corner nearest to where the part comes from,
+    // which leaves the rest of the container free for its neighbours. A named corner:
+    // the inner corner furthest along the corner's two view directions.
+    const Eigen::Vector3d from_c = container->X_world_object.inverse() * part.X_world_object.translation();
+    Eigen::Vector2d corner(from_c.x() < 0 ? -ix : ix, from_c.y() < 0 ? -iy : iy);
+    if (!cornerDirections.empty()) {
+      const Eigen::Vector2d w = cornerDirections[0] + cornerDirections[1];
+      const Eigen::Matrix2d R_wc = container->X_world_object.linear().topLeftCorner<2, 2>();
+      const Eigen::Vector2d w_c = R_wc.transpose() * w;
+      corner = Eigen::Vector2d(w_c.x() < 0 ? -ix : ix, w_c.y() < 0 ? -iy : iy);
+    }
+    const Eigen::Vector2d preferred =
+        cornerDirections.empty() ? step.demoPositionInContainer_m.value_or(corner) : corner;
+    std::vector<Eigen::Vector2d> candidates;
+    for (double x = -ix; x <= ix + 1e-9; x += options_.gridStep_m)
+      for (double y = -iy; y <= iy + 1e-9; y += options_.gridStep_m) candidates.emplace_back(x, y);
+    std::sort(candidates.begin(), candidates.end(), [&](const auto& a, const auto& b) {
+      return (a - preferred).squaredNorm() < (b - preferred).squaredNorm();
+    });
+    for (const auto& c : candidates) {
+      Pose3 X = container->X_world_object * uprightPose(Eigen::Vector3d(c.x(), c.y(), container->wallThickness_m), turn);
+      // A named corner: stay in its quadrant.
+      bool inQuadrant = true;
+      for (const auto& d : cornerDirections) inQuadrant = inQuadrant && (X.translation().head<2>() - cc).dot(d) > 0.0;
+      if (inQuadrant && isFree(scene, part, X)) {
+        out.X_world_object = X;
+        return out;
+      }
     }
   }
   out.reason = cornerDirections.empty()

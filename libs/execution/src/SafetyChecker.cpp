@@ -4,6 +4,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include "srp/core/Error.h"
+
 namespace srp::execution {
 namespace {
 
@@ -17,7 +19,12 @@ std::string fmt(double v, int digits = 3) {
 
 SafetyChecker::SafetyChecker(RobotModel model, const srp::core::Pose3& X_world_base, SafetyLimits limits,
                              std::vector<WorldBox> obstacles)
-    : model_(std::move(model)), X_world_base_(X_world_base), limits_(limits), obstacles_(std::move(obstacles)) {}
+    : model_(std::move(model)), X_world_base_(X_world_base), limits_(limits), obstacles_(std::move(obstacles)) {
+  if (!(limits_.maxAcceleration_radps2 > 0.0) || !std::isfinite(limits_.maxAcceleration_radps2))
+    throw srp::core::InvalidInputError("SafetyChecker: the joint acceleration limit must be a positive number of "
+                                       "rad/s^2 (got " + fmt(limits_.maxAcceleration_radps2) +
+                                       "); the default 5.0 is Universal Robots' MoveIt limit");
+}
 
 std::vector<ArmSphere> SafetyChecker::armSpheres(const JointVector& q) const {
   const auto X = model_.linkPoses(q);
@@ -96,7 +103,36 @@ double jointSpeedAt(const std::vector<JointTrajectorySample>& samples, std::size
                                 (samples[k].t_s - samples[k - 1].t_s));
   return speed;
 }
+// |second derivative| of the cubic Hermite spline at sample k, the larger of the
+// interval ending there and the one starting there (a cubic's q'' is linear in t, so
+// these knots bound it everywhere).
+double splineAccelerationAt(const std::vector<JointTrajectorySample>& samples, std::size_t k, int i) {
+  double acc = 0.0;
+  if (k > 0) {  // end of [k-1, k]
+    const auto &a = samples[k - 1], &b = samples[k];
+    const double h = b.t_s - a.t_s;
+    acc = std::abs(6 * (a.q_rad[i] - b.q_rad[i]) + h * (2 * a.qd_radps[i] + 4 * b.qd_radps[i])) / (h * h);
+  }
+  if (k + 1 < samples.size()) {  // start of [k, k+1]
+    const auto &a = samples[k], &b = samples[k + 1];
+    const double h = b.t_s - a.t_s;
+    acc = std::max(acc, std::abs(6 * (b.q_rad[i] - a.q_rad[i]) - h * (4 * a.qd_radps[i] + 2 * b.qd_radps[i])) / (h * h));
+  }
+  return acc;
+}
 }  // namespace
+
+double SafetyChecker::peakSplineAcceleration_radps2(const JointTrajectory& trajectory) {
+  const auto& samples = trajectory.samples();
+  double peak = 0.0;
+  for (std::size_t k = 0; k < samples.size() && samples.size() > 1; ++k)
+    for (int i = 0; i < 6; ++i) peak = std::max(peak, splineAccelerationAt(samples, k, i));
+  return peak;
+}
+
+double SafetyChecker::peakAccelerationRatio(const JointTrajectory& trajectory) const {
+  return peakSplineAcceleration_radps2(trajectory) / limits_.maxAcceleration_radps2;
+}
 
 double SafetyChecker::peakVelocityRatio(const JointTrajectory& trajectory) const {
   const auto& samples = trajectory.samples();
@@ -125,6 +161,12 @@ std::optional<SafetyViolation> SafetyChecker::check(const JointTrajectory& traje
         return SafetyViolation{"velocity limit", k, s.t_s,
                                at + ": joint " + model_.joints()[i].name + " would move at " + fmt(speed) +
                                    " rad/s, above its limit " + fmt(vmax[i]) + " rad/s"};
+      const double acc = samples.size() > 1 ? splineAccelerationAt(samples, k, i) : 0.0;
+      if (acc > limits_.maxAcceleration_radps2 * (1.0 + 1e-9))
+        return SafetyViolation{"acceleration limit", k, s.t_s,
+                               at + ": joint " + model_.joints()[i].name + " would accelerate at " + fmt(acc, 2) +
+                                   " rad/s^2, above its limit " + fmt(limits_.maxAcceleration_radps2, 2) +
+                                   " rad/s^2 (slow the motion down or raise --max-acceleration)"};
     }
   }
   return std::nullopt;

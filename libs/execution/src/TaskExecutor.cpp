@@ -116,7 +116,7 @@ struct TaskExecutor::Segment {
   std::string what;
   CartesianPath path;
   JointTrajectory joints;
-  double slowDown = 1.0;  ///< > 1: retimed to respect the joint speed limits
+  double slowDown = 1.0;  ///< > 1: retimed to respect the joint speed and acceleration limits
 };
 
 StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
@@ -229,8 +229,10 @@ std::optional<std::string> TaskExecutor::planVariant(const CellDescription& scen
       qs.push_back(q);
     }
     seg.joints = JointTrajectory::fromPositions(times, qs);
-    // Same path, slower: retime a path that is too fast for the joints.
-    const double ratio = safety_.peakVelocityRatio(seg.joints) / options_.velocityMargin;
+    // Same path, slower: retime a path that is too fast for the joints (speed ratio r_v
+    // needs k = r_v, acceleration ratio r_a needs k = sqrt(r_a)).
+    const double ratio = std::max(safety_.peakVelocityRatio(seg.joints) / options_.velocityMargin,
+                                  std::sqrt(safety_.peakAccelerationRatio(seg.joints) / options_.accelerationMargin));
     if (ratio > 1.0 && ratio <= options_.maxSlowDown) {
       for (double& t : times) t = times.front() + (t - times.front()) * ratio;
       seg.joints = JointTrajectory::fromPositions(times, qs);

@@ -99,7 +99,8 @@ std::string UrScriptExporter::toScript(const ExecutedTask& task) const {
   s << "\n# limits checked: joint positions within the URDF limits; joint speeds <= URDF limit x "
     << task.velocityFraction << " =";
   for (int j = 0; j < 6; ++j) s << " " << task.maxVelocity_radps[j];
-  s << " rad/s;\n#   arm above the table and clear of the container walls (SafetyChecker)\n";
+  s << " rad/s;\n#   joint accelerations on the spline <= " << task.maxAcceleration_radps2
+    << " rad/s^2; arm above the table and clear of the container walls (SafetyChecker)\n";
   s << "# in this program: peak joint speed " << peakSpeed << " rad/s (" << task.jointNames[peakSpeedJoint]
     << "), peak joint acceleration " << peakAcc << " rad/s^2\n";
   s << "# gripper: tool digital output " << o.gripperDigitalOut << ": True = grasp (suction on), False = release; wait "

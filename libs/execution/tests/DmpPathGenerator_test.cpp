@@ -2,11 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/core/Scene.h"
 #include "srp/execution/ExecutionSession.h"
 #include "srp/execution/TaskExecutor.h"
+#include "srp/execution/UrScriptExporter.h"
 #include "srp/motion/SkillLearner.h"
 #include "srp/programming/MotionRows.h"
 #include "srp/synth/SyntheticPickPlace.h"
@@ -19,6 +22,9 @@ namespace {
 constexpr double kPlacementTol_m = 0.01;   // issue 7: parts end within 1 cm of the planned pose
 constexpr double kEndpointTol_m = 1e-9;    // the path starts and ends exactly at the given poses
 constexpr double kShapeTol_m = 0.01;       // a DMP replayed with its own start/goal stays on the demo
+// The program's positions are printed with 7 decimals: +-5e-8 rad per tick moves a
+// second difference over 8 ms ticks by up to 2e-7 / 0.008^2 = 0.003 rad/s^2.
+constexpr double kExportAccelerationTol_radps2 = 0.01;
 
 Pose3 toolDown(const Eigen::Vector3d& p_world_m, double yaw_rad = 0.0) {
   Pose3 X = Pose3::Identity();
@@ -153,6 +159,33 @@ TEST(DmpPathGenerator, LearnedSkillsFromATaskModelExecuteWithDmpPaths) {
     EXPECT_TRUE(s.relationsHold) << s.object;
   }
   EXPECT_EQ(report.toJson()["steps"][0]["path_source"], "dmp");
+
+  // Issue 20 follow-up: the URScript program of this learned task (the make-demo
+  // pipeline without the rendering: synthetic demo, learned DMPs, instruction 1) keeps
+  // every joint under the acceleration limit between its 8 ms servoj ticks (35.9 rad/s^2
+  // before the limit, on the make-demo task).
+  const ExecutedTask task = ExecutedTask::fromSimulation(robot, ExecutionOptions{}.safety, executor.simulator(), report);
+  ASSERT_FALSE(task.whyNotExportable()) << *task.whyNotExportable();
+  EXPECT_DOUBLE_EQ(task.maxAcceleration_radps2, SafetyLimits{}.maxAcceleration_radps2);
+  const UrScriptOptions urOptions;
+  std::istringstream script(UrScriptExporter(urOptions).toScript(task));
+  std::vector<JointVector> ticks;
+  for (std::string line; std::getline(script, line);) {
+    if (line.rfind("  servoj([", 0) != 0) continue;
+    std::istringstream in(line.substr(10));
+    JointVector q;
+    char comma = 0;
+    for (int j = 0; j < 6; ++j) in >> q[j] >> comma;
+    ticks.push_back(q);
+  }
+  ASSERT_GT(ticks.size(), 1000u);
+  const double T = urOptions.servoPeriod_s;
+  double peak = 0.0;
+  for (std::size_t k = 1; k + 1 < ticks.size(); ++k)
+    peak = std::max(peak, (ticks[k + 1] - 2 * ticks[k] + ticks[k - 1]).cwiseAbs().maxCoeff() / (T * T));
+  std::cout << "learned task: " << task.trajectory.duration_s() << " s, peak joint acceleration between servoj ticks "
+            << peak << " rad/s^2 (limit " << task.maxAcceleration_radps2 << ")\n";
+  EXPECT_LE(peak, task.maxAcceleration_radps2 + kExportAccelerationTol_radps2);
 }
 
 TEST(DmpPathGenerator, BadSkillJsonNamesTheObject) {

@@ -154,6 +154,30 @@ TEST(PlacementPlanner, BetweenTooCloseIsRefusedWithTheRoom) {
   EXPECT_NE(planner.place(c, get(c, "cuboid"), one).reason.find("needs two landmarks"), std::string::npos);
 }
 
+TEST(PlacementPlanner, BetweenATightGapCentresThePartNearerThanTheClearance) {
+  CellDescription c = cell();
+  // Star (y 0.1, half 0.025) and octagon (half 0.02) 41 mm apart: the cuboid's narrow
+  // side (30 mm) fits with 5.5 mm each side, less than clearance_m (8 mm).
+  for (auto& o : c.objects)
+    if (o.name == "octagon") o.X_world_object = at(-0.15, 0.1 - 0.025 - 0.041 - 0.02);
+  const PlacementPlanner planner;
+  ASSERT_GT(planner.options().clearance_m, 0.0055);
+  ExecutionStep s = stepOf("cuboid", rel("between", "star"));
+  s.target[0].secondLandmark = ObjectReference{"octagon", {}};
+  const Placement p = planner.place(c, get(c, "cuboid"), s);
+  ASSERT_TRUE(p.X_world_object) << p.reason;
+  EXPECT_NEAR(p.X_world_object->translation().x(), -0.15, kGridTol_m);
+  EXPECT_NEAR(p.X_world_object->translation().y(), 0.1 - 0.025 - 0.0205, kGridTol_m);  // the gap's middle
+  expectHolds(planner, c, "cuboid", s, p);
+  // 35 mm: 2.5 mm each side, below betweenMinClearance_m (3 mm): refused, saying so.
+  for (auto& o : c.objects)
+    if (o.name == "octagon") o.X_world_object = at(-0.15, 0.1 - 0.025 - 0.035 - 0.02);
+  const Placement tight = planner.place(c, get(c, "cuboid"), s);
+  EXPECT_FALSE(tight.X_world_object);
+  EXPECT_NE(tight.reason.find("(35.0 mm free along the line between them, 36.0 mm needed"), std::string::npos)
+      << tight.reason;
+}
+
 TEST(PlacementPlanner, StackingRestsOnTheLowerPartsTop) {
   const CellDescription c = cell();
   const PlacementPlanner planner;

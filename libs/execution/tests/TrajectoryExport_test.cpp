@@ -22,6 +22,9 @@ namespace {
 
 constexpr double kPositionTol_rad = 1e-6;  // issue 20: positions within 1e-6 rad
 constexpr double kTimeTol_s = 1e-9;        // time_from_start is integer nanoseconds
+// Positions printed with 7 decimals (+-5e-8 rad) move a second difference over 8 ms
+// ticks by up to 2e-7 / 0.008^2 = 0.003 rad/s^2; the spline itself is checked <= the limit.
+constexpr double kTickAccelerationTol_radps2 = 0.01;
 
 SpatialRelation rel(const std::string& r, const std::string& name, std::optional<std::string> color = {}) {
   return {r, {name, color}};
@@ -198,6 +201,10 @@ TEST(TrajectoryExport, UrScriptReplaysTheCheckedTrajectory) {
       EXPECT_GE(p.ticks[k][j], task.lower_rad[j]);
       EXPECT_LE(p.ticks[k][j], task.upper_rad[j]);
       if (k > 0) EXPECT_LE(std::abs(p.ticks[k][j] - p.ticks[k - 1][j]) / T, task.maxVelocity_radps[j]) << k;
+      if (k > 0 && k + 1 < p.ticks.size())
+        EXPECT_LE(std::abs(p.ticks[k + 1][j] - 2 * p.ticks[k][j] + p.ticks[k - 1][j]) / (T * T),
+                  task.maxAcceleration_radps2 + kTickAccelerationTol_radps2)
+            << "tick " << k << ", joint " << j;
     }
   // Preamble: gripper released, then slowly to the first tick.
   EXPECT_EQ(p.preambleOutputs, 1);

@@ -17,6 +17,8 @@
 #include <map>
 #include <optional>
 #include <random>
+#include <sstream>
+#include <cstdlib>
 
 #include "srp/execution/ExecutionSession.h"
 #include "srp/execution/MinimumJerkPathGenerator.h"
@@ -29,6 +31,12 @@ namespace {
 constexpr int kScenes = 50;
 constexpr int kPlacementsPerScene = 2;
 constexpr double kMinSuccessRate = 0.95;  // issue 19 acceptance
+/// Seeds 1-50 were used while building the planner (development seeds). A fresh block
+/// (e.g. SRP_PLACEMENT_FIRST_SEED=1000 SRP_PLACEMENT_SCENES=100) is an own check, run
+/// by hand and reported separately (libs/execution/README.md).
+constexpr int kFirstDevSeed = 1;
+/// The relation check allows footprints 1 mm into each other (PlacementPlanner::check).
+constexpr double kBetweenCheckSlack_m = 0.001;
 
 Pose3 upright(double x, double y, double z, double yaw) {
   Pose3 X = Pose3::Identity();
@@ -109,6 +117,34 @@ ExecutionStep randomStep(std::mt19937& rng, const CellDescription& cell, bool by
   return s;
 }
 
+/// The instance a test reference names: "<colour> <noun>" or the id.
+const CellObject* instanceOf(const CellDescription& scene, const ObjectReference& ref) {
+  for (const auto& o : scene.objects)
+    if (ref.color ? (o.noun == ref.name && o.color == *ref.color) : o.name == ref.name) return &o;
+  return nullptr;
+}
+
+/// Independent of the planner: the free space between A's and B's footprints along
+/// the line through their centres (their 8 footprint corners projected on it), less
+/// the mover's narrowest side (the least any yaw of it takes along the line). Negative:
+/// no pose of the mover has both footprints' gaps >= 0, which is what "between" checks
+/// after the placement (up to kBetweenCheckSlack_m each side), so no planner could.
+double betweenRoomLeft_m(const CellObject& mover, const CellObject& a, const CellObject& b) {
+  const Eigen::Vector2d ca = a.X_world_object.translation().head<2>(), cb = b.X_world_object.translation().head<2>();
+  const Eigen::Vector2d u = (cb - ca).normalized();
+  auto projections = [&](const CellObject& o) {
+    double lo = 1e9, hi = -1e9;
+    for (double sx : {-0.5, 0.5})
+      for (double sy : {-0.5, 0.5}) {
+        const double t = (o.X_world_object * Eigen::Vector3d(sx * o.size_m.x(), sy * o.size_m.y(), 0.0)).head<2>().dot(u);
+        lo = std::min(lo, t), hi = std::max(hi, t);
+      }
+    return std::make_pair(lo, hi);
+  };
+  const double gap = projections(b).first - projections(a).second;
+  return gap + 2 * kBetweenCheckSlack_m - std::min(mover.size_m.x(), mover.size_m.y());
+}
+
 std::string describe(const ExecutionStep& s) {
   const auto& r = s.target[0];
   return r.relation + (r.corner.empty() ? "" : " (" + r.corner + ")") + " " + r.landmark.describe() +
@@ -120,14 +156,28 @@ std::string describe(const ExecutionStep& s) {
 /// random placements each; expects >= kMinSuccessRate done with the relation holding.
 /// byColour: every moved part must be grounded to the instance its "<colour> <noun>"
 /// names (asserted); the success rate is asserted only when minSuccessRate is given.
+/// Seeds kFirstDevSeed.. kFirstDevSeed + kScenes - 1, or the block given by the
+/// environment (SRP_PLACEMENT_FIRST_SEED, SRP_PLACEMENT_SCENES) for a fresh check.
+std::pair<int, int> seedBlock() {
+  const char* first = std::getenv("SRP_PLACEMENT_FIRST_SEED");
+  const char* count = std::getenv("SRP_PLACEMENT_SCENES");
+  return {first ? std::atoi(first) : kFirstDevSeed, count ? std::atoi(count) : kScenes};
+}
+
+/// A placement counts as correct when it is done with its relations holding, or when
+/// it is a "between" refused for lack of room *and* betweenRoomLeft_m confirms that
+/// no pose could satisfy it (counted and listed separately).
 void runRandomPlacements(const std::string& scenePath, bool byColour, std::optional<double> minSuccessRate) {
   const RobotModel model = RobotModel::defaultUr5();
-  int succeeded = 0, total = 0;
+  const auto [firstSeed, scenes] = seedBlock();
+  const bool devSeeds = firstSeed == kFirstDevSeed && scenes == kScenes;
+  int succeeded = 0, total = 0, confirmedRefusals = 0, done = 0;
+  std::vector<std::string> refusals;
   std::map<std::string, std::pair<int, int>> byRelation;  // relation -> (succeeded, total)
   std::vector<std::string> failures;
   std::cout << std::left << std::setw(6) << "seed" << std::setw(15) << "object" << std::setw(44) << "relation"
             << std::setw(9) << "status" << std::setw(7) << "holds" << "measured\n";
-  for (int seed = 1; seed <= kScenes; ++seed) {
+  for (int seed = firstSeed; seed < firstSeed + scenes; ++seed) {
     std::mt19937 rng(static_cast<std::uint32_t>(seed));
     const CellDescription cell = randomScene(rng, scenePath);
     const JointVector home = TaskExecutor::defaultHome(model, cell.X_world_base, defaultHomeTcp(cell));
@@ -143,8 +193,32 @@ void runRandomPlacements(const std::string& scenePath, bool byColour, std::optio
       plan.steps.push_back(step);
       const StepReport r = ex.run(plan).steps.at(0);
       EXPECT_EQ(r.object, expectedId) << "seed " << seed << ": 'the " << step.object.describe() << "' grounded wrongly";
-      const bool ok = r.status == StepStatus::Done && r.relationsHold;
+      bool ok = r.status == StepStatus::Done && r.relationsHold;
+      done += ok;
       const std::string relation = step.target[0].relation;
+      if (!ok && r.status == StepStatus::Skipped && relation == "between" &&
+          r.reason.find("not enough room between") != std::string::npos) {
+        const CellObject* mover = now.find(r.object);
+        const CellObject* a = instanceOf(now, step.target[0].landmark);
+        const CellObject* b = instanceOf(now, *step.target[0].secondLandmark);
+        const double left = mover && a && b ? betweenRoomLeft_m(*mover, *a, *b) : 1.0;
+        // Refused: nothing may have moved.
+        const CellDescription after = ex.perceive();
+        double moved = 0.0;
+        for (const auto& o : now.objects)
+          if (o.kind == CellObjectKind::Part)
+            moved = std::max(moved, (after.find(o.name)->X_world_object.translation() - o.X_world_object.translation()).norm());
+        EXPECT_LT(moved, 1e-4) << "seed " << seed << ": a refused placement moved a part";
+        std::ostringstream line;
+        line << std::fixed << std::setprecision(1) << "seed " << seed << ": " << r.object << " " << describe(step)
+             << ": room along the line minus its narrowest side " << left * 1000 << " mm"
+             << (left < 0.0 ? " (confirmed: no room)" : " (NOT confirmed: counted as a failure)");
+        refusals.push_back(line.str());
+        if (left < 0.0 && moved < 1e-4) {
+          ok = true;
+          ++confirmedRefusals;
+        }
+      }
       ++total;
       ++byRelation[relation].second;
       if (ok) {
@@ -161,17 +235,20 @@ void runRandomPlacements(const std::string& scenePath, bool byColour, std::optio
   }
   std::cout << "\nper relation (succeeded/total):";
   for (const auto& [rel, n] : byRelation) std::cout << "  " << rel << " " << n.first << "/" << n.second;
-  std::cout << "\nplacement relations on " << kScenes << " random scenes: " << succeeded << "/" << total
-            << " succeeded (" << std::fixed << std::setprecision(1) << 100.0 * succeeded / total << " %)\n";
+  std::cout << "\nplacement relations on " << scenes << " random scenes (seeds " << firstSeed << "-"
+            << firstSeed + scenes - 1 << (devSeeds ? ", development seeds" : ", not the development seeds")
+            << "): " << succeeded << "/" << total << " correct (" << std::fixed << std::setprecision(1)
+            << 100.0 * succeeded / total << " %): " << done << " done with the relation holding, " << confirmedRefusals
+            << " 'between' refused for lack of room, confirmed by the independent check\n";
+  for (const auto& f : refusals) std::cout << "  REFUSED " << f << "\n";
   for (const auto& f : failures) std::cout << "  FAILED " << f << "\n";
-  if (minSuccessRate) EXPECT_GE(succeeded, *minSuccessRate * total);
+  if (minSuccessRate && devSeeds) EXPECT_GE(succeeded, *minSuccessRate * total);
 }
 
 TEST(PlacementRelations, RandomScenesAndRelations) { runRandomPlacements("", false, kMinSuccessRate); }
 
 TEST(PlacementRelations, RandomScenesWithTwoInstancesPerClass) {
-  // Asserts the grounding of every moved part; the placement rate is printed, not
-  // asserted (90/100 at the merge of s6-ground and s6-place: the failures are
-  // placement limits, "between" too narrow, a part on a star not upright, a full corner).
-  runRandomPlacements(std::string(SRP_SIM_DIR) + "/scenes/two_cuboids_two_stars.json", true, std::nullopt);
+  // Asserts the grounding of every moved part and, on the development seeds, the
+  // success rate (90/100 at the merge of session 6; see libs/execution/README.md).
+  runRandomPlacements(std::string(SRP_SIM_DIR) + "/scenes/two_cuboids_two_stars.json", true, kMinSuccessRate);
 }

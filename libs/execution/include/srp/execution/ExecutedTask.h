@@ -34,6 +34,8 @@ struct ExecutedTask {
   /// The joint speeds the trajectory was checked against: URDF limit x velocityFraction.
   JointVector maxVelocity_radps = JointVector::Zero();
   double velocityFraction = 1.0;
+  /// The joint acceleration the trajectory was checked against (SafetyLimits).
+  double maxAcceleration_radps2 = 0.0;
   JointTrajectory trajectory;               ///< CellSimulator::commandedTrajectory()
   std::vector<GripperEvent> gripperEvents;  ///< CellSimulator::gripperEvents()
   ExecutionReport report;

@@ -14,7 +14,8 @@
 /// which refuses the step naming the unreachable tool pose):
 /// - "in X" / "into X" / "on X" (X a container): inside X's inner footprint, nearest
 ///   to the demonstrated position in X when known, else to the inner corner nearest to
-///   where the part comes from (leaving room for neighbours).
+///   where the part comes from (leaving room for neighbours); an oblong part is turned
+///   by 90 degrees when no place is free along X's axes (also for a named corner).
 /// - "in the <front|back> <left|right> corner of X": inside X, nearest to that inner
 ///   corner, the corner named in the view frame (see srp/core/ViewFrame.h).
 /// - "on Y" / "onto Y" / "on top of Y" (Y a part): stacked, centred on Y with Y's yaw,
@@ -27,7 +28,9 @@
 ///   sideways when that place is taken, as long as the lateral offset stays below
 ///   the offset along d, i.e. within 45 degrees of d).
 /// - "between A and B": on the segment A-B, centred in the free space between their
-///   footprints; refused when that space is narrower than the part plus two clearances.
+///   footprints, clearance_m from A and B when there is room, else in the middle down to
+///   betweenMinClearance_m; refused when the space is narrower than the part's narrower
+///   side plus two betweenMinClearance_m.
 /// - a place on the table that lies wholly inside a container rests on its floor.
 /// The yaw of a placed part is its container's, else its landmark's; "between" turns the
 /// part's narrower side along A-B.
@@ -50,6 +53,9 @@ struct PlacementOptions {
   double neighbourGap_m = 0.015;  ///< gap between footprints of neighbours
   double wallMargin_m = 0.008;    ///< free space between a placed part and a wall
   double clearance_m = 0.008;     ///< minimum gap to any other part
+  /// "between A and B" in a gap narrower than the part + 2 x clearance_m: the part goes
+  /// in the middle, at least this far from A and B (other parts keep clearance_m).
+  double betweenMinClearance_m = 0.003;
   double gridStep_m = 0.005;      ///< candidate spacing for "in X"
   double minReach_m = 0.15;       ///< horizontal distance from the robot base, at least
   double maxReach_m = 0.80;       ///< and at most (UR5: 0.85 m)
@@ -97,7 +103,10 @@ class PlacementPlanner {
   const PlacementOptions& options() const { return options_; }
 
  private:
-  bool isFree(const CellDescription& scene, const CellObject& part, const srp::core::Pose3& X) const;
+  /// No other part within clearance_m of `part` at X at its height; `near` (if not
+  /// empty) are kept only `nearClearance_m` away ("between": its two landmarks).
+  bool isFree(const CellDescription& scene, const CellObject& part, const srp::core::Pose3& X,
+              const std::vector<std::string>& near = {}, double nearClearance_m = 0.0) const;
   PlacementOptions options_;
 };
 

@@ -1,7 +1,7 @@
 #pragma once
 /// \file SafetyChecker.h
 /// \brief Checks a joint trajectory before the arm moves: joint position limits,
-/// joint velocity limits, the tool centre point inside a workspace box, the arm
+/// joint velocity limits, joint acceleration limits, the tool centre point inside a workspace box, the arm
 /// above the table plane and clear of the containers. A violation refuses the
 /// whole trajectory with a message naming the check, the joint or link, the time
 /// and the values; nothing is ever clipped silently.
@@ -28,6 +28,13 @@ struct SafetyLimits {
   double tableClearance_m = 0.005;     ///< minimum gap between any arm sphere and the table top
   double obstacleClearance_m = 0.002;  ///< minimum gap between arm spheres and container walls
   double velocityFraction = 1.0;       ///< fraction of the URDF velocity limits allowed
+  /// Largest joint acceleration allowed, every joint [rad/s^2]. The UR5's URDF data
+  /// (../shared/robots/ur5/joint_limits.yaml: "acceleration limits are not publicly
+  /// available") has none; 5.0 rad/s^2 is the limit Universal Robots' own ROS 2 driver
+  /// gives MoveIt for time parametrisation of every UR arm, "chosen conservatively"
+  /// (Universal_Robots_ROS2_Driver, ur_moveit_config/config/joint_limits.yaml).
+  /// Measured on the spline the controller replays (see check()).
+  double maxAcceleration_radps2 = 5.0;
 };
 
 struct SafetyViolation {
@@ -50,13 +57,25 @@ class SafetyChecker {
                 std::vector<WorldBox> obstacles);
 
   /// First violation along the trajectory, or nullopt when it is safe. `what` names
-  /// the motion in the message ("Reach of cuboid").
+  /// the motion in the message ("Reach of cuboid"). Accelerations are those of the
+  /// cubic Hermite spline through the samples (JointTrajectory::at, the spline that
+  /// servoj and a ROS joint trajectory controller replay): exact at both ends of every
+  /// interval, where a cubic's second derivative peaks.
   std::optional<SafetyViolation> check(const JointTrajectory& trajectory, const std::string& what) const;
 
   /// Largest ratio of a joint's speed to its allowed speed along the trajectory
   /// (spline velocity and chord between samples, as check() measures them);
   /// above 1 the trajectory breaks the velocity limit.
   double peakVelocityRatio(const JointTrajectory& trajectory) const;
+
+  /// Largest ratio of a joint's spline acceleration to maxAcceleration_radps2 along
+  /// the trajectory; above 1 the trajectory breaks the acceleration limit. Slowing
+  /// the whole trajectory down by a factor k divides it by k^2.
+  double peakAccelerationRatio(const JointTrajectory& trajectory) const;
+
+  /// Largest |joint acceleration| [rad/s^2] of the cubic Hermite spline through the
+  /// samples, any joint (0 for fewer than two samples).
+  static double peakSplineAcceleration_radps2(const JointTrajectory& trajectory);
 
   /// First violation of one configuration (limits, workspace, table, obstacles).
   std::optional<SafetyViolation> checkConfiguration(const JointVector& q, const std::string& what) const;

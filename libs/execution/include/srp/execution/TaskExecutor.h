@@ -34,12 +34,14 @@ struct ExecutionOptions {
   double retreat_m = 0.06;          ///< tool lift after release
   double sampleTime_s = 0.01;       ///< Cartesian path and joint trajectory sampling
   double settle_s = 0.15;           ///< hold time after each segment
-  /// A path whose joint speeds exceed the limits (a learned DMP is as fast as the
-  /// demonstrator, which near a wrist singularity can be too fast for the arm) is
-  /// followed more slowly, up to this factor; beyond it (an IK branch jump, a
-  /// singularity) the step is refused.
+  /// A path whose joint speeds or accelerations exceed the limits (a learned DMP is as
+  /// fast as the demonstrator, which near a wrist singularity can be too fast for the
+  /// arm) is followed more slowly, the whole segment time-scaled by one factor k
+  /// (speeds / k, accelerations / k^2), up to this factor; beyond it (an IK branch
+  /// jump, a singularity) the step is refused.
   double maxSlowDown = 4.0;
-  double velocityMargin = 0.95;     ///< a slowed path peaks at this fraction of the limit
+  double velocityMargin = 0.95;     ///< a slowed path peaks at this fraction of the speed limit
+  double accelerationMargin = 0.95; ///< and at this fraction of the acceleration limit
   double placementTolerance_m = 0.01;  ///< "within 1 cm of the planned pose"
   double neighbourTolerance_m = 0.015; ///< extra gap allowed for "next to"
   SafetyLimits safety;

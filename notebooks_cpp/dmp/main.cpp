@@ -59,7 +59,7 @@ namespace {
 using srp::motion::Dmp;
 using srp::motion::DmpConfig;
 using srp::motion::DmpRollout;
-using srp::plot::Color;
+using srp::plot::Colour;
 using srp::plot::Marker;
 
 const std::string kReferenceDir = std::string(SRP_DATASETS_DIR) + "/reference/dmp";
@@ -209,15 +209,15 @@ int run(int argc, char** argv) {
         ax.yLabel = std::string(axisNames[d]) + " (camera) [m]";
         // The legend goes where the curves leave room: top right of y (Reach), of x (Move).
         const bool withLegend = d == (skill == "reach" ? 1 : 0);
-        ax.scatter(toVector(t_s), column(demo, d), withLegend ? "demonstration" : "", Color::gray(), Marker::Circle, 4);
-        ax.line(toVector(reproduction.t_s), column(reproduction.y, d), withLegend ? "reproduction" : "", Color::tab(0));
-        ax.line(toVector(adaptation.t_s), column(adaptation.y, d), withLegend ? "adaptation" : "", Color::tab(1), 2.0, true);
-        ax.scatter({0.0, 1.0}, {newStart(d), newGoal(d)}, withLegend ? "new start / goal" : "", Color::tab(3),
+        ax.scatter(toVector(t_s), column(demo, d), withLegend ? "demonstration" : "", Colour::gray(), Marker::Circle, 4);
+        ax.line(toVector(reproduction.t_s), column(reproduction.y, d), withLegend ? "reproduction" : "", Colour::tab(0));
+        ax.line(toVector(adaptation.t_s), column(adaptation.y, d), withLegend ? "adaptation" : "", Colour::tab(1), 2.0, true);
+        ax.scatter({0.0, 1.0}, {newStart(d), newGoal(d)}, withLegend ? "new start / goal" : "", Colour::tab(3),
                    Marker::Cross, 6);
         if (libReproduction.size() > 0) {
-          ax.scatter(toVector(t_s), column(libReproduction, d), withLegend ? "movement_primitives" : "", Color::tab(2),
+          ax.scatter(toVector(t_s), column(libReproduction, d), withLegend ? "movement_primitives" : "", Colour::tab(2),
                      Marker::Square, 2);
-          ax.scatter(toVector(t_s), column(libAdaptation, d), "", Color::tab(2), Marker::Square, 2);
+          ax.scatter(toVector(t_s), column(libAdaptation, d), "", Colour::tab(2), Marker::Square, 2);
         }
       }
     }

@@ -54,7 +54,7 @@
 
 namespace {
 
-using srp::plot::Color;
+using srp::plot::Colour;
 using srp::plot::Marker;
 
 double percentile(std::vector<double> v, double p) {
@@ -64,12 +64,12 @@ double percentile(std::vector<double> v, double p) {
 }
 
 // Colours of the demo's phases (the ground truth's names).
-Color phaseColor(const std::string& phase) {
-  if (phase == "reach") return Color::tab(0);
-  if (phase == "grasp") return Color::tab(3);
-  if (phase == "move") return Color::tab(2);
-  if (phase == "release") return Color::tab(4);
-  return Color::gray();  // idle, retract
+Colour phaseColour(const std::string& phase) {
+  if (phase == "reach") return Colour::tab(0);
+  if (phase == "grasp") return Colour::tab(3);
+  if (phase == "move") return Colour::tab(2);
+  if (phase == "release") return Colour::tab(4);
+  return Colour::gray();  // idle, retract
 }
 
 int run(int argc, char** argv) {
@@ -175,11 +175,11 @@ int run(int argc, char** argv) {
     const std::vector<double>* truthCols[] = {&tx, &ty, &tz};
     const std::vector<double>* detCols[] = {&dx, &dy, &dz};
     for (int d = 0; d < 3; ++d) {
-      ax.line(t_s, *truthCols[d], std::string(names[d]) + " truth", Color::tab(d), 1.5);
-      ax.scatter(dt_s, *detCols[d], std::string(names[d]) + " detected", Color::tab(d), Marker::Circle, 2.5);
+      ax.line(t_s, *truthCols[d], std::string(names[d]) + " truth", Colour::tab(d), 1.5);
+      ax.scatter(dt_s, *detCols[d], std::string(names[d]) + " detected", Colour::tab(d), Marker::Circle, 2.5);
     }
-    ax.verticalLine(graspT_s, "grasp", Color{0, 0, 0});
-    ax.verticalLine(releaseT_s, "release", Color{0, 0, 0});
+    ax.verticalLine(graspT_s, "grasp", Colour{0, 0, 0});
+    ax.verticalLine(releaseT_s, "release", Colour{0, 0, 0});
   }
   {
     auto& ax = fig.axes(0, 1);
@@ -187,11 +187,11 @@ int run(int argc, char** argv) {
     ax.xLabel = "x [m]";
     ax.yLabel = "y [m]";
     ax.equalAspect = true;
-    ax.line(tx, ty, "truth", Color::gray(), 1.5);
-    ax.scatter(dx, dy, "detected", Color::tab(0), Marker::Circle, 2.5);
+    ax.line(tx, ty, "truth", Colour::gray(), 1.5);
+    ax.scatter(dx, dy, "detected", Colour::tab(0), Marker::Circle, 2.5);
     const auto at = [&](int frame) { return truth.frames.at(frame).p_camera_palm_m; };
-    ax.scatter({at(event.graspFrame).x()}, {at(event.graspFrame).y()}, "grasp", Color::tab(3), Marker::Cross, 8);
-    ax.scatter({at(event.releaseFrame).x()}, {at(event.releaseFrame).y()}, "release", Color::tab(2), Marker::Cross, 8);
+    ax.scatter({at(event.graspFrame).x()}, {at(event.graspFrame).y()}, "grasp", Colour::tab(3), Marker::Cross, 8);
+    ax.scatter({at(event.releaseFrame).x()}, {at(event.releaseFrame).y()}, "release", Colour::tab(2), Marker::Cross, 8);
   }
   {
     auto& ax = fig.axes(1, 0);
@@ -206,13 +206,13 @@ int run(int argc, char** argv) {
       const std::string& phase = truth.frames[i].phase;
       const bool first = std::find(named.begin(), named.end(), phase) == named.end();
       if (phase != "idle") {
-        ax.band(truth.frames[i].t_s, truth.frames[j].t_s + 1.0 / truth.fps, first ? phase : "", phaseColor(phase), 0.18);
+        ax.band(truth.frames[i].t_s, truth.frames[j].t_s + 1.0 / truth.fps, first ? phase : "", phaseColour(phase), 0.18);
         if (first) named.push_back(phase);
       }
       i = j + 1;
     }
-    ax.scatter(dt_s, error_mm, "", Color{0, 0, 0}, Marker::Circle, 2.0);
-    ax.horizontalLine(median_mm, "median", Color::tab(3));
+    ax.scatter(dt_s, error_mm, "", Colour{0, 0, 0}, Marker::Circle, 2.0);
+    ax.horizontalLine(median_mm, "median", Colour::tab(3));
   }
   {
     // The thesis (section 8.3.3) found valid camera depth on fewer than half of
@@ -226,8 +226,8 @@ int run(int argc, char** argv) {
     std::vector<double> t, valid;
     for (const auto& f : truth.frames)
       if (f.handValidDepthFraction) t.push_back(f.t_s), valid.push_back(100.0 * *f.handValidDepthFraction);
-    ax.scatter(t, valid, "per frame", Color::tab(4), Marker::Circle, 2.5);
-    ax.horizontalLine(100.0 * meanHandValidDepth, "mean", Color::tab(3));
+    ax.scatter(t, valid, "per frame", Colour::tab(4), Marker::Circle, 2.5);
+    ax.horizontalLine(100.0 * meanHandValidDepth, "mean", Colour::tab(3));
   }
   const std::filesystem::path png = out / "hand_trajectory.png";
   fig.save(png.string());

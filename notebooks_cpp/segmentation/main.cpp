@@ -57,7 +57,7 @@
 namespace {
 
 using srp::motion::Segmenter;
-using srp::plot::Color;
+using srp::plot::Colour;
 using srp::plot::Marker;
 
 int run(int argc, char** argv) {
@@ -166,18 +166,18 @@ int run(int argc, char** argv) {
         for (std::size_t i = 0; i < cuboid.positions.size(); ++i)
           if (cuboid.positions[i].valid && i < object.component.size() && object.component[i] == c)
             t.push_back(time(cuboid.positions[i].frame)), v.push_back(cuboid.positions[i].p_m[d]);
-        ax.scatter(t, v, d == 0 ? componentNames[c] : "", Color::tab(c), Marker::Circle, 2.5);
+        ax.scatter(t, v, d == 0 ? componentNames[c] : "", Colour::tab(c), Marker::Circle, 2.5);
       }
     // The smoothed track the mixture was fitted to.
     for (int d = 0; d < 2; ++d) {
       std::vector<double> t, v;
       for (const auto& s : object.smoothed.samples()) t.push_back(time(s.frame)), v.push_back(s.p_m[d]);
-      ax.line(t, v, d == 0 ? "smoothed, gaps bridged" : "", Color::gray(), 1.0);
+      ax.line(t, v, d == 0 ? "smoothed, gaps bridged" : "", Colour::gray(), 1.0);
     }
-    ax.verticalLine(time(object.graspFrame), "grasp", Color::tab(3), false);
-    ax.verticalLine(time(object.releaseFrame), "release", Color::tab(4), false);
-    ax.verticalLine(time(event.graspFrame), "", Color::tab(3), true);
-    ax.verticalLine(time(event.releaseFrame), "", Color::tab(4), true);
+    ax.verticalLine(time(object.graspFrame), "grasp", Colour::tab(3), false);
+    ax.verticalLine(time(object.releaseFrame), "release", Colour::tab(4), false);
+    ax.verticalLine(time(event.graspFrame), "", Colour::tab(3), true);
+    ax.verticalLine(time(event.releaseFrame), "", Colour::tab(4), true);
   }
   {
     auto& ax = fig.axes(1, 0);
@@ -193,14 +193,14 @@ int run(int argc, char** argv) {
       speed.push_back((smooth[i + 1].p_m - smooth[i - 1].p_m).norm() * fps / 2.0);
       distance.push_back((smooth[i].p_m - object.p_initial_m).norm());
     }
-    ax.band(time(smooth.at(segmentation.firstHandIndex).frame), time(object.graspFrame), "Reach", Color::tab(0), 0.15);
-    ax.band(time(object.graspFrame), time(object.releaseFrame), "Move", Color::tab(2), 0.15);
-    ax.line(t, speed, "hand speed", Color::tab(0));
-    ax.line(t, distance, "hand - initial cuboid", Color::tab(1));
-    ax.verticalLine(time(object.graspFrame), "Grasp", Color::tab(3), false);
-    ax.verticalLine(time(object.releaseFrame), "Release", Color::tab(4), false);
-    ax.verticalLine(time(event.graspFrame), "", Color::tab(3), true);
-    ax.verticalLine(time(event.releaseFrame), "", Color::tab(4), true);
+    ax.band(time(smooth.at(segmentation.firstHandIndex).frame), time(object.graspFrame), "Reach", Colour::tab(0), 0.15);
+    ax.band(time(object.graspFrame), time(object.releaseFrame), "Move", Colour::tab(2), 0.15);
+    ax.line(t, speed, "hand speed", Colour::tab(0));
+    ax.line(t, distance, "hand - initial cuboid", Colour::tab(1));
+    ax.verticalLine(time(object.graspFrame), "Grasp", Colour::tab(3), false);
+    ax.verticalLine(time(object.releaseFrame), "Release", Colour::tab(4), false);
+    ax.verticalLine(time(event.graspFrame), "", Colour::tab(3), true);
+    ax.verticalLine(time(event.releaseFrame), "", Colour::tab(4), true);
   }
   const std::filesystem::path png = out / "segmentation.png";
   fig.save(png.string());

@@ -45,7 +45,7 @@ ObjectCatalogue ObjectCatalogue::load(const std::string& path) {
       const std::string ctx = path + ": class '" + c.name + "'";
       c.classId = requireField(e, "class_id", ctx).get<int>();
       c.noun = e.value("noun", c.name);
-      c.colorName = e.value("color_name", "");
+      c.colourName = e.value("color_name", "");
       const std::string kind = requireField(e, "kind", ctx).get<std::string>();
       if (kind == "part") c.kind = ObjectKind::Part;
       else if (kind == "container") c.kind = ObjectKind::Container;
@@ -85,19 +85,19 @@ const ObjectClass* ObjectCatalogue::findById(int classId) const {
   return nullptr;
 }
 
-const ObjectClass* ObjectCatalogue::ground(const std::string& noun, const std::string& color) const {
-  if (!color.empty())
-    if (const ObjectClass* c = find(color + " " + noun)) return c;
+const ObjectClass* ObjectCatalogue::ground(const std::string& noun, const std::string& colour) const {
+  if (!colour.empty())
+    if (const ObjectClass* c = find(colour + " " + noun)) return c;
   if (const ObjectClass* c = find(noun)) return c;
   const ObjectClass* match = nullptr;
   int count = 0;
   for (const auto& c : classes_) {
     if (c.noun != noun) continue;
-    if (!color.empty() && c.colorName == color) return &c;
+    if (!colour.empty() && c.colourName == colour) return &c;
     match = &c;
     ++count;
   }
-  return (count == 1 && color.empty()) ? match : nullptr;
+  return (count == 1 && colour.empty()) ? match : nullptr;
 }
 
 const ObjectClass& ObjectCatalogue::at(const std::string& name) const {

@@ -18,41 +18,41 @@ Eigen::Vector3d vec3(const nlohmann::json& j, const std::string& context) {
 
 }  // namespace
 
-std::string instanceColor(const SceneObject& object, const ObjectClass& cls) {
-  return object.color.empty() ? cls.colorName : object.color;
+std::string instanceColour(const SceneObject& object, const ObjectClass& cls) {
+  return object.colour.empty() ? cls.colourName : object.colour;
 }
 
 Eigen::Vector3d instanceRgb(const SceneObject& object, const ObjectClass& cls) {
   if (object.rgb) return *object.rgb;
-  if (!object.color.empty())
-    if (const auto rgb = rgbOfColorName(object.color)) return *rgb;
+  if (!object.colour.empty())
+    if (const auto rgb = rgbOfColourName(object.colour)) return *rgb;
   return cls.rgb;
 }
 
 namespace {
-const std::map<std::string, Eigen::Vector3d>& basicColors() {
+const std::map<std::string, Eigen::Vector3d>& basicColours() {
   // Saturated enough to stay apart under the renderer's lighting and the
   // perception's colour segmentation; red/blue/gray as the catalogue's classes.
-  static const std::map<std::string, Eigen::Vector3d> kColors{
+  static const std::map<std::string, Eigen::Vector3d> kColours{
       {"red", {0.85, 0.18, 0.14}},   {"green", {0.18, 0.68, 0.3}},  {"blue", {0.12, 0.28, 0.78}},
       {"yellow", {0.95, 0.85, 0.1}}, {"orange", {0.95, 0.52, 0.08}}, {"purple", {0.5, 0.2, 0.65}},
       {"pink", {0.95, 0.5, 0.7}},    {"brown", {0.45, 0.28, 0.12}},  {"black", {0.05, 0.05, 0.05}},
       {"white", {0.95, 0.95, 0.95}}, {"gray", {0.55, 0.55, 0.57}},   {"grey", {0.55, 0.55, 0.57}},
       {"cyan", {0.1, 0.75, 0.8}}};
-  return kColors;
+  return kColours;
 }
 }  // namespace
 
-std::optional<Eigen::Vector3d> rgbOfColorName(const std::string& color) {
-  const auto it = basicColors().find(color);
-  if (it == basicColors().end()) return std::nullopt;
+std::optional<Eigen::Vector3d> rgbOfColourName(const std::string& colour) {
+  const auto it = basicColours().find(colour);
+  if (it == basicColours().end()) return std::nullopt;
   return it->second;
 }
 
-std::string nearestColorName(const Eigen::Vector3d& rgb, double maxDistance) {
+std::string nearestColourName(const Eigen::Vector3d& rgb, double maxDistance) {
   std::string best;
   double bestDistance = maxDistance;
-  for (const auto& [name, c] : basicColors())
+  for (const auto& [name, c] : basicColours())
     if (name != "grey" && (c - rgb).norm() <= bestDistance) {
       best = name;
       bestDistance = (c - rgb).norm();
@@ -123,7 +123,7 @@ Scene Scene::fromJson(const nlohmann::json& j, const std::string& ctx, const std
       o.className = requireField(objects[i], "class", octx + " ('" + o.id + "')").get<std::string>();
       o.X_world_object = poseFromJson(requireField(objects[i], "X_world_object", octx + " ('" + o.id + "')"),
                                       octx + " ('" + o.id + "').X_world_object");
-      o.color = objects[i].value("color", std::string());
+      o.colour = objects[i].value("color", std::string());
       if (objects[i].contains("rgb")) {
         o.rgb = vec3(objects[i].at("rgb"), octx + " ('" + o.id + "'): field 'rgb'");
         if ((o.rgb->array() < 0.0).any() || (o.rgb->array() > 1.0).any())
@@ -141,7 +141,7 @@ nlohmann::json Scene::toJson() const {
   nlohmann::json objs = nlohmann::json::array();
   for (const auto& o : objects) {
     nlohmann::json jo{{"id", o.id}, {"class", o.className}, {"X_world_object", poseToJson(o.X_world_object)}};
-    if (!o.color.empty()) jo["color"] = o.color;
+    if (!o.colour.empty()) jo["color"] = o.colour;
     if (o.rgb) jo["rgb"] = {o.rgb->x(), o.rgb->y(), o.rgb->z()};
     objs.push_back(std::move(jo));
   }
@@ -168,8 +168,8 @@ void Scene::validate(const ObjectCatalogue& catalogue) const {
       throw InvalidInputError("scene '" + name + "': object '" + o.id + "' has unknown class '" + o.className +
                               "' (field 'class'; the catalogue knows: " + known + ")");
     }
-    if (!o.color.empty() && !o.rgb && !rgbOfColorName(o.color))
-      throw InvalidInputError("scene '" + name + "': object '" + o.id + "' has colour '" + o.color +
+    if (!o.colour.empty() && !o.rgb && !rgbOfColourName(o.colour))
+      throw InvalidInputError("scene '" + name + "': object '" + o.id + "' has colour '" + o.colour +
                               "' (field 'color') that has no known rgb; give \"rgb\": [r, g, b] too");
     // Every corner of the footprint must lie on the table top.
     const Eigen::Vector3d half(cls->dimensions_m.x() / 2, cls->dimensions_m.y() / 2, 0.0);

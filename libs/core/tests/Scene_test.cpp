@@ -124,21 +124,21 @@ TEST(Scene, InstancesOfOneClassCarryTheirOwnColour) {
   const SceneObject* blue = scene.findObject("cuboid_blue");
   ASSERT_TRUE(red && blue);
   EXPECT_EQ(red->className, blue->className);
-  EXPECT_EQ(instanceColor(*red, cat.at("cuboid")), "red");
-  EXPECT_EQ(instanceColor(*blue, cat.at("cuboid")), "blue");
-  EXPECT_TRUE(instanceRgb(*blue, cat.at("cuboid")).isApprox(*rgbOfColorName("blue")));
+  EXPECT_EQ(instanceColour(*red, cat.at("cuboid")), "red");
+  EXPECT_EQ(instanceColour(*blue, cat.at("cuboid")), "blue");
+  EXPECT_TRUE(instanceRgb(*blue, cat.at("cuboid")).isApprox(*rgbOfColourName("blue")));
   EXPECT_GT((instanceRgb(*blue, cat.at("cuboid")) - instanceRgb(*red, cat.at("cuboid"))).norm(), 0.5);
   // Without an override an instance has its class' colour.
   SceneObject plain{"c", "cuboid", Pose3::Identity(), "", std::nullopt};
   EXPECT_TRUE(instanceRgb(plain, cat.at("cuboid")).isApprox(cat.at("cuboid").rgb));
-  EXPECT_EQ(nearestColorName(cat.at("cuboid").rgb), "red");
-  EXPECT_EQ(nearestColorName(cat.at("star").rgb), "yellow");
-  EXPECT_EQ(nearestColorName(Eigen::Vector3d(0.5, 0.5, 0.0), 0.05), "");
+  EXPECT_EQ(nearestColourName(cat.at("cuboid").rgb), "red");
+  EXPECT_EQ(nearestColourName(cat.at("star").rgb), "yellow");
+  EXPECT_EQ(nearestColourName(Eigen::Vector3d(0.5, 0.5, 0.0), 0.05), "");
   // An explicit rgb wins over the colour word, and both round-trip.
   Scene copy = scene;
   copy.objects[2].rgb = Eigen::Vector3d(0.1, 0.2, 0.3);
   const Scene back = Scene::fromJson(copy.toJson(), "copy", ".");
-  EXPECT_EQ(back.objects[2].color, copy.objects[2].color);
+  EXPECT_EQ(back.objects[2].colour, copy.objects[2].colour);
   ASSERT_TRUE(back.objects[2].rgb.has_value());
   EXPECT_TRUE(back.objects[2].rgb->isApprox(Eigen::Vector3d(0.1, 0.2, 0.3)));
 }

@@ -61,7 +61,7 @@ CellDescription CellDescription::fromScene(const srp::core::Scene& scene,
     o.wallThickness_m = c.wallThickness_m;
     o.X_world_object = so.X_world_object;
     o.rgb = srp::core::instanceRgb(so, c);
-    o.color = srp::core::instanceColor(so, c);
+    o.colour = srp::core::instanceColour(so, c);
     o.className = c.name;
     o.noun = c.noun;
     o.classId = c.classId;

@@ -31,7 +31,7 @@ const Eigen::Vector3d kCupRgb(0.05, 0.05, 0.05);
 // The gripper model (see CellRenderer.h): along tool0's z axis.
 constexpr double kToolRadius_m = 0.02, kCupStart_m = 0.085, kCupTipRadius_m = 0.018, kCupBaseRadius_m = 0.012;
 
-mrpt::img::TColor toColor(const Eigen::Vector3d& rgb, double alpha = 1.0) {
+mrpt::img::TColor toColour(const Eigen::Vector3d& rgb, double alpha = 1.0) {
   auto c = [](double v) { return static_cast<uint8_t>(std::clamp(v, 0.0, 1.0) * 255.0 + 0.5); };
   return mrpt::img::TColor(c(rgb.x()), c(rgb.y()), c(rgb.z()), c(alpha));
 }
@@ -50,7 +50,7 @@ mrpt::opengl::CSetOfTriangles::Ptr triangles(const srp::kb::TriangleMesh& mesh, 
                                              const Eigen::Vector3d& rgb) {
   auto o = mrpt::opengl::CSetOfTriangles::Create();
   o->reserve(mesh.size());
-  const mrpt::img::TColor colour = toColor(rgb);
+  const mrpt::img::TColor colour = toColour(rgb);
   for (const auto& t : mesh.triangles()) {
     const Eigen::Vector3f a = (X_frame_mesh * t[0]).cast<float>(), b = (X_frame_mesh * t[1]).cast<float>(),
                           c = (X_frame_mesh * t[2]).cast<float>();
@@ -89,11 +89,11 @@ CellRenderer::CellRenderer(RobotModel model, CellDescription cell, CellRendererO
     m.links[i] = triangles(srp::kb::TriangleMesh::load(link.collisionMesh), link.X_link_mesh, kLinkRgb);
   }
   auto body = mrpt::opengl::CCylinder::Create(kToolRadius_m, kToolRadius_m, kCupStart_m, 24);
-  body->setColor_u8(toColor(kToolRgb));
+  body->setColor_u8(toColour(kToolRgb));
   const double toolLength_m = m.model.X_tool0_tcp().translation().z();
   auto cup = mrpt::opengl::CCylinder::Create(kCupBaseRadius_m, kCupTipRadius_m, toolLength_m - kCupStart_m, 24);
   cup->setLocation(0, 0, kCupStart_m);
-  cup->setColor_u8(toColor(kCupRgb));
+  cup->setColor_u8(toColour(kCupRgb));
   m.gripper = {body, cup};
   for (const auto& o : m.cell.objects) {
     if (o.kind != CellObjectKind::Part || o.meshPath.empty() || !std::filesystem::exists(o.meshPath)) continue;

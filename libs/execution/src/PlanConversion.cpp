@@ -14,10 +14,10 @@ namespace {
 
 bool isSourceWord(const std::string& d) { return d == "from" || d == "out of" || d == "off" || d == "from inside"; }
 
-ObjectReference refOf(const srp::taskdb::ProductRow& p) { return {p.objectName, p.color}; }
+ObjectReference refOf(const srp::taskdb::ProductRow& p) { return {p.objectName, p.colour}; }
 
 bool sameRelation(const SpatialRelation& a, const SpatialRelation& b) {
-  return a.relation == b.relation && a.landmark.name == b.landmark.name && a.landmark.color == b.landmark.color;
+  return a.relation == b.relation && a.landmark.name == b.landmark.name && a.landmark.colour == b.landmark.colour;
 }
 
 void addUnique(std::vector<SpatialRelation>& list, const SpatialRelation& r) {
@@ -99,11 +99,11 @@ void attachDemoOffsets(ExecutionPlan& plan, const srp::taskdb::TaskModel& model,
   {
     auto classOf = [&](const ObjectReference& ref) -> std::optional<int> {
       for (const auto& g : model.groundedProducts)
-        if (g.objectName == ref.name || g.objectName == (ref.color ? *ref.color + ref.name : ref.name) ||
-            g.objectName == (ref.color ? *ref.color + " " + ref.name : ref.name))
+        if (g.objectName == ref.name || g.objectName == (ref.colour ? *ref.colour + ref.name : ref.name) ||
+            g.objectName == (ref.colour ? *ref.colour + " " + ref.name : ref.name))
           return g.classId;
       for (const auto& p : model.products)
-        if (p.objectName == ref.name && p.classId && (!ref.color || p.color == ref.color)) return p.classId;
+        if (p.objectName == ref.name && p.classId && (!ref.colour || p.colour == ref.colour)) return p.classId;
       return std::nullopt;
     };
     auto finalPosition = [&](int classId) -> std::optional<Eigen::Vector3d> {
@@ -147,7 +147,7 @@ bool isViewWord(const std::string& w) {
 std::optional<std::pair<ObjectReference, std::size_t>> nounPhraseAt(const std::vector<std::string>& tokens, std::size_t i) {
   while (i < tokens.size() && (tokens[i] == "the" || tokens[i] == "a" || tokens[i] == "an")) ++i;
   ObjectReference ref;
-  if (i < tokens.size() && isColourWord(tokens[i])) ref.color = tokens[i++];
+  if (i < tokens.size() && isColourWord(tokens[i])) ref.colour = tokens[i++];
   if (i >= tokens.size() || !std::isalpha(static_cast<unsigned char>(tokens[i][0])) || tokens[i] == "and" ||
       tokens[i] == "of")
     return std::nullopt;
@@ -230,7 +230,7 @@ ExecutionPlan planFromLanguage(const srp::language::TaskPlan& plan) {
       const std::vector<std::string> t = tokensOf(anchor.sentenceId);
       if (anchor.tokenId >= 0 && static_cast<std::size_t>(anchor.tokenId) < t.size()) {
         const std::size_t i = static_cast<std::size_t>(anchor.tokenId);
-        const bool viewLandmark = isViewWord(srp::core::toLowerAscii(l.landmark.name)) && !l.landmark.color;
+        const bool viewLandmark = isViewWord(srp::core::toLowerAscii(l.landmark.name)) && !l.landmark.colour;
         const bool lonelyBetween = srp::core::toLowerAscii(l.relation) == "between" && !l.secondLandmark;
         if (viewLandmark || lonelyBetween) {
           // Re-read from the relation word before the landmark.

@@ -27,7 +27,7 @@ bool endsWithWord(const std::string& s, const std::string& word) {
 
 /// The colour word an instance answers to (rule 2).
 std::string colourOf(const CellObject& o) {
-  return normalise(o.color.empty() ? srp::core::nearestColorName(o.rgb) : o.color);
+  return normalise(o.colour.empty() ? srp::core::nearestColourName(o.rgb) : o.colour);
 }
 
 bool nameFits(const CellObject& o, const std::string& name) {
@@ -181,14 +181,14 @@ SceneGrounder::Selection SceneGrounder::select(const ObjectReference& ref, const
   }
   // 2. colour
   std::vector<const CellObject*> coloured;
-  if (ref.color) {
-    const std::string colour = normalise(*ref.color);
+  if (ref.colour) {
+    const std::string colour = normalise(*ref.colour);
     for (const auto* o : named)
       if (colourFits(*o, name, colour)) coloured.push_back(o);
     if (coloured.empty()) {
       std::string seen;
       for (const auto* o : named) seen += (seen.empty() ? "" : ", ") + colourOf(*o) + " " + describeInstance(*o);
-      out.whyNone = "no " + *ref.color + " " + ref.name + " in the scene for " + phrase + " (" + plural(ref.name) +
+      out.whyNone = "no " + *ref.colour + " " + ref.name + " in the scene for " + phrase + " (" + plural(ref.name) +
                     " there: " + seen + ")";
       return out;
     }
@@ -222,7 +222,7 @@ SceneGrounder::Selection SceneGrounder::select(const ObjectReference& ref, const
                       [&](const CellObject* l) { return l != o && holds(rel.relation, *o, *l); }))
         kept.push_back(o);
     if (kept.empty()) {
-      const std::string what = ref.color ? *ref.color + " " + ref.name : ref.name;
+      const std::string what = ref.colour ? *ref.colour + " " + ref.name : ref.name;
       out.whyNone = "no " + what + " is " + rel.relation + " the " + rel.landmark.describe() + " for " + phrase +
                     " (" + plural(what) + " there: " + listInstances(current) + "; " +
                     plural(rel.landmark.describe()) + ": " + listInstances(landmarks.objects) + ")";
@@ -305,7 +305,7 @@ const CellObject& SceneGrounder::ground(const ObjectReference& ref, const std::v
   const Selection s = select(ref, where, kind);
   if (s.objects.empty()) throw GroundingError(s.whyNone, {});
   if (s.objects.size() > 1) {
-    const std::string what = ref.color ? *ref.color + " " + ref.name : ref.name;
+    const std::string what = ref.colour ? *ref.colour + " " + ref.name : ref.name;
     throw GroundingError(countWord(s.objects.size()) + " " + plural(what) + " match 'the " + ref.describe() +
                              "': " + listInstances(s.objects) +
                              " (world x, y in m); say which (e.g. by colour, 'the leftmost', 'the second' counted "
@@ -321,7 +321,7 @@ std::vector<std::string> groundingProblems(const ExecutionPlan& plan, const Cell
   std::vector<std::string> problems;
   std::vector<std::string> moved;  // instances earlier steps move (by name fit: they may be anywhere then)
   auto touchesMoved = [&](const ObjectReference& ref) {
-    const ObjectReference bare{ref.name, ref.color};
+    const ObjectReference bare{ref.name, ref.colour};
     for (const auto* o : grounder.candidates(bare))
       if (std::find(moved.begin(), moved.end(), o->name) != moved.end()) return true;
     return false;
@@ -364,7 +364,7 @@ std::vector<std::string> groundingProblems(const ExecutionPlan& plan, const Cell
     } catch (const GroundingError& e) {
       if (!dependsOnEarlierSteps) problems.push_back(prefix + e.what());
       // The executor grounds the step again when its turn comes; what it may move is unknown here.
-      for (const auto* o : grounder.candidates(ObjectReference{step.object.name, step.object.color}))
+      for (const auto* o : grounder.candidates(ObjectReference{step.object.name, step.object.colour}))
         moved.push_back(o->name);
     }
   }

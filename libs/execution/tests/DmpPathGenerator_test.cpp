@@ -65,8 +65,8 @@ srp::taskdb::TaskModel learnedTaskModel() {
   return model;
 }
 
-SpatialRelation rel(const std::string& r, const std::string& name, std::optional<std::string> color = {}) {
-  return {r, {name, color}};
+SpatialRelation rel(const std::string& r, const std::string& name, std::optional<std::string> colour = {}) {
+  return {r, {name, colour}};
 }
 }  // namespace
 

@@ -39,7 +39,7 @@ CellDescription cell() {
   CellObject box = part("gray box", Eigen::Vector3d(0.22, 0.17, 0.06), at(0.16, 0.12));
   box.kind = CellObjectKind::Container;
   box.noun = "box";
-  box.color = "gray";
+  box.colour = "gray";
   c.objects.push_back(box);
   c.objects.push_back(part("star", Eigen::Vector3d(0.05, 0.05, 0.025), at(-0.15, 0.1)));
   c.objects.push_back(part("octagon", Eigen::Vector3d(0.04, 0.04, 0.025), at(-0.15, -0.05)));

@@ -19,15 +19,15 @@ TEST(PlanConversion, AppendixCBecomesTheFourStepPlan) {
   // cuboid: from the blue box, in the gray box.
   ASSERT_EQ(plan.steps[0].source.size(), 1u);
   EXPECT_EQ(plan.steps[0].source[0].relation, "from");
-  EXPECT_EQ(plan.steps[0].source[0].landmark.color.value_or(""), "blue");
+  EXPECT_EQ(plan.steps[0].source[0].landmark.colour.value_or(""), "blue");
   ASSERT_EQ(plan.steps[0].target.size(), 1u);
   EXPECT_EQ(plan.steps[0].target[0].relation, "in");
-  EXPECT_EQ(plan.steps[0].target[0].landmark.color.value_or(""), "gray");
+  EXPECT_EQ(plan.steps[0].target[0].landmark.colour.value_or(""), "gray");
   // star: next to the cuboid (stored as a source location) and, via its sentence, in the gray box.
   bool nextToCuboid = false, inGray = false;
   for (const auto& r : plan.steps[1].target) {
     nextToCuboid |= r.relation == "next to" && r.landmark.name == "cuboid";
-    inGray |= r.relation == "in" && r.landmark.color.value_or("") == "gray";
+    inGray |= r.relation == "in" && r.landmark.colour.value_or("") == "gray";
   }
   EXPECT_TRUE(nextToCuboid);
   EXPECT_TRUE(inGray);

@@ -15,7 +15,7 @@ CellDescription acceptanceScene() {
   return CellDescription::loadScene(std::string(SRP_SIM_DIR) + "/scenes/two_cuboids_two_stars.json");
 }
 
-ObjectReference ref(const std::string& name, std::optional<std::string> color = {}) { return {name, color}; }
+ObjectReference ref(const std::string& name, std::optional<std::string> colour = {}) { return {name, colour}; }
 
 ObjectReference withOrdinal(ObjectReference r, int ordinal) {
   r.ordinal = ordinal;
@@ -51,8 +51,8 @@ void move(CellDescription& cell, const std::string& id, double x, double y, doub
 TEST(SceneGrounder, InstancesOfOneClassKeepTheirSceneColour) {
   const CellDescription cell = acceptanceScene();
   ASSERT_NE(cell.find("cuboid_red"), nullptr);
-  EXPECT_EQ(cell.find("cuboid_red")->color, "red");
-  EXPECT_EQ(cell.find("cuboid_blue")->color, "blue");
+  EXPECT_EQ(cell.find("cuboid_red")->colour, "red");
+  EXPECT_EQ(cell.find("cuboid_blue")->colour, "blue");
   EXPECT_EQ(cell.find("cuboid_blue")->className, "cuboid");
   EXPECT_GT((cell.find("cuboid_blue")->rgb - cell.find("cuboid_red")->rgb).norm(), 0.5);
   ASSERT_TRUE(cell.X_world_camera.has_value());
@@ -148,7 +148,7 @@ TEST(SceneGrounder, AmbiguityNamesEveryCandidateWithItsPosition) {
   // Two red cuboids: the colour does not decide.
   CellDescription twoRed = cell;
   for (auto& o : twoRed.objects)
-    if (o.name == "cuboid_blue") o.color = "red";
+    if (o.name == "cuboid_blue") o.colour = "red";
   const std::string red = groundError(SceneGrounder(twoRed), ref("cuboid", "red"));
   EXPECT_NE(red.find("two red cuboids match 'the red cuboid': 'cuboid_blue' at (-0.150, -0.010) and 'cuboid_red' at "
                      "(0.000, 0.020)"),

@@ -21,8 +21,8 @@ Pose3 homeTcp() {
   return X;
 }
 
-SpatialRelation rel(const std::string& r, const std::string& name, std::optional<std::string> color = {}) {
-  return {r, {name, color}};
+SpatialRelation rel(const std::string& r, const std::string& name, std::optional<std::string> colour = {}) {
+  return {r, {name, colour}};
 }
 
 /// Appendix C's plan of instruction 1.

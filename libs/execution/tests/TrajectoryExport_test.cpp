@@ -26,8 +26,8 @@ constexpr double kTimeTol_s = 1e-9;        // time_from_start is integer nanosec
 // ticks by up to 2e-7 / 0.008^2 = 0.003 rad/s^2; the spline itself is checked <= the limit.
 constexpr double kTickAccelerationTol_radps2 = 0.01;
 
-SpatialRelation rel(const std::string& r, const std::string& name, std::optional<std::string> color = {}) {
-  return {r, {name, color}};
+SpatialRelation rel(const std::string& r, const std::string& name, std::optional<std::string> colour = {}) {
+  return {r, {name, colour}};
 }
 
 /// Two steps of Appendix C's instruction 1 on the default scene (2 grasps, 2 releases).

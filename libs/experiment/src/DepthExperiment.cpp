@@ -205,9 +205,9 @@ ExperimentResult runDepthExperiment(const ExperimentOptions& options)
     std::vector<double> tRaw, zRaw;
     for (size_t i = 0; i < plotT.size(); ++i)
       if (plotRaw[i] > 0) tRaw.push_back(plotT[i]), zRaw.push_back(plotRaw[i]);
-    ax.scatter(tRaw, zRaw, "raw depth at the palm pixel (valid only)", plot::Color::gray(), plot::Marker::Cross, 3.0);
-    ax.line(plotT, plotTruth, "truth (palm centre)", plot::Color{0, 0, 0});
-    ax.line(plotT, plotFilled, "perception (tag + depth)", plot::Color::tab(0), 1.5, true);
+    ax.scatter(tRaw, zRaw, "raw depth at the palm pixel (valid only)", plot::Colour::gray(), plot::Marker::Cross, 3.0);
+    ax.line(plotT, plotTruth, "truth (palm centre)", plot::Colour{0, 0, 0});
+    ax.line(plotT, plotFilled, "perception (tag + depth)", plot::Colour::tab(0), 1.5, true);
     const auto png = dir / "hand_depth.png";
     fig.save(png.string());
     result.figures.push_back(png);

@@ -130,15 +130,15 @@ void writeDmpFigure(const std::string& path, const std::string& title, const Seg
     auto& ax = fig.axes(c, 0);
     ax.xLabel = "t [s]";
     ax.yLabel = axisName[c];
-    ax.line(toStd(s.t_s), column(s.Y, c), "demonstration", plot::Color{0, 0, 0}, 2.0);
-    ax.line(toStd(thesis.reproduction.t_s), column(thesis.reproduction.y, c), "reproduction (thesis)", plot::Color::tab(0));
-    ax.line(toStd(thesis.adaptation.t_s), column(thesis.adaptation.y, c), "adaptation (thesis)", plot::Color::tab(1));
-    ax.line(toStd(ours.reproduction.t_s), column(ours.reproduction.y, c), "reproduction (ours, GCV)", plot::Color::tab(2),
+    ax.line(toStd(s.t_s), column(s.Y, c), "demonstration", plot::Colour{0, 0, 0}, 2.0);
+    ax.line(toStd(thesis.reproduction.t_s), column(thesis.reproduction.y, c), "reproduction (thesis)", plot::Colour::tab(0));
+    ax.line(toStd(thesis.adaptation.t_s), column(thesis.adaptation.y, c), "adaptation (thesis)", plot::Colour::tab(1));
+    ax.line(toStd(ours.reproduction.t_s), column(ours.reproduction.y, c), "reproduction (ours, GCV)", plot::Colour::tab(2),
             2.0, true);
-    ax.line(toStd(ours.adaptation.t_s), column(ours.adaptation.y, c), "adaptation (ours, GCV)", plot::Color::tab(3), 2.0,
+    ax.line(toStd(ours.adaptation.t_s), column(ours.adaptation.y, c), "adaptation (ours, GCV)", plot::Colour::tab(3), 2.0,
             true);
-    ax.scatter({0.0}, {s.Y(0, c) + shift.start_m(c)}, "new start", plot::Color::tab(4), plot::Marker::Square, 7.0);
-    ax.scatter({T}, {s.Y(s.Y.rows() - 1, c) + shift.goal_m(c)}, "new goal", plot::Color::tab(5), plot::Marker::Triangle,
+    ax.scatter({0.0}, {s.Y(0, c) + shift.start_m(c)}, "new start", plot::Colour::tab(4), plot::Marker::Square, 7.0);
+    ax.scatter({T}, {s.Y(s.Y.rows() - 1, c) + shift.goal_m(c)}, "new goal", plot::Colour::tab(5), plot::Marker::Triangle,
                7.0);
     ax.legend = c == 0;
   }

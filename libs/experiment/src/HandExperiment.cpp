@@ -78,7 +78,7 @@ nlohmann::json errorStats(const std::vector<double>& error_m)
 }
 
 /// Empirical CDF of errors on a log10 [mm] axis.
-void errorCdf(plot::Axes& axes, std::vector<double> error_m, const std::string& label, plot::Color color)
+void errorCdf(plot::Axes& axes, std::vector<double> error_m, const std::string& label, plot::Colour colour)
 {
   if (error_m.empty()) return;
   std::sort(error_m.begin(), error_m.end());
@@ -87,7 +87,7 @@ void errorCdf(plot::Axes& axes, std::vector<double> error_m, const std::string& 
     x.push_back(std::log10(std::max(1e-3, 1e3 * error_m[i])));
     y.push_back(static_cast<double>(i + 1) / static_cast<double>(error_m.size()));
   }
-  axes.line(x, y, label, color);
+  axes.line(x, y, label, colour);
 }
 
 }  // namespace
@@ -180,9 +180,9 @@ ExperimentResult runHandExperiment(const ExperimentOptions& options)
   for (std::size_t k = 0; k < demos.size(); ++k) {
     const double x = static_cast<double>(k + 1);
     // Bars as thick vertical segments; the legend entry once per series.
-    bars.line({x - 0.15, x - 0.15}, {0.0, 100.0 * markerRates[k]}, k == 0 ? "ours: marker" : "", plot::Color::tab(0), 18.0);
+    bars.line({x - 0.15, x - 0.15}, {0.0, 100.0 * markerRates[k]}, k == 0 ? "ours: marker" : "", plot::Colour::tab(0), 18.0);
     bars.line({x + 0.15, x + 0.15}, {0.0, 100.0 * markerFreeRates[k]}, k == 0 ? "ours: marker-free" : "",
-              plot::Color::tab(1), 18.0);
+              plot::Colour::tab(1), 18.0);
   }
   std::vector<double> thesisX, thesisFaster, thesisMp;
   for (std::size_t k = 0; k < demos.size() && k < kThesisFasterRcnn.size(); ++k) {
@@ -190,16 +190,16 @@ ExperimentResult runHandExperiment(const ExperimentOptions& options)
     thesisFaster.push_back(100.0 * kThesisFasterRcnn[k]);
     thesisMp.push_back(100.0 * kThesisMediaPipe[k]);
   }
-  bars.scatter(thesisX, thesisFaster, "thesis: Faster-RCNN", plot::Color::tab(2), plot::Marker::Triangle, 7.0);
-  bars.scatter(thesisX, thesisMp, "thesis: MediaPipe", plot::Color::tab(3), plot::Marker::Cross, 7.0);
+  bars.scatter(thesisX, thesisFaster, "thesis: Faster-RCNN", plot::Colour::tab(2), plot::Marker::Triangle, 7.0);
+  bars.scatter(thesisX, thesisMp, "thesis: MediaPipe", plot::Colour::tab(3), plot::Marker::Cross, 7.0);
   auto& cdf = figure.axes(0, 1);
   cdf.title = "3D palm error, cumulative";
   cdf.xLabel = "log10(error [mm])";
   cdf.yLabel = "fraction of frames";
   cdf.yLimits = std::make_pair(0.0, 1.02);
-  errorCdf(cdf, total.markerError_m, "marker", plot::Color::tab(0));
-  errorCdf(cdf, total.markerFreeError_m, "marker-free", plot::Color::tab(1));
-  cdf.verticalLine(std::log10(15.0), "15 mm", plot::Color::gray());
+  errorCdf(cdf, total.markerError_m, "marker", plot::Colour::tab(0));
+  errorCdf(cdf, total.markerFreeError_m, "marker-free", plot::Colour::tab(1));
+  cdf.verticalLine(std::log10(15.0), "15 mm", plot::Colour::gray());
   const auto png = dir / "hand_detection.png";
   figure.save(png.string());
   result.figures.push_back(png);

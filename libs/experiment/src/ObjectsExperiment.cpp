@@ -199,13 +199,13 @@ void classBars(plot::Axes& axes, const ModeScores& without, const ModeScores& wi
     const auto& b = all ? with.all : with.perClass.at(row.className);
     const double va = strict ? a.ap50_95 : a.ap50, vb = strict ? b.ap50_95 : b.ap50;
     axes.line({x - 0.17, x - 0.17}, {0.0, 100.0 * (std::isnan(va) ? 0.0 : va)}, x == 1 ? "per-frame detections" : "",
-              plot::Color::tab(0), 16.0);
+              plot::Colour::tab(0), 16.0);
     axes.line({x + 0.17, x + 0.17}, {0.0, 100.0 * (std::isnan(vb) ? 0.0 : vb)}, x == 1 ? "language-guided refinement" : "",
-              plot::Color::tab(1), 16.0);
+              plot::Colour::tab(1), 16.0);
     thesisX.push_back(x);
     thesisY.push_back(row.real[strict ? 3 : 2]);
   }
-  axes.scatter(thesisX, thesisY, "thesis table 8.4 (real frames)", plot::Color::tab(3), plot::Marker::Triangle, 7.0);
+  axes.scatter(thesisX, thesisY, "thesis table 8.4 (real frames)", plot::Colour::tab(3), plot::Marker::Triangle, 7.0);
   axes.xLimits = std::make_pair(0.4, x + 0.6);
   axes.yLimits = std::make_pair(0.0, 130.0);  // room for the legend above the bars
   axes.xLabel = "class: all, gray box, blue box, parallelogram, cuboid, octagon, star";

@@ -91,19 +91,19 @@ void writeSegmentationFigure(const std::string& path, const AnalysedDemo& demo, 
     for (const auto& c : dc)
       for (double v : c) maxObject_m = std::max(maxObject_m, v);
     ax.yLimits = std::make_pair(0.0, std::max(0.1, 1.4 * maxObject_m));
-    ax.line(th, dh, "hand", plot::Color::gray(), 1.0);
+    ax.line(th, dh, "hand", plot::Colour::gray(), 1.0);
     const char* names[3] = {"object: component 1 (before)", "component 2 (moving)", "component 3 (after)"};
     for (int c = 0; c < 3; ++c)
       if (!tc[static_cast<size_t>(c)].empty())
-        ax.scatter(tc[static_cast<size_t>(c)], dc[static_cast<size_t>(c)], names[c], plot::Color::tab(c),
+        ax.scatter(tc[static_cast<size_t>(c)], dc[static_cast<size_t>(c)], names[c], plot::Colour::tab(c),
                    plot::Marker::Circle, 3.0);
     for (const auto& e : demo.groundTruth.events)
       if (classOf(demo.groundTruth, e.objectId) == o.name) {
-        ax.verticalLine(e.graspFrame / fps, "truth grasp/release", plot::Color{0, 0, 0}, true);
-        ax.verticalLine(e.releaseFrame / fps, "", plot::Color{0, 0, 0}, true);
+        ax.verticalLine(e.graspFrame / fps, "truth grasp/release", plot::Colour{0, 0, 0}, true);
+        ax.verticalLine(e.releaseFrame / fps, "", plot::Colour{0, 0, 0}, true);
       }
-    ax.verticalLine(o.graspFrame / fps, "ours: grasp", plot::Color::tab(3), false);
-    ax.verticalLine(o.releaseFrame / fps, "ours: release", plot::Color::tab(4), false);
+    ax.verticalLine(o.graspFrame / fps, "ours: grasp", plot::Colour::tab(3), false);
+    ax.verticalLine(o.releaseFrame / fps, "ours: release", plot::Colour::tab(4), false);
   }
   fig.save(path);
 }

@@ -189,7 +189,7 @@ struct LanguageModel::Impl {
       if (k.noun) out.push_back(prefix + "n");
       if (k.verb) out.push_back(prefix + "v");
       if (k.adjective) out.push_back(prefix + "a");
-      if (k.color) out.push_back(prefix + "color");
+      if (k.colour) out.push_back(prefix + "color");
       if (k.artifact) out.push_back(prefix + "artifact");
       if (k.shape) out.push_back(prefix + "shape");
       if (k.location) out.push_back(prefix + "loc");
@@ -204,7 +204,7 @@ struct LanguageModel::Impl {
     bool sourceSinceAction = false, goalSinceAction = false;
     std::vector<int> inDirectionPhrase(n, 0);  // 1 inside, 2 last word of a direction phrase
     auto nounish = [&](int i) {
-      return info[i].noun && !info[i].color && !kPrepositions.count(w[i]) && !kPronouns.count(w[i]) &&
+      return info[i].noun && !info[i].colour && !kPrepositions.count(w[i]) && !kPronouns.count(w[i]) &&
              !kDeterminers.count(w[i]) && !isActionWord(w[i]);
     };
     // The next preposition after each token within its clause (up to the next action word or stop).
@@ -425,7 +425,7 @@ struct LanguageModel::Impl {
   bool isNounish(const std::string& lower) const {
     const WordInfo k = lexicon.lookup(lower);
     static const std::set<std::string> kPersonalPronouns{"i", "me", "you", "us", "him", "her", "we"};
-    return k.noun && !k.color && !kPrepositions.count(lower) && !kPronouns.count(lower) &&
+    return k.noun && !k.colour && !kPrepositions.count(lower) && !kPronouns.count(lower) &&
            !kPersonalPronouns.count(lower) && !kDeterminers.count(lower) && !isActionWord(lower);
   }
 

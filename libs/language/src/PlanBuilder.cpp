@@ -108,25 +108,25 @@ class SentenceView {
       return verbKind(k) || k + 1 >= n_ || (lower_[k + 1] != "by" && lower_[k + 1] != "with");
     }
     if (!(type.empty() || type == "Trajector") || !verbKind(k)) return false;
-    if (k > 0 && (kDeterminers.count(lower_[k - 1]) || lexicon_.lookup(lower_[k - 1]).color)) return false;
+    if (k > 0 && (kDeterminers.count(lower_[k - 1]) || lexicon_.lookup(lower_[k - 1]).colour)) return false;
     if (k + 1 < n_ && lower_[k + 1] == "of") return false;
     // A verb needs something after it ("set"/"hand"/"leave" are nouns too).
     return k + 1 < n_ && !std::ispunct(static_cast<unsigned char>(lower_[k + 1][0]));
   }
 
-  bool isColorWord(int k) const {
+  bool isColourWord(int k) const {
     if (typeAt(k) == "Color") return true;
-    return typeAt(k).empty() && lexicon_.lookup(lower_[k]).color && k + 1 < n_ && isNameWord(k + 1, false);
+    return typeAt(k).empty() && lexicon_.lookup(lower_[k]).colour && k + 1 < n_ && isNameWord(k + 1, false);
   }
 
   /// A word that can be part of an object name.
-  bool isNameWord(int k, bool allowColor = true) const {
+  bool isNameWord(int k, bool allowColour = true) const {
     const std::string& w = lower_[k];
     const std::string& raw = s_.tokens[k];
     if (raw.empty() || std::ispunct(static_cast<unsigned char>(raw[0]))) return false;
     const std::string type = typeAt(k);
     if (type == "Action" || type == "SpatialIndicator" || type == "GoalIndicator") return false;
-    if (type == "Color") return allowColor;
+    if (type == "Color") return allowColour;
     if (kStopWords.count(w) || kDeterminers.count(w) || kParticles.count(w)) return raw == "A";  // "item A"
     if (w == "it" || w == "them" || w == "they") return false;
     if (w == "back" && k + 1 < n_ && isIndicatorStart(k + 1)) return false;  // "back to the blue box"
@@ -182,7 +182,7 @@ class SentenceView {
     int i = k;
     while (i < n_ && (kDeterminers.count(lower_[i]) && s_.tokens[i] != "A")) ++i;
     Mention m;
-    std::vector<std::string> name, colors;
+    std::vector<std::string> name, colours;
     int lastNameToken = -1;
     while (i < n_) {
       if (name.empty() && typeAt(i) != "Action" && kOrdinals.count(lower_[i]) && i + 1 < n_) {
@@ -193,13 +193,13 @@ class SentenceView {
         m.object.superlative = kSuperlatives.at(lower_[i]);
         ++i;
       } else if (name.empty() && kSideAdjectives.count(lower_[i]) && typeAt(i).empty() && i + 1 < n_ &&
-                 (isNameWord(i + 1, false) || isColorWord(i + 1)) && !isIndicatorStart(i + 1)) {
+                 (isNameWord(i + 1, false) || isColourWord(i + 1)) && !isIndicatorStart(i + 1)) {
         m.object.superlative = kSideAdjectives.at(lower_[i]);
         ++i;
       } else if (!name.empty() && kSuperlatives.count(lower_[i])) {
         break;  // "the cube closest to the box": the modifier follows the name
-      } else if (isColorWord(i)) {
-        colors.push_back(lower_[i]);
+      } else if (isColourWord(i)) {
+        colours.push_back(lower_[i]);
         ++i;
       } else if (isNameWord(i, false)) {
         name.push_back(nameWord(i));
@@ -211,10 +211,10 @@ class SentenceView {
     }
     if (name.empty()) return std::nullopt;
     for (size_t j = 0; j < name.size(); ++j) m.object.name += (j ? " " : "") + name[j];
-    if (!colors.empty()) {
+    if (!colours.empty()) {
       std::string c;
-      for (size_t j = 0; j < colors.size(); ++j) c += (j ? " " : "") + colors[j];
-      m.object.color = c;
+      for (size_t j = 0; j < colours.size(); ++j) c += (j ? " " : "") + colours[j];
+      m.object.colour = c;
     }
     m.anchor = {id_, lastNameToken};
     i = objectModifiers(i, m.object);
@@ -273,7 +273,7 @@ struct Referent {
 
 bool sameObject(const ObjectRef& a, const ObjectRef& b) {
   // "the first cube" and "the second cube" are two objects; "the cube" may be either.
-  return a.name == b.name && (!a.color || !b.color || *a.color == *b.color) &&
+  return a.name == b.name && (!a.colour || !b.colour || *a.colour == *b.colour) &&
          (!a.ordinal || !b.ordinal || *a.ordinal == *b.ordinal) &&
          (a.superlative.empty() || b.superlative.empty() || a.superlative == b.superlative);
 }

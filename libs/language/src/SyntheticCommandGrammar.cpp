@@ -12,7 +12,7 @@ namespace {
 const std::vector<std::string> kPickVerbs{"pick", "grab", "take", "lift", "grasp", "get"};
 const std::vector<std::string> kPlaceVerbs{"place", "put", "set", "drop", "move", "leave", "lay", "position"};
 const std::vector<std::string> kFetchVerbs{"bring", "carry", "move", "take"};
-const std::vector<std::string> kColors{"red",  "green", "blue",   "yellow",     "orange",    "white", "black",
+const std::vector<std::string> kColours{"red",  "green", "blue",   "yellow",     "orange",    "white", "black",
                                        "gray", "grey",  "purple", "pink",       "brown",     "cyan",  "turquoise",
                                        "light blue", "dark grey", "dark green", "magenta"};
 const std::vector<std::string> kObjects{"block", "cube", "pyramid", "cylinder", "cuboid", "star", "prism", "ball",
@@ -78,7 +78,7 @@ class Builder {
   /// "the [red] block": returns the head noun's token index.
   int nounPhrase(Rng& rng, const std::string& noun, bool colour = true, const std::string& det = "the") {
     if (!det.empty()) words(det);
-    if (colour) words(rng.pick(kColors), "Color");
+    if (colour) words(rng.pick(kColours), "Color");
     words(noun);
     return static_cast<int>(s_.tokens.size()) - 1;
   }

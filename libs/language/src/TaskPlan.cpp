@@ -10,7 +10,7 @@ namespace srp::language {
 using nlohmann::json;
 
 json toJson(const ObjectRef& o) {
-  json j{{"name", o.name}, {"color", o.color ? json(*o.color) : json(nullptr)}};
+  json j{{"name", o.name}, {"color", o.colour ? json(*o.colour) : json(nullptr)}};
   // Modifiers only when given: plans without them keep their JSON form.
   if (o.ordinal) j["ordinal"] = *o.ordinal;
   if (!o.superlative.empty()) j["superlative"] = o.superlative;
@@ -29,7 +29,7 @@ std::string ObjectRef::describe() const {
                     : (*ordinal >= 1 && *ordinal <= 10) ? std::string(kOrdinals[*ordinal]) + " "
                                                         : "#" + std::to_string(*ordinal) + " ";
   if (!superlative.empty()) s += superlative + " ";
-  if (color) s += *color + " ";
+  if (colour) s += *colour + " ";
   s += name;
   for (const auto& r : relations) s += " " + r.relation + " the " + r.landmark.describe();
   return s;
@@ -61,7 +61,7 @@ json toJson(const TaskPlan& plan) {
 ObjectRef objectRefFromJson(const json& j) {
   ObjectRef o;
   o.name = core::requireField(j, "name", "object").get<std::string>();
-  if (j.contains("color") && !j.at("color").is_null()) o.color = j.at("color").get<std::string>();
+  if (j.contains("color") && !j.at("color").is_null()) o.colour = j.at("color").get<std::string>();
   if (j.contains("ordinal") && !j.at("ordinal").is_null()) o.ordinal = j.at("ordinal").get<int>();
   o.superlative = j.value("superlative", std::string());
   if (j.contains("relations"))

@@ -44,7 +44,7 @@ void classifyNoun(const std::string& lemma, WordInfo& info) {
   for (int s = 0; s < idx->off_cnt && s < kSenses; ++s) stack.push_back({static_cast<long>(idx->offset[s]), 0});
   free_index(idx);
   std::set<long> seen;
-  static const std::set<std::string> kColor{"color", "colour", "chromatic_color", "achromatic_color"};
+  static const std::set<std::string> kColour{"color", "colour", "chromatic_color", "achromatic_color"};
   static const std::set<std::string> kArtifact{"artifact", "artefact", "physical_object", "object", "whole"};
   static const std::set<std::string> kShape{"shape", "plane_figure", "solid", "polygon", "polyhedron"};
   static const std::set<std::string> kLocation{"location", "region", "surface", "side"};
@@ -58,7 +58,7 @@ void classifyNoun(const std::string& lemma, WordInfo& info) {
     for (int w = 0; w < ss->wcount; ++w) {
       const std::string word = ss->words[w];
       if (depth > 0 || word != lemma) {
-        info.color |= kColor.count(word) > 0;
+        info.colour |= kColour.count(word) > 0;
         info.artifact |= kArtifact.count(word) > 0;
         info.shape |= kShape.count(word) > 0;
         info.location |= kLocation.count(word) > 0;

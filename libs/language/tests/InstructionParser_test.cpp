@@ -14,7 +14,7 @@ const InstructionParser& parser() {
   return p;
 }
 
-ObjectRef obj(const std::string& name, std::optional<std::string> color = std::nullopt) { return {name, color}; }
+ObjectRef obj(const std::string& name, std::optional<std::string> colour = std::nullopt) { return {name, colour}; }
 LocationRef at(const std::string& relation, const ObjectRef& landmark) { return {relation, landmark}; }
 
 std::string show(const TaskPlan& plan) { return describe(plan); }

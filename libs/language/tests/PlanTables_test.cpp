@@ -44,10 +44,10 @@ TEST(PlanTables, AppendixAInstructionGivesLinkedRows) {
   const auto& from = m.sourceLocations.at(*cuboid->sourceLocationId);
   EXPECT_EQ(from.description, "from");
   EXPECT_EQ(m.findProduct(from.trajectorObjectId)->objectName, "box");
-  EXPECT_EQ(m.findProduct(from.trajectorObjectId)->color, std::optional<std::string>("blue"));
+  EXPECT_EQ(m.findProduct(from.trajectorObjectId)->colour, std::optional<std::string>("blue"));
   const auto& into = m.targetLocations.at(*cuboid->targetLocationId);
   EXPECT_EQ(into.description, "in");
-  EXPECT_EQ(m.findProduct(into.indicatorObjectId)->color, std::optional<std::string>("gray"));
+  EXPECT_EQ(m.findProduct(into.indicatorObjectId)->colour, std::optional<std::string>("gray"));
   EXPECT_EQ(cuboid->sentenceId, std::optional<int>(0));
   EXPECT_EQ(cuboid->tokenId, std::optional<int>(5));  // "Begin by picking up the cuboid": token 5
   // star: next to the cuboid, which is in the gray box.

@@ -11,42 +11,42 @@
 
 namespace srp::plot {
 
-Color Color::tab(int i) {
-  static const Color kTab10[] = {{31, 119, 180}, {255, 127, 14}, {44, 160, 44},  {214, 39, 40},  {148, 103, 189},
+Colour Colour::tab(int i) {
+  static const Colour kTab10[] = {{31, 119, 180}, {255, 127, 14}, {44, 160, 44},  {214, 39, 40},  {148, 103, 189},
                                  {140, 86, 75},  {227, 119, 194}, {127, 127, 127}, {188, 189, 34}, {23, 190, 207}};
   return kTab10[((i % 10) + 10) % 10];
 }
 
-Series& Axes::line(std::vector<double> x, std::vector<double> y, std::string label, std::optional<Color> color,
+Series& Axes::line(std::vector<double> x, std::vector<double> y, std::string label, std::optional<Colour> colour,
                    double width_px, bool dashed) {
   if (x.size() != y.size()) throw core::InvalidInputError("plot series '" + label + "': x and y differ in length");
-  Series s{std::move(label), std::move(x), std::move(y), color.value_or(nextColor()), width_px, dashed};
+  Series s{std::move(label), std::move(x), std::move(y), colour.value_or(nextColour()), width_px, dashed};
   series_.push_back(std::move(s));
   return series_.back();
 }
 
-Series& Axes::scatter(std::vector<double> x, std::vector<double> y, std::string label, std::optional<Color> color,
+Series& Axes::scatter(std::vector<double> x, std::vector<double> y, std::string label, std::optional<Colour> colour,
                       Marker marker, double size_px) {
-  Series& s = line(std::move(x), std::move(y), std::move(label), color, 0.0, false);
+  Series& s = line(std::move(x), std::move(y), std::move(label), colour, 0.0, false);
   s.marker = marker;
   s.markerSize_px = size_px;
   return s;
 }
 
-void Axes::verticalLine(double x, std::string label, std::optional<Color> color, bool dashed) {
-  refLines_.push_back({true, x, std::move(label), color.value_or(Color::gray()), dashed});
+void Axes::verticalLine(double x, std::string label, std::optional<Colour> colour, bool dashed) {
+  refLines_.push_back({true, x, std::move(label), colour.value_or(Colour::gray()), dashed});
 }
 
-void Axes::horizontalLine(double y, std::string label, std::optional<Color> color, bool dashed) {
-  refLines_.push_back({false, y, std::move(label), color.value_or(Color::gray()), dashed});
+void Axes::horizontalLine(double y, std::string label, std::optional<Colour> colour, bool dashed) {
+  refLines_.push_back({false, y, std::move(label), colour.value_or(Colour::gray()), dashed});
 }
 
-void Axes::band(double x0, double x1, std::string label, std::optional<Color> color, double opacity) {
+void Axes::band(double x0, double x1, std::string label, std::optional<Colour> colour, double opacity) {
   if (!std::isfinite(x0) || !std::isfinite(x1) || x0 > x1)
     throw core::InvalidInputError("plot band '" + label + "': needs finite bounds with x0 <= x1");
   if (!(opacity >= 0.0 && opacity <= 1.0))
     throw core::InvalidInputError("plot band '" + label + "': opacity must be in [0, 1]");
-  bands_.push_back({x0, x1, std::move(label), color.value_or(Color::gray()), opacity});
+  bands_.push_back({x0, x1, std::move(label), colour.value_or(Colour::gray()), opacity});
 }
 
 Figure::Figure(int width_px, int height_px, int rows, int cols)
@@ -67,7 +67,7 @@ namespace {
 const cv::Scalar kBlack(0, 0, 0), kGrid(225, 225, 225), kWhite(255, 255, 255);
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
 
-cv::Scalar bgr(const Color& c) { return cv::Scalar(c.b, c.g, c.r); }
+cv::Scalar bgr(const Colour& c) { return cv::Scalar(c.b, c.g, c.r); }
 
 // "Nice" tick step (1, 2 or 5 x 10^k) for about `count` ticks over `span`.
 double tickStep(double span, int count) {
@@ -171,7 +171,7 @@ void drawAxes(cv::Mat& img, const Axes& ax, cv::Rect cell) {
     const cv::Rect r(static_cast<int>(std::round(a)), plot.y, static_cast<int>(std::round(e - a)), plot.height);
     if (r.width <= 0) continue;
     cv::Mat area = img(r);
-    cv::addWeighted(area, 1.0 - b.opacity, cv::Mat(area.size(), area.type(), bgr(b.color)), b.opacity, 0.0, area);
+    cv::addWeighted(area, 1.0 - b.opacity, cv::Mat(area.size(), area.type(), bgr(b.colour)), b.opacity, 0.0, area);
   }
 
   // Grid and ticks.
@@ -194,14 +194,14 @@ void drawAxes(cv::Mat& img, const Axes& ax, cv::Rect cell) {
   for (const auto& r : ax.refLines()) {
     const cv::Point2d a = r.vertical ? px(r.value, y0) : px(x0, r.value);
     const cv::Point2d b = r.vertical ? px(r.value, y1) : px(x1, r.value);
-    if (r.dashed) dashedLine(roi, a - off, b - off, bgr(r.color), 1);
-    else cv::line(roi, a - off, b - off, bgr(r.color), 1, cv::LINE_AA);
+    if (r.dashed) dashedLine(roi, a - off, b - off, bgr(r.colour), 1);
+    else cv::line(roi, a - off, b - off, bgr(r.colour), 1, cv::LINE_AA);
     if (!r.label.empty())
       text(img, r.label, r.vertical ? cv::Point(static_cast<int>(a.x) + 3, plot.y + 12)
-                                    : cv::Point(plot.x + 4, static_cast<int>(a.y) - 3), 0.38, bgr(r.color));
+                                    : cv::Point(plot.x + 4, static_cast<int>(a.y) - 3), 0.38, bgr(r.colour));
   }
   for (const auto& s : ax.series()) {
-    const cv::Scalar c = bgr(s.color);
+    const cv::Scalar c = bgr(s.colour);
     double phase = 0.0;
     for (std::size_t i = 0; i < s.x.size(); ++i) {
       if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
@@ -254,10 +254,10 @@ void drawAxes(cv::Mat& img, const Axes& ax, cv::Rect cell) {
         const int y = box.y + 14 + 18 * row++;
         const cv::Point2d a(box.x + 6, y - 4), b(box.x + 26, y - 4);
         if (s.lineWidth_px > 0) {
-          if (s.dashed) dashedLine(img, a, b, bgr(s.color), 2);
-          else cv::line(img, a, b, bgr(s.color), 2, cv::LINE_AA);
+          if (s.dashed) dashedLine(img, a, b, bgr(s.colour), 2);
+          else cv::line(img, a, b, bgr(s.colour), 2, cv::LINE_AA);
         }
-        drawMarker(img, (a + b) * 0.5, s.marker, std::min(4.0, s.markerSize_px), bgr(s.color));
+        drawMarker(img, (a + b) * 0.5, s.marker, std::min(4.0, s.markerSize_px), bgr(s.colour));
         text(img, s.label, cv::Point(box.x + 32, y), 0.4, kBlack);
       }
       for (const auto& b : ax.bands()) {
@@ -265,8 +265,8 @@ void drawAxes(cv::Mat& img, const Axes& ax, cv::Rect cell) {
         const int y = box.y + 14 + 18 * row++;
         const cv::Rect swatch(box.x + 8, y - 11, 16, 12);
         cv::Mat area = img(swatch);
-        cv::addWeighted(area, 1.0 - b.opacity, cv::Mat(area.size(), area.type(), bgr(b.color)), b.opacity, 0.0, area);
-        cv::rectangle(img, swatch, bgr(b.color), 1);
+        cv::addWeighted(area, 1.0 - b.opacity, cv::Mat(area.size(), area.type(), bgr(b.colour)), b.opacity, 0.0, area);
+        cv::rectangle(img, swatch, bgr(b.colour), 1);
         text(img, b.label, cv::Point(box.x + 32, y), 0.4, kBlack);
       }
     }

@@ -11,7 +11,7 @@ using namespace srp::plot;
 
 namespace {
 // Pixels of this BGR colour in the image (each channel within `tol` levels).
-int countColour(const cv::Mat& img, const Color& c, int tol = 0) {
+int countColour(const cv::Mat& img, const Colour& c, int tol = 0) {
   int n = 0;
   for (int r = 0; r < img.rows; ++r)
     for (int k = 0; k < img.cols; ++k) {
@@ -36,16 +36,16 @@ TEST(Figure, DrawsSeriesInTheirColoursAndWritesPng) {
   ax.xLabel = "t [s]";
   ax.yLabel = "y [m]";
   ax.line(t, s, "sin");
-  ax.verticalLine(5.0, "grasp", Color{0, 0, 0});
-  fig.axes(1, 0).scatter(t, c, "cos", Color::tab(3), Marker::Square, 3);
+  ax.verticalLine(5.0, "grasp", Colour{0, 0, 0});
+  fig.axes(1, 0).scatter(t, c, "cos", Colour::tab(3), Marker::Square, 3);
   const auto png = fig.encodePng();
   const cv::Mat img = cv::imdecode(png, cv::IMREAD_COLOR);
   ASSERT_EQ(img.cols, 640);
   ASSERT_EQ(img.rows, 480);
   // A 10 s sine across ~550 px of axes at 2 px width: several hundred pixels of its colour.
-  EXPECT_GT(countColour(img, Color::tab(0)), 300);
+  EXPECT_GT(countColour(img, Colour::tab(0)), 300);
   // 101 filled 7x7 squares.
-  EXPECT_GT(countColour(img, Color::tab(3)), 101 * 20);
+  EXPECT_GT(countColour(img, Colour::tab(3)), 101 * 20);
   const std::string path = (std::filesystem::temp_directory_path() / "srp_plot_test.png").string();
   fig.save(path);
   EXPECT_GT(std::filesystem::file_size(path), 1000u);
@@ -59,8 +59,8 @@ TEST(Figure, BandShadesItsIntervalAndNothingElse) {
   auto& ax = fig.axes();
   ax.xLimits = std::make_pair(0.0, 10.0);
   ax.yLimits = std::make_pair(0.0, 1.0);
-  ax.line({0.0, 10.0}, {0.5, 0.5}, "", Color::tab(0), 1.0);
-  const Color opaque = Color::tab(2), half = Color::tab(3);
+  ax.line({0.0, 10.0}, {0.5, 0.5}, "", Colour::tab(0), 1.0);
+  const Colour opaque = Colour::tab(2), half = Colour::tab(3);
   ax.band(2.0, 4.0, "reach", opaque, 1.0);
   ax.band(6.0, 7.0, "", half, 0.5);
   const cv::Mat img = cv::imdecode(fig.encodePng(), cv::IMREAD_COLOR);
@@ -71,7 +71,7 @@ TEST(Figure, BandShadesItsIntervalAndNothingElse) {
   constexpr double kAreaTol = 0.08;
   EXPECT_NEAR(countColour(img, opaque), expected_px, kAreaTol * expected_px);
   // 50 % blend with white, to within the rounding of 8-bit arithmetic.
-  const Color blended{(255 + half.r) / 2, (255 + half.g) / 2, (255 + half.b) / 2};
+  const Colour blended{(255 + half.r) / 2, (255 + half.g) / 2, (255 + half.b) / 2};
   const double halfArea_px = 0.1 * plotWidth_px * plotHeight_px;
   EXPECT_NEAR(countColour(img, blended, 1), halfArea_px, kAreaTol * halfArea_px);
   // Outside the bands (x = 5, the middle of the gap) the background stays white.

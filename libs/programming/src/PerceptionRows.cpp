@@ -24,9 +24,9 @@ PerceptionRows toTaskDbRows(const perception::PerceptionResult& result, const co
     g.objectName = o.className;
     g.instanceId = o.instanceId;
     if (const auto c = instanceColours.find(o.instanceId); !o.instanceId.empty() && c != instanceColours.end())
-      g.color = c->second;
-    else if (const auto* cls = catalogue.find(o.className); cls && !cls->colorName.empty())
-      g.color = cls->colorName;
+      g.colour = c->second;
+    else if (const auto* cls = catalogue.find(o.className); cls && !cls->colourName.empty())
+      g.colour = cls->colourName;
     rows.groundedProducts.push_back(g);
     for (const auto& s : o.samples) {
       taskdb::ProductPoseRow p;

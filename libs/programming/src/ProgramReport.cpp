@@ -29,13 +29,13 @@ void writeHandFigure(const std::string& pngPath, const perception::PerceptionRes
     for (const auto& s : seen.hand.samples())
       if (s.valid) { td.push_back(s.frame / fps); pd.push_back(s.p_m[k]); }
     for (const auto& s : smoothed.samples()) { ts.push_back(s.frame / fps); ps.push_back(s.p_m[k]); }
-    ax.scatter(td, pd, "detected", plot::Color::tab(0), plot::Marker::Circle, 2);
-    ax.line(ts, ps, "smoothed", plot::Color::tab(1), 2);
+    ax.scatter(td, pd, "detected", plot::Colour::tab(0), plot::Marker::Circle, 2);
+    ax.line(ts, ps, "smoothed", plot::Colour::tab(1), 2);
     for (std::size_t i = 0; i < segmentation.objects.size(); ++i) {
       const auto& o = segmentation.objects[i];
       if (!o.moved) continue;
-      ax.verticalLine(o.graspFrame / fps, k == 0 ? "grasp " + o.name : "", plot::Color::tab(2 + static_cast<int>(i)));
-      ax.verticalLine(o.releaseFrame / fps, k == 0 ? "release" : "", plot::Color::tab(2 + static_cast<int>(i)));
+      ax.verticalLine(o.graspFrame / fps, k == 0 ? "grasp " + o.name : "", plot::Colour::tab(2 + static_cast<int>(i)));
+      ax.verticalLine(o.releaseFrame / fps, k == 0 ? "release" : "", plot::Colour::tab(2 + static_cast<int>(i)));
     }
   }
   auto& top = fig.axes(1, 1);
@@ -45,13 +45,13 @@ void writeHandFigure(const std::string& pngPath, const perception::PerceptionRes
   top.equalAspect = true;
   std::vector<double> x, y;
   for (const auto& s : smoothed.samples()) { x.push_back(s.p_m.x()); y.push_back(-s.p_m.y()); }
-  top.line(x, y, "hand", plot::Color::tab(1), 1.5);
+  top.line(x, y, "hand", plot::Colour::tab(1), 1.5);
   for (std::size_t i = 0; i < segmentation.objects.size(); ++i) {
     const auto& o = segmentation.objects[i];
     if (!o.moved) continue;
-    const auto color = plot::Color::tab(2 + static_cast<int>(i));
-    top.scatter({o.p_initial_m.x()}, {-o.p_initial_m.y()}, o.name + " grasp", color, plot::Marker::Circle, 6);
-    top.scatter({o.p_final_m.x()}, {-o.p_final_m.y()}, "", color, plot::Marker::Cross, 6);
+    const auto colour = plot::Colour::tab(2 + static_cast<int>(i));
+    top.scatter({o.p_initial_m.x()}, {-o.p_initial_m.y()}, o.name + " grasp", colour, plot::Marker::Circle, 6);
+    top.scatter({o.p_final_m.x()}, {-o.p_final_m.y()}, "", colour, plot::Marker::Cross, 6);
   }
   fig.save(pngPath);
 }

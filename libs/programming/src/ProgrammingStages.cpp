@@ -24,7 +24,7 @@ std::pair<std::string, std::string> wordsOf(const std::string& name, const std::
 
 // Grounds an instruction's object in the knowledge base, or says which names it knows.
 const core::ObjectClass& ground(const core::ObjectCatalogue& kb, const language::ObjectRef& o) {
-  const auto [noun, colour] = wordsOf(o.name, o.color);
+  const auto [noun, colour] = wordsOf(o.name, o.colour);
   if (const core::ObjectClass* c = kb.ground(noun, colour)) return *c;
   std::string known;
   for (const auto& c : kb.classes()) known += (known.empty() ? "" : ", ") + c.name;
@@ -49,7 +49,7 @@ void setSkillFlags(taskdb::TaskModel& model, const std::vector<motion::SkillSet>
 
 // The colour word a class answers to: its own, else the basic colour nearest its rgb.
 std::string classColourWord(const core::ObjectClass& c) {
-  return !c.colorName.empty() ? c.colorName : core::nearestColorName(c.rgb);
+  return !c.colourName.empty() ? c.colourName : core::nearestColourName(c.rgb);
 }
 
 // Per part class of the plan: the basic colour words its phrases use.
@@ -57,19 +57,19 @@ std::map<std::string, std::set<std::string>> partColourWords(const GroundedPlan&
   std::map<std::string, std::set<std::string>> out;
   for (const auto& [words, cls] : g.classByWords) {
     const core::ObjectClass* c = kb.find(cls);
-    if (!c || c->kind != core::ObjectKind::Part || words.second.empty() || !core::rgbOfColorName(words.second)) continue;
+    if (!c || c->kind != core::ObjectKind::Part || words.second.empty() || !core::rgbOfColourName(words.second)) continue;
     out[cls].insert(words.second);
   }
   return out;
 }
 
-// The colour word of each scene instance (core::instanceColor), for the rows and the grounding.
+// The colour word of each scene instance (core::instanceColour), for the rows and the grounding.
 std::map<std::string, std::string> instanceColours(const std::optional<core::Scene>& scene,
                                                    const core::ObjectCatalogue& kb) {
   std::map<std::string, std::string> out;
   if (!scene) return out;
   for (const auto& o : scene->objects)
-    if (const auto* cls = kb.find(o.className)) out[o.id] = core::instanceColor(o, *cls);
+    if (const auto* cls = kb.find(o.className)) out[o.id] = core::instanceColour(o, *cls);
   return out;
 }
 
@@ -109,7 +109,7 @@ std::optional<core::Scene> instructionInstances(const GroundedPlan& grounded, co
       o.id = cls + "_" + colour;
       std::replace(o.id.begin(), o.id.end(), ' ', '_');
       o.className = cls;
-      o.color = colour;
+      o.colour = colour;
       scene.objects.push_back(o);
     }
   }
@@ -136,7 +136,7 @@ GroundedPlan groundPlan(const language::TaskPlan& plan, const core::ObjectCatalo
   g.plan = plan;
   const auto add = [&](const language::ObjectRef& o) -> const std::string& {
     const std::string& cls = ground(kb, o).name;
-    g.classByWords[wordsOf(o.name, o.color)] = cls;
+    g.classByWords[wordsOf(o.name, o.colour)] = cls;
     return cls;
   };
   for (const auto& step : plan.steps) {
@@ -174,7 +174,7 @@ perception::PerceptionResult perceive(const GroundedPlan& grounded, const core::
       const auto w = words.find(p.className);
       if (!p.instanceId.empty() || w == words.end() || w->second.size() != 1) continue;
       const std::string& colour = *w->second.begin();
-      if (colour != classColourWord(kb.at(p.className))) p.rgb = core::rgbOfColorName(colour);
+      if (colour != classColourWord(kb.at(p.className))) p.rgb = core::rgbOfColourName(colour);
     }
   }
 
@@ -242,9 +242,9 @@ execution::CellDescription perceivedScene(const perception::PerceptionResult& se
     c.X_world_object = X_table_camera * first->X_camera_object;
     c.rgb = cls->rgb;
     const auto word = colours.find(t.instanceId);
-    c.color = !t.instanceId.empty() && word != colours.end() ? word->second
-              : !cls->colorName.empty()                       ? cls->colorName
-                                                              : core::nearestColorName(cls->rgb);
+    c.colour = !t.instanceId.empty() && word != colours.end() ? word->second
+              : !cls->colourName.empty()                       ? cls->colourName
+                                                              : core::nearestColourName(cls->rgb);
     cell.objects.push_back(c);
   }
   return cell;
@@ -262,7 +262,7 @@ GroundedPlan groundInstances(const GroundedPlan& grounded, const perception::Per
   const execution::CellDescription cell = perceivedScene(seen, kb, scene);
   const execution::SceneGrounder grounder(cell);
   const auto objectOf = [&](const language::ObjectRef& ref, const std::vector<language::LocationRef>& where) {
-    const std::string& cls = g.classOf(ref.name, ref.color);
+    const std::string& cls = g.classOf(ref.name, ref.colour);
     if (!perInstance(cls)) return cls;
     return grounder.ground(ref, where).name;
   };
@@ -270,12 +270,12 @@ GroundedPlan groundInstances(const GroundedPlan& grounded, const perception::Per
   g.movingObjects.clear();
   for (const auto& step : g.plan.steps) {
     const std::string key = objectOf(step.object, step.source);
-    g.objectByWords[wordsOf(step.object.name, step.object.color)] = key;
+    g.objectByWords[wordsOf(step.object.name, step.object.colour)] = key;
     g.stepObjects.push_back(key);
     if (std::find(g.movingObjects.begin(), g.movingObjects.end(), key) == g.movingObjects.end())
       g.movingObjects.push_back(key);
     for (const auto* list : {&step.source, &step.target})
-      for (const auto& loc : *list) g.objectByWords[wordsOf(loc.landmark.name, loc.landmark.color)] = objectOf(loc.landmark, {});
+      for (const auto& loc : *list) g.objectByWords[wordsOf(loc.landmark.name, loc.landmark.colour)] = objectOf(loc.landmark, {});
   }
   for (const auto& key : g.movingObjects) {
     const bool shown = std::any_of(seen.objects.begin(), seen.objects.end(),
@@ -350,10 +350,10 @@ taskdb::TaskModel buildTaskModel(const GroundedPlan& grounded, const Programming
   // Class names become class ids here, in the rows; a phrase grounded to an
   // instance names it (Products.InstanceId).
   for (auto& p : model.products) {
-    const int classId = kb.at(grounded.classOf(p.objectName, p.color)).classId;
+    const int classId = kb.at(grounded.classOf(p.objectName, p.colour)).classId;
     if (!model.findGrounded(classId)) continue;
     p.classId = classId;
-    const std::string& key = grounded.objectOf(p.objectName, p.color);
+    const std::string& key = grounded.objectOf(p.objectName, p.colour);
     for (const auto& g : model.groundedProducts)
       if (g.classId == classId && !g.instanceId.empty() && g.instanceId == key) p.instanceId = key;
   }

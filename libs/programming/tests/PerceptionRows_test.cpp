@@ -36,7 +36,7 @@ TEST(TaskDbMapping, HandCarriedForwardAndObjectRows) {
   EXPECT_TRUE(rows.handPositions[2].detected);
   ASSERT_EQ(rows.groundedProducts.size(), 1u);
   EXPECT_EQ(rows.groundedProducts[0].objectName, "gray box");
-  EXPECT_EQ(rows.groundedProducts[0].color.value_or(""), "gray");
+  EXPECT_EQ(rows.groundedProducts[0].colour.value_or(""), "gray");
   ASSERT_EQ(rows.productPoses.size(), 4u);
   EXPECT_NEAR(rows.productPoses[2].yaw_rad(), 0.5, 1e-9);
   EXPECT_FALSE(rows.productPoses[2].detected);
@@ -59,9 +59,9 @@ TEST(TaskDbMapping, InstancesKeepTheirIdAndColour) {
   const PerceptionRows rows = toTaskDbRows(r, catalogue(), {{"cuboid_red", "red"}, {"cuboid_blue", "blue"}});
   ASSERT_EQ(rows.groundedProducts.size(), 2u);
   EXPECT_EQ(rows.groundedProducts[0].instanceId, "cuboid_red");
-  EXPECT_EQ(rows.groundedProducts[0].color.value_or(""), "red");
+  EXPECT_EQ(rows.groundedProducts[0].colour.value_or(""), "red");
   EXPECT_EQ(rows.groundedProducts[1].instanceId, "cuboid_blue");
-  EXPECT_EQ(rows.groundedProducts[1].color.value_or(""), "blue");
+  EXPECT_EQ(rows.groundedProducts[1].colour.value_or(""), "blue");
   ASSERT_EQ(rows.productPoses.size(), 2u);
   EXPECT_EQ(rows.productPoses[0].instanceId, "cuboid_red");
   EXPECT_EQ(rows.productPoses[1].instanceId, "cuboid_blue");

@@ -21,6 +21,7 @@
 #include "srp/synth/DemoGenerator.h"
 #include "srp/synth/DuplicatePartsDemo.h"
 #include "srp/taskdb/TaskModelStore.h"
+#include "SmallDemoOptions.h"
 
 using namespace srp;
 
@@ -46,13 +47,7 @@ const Demo& demo(std::uint32_t kSeed = 3) {
     out.scene = synth::makeDuplicatePartsDemo(base, kb, kSeed);
     out.scenePath = (dir / ("scene_" + std::to_string(kSeed) + ".json")).string();
     std::ofstream(out.scenePath) << out.scene.scene.toJson().dump(1);
-    synth::SynthDemoOptions opt;
-    opt.width_px = 320;
-    opt.height_px = 240;
-    opt.demo.seed = kSeed;
-    opt.demo.idleStart_s = 0.7;
-    opt.demo.idleEnd_s = 0.7;
-    opt.demo.speedFactor = 1.4;
+    const synth::SynthDemoOptions opt = programming::test::smallDemoOptions(kSeed);
     out.rawlog = (dir / ("duplicates_" + std::to_string(kSeed) + ".rawlog")).string();
     const auto r = synth::generateSyntheticDemo(out.scene.scene, kb, out.scene.plan, opt, out.rawlog);
     out.gt = synth::DemoGroundTruth::load(r.groundTruthPath);
@@ -105,8 +100,8 @@ void expectInstanceStored(std::uint32_t seed) {
   for (const auto& g : m.groundedProducts)
     if (g.objectName == "cuboid") {
       grounded.insert(g.instanceId);
-      ASSERT_TRUE(g.color.has_value());
-      EXPECT_EQ(*g.color, d.scene.scene.findObject(g.instanceId)->color);
+      ASSERT_TRUE(g.colour.has_value());
+      EXPECT_EQ(*g.colour, d.scene.scene.findObject(g.instanceId)->colour);
     }
   EXPECT_EQ(grounded, (std::set<std::string>{d.scene.movedId, d.scene.otherId}));
   // The skills are the moved instance's; its grasp row is flagged, the other's never.
@@ -157,7 +152,7 @@ TEST(ProgrammingInstances, GroundsASuperlativeInThePerceivedScene) {
 // that stays (seed 1 moves the blue one). Its one instance: InstanceId "".
 TEST(ProgrammingInstances, WithoutASceneTheInstructionsColourIsLookedFor) {
   const Demo& d = demo(1);
-  ASSERT_EQ(d.scene.scene.findObject(d.scene.movedId)->color, "blue");
+  ASSERT_EQ(d.scene.scene.findObject(d.scene.movedId)->colour, "blue");
   auto o = options("Pick up the blue cuboid and place it in the gray box.", "noscene.db", d);
   o.scenePath.clear();
   const programming::ProgramResult r = programming::programTask(o);
@@ -183,7 +178,7 @@ TEST(ProgrammingInstances, InstructionNamingTwoColoursOfAPartGivesTwoInstances) 
   for (const auto& o : scene->objects) {
     ids.insert(o.id);
     EXPECT_EQ(o.className, "cuboid");
-    EXPECT_EQ(o.id, "cuboid_" + o.color);
+    EXPECT_EQ(o.id, "cuboid_" + o.colour);
   }
   EXPECT_EQ(ids, (std::set<std::string>{"cuboid_blue", "cuboid_red"}));
   // One colour, or none: no instances.

@@ -13,6 +13,7 @@
 #include "srp/core/Scene.h"
 #include "srp/programming/ProgrammingPipeline.h"
 #include "srp/synth/DemoGenerator.h"
+#include "SmallDemoOptions.h"
 #include "srp/synth/PickPlacePlan.h"
 #include "srp/taskdb/TaskModelStore.h"
 
@@ -28,17 +29,7 @@ std::filesystem::path workDir() {
   return dir;
 }
 
-// A small, fast synthetic demo: 320x240, short idles, a brisk demonstrator.
-synth::SynthDemoOptions smallDemoOptions(std::uint32_t seed) {
-  synth::SynthDemoOptions opt;
-  opt.width_px = 320;
-  opt.height_px = 240;
-  opt.demo.seed = seed;
-  opt.demo.idleStart_s = 0.7;
-  opt.demo.idleEnd_s = 0.7;
-  opt.demo.speedFactor = 1.4;
-  return opt;
-}
+using programming::test::smallDemoOptions;
 
 // One small demo (the cuboid step of instruction 1) shared by the tests; the
 // octagon is taken out of the scene so an instruction can name a part it never shows.

@@ -42,7 +42,7 @@ DuplicatePartsDemo makeDuplicatePartsDemo(const srp::core::Scene& base, const sr
     for (char& c : s.id)
       if (c == ' ') c = '_';
     s.className = o.className;
-    s.color = word;
+    s.colour = word;
     s.X_world_object = srp::core::Pose3::Identity();
     s.X_world_object.linear() = Eigen::AngleAxisd(uniform(-M_PI, M_PI), Eigen::Vector3d::UnitZ()).toRotationMatrix();
     s.X_world_object.translation() = Eigen::Vector3d(p_xy.x(), p_xy.y(), 0.0);
@@ -55,7 +55,7 @@ DuplicatePartsDemo makeDuplicatePartsDemo(const srp::core::Scene& base, const sr
 
   const std::string noun = o.className, colour = o.colours[moved];
   const srp::core::ObjectClass& targetClass = catalogue.at(target->className);
-  const std::string targetColour = srp::core::instanceColor(*target, targetClass);
+  const std::string targetColour = srp::core::instanceColour(*target, targetClass);
   const std::string targetNoun = targetClass.noun.empty() ? targetClass.name : targetClass.noun;
   out.plan = {{"instruction", "Pick up the " + colour + " " + noun + " and place it in the " +
                                   (targetColour.empty() ? "" : targetColour + " ") + targetNoun + "."},

@@ -50,21 +50,21 @@ std::vector<PickPlaceStep> groundPlan(const nlohmann::json& plan, const srp::cor
     const auto& nameField = srp::core::requireField(phrase, "name", where);
     if (!nameField.is_string()) throw InvalidInputError(where + ": field 'name' must be a string");
     const std::string noun = nameField.get<std::string>();
-    const std::string color = optionalString(phrase, "color");
-    const auto* cls = catalogue.ground(noun, color);
+    const std::string colour = optionalString(phrase, "color");
+    const auto* cls = catalogue.ground(noun, colour);
     if (!cls)
-      throw InvalidInputError(where + ": '" + (color.empty() ? "" : color + " ") + noun +
+      throw InvalidInputError(where + ": '" + (colour.empty() ? "" : colour + " ") + noun +
                               "' is not in the knowledge base (datasets/kb/catalogue.json)");
     // Several instances of the class: the colour picks among them (the scene's
     // per-instance "color"), when any instance has it.
     const bool byInstanceColour =
-        !color.empty() && std::any_of(scene.objects.begin(), scene.objects.end(), [&](const srp::core::SceneObject& o) {
-          return o.className == cls->name && srp::core::instanceColor(o, *cls) == color;
+        !colour.empty() && std::any_of(scene.objects.begin(), scene.objects.end(), [&](const srp::core::SceneObject& o) {
+          return o.className == cls->name && srp::core::instanceColour(o, *cls) == colour;
         });
     const srp::core::SceneObject* chosen = nullptr;
     for (const auto& o : scene.objects) {
       if (o.className != cls->name) continue;
-      if (byInstanceColour && srp::core::instanceColor(o, *cls) != color) continue;
+      if (byInstanceColour && srp::core::instanceColour(o, *cls) != colour) continue;
       const bool isMoved = std::find(moved.begin(), moved.end(), o.id) != moved.end();
       if (!chosen || (preferUnmoved && !isMoved && std::find(moved.begin(), moved.end(), chosen->id) != moved.end()))
         chosen = &o;
@@ -124,8 +124,8 @@ std::vector<PickPlaceStep> groundPlan(const nlohmann::json& plan, const srp::cor
 }
 
 nlohmann::json defaultPlanJson() {
-  auto phrase = [](const char* name, const char* color) {
-    return nlohmann::json{{"name", name}, {"color", color ? nlohmann::json(color) : nlohmann::json(nullptr)}};
+  auto phrase = [](const char* name, const char* colour) {
+    return nlohmann::json{{"name", name}, {"color", colour ? nlohmann::json(colour) : nlohmann::json(nullptr)}};
   };
   auto step = [&](const char* object, const char* beside) {
     nlohmann::json target = nlohmann::json::array();

@@ -29,8 +29,8 @@ TEST(DuplicatePartsDemo, TwoColouredInstancesOnTheWayAndThePlanMovesTheNamedOne)
     ASSERT_TRUE(moved && other);
     EXPECT_EQ(moved->className, "cuboid");
     EXPECT_EQ(other->className, "cuboid");
-    EXPECT_NE(moved->color, other->color);
-    movedRed += moved->color == "red";
+    EXPECT_NE(moved->colour, other->colour);
+    movedRed += moved->colour == "red";
     const Eigen::Vector2d a = moved->X_world_object.translation().head<2>();
     const Eigen::Vector2d g = d.scene.findObject("gray box")->X_world_object.translation().head<2>();
     const Eigen::Vector2d p = other->X_world_object.translation().head<2>();

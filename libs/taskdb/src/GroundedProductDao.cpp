@@ -15,7 +15,7 @@ GroundedProductRow readRow(const SQLite::Statement& st) {
   r.objectName = st.getColumn(1).getString();
   r.sourceLocationId = optionalInt(st.getColumn(2));
   r.targetLocationId = optionalInt(st.getColumn(3));
-  r.color = optionalText(st.getColumn(4));
+  r.colour = optionalText(st.getColumn(4));
   r.instanceId = st.getColumn(5).getString();
   return r;
 }
@@ -30,7 +30,7 @@ void GroundedProductDao::add(int tm, const GroundedProductRow& r) {
   st.bind(3, r.objectName);
   bindOptional(st, 4, r.sourceLocationId);
   bindOptional(st, 5, r.targetLocationId);
-  bindOptional(st, 6, r.color);
+  bindOptional(st, 6, r.colour);
   st.bind(7, r.instanceId);
   st.exec();
 }
@@ -52,7 +52,7 @@ void GroundedProductDao::update(int tm, const GroundedProductRow& r) {
   st.bind(1, r.objectName);
   bindOptional(st, 2, r.sourceLocationId);
   bindOptional(st, 3, r.targetLocationId);
-  bindOptional(st, 4, r.color);
+  bindOptional(st, 4, r.colour);
   st.bind(5, tm);
   st.bind(6, r.classId);
   st.bind(7, r.instanceId);

@@ -13,7 +13,7 @@ void bindRow(SQLite::Statement& st, int first, const ProductRow& r) {
   st.bind(first, r.objectName);
   bindOptional(st, first + 1, r.sourceLocationId);
   bindOptional(st, first + 2, r.targetLocationId);
-  bindOptional(st, first + 3, r.color);
+  bindOptional(st, first + 3, r.colour);
   bindOptional(st, first + 4, r.tokenId);
   bindOptional(st, first + 5, r.sentenceId);
   bindOptional(st, first + 6, r.classId);
@@ -26,7 +26,7 @@ ProductRow readRow(const SQLite::Statement& st) {
   r.objectName = st.getColumn(1).getString();
   r.sourceLocationId = optionalInt(st.getColumn(2));
   r.targetLocationId = optionalInt(st.getColumn(3));
-  r.color = optionalText(st.getColumn(4));
+  r.colour = optionalText(st.getColumn(4));
   r.tokenId = optionalInt(st.getColumn(5));
   r.sentenceId = optionalInt(st.getColumn(6));
   r.classId = optionalInt(st.getColumn(7));

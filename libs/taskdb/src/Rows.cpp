@@ -6,7 +6,7 @@ namespace srp::taskdb {
 
 bool ProductRow::operator==(const ProductRow& o) const {
   return objectId == o.objectId && objectName == o.objectName && sourceLocationId == o.sourceLocationId &&
-         targetLocationId == o.targetLocationId && color == o.color && tokenId == o.tokenId &&
+         targetLocationId == o.targetLocationId && colour == o.colour && tokenId == o.tokenId &&
          sentenceId == o.sentenceId && classId == o.classId && instanceId == o.instanceId;
 }
 bool SourceLocationRow::operator==(const SourceLocationRow& o) const {
@@ -17,7 +17,7 @@ bool TargetLocationRow::operator==(const TargetLocationRow& o) const {
 }
 bool GroundedProductRow::operator==(const GroundedProductRow& o) const {
   return classId == o.classId && objectName == o.objectName && sourceLocationId == o.sourceLocationId &&
-         targetLocationId == o.targetLocationId && color == o.color && instanceId == o.instanceId;
+         targetLocationId == o.targetLocationId && colour == o.colour && instanceId == o.instanceId;
 }
 double ProductPoseRow::yaw_rad() const { return core::yawOf(q.normalized().toRotationMatrix()); }
 bool ProductPoseRow::operator==(const ProductPoseRow& o) const {

@@ -54,7 +54,7 @@ json toJson(const TaskModel& m) {
   for (const auto& p : m.products)
     j["products"].push_back({{"object_id", p.objectId}, {"object_name", p.objectName},
                              {"source_location_id", opt(p.sourceLocationId)},
-                             {"target_location_id", opt(p.targetLocationId)}, {"color", opt(p.color)},
+                             {"target_location_id", opt(p.targetLocationId)}, {"color", opt(p.colour)},
                              {"token_id", opt(p.tokenId)}, {"sentence_id", opt(p.sentenceId)},
                              {"class_id", opt(p.classId)}});
   // Instance ids only when set: files of single-instance tasks keep their form.
@@ -72,7 +72,7 @@ json toJson(const TaskModel& m) {
   for (const auto& g : m.groundedProducts)
     j["grounded_products"].push_back({{"class_id", g.classId}, {"object_name", g.objectName},
                                       {"source_location_id", opt(g.sourceLocationId)},
-                                      {"target_location_id", opt(g.targetLocationId)}, {"color", opt(g.color)}});
+                                      {"target_location_id", opt(g.targetLocationId)}, {"color", opt(g.colour)}});
   for (std::size_t k = 0; k < m.groundedProducts.size(); ++k)
     addInstance(j["grounded_products"][k], m.groundedProducts[k].instanceId);
   for (const auto& p : m.productPoses)

@@ -14,7 +14,7 @@ namespace {
 std::string describe(const TaskModel& m, int objectId) {
   const ProductRow* p = m.findProduct(objectId);
   if (!p) return "?" + std::to_string(objectId);
-  return p->color ? *p->color + " " + p->objectName : p->objectName;
+  return p->colour ? *p->colour + " " + p->objectName : p->objectName;
 }
 
 template <typename Rows, typename LandmarkOf>
@@ -72,7 +72,7 @@ std::vector<PlanStepView> planSteps(const TaskModel& m) {
     PlanStepView& s = steps.back();
     s.objectIds.push_back(id);
     if (!p) continue;
-    if (p->color && !s.color) s.color = p->color;
+    if (p->colour && !s.colour) s.colour = p->colour;
     if (auto src = location(m, m.sourceLocations, p->sourceLocationId, sourceLandmark)) s.sources.push_back(*src);
     if (auto dst = location(m, m.targetLocations, p->targetLocationId, targetLandmark)) s.targets.push_back(*dst);
   }
@@ -96,7 +96,7 @@ void printTaskModel(const TaskModel& m, std::ostream& out) {
       for (const auto& x : v) r += (r.empty() ? "" : "; ") + x;
       return r.empty() ? std::string("-") : r;
     };
-    const std::string object = s.color ? *s.color + " " + s.objectName : s.objectName;
+    const std::string object = s.colour ? *s.colour + " " + s.objectName : s.objectName;
     out << "  " << std::left << std::setw(3) << ++n << std::setw(23) << object << std::setw(30) << join(s.sources)
         << join(s.targets) << "\n";
   }
@@ -138,7 +138,7 @@ void writeAppendixC(const TaskModel& m, std::ostream& out, int maxRows) {
   out << "Table C.1: Products\n\nObjectId\tObjectName\tSourceLocation\tTargetLocation\tColor\tTokenId\tSentenceId\tClassId\n";
   for (const auto& p : m.products)
     out << p.objectId << "\t" << p.objectName << "\t" << opt(p.sourceLocationId) << "\t" << opt(p.targetLocationId)
-        << "\t" << opt(p.color) << "\t" << opt(p.tokenId) << "\t" << opt(p.sentenceId) << "\t" << opt(p.classId) << "\n";
+        << "\t" << opt(p.colour) << "\t" << opt(p.tokenId) << "\t" << opt(p.sentenceId) << "\t" << opt(p.classId) << "\n";
   out << "\nTable C.2: SourceLocations\n\nLocationId\tTrajectorObjectId\tDescription\n";
   for (const auto& s : m.sourceLocations) out << s.locationId << "\t" << s.trajectorObjectId << "\t" << s.description << "\n";
   out << "\nTable C.3: TargetLocations\n\nLocationId\tIndicatorObjectId\tDescription\n";
@@ -153,7 +153,7 @@ void writeAppendixC(const TaskModel& m, std::ostream& out, int maxRows) {
   out << "\nTable C.6: GroundedProducts\n\nClassId\tObjectName\tSourceLocation\tTargetLocation\tColor\n";
   for (const auto& g : m.groundedProducts)
     out << g.classId << "\t" << g.objectName << "\t" << opt(g.sourceLocationId) << "\t" << opt(g.targetLocationId)
-        << "\t" << opt(g.color) << "\n";
+        << "\t" << opt(g.colour) << "\n";
   int table = 7;
   for (const auto& g : m.groundedProducts) {
     std::vector<const ProductPoseRow*> poses;

@@ -33,15 +33,15 @@ TEST(Daos, AddGetUpdateRemove) {
   ProductDao products(db);
   products.add(id, {0, "cuboid", {}, {}, "red", 4, 0, {}});
   ProductRow p = *products.get(id, 0);
-  EXPECT_EQ(p.color, "red");
-  p.color.reset();
+  EXPECT_EQ(p.colour, "red");
+  p.colour.reset();
   p.classId = 3;
   // Outside a transaction foreign keys are checked per statement: class 3 must be grounded first.
   EXPECT_THROW(products.update(id, p), std::runtime_error);
   GroundedProductDao(db).add(id, {3, "cuboid", {}, {}, {}});
   products.update(id, p);
   EXPECT_EQ(products.get(id, 0)->classId, 3);
-  EXPECT_FALSE(products.get(id, 0)->color.has_value());
+  EXPECT_FALSE(products.get(id, 0)->colour.has_value());
   EXPECT_THROW(products.update(id, {7, "ghost", {}, {}, {}, {}, {}, {}}), InvalidInputError);
   EXPECT_TRUE(products.remove(id, 0));
   EXPECT_FALSE(products.remove(id, 0));

@@ -99,7 +99,7 @@ TEST(Robustness, SqlInNamesIsStoredVerbatim) {
   const int id = store.write(m);
   const TaskModel back = store.read(id);
   EXPECT_EQ(back.products.at(0).objectName, evil);
-  EXPECT_EQ(back.products.at(0).color, "gr'ay");
+  EXPECT_EQ(back.products.at(0).colour, "gr'ay");
   EXPECT_EQ(back.info.name, m.info.name);
   EXPECT_EQ(back.info.instruction, m.info.instruction);
   EXPECT_EQ(store.list().size(), 1u);

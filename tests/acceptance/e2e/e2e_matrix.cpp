@@ -70,7 +70,7 @@ bool hasRelation(const std::vector<execution::SpatialRelation>& stored, const la
     return relation == want.relation;
   };
   return std::any_of(stored.begin(), stored.end(), [&](const execution::SpatialRelation& r) {
-    return sameKind(r.relation) && r.landmark.name == want.landmark.name && r.landmark.color == want.landmark.color;
+    return sameKind(r.relation) && r.landmark.name == want.landmark.name && r.landmark.colour == want.landmark.colour;
   });
 }
 

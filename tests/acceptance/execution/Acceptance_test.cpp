@@ -20,8 +20,8 @@ constexpr double kPlacementTol_m = 0.01;  // issue: within 1 cm of the planned p
 
 CellDescription defaultCell() { return CellDescription::loadScene(); }
 
-SpatialRelation rel(const std::string& r, const std::string& name, std::optional<std::string> color = {}) {
-  return {r, {name, color}};
+SpatialRelation rel(const std::string& r, const std::string& name, std::optional<std::string> colour = {}) {
+  return {r, {name, colour}};
 }
 
 ExecutionStep step(const std::string& object, std::vector<SpatialRelation> source, std::vector<SpatialRelation> target) {

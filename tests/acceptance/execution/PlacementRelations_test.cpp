@@ -99,7 +99,7 @@ ExecutionStep randomStep(std::mt19937& rng, const CellDescription& cell, bool by
   std::vector<ObjectReference> parts;
   for (const auto& o : cell.objects)
     if (o.kind == CellObjectKind::Part)
-      parts.push_back(byColour ? ObjectReference{o.noun, o.color} : ObjectReference{o.name, {}});
+      parts.push_back(byColour ? ObjectReference{o.noun, o.colour} : ObjectReference{o.name, {}});
   std::shuffle(parts.begin(), parts.end(), rng);
   ExecutionStep s;
   s.object = parts[0];
@@ -120,7 +120,7 @@ ExecutionStep randomStep(std::mt19937& rng, const CellDescription& cell, bool by
 /// The instance a test reference names: "<colour> <noun>" or the id.
 const CellObject* instanceOf(const CellDescription& scene, const ObjectReference& ref) {
   for (const auto& o : scene.objects)
-    if (ref.color ? (o.noun == ref.name && o.color == *ref.color) : o.name == ref.name) return &o;
+    if (ref.colour ? (o.noun == ref.name && o.colour == *ref.colour) : o.name == ref.name) return &o;
   return nullptr;
 }
 
@@ -187,7 +187,7 @@ void runRandomPlacements(const std::string& scenePath, bool byColour, std::optio
       const ExecutionStep step = randomStep(rng, now, byColour);
       std::string expectedId = step.object.name;
       for (const auto& o : now.objects)
-        if (byColour && o.noun == step.object.name && step.object.color && o.color == *step.object.color)
+        if (byColour && o.noun == step.object.name && step.object.colour && o.colour == *step.object.colour)
           expectedId = o.name;
       ExecutionPlan plan;
       plan.steps.push_back(step);

@@ -33,7 +33,7 @@ struct ObjectClass {
   std::string name;        ///< unique, e.g. "cuboid", "blue box"
   int classId = -1;        ///< as in the task database (Appendix C: 0 gray box, 1 blue box, ...)
   std::string noun;        ///< head noun in instructions, e.g. "box" for "blue box"
-  std::string colorName;   ///< e.g. "blue"; empty when the colour does not identify it
+  std::string colourName;   ///< e.g. "blue"; empty when the colour does not identify it
   ObjectKind kind = ObjectKind::Part;
   std::string shape;       ///< generator shape: "cuboid", "star", "parallelogram", "octagon", "open_box", ...; empty: the mesh file alone
   Eigen::Vector3d rgb = Eigen::Vector3d::Constant(0.5);      ///< linear RGB in [0, 1]
@@ -61,7 +61,7 @@ class ObjectCatalogue {
   const ObjectClass* findById(int classId) const;
   /// Grounds an instruction's noun phrase: exact name, then noun + colour, then
   /// noun alone when exactly one class has it. nullptr when nothing fits.
-  const ObjectClass* ground(const std::string& noun, const std::string& color = "") const;
+  const ObjectClass* ground(const std::string& noun, const std::string& colour = "") const;
   /// Like find() but throws InvalidInputError listing the known names.
   const ObjectClass& at(const std::string& name) const;
 

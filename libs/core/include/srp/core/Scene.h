@@ -30,7 +30,7 @@
 /// "cuboid_blue"); the catalogue gives the class' default colour (colour word
 /// `color_name` and `rgb`), an object may override it with
 /// `"color": "blue"` (the colour word instructions use; its rgb then comes from
-/// `rgbOfColorName` unless `"rgb": [r, g, b]` is given too) and/or `"rgb"`.
+/// `rgbOfColourName` unless `"rgb": [r, g, b]` is given too) and/or `"rgb"`.
 
 #include <Eigen/Core>
 #include <optional>
@@ -48,22 +48,22 @@ struct SceneObject {
   std::string id;         ///< unique in the scene, e.g. "cuboid" or "cuboid_2"
   std::string className;  ///< catalogue class name
   Pose3 X_world_object = Pose3::Identity();
-  std::string color;                   ///< colour word of this instance; "" = the class' colour
-  std::optional<Eigen::Vector3d> rgb;  ///< linear RGB in [0, 1]; nullopt = from `color` or the class
+  std::string colour;                   ///< colour word of this instance; "" = the class' colour
+  std::optional<Eigen::Vector3d> rgb;  ///< linear RGB in [0, 1]; nullopt = from `colour` or the class
 };
 
-/// The colour word of an instance: its own, else its class' (`colorName`, may be "").
-std::string instanceColor(const SceneObject& object, const ObjectClass& cls);
+/// The colour word of an instance: its own, else its class' (`colourName`, may be "").
+std::string instanceColour(const SceneObject& object, const ObjectClass& cls);
 /// The rendering colour of an instance: its "rgb", else the rgb of its own colour
 /// word, else its class' rgb.
 Eigen::Vector3d instanceRgb(const SceneObject& object, const ObjectClass& cls);
 /// Linear RGB of a basic colour word (red, green, blue, yellow, orange, purple,
 /// pink, brown, black, white, gray/grey, cyan); nullopt for any other word.
-std::optional<Eigen::Vector3d> rgbOfColorName(const std::string& color);
+std::optional<Eigen::Vector3d> rgbOfColourName(const std::string& colour);
 /// The basic colour word whose rgb is nearest to `rgb` (Euclidean in linear RGB),
 /// "" when none is within `maxDistance`: names the colour of an instance whose
 /// class gives no colour word (the catalogue's red cuboid is "red").
-std::string nearestColorName(const Eigen::Vector3d& rgb, double maxDistance = 0.25);
+std::string nearestColourName(const Eigen::Vector3d& rgb, double maxDistance = 0.25);
 
 struct SceneLighting {
   double ambient = 0.45;

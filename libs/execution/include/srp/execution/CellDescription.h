@@ -30,7 +30,7 @@ struct CellObject {
   double wallThickness_m = 0.006;  ///< containers only
   srp::core::Pose3 X_world_object = srp::core::Pose3::Identity();
   Eigen::Vector3d rgb = Eigen::Vector3d(0.8, 0.5, 0.2);  ///< colour in [0, 1] for rendering
-  std::string color;  ///< colour word of this instance (the scene's, else its class'), "" if none
+  std::string colour;  ///< colour word of this instance (the scene's, else its class'), "" if none
   std::string className;  ///< knowledge-base class ("blue box"), "" if unknown
   std::string noun;       ///< head noun in instructions ("box"), "" if unknown
   int classId = -1;       ///< knowledge-base class id

@@ -37,7 +37,7 @@ struct LocationRef;
 ///   -> {"closest to", box} (a superlative relative to a landmark).
 struct ObjectRef {
   std::string name;
-  std::optional<std::string> color;
+  std::optional<std::string> colour;
   std::optional<int> ordinal;
   std::string superlative;
   std::vector<LocationRef> relations;
@@ -66,7 +66,7 @@ struct LocationRef {
 };
 
 inline bool ObjectRef::operator==(const ObjectRef& o) const {
-  return name == o.name && color == o.color && ordinal == o.ordinal && superlative == o.superlative &&
+  return name == o.name && colour == o.colour && ordinal == o.ordinal && superlative == o.superlative &&
          relations == o.relations;
 }
 

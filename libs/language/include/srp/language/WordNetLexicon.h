@@ -14,7 +14,7 @@ struct WordInfo {
   bool noun = false, verb = false, adjective = false, adverb = false;
   std::string verbLemma;  ///< base form as a verb ("placing" -> "place"), empty if none
   std::string nounLemma;  ///< base form as a noun ("boxes" -> "box"), empty if none
-  bool color = false;     ///< a noun sense under "chromatic color"/"color" (red, grey, ...)
+  bool colour = false;     ///< a noun sense under "chromatic color"/"color" (red, grey, ...)
   bool artifact = false;  ///< a noun sense under "artifact" or "object" (box, block, ...)
   bool shape = false;     ///< a noun sense under "shape"/"plane figure"/"solid" (cube, star)
   bool location = false;  ///< a noun sense under "location"/"region" (corner, edge)

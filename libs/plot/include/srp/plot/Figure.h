@@ -9,7 +9,7 @@
 ///   auto& ax = fig.axes(0, 0);
 ///   ax.title = "Hand trajectory";  ax.xLabel = "t [s]";  ax.yLabel = "x [m]";
 ///   ax.line(t, x, "demo");
-///   ax.line(t, xr, "reproduction", srp::plot::Color::tab(1), 2.0, true);  // dashed
+///   ax.line(t, xr, "reproduction", srp::plot::Colour::tab(1), 2.0, true);  // dashed
 ///   ax.verticalLine(3.2, "grasp");
 ///   fig.save("hand.png");
 /// \endcode
@@ -22,11 +22,11 @@
 namespace srp::plot {
 
 /// sRGB colour, 0-255.
-struct Color {
+struct Colour {
   int r = 0, g = 0, b = 0;
   /// The i-th colour of matplotlib's tab10 palette (cycles).
-  static Color tab(int i);
-  static Color gray() { return {120, 120, 120}; }
+  static Colour tab(int i);
+  static Colour gray() { return {120, 120, 120}; }
 };
 
 enum class Marker { None, Circle, Cross, Square, Triangle };
@@ -35,7 +35,7 @@ enum class Marker { None, Circle, Cross, Square, Triangle };
 struct Series {
   std::string label;           ///< empty: not in the legend
   std::vector<double> x, y;
-  Color color;
+  Colour colour;
   double lineWidth_px = 2.0;   ///< 0: no line
   bool dashed = false;
   Marker marker = Marker::None;
@@ -51,26 +51,26 @@ class Axes {
   bool legend = true;
 
   Series& line(std::vector<double> x, std::vector<double> y, std::string label = "",
-               std::optional<Color> color = std::nullopt, double width_px = 2.0, bool dashed = false);
+               std::optional<Colour> colour = std::nullopt, double width_px = 2.0, bool dashed = false);
   Series& scatter(std::vector<double> x, std::vector<double> y, std::string label = "",
-                  std::optional<Color> color = std::nullopt, Marker marker = Marker::Circle, double size_px = 4.0);
-  void verticalLine(double x, std::string label = "", std::optional<Color> color = std::nullopt, bool dashed = true);
-  void horizontalLine(double y, std::string label = "", std::optional<Color> color = std::nullopt, bool dashed = true);
+                  std::optional<Colour> colour = std::nullopt, Marker marker = Marker::Circle, double size_px = 4.0);
+  void verticalLine(double x, std::string label = "", std::optional<Colour> colour = std::nullopt, bool dashed = true);
+  void horizontalLine(double y, std::string label = "", std::optional<Colour> colour = std::nullopt, bool dashed = true);
   /// A shaded vertical band over x in [x0, x1] (a phase, an interval), drawn
   /// under the data and blended with the background at `opacity` (0-1); a
   /// labelled band gets a filled square in the legend. Throws
   /// InvalidInputError when x0 > x1, a bound is not finite or opacity is outside [0, 1].
-  void band(double x0, double x1, std::string label = "", std::optional<Color> color = std::nullopt,
+  void band(double x0, double x1, std::string label = "", std::optional<Colour> colour = std::nullopt,
             double opacity = 0.2);
 
   const std::vector<Series>& series() const { return series_; }
-  struct RefLine { bool vertical; double value; std::string label; Color color; bool dashed; };
+  struct RefLine { bool vertical; double value; std::string label; Colour colour; bool dashed; };
   const std::vector<RefLine>& refLines() const { return refLines_; }
-  struct Band { double x0, x1; std::string label; Color color; double opacity; };
+  struct Band { double x0, x1; std::string label; Colour colour; double opacity; };
   const std::vector<Band>& bands() const { return bands_; }
 
  private:
-  Color nextColor() { return Color::tab(static_cast<int>(series_.size())); }
+  Colour nextColour() { return Colour::tab(static_cast<int>(series_.size())); }
   std::vector<Series> series_;
   std::vector<RefLine> refLines_;
   std::vector<Band> bands_;

@@ -74,7 +74,7 @@ GroundedPlan groundPlan(const language::TaskPlan& plan, const core::ObjectCatalo
 
 /// Without a scene file: the instances the instruction's own colour words
 /// name, as a scene of ids "<class>_<colour>" (no poses; colour = the word,
-/// its rgb core::rgbOfColorName) for each part class named in two or more
+/// its rgb core::rgbOfColourName) for each part class named in two or more
 /// basic colours ("the red cuboid ... the blue cuboid"); nullopt when there
 /// is none. perceive and groundInstances then use it as the scene.
 std::optional<core::Scene> instructionInstances(const GroundedPlan& grounded, const core::ObjectCatalogue& kb);

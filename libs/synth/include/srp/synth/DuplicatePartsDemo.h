@@ -16,7 +16,7 @@ namespace srp::synth {
 
 struct DuplicatePartsOptions {
   std::string className = "cuboid";     ///< the class of both parts
-  std::string colours[2] = {"red", "blue"};  ///< colour words of the two instances (core::rgbOfColorName)
+  std::string colours[2] = {"red", "blue"};  ///< colour words of the two instances (core::rgbOfColourName)
   std::string targetId = "gray box";    ///< container (an id of the base scene) the moved part goes into
   /// The moved part starts in this window of the table (world x, y, m) ...
   double startXMin_m = -0.22, startXMax_m = -0.08, startYMin_m = -0.14, startYMax_m = -0.04;

@@ -25,7 +25,7 @@ struct ProductRow {
   std::string objectName;
   std::optional<int> sourceLocationId;  ///< -> SourceLocations.LocationId
   std::optional<int> targetLocationId;  ///< -> TargetLocations.LocationId
-  std::optional<std::string> color;
+  std::optional<std::string> colour;
   std::optional<int> tokenId;           ///< token index in its sentence
   std::optional<int> sentenceId;
   std::optional<int> classId;           ///< knowledge-base class once grounded
@@ -59,7 +59,7 @@ struct GroundedProductRow {
   std::string objectName;
   std::optional<int> sourceLocationId;
   std::optional<int> targetLocationId;
-  std::optional<std::string> color;
+  std::optional<std::string> colour;
   /// Which instance of the class (the scene's object id, e.g. "cuboid_red");
   /// "" = the one instance of its class (every schema-1 row).
   std::string instanceId;

@@ -15,7 +15,7 @@ namespace srp::taskdb {
 struct PlanStepView {
   std::vector<int> objectIds;
   std::string objectName;
-  std::optional<std::string> color;
+  std::optional<std::string> colour;
   std::vector<std::string> sources;  ///< e.g. "from blue box"
   std::vector<std::string> targets;  ///< e.g. "in gray box"
 };

@@ -102,11 +102,11 @@ TEST(DemoPerception, RawlogToHandTrajectoryAndCsv) {
   EXPECT_EQ(rows, 20);
 }
 
-// The marker-free path reads the rawlog once and holds the frames between its
-// preview and perception passes (depth as 16-bit units where lossless): the
-// result is that of the frames themselves, sample for sample.
-TEST(DemoPerception, RawlogReadOnceGivesTheResultOfItsFrames) {
-  const std::string rawlogPath = tempPath("read_once.rawlog");
+// The marker-free path reads the rawlog twice (preview, then perception, so
+// memory stays flat): the result is that of the frames themselves, sample for
+// sample.
+TEST(DemoPerception, RawlogPerceivedGivesTheResultOfItsFrames) {
+  const std::string rawlogPath = tempPath("two_passes.rawlog");
   {
     rawlog::RawlogWriter writer(rawlogPath);
     for (const auto& f : testing::handFrames(20, 10)) writer.write(f);

@@ -188,12 +188,12 @@ PerceptionResult perceiveFrames(const std::vector<rawlog::RgbdFrame>& frames, co
                                 const PerceptionOptions& options,
                                 const std::function<void(int, int)>& progress = {});
 
-/// Reads the demo rawlog (RawlogReader) once and runs it as perceiveFrames.
-/// With the marker-free hand every frame is previewed as it is read and held
-/// in memory until the perception pass (colour, and depth as 16 bits where
-/// lossless: ~1.5 MB per 640x480 frame); otherwise frames are perceived as
-/// they are read. Throws FileError for an unreadable or damaged rawlog or one
-/// without RGB-D frames.
+/// Reads the demo rawlog (RawlogReader) and runs it as perceiveFrames. With
+/// the marker-free hand the file is read twice (a preview pass over the whole
+/// recording, then perception) so memory stays flat on long demos; otherwise
+/// frames are perceived as they are read. Throws FileError for an unreadable
+/// or damaged rawlog, one without RGB-D frames, or one that changes between
+/// the two reads.
 PerceptionResult perceiveRawlog(const std::string& rawlogPath, const core::ObjectCatalogue& catalogue,
                                 const PerceptionOptions& options,
                                 const std::function<void(int, int)>& progress = {});

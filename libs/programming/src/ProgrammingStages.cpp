@@ -242,9 +242,7 @@ execution::CellDescription perceivedScene(const perception::PerceptionResult& se
     c.X_world_object = X_table_camera * first->X_camera_object;
     c.rgb = cls->rgb;
     const auto word = colours.find(t.instanceId);
-    c.colour = !t.instanceId.empty() && word != colours.end() ? word->second
-              : !cls->colourName.empty()                       ? cls->colourName
-                                                              : core::nearestColourName(cls->rgb);
+    c.colour = !t.instanceId.empty() && word != colours.end() ? word->second : classColourWord(*cls);
     cell.objects.push_back(c);
   }
   return cell;

@@ -437,15 +437,20 @@ int body(int argc, char** argv) {
   // The per-frame "reference trust" rule: candidate indicators from the
   // board's data alone, each thresholded on frames 0-29 (maximal balanced
   // accuracy at predicting "reference within 5 mm of the scene-derived pose",
-  // half the 1-cm tolerance); the one best on 0-29 is the rule, checked on 30-49.
-  constexpr double kTrustedRef_mm = 5.0;
-  std::vector<bool> good(n);
-  for (int i = 0; i < n; ++i) good[i] = refVsScene[i] <= kTrustedRef_mm;
+  // half the 1-cm tolerance); the one best on 0-29 is the rule, checked on
+  // 30-49. Each is also thresholded for "within 10 mm" (reported, not chosen on).
+  constexpr double kTrustedRef_mm = 5.0, kLooseRef_mm = 10.0;
+  std::vector<bool> good(n), goodLoose(n);
+  for (int i = 0; i < n; ++i) {
+    good[i] = refVsScene[i] <= kTrustedRef_mm;
+    goodLoose[i] = refVsScene[i] <= kLooseRef_mm;
+  }
   struct Candidate {
     std::string name;
     std::vector<double> value;
-    board::ThresholdRule rule;
+    board::ThresholdRule rule, ruleLoose;
     int ownCorrect = 0, ownTrusted = 0, ownTrustedGood = 0, ownGood = 0;
+    int ownCorrectLoose = 0, ownTrustedLoose = 0, ownTrustedGoodLoose = 0, ownGoodLoose = 0;
   };
   std::vector<Candidate> candidates = {{"first-order sigma at the cube [mm]", {}, {}},
                                        {"leave-one-tag-out spread at the cube [mm]", {}, {}},
@@ -453,7 +458,9 @@ int body(int argc, char** argv) {
                                        {"corner RMS, calibrated layout [px]", {}, {}},
                                        {"corner RMS, grid layout [px]", {}, {}},
                                        {"board image motion since previous frame [px]", {}, {}},
-                                       {"sharpness loss in the tags (1 - ratio to frame 0)", {}, {}}};
+                                       {"sharpness loss in the tags (1 - ratio to frame 0)", {}, {}},
+                                       {"camera turn since frame 0 (board) [deg]", {}, {}},
+                                       {"tag set differs from frame 0's (0/1)", {}, {}}};
   for (const auto& r : rows) {
     candidates[0].value.push_back(r.sigma_mm);
     candidates[1].value.push_back(r.jackknife_mm);
@@ -462,7 +469,10 @@ int body(int argc, char** argv) {
     candidates[4].value.push_back(r.rmsStored_px);
     candidates[5].value.push_back(r.motion_px);
     candidates[6].value.push_back(1.0 - r.sharpness);
+    candidates[8].value.push_back(r.sameTags ? 0.0 : 1.0);
   }
+  for (int i = 0; i < n; ++i)
+    candidates[7].value.push_back(core::rotationAngleBetween(boards[i].linear(), boards[0].linear()) * 180 / M_PI);
   int chosen = 0;
   for (int ci = 0; ci < static_cast<int>(candidates.size()); ++ci) {
     auto& cand = candidates[ci];
@@ -473,6 +483,14 @@ int body(int argc, char** argv) {
       cand.ownTrusted += trusted;
       cand.ownTrustedGood += trusted && good[f];
       cand.ownGood += good[f];
+    }
+    cand.ruleLoose = board::chooseThreshold(cand.value, goodLoose, devFrames);
+    for (int f : ownFrames) {
+      const bool trusted = cand.value[f] <= cand.ruleLoose.threshold;
+      cand.ownCorrectLoose += trusted == goodLoose[f];
+      cand.ownTrustedLoose += trusted;
+      cand.ownTrustedGoodLoose += trusted && goodLoose[f];
+      cand.ownGoodLoose += goodLoose[f];
     }
     if (cand.rule.balancedAccuracy > candidates[chosen].rule.balancedAccuracy + 1e-12) chosen = ci;
   }
@@ -693,7 +711,7 @@ int body(int argc, char** argv) {
     std::vector<double> calVsScene(n);
     int calWithin = 0;
     for (int i = 0; i < n; ++i) calWithin += (calVsScene[i] = rows[i].calibratedVsScene_mm) < 10.0;
-    char text[4096];
+    char text[8192];
     int len = std::snprintf(
         text, sizeof text,
         "board evidence (the board's own data; frames 0-49):\n"
@@ -711,20 +729,22 @@ int body(int argc, char** argv) {
         "  (3) frames where the reference is >= 10 mm from the scene-derived pose: corner RMS stored %.2f px, scene-implied %.2f px, best pose with the "
         "cube at the scene's place %.2f px (medians); delta chi2 of that constraint: frames 0-8 max %.1f, those frames median %.0f (3 dof)\n"
         "trust rule candidates (threshold chosen on frames 0-29 for 'reference within %.0f mm of the scene-derived pose'; checked on 30-49, "
-        "%d of which are within):\n",
+        "%d of which are within; [for 'within %.0f mm': %d of 30-49 within]):\n",
         cornerOrder_px, snap_deg, maxOf(sameSolution), minOf(ippe), maxOf(ippe), median(sigmaStill), sigmaDeparts.size(),
         median(sigmaDeparts), maxOf(sigmaDeparts), minOf(departureInSigmas), maxOf(departureInSigmas), median(departureInSigmas),
         minOf(jack), maxOf(jack), median(over([](const BoardRow& r) { return r.jackknife_mm; }, still)), median(rmsGridStill),
         calibrated.X_board_tag.size(), baBefore_px, baAfter_px, median(rmsCalStill), layoutMoved_mm, sensSame.size(),
         maxOf(sensSame), sensOther.size(), minOf(sensOther), maxOf(sensOther), median(sensOther), calWithin, n, median(calVsScene),
         refWithin, n, median(refVsScene), median(rmsStoredDeparts), median(rmsSceneDeparts), median(rmsConstrDeparts),
-        maxOf(dchi2Still), median(dchi2Departs), kTrustedRef_mm, candidates[0].ownGood);
+        maxOf(dchi2Still), median(dchi2Departs), kTrustedRef_mm, candidates[0].ownGood, kLooseRef_mm, candidates[0].ownGoodLoose);
     for (int ci = 0; ci < static_cast<int>(candidates.size()); ++ci) {
       const auto& cand = candidates[ci];
       len += std::snprintf(text + len, sizeof text - len,
-                           "  %s %-50s <= %7.3f: balanced accuracy 0-29 %.2f; 30-49: %d/20 right, %d trusted of which %d within\n",
+                           "  %s %-50s <= %7.3f: balanced accuracy 0-29 %.2f; 30-49: %d/20 right, %d trusted of which %d within"
+                           "  [10 mm: <= %.3f, %.2f; %d/20, %d trusted, %d within]\n",
                            ci == chosen ? "*" : " ", cand.name.c_str(), cand.rule.threshold, cand.rule.balancedAccuracy,
-                           cand.ownCorrect, cand.ownTrusted, cand.ownTrustedGood);
+                           cand.ownCorrect, cand.ownTrusted, cand.ownTrustedGood, cand.ruleLoose.threshold,
+                           cand.ruleLoose.balancedAccuracy, cand.ownCorrectLoose, cand.ownTrustedLoose, cand.ownTrustedGoodLoose);
     }
     std::snprintf(text + len, sizeof text - len, "  rule (*): trusted frames 0-49:");
     std::string trusted = text;

@@ -454,3 +454,48 @@ inline ThresholdRule chooseThreshold(const std::vector<double>& indicator, const
 }
 
 }  // namespace srp::notebook::board
+
+namespace srp::notebook::board {
+
+/// Rolling shutter: row v is read (v - rows/2) / rows * readout_frames frame
+/// intervals after the middle row; the camera then stands at Delta^s X, with
+/// Delta = X_camera_board(i) * inverse(X_camera_board(i-1)) the motion over one
+/// frame interval (rotation scaled along its axis, translation linearly: small
+/// motions). Residuals [px] of the board pose X for that model.
+inline Eigen::VectorXd residualsRollingShutter(const Correspondences& c, const core::Pose3& X, const core::Pose3& delta,
+                                               double readout_frames, double rows, const Intrinsics& k) {
+  const Eigen::AngleAxisd aa(delta.linear());
+  Eigen::VectorXd r(2 * c.uv_px.size());
+  for (size_t i = 0; i < c.uv_px.size(); ++i) {
+    const double s = (c.uv_px[i].y - rows / 2) / rows * readout_frames;
+    core::Pose3 D = core::Pose3::Identity();
+    D.linear() = Eigen::AngleAxisd(aa.angle() * s, aa.axis()).toRotationMatrix();
+    D.translation() = delta.translation() * s;
+    const Eigen::Vector2d q = k.project(D * X * Eigen::Vector3d(c.p_board_m[i].x, c.p_board_m[i].y, c.p_board_m[i].z));
+    r[2 * i] = q.x() - c.uv_px[i].x;
+    r[2 * i + 1] = q.y() - c.uv_px[i].y;
+  }
+  return r;
+}
+
+/// Least-squares board pose under that rolling-shutter model (Gauss-Newton from `start`).
+inline core::Pose3 refitRollingShutter(const Correspondences& c, const Intrinsics& k, const core::Pose3& start,
+                                       const core::Pose3& delta, double readout_frames, double rows) {
+  core::Pose3 X = start;
+  for (int it = 0; it < 10; ++it) {
+    const Eigen::VectorXd r0 = residualsRollingShutter(c, X, delta, readout_frames, rows, k);
+    Eigen::MatrixXd J(r0.size(), 6);
+    constexpr double kStep = 1e-7;
+    for (int a = 0; a < 6; ++a) {
+      Eigen::Matrix<double, 6, 1> d = Eigen::Matrix<double, 6, 1>::Zero();
+      d[a] = kStep;
+      J.col(a) = (residualsRollingShutter(c, updated(X, d), delta, readout_frames, rows, k) - r0) / kStep;
+    }
+    const Eigen::Matrix<double, 6, 1> step = -(J.transpose() * J).ldlt().solve(J.transpose() * r0);
+    X = updated(X, step);
+    if (step.norm() < 1e-10) break;
+  }
+  return X;
+}
+
+}  // namespace srp::notebook::board

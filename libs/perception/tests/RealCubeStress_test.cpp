@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <cstdio>
 #include <functional>
@@ -82,7 +83,8 @@ void paintHand(rawlog::RgbdFrame& f, const core::Pose3& X_camera_cube, double ph
               cv::Size(static_cast<int>(radius_px), static_cast<int>(1.4 * radius_px)), 20.0, 0, 360, 255, -1);
   cv::Mat skin(f.colour_bgr8.size(), CV_8UC3, cv::Scalar(120, 150, 200));
   cv::Mat noise(f.colour_bgr8.size(), CV_8UC3);
-  cv::randu(noise, cv::Scalar(0, 0, 0), cv::Scalar(40, 40, 40));
+  cv::RNG rng(static_cast<std::uint64_t>(1000 + f.index));  // the same hand in every run
+  rng.fill(noise, cv::RNG::UNIFORM, cv::Scalar(0, 0, 0), cv::Scalar(40, 40, 40));
   skin += noise;
   skin.copyTo(f.colour_bgr8, mask);
   f.depth_m.setTo(0.25, mask);

@@ -38,7 +38,12 @@ struct Variant {
   std::string name;
   std::vector<int> frames;
   std::vector<int> occluded;
+  std::vector<int> depthOutOfStep;  ///< frames whose depth image is shifted by kDepthOutOfStep_px
 };
+
+/// Depth and colour out of step (the depth of a moment earlier during a fast
+/// move): the depth image shifted sideways by this much, about 3 cm at the cube.
+constexpr int kDepthOutOfStep_px = 40;
 
 std::vector<int> range(int first, int last, int step = 1) {
   std::vector<int> out;
@@ -68,6 +73,8 @@ std::vector<Variant> variants(int first, int last) {
   // The first frame in the middle of the fastest stretch, then on.
   out.push_back({"starts mid-sequence", range(first + n / 2, last), {}});
   out.push_back({"reversed", range(last, first, -1), {}});
+  // Depth out of step with colour in two frames in the middle.
+  out.push_back({"depth out of step (2 frames)", range(first, last), {}, range(first + n / 2, first + n / 2 + 1)});
   return out;
 }
 
@@ -141,6 +148,12 @@ class RealCubeStress : public ::testing::Test {
       if (hidden != v.occluded.end())
         paintHand(f, scenes[static_cast<std::size_t>(i)],
                   v.occluded.size() > 1 ? double(hidden - v.occluded.begin()) / double(v.occluded.size() - 1) : 0.5);
+      if (std::count(v.depthOutOfStep.begin(), v.depthOutOfStep.end(), i)) {
+        cv::Mat shifted(f.depth_m.size(), f.depth_m.type(), cv::Scalar(0.0f));
+        f.depth_m.colRange(0, f.depth_m.cols - kDepthOutOfStep_px)
+            .copyTo(shifted.colRange(kDepthOutOfStep_px, f.depth_m.cols));
+        f.depth_m = shifted;
+      }
       frames.push_back(f);
     }
     const PerceptionResult r = perceiveFrames(frames, *catalogue_, options);
@@ -200,9 +213,14 @@ PerceptionOptions session7(PerceptionOptions o) {
 // scene-derived pose in every frame where the cube is in view; the board
 // figures are printed (that reference is 8-21 mm off in frames 10-12, 16-21).
 // Reached (README "session 8"): worst 7.1 mm (reversed), every other variant
-// <= 5.3 mm; hand passing: 1 of the 4 hidden frames reports a wrong pose
+// <= 5.9 mm; hand passing: 1 of the 4 hidden frames reports a wrong pose
 // (frame 11: the detector takes another object 21 cm away while the cube is
-// hidden).
+// hidden). "Depth out of step" is the test that a re-initialisation does not
+// take a worse detection: in frames 15-16 the depth is shifted 40 px (3 cm),
+// the depth check fails on the (right) tracked pose and the frame's detection,
+// made on that depth, is 3 cm off; re-initialising from it (session 7's
+// handling) puts frames 15-16 29.6 mm off, the colour comparison keeps the
+// tracked pose (worst 5.6 mm).
 constexpr double kMaxWorstToScene_m = 0.008;
 constexpr int kMaxWrongWhileHidden = 1;
 // Every third frame (3x the apparent motion): worst to the scene-derived pose 5.2 mm.
@@ -217,6 +235,12 @@ TEST_F(RealCubeStress, DevelopmentVariantsStayOnTheSceneDerivedPose) {
     EXPECT_LE(f.wrongWhileHidden, kMaxWrongWhileHidden) << v.name;
     EXPECT_EQ(f.detected, f.frames) << v.name;
     if (v.name == "every 3. frame") EXPECT_LE(f.worstScene_m(), kMaxWorstToSceneEveryThird_m);
+    if (!v.depthOutOfStep.empty()) {
+      // The session-7 handling does take the worse detection here: the variant can fail.
+      const Figures old = run(v, session7(shippedOptions()));
+      report("session 7 loss handling", v.name, old);
+      EXPECT_GT(old.worstScene_m(), kMaxWorstToScene_m) << "the variant no longer stresses the re-initialisation";
+    }
   }
 }
 
@@ -234,6 +258,11 @@ TEST_F(RealCubeStress, DISABLED_ExploreVariants) {
   o.mbtDepthShiftTolerance_m = 0.005;
   configs.emplace_back("shift 5 mm only", o);
   configs.emplace_back("defaults (shift 5 + compare)", shippedOptions());
+  if (std::getenv("SRP_CUBE_STRESS_KEEP_MIN")) {
+    o = shippedOptions();
+    o.mbtKeepMinCoverage = std::atof(std::getenv("SRP_CUBE_STRESS_KEEP_MIN"));
+    configs.emplace_back("defaults, keep min " + std::string(std::getenv("SRP_CUBE_STRESS_KEEP_MIN")), o);
+  }
   const char* range = std::getenv("SRP_CUBE_STRESS_RANGE");
   const bool own = range && std::string(range) == "own";
   const bool print = std::getenv("SRP_CUBE_STRESS_FRAMES") != nullptr;

@@ -129,10 +129,13 @@ struct PerceptionOptions {
   /// detection the part is lost. false: the detection always re-initialises
   /// (session 7, which took a blurred frame's detection 13.7 mm off).
   /// The tracked pose is weighed only when the depth still confirms at least
-  /// mbtKeepMinCoverage [share] of it (a part hidden by a hand: much less).
+  /// mbtKeepMinCoverage [share] of it. 0 (always weighed): on the development
+  /// stress variants 0.3 let a depth image out of step with the colour
+  /// (coverage 0.10) re-initialise the tracker 3 cm off, and 0 changed
+  /// nothing with a hand hiding the part (its hidden edges are no evidence).
   bool mbtCompareBeforeReinit = true;
   double mbtReinitEdgeMargin_px = 0.0;
-  double mbtKeepMinCoverage = 0.3;
+  double mbtKeepMinCoverage = 0.0;
   bool consolidateRests = true;
   double restRadius_m = 0.005;
   /// Called with each frame's index and its detections before any refinement

@@ -18,6 +18,7 @@
 #include <functional>
 #include <opencv2/imgproc.hpp>
 #include <string>
+#include <time.h>
 
 #include "RealData.h"
 #include "srp/kb/KnowledgeBase.h"
@@ -305,6 +306,24 @@ TEST_F(RealCubeStress, DISABLED_ExploreEdgeOffset) {
     }
     std::printf("\n");
   }
+}
+
+// Exploration (prints only): CPU time per frame of the whole perception of
+// frames 0-49 (moving camera, MBT), defaults vs session 7's loss handling.
+TEST_F(RealCubeStress, DISABLED_ExploreCost) {
+  auto cpu_s = [] {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+  };
+  for (int repeat = 0; repeat < 3; ++repeat)
+    for (const auto& [name, o] : {std::make_pair(std::string("defaults"), shippedOptions()),
+                                  std::make_pair(std::string("session 7"), session7(shippedOptions()))}) {
+      const double t0 = cpu_s();
+      perceiveFrames(*frames_, *catalogue_, o);
+      std::printf("[ cost     ] %-10s %.1f ms CPU per frame (frames 0-49)\n", name.c_str(),
+                  (cpu_s() - t0) * 1e3 / static_cast<double>(frames_->size()));
+    }
 }
 
 }  // namespace

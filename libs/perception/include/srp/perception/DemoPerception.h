@@ -103,7 +103,9 @@ struct PerceptionOptions {
   /// Fitter: detected in every frame (ObjectDetector / ObjectPoseFitter);
   /// Mbt: ViSP's model-based tracker (ModelBasedTracker) from the first
   /// detection on, back to detection when it is lost or the depth disagrees
-  /// with its pose (coverage below mbtMinCoverage);
+  /// with its pose (coverage below mbtMinCoverage, mbtDepthShiftTolerance_m),
+  /// the tracked pose kept when the colour supports it better than the
+  /// detection (mbtCompareBeforeReinit);
   /// Auto: Mbt with a moving camera, Fitter with a fixed one (chosen on the
   /// real cube's development frames, see the perception README).
   enum class ObjectTracking { Fitter, Mbt, Auto };

@@ -85,6 +85,8 @@ struct DemoPerceiver::Impl {
   std::unique_ptr<ObjectTracker> tracker;
   std::unique_ptr<HandDetector> hand;
   std::map<std::string, std::unique_ptr<ModelBasedTracker>> mbt;  // per moving class, when tracking with ViSP
+  // Per moving class, this frame: the pose ViSP tracked but the depth did not confirm (mbtCompareBeforeReinit).
+  std::map<std::string, core::Pose3> unconfirmed;
   std::optional<rawlog::RgbdFrame> first;  // images released: only size and intrinsics are kept
   std::optional<Plane> support;
   std::vector<int> frameIndex;
@@ -109,6 +111,7 @@ std::map<std::string, ObjectDetection> DemoPerceiver::Impl::trackParts(const raw
   std::map<std::string, ObjectDetection> out;
   const CameraModel camera(f.intrinsics);
   cv::Mat cloud;
+  m.unconfirmed.clear();
   for (const auto& p : m.plan) {
     if (p.isStatic) continue;
     const ObjectPoseFitter* fitter = m.detector->fitterFor(p.key());
@@ -140,6 +143,10 @@ std::map<std::string, ObjectDetection> DemoPerceiver::Impl::trackParts(const raw
                    f.index, p.key().c_str(), tracked ? "tracked" : "lost", track_ms, r.kltPoints, r.depthFeatures,
                    r.edgeFeatures, r.projectionError_deg, coverage);
     if (!tracked) {
+      if (r.tracked && m.options.mbtCompareBeforeReinit && coverage >= m.options.mbtKeepMinCoverage) {
+        m.unconfirmed[p.key()] = r.X_camera_mesh;  // weighed against the detection in mergeTracked
+        continue;
+      }
       it->second.reset();  // lost: a new tracker from the next detection
       continue;
     }
@@ -171,8 +178,27 @@ void DemoPerceiver::Impl::mergeTracked(const rawlog::RgbdFrame& f, const std::ma
       else detections.push_back(t->second);
       continue;
     }
-    if (detected == detections.end()) continue;
     auto& tracker = m.mbt[p.key()];
+    const auto unconfirmed = m.unconfirmed.find(p.key());
+    if (unconfirmed != m.unconfirmed.end() && tracker) {
+      // The depth did not confirm the tracked pose: the colour image decides
+      // between it and the detection (a blurred frame's detection can be
+      // worse than the pose it would replace).
+      const double trackedEdge_px = tracker->edgeDistance_px(f, unconfirmed->second);
+      const double detectedEdge_px =
+          detected != detections.end() ? tracker->edgeDistance_px(f, detected->X_camera_object) : 1e9;
+      if (m.debug)
+        std::fprintf(stderr, "frame %d: %s unconfirmed: edges %.2f px tracked, %.2f px detected\n", f.index,
+                     p.key().c_str(), trackedEdge_px, detected != detections.end() ? detectedEdge_px : -1.0);
+      if (detected != detections.end() && trackedEdge_px <= detectedEdge_px + m.options.mbtReinitEdgeMargin_px) {
+        detected->X_camera_object = unconfirmed->second;
+        detected->p_camera_median_m = unconfirmed->second.translation();
+      }
+    }
+    if (detected == detections.end()) {
+      tracker.reset();  // lost, nothing detected: a new tracker from the next detection
+      continue;
+    }
     if (!tracker) tracker = std::make_unique<ModelBasedTracker>(fitter->model().mesh, f.intrinsics, m.options.mbt);
     tracker->initialise(f, detected->X_camera_object);
   }

@@ -144,8 +144,39 @@ std::string ModelBasedTracker::caoModel(const kb::TriangleMesh& mesh) {
   return cao.str();
 }
 
+/// A crease edge of the mesh with the outward normals of its two faces (one when on a border).
+struct CreaseEdge {
+  Eigen::Vector3d a, b, nA, nB;
+};
+
+std::vector<CreaseEdge> creaseEdges(const kb::TriangleMesh& mesh, double creaseAngle_rad) {
+  std::map<Key, int> index;
+  std::vector<Eigen::Vector3d> vertices;
+  std::map<std::pair<int, int>, std::vector<Eigen::Vector3d>> normals;
+  for (const auto& t : mesh.triangles()) {
+    std::array<int, 3> ids{};
+    for (int k = 0; k < 3; ++k) {
+      const auto [it, added] = index.emplace(vertexKey(t[k]), static_cast<int>(vertices.size()));
+      if (added) vertices.push_back(t[k]);
+      ids[k] = it->second;
+    }
+    const Eigen::Vector3d n = (t[1] - t[0]).cross(t[2] - t[0]);
+    if (n.norm() < 1e-12) continue;
+    for (int k = 0; k < 3; ++k)
+      normals[{std::min(ids[k], ids[(k + 1) % 3]), std::max(ids[k], ids[(k + 1) % 3])}].push_back(n.normalized());
+  }
+  std::vector<CreaseEdge> out;
+  const double cosCrease = std::cos(creaseAngle_rad);
+  for (const auto& [e, ns] : normals) {
+    if (ns.size() == 2 && ns[0].dot(ns[1]) > cosCrease) continue;  // smooth or flat: no edge in the image
+    out.push_back({vertices[e.first], vertices[e.second], ns[0], ns.size() >= 2 ? ns[1] : ns[0]});
+  }
+  return out;
+}
+
 struct ModelBasedTracker::Impl {
   Options options;
+  std::vector<CreaseEdge> creases;
   core::CameraIntrinsics intrinsics;
   std::unique_ptr<vpMbGenericTracker> tracker;
   bool initialised = false;
@@ -188,6 +219,7 @@ ModelBasedTracker::ModelBasedTracker(const kb::TriangleMesh& mesh, const core::C
   Impl& m = *impl_;
   m.options = options;
   m.intrinsics = intrinsics;
+  m.creases = creaseEdges(mesh, options.supportCreaseAngle_rad);
   int colourType = 0;
   if (options.useKlt) colourType |= vpMbGenericTracker::KLT_TRACKER;
   if (options.useEdges) colourType |= vpMbGenericTracker::EDGE_TRACKER;
@@ -289,6 +321,66 @@ void ModelBasedTracker::initialise(const rawlog::RgbdFrame& frame, const core::P
   m.tracker->initFromPose(images, std::map<std::string, vpHomogeneousMatrix>{{m.tracker->getCameraNames().front(),
                                                                               toVisp(X_camera_mesh)}});
   m.initialised = true;
+}
+
+double ModelBasedTracker::edgeDistance_px(const rawlog::RgbdFrame& frame, const core::Pose3& X_camera_mesh) const {
+  const Impl& m = *impl_;
+  const Options& o = m.options;
+  if (frame.colour_bgr8.empty())
+    throw core::InvalidInputError("frame " + std::to_string(frame.index) + ": edgeDistance_px needs the colour image");
+  const auto& k = frame.intrinsics;
+  auto project = [&](const Eigen::Vector3d& p) {
+    return Eigen::Vector2d(k.fx_px * p.x() / p.z() + k.cx_px, k.fy_px * p.y() / p.z() + k.cy_px);
+  };
+  // Visible edges, projected; the image is only looked at around them.
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments;
+  double u0 = 1e9, v0 = 1e9, u1 = -1e9, v1 = -1e9;
+  for (const auto& e : m.creases) {
+    const Eigen::Vector3d a = X_camera_mesh * e.a, b = X_camera_mesh * e.b;
+    if (a.z() <= 0.01 || b.z() <= 0.01) continue;
+    const Eigen::Vector3d mid = 0.5 * (a + b);
+    const bool facing = (X_camera_mesh.linear() * e.nA).dot(mid) < 0 || (X_camera_mesh.linear() * e.nB).dot(mid) < 0;
+    if (!facing) continue;
+    segments.emplace_back(a, b);
+    for (const auto& p : {project(a), project(b)}) {
+      u0 = std::min(u0, p.x());
+      v0 = std::min(v0, p.y());
+      u1 = std::max(u1, p.x());
+      v1 = std::max(v1, p.y());
+    }
+  }
+  if (segments.empty()) return o.supportTruncation_px;
+  const int margin = static_cast<int>(std::ceil(o.supportTruncation_px)) + 4;
+  const cv::Rect roi = cv::Rect(cv::Point(static_cast<int>(std::floor(u0)) - margin, static_cast<int>(std::floor(v0)) - margin),
+                                cv::Point(static_cast<int>(std::ceil(u1)) + margin, static_cast<int>(std::ceil(v1)) + margin)) &
+                       cv::Rect(0, 0, frame.colour_bgr8.cols, frame.colour_bgr8.rows);
+  if (roi.width < 8 || roi.height < 8) return o.supportTruncation_px;
+  cv::Mat grey, edges, distance;
+  cv::cvtColor(frame.colour_bgr8(roi), grey, cv::COLOR_BGR2GRAY);
+  cv::GaussianBlur(grey, grey, cv::Size(5, 5), o.supportBlurSigma_px);
+  cv::Canny(grey, edges, o.supportCannyLow, o.supportCannyHigh);
+  cv::distanceTransform(255 - edges, distance, cv::DIST_L2, 3);
+  const bool haveDepth = !frame.depth_m.empty();
+  double sum = 0.0;
+  int count = 0;
+  for (const auto& [a, b] : segments) {
+    const int n = std::max(2, static_cast<int>((project(b) - project(a)).norm()));
+    for (int i = 2; i < n - 2; ++i) {  // corners left out
+      const Eigen::Vector3d P = a + (b - a) * (static_cast<double>(i) / n);
+      const Eigen::Vector2d p = project(P);
+      const int u = static_cast<int>(std::lround(p.x())), v = static_cast<int>(std::lround(p.y()));
+      // Outside the image: no evidence either way.
+      if (u < roi.x || v < roi.y || u >= roi.x + roi.width || v >= roi.y + roi.height) continue;
+      // Something in front of the edge (a hand): no evidence either way.
+      if (haveDepth) {
+        const float z = frame.depth_m.at<float>(v, u);
+        if (z > 0 && z < P.z() - o.supportOcclusion_m) continue;
+      }
+      sum += std::min(o.supportTruncation_px, static_cast<double>(distance.at<float>(v - roi.y, u - roi.x)));
+      ++count;
+    }
+  }
+  return count > 0 ? sum / count : o.supportTruncation_px;
 }
 
 ModelBasedTracker::Result ModelBasedTracker::track(const rawlog::RgbdFrame& frame) {

@@ -34,6 +34,16 @@ inline core::Pose3 storedCubePoseFrame0() {
   return poseFromRows(core::readJsonFile(rbtFolder() + "/cube_pose_frame0.json"));
 }
 
+/// The second reference: the stored frame-0 pose carried by the scene's own
+/// motion (RGB-D odometry, no tags, cube masked; notebooks_cpp/real_cube),
+/// X_camera_cube per frame 0-49.
+inline std::vector<core::Pose3> storedScenePoses() {
+  const auto j = core::readJsonFile(rbtFolder() + "/scene_odometry_cube_poses.json");
+  std::vector<core::Pose3> out;
+  for (const auto& m : j.at("cube_pose_in_camera_per_frame")) out.push_back(poseFromRows(m));
+  return out;
+}
+
 /// The 24 rotations of a cube: a CAD model alone cannot tell its faces apart.
 inline std::vector<Eigen::Matrix3d> cubeSymmetries() {
   std::vector<Eigen::Matrix3d> out;

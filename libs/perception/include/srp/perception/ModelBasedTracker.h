@@ -51,6 +51,14 @@ class ModelBasedTracker {
     int minDepthFeatures = 50;     ///< lost below this many dense-depth features (dense depth on)
     double maxProjectionError_deg = 35.0;  ///< lost above this projection error
     double maxDepth_m = 3.0;       ///< depth farther than this is ignored
+    // edgeDistance_px (image support of a pose, e.g. to choose between a
+    // tracked pose and a detection): Canny edges of the colour image.
+    double supportBlurSigma_px = 1.2;      ///< Gaussian blur before Canny (5x5 kernel)
+    double supportCannyLow = 40.0;         ///< Canny hysteresis thresholds (8-bit gradient)
+    double supportCannyHigh = 100.0;
+    double supportTruncation_px = 10.0;    ///< a model edge sample farther than this from an image edge counts this much
+    double supportCreaseAngle_rad = 0.35;  ///< mesh edges whose faces turn by more than this (20 deg) are model edges
+    double supportOcclusion_m = 0.02;      ///< an edge sample with depth this much nearer is hidden (not counted)
   };
 
   /// Per-frame answer of track().
@@ -80,6 +88,17 @@ class ModelBasedTracker {
   /// initialised() is false until initialise() is called again).
   Result track(const rawlog::RgbdFrame& frame);
   bool initialised() const;
+
+  /// What the colour image says about the part at X_camera_mesh in `frame`:
+  /// the mean distance [px] from the model's visible crease edges (mesh edges
+  /// between faces turning by more than Options::supportCreaseAngle_rad, one
+  /// adjacent face towards the camera; corners left out), projected, to the
+  /// nearest Canny edge of the image, each sample truncated at
+  /// Options::supportTruncation_px. Samples behind something nearer in the
+  /// depth image (Options::supportOcclusion_m) are left out. Lower is better;
+  /// the truncation when no edge sample is left. Does not change the
+  /// tracker's state.
+  double edgeDistance_px(const rawlog::RgbdFrame& frame, const core::Pose3& X_camera_mesh) const;
 
   /// The mesh as ViSP's CAO text (vertices, polygon faces), as loaded.
   static std::string caoModel(const kb::TriangleMesh& mesh_mesh);

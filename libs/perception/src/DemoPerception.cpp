@@ -15,6 +15,7 @@
 
 #include "srp/core/Error.h"
 #include "srp/perception/DepthCloud.h"
+#include "srp/perception/PreviewRawlog.h"
 #include "srp/rawlog/RawlogReader.h"
 
 namespace srp::perception {
@@ -436,38 +437,22 @@ PerceptionResult perceiveFrames(const std::vector<rawlog::RgbdFrame>& frames, co
 PerceptionResult perceiveRawlog(const std::string& rawlogPath, const core::ObjectCatalogue& catalogue,
                                 const PerceptionOptions& options, const std::function<void(int, int)>& progress) {
   DemoPerceiver perceiver(catalogue, options);
-  rawlog::RawlogReader reader(rawlogPath);
-  const auto checkRead = [&](int frames) {
-    if (reader.damage()) throw core::FileError(rawlogPath, "unreadable rawlog, " + *reader.damage());
-    if (frames == 0)
-      throw core::FileError(rawlogPath, "no RGB-D frames with depth in this rawlog (" +
-                                            std::to_string(reader.objectsSkipped()) +
-                                            " other objects skipped): record CObservation3DRangeScan with depth");
-  };
-  if (options.hand != PerceptionOptions::HandMethod::MarkerFree) {  // a stream: one frame at a time
-    while (auto f = reader.next()) {
-      perceiver.add(*f);
-      if (progress) progress(perceiver.framesAdded() - 1, -1);
-    }
-    checkRead(perceiver.framesAdded());
-    return perceiver.finish();
-  }
   // The marker-free hand learns from the whole recording before its first
-  // detection: a preview pass, then the perception pass over a second read.
-  // Holding the frames instead would cost ~1.5 MB per 640x480 frame (a
-  // minute at 30 Hz: ~2.7 GB); reading costs ~3 % of the perception time.
-  int previewed = 0;
+  // detection: a preview pass (previewRawlog), then the perception pass over a
+  // second read. Otherwise a stream: one frame at a time.
+  const bool preview = options.hand == PerceptionOptions::HandMethod::MarkerFree;
+  const int previewed = preview ? previewRawlog(perceiver, rawlogPath) : -1;
+  rawlog::RawlogReader reader(rawlogPath);
   while (auto f = reader.next()) {
-    perceiver.preview(*f);
-    ++previewed;
-  }
-  checkRead(previewed);
-  rawlog::RawlogReader second(rawlogPath);
-  while (auto f = second.next()) {
     perceiver.add(*f);
     if (progress) progress(perceiver.framesAdded() - 1, previewed);
   }
-  if (second.damage() || perceiver.framesAdded() != previewed)
+  if (reader.damage()) throw core::FileError(rawlogPath, "unreadable rawlog, " + *reader.damage());
+  if (perceiver.framesAdded() == 0)
+    throw core::FileError(rawlogPath, "no RGB-D frames with depth in this rawlog (" +
+                                          std::to_string(reader.objectsSkipped()) +
+                                          " other objects skipped): record CObservation3DRangeScan with depth");
+  if (preview && perceiver.framesAdded() != previewed)
     throw core::FileError(rawlogPath, "the rawlog changed between the preview and the perception pass (" +
                                           std::to_string(previewed) + " then " +
                                           std::to_string(perceiver.framesAdded()) + " frames)");

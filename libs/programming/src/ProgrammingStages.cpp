@@ -8,6 +8,7 @@
 #include "srp/execution/SceneGrounder.h"
 #include "srp/language/InstructionParser.h"
 #include "srp/language/PlanTables.h"
+#include "srp/perception/PreviewRawlog.h"
 #include "srp/programming/MotionRows.h"
 #include "srp/programming/PerceptionRows.h"
 #include "srp/rawlog/RawlogReader.h"
@@ -179,18 +180,10 @@ perception::PerceptionResult perceive(const GroundedPlan& grounded, const core::
   }
 
   perception::DemoPerceiver perceiver(kb, popt);
-  if (o.markerFreeHand) {
-    // The marker-free hand learns its background and skin colour from the
-    // whole recording (a demonstrator may be in view from the first frame).
-    // A first read of the rawlog keeps memory flat on long demos, where
-    // holding every frame would cost ~1.5 MB per 640x480 frame.
-    rawlog::RawlogReader reader(o.demoPath);
-    while (auto f = reader.next()) {
-      if (o.intrinsics) f->intrinsics = *o.intrinsics;
-      perceiver.preview(*f);
-      if (o.progress) o.progress("environment preview", static_cast<std::size_t>(reader.framesRead()), 0);
-    }
-  }
+  if (o.markerFreeHand)  // it learns from the whole recording: a first read (previewRawlog)
+    perception::previewRawlog(perceiver, o.demoPath, o.intrinsics, [&](int previewed) {
+      if (o.progress) o.progress("environment preview", static_cast<std::size_t>(previewed), 0);
+    });
   {
     rawlog::RawlogReader reader(o.demoPath);
     while (auto f = reader.next()) {

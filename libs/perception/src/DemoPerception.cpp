@@ -145,7 +145,7 @@ std::map<std::string, ObjectDetection> DemoPerceiver::Impl::trackParts(const raw
       continue;
     }
     ObjectDetection d;
-    d.className = p.key();  // the detector's model name
+    d.key = p.key();  // the detector's model name
     d.classId = fitter->model().classId;
     d.size_m = fitter->model().dimensions_m;
     d.X_camera_object = r.X_camera_mesh;  // the tracker's model is the fitter's (model frame)
@@ -166,7 +166,7 @@ void DemoPerceiver::Impl::mergeTracked(const rawlog::RgbdFrame& f, const std::ma
     const ObjectPoseFitter* fitter = m.detector->fitterFor(p.key());
     if (!fitter) continue;
     auto detected = std::find_if(detections.begin(), detections.end(),
-                                 [&](const ObjectDetection& d) { return d.className == p.key(); });
+                                 [&](const ObjectDetection& d) { return d.key == p.key(); });
     if (const auto t = tracked.find(p.key()); t != tracked.end()) {
       if (detected != detections.end()) *detected = t->second;
       else detections.push_back(t->second);
@@ -279,7 +279,7 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
   }
   for (auto& [name, perFrame] : m.perClass) perFrame.emplace_back();
   for (const auto& d : detections) {
-    auto& slot = m.perClass[d.className].back();
+    auto& slot = m.perClass[d.key].back();
     if (!slot || d.confidence > slot->confidence) slot = d;
   }
 

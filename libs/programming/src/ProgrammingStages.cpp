@@ -34,20 +34,6 @@ const core::ObjectClass& ground(const core::ObjectCatalogue& kb, const language:
                           "); add a mesh and a catalogue entry, or rephrase");
 }
 
-// A perceived object's key (perception::PlanObject::key) from its grounded row.
-std::string keyOf(const taskdb::GroundedProductRow& g) { return g.instanceId.empty() ? g.objectName : g.instanceId; }
-
-// Reach/Grasp/Move/Release flags of the ProductPose rows from the skills
-// (rows of the skill set's object: its class and instance).
-void setSkillFlags(taskdb::TaskModel& model, const std::vector<motion::SkillSet>& skills) {
-  for (const auto& s : skills)
-    for (const auto& g : model.groundedProducts) {
-      if (keyOf(g) != s.objectName) continue;
-      for (auto& row : model.productPoses)
-        if (row.classId == g.classId && row.instanceId == g.instanceId) programming::setSkillFlags(row, s);
-    }
-}
-
 // The colour word a class answers to: its own, else the basic colour nearest its rgb.
 std::string classColourWord(const core::ObjectClass& c) {
   return !c.colourName.empty() ? c.colourName : core::nearestColourName(c.rgb);
@@ -357,18 +343,9 @@ taskdb::TaskModel buildTaskModel(const GroundedPlan& grounded, const Programming
       }
   MotionInputs inputs;
   static_cast<motion::DemoTracks&>(inputs) = tracks;
-  std::map<std::string, std::string> instanceOf;  // key -> instance id
-  for (const auto& g : model.groundedProducts) {
-    inputs.classIdByName[keyOf(g)] = g.classId;
-    instanceOf[keyOf(g)] = g.instanceId;
-  }
-  // Per skill set, so that each row can be given its object's instance.
-  for (const auto& s : skills)
-    for (auto& row : skillRows({s}, inputs)) {
-      row.instanceId = instanceOf[s.objectName];
-      model.skills.push_back(std::move(row));
-    }
-  setSkillFlags(model, skills);
+  for (const auto& g : model.groundedProducts) inputs.rowKeyByName[perceptionKey(g)] = {g.classId, g.instanceId};
+  model.skills = skillRows(skills, inputs);
+  setSkillFlags(model.productPoses, skills, inputs);
   return model;
 }
 

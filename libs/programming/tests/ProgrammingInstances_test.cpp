@@ -16,6 +16,7 @@
 #include "srp/core/Error.h"
 #include "srp/core/Scene.h"
 #include "srp/execution/SceneGrounder.h"
+#include "srp/programming/MotionRows.h"
 #include "srp/programming/ProgrammingPipeline.h"
 #include "srp/programming/ProgrammingStages.h"
 #include "srp/synth/DemoGenerator.h"
@@ -185,6 +186,42 @@ TEST(ProgrammingInstances, InstructionNamingTwoColoursOfAPartGivesTwoInstances) 
   EXPECT_FALSE(programming::instructionInstances(
                    programming::groundPlan(programming::parsePlan("Put the blue cuboid in the gray box."), kb), kb)
                    .has_value());
+}
+
+// `srp motion` re-learning from the stored rows (motionInputsFromTaskModel,
+// motion::learnSkills, storeSkills, as cmd_motion does) on a task model that
+// holds two instances of the moved class: each instance's rows are its own
+// track, the moved instance gets back exactly the skills programming stored
+// (none lost, none added under InstanceId ""), the other instance none.
+TEST(ProgrammingInstances, SrpMotionRelearnsEachInstancesOwnSkills) {
+  for (std::uint32_t seed : {1u, 2u}) {  // seed 1 moves the blue cuboid, seed 2 the red one
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const Demo& d = demo(seed);
+    const auto o = options(d.scene.plan.at("instruction").get<std::string>(), "relearn.db", d);
+    const programming::ProgramResult r = programming::programTask(o);
+    auto db = taskdb::TaskDatabase::open(o.dbPath);
+    taskdb::TaskModelStore store(db);
+    const taskdb::TaskModel programmed = store.read(r.taskModelId);
+    ASSERT_EQ(programmed.skills.size(), 4u);
+
+    const programming::MotionInputs inputs = programming::motionInputsFromTaskModel(programmed);
+    ASSERT_EQ(inputs.planOrder, std::vector<std::string>{d.scene.movedId});
+    const motion::LearnedSkills learned = motion::learnSkills(inputs);
+    ASSERT_EQ(learned.skills.size(), 1u);
+    EXPECT_EQ(learned.skills[0].objectName, d.scene.movedId);
+    programming::storeSkills(db, r.taskModelId, learned.skills, inputs);
+
+    const taskdb::TaskModel relearned = store.read(r.taskModelId);
+    EXPECT_EQ(relearned.skills, programmed.skills);  // the same rows: the moved instance's, none lost or added
+    EXPECT_EQ(relearned.productPoses, programmed.productPoses);  // the same flags
+    int movedGrasps = 0, otherFlags = 0;
+    for (const auto& p : relearned.productPoses) {
+      if (p.instanceId == d.scene.movedId) movedGrasps += p.grasp;
+      if (p.instanceId == d.scene.otherId) otherFlags += p.reach || p.grasp || p.move || p.release;
+    }
+    EXPECT_EQ(movedGrasps, 1);
+    EXPECT_EQ(otherFlags, 0);
+  }
 }
 
 TEST(ProgrammingInstances, AnAmbiguousPhraseNamesTheCandidatesAndStoresNothing) {

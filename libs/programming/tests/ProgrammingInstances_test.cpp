@@ -70,6 +70,17 @@ programming::ProgrammingOptions options(const std::string& instruction, const st
   return o;
 }
 
+// The moved instance's ProductPose rows have one grasp frame; the other instance's no skill flag.
+void expectFlagsOnTheMovedInstanceOnly(const taskdb::TaskModel& m, const Demo& d) {
+  int movedGrasps = 0, otherFlags = 0;
+  for (const auto& p : m.productPoses) {
+    if (p.instanceId == d.scene.movedId) movedGrasps += p.grasp;
+    if (p.instanceId == d.scene.otherId) otherFlags += p.reach || p.grasp || p.move || p.release;
+  }
+  EXPECT_EQ(movedGrasps, 1);
+  EXPECT_EQ(otherFlags, 0);
+}
+
 // One seed: "the <colour> cuboid" -> the moved instance, in every table.
 void expectInstanceStored(std::uint32_t seed) {
   const Demo& d = demo(seed);
@@ -108,13 +119,7 @@ void expectInstanceStored(std::uint32_t seed) {
   // The skills are the moved instance's; its grasp row is flagged, the other's never.
   EXPECT_EQ(m.skills.size(), 4u);
   for (const auto& s : m.skills) EXPECT_EQ(s.instanceId, d.scene.movedId);
-  int movedGrasps = 0, otherFlags = 0;
-  for (const auto& p : m.productPoses) {
-    if (p.instanceId == d.scene.movedId) movedGrasps += p.grasp;
-    if (p.instanceId == d.scene.otherId) otherFlags += p.reach || p.grasp || p.move || p.release;
-  }
-  EXPECT_EQ(movedGrasps, 1);
-  EXPECT_EQ(otherFlags, 0);
+  expectFlagsOnTheMovedInstanceOnly(m, d);
   std::printf("[ figures  ] seed %u: '%s' -> %s, grasp %d (truth %d), release %d (truth %d)\n", seed,
               o.instruction.c_str(), r.objects[0].instanceId.c_str(), r.objects[0].graspFrame, event->graspFrame,
               r.objects[0].releaseFrame, event->releaseFrame);
@@ -214,13 +219,7 @@ TEST(ProgrammingInstances, SrpMotionRelearnsEachInstancesOwnSkills) {
     const taskdb::TaskModel relearned = store.read(r.taskModelId);
     EXPECT_EQ(relearned.skills, programmed.skills);  // the same rows: the moved instance's, none lost or added
     EXPECT_EQ(relearned.productPoses, programmed.productPoses);  // the same flags
-    int movedGrasps = 0, otherFlags = 0;
-    for (const auto& p : relearned.productPoses) {
-      if (p.instanceId == d.scene.movedId) movedGrasps += p.grasp;
-      if (p.instanceId == d.scene.otherId) otherFlags += p.reach || p.grasp || p.move || p.release;
-    }
-    EXPECT_EQ(movedGrasps, 1);
-    EXPECT_EQ(otherFlags, 0);
+    expectFlagsOnTheMovedInstanceOnly(relearned, d);
   }
 }
 

@@ -108,7 +108,7 @@ PerceivedDemo perceiveDemo(const ExperimentOptions& options, unsigned seed, cons
   }
   o.onFrameDetections = [&demo](int, const std::vector<perception::ObjectDetection>& detections) {
     demo.raw.emplace_back();
-    for (const auto& d : detections) demo.raw.back().push_back({d.className, d.confidence, d.X_camera_object, true});
+    for (const auto& d : detections) demo.raw.back().push_back({d.key, d.confidence, d.X_camera_object, true});
   };
   perception::MarkerFreeHandDetector markerFree(o.markerFree);
 

@@ -15,6 +15,7 @@
 
 #include "srp/core/Error.h"
 #include "srp/perception/DepthCloud.h"
+#include "srp/perception/PreviewRawlog.h"
 #include "srp/rawlog/RawlogReader.h"
 
 namespace srp::perception {
@@ -151,7 +152,7 @@ std::map<std::string, ObjectDetection> DemoPerceiver::Impl::trackParts(const raw
       continue;
     }
     ObjectDetection d;
-    d.className = p.key();  // the detector's model name
+    d.key = p.key();  // the detector's model name
     d.classId = fitter->model().classId;
     d.size_m = fitter->model().dimensions_m;
     d.X_camera_object = r.X_camera_mesh;  // the tracker's model is the fitter's (model frame)
@@ -172,7 +173,7 @@ void DemoPerceiver::Impl::mergeTracked(const rawlog::RgbdFrame& f, const std::ma
     const ObjectPoseFitter* fitter = m.detector->fitterFor(p.key());
     if (!fitter) continue;
     auto detected = std::find_if(detections.begin(), detections.end(),
-                                 [&](const ObjectDetection& d) { return d.className == p.key(); });
+                                 [&](const ObjectDetection& d) { return d.key == p.key(); });
     if (const auto t = tracked.find(p.key()); t != tracked.end()) {
       if (detected != detections.end()) *detected = t->second;
       else detections.push_back(t->second);
@@ -304,7 +305,7 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
   }
   for (auto& [name, perFrame] : m.perClass) perFrame.emplace_back();
   for (const auto& d : detections) {
-    auto& slot = m.perClass[d.className].back();
+    auto& slot = m.perClass[d.key].back();
     if (!slot || d.confidence > slot->confidence) slot = d;
   }
 
@@ -462,38 +463,22 @@ PerceptionResult perceiveFrames(const std::vector<rawlog::RgbdFrame>& frames, co
 PerceptionResult perceiveRawlog(const std::string& rawlogPath, const core::ObjectCatalogue& catalogue,
                                 const PerceptionOptions& options, const std::function<void(int, int)>& progress) {
   DemoPerceiver perceiver(catalogue, options);
-  rawlog::RawlogReader reader(rawlogPath);
-  const auto checkRead = [&](int frames) {
-    if (reader.damage()) throw core::FileError(rawlogPath, "unreadable rawlog, " + *reader.damage());
-    if (frames == 0)
-      throw core::FileError(rawlogPath, "no RGB-D frames with depth in this rawlog (" +
-                                            std::to_string(reader.objectsSkipped()) +
-                                            " other objects skipped): record CObservation3DRangeScan with depth");
-  };
-  if (options.hand != PerceptionOptions::HandMethod::MarkerFree) {  // a stream: one frame at a time
-    while (auto f = reader.next()) {
-      perceiver.add(*f);
-      if (progress) progress(perceiver.framesAdded() - 1, -1);
-    }
-    checkRead(perceiver.framesAdded());
-    return perceiver.finish();
-  }
   // The marker-free hand learns from the whole recording before its first
-  // detection: a preview pass, then the perception pass over a second read.
-  // Holding the frames instead would cost ~1.5 MB per 640x480 frame (a
-  // minute at 30 Hz: ~2.7 GB); reading costs ~3 % of the perception time.
-  int previewed = 0;
+  // detection: a preview pass (previewRawlog), then the perception pass over a
+  // second read. Otherwise a stream: one frame at a time.
+  const bool preview = options.hand == PerceptionOptions::HandMethod::MarkerFree;
+  const int previewed = preview ? previewRawlog(perceiver, rawlogPath) : -1;
+  rawlog::RawlogReader reader(rawlogPath);
   while (auto f = reader.next()) {
-    perceiver.preview(*f);
-    ++previewed;
-  }
-  checkRead(previewed);
-  rawlog::RawlogReader second(rawlogPath);
-  while (auto f = second.next()) {
     perceiver.add(*f);
     if (progress) progress(perceiver.framesAdded() - 1, previewed);
   }
-  if (second.damage() || perceiver.framesAdded() != previewed)
+  if (reader.damage()) throw core::FileError(rawlogPath, "unreadable rawlog, " + *reader.damage());
+  if (perceiver.framesAdded() == 0)
+    throw core::FileError(rawlogPath, "no RGB-D frames with depth in this rawlog (" +
+                                          std::to_string(reader.objectsSkipped()) +
+                                          " other objects skipped): record CObservation3DRangeScan with depth");
+  if (preview && perceiver.framesAdded() != previewed)
     throw core::FileError(rawlogPath, "the rawlog changed between the preview and the perception pass (" +
                                           std::to_string(previewed) + " then " +
                                           std::to_string(perceiver.framesAdded()) + " frames)");

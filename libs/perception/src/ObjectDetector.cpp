@@ -189,7 +189,7 @@ std::set<std::string> ObjectDetector::overlappingParts(const std::vector<ObjectD
                                                       const Plane& plane) const {
   const core::Pose3 X_plane_camera = plane.X_camera_plane().inverse();
   auto partOf = [this](const ObjectDetection& d) -> const ObjectModel* {
-    const ObjectPoseFitter* f = fitterFor(d.className);
+    const ObjectPoseFitter* f = fitterFor(d.key);
     return f && f->model().kind == core::ObjectKind::Part ? &f->model() : nullptr;
   };
   std::set<std::string> dropped;
@@ -206,8 +206,8 @@ std::set<std::string> ObjectDetector::overlappingParts(const std::vector<ObjectD
       if ((pa - pb).head<2>().norm() >= reach ||
           sharedHeight <= 0.5 * std::min(ma->dimensions_m.z(), mb->dimensions_m.z()))
         continue;  // apart, or stacked
-      dropped.insert(detections[a].confidence < detections[b].confidence ? detections[a].className
-                                                                         : detections[b].className);
+      dropped.insert(detections[a].confidence < detections[b].confidence ? detections[a].key
+                                                                         : detections[b].key);
     }
   return dropped;
 }
@@ -220,7 +220,7 @@ ObjectDetection ObjectDetector::makeDetection(const ObjectPoseFitter& fitter, co
                                               double confidence, const ObjectSegment& segment,
                                               const Plane& plane) const {
   ObjectDetection d;
-  d.className = fitter.model().name;
+  d.key = fitter.model().name;
   d.classId = fitter.model().classId;
   d.X_camera_object = X_camera_object;
   d.size_m = fitter.model().dimensions_m;

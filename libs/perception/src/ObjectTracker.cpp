@@ -52,8 +52,8 @@ void ObjectTracker::answer(FrameAnswers& fa, const ObjectSegment& seg, int expla
   if (!d) return;
   ObjectDetection det = *d;
   // A static object fixed since this answer was given reports its fixed pose.
-  if (const auto f = fixed_.find(det.className); f != fixed_.end()) det.X_camera_object = f->second.X_camera_object;
-  fa.assigned.insert(det.className);
+  if (const auto f = fixed_.find(det.key); f != fixed_.end()) det.X_camera_object = f->second.X_camera_object;
+  fa.assigned.insert(det.key);
   fa.out.push_back(det);
 }
 
@@ -76,7 +76,7 @@ std::vector<std::size_t> ObjectTracker::keepUnchanged(const std::vector<ObjectSe
     }
     const auto a = std::find_if(answers_.begin(), answers_.end(), [&](const Answer& x) {
       return now - x.frame < options_.refreshFrames && same(x, segs[i]) &&
-             !(x.detection && fa.assigned.count(x.detection->className));
+             !(x.detection && fa.assigned.count(x.detection->key));
     });
     if (a == answers_.end()) {
       pending.push_back(i);
@@ -133,12 +133,12 @@ void ObjectTracker::explainPending(const std::vector<ObjectSegment>& segs, const
     return (a.second ? a.second->confidence : 0.0) > (b.second ? b.second->confidence : 0.0);
   });
   for (auto& [i, d] : found) {
-    if (d && fa.assigned.count(d->className)) {
+    if (d && fa.assigned.count(d->key)) {
       // Its class went to a better segment: the next best class, if any.
       for (const auto& n : fa.assigned) excluded.insert(n);
       d = detector_.explain(segs[i], plane, cloud, camera, previous, excluded);
       ++stats_.explained;
-      if (d && fa.assigned.count(d->className)) d.reset();
+      if (d && fa.assigned.count(d->key)) d.reset();
     }
     answer(fa, segs[i], now, d);
   }
@@ -155,15 +155,15 @@ void ObjectTracker::dropUnheldJumps(std::vector<ObjectDetection>& out, const std
   }
   out.erase(std::remove_if(out.begin(), out.end(),
                            [&](const ObjectDetection& d) {
-                             if (options_.staticClasses.count(d.className)) return false;
-                             const auto last = lastPose_.find(d.className);
-                             if (last == lastPose_.end() || handVisited_[d.className]) return false;
+                             if (options_.staticClasses.count(d.key)) return false;
+                             const auto last = lastPose_.find(d.key);
+                             if (last == lastPose_.end() || handVisited_[d.key]) return false;
                              if (core::translationDistance(d.X_camera_object, last->second) <= options_.maxUnheldJump_m) {
-                               pendingJumps_.erase(d.className);
+                               pendingJumps_.erase(d.key);
                                return false;
                              }
-                             if (placeVacated(d.className, last->second, cloud, camera)) return false;
-                             auto& jump = pendingJumps_[d.className];
+                             if (placeVacated(d.key, last->second, cloud, camera)) return false;
+                             auto& jump = pendingJumps_[d.key];
                              const bool same = jump.frames > 0 && core::translationDistance(d.X_camera_object, jump.X_camera_object) <= options_.maxUnheldJump_m;
                              jump.frames = same ? jump.frames + 1 : 1;
                              jump.X_camera_object = d.X_camera_object;
@@ -174,14 +174,14 @@ void ObjectTracker::dropUnheldJumps(std::vector<ObjectDetection>& out, const std
 
 void ObjectTracker::remember(const std::vector<ObjectDetection>& out) {
   for (const ObjectDetection& d : out) {
-    handVisited_[d.className] = false;
-    pendingJumps_.erase(d.className);
-    lastPose_[d.className] = d.X_camera_object;
-    if (!options_.staticClasses.count(d.className) || fixed_.count(d.className)) continue;
-    auto& seen = staticDetections_[d.className];
+    handVisited_[d.key] = false;
+    pendingJumps_.erase(d.key);
+    lastPose_[d.key] = d.X_camera_object;
+    if (!options_.staticClasses.count(d.key) || fixed_.count(d.key)) continue;
+    auto& seen = staticDetections_[d.key];
     seen.push_back(d);
     if (static_cast<int>(seen.size()) >= options_.staticFixDetections)
-      fixed_[d.className] = *std::max_element(seen.begin(), seen.end(), [](const auto& a, const auto& b) {
+      fixed_[d.key] = *std::max_element(seen.begin(), seen.end(), [](const auto& a, const auto& b) {
         return a.confidence < b.confidence;
       });
   }
@@ -219,10 +219,10 @@ std::vector<ObjectDetection> ObjectTracker::update(const rawlog::RgbdFrame& fram
   // the less confident goes, and its segment's answer with it.
   const std::set<std::string> dropped = detector_.overlappingParts(out, plane);
   if (!dropped.empty()) {
-    out.erase(std::remove_if(out.begin(), out.end(), [&](const auto& d) { return dropped.count(d.className) > 0; }),
+    out.erase(std::remove_if(out.begin(), out.end(), [&](const auto& d) { return dropped.count(d.key) > 0; }),
               out.end());
     for (Answer& x : fa.next)
-      if (x.detection && dropped.count(x.detection->className)) x.detection.reset();
+      if (x.detection && dropped.count(x.detection->key)) x.detection.reset();
   }
   answers_ = std::move(fa.next);
 

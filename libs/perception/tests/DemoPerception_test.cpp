@@ -1,4 +1,5 @@
 #include "srp/perception/DemoPerception.h"
+#include "srp/perception/PreviewRawlog.h"
 
 #include <gtest/gtest.h>
 
@@ -121,6 +122,24 @@ TEST(DemoPerception, RawlogPerceivedGivesTheResultOfItsFrames) {
     EXPECT_EQ(fromFile.hand[i].valid, fromFrames.hand[i].valid) << "frame " << i;
     EXPECT_EQ(fromFile.hand[i].p_m, fromFrames.hand[i].p_m) << "frame " << i;  // bit for bit
   }
+}
+
+// The one preview pass of perceiveRawlog and `srp program`: every frame of
+// the file, in order, counted; a missing file is a FileError.
+TEST(DemoPerception, PreviewRawlogShowsEveryFrame) {
+  const std::string rawlogPath = tempPath("preview.rawlog");
+  {
+    rawlog::RawlogWriter writer(rawlogPath);
+    for (const auto& f : testing::handFrames(12, 6)) writer.write(f);
+  }
+  DemoPerceiver perceiver(catalogue(), markerFreeOptions());
+  std::vector<int> progress;
+  EXPECT_EQ(previewRawlog(perceiver, rawlogPath, std::nullopt, [&](int n) { progress.push_back(n); }), 12);
+  ASSERT_EQ(progress.size(), 12u);
+  for (std::size_t i = 0; i < progress.size(); ++i) EXPECT_EQ(progress[i], static_cast<int>(i) + 1);
+  EXPECT_EQ(perceiver.framesAdded(), 0);  // previewed, not perceived
+  DemoPerceiver other(catalogue(), markerFreeOptions());
+  EXPECT_THROW(previewRawlog(other, tempPath("missing.rawlog")), core::FileError);
 }
 
 // `srp perceive --csv` -> `srp segment --trajectories`: the same samples are

@@ -59,7 +59,7 @@ TEST(ObjectDetector, OverlappingPartsLoseTheLessConfident) {
   const core::Pose3 X_camera_plane = plane.X_camera_plane();
   auto at = [&](const std::string& name, double x, double y, double z, double confidence) {
     ObjectDetection d;
-    d.className = name;
+    d.key = name;
     core::Pose3 X_plane_object = core::Pose3::Identity();
     X_plane_object.translation() = Eigen::Vector3d(x, y, z);
     d.X_camera_object = X_camera_plane * X_plane_object;

@@ -3,11 +3,27 @@
 #include <set>
 
 #include "srp/core/Error.h"
+#include "srp/programming/PerceptionRows.h"
 #include "srp/taskdb/ProductPoseDao.h"
 #include "srp/taskdb/SkillDao.h"
 #include "srp/taskdb/TaskModelDao.h"
 
 namespace srp::programming {
+
+namespace {
+
+bool rowOf(const MotionInputs::RowKey& key, int classId, const std::string& instanceId) {
+  return key.classId == classId && key.instanceId == instanceId;
+}
+
+const MotionInputs::RowKey& rowKeyOf(const MotionInputs& inputs, const std::string& name) {
+  const auto it = inputs.rowKeyByName.find(name);
+  if (it == inputs.rowKeyByName.end())
+    throw core::InvalidInputError("skill object '" + name + "' is not a grounded product");
+  return it->second;
+}
+
+}  // namespace
 
 MotionInputs motionInputsFromTaskModel(const taskdb::TaskModel& model) {
   using core::InvalidInputError;
@@ -16,22 +32,27 @@ MotionInputs motionInputsFromTaskModel(const taskdb::TaskModel& model) {
   core::require(!model.handPositions.empty(), "task model " + std::to_string(model.info.id) +
                                                   " has no hand positions; program it from a demo first");
   core::require(!model.targetObjectIds.empty(), "task model " + std::to_string(model.info.id) + " has an empty plan");
-  for (const auto& g : model.groundedProducts) in.classIdByName[g.objectName] = g.classId;
-  std::set<int> planClasses;
+  for (const auto& g : model.groundedProducts) in.rowKeyByName[perceptionKey(g)] = {g.classId, g.instanceId};
+  std::set<std::pair<int, std::string>> planObjects;  // (ClassId, InstanceId)
   for (int objectId : model.targetObjectIds) {
     const auto* p = model.findProduct(objectId);
     if (!p) throw InvalidInputError("plan object id " + std::to_string(objectId) + " is not in Products");
     if (!p->classId) throw InvalidInputError("plan object '" + p->objectName + "' (ObjectId " + std::to_string(objectId) +
                                              ") is not grounded to a class; it has no trajectory");
-    const auto* g = model.findGrounded(*p->classId);
-    in.planOrder.push_back(g ? g->objectName : p->objectName);
-    in.classIdByName[in.planOrder.back()] = *p->classId;
-    planClasses.insert(*p->classId);
+    // The grounded row of the product's instance; a product grounded to its class only: the class's first.
+    const taskdb::GroundedProductRow* g = nullptr;
+    for (const auto& row : model.groundedProducts)
+      if (row.classId == *p->classId && row.instanceId == p->instanceId) g = &row;
+    if (!g) g = model.findGrounded(*p->classId);
+    in.planOrder.push_back(g ? perceptionKey(*g) : p->objectName);
+    const MotionInputs::RowKey key{*p->classId, g ? g->instanceId : p->instanceId};
+    in.rowKeyByName[in.planOrder.back()] = key;
+    planObjects.insert({key.classId, key.instanceId});
   }
   std::set<int> times;
   for (const auto& h : model.handPositions) times.insert(h.timeId);
   for (const auto& r : model.productPoses)
-    if (planClasses.count(r.classId)) times.insert(r.timeId);
+    if (planObjects.count({r.classId, r.instanceId})) times.insert(r.timeId);
   std::map<int, const taskdb::HandPositionRow*> handAt;
   for (const auto& h : model.handPositions) handAt[h.timeId] = &h;
   const std::string frame = model.info.frame;
@@ -41,11 +62,11 @@ MotionInputs motionInputsFromTaskModel(const taskdb::TaskModel& model) {
     const bool ok = it != handAt.end() && it->second->detected;
     in.hand.append({t, t / model.info.frameRate_hz, ok ? it->second->p_m : Eigen::Vector3d::Zero(), ok});
   }
-  for (const auto& [name, classId] : in.classIdByName) {
-    if (!planClasses.count(classId)) continue;
+  for (const auto& [name, key] : in.rowKeyByName) {
+    if (!planObjects.count({key.classId, key.instanceId})) continue;
     std::map<int, const taskdb::ProductPoseRow*> at;
     for (const auto& r : model.productPoses)
-      if (r.classId == classId) at[r.timeId] = &r;
+      if (rowOf(key, r.classId, r.instanceId)) at[r.timeId] = &r;
     if (at.empty()) continue;
     motion::ObjectTrack track;
     track.name = name;
@@ -64,12 +85,11 @@ MotionInputs motionInputsFromTaskModel(const taskdb::TaskModel& model) {
 std::vector<taskdb::SkillRow> skillRows(const std::vector<motion::SkillSet>& skills, const MotionInputs& inputs) {
   std::vector<taskdb::SkillRow> rows;
   for (const auto& s : skills) {
-    const auto it = inputs.classIdByName.find(s.objectName);
-    if (it == inputs.classIdByName.end())
-      throw core::InvalidInputError("skill object '" + s.objectName + "' is not a grounded product");
+    const MotionInputs::RowKey& key = rowKeyOf(inputs, s.objectName);
     for (const auto& r : motion::skillRecords(s)) {
       taskdb::SkillRow row;
-      row.classId = it->second;
+      row.classId = key.classId;
+      row.instanceId = key.instanceId;
       row.skill = r.skill;
       row.startTimeId = inputs.hand[static_cast<std::size_t>(r.startIndex)].frame;
       row.endTimeId = inputs.hand[static_cast<std::size_t>(r.endIndex)].frame;
@@ -87,13 +107,18 @@ motion::LearnedSkills learnSkills(taskdb::TaskModel& model) {
   return learned;
 }
 
-bool setSkillFlags(taskdb::ProductPoseRow& row, const motion::SkillSet& s) {
-  const bool reach = row.timeId >= s.reachStartFrame && row.timeId < s.graspFrame;
-  const bool grasp = row.timeId == s.graspFrame, release = row.timeId == s.releaseFrame;
-  const bool move = row.timeId > s.graspFrame && row.timeId < s.releaseFrame;
-  if (row.reach == reach && row.grasp == grasp && row.move == move && row.release == release) return false;
-  row.reach = reach, row.grasp = grasp, row.move = move, row.release = release;
-  return true;
+void setSkillFlags(std::vector<taskdb::ProductPoseRow>& rows, const std::vector<motion::SkillSet>& skills,
+                   const MotionInputs& inputs) {
+  for (const auto& s : skills) {
+    const MotionInputs::RowKey& key = rowKeyOf(inputs, s.objectName);
+    for (auto& row : rows) {
+      if (!rowOf(key, row.classId, row.instanceId)) continue;
+      row.reach = row.timeId >= s.reachStartFrame && row.timeId < s.graspFrame;
+      row.grasp = row.timeId == s.graspFrame;
+      row.move = row.timeId > s.graspFrame && row.timeId < s.releaseFrame;
+      row.release = row.timeId == s.releaseFrame;
+    }
+  }
 }
 
 void storeSkills(taskdb::TaskDatabase& db, int taskModelId, const std::vector<motion::SkillSet>& skills,
@@ -103,15 +128,14 @@ void storeSkills(taskdb::TaskDatabase& db, int taskModelId, const std::vector<mo
   if (!taskdb::TaskModelDao(db).get(taskModelId))
     throw core::InvalidInputError("no task model with id " + std::to_string(taskModelId) + " in '" + db.path() + "'");
   taskdb::SkillDao skillDao(db);
-  for (const auto& old : skillDao.list(taskModelId)) skillDao.remove(taskModelId, old.classId, old.skill);
+  for (const auto& old : skillDao.list(taskModelId)) skillDao.remove(taskModelId, old.classId, old.skill, old.instanceId);
   for (const auto& r : rows) skillDao.add(taskModelId, r);
   taskdb::ProductPoseDao poses(db);
-  const std::vector<taskdb::ProductPoseRow> allPoses = poses.list(taskModelId);
-  for (const auto& s : skills) {
-    const int classId = inputs.classIdByName.at(s.objectName);
-    for (auto row : allPoses)
-      if (row.classId == classId && setSkillFlags(row, s)) poses.update(taskModelId, row);
-  }
+  const std::vector<taskdb::ProductPoseRow> before = poses.list(taskModelId);
+  std::vector<taskdb::ProductPoseRow> flagged = before;
+  setSkillFlags(flagged, skills, inputs);
+  for (std::size_t i = 0; i < flagged.size(); ++i)
+    if (!(flagged[i] == before[i])) poses.update(taskModelId, flagged[i]);
   tx.commit();
 }
 

@@ -4,6 +4,10 @@
 
 namespace srp::programming {
 
+std::string perceptionKey(const taskdb::GroundedProductRow& row) {
+  return row.instanceId.empty() ? row.objectName : row.instanceId;
+}
+
 PerceptionRows toTaskDbRows(const perception::PerceptionResult& result, const core::ObjectCatalogue& catalogue,
                             const std::map<std::string, std::string>& instanceColours) {
   PerceptionRows rows;

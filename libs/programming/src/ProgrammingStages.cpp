@@ -8,6 +8,7 @@
 #include "srp/execution/SceneGrounder.h"
 #include "srp/language/InstructionParser.h"
 #include "srp/language/PlanTables.h"
+#include "srp/perception/PreviewRawlog.h"
 #include "srp/programming/MotionRows.h"
 #include "srp/programming/PerceptionRows.h"
 #include "srp/rawlog/RawlogReader.h"
@@ -31,20 +32,6 @@ const core::ObjectClass& ground(const core::ObjectCatalogue& kb, const language:
   throw InvalidInputError("the instruction names '" + language::describe(o) +
                           "', which the knowledge base does not know (it knows: " + known +
                           "); add a mesh and a catalogue entry, or rephrase");
-}
-
-// A perceived object's key (perception::PlanObject::key) from its grounded row.
-std::string keyOf(const taskdb::GroundedProductRow& g) { return g.instanceId.empty() ? g.objectName : g.instanceId; }
-
-// Reach/Grasp/Move/Release flags of the ProductPose rows from the skills
-// (rows of the skill set's object: its class and instance).
-void setSkillFlags(taskdb::TaskModel& model, const std::vector<motion::SkillSet>& skills) {
-  for (const auto& s : skills)
-    for (const auto& g : model.groundedProducts) {
-      if (keyOf(g) != s.objectName) continue;
-      for (auto& row : model.productPoses)
-        if (row.classId == g.classId && row.instanceId == g.instanceId) programming::setSkillFlags(row, s);
-    }
 }
 
 // The colour word a class answers to: its own, else the basic colour nearest its rgb.
@@ -179,18 +166,10 @@ perception::PerceptionResult perceive(const GroundedPlan& grounded, const core::
   }
 
   perception::DemoPerceiver perceiver(kb, popt);
-  if (o.markerFreeHand) {
-    // The marker-free hand learns its background and skin colour from the
-    // whole recording (a demonstrator may be in view from the first frame).
-    // A first read of the rawlog keeps memory flat on long demos, where
-    // holding every frame would cost ~1.5 MB per 640x480 frame.
-    rawlog::RawlogReader reader(o.demoPath);
-    while (auto f = reader.next()) {
-      if (o.intrinsics) f->intrinsics = *o.intrinsics;
-      perceiver.preview(*f);
-      if (o.progress) o.progress("environment preview", static_cast<std::size_t>(reader.framesRead()), 0);
-    }
-  }
+  if (o.markerFreeHand)  // it learns from the whole recording: a first read (previewRawlog)
+    perception::previewRawlog(perceiver, o.demoPath, o.intrinsics, [&](int previewed) {
+      if (o.progress) o.progress("environment preview", static_cast<std::size_t>(previewed), 0);
+    });
   {
     rawlog::RawlogReader reader(o.demoPath);
     while (auto f = reader.next()) {
@@ -364,18 +343,9 @@ taskdb::TaskModel buildTaskModel(const GroundedPlan& grounded, const Programming
       }
   MotionInputs inputs;
   static_cast<motion::DemoTracks&>(inputs) = tracks;
-  std::map<std::string, std::string> instanceOf;  // key -> instance id
-  for (const auto& g : model.groundedProducts) {
-    inputs.classIdByName[keyOf(g)] = g.classId;
-    instanceOf[keyOf(g)] = g.instanceId;
-  }
-  // Per skill set, so that each row can be given its object's instance.
-  for (const auto& s : skills)
-    for (auto& row : skillRows({s}, inputs)) {
-      row.instanceId = instanceOf[s.objectName];
-      model.skills.push_back(std::move(row));
-    }
-  setSkillFlags(model, skills);
+  for (const auto& g : model.groundedProducts) inputs.rowKeyByName[perceptionKey(g)] = {g.classId, g.instanceId};
+  model.skills = skillRows(skills, inputs);
+  setSkillFlags(model.productPoses, skills, inputs);
   return model;
 }
 

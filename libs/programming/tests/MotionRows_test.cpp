@@ -49,7 +49,8 @@ TEST(MotionRows, StoredDemoSegmentsLearnsAndStoresSkillsThatRollOutIdentically) 
   storeSkills(db, id, skills, in);
   // The ProductPose flags mark the grasp and release frames.
   for (const auto& s : skills) {
-    const auto frames = taskdb::ProductPoseDao(db).graspReleaseFrames(id, in.classIdByName.at(s.objectName));
+    const MotionInputs::RowKey& key = in.rowKeyByName.at(s.objectName);
+    const auto frames = taskdb::ProductPoseDao(db).graspReleaseFrames(id, key.classId, key.instanceId);
     EXPECT_EQ(frames.graspTimeId, s.graspFrame);
     EXPECT_EQ(frames.releaseTimeId, s.releaseFrame);
   }

@@ -16,6 +16,7 @@
 #include "srp/core/Error.h"
 #include "srp/core/Scene.h"
 #include "srp/execution/SceneGrounder.h"
+#include "srp/programming/MotionRows.h"
 #include "srp/programming/ProgrammingPipeline.h"
 #include "srp/programming/ProgrammingStages.h"
 #include "srp/synth/DemoGenerator.h"
@@ -69,6 +70,17 @@ programming::ProgrammingOptions options(const std::string& instruction, const st
   return o;
 }
 
+// The moved instance's ProductPose rows have one grasp frame; the other instance's no skill flag.
+void expectFlagsOnTheMovedInstanceOnly(const taskdb::TaskModel& m, const Demo& d) {
+  int movedGrasps = 0, otherFlags = 0;
+  for (const auto& p : m.productPoses) {
+    if (p.instanceId == d.scene.movedId) movedGrasps += p.grasp;
+    if (p.instanceId == d.scene.otherId) otherFlags += p.reach || p.grasp || p.move || p.release;
+  }
+  EXPECT_EQ(movedGrasps, 1);
+  EXPECT_EQ(otherFlags, 0);
+}
+
 // One seed: "the <colour> cuboid" -> the moved instance, in every table.
 void expectInstanceStored(std::uint32_t seed) {
   const Demo& d = demo(seed);
@@ -107,13 +119,7 @@ void expectInstanceStored(std::uint32_t seed) {
   // The skills are the moved instance's; its grasp row is flagged, the other's never.
   EXPECT_EQ(m.skills.size(), 4u);
   for (const auto& s : m.skills) EXPECT_EQ(s.instanceId, d.scene.movedId);
-  int movedGrasps = 0, otherFlags = 0;
-  for (const auto& p : m.productPoses) {
-    if (p.instanceId == d.scene.movedId) movedGrasps += p.grasp;
-    if (p.instanceId == d.scene.otherId) otherFlags += p.reach || p.grasp || p.move || p.release;
-  }
-  EXPECT_EQ(movedGrasps, 1);
-  EXPECT_EQ(otherFlags, 0);
+  expectFlagsOnTheMovedInstanceOnly(m, d);
   std::printf("[ figures  ] seed %u: '%s' -> %s, grasp %d (truth %d), release %d (truth %d)\n", seed,
               o.instruction.c_str(), r.objects[0].instanceId.c_str(), r.objects[0].graspFrame, event->graspFrame,
               r.objects[0].releaseFrame, event->releaseFrame);
@@ -185,6 +191,36 @@ TEST(ProgrammingInstances, InstructionNamingTwoColoursOfAPartGivesTwoInstances) 
   EXPECT_FALSE(programming::instructionInstances(
                    programming::groundPlan(programming::parsePlan("Put the blue cuboid in the gray box."), kb), kb)
                    .has_value());
+}
+
+// `srp motion` re-learning from the stored rows (motionInputsFromTaskModel,
+// motion::learnSkills, storeSkills, as cmd_motion does) on a task model that
+// holds two instances of the moved class: each instance's rows are its own
+// track, the moved instance gets back exactly the skills programming stored
+// (none lost, none added under InstanceId ""), the other instance none.
+TEST(ProgrammingInstances, SrpMotionRelearnsEachInstancesOwnSkills) {
+  for (std::uint32_t seed : {1u, 2u}) {  // seed 1 moves the blue cuboid, seed 2 the red one
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const Demo& d = demo(seed);
+    const auto o = options(d.scene.plan.at("instruction").get<std::string>(), "relearn.db", d);
+    const programming::ProgramResult r = programming::programTask(o);
+    auto db = taskdb::TaskDatabase::open(o.dbPath);
+    taskdb::TaskModelStore store(db);
+    const taskdb::TaskModel programmed = store.read(r.taskModelId);
+    ASSERT_EQ(programmed.skills.size(), 4u);
+
+    const programming::MotionInputs inputs = programming::motionInputsFromTaskModel(programmed);
+    ASSERT_EQ(inputs.planOrder, std::vector<std::string>{d.scene.movedId});
+    const motion::LearnedSkills learned = motion::learnSkills(inputs);
+    ASSERT_EQ(learned.skills.size(), 1u);
+    EXPECT_EQ(learned.skills[0].objectName, d.scene.movedId);
+    programming::storeSkills(db, r.taskModelId, learned.skills, inputs);
+
+    const taskdb::TaskModel relearned = store.read(r.taskModelId);
+    EXPECT_EQ(relearned.skills, programmed.skills);  // the same rows: the moved instance's, none lost or added
+    EXPECT_EQ(relearned.productPoses, programmed.productPoses);  // the same flags
+    expectFlagsOnTheMovedInstanceOnly(relearned, d);
+  }
 }
 
 TEST(ProgrammingInstances, AnAmbiguousPhraseNamesTheCandidatesAndStoresNothing) {

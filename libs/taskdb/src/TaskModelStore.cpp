@@ -131,7 +131,7 @@ void TaskModelStore::replaceSkills(int id, const std::vector<SkillRow>& rows) {
   if (!TaskModelDao(db_).get(id))
     throw core::InvalidInputError("no task model with id " + std::to_string(id) + " in '" + db_.path() + "'");
   SkillDao skills(db_);
-  for (const auto& old : skills.list(id)) skills.remove(id, old.classId, old.skill);
+  for (const auto& old : skills.list(id)) skills.remove(id, old.classId, old.skill, old.instanceId);
   try {
     for (const auto& r : rows) skills.add(id, r);
     tx.commit();

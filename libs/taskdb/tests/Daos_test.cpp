@@ -65,7 +65,7 @@ TEST(Daos, SkillParametersRoundTripExactly) {
   m.skills = {{3, srp::core::SkillType::Reach, 0, 95, dmp}, {3, srp::core::SkillType::Grasp, 96, 96, {}}};
   TaskModelStore store(db);
   const int id = store.write(m);
-  const auto reach = SkillDao(db).get(id, 3, srp::core::SkillType::Reach);
+  const auto reach = SkillDao(db).get(id, 3, srp::core::SkillType::Reach, "");
   ASSERT_TRUE(reach);
   EXPECT_EQ(reach->parameters, dmp);
   EXPECT_EQ(reach->parameters["weights"][1].get<double>(), 1.0 / 3.0);  // bit-exact
@@ -76,6 +76,20 @@ TEST(Daos, SkillParametersRoundTripExactly) {
   // A skill for an object that was never grounded violates a foreign key: nothing changes.
   EXPECT_THROW(store.replaceSkills(id, {{9, srp::core::SkillType::Reach, 0, 1, {}}}), InvalidInputError);
   EXPECT_EQ(SkillDao(db).list(id).size(), 1u);
+
+  // Two instances of one class: replacing the skills replaces both instances' rows.
+  TaskModel two;
+  two.info.name = "two instances";
+  two.groundedProducts = {{3, "cuboid", {}, {}, {}, "cuboid_red"}, {3, "cuboid", {}, {}, {}, "cuboid_blue"}};
+  two.skills = {{3, srp::core::SkillType::Grasp, 96, 96, {}, "cuboid_red"},
+                {3, srp::core::SkillType::Grasp, 40, 40, {}, "cuboid_blue"}};
+  const int twoId = store.write(two);
+  store.replaceSkills(twoId, {{3, srp::core::SkillType::Grasp, 50, 50, {}, "cuboid_blue"}});
+  const auto replaced = SkillDao(db).list(twoId);
+  ASSERT_EQ(replaced.size(), 1u);
+  EXPECT_EQ(replaced[0].instanceId, "cuboid_blue");
+  EXPECT_EQ(replaced[0].startTimeId, 50);
+  EXPECT_FALSE(SkillDao(db).get(twoId, 3, srp::core::SkillType::Grasp, "cuboid_red"));
 }
 
 TEST(Daos, DeletingATaskModelCascadesAndVersionsCount) {

@@ -208,7 +208,7 @@ PerceptionResult perceiveFrames(const std::vector<rawlog::RgbdFrame>& frames, co
                                 const std::function<void(int, int)>& progress = {});
 
 /// Reads the demo rawlog (RawlogReader) and runs it as perceiveFrames. With
-/// the marker-free hand the file is read twice (a preview pass over the whole
+/// the marker-free hand the file is read twice (previewRawlog over the whole
 /// recording, then perception) so memory stays flat on long demos; otherwise
 /// frames are perceived as they are read. Throws FileError for an unreadable
 /// or damaged rawlog, one without RGB-D frames, or one that changes between

@@ -26,7 +26,9 @@ namespace srp::perception {
 
 /// One detected object. Poses in the camera optical frame, metres, radians.
 struct ObjectDetection {
-  std::string className;
+  /// The perception key of what was detected: the detector model's name, i.e.
+  /// the instance id for a per-instance model (PlanObject::key()), else the class name.
+  std::string key;
   int classId = -1;
   core::Pose3 X_camera_object = core::Pose3::Identity();  ///< catalogue object frame (bottom centre, z up)
   double yaw_rad = 0.0;            ///< about the support-plane normal, in the plane frame (Plane::X_camera_plane)

@@ -20,10 +20,17 @@ namespace srp::programming {
 /// What segmentation needs from a task model. Samples are the union of the
 /// TimeIds of HandPositions and of the plan objects' ProductPose rows (frame =
 /// TimeId, t = TimeId / frame rate); a TimeId without a row is "not detected".
-/// `objects`: one per plan object with ProductPose rows; `planOrder`: grounded
-/// object names, TaskModelTargetObjects order.
+/// Objects are named by their perception key (perceptionKey: the instance id,
+/// else the class name), so two instances of one class are two objects.
+/// `objects`: one per plan object with ProductPose rows (its ClassId and
+/// InstanceId); `planOrder`: their names, TaskModelTargetObjects order.
 struct MotionInputs : motion::DemoTracks {
-  std::map<std::string, int> classIdByName;  ///< GroundedProducts
+  /// The rows of one object: (ClassId, InstanceId), InstanceId "" = its class's one instance.
+  struct RowKey {
+    int classId = 0;
+    std::string instanceId;
+  };
+  std::map<std::string, RowKey> rowKeyByName;  ///< GroundedProducts, by perception key
 };
 
 /// Throws InvalidInputError naming the object when a plan object is not
@@ -38,20 +45,23 @@ MotionInputs motionInputsFromTaskModel(const taskdb::TaskModel& model);
 /// motionInputsFromTaskModel and learnSkills(DemoTracks) do.
 motion::LearnedSkills learnSkills(taskdb::TaskModel& model);
 
-/// Skills rows of the learned skill sets (TimeIds = the demo's frame numbers).
+/// Skills rows of the learned skill sets (TimeIds = the demo's frame numbers;
+/// ClassId and InstanceId of the skill set's object, MotionInputs::rowKeyByName).
+/// Throws InvalidInputError for a skill set of an object `inputs` does not name.
 std::vector<taskdb::SkillRow> skillRows(const std::vector<motion::SkillSet>& skills, const MotionInputs& inputs);
 
-/// Sets the Reach/Grasp/Move/Release flags of one ProductPose row of the
-/// skill set's object (Reach: reach start <= TimeId < grasp, Grasp: the grasp
-/// frame, Move: between, Release: the release frame; other flags cleared).
-/// Returns true when a flag changed.
-bool setSkillFlags(taskdb::ProductPoseRow& row, const motion::SkillSet& skills);
+/// Sets the Reach/Grasp/Move/Release flags of the ProductPose rows of each
+/// skill set's object (its ClassId and InstanceId, MotionInputs::rowKeyByName;
+/// Reach: reach start <= TimeId < grasp, Grasp: the grasp frame, Move:
+/// between, Release: the release frame; other flags cleared). Rows of other
+/// objects are left as they are.
+void setSkillFlags(std::vector<taskdb::ProductPoseRow>& rows, const std::vector<motion::SkillSet>& skills,
+                   const MotionInputs& inputs);
 
 /// Stores learned skills in one transaction: replaces the task model's Skills
-/// rows and sets the Reach/Grasp/Move/Release flags of the moved objects'
-/// ProductPose rows (Reach: reach start <= TimeId < grasp, Grasp: the grasp
-/// frame, Move: between, Release: the release frame; other flags cleared).
-/// Throws InvalidInputError for an unknown task model; on any error nothing changes.
+/// rows and sets the flags of the moved objects' ProductPose rows
+/// (setSkillFlags). Throws InvalidInputError for an unknown task model; on
+/// any error nothing changes.
 void storeSkills(taskdb::TaskDatabase& db, int taskModelId, const std::vector<motion::SkillSet>& skills,
                  const MotionInputs& inputs);
 

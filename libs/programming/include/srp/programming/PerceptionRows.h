@@ -21,6 +21,10 @@ struct PerceptionRows {
   std::vector<taskdb::ProductPoseRow> productPoses;
 };
 
+/// The perception key (perception::PlanObject::key) of a GroundedProducts
+/// row: its InstanceId, else its ObjectName (the class's one instance).
+std::string perceptionKey(const taskdb::GroundedProductRow& row);
+
 /// One HandPositions row per frame (TimeId = frame index; frames without a
 /// detection carry the previous position forward, before the first one the
 /// first, with detected = false); one GroundedProducts row per object seen

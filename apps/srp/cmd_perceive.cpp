@@ -46,8 +46,8 @@ void run(const PerceiveOptions& o) {
   p.marker.tagSize_m = o.tagSize_m;
   p.marker.tagId = o.tagId;
   const auto statics = splitList(o.staticObjects);
-  for (const auto& n : splitList(o.objects)) p.plan.push_back({n, false});
-  for (const auto& n : statics) p.plan.push_back({n, true});
+  for (const auto& n : splitList(o.objects)) p.plan.push_back({n, false, "", std::nullopt});
+  for (const auto& n : statics) p.plan.push_back({n, true, "", std::nullopt});
   if (!o.scene.empty()) p.plan = withSceneInstances(p.plan, srp::core::Scene::load(o.scene), catalogue);
   srp::app::ProgressLine line;
   const PerceptionResult r = perceiveRawlog(o.demo, catalogue, p, [&line](int i, int) {

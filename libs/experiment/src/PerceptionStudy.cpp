@@ -103,7 +103,7 @@ PerceivedDemo perceiveDemo(const ExperimentOptions& options, unsigned seed, cons
   // Instruction 1 names the four parts (moved) and the two boxes (static).
   for (const auto& object : demo.groundTruth.objects) {
     const bool isStatic = catalogue.at(object.className).kind == core::ObjectKind::Container;
-    o.plan.push_back({object.className, isStatic});
+    o.plan.push_back({object.className, isStatic, "", std::nullopt});
     demo.isStatic[object.className] = isStatic;
   }
   o.onFrameDetections = [&demo](int, const std::vector<perception::ObjectDetection>& detections) {

@@ -210,7 +210,7 @@ DemoPerceiver::DemoPerceiver(const core::ObjectCatalogue& catalogue, const Perce
   // Objects of interest: the plan's, else every class (moving).
   impl_->plan = options.plan;
   if (impl_->plan.empty())
-    for (const auto& c : catalogue.classes()) impl_->plan.push_back({c.name, false});
+    for (const auto& c : catalogue.classes()) impl_->plan.push_back({c.name, false, "", std::nullopt});
   impl_->detector = std::make_unique<ObjectDetector>(instanceModels(catalogue, impl_->plan), options.objects);
   ObjectTracker::Options tracking = options.tracking;
   for (const auto& p : impl_->plan)

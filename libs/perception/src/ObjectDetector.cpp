@@ -51,7 +51,7 @@ int ObjectDetector::segment(const cv::Mat& cloud, const Plane& plane, cv::Mat& l
   // fresh pages per frame).
   thread_local std::vector<int> parent, rootLabel;
   parent.assign(static_cast<std::size_t>(W) * H, -1);
-  auto find = [&parent](int i) {
+  auto find = [](int i) {  // parent is thread_local: no capture
     while (parent[i] != i) {
       parent[i] = parent[parent[i]];
       i = parent[i];

@@ -147,10 +147,10 @@ perception::PerceptionResult perceive(const GroundedPlan& grounded, const core::
   perception::PerceptionOptions popt;
   popt.hand = o.markerFreeHand ? perception::PerceptionOptions::HandMethod::MarkerFree
                                : perception::PerceptionOptions::HandMethod::Marker;
-  for (const auto& cls : grounded.movingClasses) popt.plan.push_back({cls, false});
+  for (const auto& cls : grounded.movingClasses) popt.plan.push_back({cls, false, "", std::nullopt});
   for (const auto& cls : grounded.landmarkClasses)
     if (std::find(grounded.movingClasses.begin(), grounded.movingClasses.end(), cls) == grounded.movingClasses.end())
-      popt.plan.push_back({cls, true});
+      popt.plan.push_back({cls, true, "", std::nullopt});
   if (scene) popt.plan = perception::withSceneInstances(popt.plan, *scene, kb);
   if (o.scenePath.empty()) {
     // No scene file: a part the instruction names in one colour that is not

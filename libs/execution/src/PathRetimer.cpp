@@ -15,8 +15,9 @@ constexpr int kBisections = 60;
 constexpr double kStillJoint_radps = 1e-9;
 // The retimed spline differs from the continuous model by discretisation error: where
 // a result fails verification, x = sigma^2 is capped lower on the knots around it (by
-// 1 / ratio, as accelerations scale with x; at least by kMaxRefineFactor) and the profile planned again, at most
-// kMaxRefinements times. Fixed, not tuned: they only bound the work per path.
+// 1 / ratio, as accelerations scale with x; at least by kMaxRefineFactor) and the
+// profile planned again, at most kMaxRefinements times. Fixed before any measurement,
+// not tuned.
 constexpr int kMaxRefinements = 30;
 constexpr std::ptrdiff_t kRefineHalfWidth = 3;  // knots on either side of the failing point
 constexpr double kMaxRefineFactor = 0.9;

@@ -59,8 +59,9 @@ struct RetimedTrajectory {
 
 class PathRetimer {
  public:
-  /// Limits are the checker's: URDF speeds x velocity fraction, maxAcceleration_radps2.
-  /// Throws InvalidInputError on margins outside (0, 1] or maxSlowDown < 1.
+  /// Limits are the checker's: URDF speeds x velocity fraction, maxAcceleration_radps2
+  /// (`safety` is referenced, it must outlive the retimer). Throws InvalidInputError on
+  /// margins outside (0, 1] or maxSlowDown < 1.
   PathRetimer(const SafetyChecker& safety, RetimingOptions options = {});
 
   /// The trajectory slowed where its speed or acceleration ratio (SafetyChecker's

@@ -236,6 +236,8 @@ struct CellSimulator::Impl {
   SafetyChecker monitor;
   std::vector<bool> asleep;
   std::vector<double> wokeAt_s;
+  std::vector<std::optional<double>> slowSince_s;  ///< since when a part has been slow (sleep candidate)
+  static constexpr double kRestConfirm_s = 0.04;
   double wall_s = 0.0;
   double callbackWall_s = 0.0;
   long stepsBefore = 0, stepsSoFar = 0;
@@ -255,7 +257,15 @@ struct CellSimulator::Impl {
     for (std::size_t i = 0; i < partBodies.size(); ++i) {
       if (asleep[i] || (grasped && *grasped == static_cast<int>(i))) continue;
       const stk::SpatialVec V = partBodies[i].getBodyVelocity(state);
-      if (V[0].norm() < 0.1 && V[1].norm() < 0.01 && state.getTime() - wokeAt_s[i] > 0.1) {
+      const double now = state.getTime();
+      if (!(V[0].norm() < 0.1 && V[1].norm() < 0.01 && now - wokeAt_s[i] > 0.1)) {
+        slowSince_s[i].reset();
+        continue;
+      }
+      // Slow at two checks kRestConfirm_s apart: a dropped part at the top of a bounce is
+      // slow for an instant only (gravity adds 0.2 m/s in 20 ms), and was locked in mid-air.
+      if (!slowSince_s[i]) slowSince_s[i] = now;
+      if (now - *slowSince_s[i] >= kRestConfirm_s - 1e-9) {
         asleep[i] = true;
         changed = true;
       }
@@ -450,6 +460,7 @@ CellSimulator::CellSimulator(const RobotModel& model, const CellDescription& cel
     if (o.kind == CellObjectKind::Part) m.partBodies[k++].setQToFitTransform(m.state, toTransform(o.X_world_object));
   m.asleep.assign(m.partBodies.size(), false);
   m.wokeAt_s.assign(m.partBodies.size(), 0.0);
+  m.slowSince_s.assign(m.partBodies.size(), std::nullopt);
   m.restartIntegrator();
   m.nextLog_s = 0.0;
   // Let the parts settle onto their supports before the first motion.

@@ -14,7 +14,7 @@ namespace {
 
 bool isSourceWord(const std::string& d) { return d == "from" || d == "out of" || d == "off" || d == "from inside"; }
 
-ObjectReference refOf(const srp::taskdb::ProductRow& p) { return {p.objectName, p.colour}; }
+ObjectReference refOf(const srp::taskdb::ProductRow& p) { return {p.objectName, p.colour, std::nullopt, {}, {}}; }
 
 bool sameRelation(const SpatialRelation& a, const SpatialRelation& b) {
   return a.relation == b.relation && a.landmark.name == b.landmark.name && a.landmark.colour == b.landmark.colour;
@@ -44,7 +44,7 @@ ExecutionPlan planFromTaskModel(const srp::taskdb::TaskModel& model, const std::
   std::vector<bool> sourceUsed(0), targetUsed(0);
   std::map<int, bool> usedSource, usedTarget;
   auto addRelation = [&](ExecutionStep& step, const std::string& description, int landmarkId) {
-    const SpatialRelation r{description, refOf(product(landmarkId))};
+    const SpatialRelation r{description, refOf(product(landmarkId)), std::nullopt, {}};
     addUnique(isSourceWord(description) ? step.source : step.target, r);
   };
   for (int objectId : model.targetObjectIds) {

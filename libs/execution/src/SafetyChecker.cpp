@@ -122,6 +122,14 @@ double splineAccelerationAt(const std::vector<JointTrajectorySample>& samples, s
 }
 }  // namespace
 
+double SafetyChecker::splineAcceleration_radps2(const JointTrajectory& trajectory, std::size_t k, int joint) {
+  return trajectory.samples().size() > 1 ? splineAccelerationAt(trajectory.samples(), k, joint) : 0.0;
+}
+
+double SafetyChecker::jointSpeed_radps(const JointTrajectory& trajectory, std::size_t k, int joint) {
+  return jointSpeedAt(trajectory.samples(), k, joint);
+}
+
 double SafetyChecker::peakSplineAcceleration_radps2(const JointTrajectory& trajectory) {
   const auto& samples = trajectory.samples();
   double peak = 0.0;
@@ -134,9 +142,13 @@ double SafetyChecker::peakAccelerationRatio(const JointTrajectory& trajectory) c
   return peakSplineAcceleration_radps2(trajectory) / limits_.maxAcceleration_radps2;
 }
 
+JointVector SafetyChecker::maxVelocities_radps() const {
+  return model_.maxVelocities_radps() * limits_.velocityFraction;
+}
+
 double SafetyChecker::peakVelocityRatio(const JointTrajectory& trajectory) const {
   const auto& samples = trajectory.samples();
-  const JointVector vmax = model_.maxVelocities_radps() * limits_.velocityFraction;
+  const JointVector vmax = maxVelocities_radps();
   double ratio = 0.0;
   for (std::size_t k = 0; k < samples.size(); ++k)
     for (int i = 0; i < 6; ++i) ratio = std::max(ratio, jointSpeedAt(samples, k, i) / vmax[i]);

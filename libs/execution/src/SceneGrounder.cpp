@@ -321,7 +321,7 @@ std::vector<std::string> groundingProblems(const ExecutionPlan& plan, const Cell
   std::vector<std::string> problems;
   std::vector<std::string> moved;  // instances earlier steps move (by name fit: they may be anywhere then)
   auto touchesMoved = [&](const ObjectReference& ref) {
-    const ObjectReference bare{ref.name, ref.colour};
+    const ObjectReference bare{ref.name, ref.colour, std::nullopt, {}, {}};
     for (const auto* o : grounder.candidates(bare))
       if (std::find(moved.begin(), moved.end(), o->name) != moved.end()) return true;
     return false;
@@ -364,7 +364,7 @@ std::vector<std::string> groundingProblems(const ExecutionPlan& plan, const Cell
     } catch (const GroundingError& e) {
       if (!dependsOnEarlierSteps) problems.push_back(prefix + e.what());
       // The executor grounds the step again when its turn comes; what it may move is unknown here.
-      for (const auto* o : grounder.candidates(ObjectReference{step.object.name, step.object.colour}))
+      for (const auto* o : grounder.candidates(ObjectReference{step.object.name, step.object.colour, std::nullopt, {}, {}}))
         moved.push_back(o->name);
     }
   }

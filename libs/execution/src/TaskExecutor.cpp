@@ -9,6 +9,7 @@
 #include "srp/core/Error.h"
 #include "srp/core/Pose.h"
 #include "srp/execution/MinimumJerkPathGenerator.h"
+#include "srp/execution/PathRetimer.h"
 
 namespace srp::execution {
 namespace {
@@ -116,7 +117,7 @@ struct TaskExecutor::Segment {
   std::string what;
   CartesianPath path;
   JointTrajectory joints;
-  double slowDown = 1.0;  ///< > 1: retimed to respect the joint speed and acceleration limits
+  double slowDown = 1.0;  ///< > 1: slowed (locally, PathRetimer) to respect the joint speed and acceleration limits
 };
 
 StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
@@ -210,6 +211,8 @@ std::optional<std::string> TaskExecutor::planVariant(const CellDescription& scen
   } catch (const srp::core::Error& e) {
     return std::string("path generation: ") + e.what();
   }
+  const PathRetimer retimer(safety_, RetimingOptions{options_.velocityMargin, options_.accelerationMargin,
+                                                     options_.maxSlowDown});
   JointVector q = sim_->jointPositions();
   for (auto& seg : segments) {
     const std::string what = seg.what + " of the " + part.name;
@@ -228,16 +231,11 @@ std::optional<std::string> TaskExecutor::planVariant(const CellDescription& scen
       times.push_back(s.t_s);
       qs.push_back(q);
     }
-    seg.joints = JointTrajectory::fromPositions(times, qs);
-    // Same path, slower: retime a path that is too fast for the joints (speed ratio r_v
-    // needs k = r_v, acceleration ratio r_a needs k = sqrt(r_a)).
-    const double ratio = std::max(safety_.peakVelocityRatio(seg.joints) / options_.velocityMargin,
-                                  std::sqrt(safety_.peakAccelerationRatio(seg.joints) / options_.accelerationMargin));
-    if (ratio > 1.0 && ratio <= options_.maxSlowDown) {
-      for (double& t : times) t = times.front() + (t - times.front()) * ratio;
-      seg.joints = JointTrajectory::fromPositions(times, qs);
-      seg.slowDown = ratio;
-    }
+    // Same path, slower where it is too fast for the joints (PathRetimer); a path that
+    // would need more than maxSlowDown is left as it is and refused by the check.
+    RetimedTrajectory retimed = retimer.retime(JointTrajectory::fromPositions(times, qs));
+    seg.joints = std::move(retimed.trajectory);
+    if (retimed.method == "topp" || retimed.method == "uniform") seg.slowDown = retimed.slowDown;
     if (auto v = safety_.check(seg.joints, what)) return "safety: " + v->message;
   }
   return std::nullopt;

@@ -235,7 +235,8 @@ class SentenceView {
         int j = i + 1;
         if (lower_[j] == "to" || lower_[j] == "from") ++j;
         if (const auto lm = nounPhrase(j); lm && lm->mention) {
-          object.relations.push_back({word == "closest" ? "closest to" : "farthest from", lm->mention->object});
+          object.relations.push_back(
+              {word == "closest" ? "closest to" : "farthest from", lm->mention->object, std::nullopt, {}});
           i = lm->end;
           continue;
         }
@@ -248,7 +249,7 @@ class SentenceView {
           std::string relation;
           for (int j = i + 2; j < i + 2 + len; ++j) relation += (j > i + 2 ? " " : "") + lower_[j];
           if (const auto lm = nounPhrase(i + 2 + len); lm && lm->mention) {
-            object.relations.push_back({relation, lm->mention->object});
+            object.relations.push_back({relation, lm->mention->object, std::nullopt, {}});
             i = lm->end;
             continue;
           }
@@ -389,7 +390,7 @@ std::vector<PlanStep> buildPlanSteps(const std::vector<AnnotatedSentence>& sente
           continue;
         }
         Location loc;
-        loc.ref = {relation, np->mention->object};
+        loc.ref = {relation, np->mention->object, std::nullopt, {}};
         loc.anchor = np->mention->anchor;
         loc.back = i > 0 && v.lower(i - 1) == "back";
         const std::string type = v.typeAt(i);

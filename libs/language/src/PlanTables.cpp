@@ -86,7 +86,7 @@ std::vector<PlanStep> planStepsFromTaskModel(const taskdb::TaskModel& model) {
     for (std::optional<int> next = product(landmarkId).sourceLocationId; next && seen.insert(*next).second;) {
       const auto& l = sourceLocation(*next);
       const auto& p = product(l.trajectorObjectId);
-      out.push_back({l.description, {p.objectName, p.colour}});
+      out.push_back({l.description, {p.objectName, p.colour, std::nullopt, {}, {}}, std::nullopt, {}});
       next = p.sourceLocationId;
     }
   };
@@ -94,7 +94,7 @@ std::vector<PlanStep> planStepsFromTaskModel(const taskdb::TaskModel& model) {
   for (int id : model.targetObjectIds) {
     const auto& p = product(id);
     PlanStep step;
-    step.object = {p.objectName, p.colour};
+    step.object = {p.objectName, p.colour, std::nullopt, {}, {}};
     follow(id, step.source);
     if (p.targetLocationId) {
       const taskdb::TargetLocationRow* t = nullptr;
@@ -104,7 +104,8 @@ std::vector<PlanStep> planStepsFromTaskModel(const taskdb::TaskModel& model) {
         throw core::InvalidInputError("task model '" + model.info.name + "': TargetLocations has no LocationId " +
                                       std::to_string(*p.targetLocationId));
       const auto& landmark = product(t->indicatorObjectId);
-      step.target.push_back({t->description, {landmark.objectName, landmark.colour}});
+      step.target.push_back(
+          {t->description, {landmark.objectName, landmark.colour, std::nullopt, {}, {}}, std::nullopt, {}});
       follow(t->indicatorObjectId, step.target);
     }
     steps.push_back(step);

@@ -67,7 +67,7 @@ ObjectRef objectRefFromJson(const json& j) {
   if (j.contains("relations"))
     for (const auto& l : j.at("relations"))
       o.relations.push_back({core::requireField(l, "relation", "object relations").get<std::string>(),
-                             objectRefFromJson(core::requireField(l, "landmark", "object relations"))});
+                             objectRefFromJson(core::requireField(l, "landmark", "object relations")), std::nullopt, {}});
   return o;
 }
 
@@ -76,7 +76,7 @@ static std::vector<LocationRef> locationsFromJson(const json& j, const std::stri
   if (!j.contains(key)) return out;
   for (const auto& l : j.at(key))
     out.push_back({core::requireField(l, "relation", key).get<std::string>(),
-                   objectRefFromJson(core::requireField(l, "landmark", key))});
+                   objectRefFromJson(core::requireField(l, "landmark", key)), std::nullopt, {}});
   return out;
 }
 

@@ -238,14 +238,19 @@ TEST(Acceptance, FiftySeededRandomScenesWithLearnedDmps) {
   const auto generator = std::make_shared<DmpPathGenerator>(DmpPathGenerator::fromTaskModel(model, scene.X_world_camera));
   const RobotModel robot = RobotModel::defaultUr5();
   const CellDescription base = defaultCell();
-  int succeeded = 0, dmpSteps = 0;
-  double simulated = 0, wall = 0;
+  int succeeded = 0, dmpSteps = 0, refused = 0;
+  double simulated = 0, wall = 0, peakAcceleration = 0, peakSpeedRatio = 0;
+  const SafetyChecker safety(robot, base.X_world_base, SafetyLimits{}, {});
   for (std::uint32_t seed = 1; seed <= 50; ++seed) {
     const CellDescription cell = randomizeCell(base, "blue box", seed);
     TaskExecutor ex(robot, cell, TaskExecutor::defaultHome(robot, cell.X_world_base, defaultHomeTcp(cell)), generator);
     const auto r = ex.run(appendixA(1));
     simulated += r.simulated_s;
     wall += r.simulationWall_s;
+    for (const auto& s : r.steps) refused += s.status == StepStatus::Refused;
+    const JointTrajectory commanded = ex.simulator().commandedTrajectory();
+    peakAcceleration = std::max(peakAcceleration, SafetyChecker::peakSplineAcceleration_radps2(commanded));
+    peakSpeedRatio = std::max(peakSpeedRatio, safety.peakVelocityRatio(commanded));
     for (const auto& s : r.steps) dmpSteps += s.pathSource == "dmp";
     if (r.allSucceeded())
       ++succeeded;
@@ -253,6 +258,10 @@ TEST(Acceptance, FiftySeededRandomScenesWithLearnedDmps) {
       std::cout << "seed " << seed << " failed:\n" << r.toText();
   }
   std::cout << "random scenes with DMP paths: " << succeeded << "/50 succeeded, " << dmpSteps << " steps on DMP paths, "
-            << simulated << " s simulated in " << wall << " s\n";
+            << refused << " steps refused, " << simulated << " s simulated in " << wall
+            << " s; commanded trajectories: peak spline acceleration " << peakAcceleration
+            << " rad/s^2, peak speed " << peakSpeedRatio << " x the limit\n";
+  EXPECT_LE(peakAcceleration, SafetyLimits{}.maxAcceleration_radps2 * (1.0 + 1e-9));
+  EXPECT_LE(peakSpeedRatio, 1.0);
   EXPECT_GE(succeeded, 49);  // >= 98 %, as with minimum-jerk paths (measured 50/50)
 }

@@ -50,7 +50,7 @@ struct StepReport {
   double simulated_s = 0.0;       ///< simulated duration of the step
   double minTableClearance_m = 0.0;  ///< smallest arm-table gap during the step
   double maxJointError_rad = 0.0;    ///< largest joint tracking error during the step
-  double slowDown = 1.0;             ///< largest retiming factor of the step's paths (1: as planned)
+  double slowDown = 1.0;             ///< largest local slow-down of the step's paths: the most a knot interval is stretched in time (1: as planned; PathRetimer)
 };
 
 struct ExecutionReport {

@@ -77,6 +77,14 @@ class SafetyChecker {
   /// samples, any joint (0 for fewer than two samples).
   static double peakSplineAcceleration_radps2(const JointTrajectory& trajectory);
 
+  /// |acceleration| [rad/s^2] of `joint` on the cubic Hermite spline at knot k, the larger
+  /// of the intervals ending and starting there (what check() compares with the limit).
+  static double splineAcceleration_radps2(const JointTrajectory& trajectory, std::size_t k, int joint);
+
+  /// Speed [rad/s] of `joint` at knot k as check() measures it: the knot velocity and the
+  /// chord from the knot before.
+  static double jointSpeed_radps(const JointTrajectory& trajectory, std::size_t k, int joint);
+
   /// First violation of one configuration (limits, workspace, table, obstacles).
   std::optional<SafetyViolation> checkConfiguration(const JointVector& q, const std::string& what) const;
 
@@ -87,6 +95,8 @@ class SafetyChecker {
   double tableClearance_m(const JointVector& q) const;
 
   const SafetyLimits& limits() const { return limits_; }
+  /// Allowed joint speeds [rad/s]: the URDF limits x SafetyLimits::velocityFraction.
+  JointVector maxVelocities_radps() const;
 
  private:
   RobotModel model_;

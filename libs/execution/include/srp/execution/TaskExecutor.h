@@ -36,9 +36,11 @@ struct ExecutionOptions {
   double settle_s = 0.15;           ///< hold time after each segment
   /// A path whose joint speeds or accelerations exceed the limits (a learned DMP is as
   /// fast as the demonstrator, which near a wrist singularity can be too fast for the
-  /// arm) is followed more slowly, the whole segment time-scaled by one factor k
-  /// (speeds / k, accelerations / k^2), up to this factor; beyond it (an IK branch
-  /// jump, a singularity) the step is refused.
+  /// arm) is followed more slowly where it is too fast (PathRetimer: the same knots,
+  /// later, only along the stretches where a limit binds), if slowing the whole segment
+  /// by one factor k = max(speed ratio / velocityMargin, sqrt(acceleration ratio /
+  /// accelerationMargin)) would need at most this k; beyond it (an IK branch jump, a
+  /// singularity) the step is refused.
   double maxSlowDown = 4.0;
   double velocityMargin = 0.95;     ///< a slowed path peaks at this fraction of the speed limit
   double accelerationMargin = 0.95; ///< and at this fraction of the acceleration limit

@@ -283,13 +283,14 @@ void MarkerFreeHandDetector::accumulateSkin(const cv::Mat& colour_bgr8, const cv
   for (int v = 0; v < ycrcb.rows; v += step) {
     const cv::Vec3b* c = ycrcb.ptr<cv::Vec3b>(v);
     const uchar* f = foreground.ptr<uchar>(v);
-    for (int u = 0; u < ycrcb.cols; u += step)
+    for (int u = 0; u < ycrcb.cols; u += step) {
       if (f[u] && c[u][0] >= o.skinMinLuma && c[u][1] >= o.skinPriorCrMin && c[u][1] <= o.skinPriorCrMax &&
           c[u][2] >= o.skinPriorCbMin && c[u][2] <= o.skinPriorCbMax)
       {
         skinHistogram_.at<float>(c[u][1], c[u][2]) += 1.f;
         skinSamples_.push_back(c[u]);
       }
+    }
   }
 }
 
@@ -395,11 +396,15 @@ void MarkerFreeHandDetector::fitSkin() {
                  mode.x, mean.x(), mean.y(), cov(0, 0), cov(1, 1), cov(0, 1), skin_.meanLuma, skin_.sdLuma, skin_.samples);
 }
 
-cv::Mat MarkerFreeHandDetector::skinMask(const cv::Mat& colour_bgr8, bool learnt) const {
+cv::Mat MarkerFreeHandDetector::skinMask(const cv::Mat& colour_bgr8, bool learnt, double maxMahalanobis) const {
   if (!options_.useSkin || colour_bgr8.empty()) return cv::Mat(colour_bgr8.size(), CV_8UC1, cv::Scalar(255));
   cv::Mat ycrcb, skin;
   cv::cvtColor(colour_bgr8, ycrcb, cv::COLOR_BGR2YCrCb);
   const Options& o = options_;
+  if (maxMahalanobis <= 0.0) maxMahalanobis = o.skinMaxMahalanobis;
+  // The learnt model judges each pixel by its neighbourhood's mean colour
+  // (sensor noise and JPEG's blocks fragment skin pixel by pixel).
+  if (learnt && skin_.learnt && o.skinColourBlur_px > 1) cv::blur(ycrcb, ycrcb, {o.skinColourBlur_px, o.skinColourBlur_px});
   if (!learnt || !skin_.learnt) {
     cv::inRange(ycrcb, cv::Scalar(o.skinMinLuma, o.skinPriorCrMin, o.skinPriorCbMin),
                 cv::Scalar(255, o.skinPriorCrMax, o.skinPriorCbMax), skin);
@@ -407,15 +412,20 @@ cv::Mat MarkerFreeHandDetector::skinMask(const cv::Mat& colour_bgr8, bool learnt
   }
   // Look-up table over (Cr, Cb): inside the Gaussian's skinMaxMahalanobis ellipse.
   const Eigen::Matrix2d info = skin_.covariance.inverse();
-  const double maxD2 = o.skinMaxMahalanobis * o.skinMaxMahalanobis;
+  const double maxD2 = maxMahalanobis * maxMahalanobis;
   cv::Mat lut(256, 256, CV_8UC1);
   for (int cr = 0; cr < 256; ++cr)
     for (int cb = 0; cb < 256; ++cb) {
       const Eigen::Vector2d d = Eigen::Vector2d(cr, cb) - skin_.mean;
       lut.at<uchar>(cr, cb) = d.dot(info * d) <= maxD2 ? 255 : 0;
     }
-  const double lumaMin = std::max<double>(o.skinMinLuma, skin_.meanLuma - o.skinMaxMahalanobis * skin_.sdLuma);
-  const double lumaMax = skin_.meanLuma + o.skinMaxMahalanobis * skin_.sdLuma;
+  // The luma floor: fixed, or a share of this recording's skin luma (a
+  // darker recording, a darker skin: the floor follows the exposure).
+  const double floor = o.skinLumaFloorFraction > 0.0
+                           ? std::max(o.skinNoiseLuma, o.skinLumaFloorFraction * skin_.meanLuma)
+                           : static_cast<double>(o.skinMinLuma);
+  const double lumaMin = std::max(floor, skin_.meanLuma - maxMahalanobis * skin_.sdLuma);
+  const double lumaMax = skin_.meanLuma + maxMahalanobis * skin_.sdLuma;
   skin = cv::Mat(ycrcb.size(), CV_8UC1);
   for (int v = 0; v < ycrcb.rows; ++v) {
     const cv::Vec3b* c = ycrcb.ptr<cv::Vec3b>(v);
@@ -615,6 +625,26 @@ cv::Mat MarkerFreeHandDetector::handMask(const rawlog::RgbdFrame& frame, const c
   const cv::Mat skin = !frame.colour_bgr8.empty() ? skinMask(frame.colour_bgr8, bareForearms_)
                                                   : cv::Mat(arm.size(), CV_8UC1, cv::Scalar(255));
   cv::Mat hand = arm & skin;
+  if (bareForearms_ && skin_.learnt && options_.skinGrowMahalanobis > options_.skinMaxMahalanobis) {
+    // Hysteresis: arm pixels inside the wider ellipse join the skin they
+    // touch (a forearm in shadow or noise fragments the strict skin).
+    const cv::Mat weak = arm & skinMask(frame.colour_bgr8, true, options_.skinGrowMahalanobis);
+    cv::Mat wl;
+    const int nw = cv::connectedComponents(weak, wl, 8, CV_32S);
+    std::vector<char> seeded(static_cast<std::size_t>(nw), 0);
+    for (int v = 0; v < arm.rows; ++v) {
+      const int* l = wl.ptr<int>(v);
+      const uchar* h = hand.ptr<uchar>(v);
+      for (int u = 0; u < arm.cols; ++u)
+        if (h[u]) seeded[static_cast<std::size_t>(l[u])] = 1;
+    }
+    for (int v = 0; v < arm.rows; ++v) {
+      const int* l = wl.ptr<int>(v);
+      uchar* h = hand.ptr<uchar>(v);
+      for (int u = 0; u < arm.cols; ++u)
+        if (l[u] > 0 && seeded[static_cast<std::size_t>(l[u])]) h[u] = 255;
+    }
+  }
   cv::Mat allowed = arm.clone();  // where the hand may lie: the arm, and skin the depth lags behind
   if (bareForearms_ && options_.maxDepthLag_px > 0) {
     // Depth lagging colour (a fast arm): skin within maxDepthLag_px of the

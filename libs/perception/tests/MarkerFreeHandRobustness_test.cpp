@@ -4,10 +4,13 @@
 // worst error per perturbation, no new labels needed.
 //
 // SRP_HAND_OPTIONS="name=value,name=value" overrides detector options in
-// every test here (the fields listed in applyOverrides), to select settings
+// every test here (the fields listed in optionsFromEnvironment), to select settings
 // by leave-one-recording-out over recordings and perturbations:
 //   SRP_HAND_OPTIONS=skinMaxMahalanobis=2.5 srp_perception_tests \
-//     --gtest_filter='MarkerFreeHandRobustness.Table' --gtest_also_run_disabled_tests
+//     --gtest_filter='MarkerFreeHandRobustness.*'
+// SRP_HAND_PERTURBATIONS='gain|JPEG' runs only the perturbations whose names
+// contain one of these; SRP_HAND_TRACE_ERRORS=1 lists every frame outside
+// 40 px; SRP_HAND_DEBUG_DIR=<dir> draws every frame, per perturbation.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -36,12 +39,16 @@ MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                    {"minForeground_m", &o.minForeground_m},
                                    {"backgroundPercentile", &o.backgroundPercentile},
                                    {"skinLumaModeRadius", &o.skinLumaModeRadius},
-                                   {"bareForearmFraction", &o.bareForearmFraction}};
+                                   {"bareForearmFraction", &o.bareForearmFraction},
+                                   {"skinGrowMahalanobis", &o.skinGrowMahalanobis},
+                                   {"skinLumaFloorFraction", &o.skinLumaFloorFraction},
+                                   {"skinNoiseLuma", &o.skinNoiseLuma}};
   std::map<std::string, int*> i{{"holeColourChange", &o.holeColourChange},
                                 {"skinMinLuma", &o.skinMinLuma},
                                 {"maxDepthLag_px", &o.maxDepthLag_px},
                                 {"minLagColourChange", &o.minLagColourChange},
-                                {"geodesicStep_px", &o.geodesicStep_px}};
+                                {"geodesicStep_px", &o.geodesicStep_px},
+                                {"skinColourBlur_px", &o.skinColourBlur_px}};
   std::stringstream ss(env);
   std::string item;
   while (std::getline(ss, item, ',')) {
@@ -51,7 +58,7 @@ MarkerFreeHandDetector::Options optionsFromEnvironment() {
     const double value = std::stod(item.substr(eq + 1));
     if (d.count(name)) *d[name] = value;
     else if (i.count(name)) *i[name] = static_cast<int>(value);
-    else throw std::invalid_argument("SRP_HAND_OPTIONS: no option '" + name + "' here (see applyOverrides)");
+    else throw std::invalid_argument("SRP_HAND_OPTIONS: no option '" + name + "' here (see optionsFromEnvironment)");
   }
   return o;
 }
@@ -94,7 +101,12 @@ std::map<std::pair<std::string, std::string>, PalmScore> table(const MarkerFreeH
   std::printf("[ figures  ] | perturbation | task2 within 40 px | worst px | task3 within 40 px | worst px |\n");
   int within = 0, labelled = 0;
   for (const auto& p : testing::hrt1Perturbations()) {
-    if (only && p.name.find(only) == std::string::npos) continue;
+    if (only) {  // "a|b": names containing a or b
+      bool keep = false;
+      std::stringstream names(only);
+      for (std::string part; std::getline(names, part, '|');) keep = keep || p.name.find(part) != std::string::npos;
+      if (!keep) continue;
+    }
     std::string row = "| " + p.name + " |";
     for (const std::string name : {"task2", "task3"}) {
       const PalmScore s = scoreUnder(name, p, o);
@@ -109,11 +121,43 @@ std::map<std::pair<std::string, std::string>, PalmScore> table(const MarkerFreeH
     std::printf("[ figures  ] %s\n", row.c_str());
     std::fflush(stdout);
   }
-  std::printf("[ figures  ] all perturbations: %d/%d within 40 px\n", within, labelled);
+  std::printf("[ figures  ] all perturbations: %d/%d within 40 px", within, labelled);
+  for (const std::string name : {"task2", "task3"}) {
+    int w = 0, n = 0;
+    for (const auto& [key, s] : out)
+      if (key.second == name) {
+        w += s.within;
+        n += s.labelled;
+      }
+    std::printf("; %s %d/%d", name.c_str(), w, n);
+  }
+  std::printf("\n");
   return out;
 }
 
-TEST(MarkerFreeHandRobustness, Table) { table(optionsFromEnvironment()); }
+// Every perturbation on both recordings (the README's table). Asserted: the
+// within-40-px rate under each perturbation a new recording from this camera
+// plausibly brings (light, white balance, compression, noise, depth noise and
+// random holes, the other intrinsics, a camera turned by a few degrees, the
+// scene mirrored, half the frame rate): at least issue 17's 90 % on each
+// recording; under depth edge holes (3 px on each side of every step of more
+// than 5 cm, harsher than this camera's one-sided shadows) the reached level
+// less a label's worth of frames; pooled over everything, the reached level.
+TEST(MarkerFreeHandRobustness, Hrt1UnderPerturbations) {
+  constexpr double kMinRate = 0.90;           // issue 17's acceptance, per perturbation and recording
+  constexpr double kMinEdgeHolesRate = 0.80;  // reached 35/42 = 83 % (task2), 34/36 = 94 % (task3)
+  constexpr double kMinPooledRate = 0.98;     // reached 1468/1482 = 99.1 %
+  const auto scores = table(optionsFromEnvironment());
+  int within = 0, labelled = 0;
+  for (const auto& [key, s] : scores) {
+    within += s.within;
+    labelled += s.labelled;
+    const double minRate = key.first.find("edge holes") != std::string::npos ? kMinEdgeHolesRate : kMinRate;
+    EXPECT_GE(s.rate(), minRate) << key.first << " on " << key.second << ": " << s.within << "/" << s.labelled;
+  }
+  ASSERT_GT(labelled, 0);
+  EXPECT_GE(static_cast<double>(within) / labelled, kMinPooledRate) << within << "/" << labelled;
+}
 
 }  // namespace
 }  // namespace srp::perception

@@ -111,11 +111,25 @@ class MarkerFreeHandDetector : public HandDetector {
     /// Below this luma (8-bit Y) chroma is noise (black clothes, backlit
     /// faces): never skin.
     int skinMinLuma = 25;
+    /// Learnt skin: the luma floor is this share of the recording's skin
+    /// luma (mean of its mode) instead of skinMinLuma, so that it follows the
+    /// exposure, the light and the person [ratio]; 0: skinMinLuma.
+    double skinLumaFloorFraction = 0.5;
+    /// ... but never below this luma, where the chroma of 8-bit JPEG is noise [8-bit Y].
+    double skinNoiseLuma = 10.0;
     /// Skin model: pixels within this (Cr, Cb) distance of the histogram's
     /// mode [8-bit units] give the Gaussian's mean and covariance.
     double skinModeRadius = 8.0;
     /// Skin = Mahalanobis distance to the Gaussian below this [sigma].
     double skinMaxMahalanobis = 3.0;
+    /// Bare forearm (learnt skin): arm pixels within this wider distance
+    /// [sigma] join the skin they are connected to on the arm (hysteresis:
+    /// a forearm in shadow, sensor noise or JPEG blocks fragment the strict
+    /// skin). At most skinMaxMahalanobis: off.
+    double skinGrowMahalanobis = 0.0;
+    /// Learnt skin: each pixel's colour is the mean over this square
+    /// neighbourhood before the skin test [px] (noise, JPEG blocks). <= 1: off.
+    int skinColourBlur_px = 0;
     /// Pixels the skin model needs before it replaces the prior box.
     int minSkinSamples = 500;
     int minPixels = 300;
@@ -314,7 +328,8 @@ class MarkerFreeHandDetector : public HandDetector {
   HandObservation placePalm(const rawlog::RgbdFrame& frame, const Anchor& a, const HandBlob& hand,
                             const Eigen::Vector2d& handMean, int armArea);
   /// Skin pixels: the learnt model when `learnt` and there is one, else the prior box.
-  cv::Mat skinMask(const cv::Mat& colour_bgr8, bool learnt) const;
+  /// `maxMahalanobis` > 0: this threshold instead of skinMaxMahalanobis.
+  cv::Mat skinMask(const cv::Mat& colour_bgr8, bool learnt, double maxMahalanobis = 0.0) const;
   /// Adds the (Cr, Cb) of the foreground pixels inside the prior box.
   void accumulateSkin(const cv::Mat& colour_bgr8, const cv::Mat& foreground, int step);
   void fitSkin();

@@ -199,7 +199,7 @@ void checkRealTask(const std::string& task, double rate, double maxError_px) {
 // ~90 px at 1.1 m, let alone the body).
 TEST(MarkerFreeHandDetector, RealDemonstratorHrt1Task2) {
   constexpr double kTask2Rate = 1.0;        // reached 42/42 (acceptance 0.90)
-  constexpr double kTask2Worst_px = 30.0;   // reached 19.0 px
+  constexpr double kTask2Worst_px = 30.0;   // reached 18.7 px (session 8; 19.0 in session 7)
   checkRealTask("task2", kTask2Rate, kTask2Worst_px);
 }
 
@@ -207,7 +207,7 @@ TEST(MarkerFreeHandDetector, RealDemonstratorHrt1Task2) {
 // image's right edge that the depth camera does not see (frames 0-8).
 TEST(MarkerFreeHandDetector, RealDemonstratorHrt1Task3) {
   constexpr double kTask3Rate = 1.0;        // reached 36/36 (acceptance 0.90)
-  constexpr double kTask3Worst_px = 32.0;   // reached 22.1 px
+  constexpr double kTask3Worst_px = 32.0;   // reached 17.9 px (session 8; 22.1 in session 7)
   checkRealTask("task3", kTask3Rate, kTask3Worst_px);
 }
 

@@ -530,7 +530,28 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   if (!anchor) anchor = cuffAnchor(hand.mask, sleeve, entry);
   if (!anchor) anchor = fingertipAnchor(hand.mask, entry, handMean, handAxis->dir, handAxis->elongated);
   geometry_.axis = anchor->dir;
-  return placePalm(frame, *anchor, hand, handMean, bestArea);
+  HandObservation h = placePalm(frame, *anchor, hand, handMean, bestArea);
+  if (!h.hasDepth || options_.maxPalmSpeed_mps <= 0.0) return h;
+  // Motion prior: after a track of palms, a palm farther from the last one
+  // than the hand can move in the time between them is refused (a skin
+  // patch on the face or the toy while the hand's skin is lost).
+  // Measured across the ray (the palm's pixel shift at its depth): the
+  // palm's depth along the ray jumps with the depth under the palm disc.
+  if (palmTrack_ >= options_.minPalmTrack) {
+    const double dt_s = std::max(0.0, frame.t_s - lastPalmT_s_);
+    const double shift_m = (h.palm_px - lastPalm_px_).norm() * h.p_camera_palm_m.z() / frame.intrinsics.fx_px;
+    if (shift_m > options_.maxPalmSpeed_mps * dt_s) {
+      if (trace) std::fprintf(stderr, "frame %d: palm refused, %.3f m from the last in %.3f s\n", frame.index,
+                              shift_m, dt_s);
+      if (++palmRefusals_ <= options_.maxPalmRefusals) return std::nullopt;
+      palmTrack_ = 0;  // refused too often: the track itself may be wrong, start a new one
+    }
+  }
+  palmRefusals_ = 0;
+  ++palmTrack_;
+  lastPalm_px_ = h.palm_px;
+  lastPalmT_s_ = frame.t_s;
+  return h;
 }
 
 std::vector<cv::Point> MarkerFreeHandDetector::borderZone(const cv::Mat& depth_m) const {

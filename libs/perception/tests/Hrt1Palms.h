@@ -292,6 +292,8 @@ inline std::vector<Perturbation> hrt1Perturbations() {
   p.push_back({"none", [](Hrt1Task&) {}});
   p.push_back({"gain 0.75", perColour([](cv::Mat& c, int) { gains(c, 0.75, 0.75, 0.75); })});
   p.push_back({"gain 1.25", perColour([](cv::Mat& c, int) { gains(c, 1.25, 1.25, 1.25); })});
+  // Beyond the +-25 % the settings were selected on (added after the selection: a check, not a criterion).
+  p.push_back({"gain 0.6 (check)", perColour([](cv::Mat& c, int) { gains(c, 0.6, 0.6, 0.6); })});
   p.push_back({"gamma 0.8", perColour([](cv::Mat& c, int) { gamma(c, 0.8); })});
   p.push_back({"gamma 1.25", perColour([](cv::Mat& c, int) { gamma(c, 1.25); })});
   // Colour temperature: tungsten-like (warmer) and shade-like (cooler) white balance.

@@ -42,7 +42,8 @@ MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                    {"bareForearmFraction", &o.bareForearmFraction},
                                    {"skinGrowMahalanobis", &o.skinGrowMahalanobis},
                                    {"skinLumaFloorFraction", &o.skinLumaFloorFraction},
-                                   {"skinNoiseLuma", &o.skinNoiseLuma}};
+                                   {"skinNoiseLuma", &o.skinNoiseLuma},
+                                   {"maxPalmSpeed_mps", &o.maxPalmSpeed_mps}};
   std::map<std::string, int*> i{{"holeColourChange", &o.holeColourChange},
                                 {"skinMinLuma", &o.skinMinLuma},
                                 {"maxDepthLag_px", &o.maxDepthLag_px},
@@ -146,7 +147,7 @@ std::map<std::pair<std::string, std::string>, PalmScore> table(const MarkerFreeH
 TEST(MarkerFreeHandRobustness, Hrt1UnderPerturbations) {
   constexpr double kMinRate = 0.90;           // issue 17's acceptance, per perturbation and recording
   constexpr double kMinEdgeHolesRate = 0.80;  // reached 35/42 = 83 % (task2), 34/36 = 94 % (task3)
-  constexpr double kMinPooledRate = 0.98;     // reached 1472/1482 = 99.3 % (1468 before the luma floor)
+  constexpr double kMinPooledRate = 0.98;     // reached 1549/1560 = 99.3 % (with the gain 0.6 check row)
   const auto scores = table(optionsFromEnvironment());
   int within = 0, labelled = 0;
   for (const auto& [key, s] : scores) {

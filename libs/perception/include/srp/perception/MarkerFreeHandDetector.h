@@ -238,6 +238,19 @@ class MarkerFreeHandDetector : public HandDetector {
     /// from the background colour by more than minLagColourChange, and
     /// connected to skin on the arm, is hand. 0: off.
     int maxDepthLag_px = 30;
+    /// Motion prior: once minPalmTrack palms (with depth) were accepted, a
+    /// palm that moved across the camera's rays (its pixel shift at its
+    /// depth) farther from the last accepted one than this speed times the
+    /// time between their frames (RgbdFrame::t_s) is refused (no hand
+    /// reported) [m/s]; a demonstrator's hand moves at up to ~1-2 m/s in a
+    /// pick and place. 0: off. Image folders get their timestamps from
+    /// `srp import --fps`: a wrong rate scales this limit.
+    double maxPalmSpeed_mps = 0.0;
+    /// Accepted palms before the motion prior applies [frames].
+    int minPalmTrack = 3;
+    /// After this many refusals in a row the next palm starts a new track
+    /// (the track itself may have been wrong) [frames].
+    int maxPalmRefusals = 3;
     /// That colour change: sum of |BGR| changes [8-bit units] (a dark hand
     /// over a bright wall: 150-300; a shadow moving on the wall beside the
     /// demonstrator: below ~90).
@@ -353,6 +366,10 @@ class MarkerFreeHandDetector : public HandDetector {
   double lastDepth_m_ = 0.0;  ///< last measured depth of the palm's visible back
   int lastDepthFrame_ = 0;    ///< the frameCount_ it was measured in
   int frameCount_ = 0;        ///< frames seen
+  Eigen::Vector2d lastPalm_px_ = Eigen::Vector2d::Zero();  ///< last accepted palm with depth
+  double lastPalmT_s_ = 0.0;  ///< its frame's timestamp
+  int palmTrack_ = 0;         ///< palms accepted since the track (re)started
+  int palmRefusals_ = 0;      ///< palms refused in a row
 };
 
 }  // namespace srp::perception

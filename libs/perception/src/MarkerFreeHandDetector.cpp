@@ -123,6 +123,12 @@ MarkerFreeHandDetector::MarkerFreeHandDetector(const Options& options) : options
   core::require(options.maxHandLength_m > 0.0 && options.palmFromFarEnd_m > 0.0,
                 "MarkerFreeHandDetector: maxHandLength_m and palmFromFarEnd_m must be > 0 m (lengths of the "
                 "demonstrator's hand)");
+  core::require(options.skinLumaFloorFraction >= 0.0 && options.skinLumaFloorFraction < 1.0,
+                "MarkerFreeHandDetector: skinLumaFloorFraction must be in [0, 1) (a share of the skin's luma; 0: "
+                "the fixed skinMinLuma)");
+  core::require(options.maxPalmSpeed_mps >= 0.0 && options.minPalmTrack >= 1 && options.maxPalmRefusals >= 0,
+                "MarkerFreeHandDetector: maxPalmSpeed_mps must be >= 0 m/s (0: no motion prior), minPalmTrack >= 1 "
+                "and maxPalmRefusals >= 0");
   core::require(options.palmFromWrist_m > 0.0 && options.palmFromFingertips_m > 0.0 && options.palmRadius_m > 0.0,
                 "MarkerFreeHandDetector: palmFromWrist_m, palmFromFingertips_m and palmRadius_m must be > 0 m "
                 "(lengths of the demonstrator's hand)");

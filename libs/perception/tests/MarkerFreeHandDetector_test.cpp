@@ -155,6 +155,12 @@ TEST(MarkerFreeHandDetector, RejectsBadOptions) {
   o = {};
   o.palmFromWrist_m = 0.0;
   EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
+  o = {};
+  o.skinLumaFloorFraction = 1.0;
+  EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
+  o = {};
+  o.maxPalmSpeed_mps = -1.0;
+  EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
 }
 
 // ---- a real demonstrator -------------------------------------------------

@@ -123,6 +123,12 @@ MarkerFreeHandDetector::MarkerFreeHandDetector(const Options& options) : options
   core::require(options.maxHandLength_m > 0.0 && options.palmFromFarEnd_m > 0.0,
                 "MarkerFreeHandDetector: maxHandLength_m and palmFromFarEnd_m must be > 0 m (lengths of the "
                 "demonstrator's hand)");
+  core::require(options.skinLumaFloorFraction >= 0.0 && options.skinLumaFloorFraction < 1.0,
+                "MarkerFreeHandDetector: skinLumaFloorFraction must be in [0, 1) (a share of the skin's luma; 0: "
+                "the fixed skinMinLuma)");
+  core::require(options.maxPalmSpeed_mps >= 0.0 && options.minPalmTrack >= 1 && options.maxPalmRefusals >= 0,
+                "MarkerFreeHandDetector: maxPalmSpeed_mps must be >= 0 m/s (0: no motion prior), minPalmTrack >= 1 "
+                "and maxPalmRefusals >= 0");
   core::require(options.palmFromWrist_m > 0.0 && options.palmFromFingertips_m > 0.0 && options.palmRadius_m > 0.0,
                 "MarkerFreeHandDetector: palmFromWrist_m, palmFromFingertips_m and palmRadius_m must be > 0 m "
                 "(lengths of the demonstrator's hand)");
@@ -283,13 +289,14 @@ void MarkerFreeHandDetector::accumulateSkin(const cv::Mat& colour_bgr8, const cv
   for (int v = 0; v < ycrcb.rows; v += step) {
     const cv::Vec3b* c = ycrcb.ptr<cv::Vec3b>(v);
     const uchar* f = foreground.ptr<uchar>(v);
-    for (int u = 0; u < ycrcb.cols; u += step)
+    for (int u = 0; u < ycrcb.cols; u += step) {
       if (f[u] && c[u][0] >= o.skinMinLuma && c[u][1] >= o.skinPriorCrMin && c[u][1] <= o.skinPriorCrMax &&
           c[u][2] >= o.skinPriorCbMin && c[u][2] <= o.skinPriorCbMax)
       {
         skinHistogram_.at<float>(c[u][1], c[u][2]) += 1.f;
         skinSamples_.push_back(c[u]);
       }
+    }
   }
 }
 
@@ -395,11 +402,15 @@ void MarkerFreeHandDetector::fitSkin() {
                  mode.x, mean.x(), mean.y(), cov(0, 0), cov(1, 1), cov(0, 1), skin_.meanLuma, skin_.sdLuma, skin_.samples);
 }
 
-cv::Mat MarkerFreeHandDetector::skinMask(const cv::Mat& colour_bgr8, bool learnt) const {
+cv::Mat MarkerFreeHandDetector::skinMask(const cv::Mat& colour_bgr8, bool learnt, double maxMahalanobis) const {
   if (!options_.useSkin || colour_bgr8.empty()) return cv::Mat(colour_bgr8.size(), CV_8UC1, cv::Scalar(255));
   cv::Mat ycrcb, skin;
   cv::cvtColor(colour_bgr8, ycrcb, cv::COLOR_BGR2YCrCb);
   const Options& o = options_;
+  if (maxMahalanobis <= 0.0) maxMahalanobis = o.skinMaxMahalanobis;
+  // The learnt model judges each pixel by its neighbourhood's mean colour
+  // (sensor noise and JPEG's blocks fragment skin pixel by pixel).
+  if (learnt && skin_.learnt && o.skinColourBlur_px > 1) cv::blur(ycrcb, ycrcb, {o.skinColourBlur_px, o.skinColourBlur_px});
   if (!learnt || !skin_.learnt) {
     cv::inRange(ycrcb, cv::Scalar(o.skinMinLuma, o.skinPriorCrMin, o.skinPriorCbMin),
                 cv::Scalar(255, o.skinPriorCrMax, o.skinPriorCbMax), skin);
@@ -407,15 +418,20 @@ cv::Mat MarkerFreeHandDetector::skinMask(const cv::Mat& colour_bgr8, bool learnt
   }
   // Look-up table over (Cr, Cb): inside the Gaussian's skinMaxMahalanobis ellipse.
   const Eigen::Matrix2d info = skin_.covariance.inverse();
-  const double maxD2 = o.skinMaxMahalanobis * o.skinMaxMahalanobis;
+  const double maxD2 = maxMahalanobis * maxMahalanobis;
   cv::Mat lut(256, 256, CV_8UC1);
   for (int cr = 0; cr < 256; ++cr)
     for (int cb = 0; cb < 256; ++cb) {
       const Eigen::Vector2d d = Eigen::Vector2d(cr, cb) - skin_.mean;
       lut.at<uchar>(cr, cb) = d.dot(info * d) <= maxD2 ? 255 : 0;
     }
-  const double lumaMin = std::max<double>(o.skinMinLuma, skin_.meanLuma - o.skinMaxMahalanobis * skin_.sdLuma);
-  const double lumaMax = skin_.meanLuma + o.skinMaxMahalanobis * skin_.sdLuma;
+  // The luma floor: fixed, or a share of this recording's skin luma (a
+  // darker recording, a darker skin: the floor follows the exposure).
+  const double floor = o.skinLumaFloorFraction > 0.0
+                           ? std::max(o.skinNoiseLuma, o.skinLumaFloorFraction * skin_.meanLuma)
+                           : static_cast<double>(o.skinMinLuma);
+  const double lumaMin = std::max(floor, skin_.meanLuma - maxMahalanobis * skin_.sdLuma);
+  const double lumaMax = skin_.meanLuma + maxMahalanobis * skin_.sdLuma;
   skin = cv::Mat(ycrcb.size(), CV_8UC1);
   for (int v = 0; v < ycrcb.rows; ++v) {
     const cv::Vec3b* c = ycrcb.ptr<cv::Vec3b>(v);
@@ -520,7 +536,28 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   if (!anchor) anchor = cuffAnchor(hand.mask, sleeve, entry);
   if (!anchor) anchor = fingertipAnchor(hand.mask, entry, handMean, handAxis->dir, handAxis->elongated);
   geometry_.axis = anchor->dir;
-  return placePalm(frame, *anchor, hand, handMean, bestArea);
+  HandObservation h = placePalm(frame, *anchor, hand, handMean, bestArea);
+  if (!h.hasDepth || options_.maxPalmSpeed_mps <= 0.0) return h;
+  // Motion prior: after a track of palms, a palm farther from the last one
+  // than the hand can move in the time between them is refused (a skin
+  // patch on the face or the toy while the hand's skin is lost).
+  // Measured across the ray (the palm's pixel shift at its depth): the
+  // palm's depth along the ray jumps with the depth under the palm disc.
+  if (palmTrack_ >= options_.minPalmTrack) {
+    const double dt_s = std::max(0.0, frame.t_s - lastPalmT_s_);
+    const double shift_m = (h.palm_px - lastPalm_px_).norm() * h.p_camera_palm_m.z() / frame.intrinsics.fx_px;
+    if (shift_m > options_.maxPalmSpeed_mps * dt_s) {
+      if (trace) std::fprintf(stderr, "frame %d: palm refused, %.3f m from the last in %.3f s\n", frame.index,
+                              shift_m, dt_s);
+      if (++palmRefusals_ <= options_.maxPalmRefusals) return std::nullopt;
+      palmTrack_ = 0;  // refused too often: the track itself may be wrong, start a new one
+    }
+  }
+  palmRefusals_ = 0;
+  ++palmTrack_;
+  lastPalm_px_ = h.palm_px;
+  lastPalmT_s_ = frame.t_s;
+  return h;
 }
 
 std::vector<cv::Point> MarkerFreeHandDetector::borderZone(const cv::Mat& depth_m) const {
@@ -615,6 +652,26 @@ cv::Mat MarkerFreeHandDetector::handMask(const rawlog::RgbdFrame& frame, const c
   const cv::Mat skin = !frame.colour_bgr8.empty() ? skinMask(frame.colour_bgr8, bareForearms_)
                                                   : cv::Mat(arm.size(), CV_8UC1, cv::Scalar(255));
   cv::Mat hand = arm & skin;
+  if (bareForearms_ && skin_.learnt && options_.skinGrowMahalanobis > options_.skinMaxMahalanobis) {
+    // Hysteresis: arm pixels inside the wider ellipse join the skin they
+    // touch (a forearm in shadow or noise fragments the strict skin).
+    const cv::Mat weak = arm & skinMask(frame.colour_bgr8, true, options_.skinGrowMahalanobis);
+    cv::Mat wl;
+    const int nw = cv::connectedComponents(weak, wl, 8, CV_32S);
+    std::vector<char> seeded(static_cast<std::size_t>(nw), 0);
+    for (int v = 0; v < arm.rows; ++v) {
+      const int* l = wl.ptr<int>(v);
+      const uchar* h = hand.ptr<uchar>(v);
+      for (int u = 0; u < arm.cols; ++u)
+        if (h[u]) seeded[static_cast<std::size_t>(l[u])] = 1;
+    }
+    for (int v = 0; v < arm.rows; ++v) {
+      const int* l = wl.ptr<int>(v);
+      uchar* h = hand.ptr<uchar>(v);
+      for (int u = 0; u < arm.cols; ++u)
+        if (l[u] > 0 && seeded[static_cast<std::size_t>(l[u])]) h[u] = 255;
+    }
+  }
   cv::Mat allowed = arm.clone();  // where the hand may lie: the arm, and skin the depth lags behind
   if (bareForearms_ && options_.maxDepthLag_px > 0) {
     // Depth lagging colour (a fast arm): skin within maxDepthLag_px of the

@@ -111,11 +111,25 @@ class MarkerFreeHandDetector : public HandDetector {
     /// Below this luma (8-bit Y) chroma is noise (black clothes, backlit
     /// faces): never skin.
     int skinMinLuma = 25;
+    /// Learnt skin: the luma floor is this share of the recording's skin
+    /// luma (mean of its mode) instead of skinMinLuma, so that it follows the
+    /// exposure, the light and the person [ratio]; 0: skinMinLuma.
+    double skinLumaFloorFraction = 0.5;
+    /// ... but never below this luma, where the chroma of 8-bit JPEG is noise [8-bit Y].
+    double skinNoiseLuma = 10.0;
     /// Skin model: pixels within this (Cr, Cb) distance of the histogram's
     /// mode [8-bit units] give the Gaussian's mean and covariance.
     double skinModeRadius = 8.0;
     /// Skin = Mahalanobis distance to the Gaussian below this [sigma].
     double skinMaxMahalanobis = 3.0;
+    /// Bare forearm (learnt skin): arm pixels within this wider distance
+    /// [sigma] join the skin they are connected to on the arm (hysteresis:
+    /// a forearm in shadow, sensor noise or JPEG blocks fragment the strict
+    /// skin). At most skinMaxMahalanobis: off.
+    double skinGrowMahalanobis = 0.0;
+    /// Learnt skin: each pixel's colour is the mean over this square
+    /// neighbourhood before the skin test [px] (noise, JPEG blocks). <= 1: off.
+    int skinColourBlur_px = 0;
     /// Pixels the skin model needs before it replaces the prior box.
     int minSkinSamples = 500;
     int minPixels = 300;
@@ -224,6 +238,19 @@ class MarkerFreeHandDetector : public HandDetector {
     /// from the background colour by more than minLagColourChange, and
     /// connected to skin on the arm, is hand. 0: off.
     int maxDepthLag_px = 30;
+    /// Motion prior: once minPalmTrack palms (with depth) were accepted, a
+    /// palm that moved across the camera's rays (its pixel shift at its
+    /// depth) farther from the last accepted one than this speed times the
+    /// time between their frames (RgbdFrame::t_s) is refused (no hand
+    /// reported) [m/s]; a demonstrator's hand moves at up to ~1-2 m/s in a
+    /// pick and place. 0: off. Image folders get their timestamps from
+    /// `srp import --fps`: a wrong rate scales this limit.
+    double maxPalmSpeed_mps = 0.0;
+    /// Accepted palms before the motion prior applies [frames].
+    int minPalmTrack = 3;
+    /// After this many refusals in a row the next palm starts a new track
+    /// (the track itself may have been wrong) [frames].
+    int maxPalmRefusals = 3;
     /// That colour change: sum of |BGR| changes [8-bit units] (a dark hand
     /// over a bright wall: 150-300; a shadow moving on the wall beside the
     /// demonstrator: below ~90).
@@ -314,7 +341,8 @@ class MarkerFreeHandDetector : public HandDetector {
   HandObservation placePalm(const rawlog::RgbdFrame& frame, const Anchor& a, const HandBlob& hand,
                             const Eigen::Vector2d& handMean, int armArea);
   /// Skin pixels: the learnt model when `learnt` and there is one, else the prior box.
-  cv::Mat skinMask(const cv::Mat& colour_bgr8, bool learnt) const;
+  /// `maxMahalanobis` > 0: this threshold instead of skinMaxMahalanobis.
+  cv::Mat skinMask(const cv::Mat& colour_bgr8, bool learnt, double maxMahalanobis = 0.0) const;
   /// Adds the (Cr, Cb) of the foreground pixels inside the prior box.
   void accumulateSkin(const cv::Mat& colour_bgr8, const cv::Mat& foreground, int step);
   void fitSkin();
@@ -338,6 +366,10 @@ class MarkerFreeHandDetector : public HandDetector {
   double lastDepth_m_ = 0.0;  ///< last measured depth of the palm's visible back
   int lastDepthFrame_ = 0;    ///< the frameCount_ it was measured in
   int frameCount_ = 0;        ///< frames seen
+  Eigen::Vector2d lastPalm_px_ = Eigen::Vector2d::Zero();  ///< last accepted palm with depth
+  double lastPalmT_s_ = 0.0;  ///< its frame's timestamp
+  int palmTrack_ = 0;         ///< palms accepted since the track (re)started
+  int palmRefusals_ = 0;      ///< palms refused in a row
 };
 
 }  // namespace srp::perception

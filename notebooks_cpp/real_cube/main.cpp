@@ -88,14 +88,7 @@ namespace {
 
 std::string folder() { return std::string(SRP_DATASETS_DIR) + "/real/visp-rbt-cube"; }
 
-core::Pose3 poseFromRows(const nlohmann::json& m) {
-  core::Pose3 X = core::Pose3::Identity();
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) X.linear()(r, c) = m[r][c].get<double>();
-    X.translation()[r] = m[r][3].get<double>();
-  }
-  return X;
-}
+using notebook::board::poseFromRows;
 
 struct Camera {
   double fx, fy, cx, cy;

@@ -30,6 +30,29 @@ Key vertexKey(const Eigen::Vector3d& p) {
   return {std::llround(p.x() * 1e7), std::llround(p.y() * 1e7), std::llround(p.z() * 1e7)};
 }
 
+/// The mesh's triangles over its unique vertices (welded at 0.1 um), without
+/// triangles that weld to fewer than three vertices.
+struct WeldedMesh {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<int, 3>> triangles;
+};
+
+WeldedMesh weldVertices(const kb::TriangleMesh& mesh) {
+  WeldedMesh out;
+  std::map<Key, int> index;
+  for (const auto& t : mesh.triangles()) {
+    std::array<int, 3> ids{};
+    for (int k = 0; k < 3; ++k) {
+      const auto [it, added] = index.emplace(vertexKey(t[k]), static_cast<int>(out.vertices.size()));
+      if (added) out.vertices.push_back(t[k]);
+      ids[k] = it->second;
+    }
+    if (ids[0] == ids[1] || ids[1] == ids[2] || ids[0] == ids[2]) continue;  // degenerate
+    out.triangles.push_back(ids);
+  }
+  return out;
+}
+
 vpHomogeneousMatrix toVisp(const core::Pose3& X) {
   vpHomogeneousMatrix M;
   for (int r = 0; r < 3; ++r) {
@@ -51,20 +74,9 @@ core::Pose3 fromVisp(const vpHomogeneousMatrix& M) {
 }  // namespace
 
 std::string ModelBasedTracker::caoModel(const kb::TriangleMesh& mesh) {
-  // Unique vertices; triangles as vertex indices.
-  std::map<Key, int> index;
-  std::vector<Eigen::Vector3d> vertices;
-  std::vector<std::array<int, 3>> tris;
-  for (const auto& t : mesh.triangles()) {
-    std::array<int, 3> ids{};
-    for (int k = 0; k < 3; ++k) {
-      const auto [it, added] = index.emplace(vertexKey(t[k]), static_cast<int>(vertices.size()));
-      if (added) vertices.push_back(t[k]);
-      ids[k] = it->second;
-    }
-    if (ids[0] == ids[1] || ids[1] == ids[2] || ids[0] == ids[2]) continue;  // degenerate
-    tris.push_back(ids);
-  }
+  const WeldedMesh welded = weldVertices(mesh);
+  const auto& vertices = welded.vertices;
+  const auto& tris = welded.triangles;
   // Coplanar edge-connected triangles become one polygon when their boundary
   // is a single loop (no hole), so that the edge tracker does not see the
   // diagonals of a tessellated face and KLT gets whole faces.
@@ -150,17 +162,12 @@ struct CreaseEdge {
 };
 
 std::vector<CreaseEdge> creaseEdges(const kb::TriangleMesh& mesh, double creaseAngle_rad) {
-  std::map<Key, int> index;
-  std::vector<Eigen::Vector3d> vertices;
+  const WeldedMesh welded = weldVertices(mesh);
+  const auto& vertices = welded.vertices;
+  const auto& tris = welded.triangles;
   std::map<std::pair<int, int>, std::vector<Eigen::Vector3d>> normals;
-  for (const auto& t : mesh.triangles()) {
-    std::array<int, 3> ids{};
-    for (int k = 0; k < 3; ++k) {
-      const auto [it, added] = index.emplace(vertexKey(t[k]), static_cast<int>(vertices.size()));
-      if (added) vertices.push_back(t[k]);
-      ids[k] = it->second;
-    }
-    const Eigen::Vector3d n = (t[1] - t[0]).cross(t[2] - t[0]);
+  for (const auto& ids : tris) {
+    const Eigen::Vector3d n = (vertices[ids[1]] - vertices[ids[0]]).cross(vertices[ids[2]] - vertices[ids[0]]);
     if (n.norm() < 1e-12) continue;
     for (int k = 0; k < 3; ++k)
       normals[{std::min(ids[k], ids[(k + 1) % 3]), std::max(ids[k], ids[(k + 1) % 3])}].push_back(n.normalized());

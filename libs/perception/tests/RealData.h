@@ -13,12 +13,7 @@ namespace srp::perception::testing {
 inline std::string rbtFolder() { return std::string(SRP_DATASETS_DIR) + "/real/visp-rbt-cube"; }
 
 inline core::Pose3 poseFromRows(const nlohmann::json& m) {
-  core::Pose3 X = core::Pose3::Identity();
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) X.linear()(r, c) = m[r][c].get<double>();
-    X.translation()[r] = m[r][3].get<double>();
-  }
-  return X;
+  return core::poseFromJson(nlohmann::json{{"matrix", m}}, "4x4 row-major pose");
 }
 
 /// The stored board pose of every frame (X_camera_board).

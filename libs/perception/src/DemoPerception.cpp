@@ -261,6 +261,15 @@ void DemoPerceiver::Impl::mergeTracked(const rawlog::RgbdFrame& f, const std::ma
 
 DemoPerceiver::DemoPerceiver(const core::ObjectCatalogue& catalogue, const PerceptionOptions& options)
     : impl_(std::make_unique<Impl>(catalogue, options)) {
+  for (const auto& [name, share] : {std::make_pair("mbtMinDetectionVisibleFraction", options.mbtMinDetectionVisibleFraction),
+                                    std::make_pair("mbtMinDetectionSupport", options.mbtMinDetectionSupport)})
+    if (!(share >= 0.0 && share <= 1.0))
+      throw core::InvalidInputError("perception options: " + std::string(name) + " = " + std::to_string(share) +
+                                    " is a share of the model's samples; give a value in [0, 1] (0 = no gate)");
+  if (!(options.mbtOccluderMargin_m >= 0.0))
+    throw core::InvalidInputError("perception options: mbtOccluderMargin_m = " +
+                                  std::to_string(options.mbtOccluderMargin_m) +
+                                  " must be a distance >= 0 [m] (depth this much nearer than the model hides it)");
   // Objects of interest: the plan's, else every class (moving).
   impl_->plan = options.plan;
   if (impl_->plan.empty())

@@ -88,6 +88,8 @@ struct DemoPerceiver::Impl {
   std::map<std::string, std::unique_ptr<ModelBasedTracker>> mbt;  // per moving class, when tracking with ViSP
   // Per moving class, this frame: the pose ViSP tracked but the depth did not confirm (mbtCompareBeforeReinit).
   std::map<std::string, core::Pose3> unconfirmed;
+  // Per moving class: the last pose the depth confirmed (tracked, or the one the tracker started from).
+  std::map<std::string, core::Pose3> lastConfirmed;
   std::optional<rawlog::RgbdFrame> first;  // images released: only size and intrinsics are kept
   std::optional<Plane> support;
   std::vector<int> frameIndex;
@@ -103,7 +105,43 @@ struct DemoPerceiver::Impl {
   std::map<std::string, ObjectDetection> trackParts(const rawlog::RgbdFrame& f);
   void mergeTracked(const rawlog::RgbdFrame& f, const std::map<std::string, ObjectDetection>& tracked,
                     std::vector<ObjectDetection>& detections);
+  bool visibleEnough(const rawlog::RgbdFrame& f, const ObjectPoseFitter& fitter, const core::Pose3& X_camera_object,
+                     const std::string& key) const;
 };
+
+/// The re-initialisation gate (PerceptionOptions::mbtMinDetectionVisibleFraction,
+/// mbtMinDetectionSupport): is the model at X_camera_object mostly in view
+/// and in the depth image?
+bool DemoPerceiver::Impl::visibleEnough(const rawlog::RgbdFrame& f, const ObjectPoseFitter& fitter,
+                                        const core::Pose3& X_camera_object, const std::string& key) const {
+  const auto& o = options;
+  if (o.mbtMinDetectionVisibleFraction <= 0.0 && o.mbtMinDetectionSupport <= 0.0 && !debug) return true;
+  const auto& k = f.intrinsics;
+  const auto& surface = fitter.model().surface;
+  const double inlierTol_m = o.objects.fit.inlierTol_m;
+  const std::size_t step = std::max<std::size_t>(1, surface.size() / 2000);
+  int facing = 0, hidden = 0, supported = 0;
+  for (std::size_t i = 0; i < surface.size(); i += step) {
+    const Eigen::Vector3d p = X_camera_object * surface[i].p_m;
+    const Eigen::Vector3d n = X_camera_object.linear() * surface[i].n;
+    if (p.z() <= 0 || n.dot(p.normalized()) > -0.15) continue;  // back-facing or grazing (as surfaceEvidence)
+    const int u = static_cast<int>(std::lround(k.fx_px * p.x() / p.z() + k.cx_px));
+    const int v = static_cast<int>(std::lround(k.fy_px * p.y() / p.z() + k.cy_px));
+    if (u < 0 || v < 0 || u >= f.depth_m.cols || v >= f.depth_m.rows) continue;
+    ++facing;
+    const float z = f.depth_m.at<float>(v, u);
+    if (!(z > 0.f)) continue;  // no depth: neither hidden nor supported
+    if (z < p.z() - o.mbtOccluderMargin_m) ++hidden;
+    else if (std::abs(z - p.z()) < inlierTol_m) ++supported;
+  }
+  const double visible = facing > 0 ? 1.0 - static_cast<double>(hidden) / facing : 0.0;
+  const double support = facing > 0 ? static_cast<double>(supported) / facing : 0.0;
+  const bool ok = visible >= o.mbtMinDetectionVisibleFraction && support >= o.mbtMinDetectionSupport;
+  if (debug)
+    std::fprintf(stderr, "frame %d: %s (re)initialisation gate: %d samples, visible %.2f, supported %.2f: %s\n",
+                 f.index, key.c_str(), facing, visible, support, ok ? "used" : "rejected");
+  return ok;
+}
 
 /// Moving classes followed by ViSP's model-based tracker, before detection:
 /// the pose of each class whose tracker is running and not lost this frame.
@@ -159,6 +197,7 @@ std::map<std::string, ObjectDetection> DemoPerceiver::Impl::trackParts(const raw
     d.confidence = coverage;
     d.p_camera_median_m = r.X_camera_mesh.translation();
     out[p.key()] = d;
+    m.lastConfirmed[p.key()] = r.X_camera_mesh;
   }
   return out;
 }
@@ -196,17 +235,41 @@ void DemoPerceiver::Impl::mergeTracked(const rawlog::RgbdFrame& f, const std::ma
         detected->p_camera_median_m = unconfirmed->second.translation();
       }
     }
+    // The gate: neither the pose that would start the tracker nor the part's
+    // last confirmed place may be mostly hidden behind nearer depth (a part
+    // behind a passing hand: the detector then takes another object, or the
+    // few pixels of the part still in view).
+    const auto last = m.lastConfirmed.find(p.key());
+    if (detected != detections.end() &&
+        ((last != m.lastConfirmed.end() && !visibleEnough(f, *fitter, last->second, p.key() + " last place")) ||
+         !visibleEnough(f, *fitter, detected->X_camera_object, p.key()))) {
+      // Reported not detected (every detection of the class: the detector may report it on several segments).
+      detections.erase(std::remove_if(detections.begin(), detections.end(),
+                                      [&](const ObjectDetection& d) { return d.key == p.key(); }),
+                       detections.end());
+      detected = detections.end();
+    }
     if (detected == detections.end()) {
       tracker.reset();  // lost, nothing detected: a new tracker from the next detection
       continue;
     }
     if (!tracker) tracker = std::make_unique<ModelBasedTracker>(fitter->model().mesh, f.intrinsics, m.options.mbt);
     tracker->initialise(f, detected->X_camera_object);
+    m.lastConfirmed[p.key()] = detected->X_camera_object;
   }
 }
 
 DemoPerceiver::DemoPerceiver(const core::ObjectCatalogue& catalogue, const PerceptionOptions& options)
     : impl_(std::make_unique<Impl>(catalogue, options)) {
+  for (const auto& [name, share] : {std::make_pair("mbtMinDetectionVisibleFraction", options.mbtMinDetectionVisibleFraction),
+                                    std::make_pair("mbtMinDetectionSupport", options.mbtMinDetectionSupport)})
+    if (!(share >= 0.0 && share <= 1.0))
+      throw core::InvalidInputError("perception options: " + std::string(name) + " = " + std::to_string(share) +
+                                    " is a share of the model's samples; give a value in [0, 1] (0 = no gate)");
+  if (!(options.mbtOccluderMargin_m >= 0.0))
+    throw core::InvalidInputError("perception options: mbtOccluderMargin_m = " +
+                                  std::to_string(options.mbtOccluderMargin_m) +
+                                  " must be a distance >= 0 [m] (depth this much nearer than the model hides it)");
   // Objects of interest: the plan's, else every class (moving).
   impl_->plan = options.plan;
   if (impl_->plan.empty())

@@ -66,6 +66,22 @@ TEST(DemoPerception, HandNeverSeenIsAnErrorSayingSo) {
   }
 }
 
+TEST(DemoPerception, RejectsBadReinitialisationGateOptions) {
+  const auto frames = testing::handFrames(3, 10);
+  for (auto bad : {+[](PerceptionOptions& o) { o.mbtMinDetectionVisibleFraction = 1.5; },
+                   +[](PerceptionOptions& o) { o.mbtMinDetectionSupport = -0.1; },
+                   +[](PerceptionOptions& o) { o.mbtOccluderMargin_m = -0.01; }}) {
+    PerceptionOptions o = markerFreeOptions();
+    bad(o);
+    try {
+      perceiveFrames(frames, catalogue(), o);
+      FAIL() << "no error";
+    } catch (const core::InvalidInputError& e) {
+      EXPECT_NE(std::string(e.what()).find("mbt"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(DemoPerception, UnreadableRawlogIsAFileError) {
   EXPECT_THROW(perceiveRawlog(tempPath("missing.rawlog"), catalogue(), markerFreeOptions()), core::FileError);
   const std::string garbage = tempPath("garbage.rawlog");

@@ -206,6 +206,16 @@ core::ObjectCatalogue* RealCubeStress::catalogue_ = nullptr;
 PerceptionOptions session7(PerceptionOptions o) {
   o.mbtDepthShiftTolerance_m = 0.0;
   o.mbtCompareBeforeReinit = false;
+  o.mbtMinDetectionVisibleFraction = 0.0;
+  o.mbtMinDetectionSupport = 0.0;
+  return o;
+}
+
+/// Session 8 before the re-initialisation gate: any detection (or kept
+/// tracked pose) re-initialises the tracker, however hidden.
+PerceptionOptions noGate(PerceptionOptions o) {
+  o.mbtMinDetectionVisibleFraction = 0.0;
+  o.mbtMinDetectionSupport = 0.0;
   return o;
 }
 
@@ -214,16 +224,16 @@ PerceptionOptions session7(PerceptionOptions o) {
 // scene-derived pose in every frame where the cube is in view; the board
 // figures are printed (that reference is 8-21 mm off in frames 10-12, 16-21).
 // Reached (README "session 8"): worst 7.1 mm (reversed), every other variant
-// <= 5.9 mm; hand passing: 1 of the 4 hidden frames reports a wrong pose
-// (frame 11: the detector takes another object 21 cm away while the cube is
-// hidden). "Depth out of step" is the test that a re-initialisation does not
+// <= 5.9 mm; hand passing: no hidden frame reports a wrong pose (before the
+// re-initialisation gate, mbtMinDetectionVisibleFraction, frame 11 did: the
+// detector took another object 21 cm away while the cube was hidden). "Depth out of step" is the test that a re-initialisation does not
 // take a worse detection: in frames 15-16 the depth is shifted 40 px (3 cm),
 // the depth check fails on the (right) tracked pose and the frame's detection,
 // made on that depth, is 3 cm off; re-initialising from it (session 7's
 // handling) puts frames 15-16 29.6 mm off, the colour comparison keeps the
 // tracked pose (worst 5.6 mm).
 constexpr double kMaxWorstToScene_m = 0.008;
-constexpr int kMaxWrongWhileHidden = 1;
+constexpr int kMaxWrongWhileHidden = 0;  // with the gate; 1 without (RealCubeStress.GateStopsAHiddenCubeBeingDetected)
 // Every third frame (3x the apparent motion): worst to the scene-derived pose 5.2 mm.
 constexpr double kMaxWorstToSceneEveryThird_m = 0.006;
 
@@ -245,6 +255,24 @@ TEST_F(RealCubeStress, DevelopmentVariantsStayOnTheSceneDerivedPose) {
   }
 }
 
+// The re-initialisation gate (PerceptionOptions::mbtMinDetectionVisibleFraction):
+// while the synthetic hand hides the cube (dev frames 10-13), no detection
+// more than 1 cm off re-initialises the tracker; without the gate frame 11
+// takes another object 21 cm away. The visible frames keep every detection.
+TEST_F(RealCubeStress, GateStopsAHiddenCubeBeingDetected) {
+  const auto all = variants(0, 29);
+  const auto v = std::find_if(all.begin(), all.end(), [](const Variant& x) { return !x.occluded.empty(); });
+  ASSERT_NE(v, all.end());
+  const Figures gated = run(*v, shippedOptions());
+  const Figures ungated = run(*v, noGate(shippedOptions()));
+  report("defaults (gate)", v->name, gated);
+  report("no gate", v->name, ungated);
+  EXPECT_LE(gated.wrongWhileHidden, kMaxWrongWhileHidden);
+  EXPECT_GT(ungated.wrongWhileHidden, kMaxWrongWhileHidden) << "the variant no longer stresses the gate";
+  EXPECT_EQ(gated.detected, gated.frames);
+  EXPECT_EQ(gated.withinScene, gated.frames);
+}
+
 // Exploration (prints only; README tables): the loss handling of session 7
 // against this session's on the variants of frames 0-29, or of frames 30-49
 // (own check) with SRP_CUBE_STRESS_RANGE=own. SRP_CUBE_STRESS_VARIANT=<part
@@ -258,7 +286,14 @@ TEST_F(RealCubeStress, DISABLED_ExploreVariants) {
   o = session7(shippedOptions());
   o.mbtDepthShiftTolerance_m = 0.005;
   configs.emplace_back("shift 5 mm only", o);
-  configs.emplace_back("defaults (shift 5 + compare)", shippedOptions());
+  configs.emplace_back("no gate (shift 5 + compare)", noGate(shippedOptions()));
+  configs.emplace_back("defaults (+ gate)", shippedOptions());
+  if (std::getenv("SRP_CUBE_STRESS_GATE")) {  // "<visible fraction>,<support>" (exploration)
+    o = shippedOptions();
+    std::sscanf(std::getenv("SRP_CUBE_STRESS_GATE"), "%lf,%lf", &o.mbtMinDetectionVisibleFraction,
+                &o.mbtMinDetectionSupport);
+    configs.emplace_back("gate " + std::string(std::getenv("SRP_CUBE_STRESS_GATE")), o);
+  }
   if (std::getenv("SRP_CUBE_STRESS_KEEP_MIN")) {
     o = shippedOptions();
     o.mbtKeepMinCoverage = std::atof(std::getenv("SRP_CUBE_STRESS_KEEP_MIN"));

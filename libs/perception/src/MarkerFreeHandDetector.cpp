@@ -126,6 +126,8 @@ MarkerFreeHandDetector::MarkerFreeHandDetector(const Options& options) : options
   core::require(options.skinLumaFloorFraction >= 0.0 && options.skinLumaFloorFraction < 1.0,
                 "MarkerFreeHandDetector: skinLumaFloorFraction must be in [0, 1) (a share of the skin's luma; 0: "
                 "the fixed skinMinLuma)");
+  core::require(options.minSkinReach_m >= 0.0,
+                "MarkerFreeHandDetector: minSkinReach_m must be >= 0 m (0: skin near the body's entry is not refused)");
   core::require(options.maxPalmSpeed_mps >= 0.0 && options.minPalmTrack >= 1 && options.maxPalmRefusals >= 0,
                 "MarkerFreeHandDetector: maxPalmSpeed_mps must be >= 0 m/s (0: no motion prior), minPalmTrack >= 1 "
                 "and maxPalmRefusals >= 0");
@@ -532,7 +534,12 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   hand.pxPerM = frame.intrinsics.fx_px / hand.z_m;
 
   // ---- the palm's anchor: far end of a bare forearm, else the cuff, else the fingertips
-  std::optional<Anchor> anchor = bareForearmAnchor(frame, arm, entry, hand);
+  bool refused = false;
+  std::optional<Anchor> anchor = bareForearmAnchor(frame, arm, entry, hand, refused);
+  if (refused) {
+    if (trace) std::fprintf(stderr, "frame %d: skin only near the body's entry, no palm\n", frame.index);
+    return std::nullopt;
+  }
   if (!anchor) anchor = cuffAnchor(hand.mask, sleeve, entry);
   if (!anchor) anchor = fingertipAnchor(hand.mask, entry, handMean, handAxis->dir, handAxis->elongated);
   geometry_.axis = anchor->dir;
@@ -737,7 +744,7 @@ cv::Mat MarkerFreeHandDetector::sleeveMask(const cv::Mat& arm, const cv::Mat& ha
 }
 
 std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::bareForearmAnchor(
-    const rawlog::RgbdFrame& frame, const cv::Mat& arm, const Eigen::Vector2d& entry, HandBlob& hand) {
+    const rawlog::RgbdFrame& frame, const cv::Mat& arm, const Eigen::Vector2d& entry, HandBlob& hand, bool& refused) {
   // Bare forearm: the skin component that reaches farthest from the body
   // (see farthestSkinComponent; the largest when the geodesic is off), when it
   // is longer than a hand (skin from the elbow or a short sleeve to the
@@ -751,8 +758,9 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::bareForear
       best = l;
       bestArea = cs.at<int>(l, cv::CC_STAT_AREA);
     }
-  if (options_.geodesicStep_px > 0 && nc > 2) {
-    const int far = farthestSkinComponent(arm | hand.mask, cl, nc, cs);
+  int reachCells = -1, bodyReachCells = -1;
+  if (options_.geodesicStep_px > 0 && (nc > 2 || options_.minSkinReach_m > 0.0)) {
+    const int far = farthestSkinComponent(arm | hand.mask, cl, nc, cs, &reachCells, &bodyReachCells);
     if (far > 0) {
       best = far;
       bestArea = cs.at<int>(far, cv::CC_STAT_AREA);
@@ -796,6 +804,18 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::bareForear
   const double length3d_m = (endPoint(sMax) - endPoint(sMin)).norm();
   if (std::getenv("SRP_HAND_TRACE")) std::fprintf(stderr, "  3D length %.3f m\n", length3d_m);
   if (!(length3d_m > options_.maxHandLength_m || bareForearms_)) return std::nullopt;
+  // The hand is the arm's far end over the workspace: skin that reaches no
+  // farther than minSkinReach_m from where the body enters the view (along
+  // the body) is the face, the neck or the shoulder, with the forearm's skin
+  // lost (dark light): no palm rather than one on the head.
+  const double reach_m = reachCells >= 0 ? reachCells * options_.geodesicStep_px / compPxPerM : -1.0;
+  if (std::getenv("SRP_HAND_TRACE"))
+    std::fprintf(stderr, "frame %d: skin reach %.3f m (%d cells), body reach %d cells\n", frame.index, reach_m,
+                 reachCells, bodyReachCells);
+  if (options_.minSkinReach_m > 0.0 && reachCells >= 0 && reach_m < options_.minSkinReach_m) {
+    refused = true;
+    return std::nullopt;
+  }
   // The hand's own axis and centre line: the last maxHandLength_m.
   const double from = sMax - options_.maxHandLength_m * compPxPerM;
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
@@ -829,7 +849,7 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::bareForear
 }
 
 int MarkerFreeHandDetector::farthestSkinComponent(const cv::Mat& region, const cv::Mat& labels, int n,
-                                                  const cv::Mat& stats) const {
+                                                  const cv::Mat& stats, int* reachCells, int* bodyReachCells) const {
   // Geodesic distance inside the body's foreground (arm and hand) from where
   // it enters the view (the border zone), on a grid of geodesicStep_px
   // (a cell belongs to the region when any of its pixels does; 8-neighbour
@@ -882,6 +902,8 @@ int MarkerFreeHandDetector::farthestSkinComponent(const cv::Mat& region, const c
     if (stats.at<int>(l, cv::CC_STAT_AREA) < options_.minHandPixels || reach[static_cast<std::size_t>(l)] < 0) continue;
     if (best < 0 || reach[static_cast<std::size_t>(l)] > reach[static_cast<std::size_t>(best)]) best = l;
   }
+  if (reachCells) *reachCells = best > 0 ? reach[static_cast<std::size_t>(best)] : -1;
+  if (bodyReachCells) *bodyReachCells = *std::max_element(dist.begin(), dist.end());
   if (std::getenv("SRP_HAND_TRACE"))
     for (int l = 1; l < n; ++l)
       std::fprintf(stderr, "  skin component %d: %d px, reach %d cells%s\n", l, stats.at<int>(l, cv::CC_STAT_AREA),

@@ -161,6 +161,9 @@ TEST(MarkerFreeHandDetector, RejectsBadOptions) {
   o = {};
   o.maxPalmSpeed_mps = -1.0;
   EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
+  o = {};
+  o.minSkinReach_m = -0.1;
+  EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
 }
 
 // ---- a real demonstrator -------------------------------------------------

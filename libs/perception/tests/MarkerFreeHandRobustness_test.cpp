@@ -43,7 +43,8 @@ MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                    {"skinGrowMahalanobis", &o.skinGrowMahalanobis},
                                    {"skinLumaFloorFraction", &o.skinLumaFloorFraction},
                                    {"skinNoiseLuma", &o.skinNoiseLuma},
-                                   {"maxPalmSpeed_mps", &o.maxPalmSpeed_mps}};
+                                   {"maxPalmSpeed_mps", &o.maxPalmSpeed_mps},
+                                   {"minSkinReach_m", &o.minSkinReach_m}};
   std::map<std::string, int*> i{{"holeColourChange", &o.holeColourChange},
                                 {"skinMinLuma", &o.skinMinLuma},
                                 {"maxDepthLag_px", &o.maxDepthLag_px},
@@ -148,11 +149,17 @@ TEST(MarkerFreeHandRobustness, Hrt1UnderPerturbations) {
   constexpr double kMinRate = 0.90;           // issue 17's acceptance, per perturbation and recording
   constexpr double kMinEdgeHolesRate = 0.80;  // reached 35/42 = 83 % (task2), 34/36 = 94 % (task3)
   constexpr double kMinPooledRate = 0.98;     // reached 1549/1560 = 99.3 % (with the gain 0.6 check row)
+  // No palm on the demonstrator's head or torso under any perturbation (the
+  // gain 0.6 check included): in these recordings the head lies ~250-300 px
+  // from the hand, the torso farther; reached worst 86.3 px (warm white
+  // balance, task3 frame 17: on the toy, less than a hand length away).
+  constexpr double kMaxPalmError_px = 120.0;
   const auto scores = table(optionsFromEnvironment());
   int within = 0, labelled = 0;
   for (const auto& [key, s] : scores) {
     within += s.within;
     labelled += s.labelled;
+    EXPECT_LE(s.worst_px, kMaxPalmError_px) << key.first << " on " << key.second << ": a palm off the hand";
     const double minRate = key.first.find("edge holes") != std::string::npos ? kMinEdgeHolesRate : kMinRate;
     EXPECT_GE(s.rate(), minRate) << key.first << " on " << key.second << ": " << s.within << "/" << s.labelled;
   }

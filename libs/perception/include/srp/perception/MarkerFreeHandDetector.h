@@ -181,6 +181,12 @@ class MarkerFreeHandDetector : public HandDetector {
     /// body enters; the hand is the far end of the arm over the workspace).
     /// 0: the largest skin component instead.
     int geodesicStep_px = 4;
+    /// Bare forearm: the skin component taken for the forearm and hand must
+    /// reach at least this far from where the body enters the view, along
+    /// that geodesic (at the skin's depth) [m]; else the frame reports no palm
+    /// (the face, neck or shoulder near the body's entry, the forearm's skin
+    /// lost in dark light). 0: off. Needs geodesicStep_px > 0.
+    double minSkinReach_m = 0.10;
     /// Diameter of the disc that opens (de-speckles) the foreground and the
     /// skin masks at full resolution [px].
     int openDiameter_px = 5;
@@ -326,12 +332,17 @@ class MarkerFreeHandDetector : public HandDetector {
   /// Bare forearm: the largest skin component, when longer than a hand (or
   /// the recording shows bare forearms), ends in the hand at its far end.
   /// Sets geometry_ and replaces `hand` by that component.
+  /// `refused`: set when the skin found lies near where the body enters
+  /// (minSkinReach_m): the frame reports no palm.
   std::optional<Anchor> bareForearmAnchor(const rawlog::RgbdFrame& frame, const cv::Mat& arm, const Eigen::Vector2d& entry,
-                                          HandBlob& hand);
+                                          HandBlob& hand, bool& refused);
   /// The label (of `labels`, n labels, their `stats`) of the skin component
   /// of at least minHandPixels that reaches farthest from the border zone
   /// along the geodesic inside `region`; -1 when the region meets no border.
-  int farthestSkinComponent(const cv::Mat& region, const cv::Mat& labels, int n, const cv::Mat& stats) const;
+  /// `reachCells`, `bodyReachCells` (optional): that component's and the
+  /// region's farthest geodesic distance [cells of geodesicStep_px].
+  int farthestSkinComponent(const cv::Mat& region, const cv::Mat& labels, int n, const cv::Mat& stats,
+                            int* reachCells = nullptr, int* bodyReachCells = nullptr) const;
   /// Glove and sleeve: the cuff line and the arm axis (nullopt: no cuff).
   std::optional<Anchor> cuffAnchor(const cv::Mat& hand, const cv::Mat& sleeve, const Eigen::Vector2d& entry);
   /// No cuff: back from the fingertips along the hand's axis.

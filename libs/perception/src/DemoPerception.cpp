@@ -116,30 +116,14 @@ bool DemoPerceiver::Impl::visibleEnough(const rawlog::RgbdFrame& f, const Object
                                         const core::Pose3& X_camera_object, const std::string& key) const {
   const auto& o = options;
   if (o.mbtMinDetectionVisibleFraction <= 0.0 && o.mbtMinDetectionSupport <= 0.0 && !debug) return true;
-  const auto& k = f.intrinsics;
-  const auto& surface = fitter.model().surface;
-  const double inlierTol_m = o.objects.fit.inlierTol_m;
-  const std::size_t step = std::max<std::size_t>(1, surface.size() / 2000);
-  int facing = 0, hidden = 0, supported = 0;
-  for (std::size_t i = 0; i < surface.size(); i += step) {
-    const Eigen::Vector3d p = X_camera_object * surface[i].p_m;
-    const Eigen::Vector3d n = X_camera_object.linear() * surface[i].n;
-    if (p.z() <= 0 || n.dot(p.normalized()) > -0.15) continue;  // back-facing or grazing (as surfaceEvidence)
-    const int u = static_cast<int>(std::lround(k.fx_px * p.x() / p.z() + k.cx_px));
-    const int v = static_cast<int>(std::lround(k.fy_px * p.y() / p.z() + k.cy_px));
-    if (u < 0 || v < 0 || u >= f.depth_m.cols || v >= f.depth_m.rows) continue;
-    ++facing;
-    const float z = f.depth_m.at<float>(v, u);
-    if (!(z > 0.f)) continue;  // no depth: neither hidden nor supported
-    if (z < p.z() - o.mbtOccluderMargin_m) ++hidden;
-    else if (std::abs(z - p.z()) < inlierTol_m) ++supported;
-  }
-  const double visible = facing > 0 ? 1.0 - static_cast<double>(hidden) / facing : 0.0;
-  const double support = facing > 0 ? static_cast<double>(supported) / facing : 0.0;
+  const ObjectPoseFitter::SurfaceEvidence e =
+      fitter.surfaceEvidenceInDepth(X_camera_object, f.depth_m, f.intrinsics, o.mbtOccluderMargin_m);
+  const double visible = e.inView > 0 ? 1.0 - static_cast<double>(e.occluded) / e.inView : 0.0;
+  const double support = e.inView > 0 ? static_cast<double>(e.supported) / e.inView : 0.0;
   const bool ok = visible >= o.mbtMinDetectionVisibleFraction && support >= o.mbtMinDetectionSupport;
   if (debug)
     std::fprintf(stderr, "frame %d: %s (re)initialisation gate: %d samples, visible %.2f, supported %.2f: %s\n",
-                 f.index, key.c_str(), facing, visible, support, ok ? "used" : "rejected");
+                 f.index, key.c_str(), e.inView, visible, support, ok ? "used" : "rejected");
   return ok;
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <limits>
 
 #include "srp/core/Error.h"
 
@@ -98,27 +99,51 @@ std::vector<core::Pose3> ObjectPoseFitter::symmetricBranches(const core::Pose3& 
 ObjectPoseFitter::ObjectPoseFitter(ObjectPoseFitter&&) noexcept = default;
 ObjectPoseFitter& ObjectPoseFitter::operator=(ObjectPoseFitter&&) noexcept = default;
 
-ObjectPoseFitter::SurfaceEvidence ObjectPoseFitter::surfaceEvidence(const core::Pose3& X_camera_object,
-                                                                    const cv::Mat& cloud,
-                                                                    const CameraModel& camera) const {
-  const auto& k = camera.intrinsics();
-  SurfaceEvidence e;
-  const std::size_t step = std::max<std::size_t>(1, model_.surface.size() / 2000);
-  for (std::size_t i = 0; i < model_.surface.size(); i += step) {
-    const Eigen::Vector3d p = X_camera_object * model_.surface[i].p_m;
-    const Eigen::Vector3d n = X_camera_object.linear() * model_.surface[i].n;
+namespace {
+
+// The model's camera-facing surface samples at X_camera_object, projected
+// and compared with the measured depth depthAt(v, u) [m].
+template <class DepthAt>
+ObjectPoseFitter::SurfaceEvidence surfaceEvidenceOf(const ObjectModel& model, const core::Pose3& X_camera_object,
+                                                    const core::CameraIntrinsics& k, int cols, int rows,
+                                                    double inlierTol_m, double occluderMargin_m, DepthAt depthAt) {
+  ObjectPoseFitter::SurfaceEvidence e;
+  const std::size_t step = std::max<std::size_t>(1, model.surface.size() / 2000);
+  for (std::size_t i = 0; i < model.surface.size(); i += step) {
+    const Eigen::Vector3d p = X_camera_object * model.surface[i].p_m;
+    const Eigen::Vector3d n = X_camera_object.linear() * model.surface[i].n;
     if (p.z() <= 0 || n.dot(p.normalized()) > -0.15) continue;  // back-facing or grazing
     const int u = static_cast<int>(std::lround(k.fx_px * p.x() / p.z() + k.cx_px));
     const int v = static_cast<int>(std::lround(k.fy_px * p.y() / p.z() + k.cy_px));
-    if (u < 0 || v < 0 || u >= cloud.cols || v >= cloud.rows) continue;
-    const float zObs = cloud.at<cv::Vec3f>(v, u)[2];
-    if (zObs <= 0.f) continue;  // no depth: no evidence
+    if (u < 0 || v < 0 || u >= cols || v >= rows) continue;
+    ++e.inView;
+    const float zObs = depthAt(v, u);
+    if (!(zObs > 0.f)) continue;  // no depth: no evidence
     const double dz = zObs - p.z();
-    if (std::abs(dz) < options_.inlierTol_m) ++e.supported;
+    if (dz < -occluderMargin_m) ++e.occluded;
+    else if (std::abs(dz) < inlierTol_m) ++e.supported;
     else if (dz > 0) ++e.seenThrough;  // the camera sees through where the model should be
-    // dz < 0: something in front (occlusion), no evidence
+    // otherwise something in front within the margin: no evidence
   }
   return e;
+}
+
+}  // namespace
+
+ObjectPoseFitter::SurfaceEvidence ObjectPoseFitter::surfaceEvidence(const core::Pose3& X_camera_object,
+                                                                    const cv::Mat& cloud,
+                                                                    const CameraModel& camera) const {
+  return surfaceEvidenceOf(model_, X_camera_object, camera.intrinsics(), cloud.cols, cloud.rows,
+                           options_.inlierTol_m, std::numeric_limits<double>::infinity(),
+                           [&](int v, int u) { return cloud.at<cv::Vec3f>(v, u)[2]; });
+}
+
+ObjectPoseFitter::SurfaceEvidence ObjectPoseFitter::surfaceEvidenceInDepth(const core::Pose3& X_camera_object,
+                                                                           const cv::Mat& depth_m,
+                                                                           const core::CameraIntrinsics& intrinsics,
+                                                                           double occluderMargin_m) const {
+  return surfaceEvidenceOf(model_, X_camera_object, intrinsics, depth_m.cols, depth_m.rows, options_.inlierTol_m,
+                           occluderMargin_m, [&](int v, int u) { return depth_m.at<float>(v, u); });
 }
 
 double ObjectPoseFitter::coverage(const core::Pose3& X_camera_object, const cv::Mat& cloud,

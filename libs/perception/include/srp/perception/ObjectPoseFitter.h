@@ -91,10 +91,17 @@ class ObjectPoseFitter {
   struct SurfaceEvidence {
     int supported = 0;
     int seenThrough = 0;
+    int inView = 0;    ///< camera-facing samples inside the image, with or without depth
+    int occluded = 0;  ///< measured depth nearer than the model by more than the occluder margin
     int total() const { return supported + seenThrough; }
   };
   SurfaceEvidence surfaceEvidence(const core::Pose3& X_camera_object, const cv::Mat& cloud,
                                   const CameraModel& camera) const;
+  /// The same from a depth image [m] (CV_32F, 0 = no depth), with samples
+  /// whose measured depth lies more than occluderMargin_m in front of the
+  /// model counted as `occluded` (checked before support).
+  SurfaceEvidence surfaceEvidenceInDepth(const core::Pose3& X_camera_object, const cv::Mat& depth_m,
+                                         const core::CameraIntrinsics& intrinsics, double occluderMargin_m) const;
 
   /// Fraction of the model surface facing the camera at X_camera_object and
   /// inside the image that the cloud confirms (depth within inlierTol), of

@@ -187,7 +187,7 @@ RetimedTrajectory PathRetimer::retime(const JointTrajectory& trajectory) const {
   if (k <= 1.0) return r;
   r.slowDown = k;
   if (k > options_.maxSlowDown) {
-    r.method = "refused";
+    r.method = RetimedTrajectory::Method::Refused;
     return r;
   }
   const double duration = trajectory.duration_s();
@@ -221,7 +221,7 @@ RetimedTrajectory PathRetimer::retime(const JointTrajectory& trajectory) const {
       for (std::size_t i = 0; i + 1 < knots.size(); ++i)
         r.slowDown = std::max(r.slowDown, (r.trajectory.samples()[i + 1].t_s - r.trajectory.samples()[i].t_s) /
                                               (knots[i + 1].t_s - knots[i].t_s));
-      r.method = "topp";
+      r.method = RetimedTrajectory::Method::Topp;
       return r;
     }
     for (std::size_t m = 0; m < knots.size(); ++m)
@@ -236,7 +236,7 @@ RetimedTrajectory PathRetimer::retime(const JointTrajectory& trajectory) const {
   }
   r.trajectory = JointTrajectory::fromPositions(t, q);
   r.durationRatio = k;
-  r.method = "uniform";
+  r.method = RetimedTrajectory::Method::Uniform;
   return r;
 }
 

@@ -235,7 +235,8 @@ std::optional<std::string> TaskExecutor::planVariant(const CellDescription& scen
     // would need more than maxSlowDown is left as it is and refused by the check.
     RetimedTrajectory retimed = retimer.retime(JointTrajectory::fromPositions(times, qs));
     seg.joints = std::move(retimed.trajectory);
-    if (retimed.method == "topp" || retimed.method == "uniform") seg.slowDown = retimed.slowDown;
+    if (retimed.method == RetimedTrajectory::Method::Topp || retimed.method == RetimedTrajectory::Method::Uniform)
+      seg.slowDown = retimed.slowDown;
     if (auto v = safety_.check(seg.joints, what)) return "safety: " + v->message;
   }
   return std::nullopt;

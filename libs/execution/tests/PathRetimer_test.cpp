@@ -81,7 +81,7 @@ TEST(PathRetimer, SlowsOnlyAroundAShortAccelerationPeak) {
   ASSERT_LT(k, 4.0);
 
   const RetimedTrajectory r = PathRetimer(safety).retime(path);
-  EXPECT_EQ(r.method, "topp");
+  EXPECT_EQ(r.method, RetimedTrajectory::Method::Topp);
   // Whole-path scaling would take k x 4 s (~11.6 s); only the bump's ~0.3 s is slowed here.
   constexpr double kMaxFractionOfUniform = 0.5;
   EXPECT_LE(r.trajectory.duration_s(), kMaxFractionOfUniform * k * path.duration_s())
@@ -136,7 +136,7 @@ TEST(PathRetimer, LeavesAPathWithinTheLimitsAlone) {
   }
   const JointTrajectory path = JointTrajectory::fromPositions(t, q);
   const RetimedTrajectory r = PathRetimer(safety).retime(path);
-  EXPECT_EQ(r.method, "none");
+  EXPECT_EQ(r.method, RetimedTrajectory::Method::None);
   EXPECT_DOUBLE_EQ(r.slowDown, 1.0);
   EXPECT_DOUBLE_EQ(r.trajectory.duration_s(), path.duration_s());
 }
@@ -148,7 +148,7 @@ TEST(PathRetimer, APathNeedingMoreThanTheLargestSlowDownIsNotRetimedAndStaysRefu
   const SafetyChecker safety = checker(limits);
   const JointTrajectory path = slowTurnWithAShortBump();
   const RetimedTrajectory r = PathRetimer(safety).retime(path);
-  EXPECT_EQ(r.method, "refused");
+  EXPECT_EQ(r.method, RetimedTrajectory::Method::Refused);
   EXPECT_GT(r.slowDown, 4.0);
   EXPECT_DOUBLE_EQ(r.trajectory.duration_s(), path.duration_s());
   const auto v = safety.check(r.trajectory, "bump");

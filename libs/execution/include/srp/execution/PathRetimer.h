@@ -49,12 +49,17 @@ struct RetimedTrajectory {
   JointTrajectory trajectory;  ///< the input when it was within the limits or could not be retimed
   /// Largest local slow-down: the most any knot interval is stretched in time
   /// (2 / (sigma_i + sigma_i+1); 1: as planned); for the whole-path fallback the one
-  /// factor; for "refused" the factor the whole path would need.
+  /// factor; for Refused the factor the whole path would need.
   double slowDown = 1.0;
   double durationRatio = 1.0;  ///< retimed duration / planned duration
-  /// "none" (within the limits), "topp" (slowed where the limits bind), "uniform"
-  /// (the whole path slowed by one factor), "refused" (needs more than maxSlowDown).
-  std::string method = "none";
+  /// How the trajectory was timed.
+  enum class Method {
+    None,     ///< within the limits: as planned
+    Topp,     ///< slowed where the limits bind
+    Uniform,  ///< the whole path slowed by one factor
+    Refused,  ///< would need more than maxSlowDown
+  };
+  Method method = Method::None;
 };
 
 class PathRetimer {
@@ -67,7 +72,7 @@ class PathRetimer {
   /// The trajectory slowed where its speed or acceleration ratio (SafetyChecker's
   /// peakVelocityRatio / peakAccelerationRatio) would exceed the margins; unchanged when
   /// it is within them. The result starts and ends at rest (fromPositions) and, unless
-  /// method == "refused", its peak ratios are <= 1 on the replayed spline.
+  /// method == Method::Refused, its peak ratios are <= 1 on the replayed spline.
   RetimedTrajectory retime(const JointTrajectory& trajectory) const;
 
   /// The speed profile sigma_i = dtau/dt at every knot of `trajectory` for speed and

@@ -126,6 +126,10 @@ MarkerFreeHandDetector::MarkerFreeHandDetector(const Options& options) : options
   core::require(options.skinLumaFloorFraction >= 0.0 && options.skinLumaFloorFraction < 1.0,
                 "MarkerFreeHandDetector: skinLumaFloorFraction must be in [0, 1) (a share of the skin's luma; 0: "
                 "the fixed skinMinLuma)");
+  core::require(options.minBackgroundValidFraction >= 0.0 && options.minBackgroundValidFraction <= 1.0 &&
+                    options.backgroundFillDiameter_px >= 0,
+                "MarkerFreeHandDetector: minBackgroundValidFraction must be in [0, 1] (a share of the preview's "
+                "samples; 0: every pixel's own quantile) and backgroundFillDiameter_px >= 0");
   core::require(options.minSkinReach_m >= 0.0,
                 "MarkerFreeHandDetector: minSkinReach_m must be >= 0 m (0: skin near the body's entry is not refused)");
   core::require(options.maxPalmSpeed_mps >= 0.0 && options.minPalmTrack >= 1 && options.maxPalmRefusals >= 0,
@@ -201,17 +205,33 @@ cv::Mat MarkerFreeHandDetector::backgroundFromPreview() {
   const cv::Size size = previewDepth_mm_[0].size();
   cv::Mat background_mm(size, CV_32FC1, cv::Scalar(0));
   std::vector<std::uint16_t> vals;
+  // A pixel with depth in few samples (the shadow band along a static
+  // object's edge) has its quantile set by whatever covered it then (the
+  // demonstrator's arm): its background comes from its neighbours instead.
+  const std::size_t minValid = static_cast<std::size_t>(
+      std::ceil(options_.minBackgroundValidFraction * static_cast<double>(previewDepth_mm_.size())));
+  cv::Mat untrusted(size, CV_8UC1, cv::Scalar(0));
   for (int v = 0; v < size.height; ++v)
     for (int u = 0; u < size.width; ++u) {
       vals.clear();
       for (const auto& d : previewDepth_mm_)
         if (const std::uint16_t z = d.at<std::uint16_t>(v, u); z > 0) vals.push_back(z);
       if (vals.empty()) continue;
+      if (vals.size() < minValid) {
+        untrusted.at<uchar>(v, u) = 255;
+        continue;
+      }
       const auto k = std::min(vals.size() - 1, static_cast<std::size_t>(options_.backgroundPercentile *
                                                                            static_cast<double>(vals.size())));
       std::nth_element(vals.begin(), vals.begin() + static_cast<long>(k), vals.end());
       background_mm.at<float>(v, u) = vals[k];
     }
+  if (options_.backgroundFillDiameter_px > 1 && cv::countNonZero(untrusted) > 0) {
+    // The farthest trusted background nearby (grey dilation; untrusted pixels are 0 here).
+    cv::Mat farthest;
+    cv::dilate(background_mm, farthest, disc(options_.backgroundFillDiameter_px));
+    farthest.copyTo(background_mm, untrusted);
+  }
   background_mm.convertTo(backgroundDepth_m_, CV_32FC1, 1e-3);
   view_ = depthFieldOfView(backgroundDepth_m_, options_.minFieldOfViewValid);
   if (!previewColourSum_.empty())

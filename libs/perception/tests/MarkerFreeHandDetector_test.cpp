@@ -164,6 +164,12 @@ TEST(MarkerFreeHandDetector, RejectsBadOptions) {
   o = {};
   o.minSkinReach_m = -0.1;
   EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
+  o = {};
+  o.minBackgroundValidFraction = 1.5;
+  EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
+  o = {};
+  o.backgroundFillDiameter_px = -1;
+  EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
 }
 
 // ---- a real demonstrator -------------------------------------------------

@@ -44,8 +44,10 @@ MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                    {"skinLumaFloorFraction", &o.skinLumaFloorFraction},
                                    {"skinNoiseLuma", &o.skinNoiseLuma},
                                    {"maxPalmSpeed_mps", &o.maxPalmSpeed_mps},
-                                   {"minSkinReach_m", &o.minSkinReach_m}};
+                                   {"minSkinReach_m", &o.minSkinReach_m},
+                                   {"minBackgroundValidFraction", &o.minBackgroundValidFraction}};
   std::map<std::string, int*> i{{"holeColourChange", &o.holeColourChange},
+                                {"backgroundFillDiameter_px", &o.backgroundFillDiameter_px},
                                 {"skinMinLuma", &o.skinMinLuma},
                                 {"maxDepthLag_px", &o.maxDepthLag_px},
                                 {"minLagColourChange", &o.minLagColourChange},
@@ -141,14 +143,15 @@ std::map<std::pair<std::string, std::string>, PalmScore> table(const MarkerFreeH
 // within-40-px rate under each perturbation a new recording from this camera
 // plausibly brings (light, white balance, compression, noise, depth noise and
 // random holes, the other intrinsics, a camera turned by a few degrees, the
-// scene mirrored, half the frame rate): at least issue 17's 90 % on each
-// recording; under depth edge holes (3 px on each side of every step of more
-// than 5 cm, harsher than this camera's one-sided shadows) the reached level
-// less a label's worth of frames; pooled over everything, the reached level.
+// scene mirrored, half the frame rate, depth edge holes: 3 px on each side of
+// every step of more than 5 cm, harsher than this camera's one-sided shadows):
+// at least issue 17's 90 % on each recording; pooled over everything, the
+// reached level. (Depth edge holes reached 35/42 before the background's
+// sparse-depth pixels were filled from their neighbours,
+// minBackgroundValidFraction: this test failed then.)
 TEST(MarkerFreeHandRobustness, Hrt1UnderPerturbations) {
-  constexpr double kMinRate = 0.90;           // issue 17's acceptance, per perturbation and recording
-  constexpr double kMinEdgeHolesRate = 0.80;  // reached 35/42 = 83 % (task2), 34/36 = 94 % (task3)
-  constexpr double kMinPooledRate = 0.98;     // reached 1549/1560 = 99.3 % (with the gain 0.6 check row)
+  constexpr double kMinRate = 0.90;        // issue 17's acceptance, per perturbation and recording
+  constexpr double kMinPooledRate = 0.99;  // reached 1556/1560 = 99.7 % (with the gain 0.6 check row)
   // No palm on the demonstrator's head or torso under any perturbation (the
   // gain 0.6 check included): in these recordings the head lies ~250-300 px
   // from the hand, the torso farther; reached worst 86.3 px (warm white
@@ -160,8 +163,7 @@ TEST(MarkerFreeHandRobustness, Hrt1UnderPerturbations) {
     within += s.within;
     labelled += s.labelled;
     EXPECT_LE(s.worst_px, kMaxPalmError_px) << key.first << " on " << key.second << ": a palm off the hand";
-    const double minRate = key.first.find("edge holes") != std::string::npos ? kMinEdgeHolesRate : kMinRate;
-    EXPECT_GE(s.rate(), minRate) << key.first << " on " << key.second << ": " << s.within << "/" << s.labelled;
+    EXPECT_GE(s.rate(), kMinRate) << key.first << " on " << key.second << ": " << s.within << "/" << s.labelled;
   }
   ASSERT_GT(labelled, 0);
   EXPECT_GE(static_cast<double>(within) / labelled, kMinPooledRate) << within << "/" << labelled;

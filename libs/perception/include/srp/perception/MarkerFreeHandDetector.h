@@ -99,6 +99,15 @@ class MarkerFreeHandDetector : public HandDetector {
     /// Whole-recording background: at most this many frames are kept,
     /// evenly spread over the recording (memory: 0.6 MB each at 640x480).
     int maxBackgroundSamples = 48;
+    /// Whole-recording background: a pixel with valid depth in fewer than
+    /// this share of the samples (the shadow band a depth sensor leaves along
+    /// a static object's edge, valid only while an arm covers it) takes the
+    /// farthest background of its trusted neighbours within
+    /// backgroundFillDiameter_px instead of its own quantile (which would be
+    /// the arm) [0..1]; none there: no background. 0: off.
+    double minBackgroundValidFraction = 0.4;
+    /// Window of that neighbour fill [px].
+    int backgroundFillDiameter_px = 9;
     /// Foreground: closer than the background by this much [m].
     double minForeground_m = 0.02;
     /// Foreground in a depth hole: sum of |BGR| changes from the background

@@ -217,20 +217,22 @@ cv::Mat MarkerFreeHandDetector::backgroundFromPreview() {
       for (const auto& d : previewDepth_mm_)
         if (const std::uint16_t z = d.at<std::uint16_t>(v, u); z > 0) vals.push_back(z);
       if (vals.empty()) continue;
-      if (vals.size() < minValid) {
-        untrusted.at<uchar>(v, u) = 255;
-        continue;
-      }
+      if (vals.size() < minValid) untrusted.at<uchar>(v, u) = 255;
       const auto k = std::min(vals.size() - 1, static_cast<std::size_t>(options_.backgroundPercentile *
                                                                            static_cast<double>(vals.size())));
       std::nth_element(vals.begin(), vals.begin() + static_cast<long>(k), vals.end());
       background_mm.at<float>(v, u) = vals[k];
     }
   if (options_.backgroundFillDiameter_px > 1 && cv::countNonZero(untrusted) > 0) {
-    // The farthest trusted background nearby (grey dilation; untrusted pixels are 0 here).
-    cv::Mat farthest;
-    cv::dilate(background_mm, farthest, disc(options_.backgroundFillDiameter_px));
-    farthest.copyTo(background_mm, untrusted);
+    // The farthest trusted background nearby (a grey dilation of the trusted
+    // pixels), when it lies behind the pixel's own quantile; with no trusted
+    // pixel nearby (a wide region of sparse depth, e.g. far away) the
+    // pixel's own quantile stays.
+    cv::Mat trusted = background_mm.clone(), farthest;
+    trusted.setTo(0.f, untrusted);
+    cv::dilate(trusted, farthest, disc(options_.backgroundFillDiameter_px));
+    cv::Mat filled = cv::max(background_mm, farthest);
+    filled.copyTo(background_mm, untrusted);
   }
   background_mm.convertTo(backgroundDepth_m_, CV_32FC1, 1e-3);
   view_ = depthFieldOfView(backgroundDepth_m_, options_.minFieldOfViewValid);

@@ -103,9 +103,10 @@ class MarkerFreeHandDetector : public HandDetector {
     /// this share of the samples (the shadow band a depth sensor leaves along
     /// a static object's edge, valid only while an arm covers it) takes the
     /// farthest background of its trusted neighbours within
-    /// backgroundFillDiameter_px instead of its own quantile (which would be
-    /// the arm) [0..1]; none there: no background. 0: off.
-    double minBackgroundValidFraction = 0.4;
+    /// backgroundFillDiameter_px when that lies behind its own quantile
+    /// (which would be the arm); with no trusted neighbour it keeps its own
+    /// [0..1]. 0: off.
+    double minBackgroundValidFraction = 0.5;
     /// Window of that neighbour fill [px].
     int backgroundFillDiameter_px = 9;
     /// Foreground: closer than the background by this much [m].

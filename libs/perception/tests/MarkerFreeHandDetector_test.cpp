@@ -135,6 +135,56 @@ TEST(MarkerFreeHandDetector, DepthHolesOnTheHand) {
   EXPECT_LT((h->palm_px - arm.palm_px).norm(), kPalmPixelTol_px);
 }
 
+// A static object whose outline is a depth shadow (no depth) except while
+// the demonstrator's arm covers it, as a structured-light camera drops depth
+// at steps: in the whole-recording background that band's quantile is the
+// arm (its only valid samples), which cut the hand off at the wrist (HRT1
+// task2 under depth edge holes). minBackgroundValidFraction fills it from its
+// trusted neighbours.
+TEST(MarkerFreeHandDetector, ArmAcrossAStaticObjectsDepthShadow) {
+  const ArmPose arm{{320.0, 300.0}, 90.0 * M_PI / 180, 0.08};  // from the top border; cuff ~104 px above the palm
+  const cv::Rect box(240, 240, 170, 150);  // its top edge crosses the bare wrist
+  constexpr double kBoxTop_m = 0.80;
+  constexpr int kShadow_px = 3;  // on each side of the box's outline
+  constexpr int kFrames = 20, kArmFrom = 14;  // the arm in 6 of 20 frames: the band has depth in 30 % of them
+  cv::Mat band(480, 640, CV_8UC1, cv::Scalar(0));
+  cv::rectangle(band, box, cv::Scalar(255), 2 * kShadow_px);
+  std::vector<rawlog::RgbdFrame> frames;
+  for (int i = 0; i < kFrames; ++i) {
+    auto f = drawnFrame(i, i >= kArmFrom ? std::optional<ArmPose>(arm) : std::nullopt);
+    const cv::Mat armMask = f.depth_m < kBoxTop_m - 0.02;
+    f.colour_bgr8.setTo(kSkinBgr, armMask);  // a bare forearm: the palm is placed from the arm's far end
+    cv::Mat boxMask(480, 640, CV_8UC1, cv::Scalar(0));
+    boxMask(box).setTo(255);
+    boxMask &= ~armMask;
+    f.depth_m.setTo(kBoxTop_m, boxMask);
+    f.colour_bgr8.setTo(cv::Scalar(150, 150, 150), boxMask);
+    f.depth_m.setTo(0.0, band & ~armMask);
+    frames.push_back(f);
+  }
+  // Far-end rule: palmFromFarEnd_m back from the fingertips (0.045 + 0.08 m from the drawn palm centre).
+  const MarkerFreeHandDetector::Options defaults;
+  const Eigen::Vector2d farEndPalm_px =
+      arm.palm_px + camera().fx_px / kHandTop_m * (0.045 + arm.fingerLength_m - defaults.palmFromFarEnd_m) *
+                        Eigen::Vector2d(std::cos(arm.angle_rad), std::sin(arm.angle_rad));
+  constexpr double kFarEndTol_px = 8.0;  // 1 cm at 0.75 m
+  auto run = [&](const MarkerFreeHandDetector::Options& o) {
+    MarkerFreeHandDetector detector(o);
+    for (const auto& f : frames) detector.preview(f);
+    int within = 0;
+    for (const auto& f : frames) {
+      const auto h = detector.detect(f);
+      if (f.index < kArmFrom) EXPECT_FALSE(h.has_value()) << "frame " << f.index << ": no arm in view";
+      else if (h && (h->palm_px - farEndPalm_px).norm() < kFarEndTol_px) ++within;
+    }
+    return within;
+  };
+  EXPECT_EQ(run(defaults), kFrames - kArmFrom);
+  MarkerFreeHandDetector::Options off;
+  off.minBackgroundValidFraction = 0.0;  // each pixel's own quantile: the arm is background on the band
+  EXPECT_EQ(run(off), 0) << "the scene should cut the hand off at the wrist without the fill";
+}
+
 TEST(MarkerFreeHandDetector, EnteringHandFromItsFingertips) {
   MarkerFreeHandDetector detector({});
   for (int i = 0; i < kBackgroundFrames; ++i) detector.detect(drawnFrame(i, std::nullopt));

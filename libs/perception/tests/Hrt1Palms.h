@@ -32,13 +32,21 @@ struct Hrt1Task {
   std::map<int, Eigen::Vector2d> label_px;  ///< frame index -> palm pixel
 };
 
+inline std::string hrt1Root() { return std::string(SRP_DATASETS_DIR) + "/real/hrt1-pick-place"; }
+
+/// Our palm labels of one recording: frame index -> palm pixel (frames with a visible hand).
+inline std::map<int, Eigen::Vector2d> hrt1PalmLabels(const std::string& task) {
+  const auto labels = core::readJsonFile(hrt1Root() + "/palm_labels.json").at("tasks").at(task);
+  std::map<int, Eigen::Vector2d> out;
+  for (const auto& l : labels.at("visible")) out[l[0].get<int>()] = {l[1].get<double>(), l[2].get<double>()};
+  return out;
+}
+
 inline Hrt1Task loadHrt1(const std::string& task) {
-  const std::string root = std::string(SRP_DATASETS_DIR) + "/real/hrt1-pick-place";
-  const auto labels = core::readJsonFile(root + "/palm_labels.json").at("tasks").at(task);
   Hrt1Task t;
   t.name = task;
-  for (const auto& l : labels.at("visible")) t.label_px[l[0].get<int>()] = {l[1].get<double>(), l[2].get<double>()};
-  t.frames = readRgbdFolder(root + "/" + task);
+  t.label_px = hrt1PalmLabels(task);
+  t.frames = readRgbdFolder(hrt1Root() + "/" + task);
   return t;
 }
 

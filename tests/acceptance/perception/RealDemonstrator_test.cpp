@@ -11,39 +11,30 @@
 // recordings perceived with every default class (~5 s each).
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <map>
 #include <string>
 #include <vector>
 
+#include "Hrt1Palms.h"
 #include "srp/calib/RgbdImporter.h"
-#include "srp/core/Json.h"
 #include "srp/core/ObjectCatalogue.h"
 #include "srp/perception/DemoPerception.h"
 
 namespace srp::perception {
 namespace {
 
-constexpr double kPalmTol_px = 40.0;       // issue 17: palm within 40 px of the labelled palm
+using testing::kPalmTol_px;                // issue 17: palm within 40 px of the labelled palm
 constexpr double kMinRate = 0.90;          // issue 17: in >= 90 % of the frames with the hand visible
 constexpr double kMaxPalmError_px = 80.0;  // never on the torso or head (~250-300 px from the hand here)
 
-struct CommandScore {
-  int labelled = 0, within = 0, missed = 0;
-  double worst_px = 0.0;
-  std::vector<double> errors_px;
-};
-
-CommandScore scoreTask(const std::string& task) {
-  const std::string root = std::string(SRP_DATASETS_DIR) + "/real/hrt1-pick-place";
+testing::PalmScore scoreTask(const std::string& task) {
   const std::filesystem::path dir = std::filesystem::path(SRP_BINARY_DIR) / "acceptance_real_demonstrator";
   std::filesystem::create_directories(dir);
   const std::string rawlog = (dir / (task + ".rawlog")).string();
   calib::ImportOptions io;
   io.fps = 10.0;  // HRT1 is about 10 Hz
-  calib::importImageFolder(root + "/" + task, rawlog, io);
+  calib::importImageFolder(testing::hrt1Root() + "/" + task, rawlog, io);
 
   const auto catalogue = core::ObjectCatalogue::load(std::string(SRP_DATASETS_DIR) + "/kb/catalogue.json");
   PerceptionOptions options;
@@ -51,38 +42,33 @@ CommandScore scoreTask(const std::string& task) {
   const PerceptionResult r = perceiveRawlog(rawlog, catalogue, options);
   EXPECT_EQ(r.hand.size(), static_cast<std::size_t>(r.frames));
 
-  std::map<int, Eigen::Vector2d> label_px;
-  const auto labels = core::readJsonFile(root + "/palm_labels.json");  // kept: the loop reads into it
-  for (const auto& l : labels.at("tasks").at(task).at("visible"))
-    label_px[l[0].get<int>()] = {l[1].get<double>(), l[2].get<double>()};
-  CommandScore s;
-  const auto& k = r.intrinsics;
-  for (const auto& [frame, label] : label_px) {
-    ++s.labelled;
-    if (frame >= static_cast<int>(r.hand.size()) || !r.hand[static_cast<std::size_t>(frame)].valid) {
-      ++s.missed;
-      continue;
+  std::vector<testing::RealFrameError> errors;
+  for (const auto& [frame, label] : testing::hrt1PalmLabels(task)) {
+    testing::RealFrameError e;
+    e.frame = frame;
+    e.label_px = label;
+    const bool seen = frame < static_cast<int>(r.hand.size()) && r.hand[static_cast<std::size_t>(frame)].valid;
+    const auto palm_px = seen ? r.intrinsics.project(r.hand[static_cast<std::size_t>(frame)].p_m) : std::nullopt;
+    e.detected = palm_px.has_value();
+    if (palm_px) {
+      e.palm_px = *palm_px;
+      e.error_px = (*palm_px - label).norm();
     }
-    const Eigen::Vector3d p = r.hand[static_cast<std::size_t>(frame)].p_m;
-    const Eigen::Vector2d palm_px(k.fx_px * p.x() / p.z() + k.cx_px, k.fy_px * p.y() / p.z() + k.cy_px);
-    const double e = (palm_px - label).norm();
-    s.errors_px.push_back(e);
-    s.worst_px = std::max(s.worst_px, e);
-    if (e <= kPalmTol_px) ++s.within;
+    errors.push_back(e);
   }
-  std::sort(s.errors_px.begin(), s.errors_px.end());
+  const testing::PalmScore s = testing::score(errors);
   std::printf("[ figures  ] srp perceive --hand marker-free, HRT1 %s: %d/%d frames within %.0f px (%d missed), "
               "median %.1f px, worst %.1f px; hand reported in %d of %d frames\n",
-              task.c_str(), s.within, s.labelled, kPalmTol_px, s.missed,
-              s.errors_px.empty() ? 0.0 : s.errors_px[s.errors_px.size() / 2], s.worst_px, r.handDetected, r.frames);
+              task.c_str(), s.within, s.labelled, kPalmTol_px, s.missed, s.median_px, s.worst_px, r.handDetected,
+              r.frames);
   return s;
 }
 
 TEST(RealDemonstrator, PalmReportedByPerceiveOnImportedHrt1Recordings) {
   for (const std::string task : {"task2", "task3"}) {
-    const CommandScore s = scoreTask(task);
+    const testing::PalmScore s = scoreTask(task);
     ASSERT_GT(s.labelled, 30) << task;
-    EXPECT_GE(static_cast<double>(s.within) / s.labelled, kMinRate) << task << ": " << s.within << "/" << s.labelled;
+    EXPECT_GE(s.rate(), kMinRate) << task << ": " << s.within << "/" << s.labelled;
     EXPECT_LE(s.worst_px, kMaxPalmError_px) << task << ": a reported palm off the hand";
   }
 }

@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "srp/core/Error.h"
+#include "srp/core/OutputFile.h"
 
 namespace srp::core {
 
@@ -23,14 +24,7 @@ nlohmann::json readJsonFile(const std::string& path) {
 }
 
 void writeJsonFile(const std::string& path, const nlohmann::json& j) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp);
-    if (!out) throw FileError(path, "cannot write (is the folder there and writable?)");
-    out << j.dump(2) << '\n';
-    if (!out) throw FileError(path, "write failed (disk full?)");
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw FileError(path, "cannot rename temporary file");
+  writeFileAtomically(path, j.dump(2) + "\n");
 }
 
 const nlohmann::json& requireField(const nlohmann::json& j, const std::string& key,

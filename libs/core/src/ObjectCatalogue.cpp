@@ -64,6 +64,19 @@ ObjectCatalogue ObjectCatalogue::load(const std::string& path) {
       }
       c.wallThickness_m = e.value("wall_thickness_m", 0.0);
       c.mass_kg = meshOnly ? e.value("mass_kg", 0.0) : requireField(e, "mass_kg", ctx).get<double>();
+      if (c.shape == "hull") {
+        const auto& fp = requireField(e, "footprint_m", ctx);
+        if (!fp.is_array() || fp.size() < 3)
+          throw InvalidInputError(ctx + ": field 'footprint_m' must list at least 3 [x, y] points (metres)");
+        for (const auto& q : fp) {
+          if (!q.is_array() || q.size() != 2 || !q[0].is_number() || !q[1].is_number())
+            throw InvalidInputError(ctx + ": field 'footprint_m' must hold [x, y] pairs of numbers (metres)");
+          const Eigen::Vector2d v(q[0].get<double>(), q[1].get<double>());
+          if (!v.allFinite()) throw InvalidInputError(ctx + ": field 'footprint_m' holds a non-finite number");
+          c.footprint_object.push_back(v);
+        }
+      }
+      c.observed = e.value("observed", false);
       if (e.contains("grasp_axis")) c.graspAxis_object = vec3(e.at("grasp_axis"), ctx + " field 'grasp_axis'").normalized();
       classes.push_back(std::move(c));
     }

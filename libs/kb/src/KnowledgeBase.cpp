@@ -12,7 +12,7 @@ namespace srp::kb {
 
 bool hasShapeGenerator(const std::string& shape) {
   return shape == "open_box" || shape == "cuboid" || shape == "star" || shape == "parallelogram" ||
-         shape == "octagon";
+         shape == "octagon" || shape == "hull";
 }
 
 std::vector<BuiltMesh> buildMeshes(const srp::core::ObjectCatalogue& catalogue) {

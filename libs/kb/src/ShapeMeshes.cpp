@@ -99,7 +99,7 @@ std::vector<Eigen::Vector2d> shapeOutline(const std::string& shape, const Eigen:
     p = {{-1.0, -1.0}, {1.0, -1.0}, {1.0, 1.0}, {-1.0, 1.0}};
   } else {
     throw srp::core::InvalidInputError("shapeOutline: unknown shape '" + shape +
-                                       "' (known: cuboid, star, parallelogram, octagon, open_box)");
+                                       "' (known: cuboid, star, parallelogram, octagon, open_box, hull)");
   }
   return fitToBox(p, size_m);
 }
@@ -114,6 +114,10 @@ TriangleMesh makeClassMesh(const srp::core::ObjectClass& c) {
   if (c.shape == "cuboid") {
     const Eigen::Vector3d half(0.5 * c.dimensions_m.x(), 0.5 * c.dimensions_m.y(), 0.0);
     return makeBoxMesh(-half, half + Eigen::Vector3d(0, 0, c.dimensions_m.z()));
+  }
+  if (c.shape == "hull") {
+    srp::core::require(c.footprint_object.size() >= 3, what + ": shape hull needs a footprint of at least 3 points");
+    return makePrismMesh(c.footprint_object, c.dimensions_m.z());
   }
   try {
     return makePrismMesh(shapeOutline(c.shape, c.dimensions_m.head<2>()), c.dimensions_m.z());

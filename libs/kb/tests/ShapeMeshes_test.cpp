@@ -47,6 +47,23 @@ TEST(ShapeMeshes, VolumesMatchClosedForms) {
               kVolumeRelTol * para);
 }
 
+// A part observed in a demonstration: a prism over its measured convex footprint.
+TEST(ShapeMeshes, HullIsThePrismOverItsFootprint) {
+  srp::core::ObjectClass c;
+  c.name = "toy";
+  c.shape = "hull";
+  c.footprint_object = {{-0.05, -0.03}, {0.06, -0.03}, {0.06, 0.04}, {-0.05, 0.04}};  // 0.11 x 0.07 m
+  c.dimensions_m = {0.11, 0.07, 0.2};
+  const auto mesh = srp::kb::makeClassMesh(c);
+  EXPECT_TRUE(mesh.isClosed(1e-12));
+  const double volume = 0.11 * 0.07 * 0.2;
+  EXPECT_NEAR(mesh.volume(), volume, kVolumeRelTol * volume);
+  EXPECT_LT((mesh.bounds().max() - Eigen::Vector3d(0.06, 0.04, 0.2)).norm(), kDimensionTol_m);
+  EXPECT_TRUE(srp::kb::hasShapeGenerator("hull"));
+  c.footprint_object.resize(2);
+  EXPECT_THROW(srp::kb::makeClassMesh(c), srp::core::InvalidInputError);
+}
+
 TEST(ShapeMeshes, UnknownShapeNamesTheClass) {
   srp::core::ObjectClass c;
   c.name = "teapot";

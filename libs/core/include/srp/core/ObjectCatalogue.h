@@ -18,6 +18,11 @@
 ///               "wall_thickness_m": 0.005, "mass_kg": 0.3, "mesh": "meshes/blue_box.stl",
 ///               "grasp_axis": [0, 1, 0], "shape": "open_box"}]}
 /// \endcode
+///
+/// Generator shapes: "cuboid" (a box), "star", "parallelogram", "octagon",
+/// "open_box" (a container: floor and walls of wall_thickness_m), and "hull", a
+/// prism over an explicit convex footprint ("footprint_m"), which is how a part
+/// seen in a demonstration without a CAD file is modelled.
 
 #include <Eigen/Core>
 #include <optional>
@@ -43,6 +48,16 @@ struct ObjectClass {
   double mass_kg = 0.0;    ///< zero for a mesh-only class without "mass_kg" until kb::loadCatalogue estimates it
   std::string meshPath;    ///< absolute (resolved against the catalogue's folder); may not exist yet
   Eigen::Vector3d graspAxis_object = Eigen::Vector3d::UnitY();  ///< gripper closing direction
+  /// Footprint of shape "hull" (a prism from z = 0 to dimensions_m.z()):
+  /// convex polygon in the object frame, counter-clockwise, metres, inside the
+  /// x/y extent of dimensions_m. JSON "footprint_m": [[x, y], ...]. Empty for
+  /// every other shape.
+  std::vector<Eigen::Vector2d> footprint_object;
+  /// True for a class built from what a demonstration showed (no CAD file):
+  /// shape "hull" for a part, "open_box" for a container, measured from the
+  /// observed points; it lives in the task model that observed it, not in the
+  /// catalogue file. JSON "observed": true.
+  bool observed = false;
 };
 
 /// The catalogue: classes by name and id, loaded from JSON with errors naming the field.

@@ -33,7 +33,7 @@ TriangleMesh makeOpenBoxMesh(const Eigen::Vector3d& dimensions_m, double wall_m)
 std::vector<Eigen::Vector2d> shapeOutline(const std::string& shape, const Eigen::Vector2d& size_m);
 
 /// The mesh of a catalogue class from its `shape` and dimensions ("open_box"
-/// uses wall_thickness_m). Throws InvalidInputError naming the class and shape
+/// uses wall_thickness_m, "hull" its footprint_object). Throws InvalidInputError naming the class and shape
 /// for an unknown shape or non-positive dimensions.
 TriangleMesh makeClassMesh(const srp::core::ObjectClass& objectClass);
 

@@ -111,10 +111,18 @@ ProgramResult programTask(const ProgrammingOptions& o) {
   // 3. Environment.
   clock.start("environment");
   const perception::PerceptionResult seen = perceive(grounded, kb, o, result.warnings, scene);
+  // From here on the knowledge base includes what the demonstration showed of the unknown objects.
+  const core::ObjectCatalogue runKb = perception::withObservedClasses(kb, seen.observedClasses);
   // 3b. Each phrase -> the perceived instance it means (several of one class).
-  grounded = groundInstances(grounded, seen, kb, scene);
+  grounded = groundInstances(grounded, seen, runKb, scene);
   result.frames = seen.frames;
   result.handDetectedFrames = seen.handDetected;
+  result.handDetector = seen.handMethod == perception::PerceptionOptions::HandMethod::MarkerFree ? "marker-free" : "marker";
+  result.cameraMoved = seen.cameraMoved;
+  result.cameraTravel_m = seen.cameraTravel_m;
+  result.cameraTurn_rad = seen.cameraTurn_rad;
+  result.observedClasses = seen.observedClasses;
+  result.discoveryNotes = seen.discoveryNotes;
 
   // 4. Motion: the perception result handed over in memory, segmented, DMPs learned.
   clock.start("motion");
@@ -124,13 +132,13 @@ ProgramResult programTask(const ProgrammingOptions& o) {
   const motion::Segmentation& segmentation = learned.segmentation;
   const std::vector<motion::SkillSet>& skills = learned.skills;
   // 5. The rows: instruction tables, perception rows, skills.
-  const taskdb::TaskModel model = buildTaskModel(grounded, o, seen, kb, tracks, skills, scene);
+  const taskdb::TaskModel model = buildTaskModel(grounded, o, seen, runKb, tracks, skills, scene);
   result.skillCount = model.skills.size();
   for (const auto& w : segmentation.warnings) result.warnings.push_back(w);
   for (const auto& seg : segmentation.objects) {
     ObjectOutcome out;
     out.name = seg.name;
-    out.classId = kb.find(seg.name) ? kb.find(seg.name)->classId : -1;
+    out.classId = runKb.find(seg.name) ? runKb.find(seg.name)->classId : -1;
     out.moved = seg.moved;
     out.graspFrame = seg.graspFrame;
     out.releaseFrame = seg.releaseFrame;
@@ -191,6 +199,20 @@ std::string toJsonText(const ProgramResult& r) {
   for (const auto& t : r.timings) j["timings_s"][t.stage] = t.wall_s;
   j["peak_memory_MB"] = r.peakResidentMemory_MB;
   j["warnings"] = r.warnings;
+  j["hand_detector"] = r.handDetector;
+  j["camera_moved"] = r.cameraMoved;
+  if (!r.observedClasses.empty()) {
+    j["observed_classes"] = nlohmann::json::array();
+    for (const auto& c : r.observedClasses) {
+      nlohmann::json footprint = nlohmann::json::array();
+      for (const auto& p : c.footprint_object) footprint.push_back({p.x(), p.y()});
+      j["observed_classes"].push_back({{"name", c.name}, {"class_id", c.classId}, {"kind", core::toString(c.kind)},
+                                       {"shape", c.shape}, {"color_name", c.colourName},
+                                       {"dimensions_m", {c.dimensions_m.x(), c.dimensions_m.y(), c.dimensions_m.z()}},
+                                       {"footprint_m", footprint}});
+    }
+    j["discovery"] = r.discoveryNotes;
+  }
   j["report_files"] = r.reportFiles;
   return j.dump(2);
 }

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "srp/core/CameraIntrinsics.h"
+#include "srp/core/ObjectCatalogue.h"
 #include "srp/core/PositionTrajectory.h"
 
 namespace srp::programming {
@@ -43,7 +44,10 @@ struct ProgrammingOptions {
   std::optional<core::CameraIntrinsics> intrinsics;  ///< overrides the rawlog's (e.g. from calib/*.xml)
   std::string dbPath = "task.db";
   std::string name = "task";      ///< re-using a name makes a new version
-  bool markerFreeHand = false;    ///< hand detector: AprilTag on the glove (default) or marker-free
+  /// Hand detector: Auto (the glove's AprilTag when a preview of the
+  /// recording shows it, else the marker-free hand), the tag, or marker-free.
+  enum class Hand { Auto, Marker, MarkerFree };
+  Hand hand = Hand::Auto;
   std::string reportDir;          ///< empty: no report; else PNG figures + summary.md (checked before anything runs)
   /// A damaged demonstration rawlog fails the run (nothing stored) unless
   /// this is set; then the frames before the damage are used, with a warning.
@@ -81,6 +85,14 @@ struct ProgramResult {
   double peakResidentMemory_MB = 0.0;  ///< the process' peak resident set size when the pipeline ended
   std::vector<std::string> warnings;
   std::vector<std::string> reportFiles;
+  std::string handDetector;            ///< "marker" or "marker-free" (the one used)
+  bool cameraMoved = false;            ///< the demonstration's camera moved (trajectories kept in the first frame's camera)
+  double cameraTravel_m = 0.0, cameraTurn_rad = 0.0;
+  /// Objects the knowledge base did not know, found in the demonstration
+  /// (perception::ObjectDiscovery): their classes as stored with the task
+  /// model, and what was decided (one line each).
+  std::vector<core::ObjectClass> observedClasses;
+  std::vector<std::string> discoveryNotes;
 };
 
 /// Runs the whole pipeline and stores the task model. Throws (writing

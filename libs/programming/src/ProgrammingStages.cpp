@@ -316,6 +316,15 @@ motion::DemoTracks demoTracks(const perception::PerceptionResult& seen, const Gr
     tracks.hand.append({f, f / frameRate_hz, ok ? it->second->p_m : Eigen::Vector3d::Zero(), ok});
   }
   for (const auto& [cls, t] : moved) {
+    // A part found in the demonstration is followed at its middle: its
+    // origin is the foot of its observed points, a hand's span below a tall
+    // part's top where the hand holds it (HRT1's toy: 19 cm), which the
+    // segmenter would take for a detection away from the hand.
+    const auto observed = std::find_if(seen.observedClasses.begin(), seen.observedClasses.end(),
+                                       [&](const core::ObjectClass& c) { return c.name == t->className; });
+    const Eigen::Vector3d p_object_tracked = observed == seen.observedClasses.end()
+                                                 ? Eigen::Vector3d::Zero()
+                                                 : Eigen::Vector3d(0, 0, 0.5 * observed->dimensions_m.z());
     std::map<int, const perception::ObjectPoseSample*> at;
     for (const auto& s : t->samples) at[s.frame] = &s;
     motion::ObjectTrack track;
@@ -325,7 +334,7 @@ motion::DemoTracks demoTracks(const perception::PerceptionResult& seen, const Gr
       const auto it = at.find(f);
       const bool ok = it != at.end() && it->second->detected;
       track.positions.append(
-          {f, f / frameRate_hz, ok ? Eigen::Vector3d(it->second->X_camera_object.translation()) : Eigen::Vector3d::Zero(),
+          {f, f / frameRate_hz, ok ? Eigen::Vector3d(it->second->X_camera_object * p_object_tracked) : Eigen::Vector3d::Zero(),
            ok});
       if (it != at.end()) {
         // The unit quaternion the ProductPose row stores (normalised again when read back, as yaw_rad() does).

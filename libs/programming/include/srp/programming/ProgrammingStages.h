@@ -133,7 +133,10 @@ GroundedPlan groundInstances(const GroundedPlan& grounded, const perception::Per
 /// from the database sees the same inputs); a frame without a detection is a
 /// sample with valid = false (position zero, the previous yaw). Tracks are
 /// keyed and sorted by perception key (class name, or instance id); planOrder
-/// = the step objects.
+/// = the step objects. A catalogue part's position is its pose's origin; a
+/// part found in the demonstration (PerceptionResult::observedClasses) is
+/// followed at the middle of its height (its origin is the foot of its
+/// observed points, far below where the hand holds a tall part).
 motion::DemoTracks demoTracks(const perception::PerceptionResult& seen, const GroundedPlan& grounded,
                               double frameRate_hz);
 

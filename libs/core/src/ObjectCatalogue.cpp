@@ -55,7 +55,7 @@ ObjectCatalogue ObjectCatalogue::load(const std::string& path) {
       // be left out (size and mass then come from the mesh, kb::loadCatalogue).
       const bool meshOnly = !c.meshPath.empty() && !e.contains("shape");
       c.shape = meshOnly ? std::string() : requireField(e, "shape", ctx).get<std::string>();
-      c.hasColour = e.contains("rgb") || !meshOnly;
+      c.hasColour = e.contains("rgb");  // without: a neutral grey, and colour is no evidence for it
       if (c.hasColour) c.rgb = vec3(requireField(e, "rgb", ctx), ctx + " field 'rgb'");
       if (!meshOnly || e.contains("dimensions_m")) {
         c.dimensions_m = vec3(requireField(e, "dimensions_m", ctx), ctx + " field 'dimensions_m'");

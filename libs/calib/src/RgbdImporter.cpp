@@ -159,13 +159,15 @@ cv::Mat readDepth(const std::string& path, double scale_m) {
   return depth;
 }
 
-/// The median frame period's rate of increasing times (0 for fewer than two).
+/// The median frame period's rate of increasing times, to 1e-6 Hz (0 for fewer than two).
 double rateOf(const std::vector<double>& times_s) {
   std::vector<double> dt;
   for (std::size_t i = 1; i < times_s.size(); ++i) dt.push_back(times_s[i] - times_s[i - 1]);
   if (dt.empty()) return 0.0;
   std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
-  return dt[dt.size() / 2] > 0.0 ? 1.0 / dt[dt.size() / 2] : 0.0;
+  if (!(dt[dt.size() / 2] > 0.0)) return 0.0;
+  constexpr double kDigits = 1e6;  // 10 Hz, not 9.999999999999991 from times i / 10
+  return std::round(kDigits / dt[dt.size() / 2]) / kDigits;
 }
 
 /// "3, 7, 12" (at most `shown`, then "and N more").

@@ -373,21 +373,21 @@ TEST(ProgrammingPipeline, TheTaskRunsInTheSceneOfItsOwnDemonstration) {
   }
 }
 
-// Honest results: a step the demonstration does not show (the star never moves
+// Honest results: a step the demonstration does not show (the parallelogram never moves
 // in the cuboid's demo) stores nothing, names the step, and creates neither a
 // database nor a report folder; --allow-partial stores it and says what is missing.
 TEST(ProgrammingPipeline, AStepWithoutGraspOrReleaseStoresNothingUnlessPartialIsAllowed) {
   const std::string db = freshDb("no_grasp");
   const auto report = workDir() / "report_no_grasp";
   std::filesystem::remove_all(report);
-  auto o = options(db, "Pick up the star and place it in the gray box.");
+  auto o = options(db, "Pick up the parallelogram and place it in the gray box.");
   o.reportDir = report.string();
   try {
     programming::programTask(o);
     ADD_FAILURE() << "a step without a grasp was stored";
   } catch (const core::InvalidInputError& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find("step 1 (star"), std::string::npos) << what;
+    EXPECT_NE(what.find("step 1 (parallelogram"), std::string::npos) << what;
     EXPECT_NE(what.find("never leaves its place"), std::string::npos) << what;
     EXPECT_NE(what.find("nothing was stored"), std::string::npos) << what;
   }

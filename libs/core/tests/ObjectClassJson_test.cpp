@@ -87,16 +87,26 @@ TEST(ObjectClassJson, BadNumbersAreRefusedNamingTheField) {
 }
 
 TEST(Scene, CarriesObservedClassesAndValidatesObjectsOfThem) {
-  Scene s = Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-  const ObjectCatalogue kb = ObjectCatalogue::load(s.cataloguePath);
+  ObjectClass cuboid;
+  cuboid.name = cuboid.noun = "cuboid";
+  cuboid.classId = 3;
+  cuboid.shape = "cuboid";
+  cuboid.dimensions_m = {0.05, 0.03, 0.03};
+  cuboid.mass_kg = 0.04;
+  const ObjectCatalogue kb({cuboid});
+  Scene s;
+  s.name = "test";
+  SceneObject part;
+  part.id = part.className = "cuboid";
   SceneObject toy;
   toy.id = "toy";
   toy.className = "toy";
   toy.X_world_object.translation() = Eigen::Vector3d(0.1, 0.2, 0.0);
-  s.objects.push_back(toy);
+  s.objects = {part, toy};
   EXPECT_THROW(s.validate(kb), InvalidInputError) << "a class neither catalogue nor scene knows";
   s.observedClasses.push_back(observedToy());
   s.validate(kb);
+  s.intrinsics = {500.0, 500.0, 319.5, 239.5, 640, 480};
   const Scene back = Scene::fromJson(s.toJson(), "roundtrip", ".");
   ASSERT_EQ(back.observedClasses.size(), 1u);
   EXPECT_EQ(objectClassToJson(back.observedClasses[0]), objectClassToJson(s.observedClasses[0]));
@@ -105,7 +115,7 @@ TEST(Scene, CarriesObservedClassesAndValidatesObjectsOfThem) {
   EXPECT_TRUE(merged.at("toy").observed);
   // An observed class may not take a catalogue class' name or id.
   Scene clash = s;
-  clash.observedClasses[0].classId = kb.at("cuboid").classId;
+  clash.observedClasses[0].classId = 3;
   try {
     clash.withObservedClasses(kb);
     ADD_FAILURE() << "an observed class with the cuboid's class_id was accepted";

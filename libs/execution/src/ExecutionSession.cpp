@@ -15,6 +15,7 @@
 #include "srp/execution/DmpPathGenerator.h"
 #include "srp/execution/PlanConversion.h"
 #include "srp/execution/SceneGrounder.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/language/InstructionParser.h"
 #include "srp/language/PlanTables.h"
 #include "srp/taskdb/TaskModelStore.h"
@@ -80,7 +81,7 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
     }
     scene = srp::core::Scene::load(scenePath);
   }
-  const srp::core::ObjectCatalogue catalogue = srp::core::ObjectCatalogue::load(scene.cataloguePath);
+  const srp::core::ObjectCatalogue catalogue = srp::kb::loadCatalogue(scene.cataloguePath);
   const CellDescription cell = CellDescription::fromScene(scene, catalogue);
   // Demonstration offsets: the camera as calibrated (or stored with the task model), else the scene's.
   const srp::core::Pose3 X_world_camera =

@@ -10,6 +10,7 @@
 #include "srp/core/DefaultScene.h"
 #include "srp/core/Json.h"
 #include "srp/execution/ExecutionSession.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/taskdb/TaskModelStore.h"
 
 using namespace srp::execution;
@@ -124,5 +125,5 @@ TEST(DemonstrationScene, TaskRunsInItsOwnSceneWithObservedParts) {
   // The scene it left carries the observed classes: the next run can start from it.
   const srp::core::Scene after = srp::core::Scene::load(folder + "/out/final_scene.json");
   EXPECT_EQ(after.observedClasses.size(), 2u);
-  after.validate(srp::core::ObjectCatalogue::load(after.cataloguePath));
+  after.validate(srp::kb::loadCatalogue(after.cataloguePath));
 }

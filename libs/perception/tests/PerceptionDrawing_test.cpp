@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "srp/core/ObjectCatalogue.h"
+#include "srp/kb/KnowledgeBase.h"
 
 using namespace srp;
 
@@ -42,7 +43,7 @@ int pixelsNear(const cv::Mat& img, cv::Point p, int radius, const std::function<
 }  // namespace
 
 TEST(PerceptionDrawing, OutlineAtTheProjectedModelAndThePalmAtTheHand) {
-  const auto kb = core::ObjectCatalogue::load(core::ObjectCatalogue::defaultPath());
+  const auto kb = kb::loadCatalogue(core::ObjectCatalogue::defaultPath());
   const auto& cuboid = kb.at("cuboid");
   const perception::PerceptionResult seen = oneCuboid(true);
   cv::Mat img(240, 320, CV_8UC3, cv::Scalar::all(0));

@@ -17,6 +17,7 @@
 #include "srp/execution/DemonstrationScene.h"
 #include "srp/execution/ExecutionSession.h"
 #include "srp/core/Scene.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/programming/ProgrammingPipeline.h"
 #include "srp/synth/DemoGenerator.h"
 #include "SmallDemoOptions.h"
@@ -45,7 +46,7 @@ const std::string& demoPath() {
     scene.objects.erase(std::remove_if(scene.objects.begin(), scene.objects.end(),
                                        [](const auto& o) { return o.className == "octagon"; }),
                         scene.objects.end());
-    const auto kb = core::ObjectCatalogue::load(scene.cataloguePath);
+    const auto kb = kb::loadCatalogue(scene.cataloguePath);
     const synth::SynthDemoOptions opt = smallDemoOptions(7);
     const nlohmann::json plan = {{"steps",
                                   {{{"object", {{"name", "cuboid"}, {"color", nullptr}}},
@@ -63,7 +64,7 @@ const std::string& demoPath() {
 const std::string& fullSizeDemoPath() {
   static const std::string path = [] {
     const core::Scene scene = core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-    const auto kb = core::ObjectCatalogue::load(scene.cataloguePath);
+    const auto kb = kb::loadCatalogue(scene.cataloguePath);
     synth::SynthDemoOptions opt = smallDemoOptions(7);
     opt.width_px = 640;
     opt.height_px = 480;
@@ -129,7 +130,7 @@ TEST(ProgrammingPipeline, LearnsTheCuboidStepFromTheDemo) {
 // next to the first), so the second object's search starts at a release.
 TEST(ProgrammingPipeline, GraspAndReleaseOfEveryObjectMatchTheGroundTruth) {
   const core::Scene scene = core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-  const auto kb = core::ObjectCatalogue::load(scene.cataloguePath);
+  const auto kb = kb::loadCatalogue(scene.cataloguePath);
   synth::SynthDemoOptions opt = smallDemoOptions(11);
   opt.demo.idleStart_s = opt.demo.idleEnd_s = 0.5;
   nlohmann::json plan = synth::defaultPlanJson();
@@ -338,7 +339,7 @@ TEST(ProgrammingPipeline, StoresThePerceivedSceneOfTheDemonstration) {
   }
   EXPECT_EQ(seen, (std::set<std::string>{"cuboid", "blue box", "gray box"}));
   // The report holds the scene as a scene file and the contact sheet.
-  const auto kb = core::ObjectCatalogue::load(core::ObjectCatalogue::defaultPath());
+  const auto kb = kb::loadCatalogue(core::ObjectCatalogue::defaultPath());
   const core::Scene file = core::Scene::load(o.reportDir + "/scene.json");
   file.validate(kb);
   EXPECT_EQ(file.objects.size(), m.scene->objects.size());

@@ -284,23 +284,31 @@ struct TumEntry {
   std::string path;
 };
 
-std::vector<TumEntry> readTumList(const fs::path& folder, const std::string& name) {
-  const fs::path list = folder / name;
-  std::ifstream in(list);
-  if (!in) throw core::FileError(list.string(), "cannot open (a TUM RGB-D folder has rgb.txt and depth.txt)");
-  std::vector<TumEntry> entries;
+// Calls fn(line number, line) for every line of a text list that is neither blank nor a '#' comment.
+template <typename Fn>
+void forEachListLine(std::istream& in, Fn fn) {
   std::string line;
   int lineNo = 0;
   while (std::getline(in, line)) {
     ++lineNo;
     if (line.empty() || line[0] == '#' || line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    fn(lineNo, line);
+  }
+}
+
+std::vector<TumEntry> readTumList(const fs::path& folder, const std::string& name) {
+  const fs::path list = folder / name;
+  std::ifstream in(list);
+  if (!in) throw core::FileError(list.string(), "cannot open (a TUM RGB-D folder has rgb.txt and depth.txt)");
+  std::vector<TumEntry> entries;
+  forEachListLine(in, [&](int lineNo, const std::string& line) {
     std::istringstream ss(line);
     TumEntry e;
     if (!(ss >> e.t_s >> e.path))
       throw core::FileError(list.string(), "line " + std::to_string(lineNo) + " is not 'timestamp path': " + line);
     e.path = (folder / e.path).string();
     entries.push_back(e);
-  }
+  });
   return entries;
 }
 
@@ -332,11 +340,7 @@ std::map<long, double> folderTimestamps(const fs::path& folder) {
   const fs::path list = folder / "timestamps.txt";
   if (!fs::is_regular_file(list)) return times;
   std::ifstream in(list);
-  std::string line;
-  int lineNo = 0;
-  while (std::getline(in, line)) {
-    ++lineNo;
-    if (line.empty() || line[0] == '#' || line.find_first_not_of(" \t\r") == std::string::npos) continue;
+  forEachListLine(in, [&](int lineNo, const std::string& line) {
     std::istringstream ss(line);
     long number = 0;
     double t = 0.0;
@@ -344,7 +348,7 @@ std::map<long, double> folderTimestamps(const fs::path& folder) {
       throw core::FileError(list.string(), "line " + std::to_string(lineNo) +
                                                " is not 'frame-number seconds' (e.g. '12 0.400'): " + line);
     times[number] = t;
-  }
+  });
   return times;
 }
 

@@ -127,3 +127,13 @@ TEST(DemonstrationScene, TaskRunsInItsOwnSceneWithObservedParts) {
   EXPECT_EQ(after.observedClasses.size(), 2u);
   after.validate(srp::kb::loadCatalogue(after.cataloguePath));
 }
+
+// calib/extrinsics.json is the synthetic camera's pose in the robot base of the
+// default scene (as calib/camera.xml is its intrinsics): `make demo` executes a
+// task in its own perceived scene with it.
+TEST(DemonstrationScene, TheSyntheticCamerasExtrinsicsFileMatchesTheDefaultScene) {
+  const srp::core::Scene scene = srp::core::Scene::load(srp::core::defaultScenePath());
+  const auto j = srp::core::readJsonFile(std::string(SRP_SOURCE_DIR) + "/calib/extrinsics.json");
+  const srp::core::Pose3 X_base_camera = srp::core::poseFromJson(j.at("X_base_camera"), "calib/extrinsics.json");
+  EXPECT_LT((X_base_camera.matrix() - scene.X_base_camera().matrix()).norm(), kPoseTol_m);
+}

@@ -25,6 +25,20 @@ int userVersion(const std::string& path) {
   SQLite::Database raw(path, SQLite::OPEN_READONLY);
   return raw.execAndGet("PRAGMA user_version").getInt();
 }
+
+// Every row of the fixture's source task model is read back from a migrated file.
+void expectEveryRowOfTheFixture(const TaskModel& read) {
+  const TaskModel expected = taskModelFromJson(srp::core::readJsonFile(kFixtureSource), kFixtureSource);
+  EXPECT_EQ(read.products, expected.products);
+  EXPECT_EQ(read.sourceLocations, expected.sourceLocations);
+  EXPECT_EQ(read.targetLocations, expected.targetLocations);
+  EXPECT_EQ(read.targetObjectIds, expected.targetObjectIds);
+  EXPECT_EQ(read.groundedProducts, expected.groundedProducts);
+  EXPECT_EQ(read.productPoses, expected.productPoses);
+  EXPECT_EQ(read.handPositions, expected.handPositions);
+  ASSERT_EQ(read.skills.size(), 1u);
+  EXPECT_EQ(read.skills, expected.skills);
+}
 }  // namespace
 
 TEST(Migration, SchemaOneFileOpensWithEveryRowAndGainsInstanceIds) {
@@ -43,17 +57,8 @@ TEST(Migration, SchemaOneFileOpensWithEveryRowAndGainsInstanceIds) {
 
   auto db = TaskDatabase::open(path.str());
   EXPECT_EQ(db.schemaVersion(), kSchemaVersion);
-  const TaskModel expected = taskModelFromJson(srp::core::readJsonFile(kFixtureSource), kFixtureSource);
   const TaskModel read = TaskModelStore(db).read(1);
-  EXPECT_EQ(read.products, expected.products);
-  EXPECT_EQ(read.sourceLocations, expected.sourceLocations);
-  EXPECT_EQ(read.targetLocations, expected.targetLocations);
-  EXPECT_EQ(read.targetObjectIds, expected.targetObjectIds);
-  EXPECT_EQ(read.groundedProducts, expected.groundedProducts);
-  EXPECT_EQ(read.productPoses, expected.productPoses);
-  EXPECT_EQ(read.handPositions, expected.handPositions);
-  ASSERT_EQ(read.skills.size(), 1u);
-  EXPECT_EQ(read.skills, expected.skills);
+  expectEveryRowOfTheFixture(read);
   for (const auto& g : read.groundedProducts) EXPECT_EQ(g.instanceId, "");
 
   // The migrated file now holds two instances of one class, with their own poses and skills.
@@ -111,13 +116,8 @@ TEST(Migration, SchemaTwoFileOpensWithEveryRowAndThenStoresAPerceivedScene) {
   std::filesystem::copy_file(fixture, path.str());
   auto db = TaskDatabase::open(path.str());
   EXPECT_EQ(db.schemaVersion(), kSchemaVersion);
-  const TaskModel expected = taskModelFromJson(srp::core::readJsonFile(kFixtureSource), kFixtureSource);
   const TaskModel read = TaskModelStore(db).read(1);
-  EXPECT_EQ(read.products, expected.products);
-  EXPECT_EQ(read.groundedProducts, expected.groundedProducts);
-  EXPECT_EQ(read.productPoses, expected.productPoses);
-  EXPECT_EQ(read.handPositions, expected.handPositions);
-  EXPECT_EQ(read.skills, expected.skills);
+  expectEveryRowOfTheFixture(read);
   EXPECT_FALSE(read.scene.has_value()) << "programmed before schema 3: no perceived scene";
   TaskModel withScene;
   withScene.info.name = "with a scene";

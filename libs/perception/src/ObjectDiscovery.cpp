@@ -411,7 +411,7 @@ ObjectDiscovery::Result ObjectDiscovery::finish(const std::vector<ObjectTrajecto
   if (m.objects.empty()) return result;
   if (N == 0) throw core::InvalidInputError("object discovery: no frames");
   if (m.table.size() < 3)
-    throw core::InvalidInputError("environment: looking for the " + m.objects.front().name +
+    throw core::InvalidInputError("looking for the " + m.objects.front().name +
                                   " in the demonstration: no table top was seen (no large plane under the scene)");
   const int window = std::max(2, static_cast<int>(std::lround(o.windowShare * N)));
   const auto atStart = [&](const Rest& r) { return r.first < window; };
@@ -508,18 +508,18 @@ ObjectDiscovery::Result ObjectDiscovery::finish(const std::vector<ObjectTrajecto
       std::string seen;
       for (const Move& mv : moves) seen += (seen.empty() ? "" : "; ") + describeMove(mv);
       throw core::InvalidInputError(
-          "environment: looking for " + what + " in the demonstration (the knowledge base does not know it): " +
+          "looking for " + what + " in the demonstration (the knowledge base does not know it): " +
           (moves.empty() ? "no segment on the table was moved by the hand (left its place with the hand and came to rest "
                            "elsewhere); on the table at the start: " + startScene()
                          : "no segment moved by the hand is " + (u.colour ? *u.colour : std::string("left")) +
                                "; moved: " + seen) +
-          ". Nothing was stored; add the " + u.noun + " to the knowledge base (srp kb add) or check the recording");
+          "; add the " + u.noun + " to the knowledge base (srp kb add) or check the recording");
     }
     if (fit.size() > 1) {
       std::string list;
       for (const Move& mv : fit) list += (list.empty() ? "" : "; ") + describeMove(mv);
-      throw core::InvalidInputError("environment: " + std::to_string(fit.size()) + " segments moved by the hand match '" +
-                                    what + "': " + list + " (table frame); say which by colour. Nothing was stored");
+      throw core::InvalidInputError("" + std::to_string(fit.size()) + " segments moved by the hand match '" +
+                                    what + "': " + list + " (table frame); say which by colour");
     }
     movedBy[u.name] = fit.front();
     used.insert(fit.front().from);
@@ -565,7 +565,7 @@ ObjectDiscovery::Result ObjectDiscovery::finish(const std::vector<ObjectTrajecto
       const Rest& B = m.rests[static_cast<std::size_t>(mv.to)];
       modelRest = &A;
       const auto fp = footprintOf(m.fused(A));
-      if (!fp) throw core::InvalidInputError("environment: the " + u.noun + " (" + m.describe(A) + ") shows too few points for a model");
+      if (!fp) throw core::InvalidInputError("the " + u.noun + " (" + m.describe(A) + ") shows too few points for a model");
       cls.kind = core::ObjectKind::Part;
       cls.shape = "hull";
       cls.dimensions_m = fp->size_m;
@@ -645,9 +645,9 @@ ObjectDiscovery::Result ObjectDiscovery::finish(const std::vector<ObjectTrajecto
         at = knownFinal(u.of, release);
       }
       if (!at)
-        throw core::InvalidInputError("environment: the " + u.noun + " is where the " + u.of + " was " +
+        throw core::InvalidInputError("the " + u.noun + " is where the " + u.of + " was " +
                                       (release ? "let go" : "picked up") + ", but the " + u.of +
-                                      " was not seen there. Nothing was stored");
+                                      " was not seen there");
       int best = -1;
       double bestDistance = kInf;
       for (int r : statics) {
@@ -661,21 +661,21 @@ ObjectDiscovery::Result ObjectDiscovery::finish(const std::vector<ObjectTrajecto
       if (best < 0) {
         std::string list;
         for (int r : statics) list += (list.empty() ? "" : "; ") + m.describe(m.rests[static_cast<std::size_t>(r)]);
-        throw core::InvalidInputError("environment: looking for the " + u.noun + " in the demonstration: the " + u.of +
+        throw core::InvalidInputError("looking for the " + u.noun + " in the demonstration: the " + u.of +
                                       " was " + (release ? "let go" : "picked up") + " at " + describePlace(*at) +
                                       " on the table, not in or on anything that stays there (seen throughout: " +
-                                      (list.empty() ? std::string("nothing") : list) + "). Nothing was stored");
+                                      (list.empty() ? std::string("nothing") : list) + ")");
       }
       const Rest& P = m.rests[static_cast<std::size_t>(best)];
       modelRest = &P;
       const Sighting& anchor = m.sightings[static_cast<std::size_t>(P.anchor)];
       if (!colourOk(anchor, u.colour))
-        throw core::InvalidInputError("environment: the " + u.of + " was " + (release ? "let go in or on " : "picked up from ") +
+        throw core::InvalidInputError("the " + u.of + " was " + (release ? "let go in or on " : "picked up from ") +
                                       m.describe(P) + ", which is not " + *u.colour + " as the instruction's '" +
-                                      *u.colour + " " + u.noun + "'. Nothing was stored");
+                                      *u.colour + " " + u.noun + "'");
       const std::vector<Eigen::Vector3f> points = m.fused(P);
       const auto fp = footprintOf(points);
-      if (!fp) throw core::InvalidInputError("environment: the " + u.noun + " (" + m.describe(P) + ") shows too few points for a model");
+      if (!fp) throw core::InvalidInputError("the " + u.noun + " (" + m.describe(P) + ") shows too few points for a model");
       // Concave: the inner half of the footprint does not rise to the rim.
       int inner = 0, innerHigh = 0;
       const core::Pose3 X_object_table = fp->X_table_object.inverse();
@@ -712,9 +712,13 @@ ObjectDiscovery::Result ObjectDiscovery::finish(const std::vector<ObjectTrajecto
       result.notes.push_back("the " + u.noun + ": " + m.describe(P) + (container ? ", concave (a container)" : "") +
                              ", where the " + u.of + " was " + (release ? "let go" : "picked up"));
     }
-    // Colour: the model's sightings' words; rgb their mean (sRGB to linear).
+    // Colour: the instruction's word when the pixels bear it out (a grey bin
+    // under warm light is mostly "brown" but grey in a third of its pixels,
+    // and the user called it grey), else the sightings' dominant word; rgb
+    // their mean (sRGB to linear).
     const Sighting& anchor = m.sightings[static_cast<std::size_t>(modelRest->anchor)];
-    cls.colourName = dominantColourWord(anchor.colours, o.minColourShare);
+    cls.colourName = u.colour && colourOk(anchor, u.colour) ? *u.colour
+                                                            : dominantColourWord(anchor.colours, o.minColourShare);
     for (int c = 0; c < 3; ++c) {
       const double srgb = anchor.meanBgr[2 - c];
       cls.rgb[c] = srgb <= 0.04045 ? srgb / 12.92 : std::pow((srgb + 0.055) / 1.055, 2.4);

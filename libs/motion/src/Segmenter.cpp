@@ -515,12 +515,12 @@ class ObjectPass {
       grasp = refineGrasp(valley, grasp, from, to);
       release = refineRelease(grasp, coarse);
     }
-    if (robust_) confidence(release, coarse);
     seg_.graspIndex = grasp;
     seg_.releaseIndex = release;
     seg_.graspFrame = hand_.raw[static_cast<std::size_t>(grasp)].frame;
     seg_.releaseFrame = hand_.raw[static_cast<std::size_t>(release)].frame;
     seg_.graspHandDistance_m = handDistance_m_[static_cast<std::size_t>(grasp - from)];
+    if (robust_) confidence(release, coarse);
     return std::move(seg_);
   }
 
@@ -766,10 +766,11 @@ class ObjectPass {
 
   /// Step 7, grasp: the hand's rest at the object ends where the object starts
   /// to move with it; the valley covers the rest and the start of the lift.
-  int refineGrasp(const std::vector<int>& valley, int grasp, int from, int to) const {
+  int refineGrasp(const std::vector<int>& valley, int grasp, int from, int to) {
     const int g = restMoveBoundary(hand_.events, std::max(from, valley.front()),
                                    std::min(to - 1, valley.back() + c_.moveSamples), +1, c_.restSamples, c_.moveSamples,
                                    [](int) { return true; }, robust_ ? c_.boundaryMinMove_m : 0.0);
+    graspRestFound_ = g >= 0;
     return g >= 0 ? restEnd(hand_.events, g, +1, c_.restSamples, from, to - 1, hand_.restNoiseTol_m) : grasp;
   }
 
@@ -819,7 +820,7 @@ class ObjectPass {
     return hi;
   }
 
-  /// Step 8 (robust): outlier fraction, release cue gap and the confidence flag.
+  /// Step 8 (robust): outlier fraction, release cue gap and the confidence flags.
   void confidence(int release, int coarse) {
     int outliers = 0, count = 0;
     for (int i = 0; i < n_; ++i) {
@@ -835,7 +836,10 @@ class ObjectPass {
     // With the placement cues a part hidden under the hand around its release
     // leaves the change point's margin small whatever the hand did, so the
     // margin is reported but does not lower the confidence.
-    seg_.lowConfidence = seg_.outlierFraction > 0.3 || (!cues_ && seg_.releaseMargin < 10.0) || std::abs(seg_.releaseCueGap) > 10;
+    const bool messy = seg_.outlierFraction > 0.3;
+    seg_.releaseLowConfidence = messy || (!cues_ && seg_.releaseMargin < 10.0) || std::abs(seg_.releaseCueGap) > 10;
+    seg_.graspLowConfidence = messy || !graspRestFound_ || seg_.graspHandDistance_m > c_.handReach_m;
+    seg_.lowConfidence = seg_.graspLowConfidence || seg_.releaseLowConfidence;
   }
 
   const Segmenter::Config& c_;
@@ -847,6 +851,7 @@ class ObjectPass {
   const int start_, n_, w_;
   ObjectSegmentation seg_;
   int finalComponent_ = 2;
+  bool graspRestFound_ = false;  ///< the hand's rest at the part was found (step 7)
   std::vector<double> handDistance_m_;  ///< smoothed hand to p_initial over the grasp search
 };
 

@@ -102,9 +102,13 @@ struct ObjectSegmentation {
   /// (two independent cues that should agree within a few samples), counted in
   /// the part's detections between them.
   int releaseCueGap = 0;
-  /// Any of: outlierFraction > 0.3, |releaseCueGap| > 10, releaseMargin < 10 (without the placement cues:
-  /// with them a part hidden under the hand at its release makes every margin small).
-  bool lowConfidence = false;
+  /// Release: any of outlierFraction > 0.3, |releaseCueGap| > 10, releaseMargin < 10 (without the
+  /// placement cues: with them a part hidden under the hand at its release makes every margin small).
+  bool releaseLowConfidence = false;
+  /// Grasp: outlierFraction > 0.3, no rest of the hand found at the part, or the hand never within
+  /// handReach of the part's initial position.
+  bool graspLowConfidence = false;
+  bool lowConfidence = false;  ///< either event's confidence is low
 };
 
 struct Segmentation {

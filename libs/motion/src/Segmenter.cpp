@@ -513,7 +513,9 @@ class ObjectPass {
     int grasp = valley[valley.size() / 2], release = coarse;
     if (c_.events == Segmenter::EventEstimator::HandDwellBoundary) {
       grasp = refineGrasp(valley, grasp, from, to);
+      if (cues_) grasp = std::max(grasp, lastSeenAtStart(from, to));
       release = refineRelease(grasp, coarse);
+      if (cues_) release = std::max(grasp + 1, std::min(release, seenAtFinalPlace(grasp + 1)));
     }
     seg_.graspIndex = grasp;
     seg_.releaseIndex = release;
@@ -704,21 +706,53 @@ class ObjectPass {
       if (std::abs(r - release) > kMarginSamples && detected(ev(r)))
         alternative = std::min(alternative, costs[static_cast<std::size_t>(r - searchFrom)]);
     if (robust_) seg_.releaseMargin = std::isfinite(alternative) ? alternative - bestCost : 0.0;
-    // Placement cues: the part seen at its final place for good, i.e. in at
-    // least half of the samples of the next sustainRest (a part lowered
-    // through the final place's zone, or a wrong depth on the table below it,
-    // then hidden under the hand until it leaves, is not yet there).
-    const double dt_s = n_ > 1 ? (hand_.raw[static_cast<std::size_t>(n_ - 1)].t_s - hand_.raw[0].t_s) / (n_ - 1) : 0.0;
-    const int window = std::max(8, dt_s > 0.0 ? static_cast<int>(std::lround(c_.sustainRest_s / dt_s)) : 0);
-    auto sustained = [&](int r) {
-      int in = 0;
-      const int to = std::min(n_, r + window);
-      for (int j = r; j < to; ++j) in += inFinal(j);
-      return 2 * in >= to - r;
-    };
+    // Placement cues: the part seen at its final place for good (a part
+    // lowered through the final place's zone, or a wrong depth on the table
+    // below it, then hidden under the hand until it leaves, is not yet there).
     if (cues_)
-      while (release < n_ - 1 && !(inFinal(release) && sustained(release))) ++release;
+      while (release < n_ - 1 && !(inFinal(release) && sustained(release, [&](int j) { return inFinal(j); }))) ++release;
     return release;
+  }
+
+  /// Samples in the window sustainRest_s long that the part's final-place test should hold in.
+  int sustainWindow() const {
+    const double dt_s = n_ > 1 ? (hand_.raw[static_cast<std::size_t>(n_ - 1)].t_s - hand_.raw[0].t_s) / (n_ - 1) : 0.0;
+    return std::max(8, dt_s > 0.0 ? static_cast<int>(std::lround(c_.sustainRest_s / dt_s)) : 0);
+  }
+
+  /// `at(j)` holds for good from r: in at least half of the samples of the
+  /// next sustainRest_s, or in at least half of the part's evidence there
+  /// when that is at least sustainMinSeenShare of the samples (a part
+  /// hidden under a lingering hand for most of the window is still there).
+  template <class At>
+  bool sustained(int r, const At& at) const {
+    const int window = sustainWindow();
+    const int to = std::min(n_, r + window);
+    int in = 0, seen = 0;
+    for (int j = r; j < to; ++j) in += at(j), seen += detected(ev(j));
+    const int minSeen = static_cast<int>(std::ceil(c_.sustainMinSeenShare * window));
+    return 2 * in >= to - r || (seen >= minSeen && 2 * in >= seen);
+  }
+
+  /// Placement cues, release: the first sample from lo at which the part is
+  /// seen at its final place itself (within placeTolerance: not in the hand
+  /// above it) for good; n_ when never. A part already standing at its place
+  /// is let go, whatever the hand still does (it may rest on the part or
+  /// press it down); a hover above the place is not there yet.
+  int seenAtFinalPlace(int lo) const {
+    auto atPlace = [&](int j) { return detected(ev(j)) && (ev(j).p_m - seg_.p_final_m).norm() <= c_.placeTolerance_m; };
+    for (int r = std::max(lo, 0); r < n_; ++r)
+      if (atPlace(r) && sustained(r, atPlace)) return r;
+    return n_;
+  }
+
+  /// Placement cues, grasp: the last sample in [from, to) at which the part
+  /// is seen at its initial place itself (within placeTolerance); -1 when
+  /// never. It is not yet carried there, so the grasp is not earlier.
+  int lastSeenAtStart(int from, int to) const {
+    for (int i = std::min(to, n_) - 1; i >= from; --i)
+      if (detected(ev(i)) && (ev(i).p_m - seg_.p_initial_m).norm() <= c_.placeTolerance_m) return i;
+    return -1;
   }
 
   /// Step 6: where the hand is closest to the object's initial position in

@@ -46,7 +46,11 @@
 /// one) are not evidence of the part, the grasp is searched until the hand has
 /// left the part's start area, and the release is the start of the hand's rest
 /// where it comes closest to the final place: a hover just above the place,
-/// with the part still in the hand, is part of the move.
+/// with the part still in the hand, is part of the move. The part itself
+/// bounds both: the grasp is not before the last sample at which it is seen at
+/// its initial place, the release not after the first from which it is seen
+/// at its final place for good (within placeTolerance_m: a hand that stays on
+/// the part, or presses it down, does not delay the release).
 /// EventEstimator::ThesisPublished is the thesis' published code.
 ///
 /// An object whose positions never leave its
@@ -191,7 +195,9 @@ class Segmenter {
     /// is part of the move.
     bool placementCues = true;
     double handRadius_m = 0.03;        ///< the hand's own detections are within ~1 cm of it; a part held in the hand is 5-8 cm from the palm
-    double sustainRest_s = 1.0;        ///< the part is at its final place once seen there in at least half of the samples of this long
+    double sustainRest_s = 1.0;        ///< the part is at its final place once seen there in at least half of the samples of this long ...
+    double sustainMinSeenShare = 0.25; ///< ... or in half of its evidence there, when that is at least this share of the samples
+    double placeTolerance_m = 0.005;   ///< the part itself at its initial / final place (not in the hand just above it): this close
     double startAreaLeave_m = 0.05;    ///< the hand has left the start area when this much farther from the initial position than its closest approach
     double closestNoiseMin_m = 0.0015; ///< release: the first sample within max(this, half the hand's rest tolerance) of the closest approach
   };

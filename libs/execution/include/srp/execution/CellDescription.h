@@ -37,6 +37,10 @@ struct CellObject {
   std::string meshPath;   ///< the class's mesh (object frame, metres) for rendering; "" or missing: drawn as its box
 };
 
+/// True when the footprint centre of `part` lies inside `container`'s inner walls (x, y in
+/// the container's frame; the height is not looked at).
+bool isInside(const CellObject& part, const CellObject& container);
+
 /// An oriented box (centre pose and half extents) in the world frame.
 struct WorldBox {
   std::string owner;  ///< object name ("table", "gray box")

@@ -5,6 +5,7 @@
 
 #include "CommandRegistry.h"
 #include "srp/core/Error.h"
+#include "srp/core/ExitCode.h"
 #include "srp/core/ViewFrame.h"
 #include "srp/execution/ExecutionSession.h"
 #include "srp/execution/RosTrajectoryExporter.h"
@@ -94,14 +95,15 @@ void setupExecute(CLI::App& app) {
       std::cout << result.report.toJson().dump(2) << "\n";
     else
       std::cout << result.report.toText() << "outputs in " << o->out << "/\n";
-    if (!result.report.allSucceeded()) srp::app::commandExitCode() = 2;
+    // 0 every step done with its relations, 3 steps skipped or refused, 1 a step failed.
+    srp::app::commandExitCode() = srp::core::toInt(result.report.exitCode());
     if (o->urscript.empty() && o->trajectoryYaml.empty()) return;
     if (const auto why = result.executed.whyNotExportable()) {
       for (const std::string& path : {o->urscript, o->trajectoryYaml})
         if (!path.empty() && std::filesystem::remove(path))  // never leave an older program where this one was asked
           std::cerr << "srp execute: removed " << path << " (from an earlier run)\n";
       std::cerr << "srp execute: no URScript / trajectory YAML written: " << *why << "\n";
-      srp::app::commandExitCode() = 2;
+      if (srp::app::commandExitCode() == 0) srp::app::commandExitCode() = srp::core::toInt(srp::core::ExitCode::Error);
       return;
     }
     if (!o->urscript.empty()) {

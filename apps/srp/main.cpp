@@ -13,7 +13,13 @@ int main(int argc, char** argv) {
       "srp"};
   app.set_version_flag("--version", std::string("srp ") + SRP_VERSION);
   app.require_subcommand(1);
-  app.footer("Run 'srp <command> --help' for the options of a command.\n");
+  app.footer(
+      "Run 'srp <command> --help' for the options of a command.\n\n"
+      "Exit codes:\n"
+      "  0  done: the command did all of its job\n"
+      "  1  error: it could not do its job (bad input, a failed step); it says which and why\n"
+      "  2  usage: the command line is wrong (unknown command or option, missing argument)\n"
+      "  3  finished, but some steps were skipped or refused (srp execute: the report says which and why)\n");
 
   auto& registry = srp::app::commandRegistry();
   std::stable_sort(registry.begin(), registry.end(),

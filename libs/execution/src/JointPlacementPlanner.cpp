@@ -49,8 +49,6 @@ class Search {
   }
   const std::vector<PlannedPlacement>& best() const { return best_; }
   int placed() const { return bestPlaced_; }
-  bool complete() const { return complete_; }
-  bool exhausted() const { return trials_ > options_.maxTrials; }
 
  private:
   struct Trial {
@@ -78,14 +76,11 @@ class Search {
     relaxed.objects.erase(std::remove_if(relaxed.objects.begin(), relaxed.objects.end(),
                                          [&](const CellObject& o) { return removed.count(o.name) > 0; }),
                           relaxed.objects.end());
-    const CellObject& self = *relaxed.find(movers_[j]);
-    const PlacementContext ctx(relaxed, self, planner_.options());
-    for (const std::size_t limit : {std::size_t{8}, kAllCandidates}) {
-      const PlacementCandidates found = placementCandidates(ctx, *target, limit);
-      for (const auto& c : found.poses)
-        if ((allowTight_ || !c.tight) &&
-            planner_.holdsAt(relaxed, self, plan_.steps[j], target->landmarkIds, c.X_world_object))
-          return 1;
+    // A candidate allowed by the rules is enough (its relations are not checked: still a relaxation).
+    const PlacementContext ctx(relaxed, *relaxed.find(movers_[j]), planner_.options());
+    for (const std::size_t limit : {std::size_t{1}, kAllCandidates}) {
+      const PlacementCandidates found = placementCandidates(ctx, *target, limit, allowTight_);
+      if (!found.poses.empty()) return 1;
       if (found.poses.size() < limit) break;
     }
     return 0;
@@ -138,7 +133,7 @@ class Search {
       while (k >= candidates.size() && more) {
         fetched = fetched == 0 ? 8 : fetched * 8;
         std::string reason;
-        candidates = planner_.candidates(scene, *part, step, fetched, reason);
+        candidates = planner_.candidates(scene, *part, step, fetched, reason, allowTight_);
         more = candidates.size() >= fetched;
       }
       return k < candidates.size() ? &candidates[k] : nullptr;
@@ -232,7 +227,8 @@ std::vector<PlannedPlacement> JointPlacementPlanner::plan(const CellDescription&
   Search keepClearance(planner_, options_, plan, movers, false);
   keepClearance.run(scene);
   std::vector<PlannedPlacement> result = keepClearance.best();
-  if (!keepClearance.complete()) {
+  // Steps it had to refuse (even those impossible with the full clearance): try tight places too.
+  if (std::any_of(result.begin(), result.end(), [](const PlannedPlacement& s) { return s.refused; })) {
     Search tight(planner_, options_, plan, movers, true);
     tight.run(scene);
     if (tight.placed() > keepClearance.placed()) result = tight.best();

@@ -18,7 +18,11 @@ const CellObject* PlacementContext::containerOf(const CellObject& o) const {
 }
 
 bool PlacementContext::fitsInside(const CellObject& container, const Pose3& X) const {
-  return marginToInnerWalls(part_.size_m, X, container) >= options_.wallMargin_m - 1e-9;
+  const Eigen::Vector3d p = container.X_world_object.inverse() * X.translation();
+  const double centreToWalls = std::min(container.size_m.x() / 2 - container.wallThickness_m - std::abs(p.x()),
+                                        container.size_m.y() / 2 - container.wallThickness_m - std::abs(p.y()));
+  return marginToInnerWalls(part_.size_m, X, container) >= options_.wallMargin_m - 1e-9 &&
+         centreToWalls >= options_.toolClearance_m - 1e-9;
 }
 
 bool PlacementContext::fitsTable(const Pose3& X) const {
@@ -28,10 +32,13 @@ bool PlacementContext::fitsTable(const Pose3& X) const {
       std::abs(p.y()) + support(part_.size_m, yaw, Eigen::Vector2d::UnitY()) > scene_.tableHalfExtents_m.y())
     return false;
   const auto mine = footprint(part_.size_m, X, options_.wallMargin_m);
-  for (const auto& o : scene_.objects)
-    if (o.kind == CellObjectKind::Container &&
-        overlaps(mine, X, footprint(o.size_m, o.X_world_object, 0.0), o.X_world_object))
-      return false;
+  for (const auto& o : scene_.objects) {
+    if (o.kind != CellObjectKind::Container) continue;
+    if (overlaps(mine, X, footprint(o.size_m, o.X_world_object, 0.0), o.X_world_object)) return false;
+    const Eigen::Vector3d q = o.X_world_object.inverse() * X.translation();
+    const double dx = std::max(std::abs(q.x()) - o.size_m.x() / 2, 0.0), dy = std::max(std::abs(q.y()) - o.size_m.y() / 2, 0.0);
+    if (std::hypot(dx, dy) < options_.toolClearance_m - 1e-9) return false;
+  }
   return true;
 }
 
@@ -40,25 +47,32 @@ bool PlacementContext::inReach(const Pose3& X) const {
   return r >= options_.minReach_m && r <= options_.maxReach_m;
 }
 
-bool PlacementContext::isFree(const Pose3& X, const Clearance& clearance) const {
+bool PlacementContext::isFree(const Pose3& X) const {
+  const double half = options_.clearance_m / 2;
   for (const auto& o : scene_.objects) {
     if (o.kind != CellObjectKind::Part || o.name == part_.name) continue;
     if (!verticalOverlap(part_, X.translation().z(), o)) continue;  // stacked above or below
-    const bool isNear = std::find(clearance.near.begin(), clearance.near.end(), o.name) != clearance.near.end();
-    const double half = (isNear ? clearance.near_m : options_.clearance_m) / 2;
     if (overlaps(footprint(part_.size_m, X, half), X, footprint(o.size_m, o.X_world_object, half), o.X_world_object))
       return false;
   }
   return true;
 }
 
+std::vector<double> PlacementContext::turns() const {
+  const bool square = std::abs(part_.size_m.x() - part_.size_m.y()) <= 1e-3;
+  const double range = square ? M_PI / 2 : M_PI;
+  std::vector<double> out;
+  for (double t = 0.0; t < range - 1e-9; t += options_.turnStep_rad) out.push_back(t);
+  return out;
+}
+
 std::optional<Pose3> PlacementContext::rest(const Eigen::Vector2d& p, double yaw, const CellObject* container,
-                                            const Clearance& clearance, bool checkReach) const {
+                                            bool checkReach) const {
   auto reachable = [&](const Pose3& X) { return !checkReach || inReach(X); };
   if (container) {
     const Pose3 X = uprightPose(
         Eigen::Vector3d(p.x(), p.y(), container->X_world_object.translation().z() + container->wallThickness_m), yaw);
-    if (fitsInside(*container, X) && reachable(X) && isFree(X, clearance)) return X;
+    if (fitsInside(*container, X) && reachable(X) && isFree(X)) return X;
     return std::nullopt;
   }
   Pose3 X = uprightPose(Eigen::Vector3d(p.x(), p.y(), 0.0), yaw);
@@ -67,10 +81,18 @@ std::optional<Pose3> PlacementContext::rest(const Eigen::Vector2d& p, double yaw
     if (o.kind == CellObjectKind::Container && fitsInside(o, X)) {
       Pose3 onFloor = X;
       onFloor.translation().z() = o.X_world_object.translation().z() + o.wallThickness_m;
-      if (reachable(onFloor) && isFree(onFloor, clearance)) return onFloor;
+      if (reachable(onFloor) && isFree(onFloor)) return onFloor;
     }
-  if (fitsTable(X) && reachable(X) && isFree(X, clearance)) return X;
+  if (fitsTable(X) && reachable(X) && isFree(X)) return X;
   return std::nullopt;
+}
+
+PlacementOptions PlacementOptions::tight() const {
+  PlacementOptions o = *this;
+  o.clearance_m = o.wallMargin_m = minClearance_m;
+  o.gridStep_m = gridStep_m / 2;
+  o.turnStep_rad = tightTurnStep_rad;
+  return o;
 }
 
 }  // namespace srp::execution

@@ -111,7 +111,7 @@ srp::core::ViewFrame PlacementPlanner::viewFrame(const CellDescription& scene) c
 
 std::vector<Placement> PlacementPlanner::candidates(const CellDescription& scene, const CellObject& part,
                                                     const ExecutionStep& step, std::size_t limit,
-                                                    std::string& reason) const {
+                                                    std::string& reason, bool tight) const {
   const PlacementContext ctx(scene, part, options_);
   const std::optional<PlacementTarget> target = resolveTarget(ctx, step, reason);
   if (!target) return {};
@@ -119,7 +119,7 @@ std::vector<Placement> PlacementPlanner::candidates(const CellDescription& scene
   // Most first candidates check; fetch a few more than asked, everything only when they do not.
   for (const std::size_t fetch : {limit == kAllCandidates ? limit : 4 * limit + 4, kAllCandidates}) {
     out.clear();
-    const PlacementCandidates found = placementCandidates(ctx, *target, fetch);
+    const PlacementCandidates found = placementCandidates(ctx, *target, fetch, tight);
     reason = found.reason;
     for (const auto& c : found.poses) {
       if (!holdsAt(scene, part, step, target->landmarkIds, c.X_world_object)) continue;
@@ -167,18 +167,41 @@ bool PlacementPlanner::holdsAt(const CellDescription& scene, const CellObject& p
   return std::all_of(checks.begin(), checks.end(), [](const RelationCheck& c) { return c.holds; });
 }
 
+std::optional<Placement> PlacementPlanner::candidateNear(const CellDescription& scene, const CellObject& part,
+                                                         const ExecutionStep& step, const Placement& planned,
+                                                         double tolerance_m) const {
+  if (!planned.X_world_object) return std::nullopt;
+  const Pose3& P = *planned.X_world_object;
+  const PlacementContext ctx(scene, part, options_);
+  std::string reason;
+  const std::optional<PlacementTarget> target = resolveTarget(ctx, step, reason);
+  if (!target) return std::nullopt;
+  const PlacementCandidates found = placementCandidates(ctx, *target, kAllCandidates, planned.tight);
+  const PlacementCandidate* best = nullptr;
+  double bestDistance = tolerance_m;
+  for (const auto& c : found.poses) {
+    const double d = (c.X_world_object.translation() - P.translation()).norm();
+    if (d <= bestDistance && std::abs(std::remainder(yawOfPose(c.X_world_object) - yawOfPose(P), M_PI)) < 1e-6)
+      best = &c, bestDistance = d;
+  }
+  if (!best || !holdsAt(scene, part, step, target->landmarkIds, best->X_world_object)) return std::nullopt;
+  Placement p = planned;
+  p.X_world_object = best->X_world_object;
+  p.container = best->container;
+  p.stackedOn = best->stackedOn;
+  p.landmarkIds = target->landmarkIds;
+  p.tight = best->tight;
+  return p;
+}
+
 bool PlacementPlanner::stillAllowed(const CellDescription& scene, const CellObject& part, const ExecutionStep& step,
                                     const Placement& placement) const {
   if (!placement.X_world_object) return false;
   const Pose3& X = *placement.X_world_object;
   if (!holdsAt(scene, part, step, placement.landmarkIds, X)) return false;
-  const PlacementContext ctx(scene, part, options_);
-  PlacementContext::Clearance clearance{};
-  if (placement.tight) {
-    for (const auto& [a, b] : placement.landmarkIds) clearance.near.insert(clearance.near.end(), {a, b});
-    clearance.near_m = options_.betweenMinClearance_m;
-  }
-  if (!ctx.isFree(X, clearance)) return false;
+  const PlacementOptions rules = placement.tight ? options_.tight() : options_;
+  const PlacementContext ctx(scene, part, rules);
+  if (!ctx.isFree(X)) return false;
   if (!placement.stackedOn.empty()) return true;
   if (const CellObject* box = scene.find(placement.container)) return ctx.fitsInside(*box, X);
   if (X.translation().z() < 1e-6) return ctx.fitsTable(X);

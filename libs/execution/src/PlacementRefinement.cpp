@@ -118,25 +118,18 @@ class Refinement {
     });
   }
 
-  std::vector<std::string> betweenLandmarks(std::size_t i) const {
-    std::vector<std::string> ids;
-    for (std::size_t r = 0; r < plan_.steps[i].target.size() && r < steps_[i].placement.landmarkIds.size(); ++r)
-      if (placementKindOf(plan_.steps[i].target[r]) == PlacementKind::Between)
-        ids = {steps_[i].placement.landmarkIds[r].first, steps_[i].placement.landmarkIds[r].second};
-    return ids;
-  }
+  /// The rules step i was planned with (tight: PlacementOptions::tight()).
+  PlacementOptions rulesOf(std::size_t i) const { return steps_[i].placement.tight ? o_.tight() : o_; }
 
   /// The pairs to keep apart and the relation slack to keep, from the discrete plan.
   void setUp() {
     for (const std::size_t i : placed_) {
       const CellDescription now = sceneAfter(i, steps_);
       const CellObject& part = *now.find(steps_[i].part);
-      const std::vector<std::string> near = betweenLandmarks(i);
       for (const auto& o : now.objects) {
         if (o.kind != CellObjectKind::Part || o.name == part.name) continue;
         if (!verticalOverlap(part, part.X_world_object.translation().z(), o)) continue;
-        const bool isNear = std::find(near.begin(), near.end(), o.name) != near.end() && steps_[i].placement.tight;
-        pairs_.push_back({i, o.name, isNear ? o_.betweenMinClearance_m : o_.clearance_m});
+        pairs_.push_back({i, o.name, rulesOf(i).clearance_m});
       }
       for (const auto& c : planner_.check(now, part, plan_.steps[i], steps_[i].placement.landmarkIds))
         slack_.push_back(std::min(kRelationSlack_m, c.slack_m));
@@ -162,13 +155,17 @@ class Refinement {
           g.push_back(-separation(footprint(part.size_m, X, pair.required_m / 2), X,
                                   footprint(o.size_m, o.X_world_object, pair.required_m / 2), o.X_world_object));
         }
+      const double wallMargin = rulesOf(i).wallMargin_m;
       if (const CellObject* box = now.find(s[i].placement.container)) {
-        g.push_back(o_.wallMargin_m - marginToInnerWalls(part.size_m, X, *box));
+        g.push_back(wallMargin - marginToInnerWalls(part.size_m, X, *box));
+        const Eigen::Vector3d p = box->X_world_object.inverse() * X.translation();
+        g.push_back(o_.toolClearance_m - std::min(box->size_m.x() / 2 - box->wallThickness_m - std::abs(p.x()),
+                                                  box->size_m.y() / 2 - box->wallThickness_m - std::abs(p.y())));
         continue;
       }
       for (const auto& c : now.objects)
         if (c.kind == CellObjectKind::Container)
-          g.push_back(-separation(footprint(part.size_m, X, o_.wallMargin_m), X, footprint(c.size_m, c.X_world_object, 0.0),
+          g.push_back(-separation(footprint(part.size_m, X, wallMargin), X, footprint(c.size_m, c.X_world_object, 0.0),
                                   c.X_world_object));
       const Eigen::Vector2d p = X.translation().head<2>() - now.tableCentre_m;
       g.push_back(std::abs(p.x()) + support(part, Eigen::Vector2d::UnitX()) - now.tableHalfExtents_m.x());
@@ -188,6 +185,11 @@ class Refinement {
     for (const std::size_t i : placed_) {
       const CellDescription now = sceneAfter(i, s);
       const CellObject& part = *now.find(s[i].part);
+      if (const CellObject* box = now.find(s[i].placement.container); box && s[i].placement.tight)
+        f += kGapWeight *
+             std::pow(std::max(0.0, o_.wallMargin_m + kGapAbove_m - marginToInnerWalls(part.size_m, part.X_world_object, *box)) /
+                          kGapScale_m,
+                      2);
       for (const auto& pair : pairs_)
         if (pair.step == i && pair.required_m < o_.clearance_m) {
           const CellObject& o = *now.find(pair.other);
@@ -206,11 +208,11 @@ class Refinement {
       const CellDescription now = sceneAfter(i, s);
       const CellObject& part = *now.find(s[i].part);
       const Pose3& X = part.X_world_object;
-      const PlacementContext ctx(now, part, o_);
+      const PlacementOptions rules = rulesOf(i);
+      const PlacementContext ctx(now, part, rules);
       const CellObject* box = now.find(s[i].placement.container);
-      const PlacementContext::Clearance near{betweenLandmarks(i), o_.betweenMinClearance_m};
       if (!planner_.holdsAt(now, part, plan_.steps[i], s[i].placement.landmarkIds, X) ||
-          !(box ? ctx.fitsInside(*box, X) : ctx.fitsTable(X)) || !ctx.isFree(X, near))
+          !(box ? ctx.fitsInside(*box, X) : ctx.fitsTable(X)) || !ctx.isFree(X))
         return false;
     }
     return true;
@@ -244,12 +246,13 @@ void refineClearances(const PlacementPlanner& planner, const CellDescription& sc
   Refinement refinement(planner, scene, plan, steps);
   if (!refinement.applicable() || !refinement.solve()) return;
   steps = refinement.steps();
-  // A step still nearer its landmarks than clearance_m stays marked tight.
+  // A step that now keeps the full clearances is no longer tight.
   for (std::size_t i = 0; i < steps.size(); ++i) {
     if (!steps[i].placement.X_world_object || !steps[i].placement.tight) continue;
     const CellDescription now = JointPlacementPlanner::sceneAfter(scene, {steps.begin(), steps.begin() + i + 1});
-    const CellObject& part = *now.find(steps[i].part);
-    steps[i].placement.tight = !PlacementContext(now, part, planner.options()).isFree(part.X_world_object);
+    Placement full = steps[i].placement;
+    full.tight = false;
+    steps[i].placement.tight = !planner.stillAllowed(now, *now.find(steps[i].part), plan.steps[i], full);
   }
 }
 

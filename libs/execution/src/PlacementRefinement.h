@@ -11,9 +11,11 @@
 
 namespace srp::execution {
 
-/// When a planned step is tight (nearer its "between" landmarks than clearance_m), moves
+/// When a planned step is tight (PlacementOptions::tight(): nearer parts or walls than
+/// clearance_m / wallMargin_m), moves
 /// the planned parts (x, y and yaw; the support kept) with NLopt's COBYLA to raise every
-/// gap below clearance_m towards it, each part moving and turning as little as it can (at
+/// gap below clearance_m (and a tight part's wall margin below wallMargin_m) towards it,
+/// each part moving and turning as little as it can (at
 /// most 2 cm per coordinate, 0.2 rad),
 /// subject to every step's relations (their slack kept at least at min(1 mm, before)),
 /// the clearances, walls, table and reach in the scene each step is placed in. The

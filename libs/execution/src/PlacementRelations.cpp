@@ -20,13 +20,6 @@ struct Collector {
   }
 };
 
-bool isOblong(const CellObject& part) { return std::abs(part.size_m.x() - part.size_m.y()) > 1e-3; }
-
-/// The turns of the part to try: along the reference yaw, then (an oblong part) across it.
-std::vector<double> turnsOf(const CellObject& part) {
-  return isOblong(part) ? std::vector<double>{0.0, M_PI / 2} : std::vector<double>{0.0};
-}
-
 void sortByDistance(std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& p0) {
   std::stable_sort(points.begin(), points.end(),
                    [&](const auto& a, const auto& b) { return (a - p0).squaredNorm() < (b - p0).squaredNorm(); });
@@ -55,7 +48,9 @@ Eigen::Vector2d preferredCorner(const PlacementContext& ctx, const PlacementTarg
 
 }  // namespace
 
-PlacementCandidates placementCandidates(const PlacementContext& ctx, const PlacementTarget& target, std::size_t limit) {
+namespace {
+
+PlacementCandidates byKind(const PlacementContext& ctx, const PlacementTarget& target, std::size_t limit) {
   switch (target.kind) {
     case PlacementKind::In:
     case PlacementKind::Corner: return placeIn(ctx, target, limit);
@@ -67,23 +62,53 @@ PlacementCandidates placementCandidates(const PlacementContext& ctx, const Place
   return {};
 }
 
+}  // namespace
+
+PlacementCandidates placementCandidates(const PlacementContext& ctx, const PlacementTarget& target, std::size_t limit,
+                                        bool tight) {
+  PlacementCandidates out = byKind(ctx, target, limit);
+  if (!tight || out.poses.size() >= limit || target.kind == PlacementKind::OnTop) return out;
+  // Then the tight places (PlacementOptions::tight()) the full clearances did not allow.
+  const PlacementOptions rules = ctx.options().tight();
+  const PlacementContext tightContext(ctx.scene(), ctx.part(), rules);
+  const std::size_t full = out.poses.size();
+  PlacementCandidates more = byKind(tightContext, target, limit == kAllCandidates ? limit : limit + full);
+  auto known = [&](const PlacementCandidate& c) {
+    return std::any_of(out.poses.begin(), out.poses.begin() + static_cast<std::ptrdiff_t>(full), [&](const auto& q) {
+      return (q.X_world_object.translation() - c.X_world_object.translation()).norm() < 1e-6 &&
+             std::abs(std::remainder(yawOfPose(q.X_world_object) - yawOfPose(c.X_world_object), M_PI)) < 1e-6;
+    });
+  };
+  for (auto& c : more.poses) {
+    if (out.poses.size() >= limit) break;
+    if (full > 0 && known(c)) continue;
+    c.tight = true;
+    out.poses.push_back(std::move(c));
+  }
+  if (out.poses.empty()) out.reason = more.reason;
+  return out;
+}
+
 PlacementCandidates placeIn(const PlacementContext& ctx, const PlacementTarget& t, std::size_t limit) {
   PlacementCandidates out;
   Collector collect{out, limit};
   const CellObject& part = ctx.part();
   const CellObject& container = *ctx.scene().find(t.container);
   const PlacementOptions& o = ctx.options();
-  const double wx = container.size_m.x() / 2 - container.wallThickness_m - o.wallMargin_m;
-  const double wy = container.size_m.y() / 2 - container.wallThickness_m - o.wallMargin_m;
+  const double innerX = container.size_m.x() / 2 - container.wallThickness_m;
+  const double innerY = container.size_m.y() / 2 - container.wallThickness_m;
+  const double wx = innerX - o.wallMargin_m, wy = innerY - o.wallMargin_m;
   if (std::min(wx, wy) < std::min(part.size_m.x(), part.size_m.y()) / 2 ||
       std::max(wx, wy) < std::max(part.size_m.x(), part.size_m.y()) / 2) {
     out.reason = "the " + part.name + " does not fit in the " + container.name;
     return out;
   }
   const Eigen::Vector2d cc = centre(container);
-  for (const double turn : turnsOf(part)) {
-    const double ix = wx - (turn == 0.0 ? part.size_m.x() : part.size_m.y()) / 2;
-    const double iy = wy - (turn == 0.0 ? part.size_m.y() : part.size_m.x()) / 2;
+  for (const double turn : ctx.turns()) {
+    // The centre's free half-extents (footprint inside the margins, centre clear for the tool).
+    const double c = std::abs(std::cos(turn)), s = std::abs(std::sin(turn));
+    const double ix = std::min(wx - (c * part.size_m.x() + s * part.size_m.y()) / 2, innerX - o.toolClearance_m);
+    const double iy = std::min(wy - (s * part.size_m.x() + c * part.size_m.y()) / 2, innerY - o.toolClearance_m);
     if (ix < 0 || iy < 0) continue;
     const Eigen::Vector2d corner = preferredCorner(ctx, t, container, ix, iy);
     const Eigen::Vector2d preferred = t.cornerDirections.empty() ? t.demoPositionInContainer_m.value_or(corner) : corner;
@@ -91,8 +116,8 @@ PlacementCandidates placeIn(const PlacementContext& ctx, const PlacementTarget& 
     for (double x = -ix; x <= ix + 1e-9; x += o.gridStep_m)
       for (double y = -iy; y <= iy + 1e-9; y += o.gridStep_m) grid.emplace_back(x, y);
     sortByDistance(grid, preferred);
-    for (const auto& c : grid) {
-      const Pose3 X = container.X_world_object * uprightPose(Eigen::Vector3d(c.x(), c.y(), container.wallThickness_m), turn);
+    for (const auto& g : grid) {
+      const Pose3 X = container.X_world_object * uprightPose(Eigen::Vector3d(g.x(), g.y(), container.wallThickness_m), turn);
       bool inQuadrant = true;  // a named corner: stay in its quadrant
       for (const auto& d : t.cornerDirections) inQuadrant = inQuadrant && (X.translation().head<2>() - cc).dot(d) > 0.0;
       if (inQuadrant && ctx.isFree(X)) collect.add(X, container.name);
@@ -181,7 +206,7 @@ PlacementCandidates placeNextTo(const PlacementContext& ctx, const PlacementTarg
     if (fits && !seen && ctx.isFree(X)) collect.add(X, container ? container->name : "");
   };
   const double slideMax = 0.06;
-  for (const double turn : turnsOf(part)) {
+  for (const double turn : ctx.turns()) {
     const double yaw = yaw0 + turn;
     for (const auto& d : sides) tryPlace(yaw, d, o.neighbourGap_m, 0.0);
     for (const auto& d : sides)
@@ -210,10 +235,12 @@ PlacementCandidates placeInDirection(const PlacementContext& ctx, const Placemen
   const Eigen::Vector2d c = centre(landmark), d = t.direction, perp(-d.y(), d.x());
   // Further out on the table: past a container in the way, as far as the 45-degree cone allows.
   constexpr double kInsideExtra_m = 0.12, kTableExtra_m = 0.30, kLateral_m = 0.08;
-  auto attempt = [&](const CellObject* in, double yaw, double extraMax_m) {
+  // Gaps from neighbourGap_m out to extraMax_m more, or (closer) from clearance_m up to neighbourGap_m.
+  auto attempt = [&](const CellObject* in, double yaw, double extraMax_m, bool closer = false) {
     const double d0 = support(landmark, d) + support(part.size_m, yaw, d) + o.neighbourGap_m;
+    const double from = closer ? o.clearance_m - o.neighbourGap_m : 0.0, to = closer ? -1e-6 : extraMax_m;
     std::vector<Eigen::Vector2d> grid;
-    for (double extra = 0.0; extra <= extraMax_m + 1e-9; extra += o.gridStep_m)
+    for (double extra = from; extra <= to + 1e-9; extra += closer ? o.gridStep_m / 5 : o.gridStep_m)
       for (double lateral = -kLateral_m; lateral <= kLateral_m + 1e-9; lateral += o.gridStep_m) {
         const Eigen::Vector2d p = c + (d0 + extra) * d + lateral * perp;
         // Within 45 degrees of the named direction, so "left of" still reads as left.
@@ -222,21 +249,24 @@ PlacementCandidates placeInDirection(const PlacementContext& ctx, const Placemen
     sortByDistance(grid, c + d0 * d);
     for (const auto& p : grid) {
       if (collect.full()) return;
-      if (const auto X = ctx.rest(p, yaw, in, {}, true)) collect.add(*X, in ? in->name : "");
+      if (const auto X = ctx.rest(p, yaw, in, true)) collect.add(*X, in ? in->name : "");
     }
   };
   const double yawIn = yawOfPose(container ? container->X_world_object : landmark.X_world_object);
-  for (const double turn : turnsOf(part)) attempt(container, yawIn + turn, container ? kInsideExtra_m : kTableExtra_m);
+  for (const double turn : ctx.turns()) attempt(container, yawIn + turn, container ? kInsideExtra_m : kTableExtra_m);
+  for (const double turn : ctx.turns()) attempt(container, yawIn + turn, 0.0, true);
   // A landmark's container with no room: beside the landmark on the table (unless the container was named).
   if (container && !t.containerNamed && out.poses.empty())
-    for (const double turn : turnsOf(part))
-      attempt(nullptr, yawOfPose(landmark.X_world_object) + turn, kTableExtra_m);
+    for (const double turn : ctx.turns()) attempt(nullptr, yawOfPose(landmark.X_world_object) + turn, kTableExtra_m);
   if (out.poses.empty())
     out.reason = "no free place " + t.directionText + " the " + landmark.name +
                  where(container && t.containerNamed ? container : nullptr) + " for the " +
                  part.name + " (blocked by other parts, the walls, the table edge or the arm's reach)";
   return out;
 }
+
+/// The after-placement check allows the footprints 1 mm into each other along the line.
+constexpr double kBetweenSlack_m = 1e-3 - 1e-5;
 
 PlacementCandidates placeBetween(const PlacementContext& ctx, const PlacementTarget& t, std::size_t limit) {
   PlacementCandidates out;
@@ -253,13 +283,11 @@ PlacementCandidates placeBetween(const PlacementContext& ctx, const PlacementTar
   // The part's narrower side along A-B first: it needs the least room there.
   const double narrow = std::atan2(u.y(), u.x()) + (part.size_m.x() <= part.size_m.y() ? 0.0 : M_PI / 2);
   auto attempt = [&](const CellObject* in, double yaw) {
-    const double sP = support(part.size_m, yaw, u);
-    if (room < 2 * sP + 2 * o.betweenMinClearance_m) return;
-    // A tight gap: the part in the middle, nearer A and B than clearance_m (0.1 mm: exactly centred touches).
-    const double near_m = std::min(o.clearance_m, (room - 2 * sP) / 2 - 1e-4);
-    const PlacementContext::Clearance clearance{{A.name, B.name}, near_m};
+    // Along the line, as far as the footprints may still be told apart along it (the
+    // check's 1 mm); the clearances are kept by rest(), also by a part offset sideways.
+    const double slack = (room - 2 * support(part.size_m, yaw, u)) / 2 + kBetweenSlack_m;
+    if (slack < 0.0) return;
     const Eigen::Vector2d p0 = a + (sA + room / 2) * u;
-    const double slack = std::max(0.0, (room - 2 * sP - 2 * near_m) / 2);
     std::vector<Eigen::Vector2d> grid{p0};
     for (double along = -slack; along <= slack + 1e-9; along += o.gridStep_m / 2)
       for (double lateral = -lateralLimit; lateral <= lateralLimit + 1e-9; lateral += o.gridStep_m / 2)
@@ -267,19 +295,18 @@ PlacementCandidates placeBetween(const PlacementContext& ctx, const PlacementTar
     sortByDistance(grid, p0);
     for (const auto& p : grid) {
       if (collect.full()) return;
-      if (const auto X = ctx.rest(p, yaw, in, clearance, true))
-        collect.add(*X, in ? in->name : "", near_m < o.clearance_m);
+      if (const auto X = ctx.rest(p, yaw, in, true)) collect.add(*X, in ? in->name : "");
     }
   };
   const CellObject* container = containerOf(ctx, t);
-  for (const double turn : turnsOf(part)) attempt(container, narrow + turn);
+  for (const double turn : ctx.turns()) attempt(container, narrow + turn);
   if (container && !t.containerNamed && out.poses.empty())
-    for (const double turn : turnsOf(part)) attempt(nullptr, narrow + turn);
-  const double sP = support(part.size_m, narrow, u), needed = 2 * sP + 2 * o.betweenMinClearance_m;
+    for (const double turn : ctx.turns()) attempt(nullptr, narrow + turn);
+  const double sP = support(part.size_m, narrow, u), needed = 2 * sP + 2 * o.clearance_m;
   if (out.poses.empty() && room < needed)
     out.reason = "not enough room between the " + A.name + " and the " + B.name + " for the " + part.name + " (" +
                  fmt(room) + " free along the line between them, " + fmt(needed) + " needed: its narrower side " +
-                 fmt(2 * sP) + " and " + fmt(o.betweenMinClearance_m) + " on each side)";
+                 fmt(2 * sP) + " and " + fmt(o.clearance_m) + " on each side)";
   else if (out.poses.empty())
     out.reason = "no free place between the " + A.name + " and the " + B.name +
                  where(container && t.containerNamed ? container : nullptr) + " for the " + part.name +

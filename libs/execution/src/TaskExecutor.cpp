@@ -156,14 +156,24 @@ StepReport TaskExecutor::runStep(std::size_t index, const ExecutionPlan& plan, s
   }
   r.object = part->name;
   r.X_world_start = part->X_world_object;
-  if (planned[index].part != part->name ||
-      (planned[index].placement.X_world_object && !placement_.stillAllowed(scene, *part, step, planned[index].placement))) {
-    // The scene is not what the plan expected (a part moved, another instance): the
-    // remaining steps are planned again, together, from here.
+  // The planned place, recomputed from the landmarks where they came to rest (the same
+  // candidate: within kSamePlace_m, a few times the placement error); else as planned if
+  // the scene still allows it; else the scene is not what the plan expected (a part moved,
+  // another instance): the remaining steps are planned again, together, from here.
+  constexpr double kSamePlace_m = 5e-4;
+  const std::optional<Placement> again =
+      planned[index].part == part->name
+          ? placement_.candidateNear(scene, *part, step, planned[index].placement, kSamePlace_m)
+          : std::nullopt;
+  if (again) {
+    planned[index].placement = *again;
+  } else if (planned[index].part != part->name ||
+             (planned[index].placement.X_world_object &&
+              !placement_.stillAllowed(scene, *part, step, planned[index].placement))) {
     ExecutionPlan rest;
     rest.steps.assign(plan.steps.begin() + static_cast<std::ptrdiff_t>(index), plan.steps.end());
-    const std::vector<PlannedPlacement> again = jointPlacement_.plan(scene, rest);
-    std::copy(again.begin(), again.end(), planned.begin() + static_cast<std::ptrdiff_t>(index));
+    const std::vector<PlannedPlacement> replanned = jointPlacement_.plan(scene, rest);
+    std::copy(replanned.begin(), replanned.end(), planned.begin() + static_cast<std::ptrdiff_t>(index));
   }
   const Placement placement = planned[index].placement;
   if (!placement.X_world_object) return finish(StepStatus::Skipped, placement.reason);

@@ -17,14 +17,13 @@
 ///    steps placed: the first plan placing every step ends the search; otherwise the plan
 ///    placing the most, a step that no joint plan can satisfy being refused with the reason.
 ///    A candidate that failed rules out its neighbours nearer than `spread_m` at its level.
-/// 3. Margins first: a first search keeps clearance_m to every part; only when it
-///    cannot place every step, a second one also takes the tight "between" places
-///    (down to betweenMinClearance_m).
-/// 4. Refinement: when the chosen plan has parts nearer each other or a wall than the
-///    clearances (tight places), their positions are moved continuously (NLopt, COBYLA)
-///    to raise those gaps towards clearance_m, each part moving as little as possible,
-///    every relation kept; the refined plan is used only when every relation and rule
-///    still checks.
+/// 3. Margins first: a first search keeps clearance_m and wallMargin_m everywhere; only
+///    when it cannot place every step, a second one also takes tight places (down to
+///    minClearance_m, PlacementOptions::tight()).
+/// 4. Refinement: when the chosen plan has tight places, the planned parts are moved
+///    continuously (x, y, yaw; NLopt, COBYLA) to raise the gaps below clearance_m and
+///    wallMargin_m towards them, each part moving as little as possible, every relation
+///    kept; the refined plan is used only when every relation and rule still checks.
 /// Frames: world = table frame, z up, metres.
 
 #include <cstddef>

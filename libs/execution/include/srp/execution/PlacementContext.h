@@ -8,6 +8,7 @@
 /// Frames: world = table frame, z up, metres; a part's frame has its origin at the
 /// centre of its bottom face. Every pose the context accepts is upright.
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,10 +26,15 @@ struct PlacementOptions {
   double neighbourGap_m = 0.015;  ///< gap between footprints of neighbours
   double wallMargin_m = 0.008;    ///< free space between a placed part and a wall
   double clearance_m = 0.008;     ///< minimum gap to any other part
-  /// "between A and B" in a gap narrower than the part + 2 x clearance_m: the part goes
-  /// in the middle, at least this far from A and B (other parts keep clearance_m).
-  double betweenMinClearance_m = 0.003;
-  double gridStep_m = 0.005;      ///< candidate spacing
+  /// A tight place (tried only where no place keeps clearance_m and wallMargin_m) keeps at
+  /// least this to the other parts and the walls.
+  double minClearance_m = 0.002;
+  /// A placed part's centre keeps this from every container wall (inside and outside): the
+  /// suction tool (radius 20 mm) above it keeps the SafetyChecker's 2 mm from the walls.
+  double toolClearance_m = 0.022;
+  double gridStep_m = 0.005;          ///< candidate spacing (halved for tight places)
+  double turnStep_rad = M_PI / 2;     ///< yaw choices of a part: its reference yaw turned by this step
+  double tightTurnStep_rad = M_PI / 12;  ///< and for tight places
   double minReach_m = 0.15;       ///< horizontal distance from the robot base, at least
   double maxReach_m = 0.80;       ///< and at most (UR5: 0.85 m)
   double neighbourTolerance_m = 0.015;  ///< extra gap allowed when checking "next to"
@@ -36,17 +42,14 @@ struct PlacementOptions {
   /// How landmarks are found (SceneGrounder) and the view (grounding.viewpoint) in
   /// which left/right/front/behind/corners are read, for grounding and placement alike.
   GroundingOptions grounding;
+
+  /// The rules of a tight place: clearance_m and wallMargin_m down to minClearance_m,
+  /// half the grid step, the turns of tightTurnStep_rad.
+  PlacementOptions tight() const;
 };
 
 class PlacementContext {
  public:
-  /// Parts kept nearer than clearance_m ("between": its two landmarks). Value-initialise
-  /// (`Clearance{}`): no part is near.
-  struct Clearance {
-    std::vector<std::string> near;  ///< instance ids
-    double near_m;                  ///< the gap kept to them
-  };
-
   /// Keeps references: `scene`, `part` and `options` must outlive the context. `part`
   /// is the part being placed; it is no obstacle to itself.
   PlacementContext(const CellDescription& scene, const CellObject& part, const PlacementOptions& options);
@@ -59,22 +62,27 @@ class PlacementContext {
 
   /// The container whose inner walls hold the footprint centre of `o`, nullptr if none.
   const CellObject* containerOf(const CellObject& o) const;
-  /// The part's whole footprint at X, plus wallMargin_m, inside `container`'s inner walls.
+  /// The part's whole footprint at X, plus wallMargin_m, inside `container`'s inner walls,
+  /// its centre toolClearance_m from them.
   bool fitsInside(const CellObject& container, const srp::core::Pose3& X) const;
-  /// On the table top and clear of every container's outer walls by wallMargin_m.
+  /// On the table top and clear of every container's outer walls by wallMargin_m (the
+  /// centre by toolClearance_m).
   bool fitsTable(const srp::core::Pose3& X) const;
   /// Horizontal distance of X from the robot base within [minReach_m, maxReach_m].
   bool inReach(const srp::core::Pose3& X) const;
-  /// No other part within clearance_m of the part at X (`clearance.near` within
-  /// clearance.near_m) at X's height: parts stacked above or below do not count.
-  bool isFree(const srp::core::Pose3& X, const Clearance& clearance = {}) const;
+  /// No other part within clearance_m of the part at X at X's height: parts stacked
+  /// above or below do not count.
+  bool isFree(const srp::core::Pose3& X) const;
+  /// The turns (about z, radians) to try from a reference yaw: every turnStep_rad over
+  /// half a turn (a quarter for a square footprint), the reference first.
+  std::vector<double> turns() const;
 
   /// The part upright at (p_world, yaw) resting where it may: on `container`'s floor
   /// inside its walls, or (container nullptr) on the table top, or on the floor of a
   /// container its footprint falls wholly into; free of the other parts; within reach
   /// when `checkReach`. nullopt when no such rest exists.
   std::optional<srp::core::Pose3> rest(const Eigen::Vector2d& p_world, double yaw, const CellObject* container,
-                                       const Clearance& clearance, bool checkReach) const;
+                                       bool checkReach) const;
 
  private:
   const CellDescription& scene_;

@@ -28,12 +28,15 @@
 ///   sideways when that place is taken, as long as the lateral offset stays below
 ///   the offset along d, i.e. within 45 degrees of d).
 /// - "between A and B": on the segment A-B, centred in the free space between their
-///   footprints, clearance_m from A and B when there is room, else in the middle down to
-///   betweenMinClearance_m; refused when the space is narrower than the part's narrower
-///   side plus two betweenMinClearance_m.
+///   footprints, clearance_m from A and B; refused when no place between them keeps
+///   minClearance_m from both (the reason gives the room along the line and what the
+///   part's narrower side needs).
 /// - a place on the table that lies wholly inside a container rests on its floor.
 /// The yaw of a placed part is its container's, else its landmark's; "between" turns the
-/// part's narrower side along A-B.
+/// part's narrower side along A-B; other turns come after (PlacementRelations.h).
+/// Where no place keeps clearance_m and wallMargin_m, a tight place keeps minClearance_m
+/// (PlacementOptions::tight(): also a finer grid and more yaw choices). A placed part's
+/// centre keeps toolClearance_m from the container walls (the suction tool above it).
 /// An impossible placement gives the reason and no pose.
 ///
 /// Structure: PlacementTarget.h grounds the landmarks (resolveTarget), PlacementContext.h
@@ -65,8 +68,8 @@ struct Placement {
   /// The instance ids the target relations' landmarks were grounded to, in
   /// step.target order (second: B of "between A and B", else ""), for check().
   std::vector<std::pair<std::string, std::string>> landmarkIds;
-  /// Nearer its "between" landmarks than clearance_m (a tight gap, at least
-  /// betweenMinClearance_m): a placement with less margin.
+  /// A tight place: nearer the other parts or the walls than clearance_m / wallMargin_m
+  /// (at least minClearance_m, PlacementOptions::tight()), a placement with less margin.
   bool tight = false;
   std::string reason;     ///< why there is no placement
 };
@@ -83,19 +86,27 @@ class PlacementPlanner {
   /// candidate (PlacementRelations.h) whose relations check (check()).
   Placement place(const CellDescription& scene, const CellObject& part, const ExecutionStep& step) const;
 
-  /// The candidates of place() whose relations check, best first, at most `limit`; empty
-  /// with `reason` set when there is none. The joint planner's choices for one step.
+  /// The candidates of place() whose relations check, best first, at most `limit` (with
+  /// `tight`, the tight places after the others); empty with `reason` set when there is
+  /// none. The joint planner's choices for one step.
   std::vector<Placement> candidates(const CellDescription& scene, const CellObject& part, const ExecutionStep& step,
-                                    std::size_t limit, std::string& reason) const;
+                                    std::size_t limit, std::string& reason, bool tight = true) const;
 
   /// True when every target relation of `step` holds (check()) with `part` at X in
   /// `scene`, the landmarks being the instances `landmarkIds` names.
   bool holdsAt(const CellDescription& scene, const CellObject& part, const ExecutionStep& step,
                const std::vector<std::pair<std::string, std::string>>& landmarkIds, const srp::core::Pose3& X) const;
 
+  /// The candidate of `scene` (the landmarks where they are now) nearest to `planned`
+  /// (planned earlier, e.g. in the scene the joint planner expected): the same place,
+  /// recomputed; nullopt when none lies within `tolerance_m` with the same yaw (modulo a
+  /// half turn) or its relations do not check.
+  std::optional<Placement> candidateNear(const CellDescription& scene, const CellObject& part, const ExecutionStep& step,
+                                         const Placement& planned, double tolerance_m) const;
+
   /// True when `placement` (planned earlier, e.g. by JointPlacementPlanner) is still
   /// allowed for `part` in `scene`: its relations check and it keeps the walls, the table
-  /// and the clearances (a tight "between" place betweenMinClearance_m to its landmarks).
+  /// and the clearances (a tight place those of PlacementOptions::tight()).
   bool stillAllowed(const CellDescription& scene, const CellObject& part, const ExecutionStep& step,
                     const Placement& placement) const;
 

@@ -18,7 +18,7 @@ void setupKb(CLI::App& cmd) {
   auto* build = cmd.add_subcommand("build", "Generate the STL mesh of every catalogue class with a shape generator");
   build->add_option("--catalogue", *cataloguePath, "catalogue JSON (default: the bundled one)");
   build->callback([cataloguePath]() {
-    const auto catalogue = srp::core::ObjectCatalogue::load(*cataloguePath);
+    const auto catalogue = srp::kb::loadCatalogue(*cataloguePath);
     for (const auto& m : srp::kb::buildMeshes(catalogue))
       std::cout << m.className << ": " << m.triangleCount << " triangles -> " << m.path << "\n";
   });

@@ -141,13 +141,16 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
   }
 
   // All placements are planned together before the first step moves; one progress line per step.
-  result.report = executor.run(result.plan, [&](const StepReport& step) {
+  ExecutionReport report = executor.run(result.plan, [&](const StepReport& step) {
     if (!request.progress) return;
     ExecutionReport one;
     one.steps.push_back(step);
     const std::string text = one.toText();
     request.progress(text.substr(0, text.find('\n')));
   });
+  report.scene = result.report.scene;  // where the scene and the robot base came from (set above)
+  report.robotBase = result.report.robotBase;
+  result.report = std::move(report);
 
   result.executed = ExecutedTask::fromSimulation(robot, request.options.safety, executor.simulator(), result.report);
   result.executed.taskName = model.info.name;

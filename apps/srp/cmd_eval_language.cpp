@@ -14,13 +14,14 @@
 namespace {
 void setupEvalLanguage(CLI::App& app) {
   auto dataPath = std::make_shared<std::string>();
-  auto modelPath = std::make_shared<std::string>(srp::language::defaultModelPath());
+  auto modelPath = std::make_shared<std::string>();
   auto predictionsPath = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
   app.add_option("--data", *dataPath, "SpERT corpus to score (e.g. datasets/language/val.json)")
       ->required()
       ->check(CLI::ExistingFile);
-  app.add_option("--model", *modelPath, "language model file")->capture_default_str();
+  app.add_option("--model", *modelPath,
+                 "language model file (default: the shipped datasets/language/model/language_model.dat of srp's data folder)");
   app.add_option("--predictions", *predictionsPath, "also write the predicted sentences (SpERT JSON) here");
   app.add_flag("--json", *json, "print {\"types\": {...}, \"ms_per_sentence\": x}");
   auto errorTypes = std::make_shared<std::vector<std::string>>();
@@ -33,7 +34,8 @@ void setupEvalLanguage(CLI::App& app) {
                  "and the scores if the scored corpus followed it where the model did")
       ->check(CLI::ExistingFile);
   app.callback([=] {
-    const auto model = srp::language::LanguageModel::load(*modelPath);
+    const auto model =
+        srp::language::LanguageModel::load(modelPath->empty() ? srp::language::defaultModelPath() : *modelPath);
     const auto gold = srp::language::readSpertCorpus(*dataPath);
     const auto scores = srp::language::evaluateModel(model, gold);
     std::vector<srp::language::AnnotatedSentence> predicted;

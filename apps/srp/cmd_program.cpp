@@ -26,7 +26,7 @@ void setupProgram(CLI::App& cmd) {
   // Recording is its own command (srp record demo.rawlog): programming reads a finished recording,
   // so a failed recording can never leave a half-programmed task.
   cmd.add_option("--demo", a->demo, "Demonstration rawlog (srp record / srp import / srp synth-demo)")->required();
-  cmd.add_option("--kb", a->kb, "Knowledge base catalogue (default: datasets/kb/catalogue.json)");
+  cmd.add_option("--kb", a->kb, "Knowledge base catalogue (default: the shipped datasets/kb/catalogue.json of srp's data folder)");
   cmd.add_option("--scene", a->scene,
                  "The demo's scene JSON (srp synth-demo --scene; for a recording, one listing its instances and "
                  "their colours): a class it holds several times is perceived per instance, and the instruction's "

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "CommandRegistry.h"
+#include "srp/core/DataPaths.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/language/LanguageModel.h"
@@ -37,15 +38,14 @@ void applySwitches(const std::vector<std::string>& settings, Switches& s, const 
 }
 
 void setupTrainLanguage(CLI::App& app) {
-  const std::string dir = std::string(SRP_DATASETS_DIR) + "/language/";
-  auto trainPaths = std::make_shared<std::vector<std::string>>(
-      std::vector<std::string>{dir + "train.json", dir + "val.json"});
+  auto trainPaths = std::make_shared<std::vector<std::string>>();
   auto scorePath = std::make_shared<std::string>();
-  auto outPath = std::make_shared<std::string>(srp::language::defaultModelPath());
-  app.add_option("--train", *trainPaths, "SpERT corpora, pooled for training and cross-validation")
-      ->capture_default_str();
+  auto outPath = std::make_shared<std::string>("language_model.dat");
+  app.add_option("--train", *trainPaths,
+                 "SpERT corpora, pooled for training and cross-validation (default: the shipped "
+                 "datasets/language/train.json and val.json of srp's data folder)");
   app.add_option("--score", *scorePath, "SpERT corpus scored after training (not for choosing anything)");
-  app.add_option("--out", *outPath, "model file to write")->capture_default_str();
+  app.add_option("--out", *outPath, "model file to write (use it with 'srp parse --model FILE')")->capture_default_str();
   auto options = std::make_shared<srp::language::LanguageTrainingOptions>();
   app.add_option("--entity-c", options->entityC, "entity tagger SVM C")->capture_default_str();
   app.add_option("--relation-c", options->relationC, "relation classifier SVM C")->capture_default_str();
@@ -90,6 +90,9 @@ void setupTrainLanguage(CLI::App& app) {
       std::cout << "wrote " << out.size() << " synthetic commands to " << *syntheticOut << "\n";
       return;
     }
+    if (trainPaths->empty())
+      for (const char* split : {"train.json", "val.json"})
+        trainPaths->push_back(srp::core::DataPaths::file(std::string("datasets/language/") + split).string());
     std::vector<srp::language::AnnotatedSentence> corpus;
     for (const auto& path : *trainPaths) {
       const auto part = srp::language::readSpertCorpus(path);

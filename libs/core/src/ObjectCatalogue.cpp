@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <set>
 
+#include "srp/core/DataPaths.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 
@@ -27,7 +28,7 @@ ObjectCatalogue::ObjectCatalogue(std::vector<ObjectClass> classes) : classes_(st
   }
 }
 
-std::string ObjectCatalogue::defaultPath() { return std::string(SRP_DATASETS_DIR) + "/kb/catalogue.json"; }
+std::string ObjectCatalogue::defaultPath() { return DataPaths::file("datasets/kb/catalogue.json").string(); }
 
 ObjectCatalogue ObjectCatalogue::load(const std::string& path) {
   const nlohmann::json j = readJsonFile(path);

@@ -8,6 +8,9 @@
 #   share/srp/{datasets,sim,calib} the data of the source tree, same layout (srp/core/DataPaths.h)
 #   lib/libsrp_<m>.a, include/srp/<m>/*.h, lib/cmake/srp/   srp::<m> for find_package(srp)
 include(CMakePackageConfigHelpers)
+# `make install` / CPack install what is built, without building every test first
+# (make package builds the srp target, then packages).
+set(CMAKE_SKIP_INSTALL_ALL_DEPENDENCY TRUE)
 
 set(SRP_INSTALL_DATADIR ${CMAKE_INSTALL_DATADIR}/srp)
 set(SRP_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/srp)

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "srp/core/Scene.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/synth/DemoGenerator.h"
 #include "srp/synth/PickPlacePlan.h"
 
@@ -36,7 +37,7 @@ inline std::string syntheticBenchDemo(int frames) {
   synth::SynthDemoOptions o;
   o.demo.seed = static_cast<std::uint32_t>(scene.seed);
   o.maxFrames = frames;
-  synth::generateSyntheticDemo(scene, core::ObjectCatalogue::load(scene.cataloguePath), synth::defaultPlanJson(), o,
+  synth::generateSyntheticDemo(scene, kb::loadCatalogue(scene.cataloguePath), synth::defaultPlanJson(), o,
                                file.string());
   rendered.files[frames] = file;
   return file.string();

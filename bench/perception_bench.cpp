@@ -15,6 +15,7 @@
 
 #include "BenchDemo.h"
 #include "ThreadCpuTime.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/DemoPerception.h"
 #include "srp/perception/MarkerFreeHandDetector.h"
 #include "srp/perception/MarkerHandDetector.h"
@@ -34,7 +35,7 @@ const std::vector<srp::rawlog::RgbdFrame>& realFrames() {
 }
 
 const srp::core::ObjectCatalogue& catalogue() {
-  static const auto c = srp::core::ObjectCatalogue::load(srp::core::ObjectCatalogue::defaultPath());
+  static const auto c = srp::kb::loadCatalogue(srp::core::ObjectCatalogue::defaultPath());
   return c;
 }
 

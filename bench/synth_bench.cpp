@@ -25,7 +25,7 @@ std::string tempPath(const std::string& name) {
 // One frame of the default scene with the hand in view.
 void BM_RenderFrame(benchmark::State& state) {
   const auto scene = defaultScene();
-  const auto catalogue = srp::core::ObjectCatalogue::load(scene.cataloguePath);
+  const auto catalogue = srp::kb::loadCatalogue(scene.cataloguePath);
   srp::synth::SceneRenderer renderer(scene.intrinsics);
   renderer.setLighting(scene.lighting);
   renderer.addBody("table", srp::kb::makeBoxMesh({-0.6, -0.4, -0.03}, {0.6, 0.4, 0.0}), scene.tableRgb);
@@ -82,7 +82,7 @@ BENCHMARK(BM_RawlogWriteNoisyFrame)->Unit(benchmark::kMillisecond)->UseRealTime(
 // The whole generator on the first 90 frames (3 s) of the bundled default demo.
 void BM_SynthDemoPipeline(benchmark::State& state) {
   const auto scene = defaultScene();
-  const auto catalogue = srp::core::ObjectCatalogue::load(scene.cataloguePath);
+  const auto catalogue = srp::kb::loadCatalogue(scene.cataloguePath);
   srp::synth::SynthDemoOptions options;
   options.maxFrames = 90;
   options.demo.idleStart_s = 0.2;  // hand in view for most of the measured frames

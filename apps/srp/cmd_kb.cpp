@@ -32,7 +32,7 @@ void setupKb(CLI::App& cmd) {
     const std::string path = catalogueOrShipped();
     const std::string dir = !outDir->empty() ? *outDir : cataloguePath->empty() ? "." : "";
     if (!dir.empty()) std::filesystem::create_directories(dir);
-    const auto catalogue = srp::core::ObjectCatalogue::load(path);
+    const auto catalogue = srp::kb::loadCatalogue(path);
     for (const auto& m : srp::kb::buildMeshes(catalogue, dir))
       std::cout << m.className << ": " << m.triangleCount << " triangles -> " << m.path << "\n";
     if (!dir.empty()) std::cout << "catalogue -> " << srp::kb::copyCatalogue(path, dir).string() << "\n";

@@ -10,6 +10,7 @@
 #include "srp/core/Json.h"
 #include "srp/core/ObjectCatalogue.h"
 #include "srp/core/Scene.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/synth/DemoGenerator.h"
 #include "srp/synth/PickPlacePlan.h"
 
@@ -28,7 +29,7 @@ struct SynthDemoArgs {
 
 void run(const SynthDemoArgs& a) {
   const auto scene = srp::core::Scene::load(a.scenePath.empty() ? srp::core::defaultScenePath() : a.scenePath);
-  const auto catalogue = srp::core::ObjectCatalogue::load(scene.cataloguePath);
+  const auto catalogue = srp::kb::loadCatalogue(scene.cataloguePath);
   const nlohmann::json plan = a.planPath.empty() ? srp::synth::defaultPlanJson() : srp::core::readJsonFile(a.planPath);
   srp::synth::SynthDemoOptions options;
   options.demo.seed = static_cast<std::uint32_t>(a.seed >= 0 ? a.seed : scene.seed);

@@ -53,6 +53,7 @@
 #include "srp/execution/ExecutionSession.h"
 #include "srp/execution/PlanConversion.h"
 #include "srp/execution/TaskExecutor.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/language/InstructionParser.h"
 #include "srp/motion/Segmenter.h"
 #include "srp/motion/SkillLearner.h"
@@ -103,7 +104,7 @@ int run(int argc, char** argv) {
   // start and goal go into it with X_world_camera. The instruction becomes
   // the plan; the demo's final poses say on which side "next to" places a part.
   const auto scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-  const auto catalogue = srp::core::ObjectCatalogue::load(scene.cataloguePath);
+  const auto catalogue = srp::kb::loadCatalogue(scene.cataloguePath);
   const ex::CellDescription cell = ex::CellDescription::fromScene(scene, catalogue);
   const srp::core::Pose3 X_world_camera =
       model.info.X_base_camera ? srp::core::Pose3(scene.X_world_base * *model.info.X_base_camera) : scene.X_world_camera;

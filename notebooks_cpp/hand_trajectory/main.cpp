@@ -46,6 +46,7 @@
 #include "../common/Notebook.h"
 #include "srp/core/Error.h"
 #include "srp/core/Scene.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/MarkerHandDetector.h"
 #include "srp/plot/Figure.h"
 #include "srp/rawlog/RawlogReader.h"
@@ -80,7 +81,7 @@ int run(int argc, char** argv) {
   // 30 FPS. The sensor model is on: depth noise and, as on the thesis' L515,
   // depth holes on the moving hand.
   const auto scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-  const auto catalogue = srp::core::ObjectCatalogue::load(scene.cataloguePath);
+  const auto catalogue = srp::kb::loadCatalogue(scene.cataloguePath);
   nlohmann::json plan = srp::synth::defaultPlanJson();
   plan["steps"] = nlohmann::json::array({plan["steps"][0]});  // the cuboid only
 

@@ -48,6 +48,7 @@
 #include "../common/Notebook.h"
 #include "srp/core/Error.h"
 #include "srp/core/Scene.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/motion/Segmenter.h"
 #include "srp/perception/DemoPerception.h"
 #include "srp/plot/Figure.h"
@@ -68,7 +69,7 @@ int run(int argc, char** argv) {
   // cuboid, and the CAD fit then finds neither in the blue box), the first
   // step of its instruction 1, at 320x240 so that perception stays fast.
   const auto scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-  const auto catalogue = srp::core::ObjectCatalogue::load(scene.cataloguePath);
+  const auto catalogue = srp::kb::loadCatalogue(scene.cataloguePath);
   nlohmann::json plan = srp::synth::defaultPlanJson();
   plan["steps"] = nlohmann::json::array({plan["steps"][0]});  // the cuboid only
   srp::synth::SynthDemoOptions demoOptions;

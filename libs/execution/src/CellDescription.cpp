@@ -1,5 +1,6 @@
 #include "srp/core/DefaultScene.h"
 #include "srp/execution/CellDescription.h"
+#include "srp/kb/KnowledgeBase.h"
 
 #include <algorithm>
 
@@ -74,7 +75,7 @@ CellDescription CellDescription::fromScene(const srp::core::Scene& scene,
 CellDescription CellDescription::loadScene(const std::string& scenePath) {
   const srp::core::Scene scene =
       srp::core::Scene::load(scenePath.empty() ? srp::core::defaultScenePath() : scenePath);
-  return fromScene(scene, srp::core::ObjectCatalogue::load(scene.cataloguePath));
+  return fromScene(scene, srp::kb::loadCatalogue(scene.cataloguePath));
 }
 
 std::vector<WorldBox> CellDescription::staticBoxes() const {

@@ -13,6 +13,7 @@
 #include "srp/execution/DmpPathGenerator.h"
 #include "srp/execution/PlanConversion.h"
 #include "srp/execution/SceneGrounder.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/language/InstructionParser.h"
 #include "srp/language/PlanTables.h"
 #include "srp/taskdb/TaskModelStore.h"
@@ -43,7 +44,7 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
   const std::string scenePath =
       request.scenePath.empty() ? core::defaultScenePath() : request.scenePath;
   const srp::core::Scene scene = srp::core::Scene::load(scenePath);
-  const srp::core::ObjectCatalogue catalogue = srp::core::ObjectCatalogue::load(scene.cataloguePath);
+  const srp::core::ObjectCatalogue catalogue = srp::kb::loadCatalogue(scene.cataloguePath);
   const CellDescription cell = CellDescription::fromScene(scene, catalogue);
 
   if (!std::filesystem::exists(request.databasePath))

@@ -17,6 +17,7 @@
 #include "srp/core/ObjectCatalogue.h"
 #include "srp/core/Scene.h"
 #include "srp/experiment/ExperimentSupport.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/programming/ProgrammingPipeline.h"
 #include "srp/synth/DemoGenerator.h"
 #include "srp/synth/PickPlacePlan.h"
@@ -119,7 +120,7 @@ CachedDemo DemoCache::get(const DemoRequest& request, const std::function<void(i
 
   const auto t0 = std::chrono::steady_clock::now();
   const auto scene = core::Scene::load(scenePathOf(request).string());
-  const auto catalogue = core::ObjectCatalogue::load(scene.cataloguePath);
+  const auto catalogue = kb::loadCatalogue(scene.cataloguePath);
   synth::SynthDemoOptions options;
   options.demo.seed = request.seed;
   options.sensor.enabled = request.sensorRealism;

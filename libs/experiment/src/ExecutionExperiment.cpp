@@ -17,6 +17,7 @@
 #include "srp/execution/TaskExecutor.h"
 #include "srp/experiment/Experiments.h"
 #include "srp/experiment/ExperimentSupport.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/language/InstructionParser.h"
 #include "srp/language/PlanTables.h"
 
@@ -133,7 +134,7 @@ ExperimentResult runExecutionExperiment(const ExperimentOptions& options)
   cell.model = demo.model;
   const auto scenePath = simDirOf(options) / "scenes" / "default.json";
   const core::Scene scene = core::Scene::load(scenePath.string());
-  const auto catalogue = core::ObjectCatalogue::load(scene.cataloguePath);
+  const auto catalogue = kb::loadCatalogue(scene.cataloguePath);
   const auto base = execution::CellDescription::fromScene(scene, catalogue);
   cell.X_world_camera = cell.model.info.X_base_camera ? core::Pose3(scene.X_world_base * *cell.model.info.X_base_camera)
                                                       : scene.X_world_camera;

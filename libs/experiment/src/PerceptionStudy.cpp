@@ -9,6 +9,7 @@
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/core/Scene.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/DemoPerception.h"
 #include "srp/perception/MarkerFreeHandDetector.h"
 #include "srp/rawlog/RawlogReader.h"
@@ -189,7 +190,7 @@ PerceptionStudySize studySize(const ExperimentOptions& options)
 
 core::ObjectCatalogue studyCatalogue(const ExperimentOptions& options)
 {
-  return core::ObjectCatalogue::load(defaultScene(options).cataloguePath);
+  return kb::loadCatalogue(defaultScene(options).cataloguePath);
 }
 
 std::vector<PerceivedDemo> perceivedDemos(const ExperimentOptions& options, const std::string& what)

@@ -11,6 +11,77 @@
 
 namespace srp::kb {
 
+namespace {
+
+Eigen::Vector3d vec3(const nlohmann::json& j, const std::string& context) {
+  if (!j.is_array() || j.size() != 3)
+    throw srp::core::InvalidInputError(context + ": expected an array of 3 numbers");
+  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+}
+
+/// The catalogue file's classes as written (a mesh-only class keeps zero size
+/// and mass); errors name the file and the field.
+std::vector<srp::core::ObjectClass> readCatalogueFile(const std::string& path) {
+  using srp::core::InvalidInputError;
+  using srp::core::requireField;
+  const nlohmann::json j = srp::core::readJsonFile(path);
+  const int version = requireField(j, "schema_version", path).get<int>();
+  if (version != 1)
+    throw srp::core::FileError(path, "catalogue schema_version " + std::to_string(version) +
+                                         " is not supported by this build (expected 1)");
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  std::vector<srp::core::ObjectClass> classes;
+  try {
+    for (const auto& e : requireField(j, "classes", path)) {
+      srp::core::ObjectClass c;
+      const std::string ctx0 = path + ": class";
+      c.name = requireField(e, "name", ctx0).get<std::string>();
+      const std::string ctx = path + ": class '" + c.name + "'";
+      c.classId = requireField(e, "class_id", ctx).get<int>();
+      c.noun = e.value("noun", c.name);
+      c.colourName = e.value("color_name", "");
+      const std::string kind = requireField(e, "kind", ctx).get<std::string>();
+      if (kind == "part") c.kind = srp::core::ObjectKind::Part;
+      else if (kind == "container") c.kind = srp::core::ObjectKind::Container;
+      else throw InvalidInputError(ctx + ": field 'kind' must be \"part\" or \"container\", not \"" + kind + "\"");
+      if (e.contains("mesh")) c.meshPath = (folder / e.at("mesh").get<std::string>()).lexically_normal().string();
+      // A class given by its CAD file alone: shape, size, colour and mass may
+      // be left out (size and mass then come from the mesh).
+      const bool meshOnly = !c.meshPath.empty() && !e.contains("shape");
+      c.shape = meshOnly ? std::string() : requireField(e, "shape", ctx).get<std::string>();
+      c.hasColour = e.contains("rgb") || !meshOnly;
+      if (c.hasColour) c.rgb = vec3(requireField(e, "rgb", ctx), ctx + " field 'rgb'");
+      if (!meshOnly || e.contains("dimensions_m")) {
+        c.dimensions_m = vec3(requireField(e, "dimensions_m", ctx), ctx + " field 'dimensions_m'");
+        if ((c.dimensions_m.array() <= 0.0).any())
+          throw InvalidInputError(ctx + ": field 'dimensions_m' must be positive");
+      }
+      c.wallThickness_m = e.value("wall_thickness_m", 0.0);
+      c.mass_kg = meshOnly ? e.value("mass_kg", 0.0) : requireField(e, "mass_kg", ctx).get<double>();
+      if (c.shape == "hull") {
+        const auto& fp = requireField(e, "footprint_m", ctx);
+        if (!fp.is_array() || fp.size() < 3)
+          throw InvalidInputError(ctx + ": field 'footprint_m' must list at least 3 [x, y] points (metres)");
+        for (const auto& q : fp) {
+          if (!q.is_array() || q.size() != 2 || !q[0].is_number() || !q[1].is_number())
+            throw InvalidInputError(ctx + ": field 'footprint_m' must hold [x, y] pairs of numbers (metres)");
+          const Eigen::Vector2d v(q[0].get<double>(), q[1].get<double>());
+          if (!v.allFinite()) throw InvalidInputError(ctx + ": field 'footprint_m' holds a non-finite number");
+          c.footprint_object.push_back(v);
+        }
+      }
+      c.observed = e.value("observed", false);
+      if (e.contains("grasp_axis")) c.graspAxis_object = vec3(e.at("grasp_axis"), ctx + " field 'grasp_axis'").normalized();
+      classes.push_back(std::move(c));
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw srp::core::FileError(path, std::string("bad catalogue entry: ") + e.what());
+  }
+  return classes;
+}
+
+}  // namespace
+
 bool hasShapeGenerator(const std::string& shape) {
   return shape == "open_box" || shape == "cuboid" || shape == "star" || shape == "parallelogram" ||
          shape == "octagon" || shape == "hull";
@@ -43,7 +114,7 @@ std::filesystem::path copyCatalogue(const std::string& cataloguePath, const std:
   if (!fs::is_directory(outDir)) throw srp::core::FileError(outDir.string(), "not a folder (create it first)");
   const fs::path target = outDir / fs::path(cataloguePath).filename();
   srp::core::checkOutputPaths({{"catalogue copy", target}}, {{"--catalogue", cataloguePath}}, /*overwrite=*/true);
-  const srp::core::ObjectCatalogue catalogue = srp::core::ObjectCatalogue::load(cataloguePath);
+  const srp::core::ObjectCatalogue catalogue(readCatalogueFile(cataloguePath));
   nlohmann::json j = srp::core::readJsonFile(cataloguePath);
   for (auto& entry : j.at("classes")) {
     const srp::core::ObjectClass& c = catalogue.at(entry.at("name").get<std::string>());
@@ -63,8 +134,7 @@ TriangleMesh loadClassMesh(const srp::core::ObjectClass& c) {
 }
 
 srp::core::ObjectCatalogue loadCatalogue(const std::string& path) {
-  const srp::core::ObjectCatalogue raw = srp::core::ObjectCatalogue::load(path);
-  std::vector<srp::core::ObjectClass> classes = raw.classes();
+  std::vector<srp::core::ObjectClass> classes = readCatalogueFile(path);
   for (auto& c : classes) {
     if (!c.shape.empty() || c.meshPath.empty()) continue;  // generated shapes carry their size
     const TriangleMesh mesh = TriangleMesh::load(c.meshPath);
@@ -82,7 +152,7 @@ srp::core::ObjectClass addMeshClass(const std::string& cataloguePath, const Mesh
   TriangleMesh::load(entry.meshPath);  // readable, has triangles
   nlohmann::json j = fs::exists(cataloguePath) ? srp::core::readJsonFile(cataloguePath)
                                                : nlohmann::json{{"schema_version", 1}, {"classes", nlohmann::json::array()}};
-  if (fs::exists(cataloguePath)) srp::core::ObjectCatalogue::load(cataloguePath);  // a valid catalogue to add to
+  if (fs::exists(cataloguePath)) loadCatalogue(cataloguePath);  // a valid catalogue to add to
   int nextId = 0;
   for (const auto& c : j.at("classes")) {
     if (c.value("name", "") == entry.name)

@@ -61,7 +61,7 @@ TEST(KnowledgeBase, CopiedCatalogueNamesTheMeshesBuiltBesideIt) {
   fs::remove_all(dir);
   fs::create_directories(dir / "mixed");
   const std::string shipped = std::string(SRP_DATASETS_DIR) + "/kb/catalogue.json";
-  const auto original = srp::core::ObjectCatalogue::load(shipped);
+  const auto original = srp::kb::loadCatalogue(shipped);
   const auto built = srp::kb::buildMeshes(original, dir);
   EXPECT_EQ(built.size(), original.classes().size());
   const fs::path copy = srp::kb::copyCatalogue(shipped, dir);

@@ -15,7 +15,7 @@ constexpr double kVolumeRelTol = 1e-9;
 // Every bundled class: a closed, outward-oriented mesh filling exactly its
 // bounding box, with the object frame at the centre of the bottom face.
 TEST(ShapeMeshes, CatalogueClassesFillTheirBoundingBoxInTheObjectFrame) {
-  const auto catalogue = srp::core::ObjectCatalogue::load(srp::core::ObjectCatalogue::defaultPath());
+  const auto catalogue = srp::kb::loadCatalogue(srp::core::ObjectCatalogue::defaultPath());
   ASSERT_GE(catalogue.classes().size(), 6u);
   for (const auto& c : catalogue.classes()) {
     SCOPED_TRACE(c.name);
@@ -81,7 +81,7 @@ TEST(ShapeMeshes, UnknownShapeNamesTheClass) {
 // The committed meshes are what `srp kb build` generates.
 TEST(ShapeMeshes, CommittedMeshesMatchTheGenerator) {
   constexpr double kFloat32Tol_m = 1e-7;
-  const auto catalogue = srp::core::ObjectCatalogue::load(srp::core::ObjectCatalogue::defaultPath());
+  const auto catalogue = srp::kb::loadCatalogue(srp::core::ObjectCatalogue::defaultPath());
   for (const auto& c : catalogue.classes()) {
     SCOPED_TRACE(c.meshPath);
     const auto committed = srp::kb::TriangleMesh::load(c.meshPath);

@@ -7,6 +7,7 @@
 #include <iostream>
 #include <random>
 
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/motion/Segmenter.h"
 #include "srp/synth/DemoTimeline.h"
 #include "srp/synth/PickPlacePlan.h"
@@ -27,7 +28,7 @@ constexpr int kReleaseTol = 6;
 
 TEST(SegmenterOnSynthTimeline, DefaultDemoGraspAndReleaseNearTheTimelineEvents) {
   const auto scene = core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-  const auto catalogue = core::ObjectCatalogue::load(scene.cataloguePath);
+  const auto catalogue = kb::loadCatalogue(scene.cataloguePath);
   const synth::HandModel handModel;
   const auto steps = synth::groundPlan(synth::defaultPlanJson(), scene, catalogue);
   const core::Pose3 X_camera_world = scene.X_world_camera.inverse();

@@ -1,3 +1,4 @@
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/DemoPerception.h"
 #include "srp/perception/PreviewRawlog.h"
 
@@ -29,7 +30,7 @@ PerceptionOptions markerFreeOptions() {
 }
 
 const core::ObjectCatalogue& catalogue() {
-  static const auto c = core::ObjectCatalogue::load(core::ObjectCatalogue::defaultPath());
+  static const auto c = kb::loadCatalogue(core::ObjectCatalogue::defaultPath());
   return c;
 }
 

@@ -11,6 +11,7 @@
 #include <filesystem>
 
 #include "srp/core/Error.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/DemoPerception.h"
 #include "srp/synth/DemoGenerator.h"
 #include "srp/synth/DuplicatePartsDemo.h"
@@ -33,7 +34,7 @@ struct SeedOutcome {
 
 SeedOutcome runSeed(std::uint32_t seed) {
   const auto base = core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-  const auto catalogue = core::ObjectCatalogue::load(base.cataloguePath);
+  const auto catalogue = kb::loadCatalogue(base.cataloguePath);
   const synth::DuplicatePartsDemo demo = synth::makeDuplicatePartsDemo(base, catalogue, seed);
   synth::SynthDemoOptions so;
   so.demo.seed = seed;
@@ -123,7 +124,7 @@ TEST(DuplicateParts, TwoSameClassPartsOfDifferentColoursAreNeverSwappedOverTenSe
 
 TEST(DuplicateParts, RepeatedInstanceIdIsAClearError) {
   const auto base = core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-  const auto catalogue = core::ObjectCatalogue::load(base.cataloguePath);
+  const auto catalogue = kb::loadCatalogue(base.cataloguePath);
   PerceptionOptions po;
   po.plan = {{"cuboid", false, "cuboid_a", Eigen::Vector3d(1, 0, 0)}, {"cuboid", false, "cuboid_a", Eigen::Vector3d(0, 0, 1)}};
   EXPECT_THROW(DemoPerceiver(catalogue, po), core::InvalidInputError);
@@ -131,7 +132,7 @@ TEST(DuplicateParts, RepeatedInstanceIdIsAClearError) {
 
 TEST(DuplicateParts, SceneInstancesReplaceOnlyRepeatedClasses) {
   const auto base = core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/two_cuboids_two_stars.json");
-  const auto catalogue = core::ObjectCatalogue::load(base.cataloguePath);
+  const auto catalogue = kb::loadCatalogue(base.cataloguePath);
   const auto plan = withSceneInstances({{"cuboid", false}, {"gray box", true}}, base, catalogue);
   ASSERT_EQ(plan.size(), 3u);
   EXPECT_EQ(plan[0].instanceId, "cuboid_blue");

@@ -1,3 +1,4 @@
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/EdgeYawRefiner.h"
 
 #include <gtest/gtest.h>
@@ -13,7 +14,7 @@ namespace {
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 const core::ObjectCatalogue& catalogue() {
-  static const auto c = core::ObjectCatalogue::load(core::ObjectCatalogue::defaultPath());
+  static const auto c = kb::loadCatalogue(core::ObjectCatalogue::defaultPath());
   return c;
 }
 

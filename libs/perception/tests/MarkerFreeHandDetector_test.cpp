@@ -24,6 +24,7 @@
 #include "Hrt1Palms.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/RgbdFolder.h"
 #include "srp/core/Scene.h"
 #include "srp/synth/PickPlacePlan.h"
@@ -285,7 +286,7 @@ constexpr int kFrames = 150;
 /// Renders the default scene's demo of instruction 1 (`frames` < 0: whole).
 void renderDemo(const std::string& rawlogPath, int frames, std::optional<std::uint32_t> seed) {
   const auto scene = core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-  const auto catalogue = core::ObjectCatalogue::load(scene.cataloguePath);
+  const auto catalogue = kb::loadCatalogue(scene.cataloguePath);
   synth::SynthDemoOptions o;
   o.demo.seed = seed.value_or(static_cast<std::uint32_t>(scene.seed));
   o.maxFrames = frames;

@@ -1,3 +1,4 @@
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/ObjectPoseFitter.h"
 
 #include <gtest/gtest.h>
@@ -38,7 +39,7 @@ TEST(ObjectModel, CubeFromObjHasSizeAndFourFoldSymmetry) {
 }
 
 TEST(ObjectModel, CatalogueShapesHaveTheirSymmetry) {
-  const auto cat = core::ObjectCatalogue::load(core::ObjectCatalogue::defaultPath());
+  const auto cat = kb::loadCatalogue(core::ObjectCatalogue::defaultPath());
   EXPECT_NEAR(ObjectModel::fromCatalogue(cat.at("cuboid")).yawSymmetry_rad, M_PI, 1e-9);
   EXPECT_NEAR(ObjectModel::fromCatalogue(cat.at("star")).yawSymmetry_rad, 2 * M_PI / 5, 1e-9);
   EXPECT_NEAR(ObjectModel::fromCatalogue(cat.at("octagon")).yawSymmetry_rad, M_PI / 4, 1e-9);
@@ -51,7 +52,7 @@ TEST(ObjectModel, CatalogueShapesHaveTheirSymmetry) {
 // Two parts in one place: the less confident is named; parts side by side,
 // stacked or in a container are not.
 TEST(ObjectDetector, OverlappingPartsLoseTheLessConfident) {
-  const auto cat = core::ObjectCatalogue::load(core::ObjectCatalogue::defaultPath());
+  const auto cat = kb::loadCatalogue(core::ObjectCatalogue::defaultPath());
   const ObjectDetector detector(ObjectDetector::modelsFromCatalogue(cat, {"star", "octagon", "cuboid", "gray box"}));
   Plane plane;  // camera looking straight down on a table 0.8 m away
   plane.n = Eigen::Vector3d(0, 0, -1);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "srp/core/Scene.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/DemoPerception.h"
 #include "srp/synth/DemoGenerator.h"
 #include "srp/synth/PickPlacePlan.h"
@@ -28,7 +29,7 @@ inline RenderedDemo renderDefaultDemo(const std::string& fileName, synth::SynthD
                                       const char* existingRawlog = nullptr) {
   const auto scene = core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
   RenderedDemo out;
-  out.catalogue = core::ObjectCatalogue::load(scene.cataloguePath);
+  out.catalogue = kb::loadCatalogue(scene.cataloguePath);
   if (existingRawlog) {
     out.rawlog = existingRawlog;
     out.gt = synth::DemoGroundTruth::load(std::filesystem::path(existingRawlog).replace_extension(".gt.json").string());

@@ -1,3 +1,4 @@
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/SilhouetteBranchPicker.h"
 
 #include <gtest/gtest.h>
@@ -14,7 +15,7 @@ namespace {
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 ObjectModel model(const std::string& name) {
-  static const auto c = core::ObjectCatalogue::load(core::ObjectCatalogue::defaultPath());
+  static const auto c = kb::loadCatalogue(core::ObjectCatalogue::defaultPath());
   return ObjectModel::fromCatalogue(c.at(name));
 }
 

@@ -1,3 +1,4 @@
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/programming/ProgrammingPipeline.h"
 
 #include <sys/resource.h>
@@ -99,7 +100,7 @@ ProgramResult programTask(const ProgrammingOptions& o) {
   progress("language", 0, 1);
   const language::TaskPlan plan = parsePlan(o.instruction);
   const core::ObjectCatalogue kb =
-      core::ObjectCatalogue::load(o.cataloguePath.empty() ? core::ObjectCatalogue::defaultPath() : o.cataloguePath);
+      kb::loadCatalogue(o.cataloguePath.empty() ? core::ObjectCatalogue::defaultPath() : o.cataloguePath);
   GroundedPlan grounded = groundPlan(plan, kb);
   // The instances: the scene file's, else those the instruction's colour words name.
   const std::optional<core::Scene> scene =

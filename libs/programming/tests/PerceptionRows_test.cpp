@@ -1,4 +1,5 @@
 // The perception result as task-database rows (the store stage's mapping).
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/programming/PerceptionRows.h"
 
 #include <gtest/gtest.h>
@@ -13,7 +14,7 @@ using perception::ObjectTrajectory;
 using perception::PerceptionResult;
 
 const core::ObjectCatalogue& catalogue() {
-  static const auto c = core::ObjectCatalogue::load(core::ObjectCatalogue::defaultPath());
+  static const auto c = kb::loadCatalogue(core::ObjectCatalogue::defaultPath());
   return c;
 }
 

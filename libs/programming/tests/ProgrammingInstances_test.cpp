@@ -16,6 +16,7 @@
 #include "srp/core/Error.h"
 #include "srp/core/Scene.h"
 #include "srp/execution/SceneGrounder.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/programming/MotionRows.h"
 #include "srp/programming/ProgrammingPipeline.h"
 #include "srp/programming/ProgrammingStages.h"
@@ -43,7 +44,7 @@ const Demo& demo(std::uint32_t kSeed = 3) {
     const auto dir = std::filesystem::temp_directory_path() / ("srp_programming_instances_" + std::to_string(getpid()));
     std::filesystem::create_directories(dir);
     const core::Scene base = core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-    const auto kb = core::ObjectCatalogue::load(base.cataloguePath);
+    const auto kb = kb::loadCatalogue(base.cataloguePath);
     Demo out;
     out.scene = synth::makeDuplicatePartsDemo(base, kb, kSeed);
     out.scenePath = (dir / ("scene_" + std::to_string(kSeed) + ".json")).string();
@@ -173,7 +174,7 @@ TEST(ProgrammingInstances, WithoutASceneTheInstructionsColourIsLookedFor) {
 
 // No scene file, two colours of one part class named: two instances.
 TEST(ProgrammingInstances, InstructionNamingTwoColoursOfAPartGivesTwoInstances) {
-  const auto kb = core::ObjectCatalogue::load(core::ObjectCatalogue::defaultPath());
+  const auto kb = kb::loadCatalogue(core::ObjectCatalogue::defaultPath());
   const auto grounded = programming::groundPlan(
       programming::parsePlan("Pick up the red cuboid and place it in the gray box. Then pick up the blue cuboid and "
                              "place it in the blue box."),

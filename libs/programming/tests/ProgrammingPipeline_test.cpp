@@ -11,6 +11,7 @@
 
 #include "srp/core/Error.h"
 #include "srp/core/Scene.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/programming/ProgrammingPipeline.h"
 #include "srp/synth/DemoGenerator.h"
 #include "SmallDemoOptions.h"
@@ -39,7 +40,7 @@ const std::string& demoPath() {
     scene.objects.erase(std::remove_if(scene.objects.begin(), scene.objects.end(),
                                        [](const auto& o) { return o.className == "octagon"; }),
                         scene.objects.end());
-    const auto kb = core::ObjectCatalogue::load(scene.cataloguePath);
+    const auto kb = kb::loadCatalogue(scene.cataloguePath);
     const synth::SynthDemoOptions opt = smallDemoOptions(7);
     const nlohmann::json plan = {{"steps",
                                   {{{"object", {{"name", "cuboid"}, {"color", nullptr}}},
@@ -105,7 +106,7 @@ TEST(ProgrammingPipeline, LearnsTheCuboidStepFromTheDemo) {
 // next to the first), so the second object's search starts at a release.
 TEST(ProgrammingPipeline, GraspAndReleaseOfEveryObjectMatchTheGroundTruth) {
   const core::Scene scene = core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-  const auto kb = core::ObjectCatalogue::load(scene.cataloguePath);
+  const auto kb = kb::loadCatalogue(scene.cataloguePath);
   synth::SynthDemoOptions opt = smallDemoOptions(11);
   opt.demo.idleStart_s = opt.demo.idleEnd_s = 0.5;
   nlohmann::json plan = synth::defaultPlanJson();

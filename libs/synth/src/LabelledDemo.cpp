@@ -1,3 +1,4 @@
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/synth/LabelledDemo.h"
 
 #include "srp/core/DefaultScene.h"
@@ -10,7 +11,7 @@ namespace srp::synth {
 
 motion::LabelledDemo cleanLabelledDemo(std::uint32_t seed) {
   const auto scene = core::Scene::load(core::defaultScenePath());
-  const auto catalogue = core::ObjectCatalogue::load(scene.cataloguePath);
+  const auto catalogue = kb::loadCatalogue(scene.cataloguePath);
   const auto steps = groundPlan(synth::defaultPlanJson(), scene, catalogue);
   DemoOptions options;
   options.seed = seed;

@@ -1,3 +1,4 @@
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/synth/DemoGenerator.h"
 
 #include <gtest/gtest.h>
@@ -20,7 +21,7 @@ std::string tempPath(const std::string& name) {
 
 struct Fixture {
   srp::core::Scene scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-  srp::core::ObjectCatalogue catalogue = srp::core::ObjectCatalogue::load(scene.cataloguePath);
+  srp::core::ObjectCatalogue catalogue = srp::kb::loadCatalogue(scene.cataloguePath);
 };
 
 // A one-step plan, fast demonstrator, short idles and small images keep it quick.
@@ -209,7 +210,7 @@ TEST(DemoGenerator, BadSceneFailsNamingTheField) {
 // (sim/scenes/two_cuboids_two_stars.json: red and blue cuboid, yellow and green star).
 TEST(DemoGenerator, InstancesOfOneClassRenderInTheirOwnColour) {
   const auto scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/two_cuboids_two_stars.json");
-  const auto catalogue = srp::core::ObjectCatalogue::load(scene.cataloguePath);
+  const auto catalogue = srp::kb::loadCatalogue(scene.cataloguePath);
   nlohmann::json plan = {{"steps",
                           {{{"object", {{"name", "star"}, {"color", "green"}}},
                             {"target", {{{"relation", "in"}, {"landmark", {{"name", "box"}, {"color", "gray"}}}}}}}}}};

@@ -1,3 +1,4 @@
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/synth/DemoTimeline.h"
 
 #include <gtest/gtest.h>
@@ -13,7 +14,7 @@ constexpr double kFlatTol_rad = 1e-6;             // placed objects stand uprigh
 
 struct Fixture {
   srp::core::Scene scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-  srp::core::ObjectCatalogue catalogue = srp::core::ObjectCatalogue::load(scene.cataloguePath);
+  srp::core::ObjectCatalogue catalogue = srp::kb::loadCatalogue(scene.cataloguePath);
   srp::synth::HandModel hand;
 };
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "srp/core/Error.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/synth/DemoTimeline.h"
 #include "srp/synth/DuplicatePartsDemo.h"
 #include "srp/synth/HandModel.h"
@@ -14,7 +15,7 @@ namespace {
 
 struct Base {
   core::Scene scene = core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
-  core::ObjectCatalogue catalogue = core::ObjectCatalogue::load(scene.cataloguePath);
+  core::ObjectCatalogue catalogue = kb::loadCatalogue(scene.cataloguePath);
 };
 
 TEST(DuplicatePartsDemo, TwoColouredInstancesOnTheWayAndThePlanMovesTheNamedOne) {

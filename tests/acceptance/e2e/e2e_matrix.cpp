@@ -29,6 +29,7 @@
 #include "srp/execution/ExecutionSession.h"
 #include "srp/execution/PlanConversion.h"
 #include "srp/experiment/ExperimentSupport.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/language/InstructionParser.h"
 #include "srp/programming/ProgrammingPipeline.h"
 #include "srp/synth/DemoGenerator.h"
@@ -286,7 +287,7 @@ int main(int argc, char** argv) {
     fs::create_directories(outDir / "runs");
     if (!summaryOnly) {
       const core::Scene scene = core::Scene::load(scenePath);
-      const auto kb = core::ObjectCatalogue::load(scene.cataloguePath);
+      const auto kb = kb::loadCatalogue(scene.cataloguePath);
       const language::InstructionParser parser;
       const size_t total = instructions.size() * seeds;
       size_t done = 0;

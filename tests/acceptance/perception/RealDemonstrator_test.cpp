@@ -19,6 +19,7 @@
 #include "Hrt1Palms.h"
 #include "srp/calib/RgbdImporter.h"
 #include "srp/core/ObjectCatalogue.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/DemoPerception.h"
 
 namespace srp::perception {
@@ -36,7 +37,7 @@ testing::PalmScore scoreTask(const std::string& task) {
   io.fps = 10.0;  // HRT1 is about 10 Hz
   calib::importImageFolder(testing::hrt1Root() + "/" + task, rawlog, io);
 
-  const auto catalogue = core::ObjectCatalogue::load(std::string(SRP_DATASETS_DIR) + "/kb/catalogue.json");
+  const auto catalogue = kb::loadCatalogue(std::string(SRP_DATASETS_DIR) + "/kb/catalogue.json");
   PerceptionOptions options;
   options.hand = PerceptionOptions::HandMethod::MarkerFree;
   const PerceptionResult r = perceiveRawlog(rawlog, catalogue, options);

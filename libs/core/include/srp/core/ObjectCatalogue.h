@@ -60,14 +60,14 @@ struct ObjectClass {
   bool observed = false;
 };
 
-/// The catalogue: classes by name and id, loaded from JSON with errors naming the field.
+/// The catalogue: classes by name and id. A catalogue file is read by
+/// kb::loadCatalogue (the one loader: it checks every field and measures the
+/// classes given by their mesh alone).
 class ObjectCatalogue {
  public:
   ObjectCatalogue() = default;
   explicit ObjectCatalogue(std::vector<ObjectClass> classes);
 
-  /// Loads a catalogue file; throws FileError/InvalidInputError naming the file and field.
-  static ObjectCatalogue load(const std::string& path);
   /// The shipped catalogue, `datasets/kb/catalogue.json` of srp's data folder
   /// (DataPaths). Throws FileError when it is not there.
   static std::string defaultPath();

@@ -52,10 +52,12 @@ TriangleMesh loadClassMesh(const srp::core::ObjectClass& objectClass);
 /// from the mesh's volume (a solid plastic part).
 constexpr double kDefaultPartDensity_kg_m3 = 1000.0;
 
-/// ObjectCatalogue::load, then every class given by its mesh alone gets its
-/// bounding-box size (`dimensions_m`, in the mesh's frame) and, without
-/// "mass_kg", the mass of its volume at kDefaultPartDensity_kg_m3 from the
-/// mesh file. Throws FileError naming a mesh that cannot be read.
+/// The one catalogue loader (every command and library reads a catalogue file
+/// through it): reads the file (ObjectCatalogue.h gives the format), then every
+/// class given by its mesh alone gets its bounding-box size (`dimensions_m`, in
+/// the mesh's frame) and, without "mass_kg", the mass of its volume at
+/// kDefaultPartDensity_kg_m3 from the mesh file. Throws FileError or
+/// InvalidInputError naming the file and the field, or a mesh that cannot be read.
 srp::core::ObjectCatalogue loadCatalogue(const std::string& path);
 
 /// A class given by its CAD file alone (`srp kb add`).

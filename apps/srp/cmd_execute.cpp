@@ -45,7 +45,7 @@ void setupExecute(CLI::App& app) {
                  "sim/scenes/default.json for a task model that stores none)");
   app.add_option("--extrinsics", o->extrinsics,
                  "Camera-to-robot extrinsics JSON of the demonstration's camera ('srp calibrate extrinsics' or "
-                 "'hand-eye' write calib/extrinsics.json): places the robot base in the demonstration's scene (default: "
+                 "'hand-eye' write it, ./extrinsics.json by default): places the robot base in the demonstration's scene (default: "
                  "the calibration stored with the task model, else the table edge opposite the camera, said in the "
                  "report) and turns the demonstrated offsets into a --scene file's frame")
       ->check(CLI::ExistingFile);

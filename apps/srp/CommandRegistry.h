@@ -39,7 +39,7 @@ inline const CLI::Validator kDecimalId(
     },
     "ID");
 
-/// Exit code a command can request (e.g. 2 for "done, but with skipped steps").
+/// Exit code a command can request (srp/core/ExitCode.h; e.g. 3 for "done, but with skipped steps").
 int& commandExitCode();
 
 }  // namespace srp::app

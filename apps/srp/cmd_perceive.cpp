@@ -28,7 +28,7 @@ std::vector<std::string> splitList(const std::string& s) {
 }
 
 struct PerceiveOptions {
-  std::string demo, kb = srp::core::ObjectCatalogue::defaultPath(), csv, hand = "auto", draw;
+  std::string demo, kb, csv, hand = "auto", draw;  // kb empty: the shipped catalogue
   int drawEvery = 1;
   std::string objects, staticObjects, scene;
   double tagSize_m = 0.05;
@@ -39,7 +39,7 @@ struct PerceiveOptions {
 };
 
 void run(const PerceiveOptions& o) {
-  const auto catalogue = srp::kb::loadCatalogue(o.kb);
+  const auto catalogue = srp::kb::loadCatalogue(o.kb.empty() ? srp::core::ObjectCatalogue::defaultPath() : o.kb);
   PerceptionOptions p;
   p.hand = o.hand == "marker-free" ? PerceptionOptions::HandMethod::MarkerFree
            : o.hand == "none"      ? PerceptionOptions::HandMethod::None
@@ -134,7 +134,8 @@ void run(const PerceiveOptions& o) {
 void setupPerceive(CLI::App& app) {
   auto o = std::make_shared<PerceiveOptions>();
   app.add_option("--demo", o->demo, "Demo RGB-D rawlog (srp record / srp synth-demo)")->required();
-  app.add_option("--kb", o->kb, "Knowledge-base catalogue JSON (classes may be given by a CAD file alone)")->capture_default_str();
+  app.add_option("--kb", o->kb, "Knowledge-base catalogue JSON (classes may be given by a CAD file alone; default: the shipped "
+                 "datasets/kb/catalogue.json of srp's data folder)");
   app.add_option("--hand", o->hand,
                  "Hand detector: auto (the glove's AprilTag when the recording shows it, else the bare hand), marker, "
                  "marker-free, or none (objects only, a recording without a demonstrator)")

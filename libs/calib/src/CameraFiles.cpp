@@ -9,6 +9,7 @@
 #include <regex>
 #include <sstream>
 
+#include "CameraYaml.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 
@@ -115,8 +116,13 @@ void saveCameraXml(const std::string& path, const CameraCalibration& camera, con
 
 CameraFile loadCameraFile(const std::string& path) {
   CameraFile out;
-  if (std::filesystem::path(path).extension() == ".xml") {
+  const auto extension = std::filesystem::path(path).extension();
+  if (extension == ".xml") {
     out.camera = loadCameraXml(path);
+    return out;
+  }
+  if (extension == ".yaml" || extension == ".yml") {
+    out.camera = loadCameraYaml(path);
     return out;
   }
   const nlohmann::json root = core::readJsonFile(path);

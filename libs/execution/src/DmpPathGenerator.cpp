@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "srp/core/Error.h"
 
@@ -12,6 +13,26 @@ namespace {
 double minimumJerk(double tau) {
   tau = std::clamp(tau, 0.0, 1.0);
   return tau * tau * tau * (10.0 - 15.0 * tau + 6.0 * tau * tau);
+}
+
+// Distance of p from the straight line through a and b (its side step; a move along
+// the line, early, late or past an end, is not counted). 0 when a == b.
+double sideStep(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d chord = b - a;
+  if (chord.norm() < 1e-9) return 0.0;
+  const Eigen::Vector3d u = chord.normalized(), d = p - a;
+  return (d - d.dot(u) * u).norm();
+}
+
+// The largest side step of the demonstration itself: the learned DMP replayed with its
+// own start, goal and duration.
+double demonstratedSideStep_m(const srp::motion::Dmp& learned, double dt_s) {
+  const srp::motion::DmpRollout r = learned.rollout(dt_s);
+  const Eigen::Vector3d a = learned.start(), b = learned.goal();
+  double step_m = 0.0;
+  for (long i = 0; i < r.t_s.size(); ++i)
+    step_m = std::max(step_m, sideStep(a, b, Eigen::Vector3d(r.y.row(i).transpose())));
+  return step_m;
 }
 }  // namespace
 
@@ -143,15 +164,33 @@ CartesianPath DmpPathGenerator::rollout(const srp::motion::Dmp& learned, const s
     return minimumJerk(tau) * residual_demo + (-4 * t3 + 7 * t4 - 3 * t5) * (-v_end * T) +
            (0.5 * t3 - t4 + 0.5 * t5) * (-a_end * T * T);
   };
+  // The side step is capped at the demonstrator's own, in metres: the spatial scaling
+  // scales the demo's excursion with the new chord, and a short demonstrated chord (a
+  // hand that hovers or dips before it grasps) re-targeted to a long one would grow
+  // into a plunge through the table. Side step = distance from the straight line
+  // through start and goal; a path within the demo's largest one is kept as it is, a
+  // larger one has its side steps shrunk by one factor (smooth; same ends, at rest;
+  // the motion along the line, and so the timing, unchanged).
+  const Eigen::Vector3d p_demo_start = X_demo_world * p_world_start, p_demo_goal = X_demo_world * p_world_goal;
+  std::vector<Eigen::Vector3d> p_demo(static_cast<std::size_t>(n));
+  double step_m = 0.0;
+  for (long i = 0; i < n; ++i) {
+    p_demo[i] = Eigen::Vector3d(r.y.row(i).transpose()) + correction(r.t_s(i) / T);
+    step_m = std::max(step_m, sideStep(p_demo_start, p_demo_goal, p_demo[i]));
+  }
+  const double demoStep_m = demonstratedSideStep_m(learned, dt_s);
+  const double keep = step_m > demoStep_m ? demoStep_m / step_m : 1.0;
+  const Eigen::Vector3d chord = p_demo_goal - p_demo_start;
+  const Eigen::Vector3d u = chord.norm() < 1e-9 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(chord.normalized());
   CartesianPath path;
   path.reserve(static_cast<std::size_t>(n));
   for (long i = 0; i < n; ++i) {
     CartesianPathSample s;
     s.t_s = r.t_s(i);
+    const Eigen::Vector3d d = p_demo[i] - p_demo_start, along = d.dot(u) * u;
     s.X_world_tcp = srp::core::Pose3::Identity();
     s.X_world_tcp.linear() = q_start.slerp(minimumJerk(s.t_s / T), q_goal).toRotationMatrix();
-    s.X_world_tcp.translation() =
-        X_world_demo_ * (Eigen::Vector3d(r.y.row(i).transpose()) + correction(s.t_s / T));
+    s.X_world_tcp.translation() = X_world_demo_ * (keep < 1.0 ? Eigen::Vector3d(p_demo_start + along + keep * (d - along)) : p_demo[i]);
     path.push_back(s);
   }
   // The rollout converges to the goal; the path contract is start and goal exactly.

@@ -130,6 +130,43 @@ TEST(DmpPathGenerator, ReplaysTheDemoInTheWorldAndRetargetsExactly) {
   EXPECT_THROW(gen.generate(SkillType::Grasp, "cuboid", a, b, 0.01), srp::core::InvalidInputError);
 }
 
+// A hand that moves 5 cm sideways onto a part but dips 4 cm on the way (a short
+// demonstrated chord with a detour almost as large), re-targeted to a 0.5 m Reach in
+// the same direction 0.2 m above the table: the spatial scaling alone would scale the
+// 4 cm dip tenfold, through the table. The re-targeted detour stays within the
+// demonstrator's own (kShapeTol_m for the DMP's reproduction), so the path stays above
+// the table, and still ends exactly on its goal.
+TEST(DmpPathGenerator, ShortDemoRetargetedFarKeepsTheDemonstratorsDetour) {
+  Pose3 X_world_camera = Pose3::Identity();
+  X_world_camera.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  X_world_camera.translation() = Eigen::Vector3d(0.0, 0.0, 0.85);  // looks down: world z = 0.85 - camera z
+  const int n = 201;
+  Eigen::VectorXd t_s(n);
+  Eigen::MatrixXd p_camera_m(n, 3);
+  for (int i = 0; i < n; ++i) {
+    const double s = i / double(n - 1), m = s * s * s * (10 - 15 * s + 6 * s * s);
+    t_s(i) = 2.0 * s;
+    p_camera_m.row(i) << -0.025 + 0.05 * m, 0.0, 0.6 + 0.04 * std::sin(M_PI * m);  // 5 cm along, dipping 4 cm
+  }
+  std::map<std::string, LearnedPathSkills> skills;
+  srp::motion::DmpConfig spatial;  // as fromTaskModel executes a learned DMP
+  spatial.scaling = srp::motion::ForcingScaling::Spatial;
+  skills["toy"].reach = srp::motion::Dmp::imitate(t_s, p_camera_m, spatial);
+  const DmpPathGenerator gen(skills, X_world_camera, {}, 0.0);
+  constexpr double kDemoDetour_m = 0.04;
+  const Pose3 a = toolDown({-0.25, 0.0, 0.2}), b = toolDown({0.25, 0.0, 0.2});
+  const CartesianPath path = gen.generate(SkillType::Reach, "toy", a, b, 0.01);
+  EXPECT_LT((path.back().X_world_tcp.translation() - b.translation()).norm(), kEndpointTol_m);
+  double lowest_m = 1.0, detour_m = 0.0;
+  for (const auto& s : path) {
+    const Eigen::Vector3d p = s.X_world_tcp.translation();
+    lowest_m = std::min(lowest_m, p.z());
+    detour_m = std::max(detour_m, std::hypot(p.y(), p.z() - 0.2));  // off the straight line a -> b
+  }
+  EXPECT_LE(detour_m, kDemoDetour_m + kShapeTol_m);
+  EXPECT_GE(lowest_m, 0.2 - kDemoDetour_m - kShapeTol_m) << "the re-targeted Reach dips through the table";
+}
+
 TEST(DmpPathGenerator, LearnedSkillsFromATaskModelExecuteWithDmpPaths) {
   const srp::taskdb::TaskModel model = learnedTaskModel();
   const CellDescription cell = CellDescription::loadScene();

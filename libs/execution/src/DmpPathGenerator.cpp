@@ -38,12 +38,13 @@ double demonstratedSideStep_m(const srp::motion::Dmp& learned, double dt_s) {
 
 DmpPathGenerator::DmpPathGenerator(std::map<std::string, LearnedPathSkills> skillsByObject,
                                    const srp::core::Pose3& X_world_demo, MinimumJerkOptions fallback,
-                                   double endHeight_m)
+                                   double endHeight_m, std::optional<double> moveEndHeight_m)
     : skills_(std::move(skillsByObject)), X_world_demo_(X_world_demo), fallback_(fallback),
-      endHeight_m_(endHeight_m) {}
+      endHeight_m_(endHeight_m), moveEndHeight_m_(moveEndHeight_m.value_or(endHeight_m)) {}
 
 DmpPathGenerator DmpPathGenerator::fromTaskModel(const srp::taskdb::TaskModel& model,
-                                                 const srp::core::Pose3& X_world_camera, MinimumJerkOptions fallback) {
+                                                 const srp::core::Pose3& X_world_camera, MinimumJerkOptions fallback,
+                                                 double endHeight_m, std::optional<double> moveEndHeight_m) {
   std::map<std::string, LearnedPathSkills> skills;
   for (const auto& row : model.skills) {
     if (row.skill != srp::core::SkillType::Reach && row.skill != srp::core::SkillType::Move) continue;
@@ -75,7 +76,7 @@ DmpPathGenerator DmpPathGenerator::fromTaskModel(const srp::taskdb::TaskModel& m
                                          " (re-learn the skills with 'srp motion')");
     }
   }
-  return DmpPathGenerator(std::move(skills), X_world_camera, fallback);
+  return DmpPathGenerator(std::move(skills), X_world_camera, fallback, endHeight_m, moveEndHeight_m);
 }
 
 const srp::motion::Dmp* DmpPathGenerator::find(srp::core::SkillType skill, const std::string& object) const {
@@ -100,13 +101,14 @@ CartesianPath DmpPathGenerator::generate(srp::core::SkillType skill, const std::
   if (!(dt_s > 0.0)) throw srp::core::InvalidInputError("DmpPathGenerator: the sample time must be > 0 s");
   const srp::motion::Dmp* learned = find(skill, object);
   if (!learned) return fallback_.generate(skill, object, X_world_start, X_world_goal, dt_s);
-  if (endHeight_m_ > 0.0) {
+  const double endHeight_m = skill == srp::core::SkillType::Move ? moveEndHeight_m_ : endHeight_m_;
+  if (endHeight_m > 0.0) {
     // The tool and the carried part leave and enter a container vertically: a human
     // hand approaches diagonally (so does the demo's DMP), which would sweep the part
     // or the tool through a container wall. The DMP runs between the raised ends.
     srp::core::Pose3 up = X_world_start, down = X_world_goal;
-    up.translation().z() = std::max(up.translation().z(), endHeight_m_);
-    down.translation().z() = std::max(down.translation().z(), endHeight_m_);
+    up.translation().z() = std::max(up.translation().z(), endHeight_m);
+    down.translation().z() = std::max(down.translation().z(), endHeight_m);
     CartesianPath path;
     const double kMinSegment_m = 1e-3;
     if ((up.translation() - X_world_start.translation()).norm() > kMinSegment_m)

@@ -17,7 +17,8 @@
 /// Ends: the tool and a carried part must leave and enter a container vertically (the
 /// demo's hand, and so its DMP, approaches diagonally, which would sweep the part or
 /// the tool through a container wall): the tcp first rises straight to `endHeight_m`
-/// (world z, 0.12 m by default: a part's bottom clears the 6 cm walls), the DMP runs
+/// (world z, 0.12 m by default: a part's bottom clears the 6 cm walls; `srp execute`
+/// raises it so that the tallest part carried clears the tallest wall), the DMP runs
 /// from there to above the goal (pre-grasp / pre-release), and a straight descent ends
 /// the path (minimum-jerk segments). Both Reach and Move.
 ///
@@ -49,15 +50,19 @@ class DmpPathGenerator : public CartesianPathGenerator {
 
   /// `skillsByObject`: learned DMPs by object (scene) name, in the frame `X_world_demo`.
   /// `endHeight_m`: the DMP runs between the start and the goal raised vertically
-  /// to this tcp height (0: exactly between them).
+  /// to this tcp height (0: exactly between them). `moveEndHeight_m`: the same for
+  /// Move, where the tool carries a part (default: `endHeight_m`).
   DmpPathGenerator(std::map<std::string, LearnedPathSkills> skillsByObject, const srp::core::Pose3& X_world_demo,
-                   MinimumJerkOptions fallback = {}, double endHeight_m = kDefaultEndHeight_m);
+                   MinimumJerkOptions fallback = {}, double endHeight_m = kDefaultEndHeight_m,
+                   std::optional<double> moveEndHeight_m = std::nullopt);
 
   /// The Reach and Move rows of the task model's Skills table (parameters "dmp",
   /// "frame"; object names from GroundedProducts). Throws InvalidInputError naming
   /// the object when a row's DMP JSON is malformed or its frame is not "camera".
+  /// `endHeight_m`, `moveEndHeight_m` as in the constructor.
   static DmpPathGenerator fromTaskModel(const srp::taskdb::TaskModel& model, const srp::core::Pose3& X_world_camera,
-                                        MinimumJerkOptions fallback = {});
+                                        MinimumJerkOptions fallback = {}, double endHeight_m = kDefaultEndHeight_m,
+                                        std::optional<double> moveEndHeight_m = std::nullopt);
 
   CartesianPath generate(srp::core::SkillType skill, const std::string& object,
                          const srp::core::Pose3& X_world_start, const srp::core::Pose3& X_world_goal,
@@ -76,6 +81,7 @@ class DmpPathGenerator : public CartesianPathGenerator {
   srp::core::Pose3 X_world_demo_;
   MinimumJerkPathGenerator fallback_;
   double endHeight_m_ = kDefaultEndHeight_m;
+  double moveEndHeight_m_ = kDefaultEndHeight_m;
 };
 
 }  // namespace srp::execution

@@ -6,7 +6,9 @@
 // catalogue, which knows neither a toy nor a bin). The toy and the bin are
 // found in the demonstration; the stored task model is scored against our
 // event labels (event_labels.json, labelled by looking at the frames) and
-// against where the toy ends: inside the bin's footprint. The real hand-held
+// against where the toy ends: inside the bin's footprint; the stored task is then
+// executed as `srp execute --db t.db --task 1` does (no --scene: the perceived scene),
+// the step done and "in bin" holding. The real hand-held
 // cube recording (datasets/real/visp-rbt-cube) with default flags: the camera
 // motion is noticed and the cube detected in every frame. Slow label: five
 // recordings perceived (~5-10 s each).
@@ -17,7 +19,9 @@
 #include <string>
 
 #include "srp/calib/RgbdImporter.h"
+#include "srp/core/ExitCode.h"
 #include "srp/core/Json.h"
+#include "srp/execution/ExecutionSession.h"
 #include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/DemoPerception.h"
 #include "srp/programming/ProgrammingPipeline.h"
@@ -30,6 +34,9 @@ namespace {
 // Issue 30: grasp and release within 2 frames of the labels at 10 Hz.
 constexpr int kEventTol_frames = 2;
 constexpr double kInsideMargin_m = 0.0;  // the toy's centre strictly inside the bin's footprint
+// srp execute: the toy within 1 cm of its planned pose in the bin (the executor's own
+// "placed as planned" tolerance, ExecutionOptions::placementTolerance_m).
+constexpr double kExecutedPlacementTol_m = 0.01;
 
 std::string hrt1Root() { return std::string(SRP_DATASETS_DIR) + "/real/hrt1-pick-place"; }
 
@@ -92,6 +99,21 @@ void programAndScore(const std::string& task, const std::string& instruction, co
               task.c_str(), p_bin_toy.x(), p_bin_toy.y(), bin->dimensions_m.x(), bin->dimensions_m.y());
   EXPECT_LT(std::abs(p_bin_toy.x()), bin->dimensions_m.x() / 2 - kInsideMargin_m) << task;
   EXPECT_LT(std::abs(p_bin_toy.y()), bin->dimensions_m.y() / 2 - kInsideMargin_m) << task;
+
+  // srp execute --db t.db --task 1, no --scene: the perceived scene, the robot at its default placement.
+  execution::ExecuteRequest request;
+  request.databasePath = o.dbPath;
+  request.taskModelId = r.taskModelId;
+  request.framePeriod = 0;
+  const execution::ExecuteResult executed = execution::executeTask(request);
+  ASSERT_EQ(executed.report.steps.size(), 1u);
+  const auto& step = executed.report.steps.front();
+  std::printf("[ figures  ] HRT1 %s, '%s': srp execute %s, %.2f mm from plan, relations %s (%s)\n", task.c_str(),
+              instruction.c_str(), execution::toString(step.status).c_str(), 1000 * step.placementError_m,
+              step.relationsHold ? "hold" : "NOT MET", step.reason.c_str());
+  EXPECT_EQ(executed.report.exitCode(), core::ExitCode::Done) << task << ": " << step.reason;
+  EXPECT_TRUE(step.relationsHold) << task << ": " << step.reason;
+  EXPECT_LE(step.placementError_m, kExecutedPlacementTol_m) << task;
 }
 
 TEST(OwnRecording, Hrt1ToyIntoBinFoundAndProgrammed) {

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # README command one, after the build: the thesis scenario end to end on the
 # bundled default (SPEC.md §4). Synthesise the demonstration of instruction 1,
-# program the task from it, execute it and two adaptations in simulation.
+# program the task from it, execute it and two adaptations in simulation. A second run
+# replaces the first run's outputs (-w).
 set -euo pipefail
 build=${1:-build}
 srp="$build/apps/srp"
@@ -21,16 +22,16 @@ step() { printf '\n== %s\n' "$*"; }
 started=$(date +%s)
 
 step "1/5 synthesise the demonstration of instruction 1 ($scene)"
-"$srp" synth-demo --scene "$scene" -o "$out/demo.rawlog" --contact-sheet "$out/contact_sheet.png"
+"$srp" synth-demo --scene "$scene" -o "$out/demo.rawlog" --contact-sheet "$out/contact_sheet.png" -w
 
 step "2/5 program the task: instruction + demonstration -> task model"
 "$srp" program --instruction "$instruction" --demo "$out/demo.rawlog" --db "$db" --name thesis \
-  --report "$out/report"
+  --report "$out/report" -w
 
 run_execute() {  # name, extra args...
   local name=$1; shift
   set +e
-  "$srp" execute --db "$db" --task 1 --out "$out/$name" "$@"
+  "$srp" execute --db "$db" --task 1 --out "$out/$name" -w "$@"
   local rc=$?
   set -e
   [ $rc -le 2 ] || exit $rc   # 2 = done with skipped or failed steps: reported, keep going

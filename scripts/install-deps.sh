@@ -23,6 +23,8 @@ PACKAGES=(
   libdlib-dev liblink-grammar-dev link-grammar-dictionaries-en wordnet-dev wordnet-base
   # motion and execution
   libnlopt-cxx-dev libsimbody-dev liburdfdom-dev liburdfdom-headers-dev
+  # the ROS 2 trajectory export (a YAML emitter, not hand-written text)
+  libyaml-cpp-dev
   # synthetic demos: the hand's AprilTag (tag36h11 bit patterns)
   libapriltag-dev
   # rawlog: gzip members compressed with libdeflate (fast, in parallel)
@@ -31,6 +33,8 @@ PACKAGES=(
   libassimp-dev
   # test data shipped by Debian
   visp-images-data
+  # tests: exported trajectories are read back the way `ros2 topic pub` reads them (PyYAML)
+  python3 python3-yaml
 )
 
 missing=()

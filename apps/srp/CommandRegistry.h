@@ -39,6 +39,13 @@ inline const CLI::Validator kDecimalId(
     },
     "ID");
 
+/// `-w,--overwrite` on a command that writes files: an existing output is
+/// replaced only when it is given (core::checkOutputPaths refuses it otherwise).
+inline CLI::Option* addOverwriteFlag(CLI::App& cmd, bool& overwrite) {
+  return cmd.add_flag("-w,--overwrite", overwrite,
+                      "Replace existing output files (without it an existing output is refused, naming the file)");
+}
+
 /// Exit code a command can request (e.g. 2 for "done, but with skipped steps").
 int& commandExitCode();
 

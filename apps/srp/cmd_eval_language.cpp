@@ -7,6 +7,7 @@
 
 #include "CommandRegistry.h"
 #include "srp/core/Json.h"
+#include "srp/core/OutputFile.h"
 #include "srp/language/AnnotationPrecedents.h"
 #include "srp/language/LanguageModel.h"
 #include "srp/language/SpertEvaluation.h"
@@ -32,7 +33,12 @@ void setupEvalLanguage(CLI::App& app) {
                  "SpERT corpus (e.g. train.json) to check each error against: how it annotates the same 7 words, "
                  "and the scores if the scored corpus followed it where the model did")
       ->check(CLI::ExistingFile);
+  auto overwrite = std::make_shared<bool>(false);
+  srp::app::addOverwriteFlag(app, *overwrite);
   app.callback([=] {
+    srp::core::checkOutputPaths({{"--predictions", *predictionsPath}},
+                                {{"--data", *dataPath}, {"--model", *modelPath}, {"--precedents", *precedentsPath}},
+                                *overwrite);
     const auto model = srp::language::LanguageModel::load(*modelPath);
     const auto gold = srp::language::readSpertCorpus(*dataPath);
     const auto scores = srp::language::evaluateModel(model, gold);

@@ -6,7 +6,9 @@
 
 #include "CommandRegistry.h"
 #include "srp/core/ObjectCatalogue.h"
+#include "srp/core/OutputFile.h"
 #include "srp/kb/KnowledgeBase.h"
+#include "srp/kb/MeshValidator.h"
 
 namespace {
 
@@ -17,8 +19,14 @@ void setupKb(CLI::App& cmd) {
 
   auto* build = cmd.add_subcommand("build", "Generate the STL mesh of every catalogue class with a shape generator");
   build->add_option("--catalogue", *cataloguePath, "catalogue JSON (default: the bundled one)");
-  build->callback([cataloguePath]() {
+  auto overwrite = std::make_shared<bool>(false);
+  srp::app::addOverwriteFlag(*build, *overwrite);
+  build->callback([cataloguePath, overwrite]() {
     const auto catalogue = srp::kb::loadCatalogue(*cataloguePath);
+    std::vector<srp::core::PathRole> meshes;
+    for (const auto& c : catalogue.classes())
+      if (srp::kb::hasShapeGenerator(c.shape)) meshes.push_back({"mesh of '" + c.name + "'", c.meshPath});
+    srp::core::checkOutputPaths(meshes, {{"--catalogue", *cataloguePath}}, *overwrite);
     for (const auto& m : srp::kb::buildMeshes(catalogue))
       std::cout << m.className << ": " << m.triangleCount << " triangles -> " << m.path << "\n";
   });
@@ -38,17 +46,29 @@ void setupKb(CLI::App& cmd) {
   add->add_option("--kind", entry->kind, "part or container")->check(CLI::IsMember({"part", "container"}))->capture_default_str();
   add->add_option("--rgb", *rgb, "linear RGB in [0, 1] when the colour identifies the part (default: none)")->expected(3);
   add->add_option("--mass", *mass, "mass [kg] (default: the mesh's volume at 1000 kg/m^3)");
+  auto units = std::make_shared<std::string>("m");
+  add->add_option("--units", *units, "length unit of the CAD file: m, cm, mm or in (the part must be 1 mm - 2 m)")
+      ->check(CLI::IsMember({"m", "cm", "mm", "in"}))
+      ->capture_default_str();
+  add->add_option("--scale", entry->scale, "metres per file unit, instead of --units (e.g. 0.001)")
+      ->excludes("--units")
+      ->check(CLI::PositiveNumber);
+  add->add_flag("--flat", entry->flat, "a flat part (a sheet, a label): its mesh need not enclose a volume");
   add->add_flag("--json", *json, "machine-readable output");
   add->footer("Example: srp kb add --catalogue my_parts.json --name cube --mesh cube.obj");
-  add->callback([cataloguePath, entry, rgb, mass, json]() {
+  add->callback([add, cataloguePath, entry, rgb, mass, json, units]() {
     if (rgb->size() == 3) entry->rgb = Eigen::Vector3d((*rgb)[0], (*rgb)[1], (*rgb)[2]);
-    if (*mass > 0.0) entry->mass_kg = *mass;
-    const srp::core::ObjectClass c = srp::kb::addMeshClass(*cataloguePath, *entry);
+    if (add->count("--mass")) entry->mass_kg = *mass;
+    if (!add->count("--scale")) entry->scale = srp::kb::unitScale(*units);
+    std::vector<std::string> warnings;
+    const srp::core::ObjectClass c = srp::kb::addMeshClass(*cataloguePath, *entry, &warnings);
+    for (const auto& w : warnings) std::cerr << "srp kb add: warning: " << w << "\n";
     const Eigen::Vector3d& d = c.dimensions_m;
     if (*json) {
       std::cout << nlohmann::json{{"catalogue", *cataloguePath}, {"name", c.name}, {"class_id", c.classId},
                                   {"kind", srp::core::toString(c.kind)}, {"mesh", c.meshPath},
-                                  {"dimensions_m", {d.x(), d.y(), d.z()}}, {"mass_kg", c.mass_kg}}
+                                  {"dimensions_m", {d.x(), d.y(), d.z()}}, {"mass_kg", c.mass_kg},
+                                  {"warnings", warnings}}
                        .dump(2)
                 << "\n";
       return;

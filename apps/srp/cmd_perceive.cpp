@@ -7,6 +7,7 @@
 #include "CommandRegistry.h"
 #include "ProgressLine.h"
 #include "srp/core/Json.h"
+#include "srp/core/OutputFile.h"
 #include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/DemoPerception.h"
 
@@ -30,10 +31,13 @@ struct PerceiveOptions {
   int tagId = 0;
   bool json = false;
   bool movingCamera = false;
+  bool overwrite = false;
   std::string tracker = "auto";
 };
 
 void run(const PerceiveOptions& o) {
+  srp::core::checkOutputPaths({{"--csv", o.csv}}, {{"--demo", o.demo}, {"--kb", o.kb}, {"--scene", o.scene}},
+                              o.overwrite);
   const auto catalogue = srp::kb::loadCatalogue(o.kb);
   PerceptionOptions p;
   p.hand = o.hand == "marker-free" ? PerceptionOptions::HandMethod::MarkerFree
@@ -129,6 +133,7 @@ void setupPerceive(CLI::App& app) {
   app.add_option("--csv", o->csv,
                  "Write the per-frame CSV in the 'srp segment' format (a sample not detected in its frame, "
                  "e.g. a part in the hand, is written as 0,0,0,0)");
+  srp::app::addOverwriteFlag(app, o->overwrite);
   app.footer(
       "Object poses are those of each class's mesh frame (a CAD file's own frame), camera optical frame.\n"
       "Example (a real hand-held recording, objects only):\n"

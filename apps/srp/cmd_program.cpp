@@ -10,13 +10,14 @@
 #include "ProgressLine.h"
 #include "srp/calib/CameraFiles.h"
 #include "srp/core/Error.h"
+#include "srp/core/OutputFile.h"
 #include "srp/programming/ProgrammingPipeline.h"
 
 namespace {
 
 struct ProgramArgs {
   std::string instruction, demo, kb, calib, db = "task.db", name = "task", report, hand = "marker", scene;
-  bool json = false, quiet = false, allowTruncated = false;
+  bool json = false, quiet = false, allowTruncated = false, overwrite = false;
 };
 
 void setupProgram(CLI::App& cmd) {
@@ -34,7 +35,9 @@ void setupProgram(CLI::App& cmd) {
   cmd.add_option("--calib", a->calib, "Camera intrinsics (ViSP XML, e.g. calib/camera.xml) overriding the rawlog's");
   cmd.add_option("--db", a->db, "Task database to store the task model in")->capture_default_str();
   cmd.add_option("--name", a->name, "Task model name; an existing name gets a new version")->capture_default_str();
-  cmd.add_option("--report", a->report, "Folder for the report (PNG figures + summary.md)");
+  cmd.add_option("--report", a->report,
+                 "Folder for the report (PNG figures + summary.md), written whole or not at all; an existing one "
+                 "needs -w and is replaced only when it holds nothing but a report");
   cmd.add_option("--hand", a->hand, "Hand detector: marker (AprilTag on the glove) or marker-free")
       ->check(CLI::IsMember({"marker", "marker-free"}))
       ->capture_default_str();
@@ -42,7 +45,12 @@ void setupProgram(CLI::App& cmd) {
                "Use the frames before the damage of a damaged demonstration rawlog (default: fail, store nothing)");
   cmd.add_flag("--json", a->json, "Print the result as JSON");
   cmd.add_flag("-q,--quiet", a->quiet, "No progress bar");
+  srp::app::addOverwriteFlag(cmd, a->overwrite);
   cmd.callback([a] {
+    using srp::core::PathRole;
+    const std::vector<PathRole> inputs = {{"--demo", a->demo}, {"--kb", a->kb}, {"--scene", a->scene}, {"--calib", a->calib}};
+    srp::core::checkOutputPaths({{"--db", a->db}}, inputs, true);  // the database is added to, never replaced
+    srp::core::checkOutputPaths({{"--report", a->report}}, inputs, a->overwrite);
     srp::programming::ProgrammingOptions o;
     o.instruction = a->instruction;
     o.demoPath = a->demo;

@@ -67,6 +67,7 @@ CellDescription CellDescription::fromScene(const srp::core::Scene& scene,
     o.noun = c.noun;
     o.classId = c.classId;
     o.meshPath = c.meshPath;
+    o.meshScale = c.meshScale;
     cell.objects.push_back(o);
   }
   return cell;

@@ -97,7 +97,7 @@ CellRenderer::CellRenderer(RobotModel model, CellDescription cell, CellRendererO
   m.gripper = {body, cup};
   for (const auto& o : m.cell.objects) {
     if (o.kind != CellObjectKind::Part || o.meshPath.empty() || !std::filesystem::exists(o.meshPath)) continue;
-    m.partMeshes[o.name] = triangles(srp::kb::TriangleMesh::load(o.meshPath), Pose3::Identity(), o.rgb);
+    m.partMeshes[o.name] = triangles(srp::kb::TriangleMesh::load(o.meshPath).scaled(o.meshScale), Pose3::Identity(), o.rgb);
   }
   try {
     m.fbo = std::make_unique<mrpt::opengl::CFBORender>(options.width_px, options.height_px);

@@ -1,11 +1,12 @@
 #include "srp/programming/ProgramReport.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <algorithm>
 #include <iomanip>
 
 #include "srp/core/Error.h"
+#include "srp/core/SafeText.h"
 #include "srp/motion/SkillPlots.h"
 #include "srp/plot/Figure.h"
 
@@ -70,9 +71,7 @@ std::vector<std::string> writeProgramReport(const std::string& dir, const Progra
   for (const auto& s : skills)
     for (const auto& o : segmentation.objects)
       if (o.name == s.objectName && o.moved) {
-        std::string file = o.name;
-        std::replace(file.begin(), file.end(), ' ', '_');
-        const std::string path = dir + "/" + file + "_skills.png";
+        const std::string path = dir + "/" + core::safeFileName(o.name) + "_skills.png";
         motion::writeSkillFigure(path, segmentation, o, s);
         files.push_back(path);
       }

@@ -6,11 +6,12 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "srp/core/Error.h"
 #include "srp/core/ObjectCatalogue.h"
+#include "srp/core/OutputFile.h"
+#include "srp/core/SafeText.h"
 #include "srp/motion/SkillPlots.h"
 #include "srp/perception/DemoPerception.h"
 #include "srp/programming/ProgramReport.h"
@@ -58,21 +59,21 @@ double frameRateOf(const core::PositionTrajectory& samples) {
 }
 
 namespace {
-// Creates the report folder and writes (and removes) a probe file in it, so
-// an unusable folder fails the run before anything is computed or stored.
+// The report folder's parent is created and checked now, so an unusable folder
+// fails the run before anything is computed or stored; the report itself is
+// built beside it and renamed into place (core::AtomicOutputFolder).
+const std::vector<std::string> kReportFiles = {"hand_trajectory.png", "summary.md", "*_skills.png"};
+
 void checkReportFolder(const std::string& dir) {
+  const std::filesystem::path folder = std::filesystem::path(dir).lexically_normal();
   std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec || !std::filesystem::is_directory(dir))
-    throw core::FileError(dir, "cannot create the report folder (" + (ec ? ec.message() : std::string("not a folder")) +
+  if (folder.has_parent_path()) std::filesystem::create_directories(folder.parent_path(), ec);
+  core::checkFolderHoldsOnly(folder, kReportFiles, "--report");
+  if (ec || std::filesystem::exists(folder, ec) != std::filesystem::is_directory(folder, ec))
+    throw core::FileError(dir, "cannot create the report folder here (" +
+                                   (ec ? ec.message() : std::string("a file of that name exists")) +
                                    "); nothing was stored. Give a writable folder with --report");
-  const std::string probe = dir + "/.srp_write_probe";
-  {
-    std::ofstream out(probe);
-    if (!(out << "probe") || !out.flush())
-      throw core::FileError(dir, "cannot write in the report folder (permissions? disk full?); nothing was stored");
-  }
-  std::filesystem::remove(probe, ec);
+  const core::AtomicOutputFolder probe(folder);  // creates and removes a folder beside it: the parent is writable
 }
 
 double peakResidentMemory_MB() {
@@ -88,7 +89,7 @@ ProgramResult programTask(const ProgrammingOptions& o) {
   const auto progress = [&](const std::string& stage, std::size_t done, std::size_t total) {
     if (o.progress) o.progress(stage, done, total);
   };
-  if (o.name.empty()) throw InvalidInputError("a task model needs a name (--name)");
+  core::requireSafeName(o.name, "task model name (--name)");
   if (o.demoPath.empty()) throw InvalidInputError("no demonstration given (--demo demo.rawlog)");
   // Open the database and check the report folder first: a bad file fails
   // before minutes of perception.
@@ -165,8 +166,13 @@ ProgramResult programTask(const ProgrammingOptions& o) {
           result.taskModelId = id;
           result.version = version;
           clock.stop();
-          if (!o.reportDir.empty())
-            result.reportFiles = writeProgramReport(o.reportDir, result, seen, segmentation, skills);
+          if (!o.reportDir.empty()) {
+            core::AtomicOutputFolder report(std::filesystem::path(o.reportDir).lexically_normal());
+            const std::string staged = report.temporaryPath().string();
+            result.reportFiles = writeProgramReport(staged, result, seen, segmentation, skills);
+            report.commit();
+            for (auto& f : result.reportFiles) f = o.reportDir + f.substr(staged.size());
+          }
         });
   }
   result.peakResidentMemory_MB = peakResidentMemory_MB();

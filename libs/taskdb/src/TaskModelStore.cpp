@@ -2,6 +2,7 @@
 
 #include <SQLiteCpp/SQLiteCpp.h>
 
+#include "SqlUtil.h"
 #include "srp/core/Error.h"
 #include "srp/taskdb/GroundedProductDao.h"
 #include "srp/taskdb/HandPositionDao.h"
@@ -79,6 +80,9 @@ TaskModel TaskModelStore::read(int id) const {
     return readUnchecked(id);
   } catch (const SQLite::Exception& e) {
     rethrowUnreadable(db_.path(), e);
+  } catch (const detail::BadCellError& e) {
+    throw core::InvalidInputError("task database '" + db_.path() + "', task model " + std::to_string(id) + ": " +
+                                  e.what());
   }
 }
 
@@ -116,6 +120,8 @@ std::vector<TaskModelInfo> TaskModelStore::list() const {
     return TaskModelDao(db_).list();
   } catch (const SQLite::Exception& e) {
     rethrowUnreadable(db_.path(), e);
+  } catch (const detail::BadCellError& e) {
+    throw core::InvalidInputError("task database '" + db_.path() + "': " + e.what());
   }
 }
 

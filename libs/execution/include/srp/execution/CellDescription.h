@@ -34,7 +34,8 @@ struct CellObject {
   std::string className;  ///< knowledge-base class ("blue box"), "" if unknown
   std::string noun;       ///< head noun in instructions ("box"), "" if unknown
   int classId = -1;       ///< knowledge-base class id
-  std::string meshPath;   ///< the class's mesh (object frame, metres) for rendering; "" or missing: drawn as its box
+  std::string meshPath;   ///< the class's mesh (object frame) for rendering; "" or missing: drawn as its box
+  double meshScale = 1.0; ///< metres per unit of the mesh file (ObjectClass::meshScale)
 };
 
 /// An oriented box (centre pose and half extents) in the world frame.

@@ -44,7 +44,10 @@ struct ProgrammingOptions {
   std::string dbPath = "task.db";
   std::string name = "task";      ///< re-using a name makes a new version
   bool markerFreeHand = false;    ///< hand detector: AprilTag on the glove (default) or marker-free
-  std::string reportDir;          ///< empty: no report; else PNG figures + summary.md (checked before anything runs)
+  /// Empty: no report; else PNG figures + summary.md, built beside the folder and
+  /// renamed into place inside the storing transaction (checked before anything
+  /// runs: an existing folder holding anything but a report is refused).
+  std::string reportDir;
   /// A damaged demonstration rawlog fails the run (nothing stored) unless
   /// this is set; then the frames before the damage are used, with a warning.
   bool allowTruncated = false;

@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "HostileStrings.h"
+#include "ScratchFolder.h"
 #include "srp/core/Error.h"
 #include "srp/execution/ExecutedTask.h"
 #include "srp/execution/RobotModel.h"
@@ -133,23 +134,6 @@ std::optional<std::vector<std::vector<std::string>>> statements(const std::strin
   return code;
 }
 
-std::string readFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-struct ScratchFolder {
-  fs::path path;
-  explicit ScratchFolder(const std::string& name)
-      : path(fs::temp_directory_path() / ("srp_safety_" + name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~ScratchFolder() { fs::remove_all(path); }
-};
-
 }  // namespace
 
 TEST(HostileExports, NoStringAddsAUrScriptStatement) {
@@ -178,7 +162,7 @@ TEST(HostileExports, NoStringAddsAUrScriptStatement) {
 
 TEST(HostileExports, EveryYamlIsOneDocumentWithTheCheckedData) {
   const ExecutedTask clean = smallTask();
-  const ScratchFolder dir("yaml");
+  const srp::safety::ScratchFolder dir("yaml");
   RosTrajectoryOptions options;
   const RosTrajectoryExporter plain(options);
   const fs::path reference = dir.path / "reference.yaml";
@@ -190,8 +174,12 @@ TEST(HostileExports, EveryYamlIsOneDocumentWithTheCheckedData) {
     for (int field = 0; field < 2; ++field) {
       ExecutedTask t = field == 0 ? withText(clean, hostile[i]) : clean;
       RosTrajectoryOptions o;
-      if (field == 0) o.topic = hostile[i];
-      else t.jointNames.fill(hostile[i]);
+      if (field == 0) {
+        o.topic = hostile[i];
+      } else {
+        t.jointNames.fill(hostile[i]);
+        o.frameId = hostile[i];
+      }
       const std::string text = RosTrajectoryExporter(o).toYaml(t);
       for (char c : text) notAscii += (c != '\n' && (c < 0x20 || c > 0x7E)) ? 1 : 0;
       const fs::path file = dir.path / ("case_" + std::to_string(cases++) + ".yaml");

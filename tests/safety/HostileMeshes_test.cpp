@@ -14,6 +14,7 @@
 #include <fstream>
 #include <random>
 
+#include "ScratchFolder.h"
 #include "srp/core/Error.h"
 #include "srp/kb/KnowledgeBase.h"
 #include "srp/kb/MeshValidator.h"
@@ -141,9 +142,8 @@ std::vector<Case> meshCases() {
 }  // namespace
 
 TEST(HostileMeshes, EveryMeshIsRefusedOrAValidPart) {
-  const fs::path dir = fs::temp_directory_path() / ("srp_safety_meshes_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const srp::safety::ScratchFolder scratch("meshes");
+  const fs::path& dir = scratch.path;
   int accepted = 0, refused = 0, crashedOrForeign = 0, fitted = 0;
   for (const Case& c : meshCases()) {
     const fs::path file = dir / c.name;
@@ -176,15 +176,13 @@ TEST(HostileMeshes, EveryMeshIsRefusedOrAValidPart) {
   std::printf("[ sweep ] meshes: %d cases, %d accepted (and fitted: %d), %d refused, %d foreign errors\n",
               accepted + refused + crashedOrForeign, accepted, fitted, refused, crashedOrForeign);
   EXPECT_EQ(crashedOrForeign, 0);
-  fs::remove_all(dir);
 }
 
 // The units of a file in millimetres make it a valid part; a flat part is
 // accepted when declared flat; a part that looks like millimetres warns.
 TEST(HostileMeshes, UnitsScaleAndFlatPartsAreExplicit) {
-  const fs::path dir = fs::temp_directory_path() / ("srp_safety_units_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const srp::safety::ScratchFolder scratch("units");
+  const fs::path& dir = scratch.path;
   const auto box = srp::kb::makeBoxMesh({-0.02, -0.02, 0}, {0.02, 0.02, 0.04});
   std::ofstream(dir / "mm.stl", std::ios::binary) << binaryStl(box, 0, 1000.0);  // 40 units = 40 mm
   std::ofstream(dir / "flat.stl") << asciiStl({{0, 0, 0, 0.05, 0, 0, 0.05, 0.05, 0}, {0, 0, 0, 0.05, 0.05, 0, 0, 0.05, 0}});
@@ -220,7 +218,6 @@ TEST(HostileMeshes, UnitsScaleAndFlatPartsAreExplicit) {
   e.meshPath = catalogue;
   EXPECT_THROW(srp::kb::addMeshClass(catalogue, e), srp::core::InvalidInputError);
   EXPECT_EQ(srp::kb::loadCatalogue(catalogue).classes().size(), 3u);
-  fs::remove_all(dir);
 }
 
 // The fitter's grid: a 2 m part at the default 2 mm cells would need 1e9 cells;

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <regex>
 
+#include "ScratchFolder.h"
 #include "srp/core/Error.h"
 #include "srp/execution/DmpPathGenerator.h"
 #include "srp/motion/Dmp.h"
@@ -123,9 +124,8 @@ std::vector<Cell> hostileCells(const std::string& validDmp) {
 }  // namespace
 
 TEST(HostileTaskDatabase, EveryCellIsReadOrRefusedNamingIt) {
-  const fs::path dir = fs::temp_directory_path() / ("srp_safety_db_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const srp::safety::ScratchFolder scratch("db");
+  const fs::path& dir = scratch.path;
   const std::string good = (dir / "good.db").string();
   const taskdb::TaskModel model = goodModel();
   {
@@ -184,5 +184,4 @@ TEST(HostileTaskDatabase, EveryCellIsReadOrRefusedNamingIt) {
   EXPECT_EQ(unnamed, 0);
   EXPECT_EQ(silentFallback, 0);
   EXPECT_GT(refused, cases / 2);
-  fs::remove_all(dir);
 }

@@ -21,6 +21,7 @@
 #include <sstream>
 #include <thread>
 
+#include "ScratchFolder.h"
 #include "srp/calib/CalibrationPattern.h"
 #include "srp/calib/ImageHeader.h"
 #include "srp/core/Error.h"
@@ -54,15 +55,7 @@ int versionOf(const std::string& text) {
   return at == std::string::npos ? -1 : std::atoi(text.c_str() + at + 8);
 }
 
-struct Dir {
-  fs::path path;
-  explicit Dir(const std::string& name)
-      : path(fs::temp_directory_path() / ("srp_safety_" + name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~Dir() { fs::remove_all(path); }
-};
+using Dir = srp::safety::ScratchFolder;
 
 }  // namespace
 

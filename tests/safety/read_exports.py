@@ -6,8 +6,8 @@ reference export of the same trajectory.
 usage: read_exports.py REFERENCE.yaml FILE.yaml...
 
 Prints one JSON object: files read, files holding exactly one document, files
-whose document equals the reference's (joint_names compared only for type and
-count: the hostile-joint-name cases change them on purpose), and the names of
+whose document equals the reference's (joint_names and header.frame_id compared
+only for type and count: the hostile-name cases change them on purpose), and the names of
 the files that failed with the reason.
 """
 import json
@@ -28,11 +28,16 @@ def documents(path, loader=FAST):
 
 
 def without_names(doc):
+    """The document without its names (joint_names, header.frame_id), and the names."""
     if isinstance(doc, dict):
         doc = dict(doc)
         names = doc.pop("joint_names", None)
-        return doc, names
-    return doc, None
+        frame_id = None
+        if isinstance(doc.get("header"), dict):
+            doc["header"] = dict(doc["header"])
+            frame_id = doc["header"].pop("frame_id", None)
+        return doc, (names, frame_id)
+    return doc, (None, None)
 
 
 def main():
@@ -56,8 +61,11 @@ def main():
         if data != reference:
             result["failures"].append({"file": path, "reason": "data differs from the reference"})
             continue
-        if not (isinstance(names, list) and len(names) == 6 and all(isinstance(n, str) for n in names)):
-            result["failures"].append({"file": path, "reason": "joint_names is not a list of 6 strings"})
+        joint_names, frame_id = names
+        if not (isinstance(joint_names, list) and len(joint_names) == 6 and all(isinstance(n, str) for n in joint_names)
+                and isinstance(frame_id, str)):
+            result["failures"].append({"file": path, "reason": "joint_names is not a list of 6 strings or "
+                                                               "header.frame_id not a string"})
             continue
         result["equal_data"] += 1
     result["failures"] = result["failures"][:10]

@@ -139,6 +139,20 @@ ParsedYaml readYaml(const std::string& text) {
   return y;
 }
 
+/// What a joint_trajectory_controller interpolates: the cubic Hermite spline through
+/// the points' positions and velocities.
+JointTrajectory controllerSpline(const ParsedYaml& y) {
+  std::vector<JointTrajectorySample> knots;
+  for (const auto& p : y.points) {
+    JointTrajectorySample s;
+    s.t_s = p.sec + p.nanosec * 1e-9;
+    s.q_rad = p.q;
+    s.qd_radps = p.qd;
+    knots.push_back(s);
+  }
+  return JointTrajectory::fromSamples(knots);
+}
+
 }  // namespace
 
 // The recorded reference is what the joint controller tracked: at every logged state
@@ -242,16 +256,7 @@ TEST(TrajectoryExport, RosYamlHoldsTheCheckedTrajectory) {
   }
   // A joint_trajectory_controller interpolates positions + velocities with cubic
   // Hermite splines: between the points that is the checked trajectory again.
-  std::vector<double> t;
-  std::vector<JointTrajectorySample> knots;
-  for (const auto& p : y.points) {
-    JointTrajectorySample s;
-    s.t_s = p.sec + p.nanosec * 1e-9;
-    s.q_rad = p.q;
-    s.qd_radps = p.qd;
-    knots.push_back(s);
-  }
-  const JointTrajectory controller = JointTrajectory::fromSamples(knots);
+  const JointTrajectory controller = controllerSpline(y);
   for (double ts = 0.0; ts < task.trajectory.duration_s(); ts += 0.0037)
     ASSERT_LT((controller.at(ts).q_rad - task.trajectory.at(ts).q_rad).cwiseAbs().maxCoeff(), kPositionTol_rad) << ts;
 
@@ -268,15 +273,7 @@ TEST(TrajectoryExport, RosYamlHoldsTheCheckedTrajectory) {
       ASSERT_GE(few.points.size(), 2u);
       EXPECT_LT(few.points.size(), samples.size());
       EXPECT_NEAR(few.points.back().sec + few.points.back().nanosec * 1e-9, task.trajectory.duration_s(), kTimeTol_s);
-      std::vector<JointTrajectorySample> kept;
-      for (const auto& p : few.points) {
-        JointTrajectorySample k;
-        k.t_s = p.sec + p.nanosec * 1e-9;
-        k.q_rad = p.q;
-        k.qd_radps = p.qd;
-        kept.push_back(k);
-      }
-      const double off = RosTrajectoryExporter::deviation_rad(JointTrajectory::fromSamples(kept), task.trajectory);
+      const double off = RosTrajectoryExporter::deviation_rad(controllerSpline(few), task.trajectory);
       EXPECT_LE(off, thin.maxThinningDeviation_rad + kPositionTol_rad) << "period " << period;
       std::printf("thinned every %.2f s: %zu of %zu points, %.2f mrad from the checked trajectory\n", period,
                   few.points.size(), samples.size(), 1000.0 * off);

@@ -223,14 +223,19 @@ TEST(ProgrammingPipeline, UnwritableReportStoresNothing) {
   EXPECT_FALSE(perceptionStarted) << "the report folder must be checked before the demonstration is read";
   EXPECT_EQ(modelCount(db), 1u);
 
-  // The folder is fine but the first figure's name is taken by a folder: the
-  // report fails after every row is written, and the model is rolled back.
-  const auto dir = workDir() / "report_blocked";
-  std::filesystem::create_directories(dir / "hand_trajectory.png");
+  // The folder is fine when the run starts but its parent is gone when the
+  // report is written (after every row is written): the model is rolled back.
+  const auto vanishing = workDir() / "vanishing";
+  std::filesystem::remove_all(vanishing);
   o = options(db);
-  o.reportDir = dir.string();
+  o.reportDir = (vanishing / "report").string();
+  o.progress = [&](const std::string& stage, std::size_t, std::size_t) {
+    if (stage == "environment") std::filesystem::remove_all(vanishing);
+  };
   EXPECT_THROW(programming::programTask(o), core::FileError);
+  EXPECT_FALSE(std::filesystem::exists(vanishing)) << "no half-made report";
   EXPECT_EQ(modelCount(db), 1u);
+  o.progress = nullptr;
 
   // And with a usable folder the same run stores exactly one model.
   o.reportDir = (workDir() / "report_ok").string();

@@ -20,7 +20,7 @@ PACKAGES=(
   # headless rendering (EGL on Mesa's software driver)
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgles-dev
   # language
-  libdlib-dev liblink-grammar-dev link-grammar-dictionaries-en wordnet-dev wordnet-base
+  libdlib-dev wordnet-dev wordnet-base
   # motion and execution
   libnlopt-cxx-dev libsimbody-dev liburdfdom-dev liburdfdom-headers-dev
   # the ROS 2 trajectory export (a YAML emitter, not hand-written text)

@@ -1,14 +1,17 @@
 // srp eval-language: scores the language model on a SpERT corpus (precision,
-// recall, F1 and support per entity and relation type; time per sentence).
+// recall, F1 and support per entity and relation type; time per sentence), or
+// on the capability suites (entity and relation F1 per suite).
 #include <fstream>
 #include <iostream>
 #include <set>
 #include <vector>
 
 #include "CommandRegistry.h"
+#include "LanguageSwitches.h"
 #include "srp/core/Json.h"
 #include "srp/core/OutputFile.h"
 #include "srp/language/AnnotationPrecedents.h"
+#include "srp/language/CapabilitySuites.h"
 #include "srp/language/LanguageModel.h"
 #include "srp/language/SpertEvaluation.h"
 
@@ -18,10 +21,22 @@ void setupEvalLanguage(CLI::App& app) {
   auto modelPath = std::make_shared<std::string>(srp::language::defaultModelPath());
   auto predictionsPath = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
-  app.add_option("--data", *dataPath, "SpERT corpus to score (e.g. datasets/language/val.json)")
-      ->required()
+  auto capabilities = std::make_shared<bool>(false);
+  auto capabilitiesDir = std::make_shared<std::string>(srp::language::CapabilitySuites::defaultFolder());
+  auto* input = app.add_option_group("input", "what to score (one of)");
+  input->add_option("--data", *dataPath, "SpERT corpus to score (e.g. datasets/language/val.json)")
       ->check(CLI::ExistingFile);
+  input->add_flag("--capabilities", *capabilities,
+                  "score every capability suite of --capabilities-dir instead (entity and relation F1 per suite)");
+  input->require_option(1);
+  app.add_option("--capabilities-dir", *capabilitiesDir, "folder of capability suites (<name>.json, SpERT format)")
+      ->capture_default_str();
   app.add_option("--model", *modelPath, "language model file")->capture_default_str();
+  auto rules = std::make_shared<std::vector<std::string>>();
+  app.add_option("--rules", *rules,
+                 "decoding rules switched from the model's own, e.g. source_is_spatial=1,span_lengths=0; rules: " +
+                     srp::app::switchNames<srp::language::DecodingRules>())
+      ->delimiter(',');
   app.add_option("--predictions", *predictionsPath, "also write the predicted sentences (SpERT JSON) here");
   app.add_flag("--json", *json, "print {\"types\": {...}, \"ms_per_sentence\": x}");
   auto errorTypes = std::make_shared<std::vector<std::string>>();
@@ -39,7 +54,31 @@ void setupEvalLanguage(CLI::App& app) {
     srp::core::checkOutputPaths({{"--predictions", *predictionsPath}},
                                 {{"--data", *dataPath}, {"--model", *modelPath}, {"--precedents", *precedentsPath}},
                                 *overwrite);
-    const auto model = srp::language::LanguageModel::load(*modelPath);
+    auto model = srp::language::LanguageModel::load(*modelPath);
+    if (!rules->empty()) {
+      auto switched = model.decodingRules();
+      srp::app::applySwitches(*rules, switched, "decoding rule");
+      model.setDecodingRules(switched);
+    }
+    if (*capabilities) {
+      const auto suites = srp::language::CapabilitySuites::load(*capabilitiesDir);
+      const auto results = suites.score(model);
+      if (*json)
+        std::cout << srp::language::CapabilitySuites::toJson(results).dump(2) << "\n";
+      else
+        std::cout << "capability suites of " << *capabilitiesDir << "\n"
+                  << srp::language::CapabilitySuites::formatTable(results);
+      if (*errors)
+        for (const auto& suite : suites.suites()) {
+          std::vector<srp::language::AnnotatedSentence> predicted;
+          for (const auto& s : suite.sentences) predicted.push_back(model.annotate(s.tokens));
+          (*json ? std::cerr : std::cout) << "suite " << suite.name << ": "
+                                          << srp::language::formatEntityErrors(
+                                                 suite.sentences, predicted,
+                                                 std::set<std::string>(errorTypes->begin(), errorTypes->end()));
+        }
+      return;
+    }
     const auto gold = srp::language::readSpertCorpus(*dataPath);
     const auto scores = srp::language::evaluateModel(model, gold);
     std::vector<srp::language::AnnotatedSentence> predicted;

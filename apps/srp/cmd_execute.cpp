@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "CommandRegistry.h"
+#include "srp/calib/CameraExtrinsics.h"
 #include "srp/core/Error.h"
 #include "srp/core/OutputFile.h"
 #include "srp/core/ViewFrame.h"
@@ -18,6 +19,8 @@ struct ExecuteOptions {
   int task = 0;
   std::string instruction;
   std::string scene;
+  std::string extrinsics;
+  std::string kb;
   std::string out = "execution";
   int framePeriod = 10;
   bool json = false;
@@ -37,7 +40,20 @@ void setupExecute(CLI::App& app) {
   app.add_option("--db", o->db, "Task database file (opened read-only)")->capture_default_str();
   app.add_option("--task", o->task, "Task model id (see 'srp db list')")->required();
   app.add_option("--instruction", o->instruction, "A new instruction that re-plans the task (Language Module)");
-  app.add_option("--scene", o->scene, "Current scene JSON (default: sim/scenes/default.json)");
+  app.add_option("--scene", o->scene,
+                 "Current scene JSON (default: the scene of the task model's own demonstration, as 'srp program' "
+                 "perceived it, with parts seen without a CAD file as their observed box or hull; "
+                 "sim/scenes/default.json for a task model that stores none)");
+  app.add_option("--extrinsics", o->extrinsics,
+                 "Camera-to-robot extrinsics JSON of the demonstration's camera ('srp calibrate extrinsics' or "
+                 "'hand-eye' write calib/extrinsics.json): places the robot base in the demonstration's scene (default: "
+                 "the calibration stored with the task model, else the table edge opposite the camera, said in the "
+                 "report) and turns the demonstrated offsets into a --scene file's frame")
+      ->check(CLI::ExistingFile);
+  app.add_option("--kb", o->kb,
+                 "Knowledge base of the demonstration's scene (default: the catalogue the task model was programmed "
+                 "with)")
+      ->check(CLI::ExistingFile);
   app.add_option("--out", o->out, "Output folder: report.json, report.txt, joints.csv, final_scene.json (the scene after execution, for --scene of the next run), frames/*.png; written whole or not at all (an existing one needs -w, and is replaced only when it holds nothing else)")
       ->capture_default_str();
   app.add_option("--frame-period", o->framePeriod, "Render every n-th 20 ms snapshot (0: no frames)")
@@ -90,11 +106,17 @@ void setupExecute(CLI::App& app) {
     const srp::execution::RosTrajectoryExporter rosExporter(o->ros);
     using srp::core::PathRole;
     srp::core::checkOutputPaths({{"--urscript", o->urscript}, {"--trajectory-yaml", o->trajectoryYaml}, {"--out", o->out}},
-                                {{"--db", o->db}, {"--scene", o->scene}}, o->overwrite);
+                                {{"--db", o->db}, {"--scene", o->scene}, {"--extrinsics", o->extrinsics}, {"--kb", o->kb}},
+                                o->overwrite);
     srp::execution::ExecuteRequest request;
     request.databasePath = o->db;
     request.taskModelId = o->task;
     request.scenePath = o->scene;
+    request.cataloguePath = o->kb;
+    if (!o->extrinsics.empty()) {
+      request.X_base_camera = srp::calib::CameraExtrinsics::load(o->extrinsics).X_base_camera;
+      request.extrinsicsSource = o->extrinsics;
+    }
     request.instruction = o->instruction;
     request.outputFolder = o->out;
     request.framePeriod = o->framePeriod;

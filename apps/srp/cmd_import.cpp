@@ -1,4 +1,6 @@
 // srp import: an image folder or a TUM RGB-D sequence to a rawlog.
+#include <unistd.h>
+
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -13,7 +15,7 @@ struct Args {
   std::string folder, out, layout = "auto";
   std::string intrinsics, depthIntrinsics, depthMColor;
   double depthScale_m = 0.0;
-  double fps = 30.0;
+  double fps = 0.0;  // 0: the folder's timestamps, else assumed (warned)
   double maxDt_s = 0.02;
   bool json = false;
 };
@@ -37,9 +39,10 @@ void setupImport(CLI::App& cmd) {
   cmd.add_option("--depth-scale", a->depthScale_m,
                  "metres per depth PNG unit (default: the camera JSON's depthScale, else 0.001; TUM 0.0002)")
       ->check(CLI::Range(1e-6, 1.0));
-  cmd.add_option("--fps", a->fps, "frame rate of an image folder (timestamps i / fps)")
-      ->check(CLI::Range(0.1, 1000.0))
-      ->capture_default_str();
+  cmd.add_option("--fps", a->fps,
+                 "frame rate of an image folder without timestamps (frame N at t = N / fps; default: the folder's "
+                 "timestamps.txt, else 30 with a warning)")
+      ->check(CLI::Range(0.1, 1000.0));
   cmd.add_option("--max-dt", a->maxDt_s, "TUM: max colour/depth timestamp difference [s]")
       ->check(CLI::Range(0.0, 10.0))
       ->capture_default_str();
@@ -51,9 +54,9 @@ void setupImport(CLI::App& cmd) {
     o.depthCameraPath = a->depthIntrinsics;
     o.depthToColourPath = a->depthMColor;
     if (a->depthScale_m > 0.0) o.depthScale_m = a->depthScale_m;
-    o.fps = a->fps;
+    if (a->fps > 0.0) o.fps = a->fps;
     o.maxTimeDifference_s = a->maxDt_s;
-    srp::app::ProgressLine line;
+    srp::app::ProgressLine line(isatty(STDERR_FILENO) && !a->json);  // progress only on a terminal
     o.progress = [&line](int done, int total) {
       line.show("importing", static_cast<std::size_t>(done), static_cast<std::size_t>(total));
       if (done == total) line.finish();
@@ -68,9 +71,15 @@ void setupImport(CLI::App& cmd) {
                                   {"intrinsics", K},          {"unpaired_depth", s.unpairedDepth},
                                   {"depth_registered", s.depthRegistered},
                                   {"depth_intrinsics", s.depthIntrinsics},
-                                  {"depth_to_colour_baseline_m", s.depthToColourBaseline_m}}
+                                  {"depth_to_colour_baseline_m", s.depthToColourBaseline_m},
+                                  {"fps", s.fps},
+                                  {"fps_source", s.fpsSource},
+                                  {"missing_frames", s.missingFrames},
+                                  {"frames_without_depth", s.framesWithoutDepth},
+                                  {"warnings", s.warnings}}
                        .dump(2)
                 << "\n";
+      for (const auto& w : s.warnings) std::cerr << "srp import: WARNING: " << w << "\n";
       return;
     }
     std::printf("%s -> %s: %d frames (%s layout), depth scale %g m/unit, %dx%d fx %.3f fy %.3f cx %.3f cy %.3f\n",
@@ -82,6 +91,9 @@ void setupImport(CLI::App& cmd) {
     else
       std::printf("  depth registered to colour as recorded\n");
     if (s.unpairedDepth > 0) std::printf("  %d depth images without a colour partner were left out\n", s.unpairedDepth);
+    std::printf("  frame rate %.3g frames/s (%s)\n", s.fps,
+                s.fpsSource == "assumed" ? "ASSUMED: no timestamps and no --fps" : ("from " + s.fpsSource).c_str());
+    for (const auto& w : s.warnings) std::cerr << "srp import: WARNING: " << w << "\n";
   });
 }
 

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "CommandRegistry.h"
+#include "srp/core/Error.h"
 #include "srp/core/ObjectCatalogue.h"
 #include "srp/core/OutputFile.h"
 #include "srp/kb/KnowledgeBase.h"
@@ -31,51 +32,82 @@ void setupKb(CLI::App& cmd) {
       std::cout << m.className << ": " << m.triangleCount << " triangles -> " << m.path << "\n";
   });
 
-  auto* add = cmd.add_subcommand("add", "Add a part or container given by its CAD file alone (STL, OBJ, PLY, glTF, COLLADA)");
+  auto* add = cmd.add_subcommand(
+      "add", "Add a part or container: from its CAD file (STL, OBJ, PLY, glTF, COLLADA), or without one as a box");
   auto entry = std::make_shared<srp::kb::MeshClassEntry>();
   auto rgb = std::make_shared<std::vector<double>>();
   auto mass = std::make_shared<double>(0.0);
+  auto shape = std::make_shared<std::string>();
+  auto size = std::make_shared<std::vector<double>>();
   add->add_option("--catalogue", *cataloguePath, "catalogue JSON to add to (created when missing)")->required();
-  add->add_option("--name", entry->name, "class name, unique in the catalogue")->required();
-  add->add_option("--mesh", entry->meshPath,
-                  "CAD file in metres; its frame becomes the class's object frame (+z up when the part rests)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  add->add_option("name,--name", entry->name, "class name, unique in the catalogue")->required();
+  auto* mesh = add->add_option("--mesh", entry->meshPath,
+                               "CAD file in metres; its frame becomes the class's object frame (+z up when the part rests)")
+                   ->check(CLI::ExistingFile);
+  auto* box = add->add_option("--shape", *shape, "a part without a CAD file: box (catalogue shape \"cuboid\"), with --size")
+                  ->check(CLI::IsMember({"box"}));
+  add->add_option("--size", *size, "box sides x y z in metres, each from 0.001 to 2 (x the longest horizontal side)")
+      ->expected(3)
+      ->needs(box);
+  mesh->excludes(box);
   add->add_option("--id", entry->classId, "class_id (default: the next free one)");
   add->add_option("--noun", entry->noun, "head noun in instructions (default: the name)");
   add->add_option("--kind", entry->kind, "part or container")->check(CLI::IsMember({"part", "container"}))->capture_default_str();
   add->add_option("--rgb", *rgb, "linear RGB in [0, 1] when the colour identifies the part (default: none)")->expected(3);
-  add->add_option("--mass", *mass, "mass [kg] (default: the mesh's volume at 1000 kg/m^3)");
+  add->add_option("--mass", *mass, "mass [kg] (default: the mesh's or the box's volume at 1000 kg/m^3)");
   auto units = std::make_shared<std::string>("m");
   add->add_option("--units", *units, "length unit of the CAD file: m, cm, mm or in (the part must be 1 mm - 2 m)")
       ->check(CLI::IsMember({"m", "cm", "mm", "in"}))
-      ->capture_default_str();
+      ->capture_default_str()
+      ->excludes(box);
   add->add_option("--scale", entry->scale, "metres per file unit, instead of --units (e.g. 0.001)")
       ->excludes("--units")
+      ->excludes(box)
       ->check(CLI::PositiveNumber);
-  add->add_flag("--flat", entry->flat, "a flat part (a sheet, a label): its mesh need not enclose a volume");
+  add->add_flag("--flat", entry->flat, "a flat part (a sheet, a label): its mesh need not enclose a volume")
+      ->excludes(box);
   add->add_flag("--json", *json, "machine-readable output");
-  add->footer("Example: srp kb add --catalogue my_parts.json --name cube --mesh cube.obj");
-  add->callback([add, cataloguePath, entry, rgb, mass, json, units]() {
+  add->footer("Examples:\n  srp kb add --catalogue my_parts.json --name cube --mesh cube.obj\n"
+              "  srp kb add toy --catalogue my_parts.json --shape box --size 0.12 0.08 0.06 --rgb 0.1 0.2 0.7");
+  add->callback([add, cataloguePath, entry, rgb, mass, shape, size, json, units]() {
     if (rgb->size() == 3) entry->rgb = Eigen::Vector3d((*rgb)[0], (*rgb)[1], (*rgb)[2]);
     if (add->count("--mass")) entry->mass_kg = *mass;
     if (!add->count("--scale")) entry->scale = srp::kb::unitScale(*units);
+    if (entry->meshPath.empty() && shape->empty())
+      throw srp::core::InvalidInputError("srp kb add: give the part's CAD file (--mesh FILE) or, without one, its box "
+                                         "(--shape box --size X Y Z, metres)");
     std::vector<std::string> warnings;
-    const srp::core::ObjectClass c = srp::kb::addMeshClass(*cataloguePath, *entry, &warnings);
+    srp::core::ObjectClass c;
+    if (!shape->empty()) {
+      if (size->size() != 3)
+        throw srp::core::InvalidInputError("srp kb add: --shape box needs --size X Y Z (metres)");
+      srp::kb::BoxClassEntry b;
+      b.name = entry->name;
+      b.classId = entry->classId;
+      b.noun = entry->noun;
+      b.kind = entry->kind;
+      b.size_m = Eigen::Vector3d((*size)[0], (*size)[1], (*size)[2]);
+      b.rgb = entry->rgb;
+      b.mass_kg = entry->mass_kg;
+      c = srp::kb::addBoxClass(*cataloguePath, b);
+    } else {
+      c = srp::kb::addMeshClass(*cataloguePath, *entry, &warnings);
+    }
     for (const auto& w : warnings) std::cerr << "srp kb add: warning: " << w << "\n";
     const Eigen::Vector3d& d = c.dimensions_m;
+    const std::string from = c.meshPath.empty() ? "a box without a mesh" : "mesh " + c.meshPath;
     if (*json) {
       std::cout << nlohmann::json{{"catalogue", *cataloguePath}, {"name", c.name}, {"class_id", c.classId},
-                                  {"kind", srp::core::toString(c.kind)}, {"mesh", c.meshPath},
+                                  {"kind", srp::core::toString(c.kind)}, {"shape", c.shape}, {"mesh", c.meshPath},
                                   {"dimensions_m", {d.x(), d.y(), d.z()}}, {"mass_kg", c.mass_kg},
                                   {"warnings", warnings}}
                        .dump(2)
                 << "\n";
       return;
     }
-    std::printf("added '%s' (class_id %d, %s) to %s: %.4f x %.4f x %.4f m, %.3f kg, mesh %s\n", c.name.c_str(),
-                c.classId, srp::core::toString(c.kind).c_str(), cataloguePath->c_str(), d.x(), d.y(), d.z(), c.mass_kg,
-                c.meshPath.c_str());
+    std::printf("added '%s' (class_id %d, %s) to %s: %.4f x %.4f x %.4f m, %.3f kg, %s\n", c.name.c_str(), c.classId,
+                srp::core::toString(c.kind).c_str(), cataloguePath->c_str(), d.x(), d.y(), d.z(), c.mass_kg,
+                from.c_str());
   });
 
   auto* list = cmd.add_subcommand("list", "List the catalogue classes");

@@ -1,5 +1,7 @@
 // srp perceive: the Environment module on a demo rawlog (libs/perception):
 // per-frame hand (palm centre) and object poses, camera frame.
+#include <unistd.h>
+
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -10,6 +12,7 @@
 #include "srp/core/OutputFile.h"
 #include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/DemoPerception.h"
+#include "srp/perception/PerceptionDrawing.h"
 
 namespace {
 
@@ -25,7 +28,8 @@ std::vector<std::string> splitList(const std::string& s) {
 }
 
 struct PerceiveOptions {
-  std::string demo, kb = srp::core::ObjectCatalogue::defaultPath(), csv, hand = "marker";
+  std::string demo, kb = srp::core::ObjectCatalogue::defaultPath(), csv, hand = "marker", draw;
+  int drawEvery = 1;
   std::string objects, staticObjects, scene;
   double tagSize_m = 0.05;
   int tagId = 0;
@@ -36,8 +40,9 @@ struct PerceiveOptions {
 };
 
 void run(const PerceiveOptions& o) {
-  srp::core::checkOutputPaths({{"--csv", o.csv}}, {{"--demo", o.demo}, {"--kb", o.kb}, {"--scene", o.scene}},
-                              o.overwrite);
+  srp::core::checkOutputPaths({{"--csv", o.csv}, {"--draw", o.draw}},
+                              {{"--demo", o.demo}, {"--kb", o.kb}, {"--scene", o.scene}}, o.overwrite);
+  if (!o.draw.empty()) srp::core::checkFolderHoldsOnly(o.draw, {"frame_*", "contact_sheet.png"}, "--draw");
   const auto catalogue = srp::kb::loadCatalogue(o.kb);
   PerceptionOptions p;
   p.hand = o.hand == "marker-free" ? PerceptionOptions::HandMethod::MarkerFree
@@ -53,12 +58,16 @@ void run(const PerceiveOptions& o) {
   for (const auto& n : splitList(o.objects)) p.plan.push_back({n, false, "", std::nullopt});
   for (const auto& n : statics) p.plan.push_back({n, true, "", std::nullopt});
   if (!o.scene.empty()) p.plan = withSceneInstances(p.plan, srp::core::Scene::load(o.scene), catalogue);
-  srp::app::ProgressLine line;
+  srp::app::ProgressLine line(isatty(STDERR_FILENO) != 0);  // progress only on a terminal
   const PerceptionResult r = perceiveRawlog(o.demo, catalogue, p, [&line](int i, int) {
     if ((i + 1) % 30 == 0) line.show("perceive: frame", static_cast<std::size_t>(i + 1));
   });
   line.finish("perceive: " + std::to_string(r.frames) + " frames done");
   if (!o.csv.empty()) writeSegmentCsv(r, o.csv);
+  if (!o.draw.empty()) {
+    const auto files = writeDrawnFrames(o.demo, r, catalogue, o.draw, o.drawEvery);
+    std::fprintf(stderr, "drew %zu frames and a contact sheet in %s\n", files.size() - 1, o.draw.c_str());
+  }
 
   if (o.json) {
     nlohmann::json j;
@@ -134,6 +143,13 @@ void setupPerceive(CLI::App& app) {
                  "Write the per-frame CSV in the 'srp segment' format (a sample not detected in its frame, "
                  "e.g. a part in the hand, is written as 0,0,0,0)");
   srp::app::addOverwriteFlag(app, o->overwrite);
+  app.add_option("--draw", o->draw,
+                 "Write what perception saw, drawn on the recording, to this folder: frame_NNNNN.png (palm, each "
+                 "part and container with its outline, name and confidence, the table frame) and contact_sheet.png "
+                 "(replaced as a whole)");
+  app.add_option("--draw-every", o->drawEvery, "With --draw: draw every n-th frame (the contact sheet spans them all)")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
   app.footer(
       "Object poses are those of each class's mesh frame (a CAD file's own frame), camera optical frame.\n"
       "Example (a real hand-held recording, objects only):\n"

@@ -8,16 +8,18 @@
 
 #include "CommandRegistry.h"
 #include "ProgressLine.h"
+#include "srp/calib/CameraExtrinsics.h"
 #include "srp/calib/CameraFiles.h"
 #include "srp/core/Error.h"
 #include "srp/core/OutputFile.h"
+#include "srp/core/ExitCode.h"
 #include "srp/programming/ProgrammingPipeline.h"
 
 namespace {
 
 struct ProgramArgs {
-  std::string instruction, demo, kb, calib, db = "task.db", name = "task", report, hand = "marker", scene;
-  bool json = false, quiet = false, allowTruncated = false, overwrite = false;
+  std::string instruction, demo, kb, calib, db = "task.db", name = "task", report, hand = "marker", scene, extrinsics;
+  bool json = false, quiet = false, allowTruncated = false, allowPartial = false, overwrite = false;
 };
 
 void setupProgram(CLI::App& cmd) {
@@ -36,13 +38,23 @@ void setupProgram(CLI::App& cmd) {
   cmd.add_option("--db", a->db, "Task database to store the task model in")->capture_default_str();
   cmd.add_option("--name", a->name, "Task model name; an existing name gets a new version")->capture_default_str();
   cmd.add_option("--report", a->report,
-                 "Folder for the report (PNG figures + summary.md), written whole or not at all; an existing one "
-                 "needs -w and is replaced only when it holds nothing but a report");
+                 "Folder for the report: PNG figures, contact_sheet.png (what perception saw on the recording), "
+                 "scene.json (the scene the demonstration showed, the one 'srp execute' runs in without --scene) and "
+                 "summary.md; written whole or not at all, only when the task model is stored; an existing one needs "
+                 "-w and is replaced only when it holds nothing but a report");
+  cmd.add_option("--extrinsics", a->extrinsics,
+                 "Camera-to-robot extrinsics of the demonstration's camera ('srp calibrate extrinsics' or 'hand-eye' "
+                 "write calib/extrinsics.json), stored with the task model: execution places the robot from it "
+                 "(without: at the table edge opposite the camera)")
+      ->check(CLI::ExistingFile);
   cmd.add_option("--hand", a->hand, "Hand detector: marker (AprilTag on the glove) or marker-free")
       ->check(CLI::IsMember({"marker", "marker-free"}))
       ->capture_default_str();
   cmd.add_flag("--allow-truncated", a->allowTruncated,
                "Use the frames before the damage of a damaged demonstration rawlog (default: fail, store nothing)");
+  cmd.add_flag("--allow-partial", a->allowPartial,
+               "Store the task model even when a step of the plan has no grasp or no release in the demonstration "
+               "(default: fail naming the step, store nothing); exits 3 when it did");
   cmd.add_flag("--json", a->json, "Print the result as JSON");
   cmd.add_flag("-q,--quiet", a->quiet, "No progress bar");
   srp::app::addOverwriteFlag(cmd, a->overwrite);
@@ -61,11 +73,17 @@ void setupProgram(CLI::App& cmd) {
     o.name = a->name;
     o.reportDir = a->report;
     o.allowTruncated = a->allowTruncated;
+    o.allowPartial = a->allowPartial;
+    if (!a->extrinsics.empty()) {
+      o.X_base_camera = srp::calib::CameraExtrinsics::load(a->extrinsics).X_base_camera;
+      o.extrinsicsSource = a->extrinsics;
+    }
     o.markerFreeHand = a->hand == "marker-free";
     // One line per stage on a terminal, redrawn at most every 100 ms; silent otherwise.
     srp::app::ProgressLine bar(!a->quiet && !a->json && isatty(STDERR_FILENO), std::chrono::milliseconds(100));
     o.progress = [&bar](const std::string& s, std::size_t d, std::size_t t) { bar.show(s, d, t, t ? "" : "frames"); };
     const srp::programming::ProgramResult r = srp::programming::programTask(o);
+    if (!r.problems.empty()) srp::app::commandExitCode() = srp::core::toInt(srp::core::ExitCode::Partial);
     if (a->json) {
       std::cout << srp::programming::toJsonText(r) << "\n";
       return;
@@ -83,7 +101,9 @@ void setupProgram(CLI::App& cmd) {
     std::cout << "\n" << r.skillCount << " skills learned (Reach/Move as DMPs). Timing:";
     for (const auto& t : r.timings) std::cout << " " << t.stage << " " << std::setprecision(3) << t.wall_s << " s;";
     std::cout << " peak memory " << static_cast<long>(r.peakResidentMemory_MB + 0.5) << " MB\n";
+    if (r.sceneStored) std::cout << "Perceived scene stored with the task model; robot base: " << r.robotBase << "\n";
     for (const auto& w : r.warnings) std::cout << "warning: " << w << "\n";
+    for (const auto& p : r.problems) std::cout << "incomplete (--allow-partial): " << p << "\n";
     if (!r.reportFiles.empty()) std::cout << "Report: " << a->report << "/summary.md\n";
   });
 }

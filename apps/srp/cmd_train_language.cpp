@@ -1,6 +1,7 @@
 // srp train-language: trains the Language Module's entity/relation model on the
 // pooled corpus and writes the model file that `srp parse` loads; with --cv runs
-// the pooled cross-validation protocol instead (libs/language/README.md).
+// the pooled cross-validation protocol instead, with the capability suites and
+// the protocol's verdict on each variant (libs/language/README.md "Protocol").
 #include <chrono>
 #include <iostream>
 #include <set>
@@ -8,34 +9,17 @@
 #include <vector>
 
 #include "CommandRegistry.h"
+#include "LanguageSwitches.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/core/OutputFile.h"
+#include "srp/language/CapabilitySuites.h"
 #include "srp/language/LanguageModel.h"
+#include "srp/language/ProtocolComparison.h"
 #include "srp/language/SpertEvaluation.h"
 #include "srp/language/SyntheticCommandGrammar.h"
 
 namespace {
-
-/// "name=0,name=1" settings of a switch set (DecodingRules / FeatureGroups).
-template <typename Switches>
-void applySwitches(const std::vector<std::string>& settings, Switches& s, const std::string& what) {
-  for (const auto& setting : settings) {
-    const auto eq = setting.find('=');
-    const std::string name = setting.substr(0, eq);
-    bool found = false;
-    for (const auto& [n, member] : Switches::all())
-      if (n == name) {
-        s.*member = eq == std::string::npos || setting.substr(eq + 1) != "0";
-        found = true;
-      }
-    if (!found) {
-      std::string names;
-      for (const auto& [n, member] : Switches::all()) names += " " + n;
-      throw srp::core::InvalidInputError("unknown " + what + " '" + name + "'; one of:" + names);
-    }
-  }
-}
 
 void setupTrainLanguage(CLI::App& app) {
   const std::string dir = std::string(SRP_DATASETS_DIR) + "/language/";
@@ -53,8 +37,14 @@ void setupTrainLanguage(CLI::App& app) {
   app.add_option("--min-feature-count", options->minFeatureCount, "drop rarer entity features")->capture_default_str();
   auto rules = std::make_shared<std::vector<std::string>>();
   auto features = std::make_shared<std::vector<std::string>>();
-  app.add_option("--rules", *rules, "decoding rule switches, e.g. span_lengths=0,source_is_spatial=1")->delimiter(',');
-  app.add_option("--features", *features, "tagger feature groups, e.g. source_goal_role=1")->delimiter(',');
+  app.add_option("--rules", *rules,
+                 "decoding rule switches, e.g. span_lengths=0,source_is_spatial=1; rules: " +
+                     srp::app::switchNames<srp::language::DecodingRules>())
+      ->delimiter(',');
+  app.add_option("--features", *features,
+                 "tagger feature groups, e.g. source_goal_role=1; groups: " +
+                     srp::app::switchNames<srp::language::FeatureGroups>())
+      ->delimiter(',');
   app.add_option("--synthetic-ratio", options->syntheticRatio,
                  "synthetic commands added to training per real sentence (SyntheticCommandGrammar)")
       ->capture_default_str();
@@ -75,6 +65,16 @@ void setupTrainLanguage(CLI::App& app) {
   auto errorTypes = std::make_shared<std::vector<std::string>>();
   app.add_flag("--errors", *cvErrors, "with --cv: also print the first seed's out-of-fold entity errors");
   app.add_option("--error-types", *errorTypes, "entity types of the error dump (default: all)")->delimiter(',');
+  auto capabilitiesDir = std::make_shared<std::string>(srp::language::CapabilitySuites::defaultFolder());
+  app.add_option("--capabilities-dir", *capabilitiesDir,
+                 "capability suites scored after training, and in --cv mode for each variant (a model trained on "
+                 "the whole pooled corpus)")
+      ->capture_default_str();
+  auto compareTo = std::make_shared<std::string>();
+  app.add_option("--compare-to", *compareTo,
+                 "with --cv: a --cv-json file of an earlier run (same folds and seeds); prints the protocol's verdict "
+                 "on this run's options against that run's")
+      ->check(CLI::ExistingFile);
   auto syntheticOut = std::make_shared<std::string>();
   auto syntheticCount = std::make_shared<int>(200);
   app.add_option("--write-synthetic", *syntheticOut, "only write synthetic commands (SpERT JSON) to this file");
@@ -89,9 +89,8 @@ void setupTrainLanguage(CLI::App& app) {
       outputs = {{"--cv-predictions", *cvPredictions}, {"--cv-json", *cvJson}};
     else if (syntheticOut->empty())
       outputs = {{"--out", *outPath}};
-    srp::core::checkOutputPaths(outputs, inputs, *overwrite);
-    applySwitches(*rules, options->rules, "decoding rule");
-    applySwitches(*features, options->features, "feature group");
+    srp::app::applySwitches(*rules, options->rules, "decoding rule");
+    srp::app::applySwitches(*features, options->features, "feature group");
     if (!syntheticOut->empty()) {
       nlohmann::json out = nlohmann::json::array();
       for (const auto& s : srp::language::SyntheticCommandGrammar().generate(
@@ -101,6 +100,7 @@ void setupTrainLanguage(CLI::App& app) {
       std::cout << "wrote " << out.size() << " synthetic commands to " << *syntheticOut << "\n";
       return;
     }
+    const auto suites = srp::language::CapabilitySuites::load(*capabilitiesDir);
     std::vector<srp::language::AnnotatedSentence> corpus;
     for (const auto& path : *trainPaths) {
       const auto part = srp::language::readSpertCorpus(path);
@@ -114,18 +114,42 @@ void setupTrainLanguage(CLI::App& app) {
           r.*member = !(r.*member);
           variants.push_back({name + ((r.*member) ? "=1" : "=0"), r});
         }
+      const nlohmann::json earlier = compareTo->empty() ? nlohmann::json() : srp::core::readJsonFile(*compareTo);
       std::cerr << *cvFolds << "-fold x " << *cvSeeds << " cross-validation on " << corpus.size()
                 << " pooled sentences...\n";
       const auto cv = srp::language::repeatedCrossValidate(corpus, *options, *cvFolds, *cvSeeds, *cvThreads, variants);
+      // The suites are scored by one model trained on the whole pooled corpus, under each variant's rules.
+      std::cerr << "training on " << corpus.size() << " pooled sentences for the capability suites...\n";
+      auto full = srp::language::LanguageModel::train(corpus, *options);
+      std::vector<std::vector<srp::language::CapabilitySuites::Result>> suiteResults{suites.score(full)};
+      for (const auto& variant : variants) {
+        full.setDecodingRules(variant.second);
+        suiteResults.push_back(suites.score(full));
+      }
       if (!cvPredictions->empty()) {
         nlohmann::json out = nlohmann::json::array();
         for (const auto& s : cv.firstSeedPredictions) out.push_back(srp::language::toJson(s));
         srp::core::writeJsonFile(*cvPredictions, out);
       }
-      if (!cvJson->empty()) srp::core::writeJsonFile(*cvJson, srp::language::toJson(cv));
+      if (!cvJson->empty()) srp::core::writeJsonFile(*cvJson, srp::language::toJson(cv, suiteResults));
       std::cout << "pooled corpus:";
       for (const auto& p : *trainPaths) std::cout << " " << p;
       std::cout << " (" << corpus.size() << " sentences)\n" << srp::language::formatCrossValidation(cv);
+      std::cout << "\ncapability suites (" << *capabilitiesDir << "), model trained on the pooled corpus:\n"
+                << srp::language::CapabilitySuites::formatTable(suiteResults[0]);
+      using Comparison = srp::language::ProtocolComparison;
+      const auto baseline = Comparison::Configuration::fromCrossValidation(cv, 0, suiteResults[0]);
+      // Each ablation is judged as "rule on" against "rule off", the other rules as given.
+      for (size_t v = 1; v < cv.variantNames.size(); ++v) {
+        const auto variant = Comparison::Configuration::fromCrossValidation(cv, v, suiteResults[v]);
+        const std::string& name = cv.variantNames[v];
+        const bool switchedOn = name.size() > 2 && name.compare(name.size() - 2, 2, "=1") == 0;
+        std::cout << "\nprotocol, " << name.substr(0, name.find('=')) << " on against off (other rules as given):\n"
+                  << (switchedOn ? Comparison(variant, baseline) : Comparison(baseline, variant)).format();
+      }
+      if (!earlier.is_null())
+        std::cout << "\nprotocol, these options against " << *compareTo << ":\n"
+                  << Comparison(baseline, Comparison::Configuration::fromJson(earlier, "baseline")).format();
       if (*cvErrors)
         std::cout << srp::language::formatEntityErrors(corpus, cv.firstSeedPredictions,
                                                        std::set<std::string>(errorTypes->begin(), errorTypes->end()));
@@ -136,7 +160,9 @@ void setupTrainLanguage(CLI::App& app) {
     const auto model = srp::language::LanguageModel::train(corpus, *options);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     model.save(*outPath);
-    std::cout << "trained in " << seconds << " s, wrote " << *outPath << "\n";
+    std::cout << "trained in " << seconds << " s, wrote " << *outPath << "\n"
+              << "capability suites (" << *capabilitiesDir << "):\n"
+              << srp::language::CapabilitySuites::formatTable(suites.score(model));
     if (!scorePath->empty())
       std::cout << "scores on " << *scorePath << ":\n"
                 << srp::language::formatScoreTable(

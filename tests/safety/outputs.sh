@@ -23,6 +23,7 @@ cp "$SRC/libs/language/tests/data/tiny_corpus.json" data/corpus.json
 cp "$SRC/calib/camera.xml" data/camera.xml
 mkdir -p data/images && cp "$SRC"/datasets/real/visp-calib-chessboard/chessboard-0[12].jpg data/images/
 echo '{"pairs": []}' > data/pairs.json
+mkdir -p data/frames && cp "$SRC"/datasets/real/visp-rbt-cube/{cam.json,color_000[01].png,depth_000[01].png} data/frames/
 printf 'not a rawlog' > data/demo.rawlog
 echo 'existing output' > data/existing.txt
 ln -s task.db data/task_link.db
@@ -103,12 +104,18 @@ case_ "synth-demo -o onto --scene" -- "$SRP" synth-demo -q --scene data/scene.js
 case_ "synth-demo -o existing" -- "$SRP" synth-demo -q --scene data/scene.json -o data/existing.txt --max-frames 1
 case_ "synth-demo --contact-sheet onto --scene" -- "$SRP" synth-demo -q --scene data/scene.json -o d.rawlog --contact-sheet data/scene.json --max-frames 1
 
+for out in data/frames/cam.json data/frames/color_0000.png data/frames data/demo.rawlog; do
+  case_ "import onto its own folder, a frame or an existing rawlog" -- "$SRP" import data/frames "$out" --fps 10
+done
+
 case_ "program --report onto the demo's folder" -- "$SRP" program -i "Pick up the cuboid." --demo data/demo.rawlog --db p.db --report data -w
 case_ "program --db onto the demo" -- "$SRP" program -i "Pick up the cuboid." --demo data/demo.rawlog --db data/demo.rawlog
 case_ "program --name hostile" -- "$SRP" program -i "Pick up the cuboid." --demo data/demo.rawlog --db p.db --name $'x\n---\npoints: []'
 
 case_ "perceive --csv onto --demo" -- "$SRP" perceive --demo data/demo.rawlog --csv data/demo.rawlog
 case_ "perceive --csv onto --kb" -- "$SRP" perceive --demo data/demo.rawlog --kb data/catalogue.json --csv data/catalogue.json
+case_ "perceive --draw folder holding the demo" -- "$SRP" perceive --demo data/demo.rawlog --draw data -w
+case_ "perceive --draw folder with other files" -- "$SRP" perceive --demo data/demo.rawlog --draw data/images -w
 case_ "motion --out-dir folder holding the database" -- "$SRP" motion 1 --db data/task.db --out-dir data -w
 case_ "parse --db --name hostile" -- "$SRP" parse "Pick up the cuboid and place it in the gray box." --db data/task.db --name $'t\r---'
 case_ "record over an existing file" -- "$SRP" record data/existing.txt --frames 1

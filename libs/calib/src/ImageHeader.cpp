@@ -1,6 +1,9 @@
 #include "srp/calib/ImageHeader.h"
 
+#include "ImageHeader.h"
+
 #include <cctype>
+#include <climits>
 #include <cstring>
 #include <fstream>
 #include <vector>
@@ -115,5 +118,17 @@ ImageSize checkImageFile(const std::string& path, std::int64_t maxPixels) {
                                     " MP (a damaged file, or a decompression bomb); it was not decoded");
   return *size;
 }
+
+namespace detail {
+
+std::optional<cv::Size> imageSizeFromHeader(const std::string& path) {
+  if (!std::ifstream(path, std::ios::binary)) return std::nullopt;
+  const std::optional<ImageSize> size = readImageSize(path);
+  if (!size || size->width_px <= 0 || size->height_px <= 0 || size->width_px > INT_MAX || size->height_px > INT_MAX)
+    return std::nullopt;
+  return cv::Size(static_cast<int>(size->width_px), static_cast<int>(size->height_px));
+}
+
+}  // namespace detail
 
 }  // namespace srp::calib

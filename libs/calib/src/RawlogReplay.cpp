@@ -1,6 +1,9 @@
 #include "srp/calib/RawlogReplay.h"
 
+#include <algorithm>
 #include <cmath>
+#include <tuple>
+#include <vector>
 #include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -33,6 +36,7 @@ nlohmann::json ReplaySummary::toJson() const {
                    {"depth_alignment", depthAlignment()},
                    {"frames_registered_on_read", framesRegisteredOnRead}};
   j["damage"] = damage ? nlohmann::json(*damage) : nlohmann::json(nullptr);
+  if (depthColourFar_m > 0.0) j["depth_color_range_m"] = {depthColourNear_m, depthColourFar_m};
   return j;
 }
 
@@ -57,6 +61,9 @@ std::string ReplaySummary::toText() const {
   if (!hasColour) s << "  colour:     missing in some frames\n";
   if (objectsSkipped > 0) s << "  skipped:    " << objectsSkipped << " non-RGB-D objects\n";
   if (damage) s << "  DAMAGED:    " << *damage << "\n";
+  if (depthColourFar_m > 0.0)
+    s << "  depth_color_NNNN.png: blue " << depthColourNear_m << " m .. red " << depthColourFar_m
+      << " m, black = no depth\n";
   return s.str();
 }
 
@@ -79,6 +86,44 @@ std::string numbered(const std::string& dir, const char* prefix, int index) {
   char name[64];
   std::snprintf(name, sizeof name, "%s_%04d.png", prefix, index);
   return (fs::path(dir) / name).string();
+}
+
+// The 1st and 99th percentile of the valid depth (0.3 .. 3 m when there is none).
+std::pair<double, double> depthColourRange(const cv::Mat& depth_m) {
+  std::vector<float> valid;
+  for (int r = 0; r < depth_m.rows; ++r) {
+    const float* d = depth_m.ptr<float>(r);
+    for (int c = 0; c < depth_m.cols; ++c)
+      if (std::isfinite(d[c]) && d[c] > 0.0f) valid.push_back(d[c]);
+  }
+  if (valid.size() < 2) return {0.3, 3.0};
+  const auto at = [&](double q) {
+    auto it = valid.begin() + static_cast<std::ptrdiff_t>(q * static_cast<double>(valid.size() - 1));
+    std::nth_element(valid.begin(), it, valid.end());
+    return static_cast<double>(*it);
+  };
+  const double near = at(0.01), far = at(0.99);
+  return {near, std::max(far, near + 0.01)};
+}
+
+// Depth as a picture: TURBO from blue (near_m) to red (far_m), black where there is no depth.
+cv::Mat colourMappedDepth(const cv::Mat& depth_m, double near_m, double far_m) {
+  cv::Mat grey(depth_m.size(), CV_8UC1);
+  cv::Mat invalid(depth_m.size(), CV_8UC1, cv::Scalar(0));
+  for (int r = 0; r < depth_m.rows; ++r) {
+    const float* d = depth_m.ptr<float>(r);
+    uint8_t* g = grey.ptr<uint8_t>(r);
+    uint8_t* bad = invalid.ptr<uint8_t>(r);
+    for (int c = 0; c < depth_m.cols; ++c) {
+      const bool ok = std::isfinite(d[c]) && d[c] > 0.0f;
+      g[c] = ok ? cv::saturate_cast<uint8_t>(255.0 * (d[c] - near_m) / (far_m - near_m)) : 0;
+      bad[c] = ok ? 0 : 255;
+    }
+  }
+  cv::Mat colour;
+  cv::applyColorMap(grey, colour, cv::COLORMAP_TURBO);
+  colour.setTo(cv::Scalar(0, 0, 0), invalid);
+  return colour;
 }
 
 }  // namespace
@@ -134,6 +179,10 @@ ReplaySummary replayRawlog(const std::string& path, const ReplayOptions& options
       }
       const std::string depthPath = numbered(options.exportDir, "depth", s.frames);
       if (!cv::imwrite(depthPath, depth16)) throw core::FileError(depthPath, "cannot write depth PNG");
+      if (s.frames == 0) std::tie(s.depthColourNear_m, s.depthColourFar_m) = depthColourRange(f.depth_m);
+      const std::string colourDepthPath = numbered(options.exportDir, "depth_color", s.frames);
+      if (!cv::imwrite(colourDepthPath, colourMappedDepth(f.depth_m, s.depthColourNear_m, s.depthColourFar_m)))
+        throw core::FileError(colourDepthPath, "cannot write the colour-mapped depth PNG");
       if (colour) {
         const std::string colourPath = numbered(options.exportDir, "color", s.frames);
         if (!cv::imwrite(colourPath, f.colour_bgr8)) throw core::FileError(colourPath, "cannot write colour PNG");

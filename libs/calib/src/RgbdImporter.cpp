@@ -13,9 +13,11 @@
 #include <regex>
 #include <sstream>
 
+#include "ImageHeader.h"
 #include "srp/calib/CameraFiles.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
+#include "srp/core/OutputFile.h"
 #include "srp/core/Text.h"
 #include "srp/rawlog/DepthRegistration.h"
 #include "srp/rawlog/RawlogWriter.h"
@@ -115,6 +117,22 @@ std::optional<DepthCamera> findDepthCamera(const std::string& folder, const Impo
   return out;
 }
 
+// What a depth image of another size than colour needs.
+const char* const kOwnDepthCameraHint =
+    ": depth registered to colour must have its size; depth from its own camera needs that camera's file "
+    "(depth_cam.json or --depth-intrinsics) and depth_M_color.txt";
+
+// The size the file declares, checked against its camera before any decoding.
+void checkDeclaredSize(const std::string& path, const core::CameraIntrinsics& K, const std::string& camera,
+                       const std::string& hint = "") {
+  const auto size = detail::imageSizeFromHeader(path);
+  if (!size) throw core::FileError(path, "not a PNG or JPEG image (its header cannot be read)");
+  if (size->width != K.width_px || size->height != K.height_px)
+    throw core::FileError(path, "image is " + std::to_string(size->width) + "x" + std::to_string(size->height) +
+                                    " (by its header) but the " + camera + " file says " + std::to_string(K.width_px) +
+                                    "x" + std::to_string(K.height_px) + "; nothing was decoded" + hint);
+}
+
 cv::Mat readColour(const std::string& path) {
   cv::Mat img = cv::imread(path, cv::IMREAD_UNCHANGED);
   if (img.empty()) throw core::FileError(path, "cannot read this colour image (missing, truncated or not PNG/JPG)");
@@ -141,7 +159,27 @@ cv::Mat readDepth(const std::string& path, double scale_m) {
   return depth;
 }
 
-/// Reads, checks and writes all pairs.
+/// The median frame period's rate of increasing times, to 1e-6 Hz (0 for fewer than two).
+double rateOf(const std::vector<double>& times_s) {
+  std::vector<double> dt;
+  for (std::size_t i = 1; i < times_s.size(); ++i) dt.push_back(times_s[i] - times_s[i - 1]);
+  if (dt.empty()) return 0.0;
+  std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
+  if (!(dt[dt.size() / 2] > 0.0)) return 0.0;
+  constexpr double kDigits = 1e6;  // 10 Hz, not 9.999999999999991 from times i / 10
+  return std::round(kDigits / dt[dt.size() / 2]) / kDigits;
+}
+
+/// "3, 7, 12" (at most `shown`, then "and N more").
+std::string listOf(const std::vector<int>& v, std::size_t shown = 10) {
+  std::string out;
+  for (std::size_t i = 0; i < v.size() && i < shown; ++i) out += (i ? ", " : "") + std::to_string(v[i]);
+  if (v.size() > shown) out += " and " + std::to_string(v.size() - shown) + " more";
+  return out;
+}
+
+/// Reads, checks and writes all pairs, into a temporary file renamed over the
+/// rawlog at the end (a failure leaves the previous rawlog as it was).
 ImportSummary writePairs(ImportSummary summary, const std::vector<double>& times_s, const CameraFile& camera,
                          const std::optional<DepthCamera>& depthCamera, const std::string& rawlogPath,
                          const ImportOptions& options) {
@@ -161,7 +199,9 @@ ImportSummary writePairs(ImportSummary summary, const std::vector<double>& times
                                   "' has lens distortion; import expects undistorted (rectified) images and "
                                   "intrinsics without distortion");
   if (!(summary.depthScale_m > 0.0)) throw core::InvalidInputError("depth scale must be positive (metres per unit)");
-  rawlog::RawlogWriter writer(rawlogPath, summary.depthScale_m);
+  summary.fps = rateOf(times_s);
+  core::AtomicOutputFile out(rawlogPath);
+  rawlog::RawlogWriter writer(out.temporaryPath().string(), summary.depthScale_m);
   const int n = static_cast<int>(summary.colourFiles.size());
   for (int i = 0; i < n; ++i) {
     if (options.progress) options.progress(i, n);
@@ -169,6 +209,9 @@ ImportSummary writePairs(ImportSummary summary, const std::vector<double>& times
     f.index = i;
     f.t_s = times_s[i];
     f.intrinsics = K;
+    checkDeclaredSize(summary.colourFiles[i], K, "camera");
+    checkDeclaredSize(summary.depthFiles[i], summary.depthIntrinsics, registration ? "depth camera" : "camera",
+                      registration ? "" : kOwnDepthCameraHint);
     f.colour_bgr8 = readColour(summary.colourFiles[i]);
     f.depth_m = readDepth(summary.depthFiles[i], summary.depthScale_m);
     if (f.colour_bgr8.cols != K.width_px || f.colour_bgr8.rows != K.height_px)
@@ -185,14 +228,18 @@ ImportSummary writePairs(ImportSummary summary, const std::vector<double>& times
     } else if (f.depth_m.size() != f.colour_bgr8.size()) {
       throw core::FileError(summary.depthFiles[i], "depth image is " + sizeName(f.depth_m) + " but its colour image '" +
                                                        summary.colourFiles[i] + "' is " + sizeName(f.colour_bgr8) +
-                                                       ": depth registered to colour must have its size; depth from "
-                                                       "its own camera needs that camera's file (depth_cam.json or "
-                                                       "--depth-intrinsics) and depth_M_color.txt");
+                                                       kOwnDepthCameraHint);
     }
+    if (cv::countNonZero(f.depth_m > 0.0f) == 0) summary.framesWithoutDepth.push_back(i);
     writer.write(f);
   }
   writer.close();
+  out.commit();
   summary.frames = n;
+  if (!summary.framesWithoutDepth.empty())
+    summary.warnings.push_back(std::to_string(summary.framesWithoutDepth.size()) + " of " + std::to_string(n) +
+                               " frames have no valid depth (depth image all zero): frames " +
+                               listOf(summary.framesWithoutDepth) + "; perception finds nothing in them");
   if (options.progress) options.progress(n, n);
   return summary;
 }
@@ -237,24 +284,72 @@ struct TumEntry {
   std::string path;
 };
 
-std::vector<TumEntry> readTumList(const fs::path& folder, const std::string& name) {
-  const fs::path list = folder / name;
-  std::ifstream in(list);
-  if (!in) throw core::FileError(list.string(), "cannot open (a TUM RGB-D folder has rgb.txt and depth.txt)");
-  std::vector<TumEntry> entries;
+// Calls fn(line number, line) for every line of a text list that is neither blank nor a '#' comment.
+template <typename Fn>
+void forEachListLine(std::istream& in, Fn fn) {
   std::string line;
   int lineNo = 0;
   while (std::getline(in, line)) {
     ++lineNo;
     if (line.empty() || line[0] == '#' || line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    fn(lineNo, line);
+  }
+}
+
+std::vector<TumEntry> readTumList(const fs::path& folder, const std::string& name) {
+  const fs::path list = folder / name;
+  std::ifstream in(list);
+  if (!in) throw core::FileError(list.string(), "cannot open (a TUM RGB-D folder has rgb.txt and depth.txt)");
+  std::vector<TumEntry> entries;
+  forEachListLine(in, [&](int lineNo, const std::string& line) {
     std::istringstream ss(line);
     TumEntry e;
     if (!(ss >> e.t_s >> e.path))
       throw core::FileError(list.string(), "line " + std::to_string(lineNo) + " is not 'timestamp path': " + line);
     e.path = (folder / e.path).string();
     entries.push_back(e);
-  }
+  });
   return entries;
+}
+
+}  // namespace
+
+namespace {
+
+// The rawlog must not be an input: the folder itself, any image or camera
+// file the import reads (in the folder or given from elsewhere). A new file in
+// the folder is fine; an existing rawlog is replaced.
+void checkRawlogPath(const std::string& folder, const std::string& rawlogPath, const ImportOptions& o,
+                     const std::vector<std::string>& images) {
+  if (core::isSameFile(rawlogPath, folder))
+    throw core::FileError(rawlogPath, "is the recording folder itself; give the rawlog a file name (e.g. demo.rawlog)");
+  std::vector<core::PathRole> inputs;
+  for (const auto& f : images) inputs.push_back({"an image of the recording", f});
+  for (const char* name : {"camera.xml", "cam.json", "intrinsics.json", "depth_camera.xml", "depth_cam.json",
+                           "depth_intrinsics.json", "depth_M_color.txt", "timestamps.txt", "rgb.txt", "depth.txt"})
+    if (fs::exists(fs::path(folder) / name)) inputs.push_back({"the recording's " + std::string(name), fs::path(folder) / name});
+  if (!o.cameraPath.empty()) inputs.push_back({"--intrinsics", o.cameraPath});
+  if (!o.depthCameraPath.empty()) inputs.push_back({"--depth-intrinsics", o.depthCameraPath});
+  if (!o.depthToColourPath.empty()) inputs.push_back({"--depth-M-color", o.depthToColourPath});
+  core::checkOutputPaths({{"the rawlog to write", rawlogPath}}, inputs, /*overwrite=*/true);
+}
+
+/// timestamps.txt of an image folder: frame number -> time [s]; empty when absent.
+std::map<long, double> folderTimestamps(const fs::path& folder) {
+  std::map<long, double> times;
+  const fs::path list = folder / "timestamps.txt";
+  if (!fs::is_regular_file(list)) return times;
+  std::ifstream in(list);
+  forEachListLine(in, [&](int lineNo, const std::string& line) {
+    std::istringstream ss(line);
+    long number = 0;
+    double t = 0.0;
+    if (!(ss >> number >> t) || !std::isfinite(t))
+      throw core::FileError(list.string(), "line " + std::to_string(lineNo) +
+                                               " is not 'frame-number seconds' (e.g. '12 0.400'): " + line);
+    times[number] = t;
+  });
+  return times;
 }
 
 }  // namespace
@@ -270,19 +365,60 @@ ImportSummary importImageFolder(const std::string& folder, const std::string& ra
   ImportSummary s;
   s.layout = "folder";
   s.depthScale_m = options.depthScale_m.value_or(camera.depthScale_m.value_or(0.001));
+  const std::map<long, double> stamps = folderTimestamps(folder);
+  const fs::path stampFile = fs::path(folder) / "timestamps.txt";
+  const long first = colour.begin()->first;
+  const double fps = options.fps.value_or(kAssumedFps);
+  s.fpsSource = !stamps.empty() ? "timestamps" : options.fps ? "--fps" : "assumed";
   std::vector<double> times;
+  long previous = first - 1;
+  std::vector<std::string> gaps;
   for (const auto& [number, path] : colour) {
     const auto d = depth.find(number);
     if (d == depth.end())
       throw core::FileError(path, "no depth image with number " + std::to_string(number) +
                                       " (expected depth_" + std::to_string(number) + ".png, any zero padding)");
+    if (number > previous + 1) {
+      s.missingFrames += static_cast<int>(number - previous - 1);
+      gaps.push_back(std::to_string(previous + 1) + (number - 1 > previous + 1 ? "-" + std::to_string(number - 1) : ""));
+    }
+    previous = number;
     s.colourFiles.push_back(path);
     s.depthFiles.push_back(d->second);
-    times.push_back(static_cast<double>(times.size()) / options.fps);
+    if (stamps.empty()) {
+      times.push_back(static_cast<double>(number - first) / fps);
+    } else {
+      const auto t = stamps.find(number);
+      if (t == stamps.end())
+        throw core::FileError(stampFile.string(), "has no time for frame " + std::to_string(number) + " ('" + path + "')");
+      if (!times.empty() && !(t->second > times.back()))
+        throw core::FileError(stampFile.string(), "the time of frame " + std::to_string(number) +
+                                                      " is not after the previous frame's; times must increase");
+      times.push_back(t->second);
+    }
   }
   for (const auto& entry : depth)
     if (!colour.count(entry.first)) ++s.unpairedDepth;
-  return writePairs(s, times, camera, findDepthCamera(folder, options), rawlogPath, options);
+  std::vector<std::string> images = s.colourFiles;
+  images.insert(images.end(), s.depthFiles.begin(), s.depthFiles.end());
+  checkRawlogPath(folder, rawlogPath, options, images);
+  ImportSummary out = writePairs(s, times, camera, findDepthCamera(folder, options), rawlogPath, options);
+  if (out.fpsSource == "assumed")
+    out.warnings.insert(out.warnings.begin(),
+                        "no timestamps in the folder and no --fps: ASSUMED " + std::to_string(kAssumedFps).substr(0, 4) +
+                            " frames/s. If the camera ran at another rate, import again with --fps (grasp/release "
+                            "times and learned speeds scale with it)");
+  if (out.fpsSource == "timestamps" && options.fps && std::abs(*options.fps - out.fps) > 0.05 * out.fps)
+    out.warnings.push_back("the folder's timestamps give " + std::to_string(out.fps) + " frames/s; --fps " +
+                           std::to_string(*options.fps) + " was not used");
+  if (!gaps.empty()) {
+    std::string list;
+    for (std::size_t i = 0; i < gaps.size() && i < 10; ++i) list += (i ? ", " : "") + gaps[i];
+    if (gaps.size() > 10) list += " and " + std::to_string(gaps.size() - 10) + " more";
+    out.warnings.push_back(std::to_string(out.missingFrames) + " frame numbers are missing (" + list +
+                           "): the frames after each gap keep their time (t = number / fps or the folder's timestamps)");
+  }
+  return out;
 }
 
 ImportSummary importTum(const std::string& folder, const std::string& rawlogPath, const ImportOptions& options) {
@@ -326,6 +462,10 @@ ImportSummary importTum(const std::string& folder, const std::string& rawlogPath
     throw core::FileError(folder, "no colour/depth pair within " + std::to_string(options.maxTimeDifference_s) +
                                       " s of each other in rgb.txt and depth.txt");
   s.unpairedDepth = static_cast<int>(depth.size() - s.depthFiles.size());
+  s.fpsSource = "timestamps";
+  std::vector<std::string> images = s.colourFiles;
+  images.insert(images.end(), s.depthFiles.begin(), s.depthFiles.end());
+  checkRawlogPath(folder, rawlogPath, options, images);
   return writePairs(s, times, camera, findDepthCamera(folder, options), rawlogPath, options);
 }
 

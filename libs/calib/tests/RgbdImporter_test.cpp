@@ -239,3 +239,121 @@ TEST(RgbdImporter, UnregisteredFolderIsRegisteredToColour) {
   fs::remove(dir / "depth_cam.json");
   expectFileErrorNaming([&] { importRecording(dir.string(), rawlog); }, "depth_M_color.txt");
 }
+
+namespace {
+// A small registered folder: frames with the given numbers, depth 1 m (0 for `noDepth`).
+fs::path smallFolder(const std::string& name, const std::vector<int>& numbers, const std::vector<int>& noDepth = {}) {
+  constexpr int kW = 32, kH = 24;
+  const fs::path dir = freshDir(name);
+  writeIntrinsicsJson(dir, kW, kH);
+  for (int n : numbers) {
+    char c[32], d[32];
+    std::snprintf(c, sizeof c, "color_%04d.png", n);
+    std::snprintf(d, sizeof d, "depth_%04d.png", n);
+    const bool none = std::find(noDepth.begin(), noDepth.end(), n) != noDepth.end();
+    cv::imwrite((dir / c).string(), cv::Mat(kH, kW, CV_8UC3, cv::Scalar(n, 20, 30)));
+    cv::imwrite((dir / d).string(), cv::Mat(kH, kW, CV_16UC1, cv::Scalar(none ? 0 : 1000)));
+  }
+  return dir;
+}
+constexpr double kTimeTol_s = 1e-6;
+}  // namespace
+
+// The frame rate: from the folder's timestamps, else --fps, else assumed and said so.
+TEST(RgbdImporter, FrameRateComesFromTimestampsOrFpsOrIsAssumedLoudly) {
+  const fs::path dir = smallFolder("rate", {0, 1, 2, 3});
+  const std::string out = (dir.parent_path() / "srp_calib_rate.rawlog").string();
+  auto s = importImageFolder(dir.string(), out);
+  EXPECT_EQ(s.fpsSource, "assumed");
+  EXPECT_NEAR(s.fps, kAssumedFps, 1e-9);
+  ASSERT_FALSE(s.warnings.empty());
+  EXPECT_NE(s.warnings[0].find("ASSUMED 30"), std::string::npos) << s.warnings[0];
+  ImportOptions tenHz;
+  tenHz.fps = 10.0;
+  s = importImageFolder(dir.string(), out, tenHz);
+  EXPECT_EQ(s.fpsSource, "--fps");
+  EXPECT_NEAR(s.fps, 10.0, 1e-9);
+  EXPECT_TRUE(s.warnings.empty());
+  std::ofstream(dir / "timestamps.txt") << "# frame seconds\n0 100.00\n1 100.08\n2 100.16\n3 100.24\n";
+  s = importImageFolder(dir.string(), out);
+  EXPECT_EQ(s.fpsSource, "timestamps");
+  EXPECT_NEAR(s.fps, 12.5, 1e-6);
+  const auto frames = srp::rawlog::RawlogReader::readAll(out);
+  ASSERT_EQ(frames.size(), 4u);
+  EXPECT_NEAR(frames[3].t_s - frames[0].t_s, 0.24, kTimeTol_s);
+  std::ofstream(dir / "timestamps.txt") << "0 100.00\n1 100.08\n3 100.24\n";  // frame 2 has none
+  expectFileErrorNaming([&] { importImageFolder(dir.string(), out); }, "timestamps.txt");
+}
+
+// Gaps in the frame numbers keep their time; frames without any depth are named.
+TEST(RgbdImporter, GapsKeepTheirTimeAndFramesWithoutDepthAreWarnedAbout) {
+  const fs::path dir = smallFolder("gaps", {10, 11, 14, 15, 20}, {15});
+  const std::string out = (dir.parent_path() / "srp_calib_gaps.rawlog").string();
+  ImportOptions o;
+  o.fps = 10.0;
+  const auto s = importImageFolder(dir.string(), out, o);
+  EXPECT_EQ(s.frames, 5);
+  EXPECT_EQ(s.missingFrames, 6);  // 12-13, 16-19
+  EXPECT_EQ(s.framesWithoutDepth, std::vector<int>{3});
+  const auto frames = srp::rawlog::RawlogReader::readAll(out);
+  ASSERT_EQ(frames.size(), 5u);
+  EXPECT_NEAR(frames[2].t_s - frames[0].t_s, 0.4, kTimeTol_s) << "number 14 is 0.4 s after number 10";
+  EXPECT_NEAR(frames[4].t_s - frames[0].t_s, 1.0, kTimeTol_s);
+  std::string all;
+  for (const auto& w : s.warnings) all += w + "\n";
+  EXPECT_NE(all.find("6 frame numbers are missing (12-13, 16-19)"), std::string::npos) << all;
+  EXPECT_NE(all.find("1 of 5 frames have no valid depth"), std::string::npos) << all;
+}
+
+// A 2 kB PNG whose header claims 60000 x 60000 pixels (a 10 GB image) is
+// refused by its header, before anything is decoded.
+TEST(RgbdImporter, ImageSizeIsCheckedAgainstTheCameraBeforeDecoding) {
+  const fs::path dir = smallFolder("bomb", {0, 1});
+  std::vector<unsigned char> png;
+  cv::imencode(".png", cv::Mat(24, 32, CV_8UC3, cv::Scalar::all(7)), png);
+  const unsigned char huge[8] = {0x00, 0x00, 0xEA, 0x60, 0x00, 0x00, 0xEA, 0x60};  // IHDR width, height 60000
+  std::copy(huge, huge + 8, png.begin() + 16);
+  std::ofstream(dir / "color_0001.png", std::ios::binary).write(reinterpret_cast<const char*>(png.data()),
+                                                                static_cast<std::streamsize>(png.size()));
+  const std::string out = (dir.parent_path() / "srp_calib_bomb.rawlog").string();
+  expectFileErrorNaming([&] { importImageFolder(dir.string(), out); }, "60000x60000 (by its header)");
+}
+
+// The rawlog is never an input, and a failed import leaves the previous rawlog as it was.
+TEST(RgbdImporter, OutputIsNeverAnInputAndAFailedImportKeepsTheOldRawlog) {
+  const fs::path dir = smallFolder("inputs", {0, 1, 2});
+  const auto refused = [](auto fn, const std::string& needle) { test::expectErrorNaming<srp::core::Error>(fn, needle); };
+  refused([&] { importImageFolder(dir.string(), (dir / "intrinsics.json").string()); }, "would destroy the input");
+  refused([&] { importImageFolder(dir.string(), (dir / "color_0001.png").string()); }, "color_0001.png");
+  refused([&] { importImageFolder(dir.string(), dir.string()); }, "is the recording folder itself");
+  EXPECT_GT(fs::file_size(dir / "color_0001.png"), 0u);
+  const std::string out = (dir.parent_path() / "srp_calib_keep.rawlog").string();
+  importImageFolder(dir.string(), out);
+  const auto before = fs::file_size(out);
+  std::ofstream(dir / "color_0002.png") << "truncated";  // the last frame is damaged
+  EXPECT_THROW(importImageFolder(dir.string(), out), srp::core::FileError);
+  EXPECT_EQ(fs::file_size(out), before);
+  EXPECT_EQ(srp::rawlog::RawlogReader::readAll(out).size(), 3u) << "the good rawlog is still whole";
+}
+
+// srp replay --export: a colour-mapped depth PNG beside the 16-bit one, black where there is no depth.
+TEST(RawlogReplay, ExportWritesAColourMappedDepthBesideTheSixteenBitOne) {
+  const fs::path dir = smallFolder("colourdepth", {0, 1}, {1});
+  const std::string out = (dir.parent_path() / "srp_calib_colourdepth.rawlog").string();
+  importImageFolder(dir.string(), out);
+  const fs::path exported = freshDir("colourdepth_export");
+  ReplayOptions options;
+  options.exportDir = exported.string();
+  const auto s = replayRawlog(out, options);
+  EXPECT_NEAR(s.depthColourNear_m, 1.0, 1e-6);
+  const cv::Mat viz = cv::imread((exported / "depth_color_0000.png").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(viz.type(), CV_8UC3);
+  EXPECT_GT(cv::norm(viz.at<cv::Vec3b>(5, 5)), 0.0) << "depth: coloured";
+  const cv::Mat none = cv::imread((exported / "depth_color_0001.png").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(none.type(), CV_8UC3);
+  EXPECT_EQ(cv::countNonZero(none.reshape(1)), 0) << "no depth: black";
+  EXPECT_EQ(cv::imread((exported / "depth_0000.png").string(), cv::IMREAD_UNCHANGED).type(), CV_16UC1);
+  // The export still imports back: the colour-mapped images are not taken for depth.
+  const auto again = importImageFolder(exported.string(), (dir.parent_path() / "srp_calib_again.rawlog").string());
+  EXPECT_EQ(again.frames, 2);
+}

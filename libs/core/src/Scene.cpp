@@ -8,6 +8,7 @@
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/core/SafeText.h"
+#include "srp/core/ObjectClassJson.h"
 
 namespace srp::core {
 namespace {
@@ -136,6 +137,13 @@ Scene Scene::fromJson(const nlohmann::json& j, const std::string& ctx, const std
       }
       s.objects.push_back(std::move(o));
     }
+    if (j.contains("observed_classes")) {
+      const auto& classes = j.at("observed_classes");
+      if (!classes.is_array()) throw InvalidInputError(ctx + ": field 'observed_classes' must be an array");
+      for (std::size_t i = 0; i < classes.size(); ++i)
+        s.observedClasses.push_back(
+            objectClassFromJson(classes[i], ctx + ": observed_classes[" + std::to_string(i) + "]"));
+    }
   } catch (const nlohmann::json::exception& e) {
     throw InvalidInputError(ctx + ": bad scene field (" + e.what() + ")");
   }
@@ -151,7 +159,7 @@ nlohmann::json Scene::toJson() const {
     objs.push_back(std::move(jo));
   }
   const auto& d = lighting.direction_world;
-  return {{"schema_version", 1},
+  nlohmann::json j{{"schema_version", 1},
           {"name", name},
           {"seed", seed},
           {"catalogue", cataloguePath},
@@ -160,9 +168,31 @@ nlohmann::json Scene::toJson() const {
           {"robot", {{"X_world_base", poseToJson(X_world_base)}}},
           {"lighting", {{"ambient", lighting.ambient}, {"diffuse", lighting.diffuse}, {"direction", {d.x(), d.y(), d.z()}}}},
           {"objects", objs}};
+  if (!observedClasses.empty()) {
+    nlohmann::json classes = nlohmann::json::array();
+    for (const auto& c : observedClasses) classes.push_back(objectClassToJson(c));
+    j["observed_classes"] = classes;
+  }
+  return j;
 }
 
-void Scene::validate(const ObjectCatalogue& catalogue) const {
+ObjectCatalogue Scene::withObservedClasses(const ObjectCatalogue& catalogue) const {
+  if (observedClasses.empty()) return catalogue;
+  std::vector<ObjectClass> classes = catalogue.classes();
+  for (const auto& c : observedClasses) {
+    const ObjectClass* byName = catalogue.find(c.name);
+    const ObjectClass* byId = catalogue.findById(c.classId);
+    if (byName || byId)
+      throw InvalidInputError("scene '" + name + "': observed class '" + c.name + "' (class_id " +
+                              std::to_string(c.classId) + ") clashes with the catalogue's class '" +
+                              (byName ? byName->name : byId->name) + "' (field 'observed_classes')");
+    classes.push_back(c);
+  }
+  return ObjectCatalogue(std::move(classes));
+}
+
+void Scene::validate(const ObjectCatalogue& base) const {
+  const ObjectCatalogue catalogue = withObservedClasses(base);
   std::set<std::string> ids;
   for (const auto& o : objects) {
     if (!ids.insert(o.id).second) throw InvalidInputError("scene '" + name + "': duplicate object id '" + o.id + "'");

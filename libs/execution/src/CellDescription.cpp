@@ -45,8 +45,9 @@ std::vector<WorldBox> CellDescription::containerBoxes(const CellObject& c) {
 }
 
 CellDescription CellDescription::fromScene(const srp::core::Scene& scene,
-                                           const srp::core::ObjectCatalogue& catalogue) {
-  scene.validate(catalogue);
+                                           const srp::core::ObjectCatalogue& base) {
+  scene.validate(base);
+  const srp::core::ObjectCatalogue catalogue = scene.withObservedClasses(base);
   CellDescription cell;
   cell.X_world_base = scene.X_world_base;
   cell.X_world_camera = scene.X_world_camera;
@@ -68,6 +69,7 @@ CellDescription CellDescription::fromScene(const srp::core::Scene& scene,
     o.classId = c.classId;
     o.meshPath = c.meshPath;
     o.meshScale = c.meshScale;
+    if (c.observed) o.observedClass = c;
     cell.objects.push_back(o);
   }
   return cell;

@@ -16,6 +16,7 @@
 #include "srp/core/Error.h"
 #include "srp/core/PoseConversions.h"
 #include "srp/execution/SafetyChecker.h"
+#include "srp/kb/ShapeMeshes.h"
 #include "srp/kb/TriangleMesh.h"
 
 namespace srp::execution {
@@ -96,8 +97,11 @@ CellRenderer::CellRenderer(RobotModel model, CellDescription cell, CellRendererO
   cup->setColor_u8(toColour(kCupRgb));
   m.gripper = {body, cup};
   for (const auto& o : m.cell.objects) {
-    if (o.kind != CellObjectKind::Part || o.meshPath.empty() || !std::filesystem::exists(o.meshPath)) continue;
-    m.partMeshes[o.name] = triangles(srp::kb::TriangleMesh::load(o.meshPath).scaled(o.meshScale), Pose3::Identity(), o.rgb);
+    if (o.kind != CellObjectKind::Part) continue;
+    if (o.observedClass)  // seen without a CAD file: its hull prism
+      m.partMeshes[o.name] = triangles(srp::kb::makeClassMesh(*o.observedClass), Pose3::Identity(), o.rgb);
+    else if (!o.meshPath.empty() && std::filesystem::exists(o.meshPath))
+      m.partMeshes[o.name] = triangles(srp::kb::TriangleMesh::load(o.meshPath).scaled(o.meshScale), Pose3::Identity(), o.rgb);
   }
   try {
     m.fbo = std::make_unique<mrpt::opengl::CFBORender>(options.width_px, options.height_px);

@@ -34,6 +34,8 @@ nlohmann::json ExecutionReport::toJson() const {
   nlohmann::json j;
   j["schema_version"] = 1;
   j["path_generator"] = pathGenerator;
+  if (!scene.empty()) j["scene_source"] = scene;
+  if (!robotBase.empty()) j["robot_base"] = robotBase;
   j["simulated_s"] = simulated_s;
   j["simulation_wall_s"] = simulationWall_s;
   j["min_table_clearance_m"] = minTableClearance_m;
@@ -75,6 +77,8 @@ nlohmann::json ExecutionReport::toJson() const {
 std::string ExecutionReport::toText() const {
   std::ostringstream o;
   o << std::fixed;
+  if (!scene.empty()) o << "scene: " << scene << "\n";
+  if (!robotBase.empty()) o << "robot base: " << robotBase << "\n";
   for (const auto& s : steps) {
     o << "step " << s.index + 1 << ": " << s.object << " -> " << s.relation << ": " << toString(s.status);
     if (s.status == StepStatus::Done) {

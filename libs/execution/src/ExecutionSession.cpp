@@ -1,5 +1,6 @@
 #include "srp/execution/ExecutionSession.h"
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -11,6 +12,7 @@
 #include "srp/core/Json.h"
 #include "srp/core/OutputFile.h"
 #include "srp/execution/CellRenderer.h"
+#include "srp/execution/DemonstrationScene.h"
 #include "srp/execution/DmpPathGenerator.h"
 #include "srp/execution/PlanConversion.h"
 #include "srp/execution/SceneGrounder.h"
@@ -48,20 +50,50 @@ const std::vector<std::string> kOutputFolderFiles = {"report.json", "report.txt"
 
 ExecuteResult executeTask(const ExecuteRequest& request) {
   ExecuteResult result;
-  const std::string scenePath =
-      request.scenePath.empty() ? core::defaultScenePath() : request.scenePath;
-  const srp::core::Scene scene = srp::core::Scene::load(scenePath);
-  const srp::core::ObjectCatalogue catalogue = srp::kb::loadCatalogue(scene.cataloguePath);
-  const CellDescription cell = CellDescription::fromScene(scene, catalogue);
-
   if (!std::filesystem::exists(request.databasePath))
     throw srp::core::FileError(request.databasePath, "no such task database (create one with 'srp program' or 'srp db')");
   auto db = srp::taskdb::TaskDatabase::open(request.databasePath, srp::taskdb::TaskDatabase::Mode::ReadOnly);
   const srp::taskdb::TaskModelStore store(db);
   const srp::taskdb::TaskModel model = store.read(request.taskModelId);
-  // Demonstration offsets: the camera as stored with the task model, else the scene's.
+
+  // The scene: the file given, else the task model's own demonstration, else the default.
+  const bool ownScene = request.scenePath.empty() && model.scene.has_value();
+  const std::optional<srp::core::Pose3> X_base_camera =
+      request.X_base_camera ? request.X_base_camera : model.info.X_base_camera;
+  std::string scenePath = request.scenePath;
+  srp::core::Scene scene;
+  if (ownScene) {
+    const RobotPlacement placement = RobotPlacement::of(
+        *model.scene, X_base_camera,
+        request.X_base_camera ? request.extrinsicsSource : X_base_camera ? "stored with the task model" : "");
+    scene = demonstrationScene(model, placement);
+    if (!request.cataloguePath.empty()) scene.cataloguePath = request.cataloguePath;
+    if (!std::filesystem::exists(scene.cataloguePath))
+      throw srp::core::FileError(scene.cataloguePath,
+                                 "the knowledge base task model " + std::to_string(request.taskModelId) +
+                                     " was programmed with is not there; give it with --kb FILE");
+    scenePath = "(the demonstration of task model " + std::to_string(request.taskModelId) + ")";
+    char what[160];
+    std::snprintf(what, sizeof what, "the task model's own demonstration (perceived: table %.2f x %.2f m, %zu objects, %zu "
+                  "classes seen without a CAD file)", scene.tableSize_m.x(), scene.tableSize_m.y(), scene.objects.size(),
+                  scene.observedClasses.size());
+    result.report.scene = what;
+    result.report.robotBase = placement.description;
+  } else {
+    if (scenePath.empty()) {
+      scenePath = core::defaultScenePath();
+      if (request.progress)
+        request.progress("task model " + std::to_string(request.taskModelId) +
+                         " stores no perceived scene: executing in " + scenePath + " (give another with --scene FILE)");
+    }
+    scene = srp::core::Scene::load(scenePath);
+  }
+  const srp::core::ObjectCatalogue catalogue = srp::kb::loadCatalogue(scene.cataloguePath);
+  const CellDescription cell = CellDescription::fromScene(scene, catalogue);
+  // Demonstration offsets: the camera as calibrated (or stored with the task model), else the scene's.
   const srp::core::Pose3 X_world_camera =
-      model.info.X_base_camera ? srp::core::Pose3(scene.X_world_base * *model.info.X_base_camera) : scene.X_world_camera;
+      ownScene ? scene.X_world_camera
+               : X_base_camera ? srp::core::Pose3(scene.X_world_base * *X_base_camera) : scene.X_world_camera;
   if (request.planOverride) {
     result.plan = *request.planOverride;
   } else if (!request.instruction.empty()) {

@@ -1,6 +1,7 @@
 #include "srp/execution/PlanConversion.h"
 
 #include <algorithm>
+#include <sstream>
 #include <cctype>
 #include <iterator>
 #include <tuple>
@@ -232,10 +233,20 @@ ExecutionPlan planFromLanguage(const srp::language::TaskPlan& plan) {
         const std::size_t i = static_cast<std::size_t>(anchor.tokenId);
         const bool viewLandmark = isViewWord(srp::core::toLowerAscii(l.landmark.name)) && !l.landmark.colour;
         const bool lonelyBetween = srp::core::toLowerAscii(l.relation) == "between" && !l.secondLandmark;
-        if (viewLandmark || lonelyBetween) {
+        // A whole view phrase read by the language model ("to the left of", "in the front left
+        // corner of") is re-read too, into the same relation as above ("left of", "corner").
+        std::size_t relationWords = 0;
+        bool viewPhrase = false;
+        {
+          std::istringstream words(srp::core::toLowerAscii(l.relation));
+          for (std::string w; words >> w; ++relationWords) viewPhrase |= isViewWord(w) || w == "corner";
+          viewPhrase = viewPhrase && relationWords > 1;
+        }
+        if (viewLandmark || lonelyBetween || viewPhrase) {
           // Re-read from the relation word before the landmark.
+          const std::size_t back = viewPhrase ? relationWords + 3 : 3;
           std::size_t from = i;
-          while (from > 0 && from + 3 > i) --from;
+          while (from > 0 && from + back > i) --from;
           if (const auto tr = spatialPhraseIn(t, from)) {
             r = tr->relation;
             consumed.emplace_back(anchor.sentenceId, tr->begin, tr->end);

@@ -171,6 +171,8 @@ ProgrammedDemo DemoCache::programmed(
   options.demoPath = out.demo.rawlogPath.string();
   options.dbPath = out.databasePath.string();
   options.name = "demo-seed-" + std::to_string(request.seed);
+  // The experiments score what programming found, including steps it could not learn.
+  options.allowPartial = true;
   if (progress) options.progress = progress;
   const auto result = programming::programTask(options);
   out.taskModelId = result.taskModelId;

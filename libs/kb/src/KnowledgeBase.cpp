@@ -1,5 +1,6 @@
 #include "srp/kb/KnowledgeBase.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -74,7 +75,7 @@ std::vector<srp::core::ObjectClass> readCatalogueFile(const std::string& path) {
       // be left out (size and mass then come from the mesh).
       const bool meshOnly = !c.meshPath.empty() && !e.contains("shape");
       c.shape = meshOnly ? std::string() : requireField(e, "shape", ctx).get<std::string>();
-      c.hasColour = e.contains("rgb") || !meshOnly;
+      c.hasColour = e.contains("rgb");  // without: a neutral grey, and colour is no evidence for it
       if (c.hasColour) c.rgb = vec3(requireField(e, "rgb", ctx), ctx + " field 'rgb'");
       if (!meshOnly || e.contains("dimensions_m")) {
         c.dimensions_m = vec3(requireField(e, "dimensions_m", ctx), ctx + " field 'dimensions_m'");
@@ -118,8 +119,7 @@ bool hasShapeGenerator(const std::string& shape) {
 std::vector<BuiltMesh> buildMeshes(const srp::core::ObjectCatalogue& catalogue) {
   std::vector<BuiltMesh> built;
   for (const auto& c : catalogue.classes()) {
-    if (!hasShapeGenerator(c.shape)) continue;
-    srp::core::require(!c.meshPath.empty(), "catalogue class '" + c.name + "': missing field 'mesh'");
+    if (!hasShapeGenerator(c.shape) || c.meshPath.empty()) continue;  // no file wanted: generated when used
     const TriangleMesh mesh = makeClassMesh(c);
     mesh.saveStl(c.meshPath, "srp kb: " + c.name + " (" + c.shape + "), metres, object frame = bottom centre");
     built.push_back({c.name, c.meshPath, mesh.size()});
@@ -164,6 +164,34 @@ srp::core::ObjectCatalogue loadCatalogue(const std::string& path) {
   return srp::core::ObjectCatalogue(std::move(classes));
 }
 
+namespace {
+// Appends the catalogue entry `e` (its "name" and "class_id" checked free; a
+// class_id of -1 becomes the next free one) and writes the file atomically.
+void appendClass(const std::string& cataloguePath, nlohmann::json e) {
+  namespace fs = std::filesystem;
+  const std::string name = e.at("name").get<std::string>();
+  const int classId = e.at("class_id").get<int>();
+  nlohmann::json j = fs::exists(cataloguePath) ? srp::core::readJsonFile(cataloguePath)
+                                               : nlohmann::json{{"schema_version", 1}, {"classes", nlohmann::json::array()}};
+  if (fs::exists(cataloguePath)) loadCatalogue(cataloguePath);  // a valid catalogue to add to
+  int nextId = 0;
+  for (const auto& c : j.at("classes")) {
+    if (c.value("name", "") == name)
+      throw srp::core::InvalidInputError("srp kb add: class '" + name + "' is already in " + cataloguePath +
+                                         "; choose another --name");
+    if (c.value("class_id", -1) == classId)
+      throw srp::core::InvalidInputError("srp kb add: class_id " + std::to_string(classId) + " is taken by '" +
+                                         c.value("name", "") + "' in " + cataloguePath + "; choose another --id");
+    nextId = std::max(nextId, c.value("class_id", -1) + 1);
+  }
+  if (classId < 0) e["class_id"] = nextId;
+  j["classes"].push_back(e);
+  const fs::path folder = fs::absolute(cataloguePath).parent_path();
+  if (!folder.empty()) fs::create_directories(folder);
+  srp::core::writeFileAtomically(cataloguePath, j.dump(2) + "\n");
+}
+}  // namespace
+
 srp::core::ObjectClass addMeshClass(const std::string& cataloguePath, const MeshClassEntry& entry,
                                     std::vector<std::string>* warnings) {
   namespace fs = std::filesystem;
@@ -188,22 +216,9 @@ srp::core::ObjectClass addMeshClass(const std::string& cataloguePath, const Mesh
     if (warnings) *warnings = measureMeshClass(probe, "srp kb add --mesh " + entry.meshPath);
     else measureMeshClass(probe, "srp kb add --mesh " + entry.meshPath);
   }
-  nlohmann::json j = fs::exists(cataloguePath) ? srp::core::readJsonFile(cataloguePath)
-                                               : nlohmann::json{{"schema_version", 1}, {"classes", nlohmann::json::array()}};
-  if (fs::exists(cataloguePath)) loadCatalogue(cataloguePath);  // a valid catalogue to add to
-  int nextId = 0;
-  for (const auto& c : j.at("classes")) {
-    if (c.value("name", "") == entry.name)
-      throw srp::core::InvalidInputError("srp kb add: class '" + entry.name + "' is already in " + cataloguePath +
-                                         "; choose another --name");
-    if (c.value("class_id", -1) == entry.classId)
-      throw srp::core::InvalidInputError("srp kb add: class_id " + std::to_string(entry.classId) + " is taken by '" +
-                                         c.value("name", "") + "' in " + cataloguePath + "; choose another --id");
-    nextId = std::max(nextId, c.value("class_id", -1) + 1);
-  }
   const fs::path folder = fs::absolute(cataloguePath).parent_path();
   nlohmann::json e{{"name", entry.name},
-                   {"class_id", entry.classId >= 0 ? entry.classId : nextId},
+                   {"class_id", entry.classId},
                    {"noun", entry.noun.empty() ? entry.name : entry.noun},
                    {"kind", entry.kind},
                    {"mesh", fs::absolute(entry.meshPath).lexically_relative(folder).generic_string()}};
@@ -211,9 +226,41 @@ srp::core::ObjectClass addMeshClass(const std::string& cataloguePath, const Mesh
   if (entry.mass_kg) e["mass_kg"] = *entry.mass_kg;
   if (entry.scale != 1.0) e["mesh_scale"] = entry.scale;
   if (entry.flat) e["flat"] = true;
-  j["classes"].push_back(e);
-  if (!folder.empty()) fs::create_directories(folder);
-  srp::core::writeJsonFile(cataloguePath, j);
+  appendClass(cataloguePath, e);
+  return loadCatalogue(cataloguePath).at(entry.name);
+}
+
+srp::core::ObjectClass addBoxClass(const std::string& cataloguePath, const BoxClassEntry& entry) {
+  srp::core::requireSafeName(entry.name, "srp kb add --name");
+  if (!entry.noun.empty()) srp::core::requireSafeName(entry.noun, "srp kb add --noun");
+  srp::core::require(entry.kind == "part" || entry.kind == "container",
+                     "srp kb add: kind must be \"part\" or \"container\", not \"" + entry.kind + "\"");
+  const Eigen::Vector3d& d = entry.size_m;
+  if (!d.allFinite() || (d.array() < kMinBoxSide_m).any() || (d.array() > kMaxBoxSide_m).any()) {
+    char got[96];
+    std::snprintf(got, sizeof got, "%g %g %g", d.x(), d.y(), d.z());
+    throw srp::core::InvalidInputError(std::string("srp kb add: --size must be three sides in metres, each from 0.001 "
+                                                   "to 2 (got ") + got + "; a part drawn in millimetres? divide by 1000)");
+  }
+  if (entry.rgb && (!entry.rgb->allFinite() || (entry.rgb->array() < 0.0).any() || (entry.rgb->array() > 1.0).any()))
+    throw srp::core::InvalidInputError("srp kb add: --rgb must be three numbers in [0, 1] (linear RGB)");
+  const double mass = entry.mass_kg.value_or(d.prod() * kDefaultPartDensity_kg_m3);
+  if (!std::isfinite(mass) || !(mass > 0.0))
+    throw srp::core::InvalidInputError("srp kb add: --mass must be a positive number of kilograms");
+  nlohmann::json e{{"name", entry.name},
+                   {"class_id", entry.classId},
+                   {"noun", entry.noun.empty() ? entry.name : entry.noun},
+                   {"kind", entry.kind},
+                   {"shape", entry.kind == "container" ? "open_box" : "cuboid"},
+                   {"dimensions_m", {d.x(), d.y(), d.z()}},
+                   {"mass_kg", mass}};
+  if (entry.kind == "container") {
+    // An open box: floor and walls kBoxContainerWall_m thick (at most a third of the smallest side).
+    e["wall_thickness_m"] = std::min(kBoxContainerWall_m, d.minCoeff() / 3);
+    e["mass_kg"] = entry.mass_kg.value_or(0.2 * mass);  // hollow: a fifth of the solid box
+  }
+  if (entry.rgb) e["rgb"] = {entry.rgb->x(), entry.rgb->y(), entry.rgb->z()};
+  appendClass(cataloguePath, e);
   return loadCatalogue(cataloguePath).at(entry.name);
 }
 

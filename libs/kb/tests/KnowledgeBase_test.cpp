@@ -52,3 +52,36 @@ TEST(KnowledgeBase, AddMeshClassWritesAnEntryAndRefusesATakenName) {
 }
 
 }  // namespace
+
+// A part without a CAD file, given by its box (srp kb add NAME --shape box --size X Y Z).
+TEST(KnowledgeBase, AddBoxClassWritesACuboidWithoutAMesh) {
+  const auto dir = std::filesystem::temp_directory_path() / "srp_kb_add_box_test";
+  std::filesystem::remove_all(dir);
+  const std::string path = (dir / "parts.json").string();
+  srp::kb::BoxClassEntry toy;
+  toy.name = "toy";
+  toy.size_m = {0.12, 0.08, 0.06};
+  const auto c = srp::kb::addBoxClass(path, toy);
+  EXPECT_EQ(c.shape, "cuboid");
+  EXPECT_TRUE(c.meshPath.empty());
+  EXPECT_FALSE(c.hasColour) << "no --rgb: colour is no evidence for it";
+  EXPECT_NEAR((c.dimensions_m - toy.size_m).norm(), 0.0, kMeshTol_m);
+  EXPECT_NEAR(c.mass_kg, 0.12 * 0.08 * 0.06 * srp::kb::kDefaultPartDensity_kg_m3, 1e-9);
+  EXPECT_EQ(srp::kb::loadClassMesh(c).bounds().sizes().isApprox(toy.size_m, 1e-9), true);
+  EXPECT_TRUE(srp::kb::buildMeshes(srp::kb::loadCatalogue(path)).empty()) << "no mesh file wanted";
+  // Sizes outside 1 mm .. 2 m (a part drawn in millimetres), NaN, a taken name: refused, the file unchanged.
+  for (const Eigen::Vector3d bad : {Eigen::Vector3d(120, 80, 60), Eigen::Vector3d(0.0005, 0.08, 0.06),
+                                    Eigen::Vector3d(0.1, std::nan(""), 0.06)}) {
+    srp::kb::BoxClassEntry e;
+    e.name = "other";
+    e.size_m = bad;
+    try {
+      srp::kb::addBoxClass(path, e);
+      ADD_FAILURE() << "accepted size " << bad.transpose();
+    } catch (const srp::core::InvalidInputError& err) {
+      EXPECT_NE(std::string(err.what()).find("--size"), std::string::npos) << err.what();
+    }
+  }
+  EXPECT_THROW(srp::kb::addBoxClass(path, toy), srp::core::InvalidInputError);
+  EXPECT_EQ(srp::kb::loadCatalogue(path).classes().size(), 1u);
+}

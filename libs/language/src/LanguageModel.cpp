@@ -14,6 +14,7 @@
 #include "srp/core/Json.h"
 #include "srp/core/OutputFile.h"
 #include "srp/language/IndicatorConventions.h"
+#include "srp/language/PhraseRules.h"
 #include "srp/language/SyntheticCommandGrammar.h"
 #include "srp/language/Tokenizer.h"
 #include "srp/language/WordNetLexicon.h"
@@ -81,7 +82,7 @@ const std::set<std::string> kPrepositions{"on",   "in",    "into",   "onto",  "f
 
 std::string lowerOf(const std::string& s) { return toLowerAscii(s); }
 
-// Linguistic word classes of the session-5 feature groups (closed classes of
+// Linguistic word classes of the optional feature groups (closed classes of
 // English, not counted on the corpus).
 const std::set<std::string> kSourcePreps{"from", "off"};
 const std::set<std::string> kGoalPreps{"to", "onto", "into", "toward", "towards"};
@@ -437,31 +438,52 @@ struct LanguageModel::Impl {
   /// to indicators of that action, direction and place in the clause, where it is
   /// consistent (IndicatorConventions: every indicator of "pick" is spatial, the
   /// first of "put / place" a goal, "take / bring ... on" spatial, "... to" a goal).
-  static bool isSourceAt(const std::vector<std::string>& lower, int start) {
-    return kSourcePreps.count(lower[start]) > 0 ||
-           (lower[start] == "out" && start + 1 < static_cast<int>(lower.size()) && lower[start + 1] == "of");
+  static bool isIndicatorType(const std::string& type) { return type == "GoalIndicator" || type == "SpatialIndicator"; }
+
+  /// Whether a "to / onto / into" indicator follows entity `i` before the next action.
+  static bool directionalGoalFollows(const std::vector<std::string>& lower, const std::vector<EntitySpan>& entities,
+                                     size_t i) {
+    static const std::set<std::string> kDirectional{"to", "onto", "into"};
+    for (size_t j = i + 1; j < entities.size() && entities[j].type != "Action"; ++j)
+      if (isIndicatorType(entities[j].type) && kDirectional.count(lower[entities[j].start])) return true;
+    return false;
+  }
+
+  /// Whether the next action after entity `i` takes a pronoun ("... and place *it* on"): the
+  /// object of the clause before is then carried on, so that clause was only a pick.
+  static bool nextActionTakesAPronoun(const std::vector<std::string>& lower, const std::vector<EntitySpan>& entities,
+                                      size_t i) {
+    for (size_t j = i + 1; j < entities.size(); ++j) {
+      if (entities[j].type != "Action") continue;
+      int k = entities[j].end;
+      if (k < static_cast<int>(lower.size()) && (lower[k] == "up" || lower[k] == "down")) ++k;
+      return k < static_cast<int>(lower.size()) && kPronouns.count(lower[k]) > 0;
+    }
+    return false;
   }
 
   void relabelIndicators(const std::vector<std::string>& tokens, std::vector<EntitySpan>& entities) const {
     const std::vector<std::string> lower = toLowerAscii(tokens);
     std::sort(entities.begin(), entities.end(), [](const EntitySpan& a, const EntitySpan& b) { return a.start < b.start; });
     std::string verb;
-    bool firstInClause = true;
+    bool firstInClause = true, firstPlaceInClause = true;
     for (size_t i = 0; i < entities.size(); ++i) {
       auto& e = entities[i];
       if (e.type == "Action") {
         verb = lemmaOf(lowerOf(tokens[e.start]));
-        firstInClause = true;
+        firstInClause = firstPlaceInClause = true;
         continue;
       }
-      if (e.type != "GoalIndicator" && e.type != "SpatialIndicator") continue;
+      if (!isIndicatorType(e.type)) continue;
       bool actionAfter = false;
       for (size_t j = i + 1; j < entities.size(); ++j) actionAfter |= entities[j].type == "Action";
-      if (rules.relativeClauseIsSpatial && IndicatorConventions::inRelativeClause(lower, e.start)) {
+      const bool relative = IndicatorConventions::inRelativeClause(lower, e.start);
+      const bool source = PhraseRules::isSourceAt(lower, e.start);
+      if (rules.relativeClauseIsSpatial && relative) {
         e.type = "SpatialIndicator";
         continue;  // locates an object: the clause's first goal may still follow
       }
-      if (rules.sourceIsSpatial && isSourceAt(lower, e.start)) {
+      if (rules.sourceIsSpatial && source) {
         e.type = "SpatialIndicator";
         continue;  // where the object comes from: the clause's goal may still follow
       }
@@ -470,6 +492,12 @@ struct LanguageModel::Impl {
       } else if (!actionAfter && rules.conventionTypes) {
         if (auto type = indicatorConventions.indicatorType(verb, lowerOf(tokens[e.start]), firstInClause)) e.type = *type;
       }
+      // A placing verb's first place is its goal ("move the block in front of the box"), unless a
+      // "to / into" goal follows: then it says where the object is ("move X on top of Y to Z").
+      if (rules.placingFirstIsGoal && (!actionAfter || !nextActionTakesAPronoun(lower, entities, i)) && !relative &&
+          !source && firstPlaceInClause && PhraseRules::isPlacingVerb(verb) && verb != "release" && verb != "leave")
+        e.type = directionalGoalFollows(lower, entities, i) ? "SpatialIndicator" : "GoalIndicator";
+      if (!relative && !source) firstPlaceInClause = false;
       firstInClause = false;
     }
     // One goal per clause (train: only 1 clause has two goals): of several goals the
@@ -519,14 +547,22 @@ struct LanguageModel::Impl {
       if (clause == 0 || typeAt(clause - 1) != "Action") continue;  // no verb before it: nothing is being moved
       // After a goal the phrase locates the goal's landmark ("on the table in the
       // kitchen": train 22 of 22), so its trajector is sought after the goal.
-      int from = clause;
+      // A source locates the moved object wherever it stands ("move X to Y from Z").
+      const bool source = rules.sourceIsSpatial && PhraseRules::isSourceAt(lower, e.start);
+      int from = clause, to = e.start;
       for (int k = clause; k < e.start; ++k)
-        if (typeAt(k) == "GoalIndicator") from = k + 1;
+        if (typeAt(k) == "GoalIndicator") {
+          if (source) {
+            to = k;
+            break;
+          }
+          from = k + 1;
+        }
       bool hasTrajector = false;
-      for (int k = from; k < e.start; ++k) hasTrajector |= typeAt(k) == "Trajector";
+      for (int k = from; k < to; ++k) hasTrajector |= typeAt(k) == "Trajector";
       if (hasTrajector) continue;
       int head = -1;
-      for (int k = from; k < e.start; ++k) {
+      for (int k = from; k < to; ++k) {
         if (typeAt(k) == "Color") continue;  // "the single red block": the head is after the colour
         if (owner[k] >= 0) {
           if (head >= 0) break;
@@ -546,9 +582,19 @@ struct LanguageModel::Impl {
     std::vector<EntitySpan> kept;
     for (const auto& e : entities) {
       if (e.type == "Trajector" && rules.dropUnlocatedTrajectors) {
-        bool located = false;
-        for (int k = e.end; k < n && typeAt(k) != "Action" && lower[k] != "." && lower[k] != ";"; ++k)
-          located |= typeAt(k) == "SpatialIndicator";
+        bool located = false, goalBetween = false;
+        bool afterGoal = false;  // the trajector is a goal's landmark
+        for (int k = clauseStart(e.start); k < e.start; ++k) afterGoal |= typeAt(k) == "GoalIndicator";
+        for (int k = e.end; k < n && typeAt(k) != "Action" && lower[k] != "." && lower[k] != ";"; ++k) {
+          goalBetween |= typeAt(k) == "GoalIndicator";
+          if (typeAt(k) != "SpatialIndicator") continue;
+          const bool source = rules.sourceIsSpatial && PhraseRules::isSourceAt(lower, entities[owner[k]].start);
+          // A source locates the moved object, not a goal's landmark; a phrase after a goal
+          // locates the goal's landmark, not the object before it.
+          if (source && afterGoal) continue;
+          if (rules.goalLandmarkLocatives && goalBetween && !source) continue;
+          located = true;
+        }
         if (!located) continue;
       }
       kept.push_back(e);
@@ -609,7 +655,13 @@ const std::vector<std::pair<std::string, bool DecodingRules::*>>& DecodingRules:
       {"one_goal_per_clause", &DecodingRules::oneGoalPerClause},
       {"add_trajectors", &DecodingRules::addTrajectors},
       {"drop_unlocated_trajectors", &DecodingRules::dropUnlocatedTrajectors},
-      {"source_is_spatial", &DecodingRules::sourceIsSpatial}};
+      {"source_is_spatial", &DecodingRules::sourceIsSpatial},
+      {"placing_first_is_goal", &DecodingRules::placingFirstIsGoal},
+      {"direction_spans", &DecodingRules::directionSpans},
+      {"placing_clause_goal", &DecodingRules::placingClauseGoal},
+      {"of_room_is_spatial", &DecodingRules::ofRoomIsSpatial},
+      {"goal_landmark_locatives", &DecodingRules::goalLandmarkLocatives},
+      {"side_to_spans", &DecodingRules::sideToSpans}};
   return kAll;
 }
 
@@ -630,8 +682,9 @@ nlohmann::json switchesToJson(const Switches& s) {
 }
 template <typename Switches>
 Switches switchesFromJson(const nlohmann::json& j, const std::string& what) {
+  core::require(j.is_object(), what + ": expected an object of switches");
   Switches s;
-  for (const auto& [name, member] : Switches::all()) s.*member = core::requireField(j, name, what).template get<bool>();
+  for (const auto& [name, member] : Switches::all()) s.*member = j.contains(name) && j.at(name).template get<bool>();
   return s;
 }
 }  // namespace
@@ -813,7 +866,23 @@ AnnotatedSentence LanguageModel::annotate(const std::vector<std::string>& tokens
   if (rules.rareStartWords || rules.rareStartPairs)
     impl_->indicatorConventions.dropRarelyAnnotatedStarts(tokens, out.entities, rules.rareStartWords,
                                                           rules.rareStartPairs);
+  const std::vector<std::string> lower = toLowerAscii(tokens);
+  if (rules.directionSpans) PhraseRules::applyDirectionSpans(lower, out.entities, rules.sideToSpans);
+  if (rules.sourceIsSpatial) PhraseRules::applySourceSpans(lower, out.entities);
   impl_->relabelIndicators(tokens, out.entities);
+  if (rules.placingClauseGoal)
+    PhraseRules::addPlacingClauseGoals(
+        lower, out.entities, [this](const std::string& w) { return impl_->lemmaOf(w); }, rules.sideToSpans);
+  if (rules.ofRoomIsSpatial)
+    PhraseRules::addRoomOfIndicators(
+        lower, out.entities,
+        [this](const std::string& w) {  // a noun, or a word WordNet does not know ("nightstand")
+          const WordInfo info = impl_->lexicon.lookup(w);
+          const bool unknown = !info.noun && !info.verb && !info.adjective && !info.adverb;
+          return (info.noun || unknown) && !isPunct(w) && !kPrepositions.count(w) && !kPronouns.count(w) &&
+                 !kDeterminers.count(w) && !impl_->isActionWord(w);
+        },
+        [this](const std::string& w) { return impl_->lexicon.lookup(w).room; });
   impl_->enforceTrajectorConsistency(tokens, out.entities);
   out.relations = impl_->predictRelations(tokens, out.entities);
   return out;

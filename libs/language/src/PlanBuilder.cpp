@@ -1,6 +1,7 @@
 #include "srp/language/PlanBuilder.h"
 
 #include <algorithm>
+#include <sstream>
 #include <cctype>
 #include <map>
 #include <optional>
@@ -24,7 +25,7 @@ const std::set<std::string> kPronouns{"it", "them", "they", "that", "those", "th
 const std::set<std::string> kParticles{"up", "down", "away"};
 const std::set<std::string> kStopWords{"and", "or", "but", "then", "that", "which", "who", "while", "with", "by",
                                        "of", "to", "for", "as", "so", "is", "are", "be", "was", "very", "not"};
-const std::set<std::string> kSourceWords{"from", "off", "out"};
+const std::set<std::string> kSourceWords{"from", "off", "out", "away"};
 // Multi-word indicators first (longest match wins).
 const std::vector<std::vector<std::string>> kIndicatorPhrases{
     {"in", "front", "of"}, {"on", "top", "of"}, {"to", "the", "left", "of"}, {"to", "the", "right", "of"},
@@ -52,6 +53,20 @@ const std::map<std::string, std::string> kSideAdjectives{
     {"left", "leftmost"}, {"right", "rightmost"}, {"front", "frontmost"}, {"back", "backmost"}, {"rear", "backmost"}};
 
 enum class VerbKind { Pick, Place, Move };
+
+/// The view words of a corner phrase ("in the front left corner of" -> "front left"), "" otherwise.
+std::string cornerOf(const std::string& relation) {
+  std::istringstream words(relation);
+  std::vector<std::string> w;
+  for (std::string x; words >> x;) w.push_back(x);
+  const auto corner = std::find(w.begin(), w.end(), "corner");
+  if (corner == w.end()) return {};
+  std::string out;
+  for (auto it = w.begin(); it != corner; ++it)
+    if (*it == "left" || *it == "right" || *it == "front" || *it == "back" || *it == "rear")
+      out += (out.empty() ? "" : " ") + *it;
+  return out;
+}
 
 struct Mention {
   ObjectRef object;
@@ -390,7 +405,7 @@ std::vector<PlanStep> buildPlanSteps(const std::vector<AnnotatedSentence>& sente
           continue;
         }
         Location loc;
-        loc.ref = {relation, np->mention->object, std::nullopt, {}};
+        loc.ref = {relation, np->mention->object, std::nullopt, cornerOf(relation)};
         loc.anchor = np->mention->anchor;
         loc.back = i > 0 && v.lower(i - 1) == "back";
         const std::string type = v.typeAt(i);

@@ -48,6 +48,8 @@ void classifyNoun(const std::string& lemma, WordInfo& info) {
   static const std::set<std::string> kArtifact{"artifact", "artefact", "physical_object", "object", "whole"};
   static const std::set<std::string> kShape{"shape", "plane_figure", "solid", "polygon", "polyhedron"};
   static const std::set<std::string> kLocation{"location", "region", "surface", "side"};
+  static const std::set<std::string> kRoom{"room", "building", "workplace", "place_of_business"};
+  info.room |= kRoom.count(lemma) > 0;
   while (!stack.empty()) {
     const auto [offset, depth] = stack.back();
     stack.pop_back();
@@ -62,6 +64,7 @@ void classifyNoun(const std::string& lemma, WordInfo& info) {
         info.artifact |= kArtifact.count(word) > 0;
         info.shape |= kShape.count(word) > 0;
         info.location |= kLocation.count(word) > 0;
+        info.room |= kRoom.count(word) > 0;
       }
     }
     for (int p = 0; p < ss->ptrcount; ++p)

@@ -83,21 +83,58 @@ TEST(LanguageModel, IndicatorOfAFetchVerbIsSpatial) {
   EXPECT_EQ(s.relations[0].type, "Spatial");
 }
 
-// The relative-clause rule (switched off by the pooled-CV protocol, README
-// "Protocol") still works when switched on: a participle phrase locates the
-// object and the clause's goal is the next phrase.
+namespace {
+std::vector<std::string> indicatorTypes(const AnnotatedSentence& s) {
+  std::vector<std::string> types;
+  for (const auto& e : s.entities)
+    if (e.type == "SpatialIndicator" || e.type == "GoalIndicator") types.push_back(e.type);
+  return types;
+}
+}  // namespace
+
+// The relative-clause rule (kept by the protocol, README "Decoding rules"): a
+// participle phrase locates the object and the clause's goal is the next phrase.
 TEST(LanguageModel, RelativeClauseRuleMakesAParticiplePhraseSpatial) {
   auto model = LanguageModel::load(defaultModelPath());
-  EXPECT_FALSE(model.decodingRules().relativeClauseIsSpatial);
+  EXPECT_TRUE(model.decodingRules().relativeClauseIsSpatial);
+  const std::vector<std::string> tokens{"put", "the", "grey", "pyramid", "which", "is", "putted", "on", "a",
+                                        "green", "box", "on", "another", "green", "box"};
+  EXPECT_EQ(indicatorTypes(model.annotate(tokens)), (std::vector<std::string>{"SpatialIndicator", "GoalIndicator"}));
+}
+
+// "Place X from Y on Z": the source locates X (a spatial indicator, X its
+// trajector) and the goal is the "on" phrase; without the source rule the
+// tagger and the type convention make "from" the goal.
+TEST(LanguageModel, SourceBeforeTheGoalOfAPlacingVerb) {
+  auto model = LanguageModel::load(defaultModelPath());
+  const std::vector<std::string> tokens{"place", "the", "red", "cube", "from", "the", "blue",
+                                        "box",   "on",  "the", "green", "plate"};
+  const auto s = model.annotate(tokens);
+  const std::vector<EntitySpan> expected{{0, 1, "Action"},        {2, 3, "Color"}, {3, 4, "Trajector"},
+                                         {4, 5, "SpatialIndicator"}, {6, 7, "Color"}, {8, 9, "GoalIndicator"},
+                                         {10, 11, "Color"}};
+  EXPECT_EQ(s.entities, expected);
+  ASSERT_EQ(s.relations.size(), 2u);
+  for (const auto& r : s.relations) {
+    SCOPED_TRACE(r.type);
+    EXPECT_EQ(s.entities[r.head].type, r.type == "Spatial" ? "Trajector" : "Action");
+    EXPECT_EQ(s.entities[r.tail].start, r.type == "Spatial" ? 4 : 8);
+  }
   DecodingRules rules = model.decodingRules();
-  rules.relativeClauseIsSpatial = true;
+  rules.sourceIsSpatial = false;
   model.setDecodingRules(rules);
-  const auto s = model.annotate({"put", "the", "grey", "pyramid", "which", "is", "putted", "on", "a", "green", "box",
-                                 "on", "another", "green", "box"});
-  std::vector<std::string> indicatorTypes;
-  for (const auto& e : s.entities)
-    if (e.type == "SpatialIndicator" || e.type == "GoalIndicator") indicatorTypes.push_back(e.type);
-  EXPECT_EQ(indicatorTypes, (std::vector<std::string>{"SpatialIndicator", "GoalIndicator"}));
+  EXPECT_NE(indicatorTypes(model.annotate(tokens)), (std::vector<std::string>{"SpatialIndicator", "GoalIndicator"}));
+}
+
+// Multi-word direction phrases and an indicator with no landmark.
+TEST(LanguageModel, DirectionPhrasesAndBareIndicatorsAreWholeGoals) {
+  const auto model = LanguageModel::load(defaultModelPath());
+  const auto corner = model.annotate({"place", "it", "at", "the", "top", "left", "corner", "of", "the", "box"});
+  EXPECT_EQ(corner.entities, (std::vector<EntitySpan>{{0, 1, "Action"}, {2, 8, "GoalIndicator"}}));
+  const auto below = model.annotate({"place", "it", "directly", "below", "."});
+  EXPECT_EQ(below.entities, (std::vector<EntitySpan>{{0, 1, "Action"}, {3, 4, "GoalIndicator"}}));
+  ASSERT_EQ(below.relations.size(), 1u);
+  EXPECT_EQ(below.relations[0].type, "Transition");
 }
 
 TEST(LanguageModel, MissingOrCorruptModelFileNamesThePath) {

@@ -3,12 +3,20 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <algorithm>
+#include <map>
 #include <iomanip>
+#include <sstream>
 
 #include "srp/core/Error.h"
 #include "srp/core/SafeText.h"
+#include "srp/core/OutputFile.h"
 #include "srp/motion/SkillPlots.h"
+#include "srp/perception/PerceptionDrawing.h"
 #include "srp/plot/Figure.h"
+#include "srp/rawlog/RawlogReader.h"
+
+#include <opencv2/imgcodecs.hpp>
 
 namespace srp::programming {
 
@@ -57,6 +65,65 @@ void writeHandFigure(const std::string& pngPath, const perception::PerceptionRes
   fig.save(pngPath);
 }
 
+std::vector<std::string> writeContactSheet(const std::string& dir, const ProgrammingOptions& o,
+                                           const perception::PerceptionResult& seen, const core::ObjectCatalogue& kb,
+                                           const motion::Segmentation& segmentation,
+                                           const std::optional<taskdb::PerceivedScene>& scene) {
+  perception::PerceptionDrawing::Options view;
+  if (scene) {
+    view.X_camera_table = scene->X_table_camera.inverse();
+    view.tableSize_m = scene->tableSize_m;
+  }
+  const perception::PerceptionDrawing drawing(seen, kb, view);
+  struct Event {
+    std::string caption;
+    cv::Scalar border;
+    bool lowConfidence;
+  };
+  std::map<int, std::vector<Event>> events;
+  std::vector<int> marked;
+  for (const auto& ob : segmentation.objects) {
+    if (!ob.moved) continue;
+    if (ob.graspFrame >= 0) events[ob.graspFrame].push_back({"GRASP " + ob.name, cv::Scalar(60, 200, 60), ob.lowConfidence});
+    if (ob.releaseFrame >= 0)
+      events[ob.releaseFrame].push_back({"RELEASE " + ob.name, cv::Scalar(230, 150, 40), ob.lowConfidence});
+  }
+  for (const auto& [frame, e] : events) marked.push_back(frame);
+  const std::vector<int> frames = perception::contactSheetFrames(seen.frames, kContactSheetSpreadFrames, marked);
+  std::vector<perception::ContactSheetTile> tiles;
+  rawlog::RawlogReader reader(o.demoPath);
+  std::size_t next = 0;
+  while (next < frames.size()) {
+    const auto f = reader.next();
+    if (!f) break;
+    if (f->index != frames[next]) continue;
+    ++next;
+    perception::ContactSheetTile tile;
+    tile.image = f->colour_bgr8.clone();
+    drawing.draw(tile.image, f->index);
+    tile.caption = "frame " + std::to_string(f->index);
+    const auto e = events.find(f->index);
+    if (e != events.end())
+      for (const auto& ev : e->second) {
+        tile.caption += "  " + ev.caption;
+        tile.border = ev.border;
+        if (ev.lowConfidence) {
+          tile.flag = "LOW CONFIDENCE";
+          tile.border = cv::Scalar(40, 40, 255);
+        }
+      }
+    tiles.push_back(std::move(tile));
+  }
+  const cv::Mat sheet = perception::composeContactSheet(
+      tiles, "What perception saw: " + std::to_string(seen.frames) + " frames, hand in " +
+                 std::to_string(seen.handDetected) + "; outlines with confidence, table frame, grasp/release framed");
+  const std::string path = dir + "/contact_sheet.png";
+  std::vector<unsigned char> png;
+  if (!cv::imencode(".png", sheet, png)) throw core::FileError(path, "cannot encode the contact sheet");
+  core::writeFileAtomically(path, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+  return {path};
+}
+
 std::vector<std::string> writeProgramReport(const std::string& dir, const ProgramResult& r,
                                             const perception::PerceptionResult& seen,
                                             const motion::Segmentation& segmentation,
@@ -77,14 +144,28 @@ std::vector<std::string> writeProgramReport(const std::string& dir, const Progra
       }
 
   const std::string md = dir + "/summary.md";
-  std::ofstream out(md);
-  if (!out) throw core::FileError(md, "cannot write the summary");
+  std::ostringstream out;
   out << "# Task model " << r.taskModelId << ": " << r.name << " (version " << r.version << ")\n\n";
   out << "## Plan\n\n";
   for (std::size_t i = 0; i < r.planLines.size(); ++i) out << i + 1 << ". " << r.planLines[i] << "\n";
   out << "\n## Demonstration\n\n" << r.frames << " frames; hand detected in " << r.handDetectedFrames << " ("
       << std::fixed << std::setprecision(1) << (r.frames ? 100.0 * r.handDetectedFrames / r.frames : 0.0)
       << " %).\n\n![hand trajectory](hand_trajectory.png)\n\n";
+  const auto has = [&](const std::string& name) {
+    return std::any_of(r.reportFiles.begin(), r.reportFiles.end(),
+                       [&](const std::string& f) { return std::filesystem::path(f).filename() == name; });
+  };
+  if (has("contact_sheet.png"))
+    out << "What perception saw (palm, parts and containers with their confidence, the table frame; grasp and "
+           "release frames marked):\n\n![contact sheet](contact_sheet.png)\n\n";
+  if (has("scene.json"))
+    out << "The scene the demonstration showed (`scene.json`, what `srp execute --db F --task " << r.taskModelId
+        << "` runs in without `--scene`); robot base: " << r.robotBase << ".\n\n";
+  if (!r.problems.empty()) {
+    out << "## Incomplete (--allow-partial)\n\n";
+    for (const auto& p : r.problems) out << "- " << p << "\n";
+    out << "\n";
+  }
   out << "## Segmentation and skills\n\n| object | detected frames | grasp frame | release frame | reach λ | move λ | note |\n"
          "|---|---|---|---|---|---|---|\n";
   out << std::setprecision(3) << std::defaultfloat;
@@ -103,6 +184,7 @@ std::vector<std::string> writeProgramReport(const std::string& dir, const Progra
     out << "\n## Warnings\n\n";
     for (const auto& w : r.warnings) out << "- " << w << "\n";
   }
+  core::writeFileAtomically(md, out.str());
   files.push_back(md);
   return files;
 }

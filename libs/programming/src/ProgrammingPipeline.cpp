@@ -2,6 +2,7 @@
 #include "srp/programming/ProgrammingPipeline.h"
 
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -9,6 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include "srp/core/Error.h"
+#include "srp/core/Json.h"
+#include "srp/core/OutputFile.h"
+#include "srp/execution/DemonstrationScene.h"
 #include "srp/core/ObjectCatalogue.h"
 #include "srp/core/OutputFile.h"
 #include "srp/core/SafeText.h"
@@ -59,21 +63,63 @@ double frameRateOf(const core::PositionTrajectory& samples) {
 }
 
 namespace {
-// The report folder's parent is created and checked now, so an unusable folder
-// fails the run before anything is computed or stored; the report itself is
-// built beside it and renamed into place (core::AtomicOutputFolder).
-const std::vector<std::string> kReportFiles = {"hand_trajectory.png", "summary.md", "*_skills.png"};
+// The database is checked before minutes of perception, but a new file is not
+// created before there is a task model to store: an existing file is opened
+// (checked, and migrated to this build's schema); for a new one the folder
+// must exist and be writable.
+void checkDatabase(const std::string& path) {
+  namespace fs = std::filesystem;
+  if (fs::exists(path)) {
+    taskdb::TaskDatabase::open(path);
+    return;
+  }
+  const fs::path folder = fs::absolute(path).parent_path();
+  if (!fs::is_directory(folder))
+    throw core::FileError(path, "the task database's folder does not exist; create it or give another --db");
+  if (::access(folder.c_str(), W_OK) != 0)
+    throw core::FileError(path, "cannot create the task database here (the folder is not writable); give another --db");
+}
 
-void checkReportFolder(const std::string& dir) {
-  const std::filesystem::path folder = std::filesystem::path(dir).lexically_normal();
+// A database file this run created and left without any task model (the write
+// failed) is removed with its WAL files, so a failed run leaves no empty database.
+void removeIfCreatedEmpty(const std::string& path) {
+  namespace fs = std::filesystem;
+  try {
+    auto db = taskdb::TaskDatabase::open(path);
+    if (!taskdb::TaskModelStore(db).list().empty()) return;
+  } catch (const std::exception&) {
+    // unreadable: it is ours and broken
+  }
   std::error_code ec;
-  if (folder.has_parent_path()) std::filesystem::create_directories(folder.parent_path(), ec);
-  core::checkFolderHoldsOnly(folder, kReportFiles, "--report");
-  if (ec || std::filesystem::exists(folder, ec) != std::filesystem::is_directory(folder, ec))
-    throw core::FileError(dir, "cannot create the report folder here (" +
-                                   (ec ? ec.message() : std::string("a file of that name exists")) +
+  for (const char* suffix : {"", "-wal", "-shm", "-journal"}) fs::remove(path + suffix, ec);
+}
+
+// The files a report folder holds: an existing --report folder holding anything
+// else is not replaced (core::checkFolderHoldsOnly).
+const std::vector<std::string> kReportFiles = {"hand_trajectory.png", "summary.md", "contact_sheet.png",
+                                               "scene.json", "*_skills.png"};
+
+// The report folder, built aside and renamed into place with the model
+// (core::AtomicOutputFolder); its parent is created here, before anything runs.
+std::unique_ptr<core::AtomicOutputFolder> startReportFolder(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path target = fs::absolute(dir).lexically_normal();
+  const fs::path parent = (target.has_filename() ? target : target.parent_path()).parent_path();
+  fs::create_directories(parent, ec);
+  if (ec || !fs::is_directory(parent))
+    throw core::FileError(dir, "cannot create the report folder (" + (ec ? ec.message() : std::string("not a folder")) +
                                    "); nothing was stored. Give a writable folder with --report");
-  const core::AtomicOutputFolder probe(folder);  // creates and removes a folder beside it: the parent is writable
+  if (fs::exists(target) && !fs::is_directory(target))
+    throw core::FileError(dir, "cannot create the report folder (a file of that name is in the way); nothing was "
+                               "stored. Give a writable folder with --report");
+  core::checkFolderHoldsOnly(target, kReportFiles, "--report");
+  try {
+    return std::make_unique<core::AtomicOutputFolder>(target.has_filename() ? target : target.parent_path());
+  } catch (const core::FileError& e) {
+    throw core::FileError(dir, std::string("cannot create the report folder (") + e.what() +
+                                   "); nothing was stored. Give a writable folder with --report");
+  }
 }
 
 double peakResidentMemory_MB() {
@@ -91,10 +137,11 @@ ProgramResult programTask(const ProgrammingOptions& o) {
   };
   core::requireSafeName(o.name, "task model name (--name)");
   if (o.demoPath.empty()) throw InvalidInputError("no demonstration given (--demo demo.rawlog)");
-  // Open the database and check the report folder first: a bad file fails
+  // Check the database and the report folder first: a bad file fails
   // before minutes of perception.
-  { auto db = taskdb::TaskDatabase::open(o.dbPath); }
-  if (!o.reportDir.empty()) checkReportFolder(o.reportDir);
+  checkDatabase(o.dbPath);
+  std::unique_ptr<core::AtomicOutputFolder> report;
+  if (!o.reportDir.empty()) report = startReportFolder(o.reportDir);
 
   // 1. Language, 2. grounding (once; from here on an object is its class name).
   clock.start("language");
@@ -125,9 +172,21 @@ ProgramResult programTask(const ProgrammingOptions& o) {
   const motion::LearnedSkills learned = motion::learnSkills(tracks);
   const motion::Segmentation& segmentation = learned.segmentation;
   const std::vector<motion::SkillSet>& skills = learned.skills;
-  // 5. The rows: instruction tables, perception rows, skills.
+  // 4b. Nothing is stored for a plan the demonstration does not show whole.
+  result.problems = stepProblems(grounded, seen, segmentation, result.warnings);
+  if (!result.problems.empty() && !o.allowPartial) {
+    std::string message;
+    for (const auto& p : result.problems) message += (message.empty() ? "" : "; ") + p;
+    throw InvalidInputError(message + "; nothing was stored (--allow-partial stores the task model without what is "
+                                      "missing)");
+  }
+  // 5. The rows: instruction tables, perception rows, skills, the perceived scene.
   const taskdb::TaskModel model = buildTaskModel(grounded, o, seen, kb, tracks, skills, scene);
   result.skillCount = model.skills.size();
+  result.sceneStored = model.scene.has_value();
+  if (!model.scene)
+    result.warnings.push_back("no table plane was found in the demonstration: the task model stores no perceived "
+                              "scene ('srp execute' then needs --scene)");
   for (const auto& w : segmentation.warnings) result.warnings.push_back(w);
   for (const auto& seg : segmentation.objects) {
     ObjectOutcome out;
@@ -151,12 +210,31 @@ ProgramResult programTask(const ProgrammingOptions& o) {
       }
     result.objects.push_back(out);
   }
+  std::optional<core::Scene> sceneFile;
+  if (model.scene) {
+    const auto placement = execution::RobotPlacement::of(*model.scene, o.X_base_camera, o.extrinsicsSource);
+    result.robotBase = placement.description;
+    core::Scene base;
+    base.name = "demonstration '" + o.name + "'";
+    base.intrinsics = seen.intrinsics;
+    base.fps = model.info.frameRate_hz;
+    sceneFile = execution::demonstrationScene(*model.scene, placement, base);
+  }
   progress("motion", 1, 1);
+  // What perception saw, drawn on the recording (read again): before the
+  // database is locked for writing.
+  if (report) {
+    clock.start("report");
+    result.reportFiles = writeContactSheet(report->temporaryPath().string(), o, seen, kb, segmentation, model.scene);
+  }
 
   // 6. One transaction. The report is written inside it, before COMMIT: a
-  // report that cannot be written rolls the model back (all or nothing).
+  // report that cannot be written rolls the model back (all or nothing), and
+  // its folder is renamed into place last.
   clock.start("store");
-  {
+  const bool newDatabase = !std::filesystem::exists(o.dbPath);
+  bool reportCommitted = false;
+  try {
     auto db = taskdb::TaskDatabase::open(o.dbPath);
     taskdb::TaskModelStore store(db);
     result.name = o.name;
@@ -166,14 +244,27 @@ ProgramResult programTask(const ProgrammingOptions& o) {
           result.taskModelId = id;
           result.version = version;
           clock.stop();
-          if (!o.reportDir.empty()) {
-            core::AtomicOutputFolder report(std::filesystem::path(o.reportDir).lexically_normal());
-            const std::string staged = report.temporaryPath().string();
-            result.reportFiles = writeProgramReport(staged, result, seen, segmentation, skills);
-            report.commit();
-            for (auto& f : result.reportFiles) f = o.reportDir + f.substr(staged.size());
+          if (!report) return;
+          const std::string tmp = report->temporaryPath().string();
+          std::vector<std::string> files = result.reportFiles;
+          if (sceneFile) {
+            core::writeJsonFile(tmp + "/scene.json", sceneFile->toJson());
+            files.push_back(tmp + "/scene.json");
           }
+          ProgramResult shown = result;
+          shown.reportFiles = files;
+          for (const auto& f : writeProgramReport(tmp, shown, seen, segmentation, skills)) files.push_back(f);
+          report->commit();
+          reportCommitted = true;
+          result.reportFiles.clear();
+          for (const auto& f : files)
+            result.reportFiles.push_back((report->target() / std::filesystem::path(f).filename()).string());
         });
+  } catch (...) {
+    std::error_code ec;
+    if (reportCommitted) std::filesystem::remove_all(report->target(), ec);  // COMMIT failed after the rename
+    if (newDatabase) removeIfCreatedEmpty(o.dbPath);
+    throw;
   }
   result.peakResidentMemory_MB = peakResidentMemory_MB();
   return result;
@@ -198,6 +289,9 @@ std::string toJsonText(const ProgramResult& r) {
   for (const auto& t : r.timings) j["timings_s"][t.stage] = t.wall_s;
   j["peak_memory_MB"] = r.peakResidentMemory_MB;
   j["warnings"] = r.warnings;
+  j["problems"] = r.problems;
+  j["perceived_scene_stored"] = r.sceneStored;
+  if (!r.robotBase.empty()) j["robot_base"] = r.robotBase;
   j["report_files"] = r.reportFiles;
   return j.dump(2);
 }

@@ -1,10 +1,13 @@
 #include "srp/programming/ProgrammingStages.h"
 
 #include <algorithm>
+#include <filesystem>
+#include <limits>
 
 #include "srp/core/Error.h"
 #include "srp/core/Pose.h"
 #include "srp/core/Text.h"
+#include "srp/execution/DemonstrationScene.h"
 #include "srp/execution/SceneGrounder.h"
 #include "srp/language/InstructionParser.h"
 #include "srp/language/PlanTables.h"
@@ -187,44 +190,84 @@ perception::PerceptionResult perceive(const GroundedPlan& grounded, const core::
       throw core::FileError(o.demoPath, "no RGB-D frames with depth in this rawlog; record one with 'srp record' "
                                         "or make one with 'srp synth-demo'");
   }
-  perception::PerceptionResult seen = perceiver.finish();
-  for (const auto& cls : grounded.movingClasses) {
+  perception::PerceptionResult seen;
+  try {
+    seen = perceiver.finish();
+  } catch (const InvalidInputError& e) {
+    throw InvalidInputError(std::string("environment: ") + e.what() + "; nothing was stored");
+  }
+  for (std::size_t i = 0; i < grounded.stepClasses.size(); ++i) {
+    const std::string& cls = grounded.stepClasses[i];
     const bool shown = std::any_of(seen.objects.begin(), seen.objects.end(),
                                    [&](const auto& t) { return t.className == cls && t.detectedFrames() > 0; });
     if (!shown)
-      throw InvalidInputError("the instruction moves the " + cls + ", but the demonstration '" + o.demoPath +
-                              "' never shows it; nothing was stored");
+      throw InvalidInputError("step " + std::to_string(i + 1) + " (" + planLines(grounded.plan)[i] +
+                              "): the instruction moves the " + cls + ", but the demonstration '" + o.demoPath +
+                              "' never shows it (" + std::to_string(seen.frames) + " frames); nothing was stored");
   }
   return seen;
 }
 
-execution::CellDescription perceivedScene(const perception::PerceptionResult& seen, const core::ObjectCatalogue& kb,
-                                          const std::optional<core::Scene>& scene) {
-  if (!seen.X_camera_table)
-    throw InvalidInputError("the demonstration's perception found no table plane (or the camera moves): the "
-                            "instruction's objects cannot be grounded among several instances");
-  const core::Pose3 X_table_camera = seen.X_camera_table->inverse();
+std::optional<taskdb::PerceivedScene> perceivedSceneOf(const perception::PerceptionResult& seen,
+                                                       const core::ObjectCatalogue& kb,
+                                                       const std::optional<core::Scene>& scene,
+                                                       const std::string& cataloguePath) {
+  if (!seen.X_camera_table) return std::nullopt;
+  const core::Pose3 X_plane_camera = seen.X_camera_table->inverse();
   const std::map<std::string, std::string> colours = instanceColours(scene, kb);
-  execution::CellDescription cell;
-  cell.X_world_camera = X_table_camera;  // world = the table frame
+  taskdb::PerceivedScene out;
+  out.catalogue = cataloguePath;
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (const auto& t : seen.objects) {
     const auto first = std::find_if(t.samples.begin(), t.samples.end(), [](const auto& s) { return s.detected; });
     const core::ObjectClass* cls = kb.find(t.className);
     if (first == t.samples.end() || !cls) continue;
-    execution::CellObject c;
-    c.name = t.key();
-    c.className = t.className;
-    c.noun = cls->noun.empty() ? cls->name : cls->noun;
-    c.classId = cls->classId;
-    c.kind = cls->kind == core::ObjectKind::Container ? execution::CellObjectKind::Container : execution::CellObjectKind::Part;
-    c.size_m = cls->dimensions_m;
-    c.X_world_object = X_table_camera * first->X_camera_object;
-    c.rgb = cls->rgb;
+    // Resting on the plane: its yaw about the plane's normal, never below the plane.
+    const core::Pose3 X_plane_object = X_plane_camera * first->X_camera_object;
+    const double yaw = core::yawOf(X_plane_object.linear());
+    taskdb::SceneObjectRow row;
+    row.objectId = t.key();
+    row.classId = cls->classId;
+    row.className = cls->name;
+    row.X_table_object.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    row.X_table_object.translation() = X_plane_object.translation();
+    row.X_table_object.translation().z() = std::max(0.0, X_plane_object.translation().z());
     const auto word = colours.find(t.instanceId);
-    c.colour = !t.instanceId.empty() && word != colours.end() ? word->second : classColourWord(*cls);
-    cell.objects.push_back(c);
+    const std::string colour = !t.instanceId.empty() && word != colours.end() ? word->second : classColourWord(*cls);
+    if (!colour.empty()) row.colour = colour;
+    if (scene && !t.instanceId.empty())
+      if (const core::SceneObject* so = scene->findObject(t.instanceId)) row.rgb = so->rgb;
+    for (int sx : {-1, 1})
+      for (int sy : {-1, 1}) {
+        const Eigen::Vector3d corner =
+            row.X_table_object * Eigen::Vector3d(sx * cls->dimensions_m.x() / 2, sy * cls->dimensions_m.y() / 2, 0.0);
+        lo = lo.cwiseMin(corner.head<2>());
+        hi = hi.cwiseMax(corner.head<2>());
+      }
+    if (cls->observed && std::none_of(out.observedClasses.begin(), out.observedClasses.end(),
+                                      [&](const auto& c) { return c.name == cls->name; }))
+      out.observedClasses.push_back(*cls);
+    out.objects.push_back(row);
   }
-  return cell;
+  if (out.objects.empty()) return std::nullopt;
+  // The table frame: the plane's, moved to the centre of the objects' rectangle.
+  const Eigen::Vector2d centre = (lo + hi) / 2;
+  out.tableSize_m = (hi - lo).array() + 2 * kPerceivedTableMargin_m;
+  core::Pose3 X_table_plane = core::Pose3::Identity();
+  X_table_plane.translation() = Eigen::Vector3d(-centre.x(), -centre.y(), 0.0);
+  out.X_table_camera = X_table_plane * X_plane_camera;
+  for (auto& o : out.objects) o.X_table_object = X_table_plane * o.X_table_object;
+  return out;
+}
+
+execution::CellDescription perceivedScene(const perception::PerceptionResult& seen, const core::ObjectCatalogue& kb,
+                                          const std::optional<core::Scene>& scene) {
+  const auto perceived = perceivedSceneOf(seen, kb, scene, "");
+  if (!perceived)
+    throw InvalidInputError("the demonstration's perception found no table plane (or the camera moves): the "
+                            "instruction's objects cannot be grounded among several instances");
+  const execution::RobotPlacement placement = execution::RobotPlacement::of(*perceived, std::nullopt);
+  return execution::CellDescription::fromScene(execution::demonstrationScene(*perceived, placement), kb);
 }
 
 GroundedPlan groundInstances(const GroundedPlan& grounded, const perception::PerceptionResult& seen,
@@ -313,6 +356,50 @@ motion::DemoTracks demoTracks(const perception::PerceptionResult& seen, const Gr
   return tracks;
 }
 
+std::vector<std::string> stepProblems(const GroundedPlan& grounded, const perception::PerceptionResult& seen,
+                                      const motion::Segmentation& segmentation, std::vector<std::string>& warnings) {
+  std::vector<std::string> problems;
+  const std::vector<std::string> lines = planLines(grounded.plan);
+  const auto seenObject = [&](const std::string& key) -> const perception::ObjectTrajectory* {
+    for (const auto& t : seen.objects)
+      if (t.key() == key) return &t;
+    return nullptr;
+  };
+  for (std::size_t i = 0; i < grounded.plan.steps.size() && i < grounded.stepObjects.size(); ++i) {
+    const std::string step = "step " + std::to_string(i + 1) + " (" + lines[i] + ")";
+    const std::string& key = grounded.stepObjects[i];
+    const auto seg = std::find_if(segmentation.objects.begin(), segmentation.objects.end(),
+                                  [&](const auto& o) { return o.name == key; });
+    const perception::ObjectTrajectory* t = seenObject(key);
+    const std::string detected =
+        " (detected in " + std::to_string(t ? t->detectedFrames() : 0) + " of " + std::to_string(seen.frames) +
+        " frames, hand in " + std::to_string(seen.handDetected) + ")";
+    if (seg == segmentation.objects.end())
+      problems.push_back(step + ": the demonstration gives no track of the " + key + detected);
+    else if (!seg->moved)
+      problems.push_back(step + ": the " + key + " never leaves its place in the demonstration, so it has no grasp "
+                         "and no release" + detected + (seg->note.empty() ? "" : ": " + seg->note));
+    else if (seg->graspFrame < 0 || seg->releaseFrame < 0)
+      problems.push_back(step + ": the demonstration shows no " + (seg->graspFrame < 0 ? "grasp" : "release") +
+                         " of the " + key + detected + (seg->note.empty() ? "" : ": " + seg->note));
+    const auto& plannedStep = grounded.plan.steps[i];
+    for (const auto* list : {&plannedStep.source, &plannedStep.target})
+      for (const auto& loc : *list) {
+        const std::string& landmark = grounded.objectOf(loc.landmark.name, loc.landmark.colour);
+        const perception::ObjectTrajectory* lt = seenObject(landmark);
+        if ((!lt || lt->detectedFrames() == 0) &&
+            std::find_if(warnings.begin(), warnings.end(), [&](const std::string& w) {
+              return w.rfind("the " + landmark + " ", 0) == 0;
+            }) == warnings.end())
+          warnings.push_back("the " + landmark + " ('" + loc.relation + " " + language::describe(loc.landmark) + "', " +
+                             step + ") is never seen in the demonstration (" + std::to_string(seen.frames) +
+                             " frames): the perceived scene lacks it, so the task cannot run in the scene of its own "
+                             "demonstration (give srp execute a --scene)");
+      }
+  }
+  return problems;
+}
+
 taskdb::TaskModel buildTaskModel(const GroundedPlan& grounded, const ProgrammingOptions& o,
                                  const perception::PerceptionResult& seen, const core::ObjectCatalogue& kb,
                                  const motion::DemoTracks& tracks, const std::vector<motion::SkillSet>& skills,
@@ -320,6 +407,9 @@ taskdb::TaskModel buildTaskModel(const GroundedPlan& grounded, const Programming
   taskdb::TaskModel model = language::planToTaskModel(grounded.plan, o.name, o.instruction);
   model.info.frameRate_hz = frameRateOf(seen.hand);
   model.info.intrinsics = seen.intrinsics;
+  model.info.X_base_camera = o.X_base_camera;
+  const std::string catalogue = o.cataloguePath.empty() ? core::ObjectCatalogue::defaultPath() : o.cataloguePath;
+  model.scene = perceivedSceneOf(seen, kb, scene, std::filesystem::absolute(catalogue).lexically_normal().string());
   PerceptionRows rows = toTaskDbRows(seen, kb, instanceColours(scene, kb));
   model.handPositions = std::move(rows.handPositions);
   model.groundedProducts = std::move(rows.groundedProducts);

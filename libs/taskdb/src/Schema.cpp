@@ -185,8 +185,45 @@ ALTER TABLE ProductPose_v2 RENAME TO ProductPose;
 ALTER TABLE Skills_v2 RENAME TO Skills;
 )SQL";
 
+// Version 3: the scene the demonstration was perceived in, so a task runs in
+// the scene of its own demonstration: PerceivedScenes (one row per task model:
+// the table rectangle, the camera in the table frame, the knowledge base the
+// classes are named in), SceneObjects (each object where it stood when the
+// demonstration began, table frame) and ObservedClasses (the full definition of
+// a class seen without a CAD file, core::objectClassToJson). New tables only:
+// every version-2 task model simply has no perceived scene.
+static const char* kSchemaV3 = R"SQL(
+CREATE TABLE PerceivedScenes (
+  TaskModelId  INTEGER PRIMARY KEY REFERENCES TaskModels(TaskModelId) ON DELETE CASCADE,
+  Catalogue    TEXT    NOT NULL,
+  TableSizeX_m REAL    NOT NULL CHECK (TableSizeX_m > 0),
+  TableSizeY_m REAL    NOT NULL CHECK (TableSizeY_m > 0),
+  CameraX REAL NOT NULL, CameraY REAL NOT NULL, CameraZ REAL NOT NULL,
+  CameraQW REAL NOT NULL, CameraQX REAL NOT NULL, CameraQY REAL NOT NULL, CameraQZ REAL NOT NULL
+);
+CREATE TABLE SceneObjects (
+  TaskModelId INTEGER NOT NULL REFERENCES PerceivedScenes(TaskModelId) ON DELETE CASCADE,
+  ObjectId    TEXT    NOT NULL,
+  ClassId     INTEGER NOT NULL,
+  ClassName   TEXT    NOT NULL,
+  X REAL NOT NULL, Y REAL NOT NULL, Z REAL NOT NULL,
+  QW REAL NOT NULL, QX REAL NOT NULL, QY REAL NOT NULL, QZ REAL NOT NULL,
+  Color TEXT,
+  R REAL, G REAL, B REAL,
+  PRIMARY KEY (TaskModelId, ObjectId)
+);
+CREATE TABLE ObservedClasses (
+  TaskModelId INTEGER NOT NULL REFERENCES TaskModels(TaskModelId) ON DELETE CASCADE,
+  ClassId     INTEGER NOT NULL,
+  Name        TEXT    NOT NULL,
+  Definition  TEXT    NOT NULL CHECK (json_valid(Definition)),
+  PRIMARY KEY (TaskModelId, ClassId),
+  UNIQUE (TaskModelId, Name)
+);
+)SQL";
+
 const std::vector<std::string>& migrations() {
-  static const std::vector<std::string> m = {kSchemaV1, kSchemaV2};
+  static const std::vector<std::string> m = {kSchemaV1, kSchemaV2, kSchemaV3};
   return m;
 }
 

@@ -3,6 +3,7 @@
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/core/SafeText.h"
+#include "srp/core/ObjectClassJson.h"
 
 namespace srp::taskdb {
 
@@ -46,6 +47,58 @@ json toJson(const TaskModelInfo& i) {
           {"frame_rate_hz", i.frameRate_hz},
           {"intrinsics", i.intrinsics ? json(*i.intrinsics) : json(nullptr)},
           {"X_base_camera", i.X_base_camera ? core::poseToJson(*i.X_base_camera) : json(nullptr)}};
+}
+
+json toJson(const PerceivedScene& s) {
+  json objects = json::array();
+  for (const auto& o : s.objects) {
+    json jo{{"object_id", o.objectId}, {"class_id", o.classId}, {"class", o.className},
+            {"X_table_object", core::poseToJson(o.X_table_object)}};
+    if (o.colour) jo["color"] = *o.colour;
+    if (o.rgb) jo["rgb"] = vec(*o.rgb);
+    objects.push_back(jo);
+  }
+  json classes = json::array();
+  for (const auto& c : s.observedClasses) classes.push_back(core::objectClassToJson(c));
+  return {{"catalogue", s.catalogue},
+          {"table_size_m", {s.tableSize_m.x(), s.tableSize_m.y()}},
+          {"X_table_camera", core::poseToJson(s.X_table_camera)},
+          {"objects", objects},
+          {"observed_classes", classes}};
+}
+
+PerceivedScene perceivedSceneFromJson(const json& j, const std::string& ctx) {
+  PerceivedScene s;
+  try {
+    s.catalogue = core::requireField(j, "catalogue", ctx).get<std::string>();
+    const json& size = core::requireField(j, "table_size_m", ctx);
+    if (!size.is_array() || size.size() != 2)
+      throw core::InvalidInputError(ctx + ": field 'table_size_m' must be two numbers (metres)");
+    s.tableSize_m = {size[0].get<double>(), size[1].get<double>()};
+    if (!s.tableSize_m.allFinite() || (s.tableSize_m.array() <= 0.0).any())
+      throw core::InvalidInputError(ctx + ": field 'table_size_m' must be two positive numbers (metres)");
+    s.X_table_camera = core::poseFromJson(core::requireField(j, "X_table_camera", ctx), ctx + ": X_table_camera");
+    for (const auto& o : j.value("objects", json::array())) {
+      SceneObjectRow r;
+      r.objectId = core::requireField(o, "object_id", ctx + ": objects").get<std::string>();
+      const std::string octx = ctx + ": object '" + r.objectId + "'";
+      r.classId = core::requireField(o, "class_id", octx).get<int>();
+      r.className = core::requireField(o, "class", octx).get<std::string>();
+      r.X_table_object = core::poseFromJson(core::requireField(o, "X_table_object", octx), octx + ": X_table_object");
+      if (o.contains("color")) r.colour = o.at("color").get<std::string>();
+      if (o.contains("rgb")) r.rgb = vecFrom(o.at("rgb"));
+      if (!r.X_table_object.matrix().allFinite() || (r.rgb && !r.rgb->allFinite()))
+        throw core::InvalidInputError(octx + ": a non-finite number");
+      s.objects.push_back(r);
+    }
+    const json classes = j.value("observed_classes", json::array());
+    for (std::size_t i = 0; i < classes.size(); ++i)
+      s.observedClasses.push_back(core::objectClassFromJson(classes[i], ctx + ": observed_classes[" + std::to_string(i) + "]"));
+    if (!s.X_table_camera.matrix().allFinite()) throw core::InvalidInputError(ctx + ": X_table_camera is not finite");
+  } catch (const json::exception& e) {
+    throw core::InvalidInputError(ctx + ": not a perceived scene (" + e.what() + ")");
+  }
+  return s;
 }
 
 json toJson(const TaskModel& m) {
@@ -92,6 +145,7 @@ json toJson(const TaskModel& m) {
   for (const char* key : {"products", "source_locations", "target_locations", "grounded_products", "product_poses",
                           "hand_positions", "skills"})
     if (!j.contains(key)) j[key] = json::array();
+  if (m.scene) j["perceived_scene"] = toJson(*m.scene);
   return j;
 }
 
@@ -154,6 +208,7 @@ TaskModel taskModelFromJson(const json& j, const std::string& ctx) {
       m.skills.push_back({s.at("class_id").get<int>(), core::skillTypeFromString(s.at("skill").get<std::string>()),
                           s.at("start_time_id").get<int>(), s.at("end_time_id").get<int>(),
                           s.value("parameters", json::object()), s.value("instance_id", std::string())});
+    if (j.contains("perceived_scene")) m.scene = perceivedSceneFromJson(j.at("perceived_scene"), ctx + ": perceived_scene");
   } catch (const json::exception& e) {
     throw core::InvalidInputError(ctx + ": not a task model (" + e.what() + ")");
   }

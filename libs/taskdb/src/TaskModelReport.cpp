@@ -130,6 +130,19 @@ void printTaskModel(const TaskModel& m, std::ostream& out) {
       out << "\n";
     }
   }
+  if (m.scene) {
+    const auto& sc = *m.scene;
+    const Eigen::Vector3d camera = sc.X_table_camera.translation();
+    out << "\nPerceived scene (table frame, metres): table " << num(sc.tableSize_m.x()) << " x " << num(sc.tableSize_m.y())
+        << ", camera at (" << num(camera.x()) << ", " << num(camera.y()) << ", " << num(camera.z()) << ")\n";
+    for (const auto& o : sc.objects) {
+      const bool observed = std::any_of(sc.observedClasses.begin(), sc.observedClasses.end(),
+                                        [&](const auto& c) { return c.name == o.className; });
+      const Eigen::Vector3d p = o.X_table_object.translation();
+      out << "  " << o.objectId << " (" << o.className << (observed ? ", observed, no CAD" : "") << ") at ("
+          << num(p.x()) << ", " << num(p.y()) << ", " << num(p.z()) << ")\n";
+    }
+  }
   out << "\nRows: " << m.products.size() << " products, " << m.handPositions.size() << " hand positions, "
       << m.productPoses.size() << " object poses, " << m.skills.size() << " skills\n";
 }

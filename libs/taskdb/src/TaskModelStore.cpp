@@ -6,6 +6,7 @@
 #include "srp/core/Error.h"
 #include "srp/taskdb/GroundedProductDao.h"
 #include "srp/taskdb/HandPositionDao.h"
+#include "srp/taskdb/PerceivedSceneDao.h"
 #include "srp/taskdb/ProductDao.h"
 #include "srp/taskdb/ProductPoseDao.h"
 #include "srp/taskdb/SkillDao.h"
@@ -52,6 +53,7 @@ int TaskModelStore::write(const TaskModel& m, const Progress& progress, const Be
     for (const auto& r : m.groundedProducts) grounded.add(id, r);
     SkillDao skills(db_);
     for (const auto& r : m.skills) skills.add(id, r);
+    if (m.scene) PerceivedSceneDao(db_).add(id, *m.scene);
 
     const std::size_t total = m.handPositions.size() + m.productPoses.size();
     std::size_t done = 0;
@@ -104,6 +106,7 @@ TaskModel TaskModelStore::readUnchecked(int id) const {
     m.productPoses = ProductPoseDao(db_).list(id);
     m.handPositions = HandPositionDao(db_).list(id);
     m.skills = SkillDao(db_).list(id);
+    m.scene = PerceivedSceneDao(db_).get(id);
   } catch (...) {
     try {
       db_.connection().exec("ROLLBACK");

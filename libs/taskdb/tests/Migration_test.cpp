@@ -25,6 +25,20 @@ int userVersion(const std::string& path) {
   SQLite::Database raw(path, SQLite::OPEN_READONLY);
   return raw.execAndGet("PRAGMA user_version").getInt();
 }
+
+// Every row of the fixture's source task model is read back from a migrated file.
+void expectEveryRowOfTheFixture(const TaskModel& read) {
+  const TaskModel expected = taskModelFromJson(srp::core::readJsonFile(kFixtureSource), kFixtureSource);
+  EXPECT_EQ(read.products, expected.products);
+  EXPECT_EQ(read.sourceLocations, expected.sourceLocations);
+  EXPECT_EQ(read.targetLocations, expected.targetLocations);
+  EXPECT_EQ(read.targetObjectIds, expected.targetObjectIds);
+  EXPECT_EQ(read.groundedProducts, expected.groundedProducts);
+  EXPECT_EQ(read.productPoses, expected.productPoses);
+  EXPECT_EQ(read.handPositions, expected.handPositions);
+  ASSERT_EQ(read.skills.size(), 1u);
+  EXPECT_EQ(read.skills, expected.skills);
+}
 }  // namespace
 
 TEST(Migration, SchemaOneFileOpensWithEveryRowAndGainsInstanceIds) {
@@ -42,18 +56,9 @@ TEST(Migration, SchemaOneFileOpensWithEveryRowAndGainsInstanceIds) {
   }
 
   auto db = TaskDatabase::open(path.str());
-  EXPECT_EQ(db.schemaVersion(), 2);
-  const TaskModel expected = taskModelFromJson(srp::core::readJsonFile(kFixtureSource), kFixtureSource);
+  EXPECT_EQ(db.schemaVersion(), kSchemaVersion);
   const TaskModel read = TaskModelStore(db).read(1);
-  EXPECT_EQ(read.products, expected.products);
-  EXPECT_EQ(read.sourceLocations, expected.sourceLocations);
-  EXPECT_EQ(read.targetLocations, expected.targetLocations);
-  EXPECT_EQ(read.targetObjectIds, expected.targetObjectIds);
-  EXPECT_EQ(read.groundedProducts, expected.groundedProducts);
-  EXPECT_EQ(read.productPoses, expected.productPoses);
-  EXPECT_EQ(read.handPositions, expected.handPositions);
-  ASSERT_EQ(read.skills.size(), 1u);
-  EXPECT_EQ(read.skills, expected.skills);
+  expectEveryRowOfTheFixture(read);
   for (const auto& g : read.groundedProducts) EXPECT_EQ(g.instanceId, "");
 
   // The migrated file now holds two instances of one class, with their own poses and skills.
@@ -99,4 +104,28 @@ TEST(Migration, ReopeningAMigratedFileKeepsItAsItIs) {
   auto ro = TaskDatabase::open(path.str(), TaskDatabase::Mode::ReadOnly);
   EXPECT_EQ(ro.schemaVersion(), kSchemaVersion);
   EXPECT_EQ(TaskModelStore(ro).read(1).productPoses.size(), 9u);
+}
+
+// Schema 2 -> 3 (the perceived scene): a file written by srp before the change
+// (tests/data/schema_v2.db) opens with every row, its task model has no scene,
+// and the migrated file then stores a model with one.
+TEST(Migration, SchemaTwoFileOpensWithEveryRowAndThenStoresAPerceivedScene) {
+  const std::string fixture = std::string(SRP_SOURCE_DIR) + "/libs/taskdb/tests/data/schema_v2.db";
+  ASSERT_EQ(userVersion(fixture), 2) << "the fixture must stay a schema-2 file";
+  test::TempDbPath path("migrate_v2");
+  std::filesystem::copy_file(fixture, path.str());
+  auto db = TaskDatabase::open(path.str());
+  EXPECT_EQ(db.schemaVersion(), kSchemaVersion);
+  const TaskModel read = TaskModelStore(db).read(1);
+  expectEveryRowOfTheFixture(read);
+  EXPECT_FALSE(read.scene.has_value()) << "programmed before schema 3: no perceived scene";
+  TaskModel withScene;
+  withScene.info.name = "with a scene";
+  withScene.scene = PerceivedScene{};
+  withScene.scene->catalogue = "catalogue.json";
+  withScene.scene->objects.push_back({"cuboid", 3, "cuboid", srp::core::Pose3::Identity(), std::nullopt, std::nullopt});
+  const int id = TaskModelStore(db).write(withScene);
+  const TaskModel back = TaskModelStore(db).read(id);
+  ASSERT_TRUE(back.scene.has_value());
+  EXPECT_EQ(back.scene->objects.size(), 1u);
 }

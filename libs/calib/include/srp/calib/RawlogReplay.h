@@ -17,7 +17,10 @@ namespace srp::calib {
 
 struct ReplayOptions {
   /// When set: colour_NNNN.png (8-bit BGR), depth_NNNN.png (16-bit, depth /
-  /// depth scale) and cam.json (intrinsics + depthScale) are written here.
+  /// depth scale), depth_color_NNNN.png (the depth colour-mapped for a person
+  /// to look at: OpenCV's TURBO map, blue near to red far over one range for the
+  /// whole recording, ReplaySummary::depthColourRange_m; black = no depth) and
+  /// cam.json (intrinsics + depthScale) are written here.
   std::string exportDir;
   /// Metres per exported depth unit; unset: the rawlog's own unit (lossless).
   std::optional<double> exportDepthScale_m;
@@ -46,6 +49,9 @@ struct ReplaySummary {
   int objectsSkipped = 0;          ///< non-RGB-D objects in the file
   std::optional<std::string> damage;  ///< where a damaged file ended
   int depthClipped = 0;            ///< exported depth pixels beyond 16 bits (written as 0)
+  /// Depth range [m] of the exported colour-mapped depth (blue .. red): the 1st
+  /// and 99th percentile of the first frame's valid depth; zero without export.
+  double depthColourNear_m = 0.0, depthColourFar_m = 0.0;
   /// Frames whose depth the reader re-projected from the depth camera into the
   /// colour camera (rawlog::needsRegistration): 0 for a registered recording,
   /// `frames` for one whose two cameras differ.

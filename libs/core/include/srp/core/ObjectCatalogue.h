@@ -42,7 +42,7 @@ struct ObjectClass {
   ObjectKind kind = ObjectKind::Part;
   std::string shape;       ///< generator shape: "cuboid", "star", "parallelogram", "octagon", "open_box", ...; empty: the mesh file alone
   Eigen::Vector3d rgb = Eigen::Vector3d::Constant(0.5);      ///< linear RGB in [0, 1]
-  bool hasColour = true;   ///< false: the entry gave no "rgb" (a mesh-only class); `rgb` is then a neutral grey
+  bool hasColour = true;   ///< false: the entry gave no "rgb" (e.g. a mesh-only class, a box added without --rgb); `rgb` is then a neutral grey
   Eigen::Vector3d dimensions_m = Eigen::Vector3d::Zero();   ///< bounding box x, y, z; zero for a mesh-only class until kb::loadCatalogue measures it
   double wallThickness_m = 0.0;                             ///< containers only
   double mass_kg = 0.0;    ///< zero for a mesh-only class without "mass_kg" until kb::loadCatalogue estimates it

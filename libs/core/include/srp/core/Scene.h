@@ -31,6 +31,12 @@
 /// `color_name` and `rgb`), an object may override it with
 /// `"color": "blue"` (the colour word instructions use; its rgb then comes from
 /// `rgbOfColourName` unless `"rgb": [r, g, b]` is given too) and/or `"rgb"`.
+///
+/// Observed classes: a scene perceived in a demonstration (`srp program` writes
+/// one) may hold parts and containers that no catalogue file knows, seen without
+/// a CAD file. It carries their full definitions (ObjectClass::observed, shape
+/// "hull" or "open_box"; ObjectClassJson.h) in `"observed_classes": [...]`, and
+/// its objects name them by class like catalogue classes.
 
 #include <Eigen/Core>
 #include <optional>
@@ -84,6 +90,9 @@ struct Scene {
   Pose3 X_world_base = Pose3::Identity();
   SceneLighting lighting;
   std::vector<SceneObject> objects;
+  /// Classes seen in a demonstration without a CAD file, carried by the scene
+  /// itself (JSON "observed_classes"); empty for a scene of catalogue classes.
+  std::vector<ObjectClass> observedClasses;
 
   Pose3 X_base_camera() const { return X_world_base.inverse() * X_world_camera; }
   const SceneObject* findObject(const std::string& id) const;
@@ -93,8 +102,12 @@ struct Scene {
   static Scene fromJson(const nlohmann::json& j, const std::string& context,
                         const std::string& baseFolder);
   nlohmann::json toJson() const;
+  /// `catalogue` plus this scene's observed classes: what its objects' class
+  /// names are looked up in. Throws InvalidInputError naming an observed class
+  /// whose name or class_id the catalogue already uses.
+  ObjectCatalogue withObservedClasses(const ObjectCatalogue& catalogue) const;
   /// Throws InvalidInputError naming the object/field when an object's class is
-  /// unknown, an id repeats, an object's footprint lies outside the table, or
+  /// unknown (to the catalogue and the scene's observed classes), an id repeats, an object's footprint lies outside the table, or
   /// an object's "color" is no known colour word and it gives no "rgb".
   void validate(const ObjectCatalogue& catalogue) const;
 };

@@ -34,8 +34,13 @@ struct CellObject {
   std::string className;  ///< knowledge-base class ("blue box"), "" if unknown
   std::string noun;       ///< head noun in instructions ("box"), "" if unknown
   int classId = -1;       ///< knowledge-base class id
-  std::string meshPath;   ///< the class's mesh (object frame) for rendering; "" or missing: drawn as its box
+  std::string meshPath;   ///< the class's mesh (object frame, metres) for rendering; "" or missing: drawn as its box
   double meshScale = 1.0; ///< metres per unit of the mesh file (ObjectClass::meshScale)
+  /// The class of a part or container seen in a demonstration without a CAD
+  /// file (ObjectClass::observed: shape "hull" or "open_box"), carried by the
+  /// scene: it is simulated as its box (`size_m`) and rendered as its generated
+  /// mesh (kb::makeClassMesh). nullopt for a catalogue class.
+  std::optional<srp::core::ObjectClass> observedClass;
 };
 
 /// An oriented box (centre pose and half extents) in the world frame.
@@ -73,7 +78,8 @@ struct CellDescription {
   static std::vector<WorldBox> containerBoxes(const CellObject& container);
 
   /// The cell of a scene file: robot base, table and every object with its
-  /// catalogue class (kind, size, wall, mass, colour). Throws InvalidInputError
+  /// class (kind, size, wall, mass, colour) from the catalogue or the scene's
+  /// own observed classes (Scene::observedClasses). Throws InvalidInputError
   /// (from Scene::validate) naming an object whose class is unknown.
   static CellDescription fromScene(const srp::core::Scene& scene, const srp::core::ObjectCatalogue& catalogue);
 

@@ -55,6 +55,11 @@ struct StepReport {
 
 struct ExecutionReport {
   std::string pathGenerator;  ///< "minimum-jerk" or "dmp"
+  /// The scene and the robot base when they were not given as a scene file
+  /// (the task model's own demonstration; the extrinsics or the default
+  /// placement); empty otherwise. Printed first by toText().
+  std::string scene;
+  std::string robotBase;
   std::vector<StepReport> steps;
   double simulated_s = 0.0;
   double simulationWall_s = 0.0;  ///< wall-clock time spent integrating

@@ -20,7 +20,19 @@ namespace srp::execution {
 struct ExecuteRequest {
   std::string databasePath;
   int taskModelId = 0;
-  std::string scenePath;     ///< scene JSON; "" = sim/scenes/default.json
+  /// Scene JSON; "" = the scene of the task model's own demonstration (its
+  /// perceived scene, DemonstrationScene.h), or sim/scenes/default.json for a
+  /// task model that stores none (programmed by an older srp).
+  std::string scenePath;
+  /// Camera-to-robot extrinsics, the demonstration camera's pose in the robot
+  /// base (`srp calibrate extrinsics` / `hand-eye`, read by `srp execute
+  /// --extrinsics`); nullopt = the task model's X_base_camera, else (own scene)
+  /// the default robot placement or (scene file) the scene's camera.
+  std::optional<srp::core::Pose3> X_base_camera;
+  std::string extrinsicsSource;  ///< names X_base_camera in the report (its file)
+  /// Knowledge base of the own scene's catalogue classes; "" = the one the task
+  /// model was programmed with (PerceivedScene::catalogue).
+  std::string cataloguePath;
   std::string outputFolder;  ///< "" = write nothing
   int framePeriod = 10;      ///< render every n-th logged snapshot (0 = no frames)
   bool drawSafetySpheres = false;  ///< frames: overlay the safety checker's arm spheres

@@ -63,6 +63,31 @@ struct MeshClassEntry {
   bool flat = false;                ///< a flat part (a sheet): no enclosed volume needed
 };
 
+/// A part or container without a mesh, given by its box size (`srp kb add NAME
+/// --shape box --size X Y Z`): catalogue shape "cuboid" (a container: "open_box"
+/// with walls kBoxContainerWall_m thick), no "mesh".
+struct BoxClassEntry {
+  std::string name;
+  int classId = -1;                 ///< -1: the next free id
+  std::string noun;                 ///< empty: the name
+  std::string kind = "part";        ///< "part" or "container"
+  Eigen::Vector3d size_m = Eigen::Vector3d::Zero();  ///< x, y, z [m], each in [kMinBoxSide_m, kMaxBoxSide_m]
+  std::optional<Eigen::Vector3d> rgb;  ///< linear RGB [0, 1] when the colour identifies it
+  std::optional<double> mass_kg;       ///< default: the box's volume at kDefaultPartDensity_kg_m3
+};
+
+/// The sides a box class may have [m]: from a screw to a large box.
+constexpr double kMinBoxSide_m = 0.001, kMaxBoxSide_m = 2.0;
+/// Wall and floor thickness of a box container [m] (at most a third of its smallest side).
+constexpr double kBoxContainerWall_m = 0.005;
+
+/// Appends a box class to the catalogue file (created when missing), after
+/// checking its size (every side finite, in [kMinBoxSide_m, kMaxBoxSide_m]),
+/// rgb (in [0, 1]), mass (positive) and that its name and id are free. Returns
+/// the class as loadCatalogue() reads it back. Throws InvalidInputError naming
+/// the bad value, FileError for an unreadable catalogue.
+srp::core::ObjectClass addBoxClass(const std::string& cataloguePath, const BoxClassEntry& entry);
+
 /// Appends `entry` to the catalogue file (created when missing; replaced
 /// atomically), after checking its name (core::isSafeName), that its mesh loads
 /// and passes MeshValidator (at `entry.scale`, `entry.flat`), and that its name

@@ -26,29 +26,38 @@
 namespace srp::language {
 
 /// Switches of the decoding rules applied after the tagger (each one counted on
-/// the training corpus or written from its annotation guide; README "Decoding
-/// rules"). Every rule is kept or dropped by the pooled cross-validation
-/// protocol (`srp train-language --cv 5 --cv-seeds 3 --ablate`): the defaults
-/// are what it kept (session 5); the others stay available for ablations.
+/// the training corpus, written from its annotation conventions or from English
+/// phrase structure, PhraseRules.h; README "Decoding rules"). Every rule is kept
+/// or dropped by the protocol (`srp train-language --cv 5 --cv-seeds 3 --ablate`:
+/// pooled cross-validation and the capability suites, ProtocolComparison.h): the
+/// defaults are what it kept; the others stay available for ablations.
 struct DecodingRules {
   bool spanLengths = false;            ///< indicator span reaches as the corpus' spans from that word
   bool ordersOnly = false;             ///< no indicator before a sentence's first action
   bool rareStartWords = true;          ///< no indicator starting at a word almost never annotated ("of")
   bool rareStartPairs = false;         ///< no spatial indicator at a (previous, word) pair almost never annotated
   bool actionAfterIsSpatial = true;    ///< an indicator with another action after it is spatial
-  bool relativeClauseIsSpatial = false;///< "the cube placed on" / "that is on": spatial
+  bool relativeClauseIsSpatial = true; ///< "the cube placed on" / "that is on": spatial
   bool conventionTypes = true;         ///< learned indicator type per (action, direction, first)
   bool oneGoalPerClause = false;       ///< of two goals in a clause, "to/onto/into" or the first stays
   bool addTrajectors = true;           ///< a spatial indicator after a verb gets the head noun as trajector
   bool dropUnlocatedTrajectors = true; ///< a trajector with no spatial indicator after it is dropped
-  bool sourceIsSpatial = false;        ///< "from / off / out of" phrases are spatial and not the clause's goal
+  bool sourceIsSpatial = true;         ///< "from / off / out of / away from" phrases are spatial, not the clause's
+                                       ///< goal, and locate the moved object even after the goal
+  bool placingFirstIsGoal = false;     ///< a placing verb's first phrase is its goal unless a "to / into" goal follows
+  bool directionSpans = true;          ///< "left of", "at the top left corner of", "to the left": the whole phrase
+  bool placingClauseGoal = true;       ///< a placing clause without a goal takes its bare or direction phrase
+  bool ofRoomIsSpatial = true;         ///< "the table *of* the kitchen": "of" before a room locates the noun before it
+  bool goalLandmarkLocatives = true;   ///< a phrase after a goal does not locate a trajector before the goal
+  bool sideToSpans = false;            ///< with direction_spans / placing_clause_goal: "left to", "right to" too
 
   /// Name and member of every switch, in README order (for ablations and the model file).
+  /// A switch missing from a model file is off (the model predates it).
   static const std::vector<std::pair<std::string, bool DecodingRules::*>>& all();
 };
 
-/// Groups of tagger features added in session 5 (linguistic evidence that does
-/// not depend on the corpus' words); each is kept only if pooled CV says so.
+/// Optional groups of tagger features (linguistic evidence that does not depend
+/// on the corpus' words); each is kept only if the protocol says so (none is).
 struct FeatureGroups {
   bool sourceGoalRole = false;    ///< preposition role: source (from/off/out of), goal (to/onto/into, on/in after a placing verb)
   bool directionPhrases = false;  ///< multi-word direction phrases (in front of, left of, at the ... corner)

@@ -18,6 +18,7 @@ struct WordInfo {
   bool artifact = false;  ///< a noun sense under "artifact" or "object" (box, block, ...)
   bool shape = false;     ///< a noun sense under "shape"/"plane figure"/"solid" (cube, star)
   bool location = false;  ///< a noun sense under "location"/"region" (corner, edge)
+  bool room = false;      ///< a noun sense under "room", "building" or "workplace" (kitchen, office, "room" itself)
 };
 
 /// Looks words up in WordNet, caching each answer. The WordNet C library keeps

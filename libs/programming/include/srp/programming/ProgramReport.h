@@ -11,6 +11,7 @@
 #include "srp/motion/SkillSet.h"
 #include "srp/perception/DemoPerception.h"
 #include "srp/programming/ProgrammingPipeline.h"
+#include "srp/taskdb/Rows.h"
 
 namespace srp::programming {
 
@@ -20,6 +21,23 @@ std::vector<std::string> writeProgramReport(const std::string& dir, const Progra
                                             const perception::PerceptionResult& seen,
                                             const motion::Segmentation& segmentation,
                                             const std::vector<motion::SkillSet>& skills);
+
+/// Frames evenly spread over the recording on a program report's contact sheet
+/// (besides each moved object's grasp and release frames).
+inline constexpr int kContactSheetSpreadFrames = 8;
+
+/// `dir`/contact_sheet.png: what perception saw, drawn on the demonstration
+/// (read again from ProgrammingOptions::demoPath, with its intrinsics override):
+/// kContactSheetSpreadFrames frames spread over the recording and every moved
+/// object's grasp and release frame (perception::PerceptionDrawing: palm, each
+/// part and container with outline, name and confidence, the perceived scene's
+/// table frame and rectangle), the events captioned ("GRASP toy") and framed in
+/// colour, an event of low confidence (motion's ObjectSegmentation::lowConfidence)
+/// flagged "LOW CONFIDENCE" in red. Returns the path written.
+std::vector<std::string> writeContactSheet(const std::string& dir, const ProgrammingOptions& options,
+                                           const perception::PerceptionResult& seen, const core::ObjectCatalogue& kb,
+                                           const motion::Segmentation& segmentation,
+                                           const std::optional<taskdb::PerceivedScene>& scene);
 
 /// The hand trajectory figure alone (x, y, z over time with detections
 /// marked, and the top view with grasp/release points).

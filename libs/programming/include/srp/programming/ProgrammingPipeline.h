@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "srp/core/CameraIntrinsics.h"
+#include "srp/core/Pose.h"
 #include "srp/core/PositionTrajectory.h"
 
 namespace srp::programming {
@@ -44,13 +45,25 @@ struct ProgrammingOptions {
   std::string dbPath = "task.db";
   std::string name = "task";      ///< re-using a name makes a new version
   bool markerFreeHand = false;    ///< hand detector: AprilTag on the glove (default) or marker-free
-  /// Empty: no report; else PNG figures + summary.md, built beside the folder and
-  /// renamed into place inside the storing transaction (checked before anything
-  /// runs: an existing folder holding anything but a report is refused).
+  /// Empty: no report; else a folder (built aside and renamed into place when
+  /// the model is stored: a failed run leaves none) with PNG figures, the
+  /// contact sheet of what perception saw, the perceived scene as a scene file
+  /// (scene.json) and summary.md. Its parent is checked before anything runs; an
+  /// existing folder holding anything but a report is refused.
   std::string reportDir;
   /// A damaged demonstration rawlog fails the run (nothing stored) unless
   /// this is set; then the frames before the damage are used, with a warning.
   bool allowTruncated = false;
+  /// A step of the plan without a grasp or a release in the demonstration
+  /// fails the run (nothing stored, the step and the reason named) unless this
+  /// is set; then the task model is stored without
+  /// those skills and ProgramResult::problems says what is missing.
+  bool allowPartial = false;
+  /// The demonstration camera's pose in the robot base (`srp calibrate
+  /// extrinsics` / `hand-eye`), stored as TaskModels.X_base_camera: execution
+  /// then places the robot in the demonstration's scene from it.
+  std::optional<core::Pose3> X_base_camera;
+  std::string extrinsicsSource;  ///< the file X_base_camera came from, for the report
   StageProgress progress;
 };
 
@@ -83,14 +96,23 @@ struct ProgramResult {
   std::vector<StageTiming> timings;
   double peakResidentMemory_MB = 0.0;  ///< the process' peak resident set size when the pipeline ended
   std::vector<std::string> warnings;
+  /// With allowPartial: what the demonstration lacks for the plan, one line per
+  /// step ("step 2 (star ...): no release ..."); empty when the task model is whole.
+  std::vector<std::string> problems;
+  /// The scene the demonstration showed was stored with the task model (false:
+  /// no table plane was found; the warnings say so).
+  bool sceneStored = false;
+  std::string robotBase;  ///< where the report's scene file puts the robot, and why
   std::vector<std::string> reportFiles;
 };
 
-/// Runs the whole pipeline and stores the task model. Throws (writing
-/// nothing) InvalidInputError when the instruction has no steps (the message
-/// says why), names an object the knowledge base does not know or the demo
-/// never shows, or the hand is never seen; FileError for a bad rawlog or
-/// database.
+/// Runs the whole pipeline and stores the task model with the scene the
+/// demonstration showed. Throws (writing nothing: no database file is created
+/// and no report folder is left) InvalidInputError when the instruction has no
+/// steps (the message says why), names an object the knowledge base does not
+/// know or the demo never shows, the hand is never seen, or (without
+/// allowPartial) a step has no grasp or no release; FileError for a bad rawlog
+/// or database.
 ProgramResult programTask(const ProgrammingOptions& options);
 
 /// Frame rate [Hz] of a recording from its timestamps (median frame period; 30 when unknown).

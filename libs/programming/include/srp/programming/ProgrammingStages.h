@@ -93,12 +93,30 @@ perception::PerceptionResult perceive(const GroundedPlan& grounded, const core::
                                       const ProgrammingOptions& options, std::vector<std::string>& warnings,
                                       const std::optional<core::Scene>& scene = std::nullopt);
 
-/// The perceived demo scene at the demo's start, for grounding: one object
-/// per perceived trajectory with a detection (name = its key, pose = its
-/// first detected pose in the table frame PerceptionResult::X_camera_table,
-/// size, kind and noun from the knowledge base, colour word = the scene
-/// instance's, else its class's, else the basic colour nearest its rgb).
-/// Throws InvalidInputError when the result has no table frame.
+/// Distance [m] the perceived table reaches beyond the objects' footprints on
+/// every side (perceivedSceneOf): with execution's default robot placement
+/// (0.1 m inside the table edge, execution::kDefaultBaseInset_m) the robot then
+/// stands 0.3 m from the nearest object, as in the thesis cell.
+inline constexpr double kPerceivedTableMargin_m = 0.4;
+
+/// The scene the demonstration showed, as stored with the task model
+/// (taskdb::PerceivedScene): one object per perceived trajectory with a
+/// detection (id = its key, class from the knowledge base, colour word = the
+/// scene instance's, else its class's, else the basic colour nearest its rgb),
+/// where it was first detected, resting on the support plane (its yaw about
+/// the plane's normal; never below the plane); the table frame is the support
+/// plane's (PerceptionResult::X_camera_table) moved to the centre of the
+/// rectangle holding every object's footprint plus kPerceivedTableMargin_m; the
+/// knowledge base's observed classes (ObjectClass::observed) the scene uses;
+/// `cataloguePath` as given. nullopt when the result has no support plane.
+std::optional<taskdb::PerceivedScene> perceivedSceneOf(const perception::PerceptionResult& seen,
+                                                       const core::ObjectCatalogue& kb,
+                                                       const std::optional<core::Scene>& scene,
+                                                       const std::string& cataloguePath);
+
+/// The perceived demo scene at the demo's start, for grounding: the cell of
+/// perceivedSceneOf (CellDescription::fromScene of its scene). Throws
+/// InvalidInputError when the result has no table frame.
 execution::CellDescription perceivedScene(const perception::PerceptionResult& seen, const core::ObjectCatalogue& kb,
                                           const std::optional<core::Scene>& scene);
 
@@ -125,11 +143,22 @@ GroundedPlan groundInstances(const GroundedPlan& grounded, const perception::Per
 motion::DemoTracks demoTracks(const perception::PerceptionResult& seen, const GroundedPlan& grounded,
                               double frameRate_hz);
 
+/// Stage 4b, the honest check: what the demonstration lacks for the plan, one
+/// line per step, naming the step: a step whose object never leaves its place
+/// or has no grasp or no release (motion's segmentation, its note). Empty when
+/// every step can be learned. A landmark of a step that is never seen (the
+/// steps can still be learned, but the perceived scene lacks it) is appended
+/// to `warnings`, once per landmark.
+std::vector<std::string> stepProblems(const GroundedPlan& grounded, const perception::PerceptionResult& seen,
+                                      const motion::Segmentation& segmentation, std::vector<std::string>& warnings);
+
 /// Stage 5 (rows): the task model to store: the instruction's tables, the
 /// perception rows (toTaskDbRows), the plan objects' class ids, instance ids
 /// (Products.InstanceId: the instance each phrase was grounded to, "" for a
 /// class's one instance) and locations, the Skills rows and the ProductPose
-/// skill flags. Does not touch the database.
+/// skill flags, the perceived scene (perceivedSceneOf, knowledge base
+/// ProgrammingOptions::cataloguePath, else the bundled one) and the camera's
+/// extrinsics (ProgrammingOptions::X_base_camera). Does not touch the database.
 taskdb::TaskModel buildTaskModel(const GroundedPlan& grounded, const ProgrammingOptions& options,
                                  const perception::PerceptionResult& seen, const core::ObjectCatalogue& kb,
                                  const motion::DemoTracks& tracks, const std::vector<motion::SkillSet>& skills,

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "srp/core/CameraIntrinsics.h"
+#include "srp/core/ObjectCatalogue.h"
 #include "srp/core/Pose.h"
 #include "srp/core/SkillType.h"
 
@@ -103,6 +104,33 @@ struct SkillRow {
   nlohmann::json parameters = nlohmann::json::object();
   std::string instanceId;  ///< instance of the class ("" = its one instance)
   bool operator==(const SkillRow&) const;
+};
+
+/// Table SceneObjects: one object of the scene a demonstration showed, where it
+/// stood when the demonstration began.
+struct SceneObjectRow {
+  std::string objectId;     ///< unique in the scene: the instance id, else the class name ("cuboid_red", "toy")
+  int classId = 0;          ///< a catalogue class, or an ObservedClasses row of the same task model
+  std::string className;    ///< that class' name
+  core::Pose3 X_table_object = core::Pose3::Identity();  ///< the class' object frame in the scene's table frame
+  std::optional<std::string> colour;   ///< colour word of the instance; nullopt = its class'
+  std::optional<Eigen::Vector3d> rgb;  ///< linear RGB [0, 1] of the instance; nullopt = its class'
+};
+
+/// The scene a demonstration was perceived in (tables PerceivedScenes,
+/// SceneObjects, ObservedClasses, schema 3), so that the task can be executed
+/// in the scene of its own demonstration. Frame `table`: the perceived support
+/// plane, origin at the centre of the table rectangle `tableSize_m` that holds
+/// every object with a margin, z up (towards the camera's side of the plane), x
+/// along the camera's x axis projected on the plane; metres.
+struct PerceivedScene {
+  std::string catalogue;    ///< the knowledge base the catalogue classes are named in (path given to srp program)
+  Eigen::Vector2d tableSize_m = Eigen::Vector2d(1.2, 0.8);
+  core::Pose3 X_table_camera = core::Pose3::Identity();  ///< the camera's optical frame when the demonstration began
+  std::vector<SceneObjectRow> objects;
+  /// Classes seen in the demonstration without a CAD file (ObjectClass::observed,
+  /// shape "hull" or "open_box"), stored whole: they live in this task model.
+  std::vector<core::ObjectClass> observedClasses;
 };
 
 /// Table TaskModels: one programmed task (name + version), with what a reader

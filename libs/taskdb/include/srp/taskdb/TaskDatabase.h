@@ -12,7 +12,7 @@ class Database;
 namespace srp::taskdb {
 
 /// The schema version this build reads and writes (`PRAGMA user_version`).
-inline constexpr int kSchemaVersion = 2;
+inline constexpr int kSchemaVersion = 3;
 
 /// One connection to a task database.
 ///

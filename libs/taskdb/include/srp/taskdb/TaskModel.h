@@ -3,6 +3,7 @@
 /// \brief The unified task model (thesis ch. 7.2): everything one programming
 /// run stores, as plain values. TaskModelStore writes and reads it atomically.
 
+#include <optional>
 #include <vector>
 
 #include "srp/taskdb/Rows.h"
@@ -21,17 +22,24 @@ struct TaskModel {
   std::vector<ProductPoseRow> productPoses;
   std::vector<HandPositionRow> handPositions;
   std::vector<SkillRow> skills;
+  /// The scene the demonstration was perceived in (schema 3); nullopt for a
+  /// task model programmed before, or whose demonstration showed no table plane.
+  std::optional<PerceivedScene> scene;
 
   const ProductRow* findProduct(int objectId) const;
   const GroundedProductRow* findGrounded(int classId) const;
 };
 
 /// JSON form of a task model (`srp db show --json`, example files). Round-trips
-/// exactly: toJson(fromJson(j)) == j for files written by toJson.
+/// exactly: toJson(fromJson(j)) == j for files written by toJson. The perceived
+/// scene is written as "perceived_scene" only when the model has one.
 nlohmann::json toJson(const TaskModel& model);
 /// Throws InvalidInputError naming the field when the JSON is not a task model.
 TaskModel taskModelFromJson(const nlohmann::json& j, const std::string& context);
 
 nlohmann::json toJson(const TaskModelInfo& info);
+nlohmann::json toJson(const PerceivedScene& scene);
+/// Throws InvalidInputError naming the field (every number checked finite).
+PerceivedScene perceivedSceneFromJson(const nlohmann::json& j, const std::string& context);
 
 }  // namespace srp::taskdb

@@ -89,6 +89,7 @@ void setupTrainLanguage(CLI::App& app) {
       outputs = {{"--cv-predictions", *cvPredictions}, {"--cv-json", *cvJson}};
     else if (syntheticOut->empty())
       outputs = {{"--out", *outPath}};
+    srp::core::checkOutputPaths(outputs, inputs, *overwrite);
     srp::app::applySwitches(*rules, options->rules, "decoding rule");
     srp::app::applySwitches(*features, options->features, "feature group");
     if (!syntheticOut->empty()) {

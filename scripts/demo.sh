@@ -29,13 +29,16 @@ step "2/6 program the task: instruction + demonstration -> task model"
 "$srp" program --instruction "$instruction" --demo "$out/demo.rawlog" --db "$db" --name thesis \
   --report "$out/report" -w
 
-run_execute() {  # name, extra args...
+run_execute() {  # name, extra args...: every step must be done (exit 0)
   local name=$1; shift
   set +e
   "$srp" execute --db "$db" --task 1 --out "$out/$name" -w "$@"
   local rc=$?
   set -e
-  [ $rc -le 2 ] || exit $rc   # 2 = done with skipped or failed steps: reported, keep going
+  if [ $rc -ne 0 ]; then  # 3: steps skipped or refused, 1: a step failed (the report says which)
+    echo "demo: 'srp execute' ($name) exited $rc; expected 0, every step done: see $out/$name/report.txt" >&2
+    exit $rc
+  fi
 }
 step "3/6 execute the learned task on the simulated UR5 (and export it for the real cell)"
 run_execute execute --scene "$scene" --urscript "$out/task.script" --trajectory-yaml "$out/trajectory.yaml"

@@ -46,7 +46,7 @@ inline CLI::Option* addOverwriteFlag(CLI::App& cmd, bool& overwrite) {
                       "Replace existing output files (without it an existing output is refused, naming the file)");
 }
 
-/// Exit code a command can request (e.g. 2 for "done, but with skipped steps").
+/// Exit code a command can request (srp/core/ExitCode.h; e.g. 3 for "done, but with skipped steps").
 int& commandExitCode();
 
 }  // namespace srp::app

@@ -16,6 +16,7 @@
 #include "srp/calib/CameraFiles.h"
 #include "srp/calib/ImageHeader.h"
 #include "srp/calib/IntrinsicCalibrator.h"
+#include "srp/core/DataPaths.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/core/OutputFile.h"
@@ -28,7 +29,8 @@ using srp::core::Pose3;
 struct IntrinsicArgs {
   std::vector<std::string> images;
   std::string pattern;
-  std::string out = "calib/camera.xml";
+  std::string out;  ///< empty: defaultCameraFileName(format) in the current folder
+  std::string format = "visp";
   std::string name = "Camera";
   std::string drawDir;
   bool noDistortion = false;
@@ -38,19 +40,19 @@ struct IntrinsicArgs {
 
 struct TagArgs {
   std::string image;
-  std::string intrinsics = "calib/camera.xml";
+  std::string intrinsics;  ///< empty: the shipped calib/camera.xml
   double tagSize_m = 0.0;
   std::vector<std::string> tags;  // "ID:x,y,z,yaw,pitch,roll"
   std::string frame = "base";
   std::string scene;
-  std::string out = "calib/extrinsics.json";
+  std::string out = "extrinsics.json";
   bool json = false;
   bool overwrite = false;
 };
 
 struct HandEyeArgs {
   std::string pairs;
-  std::string out = "calib/extrinsics.json";
+  std::string out = "extrinsics.json";
   bool json = false;
   bool overwrite = false;
 };
@@ -88,34 +90,54 @@ void runIntrinsics(const IntrinsicArgs& a) {
     line->show("calibrate", static_cast<std::size_t>(i + 1), static_cast<std::size_t>(n), name);
     if (i + 1 == n) line->finish();
   };
+  const auto format = srp::calib::cameraFileFormatFromName(a.format);
+  const std::string out = a.out.empty() ? srp::calib::defaultCameraFileName(format) : a.out;
   const auto r = srp::calib::calibrateIntrinsicsFromFiles(files, pattern, options);
-  srp::calib::saveCameraXml(a.out, r.camera, "srp calibrate --pattern " + a.pattern + ": RMS reprojection " +
-                                                 std::to_string(r.rms_px) + " px over " +
-                                                 std::to_string(r.viewsUsed()) + " images");
+  srp::calib::saveCameraFile(out, r.camera, format,
+                             "srp calibrate --pattern " + a.pattern + ": RMS reprojection " + std::to_string(r.rms_px) +
+                                 " px over " + std::to_string(r.viewsUsed()) + " images",
+                             r.rms_px);
   if (drawn) drawn->commit();
   // Read back what was written: every app reads this file.
-  const auto back = srp::calib::loadCameraXml(a.out, a.name);
+  const auto back = format == srp::calib::CameraFileFormat::Visp ? srp::calib::loadCameraXml(out, a.name)
+                                                                 : srp::calib::loadCameraFile(out).camera;
   const auto& K = back.intrinsics;
+  const auto outliers = r.outlierNames();
   if (a.json) {
     nlohmann::json views = nlohmann::json::array();
     for (const auto& v : r.views)
       views.push_back({{"image", v.name}, {"found", v.found}, {"points", v.points},
-                       {"rms_px", v.found ? nlohmann::json(v.rms_px) : nlohmann::json(nullptr)}});
-    std::cout << nlohmann::json{{"camera_file", a.out}, {"intrinsics", K},   {"kud", back.kud},
-                                {"kdu", back.kdu},      {"rms_px", r.rms_px}, {"views", views}}
+                       {"rms_px", v.found ? nlohmann::json(v.rms_px) : nlohmann::json(nullptr)},
+                       {"outlier", v.outlier}});
+    std::cout << nlohmann::json{{"camera_file", out},
+                                {"format", a.format},
+                                {"intrinsics", K},
+                                {"kud", back.kud},
+                                {"kdu", back.kdu},
+                                {"rms_px", r.rms_px},
+                                {"median_view_rms_px", r.medianViewRms_px},
+                                {"outlier_factor", srp::calib::kOutlierViewFactor},
+                                {"outliers", outliers},
+                                {"views", views}}
                      .dump(2)
               << "\n";
     return;
   }
   for (const auto& v : r.views) {
-    if (v.found) std::printf("  %-50s %4d points  RMS %.3f px\n", v.name.c_str(), v.points, v.rms_px);
-    else std::printf("  %-50s pattern NOT found (rejected)\n", v.name.c_str());
+    if (!v.found) std::printf("  %-50s pattern NOT found (rejected)\n", v.name.c_str());
+    else
+      std::printf("  %-50s %4d points  RMS %.3f px%s\n", v.name.c_str(), v.points, v.rms_px,
+                  v.outlier ? "  OUTLIER" : "");
   }
   std::printf("pattern found in %d of %zu images\n", r.viewsUsed(), r.views.size());
+  if (!outliers.empty())
+    std::printf("%zu outlier view(s), RMS at least %.0fx the median view's %.3f px: check them (blur, a bent board, a "
+                "wrong detection); drop them and calibrate again if the board is not seen right\n",
+                outliers.size(), srp::calib::kOutlierViewFactor, r.medianViewRms_px);
   std::printf("intrinsics: %dx%d  px %.3f  py %.3f  u0 %.3f  v0 %.3f  kud %.5f  kdu %.5f\n", K.width_px, K.height_px,
               K.fx_px, K.fy_px, K.cx_px, K.cy_px, back.kud, back.kdu);
   std::printf("total RMS reprojection error: %.3f px\n", r.rms_px);
-  std::printf("written to %s (camera '%s')%s\n", a.out.c_str(), a.name.c_str(),
+  std::printf("written to %s (%s, camera '%s')%s\n", out.c_str(), a.format.c_str(), a.name.c_str(),
               a.drawDir.empty() ? "" : (", detections drawn in " + a.drawDir).c_str());
 }
 
@@ -146,7 +168,9 @@ void printExtrinsics(const srp::calib::CameraExtrinsics& e, const std::string& o
 void runTags(const TagArgs& a) {
   srp::core::checkOutputPaths({{"--out", a.out}},
                               {{"--image", a.image}, {"--intrinsics", a.intrinsics}, {"--scene", a.scene}}, a.overwrite);
-  const auto camera = srp::calib::loadCameraFile(a.intrinsics).camera;
+  const std::string intrinsics =
+      a.intrinsics.empty() ? srp::core::DataPaths::file("calib/camera.xml").string() : a.intrinsics;
+  const auto camera = srp::calib::loadCameraFile(intrinsics).camera;
   srp::calib::checkImageFile(a.image);
   const cv::Mat image = cv::imread(a.image, cv::IMREAD_COLOR);
   if (image.empty()) throw srp::core::FileError(a.image, "cannot read this image");
@@ -163,7 +187,7 @@ void runTags(const TagArgs& a) {
   }
   auto e = srp::calib::extrinsicsFromTags(image, camera, a.tagSize_m, X_base_tag);
   if (!e) throw srp::core::InvalidInputError("none of the given tags is visible in '" + a.image + "'");
-  e->intrinsicsFile = a.intrinsics;
+  e->intrinsicsFile = intrinsics;
   e->save(a.out);
   printExtrinsics(*e, a.out, a.json);
 }
@@ -198,12 +222,19 @@ void runBoard(const BoardArgs& a) {
 void setupCalibrate(CLI::App& cmd) {
   auto intrinsic = std::make_shared<IntrinsicArgs>();
   cmd.footer(
-      "Example: srp calibrate --images 'calib/*.png' --pattern chessboard:9x6:0.025 --out calib/camera.xml --draw "
-      "calib/drawn\nPatterns: chessboard:COLSxROWS:SQUARE_m, circles:COLSxROWS:SPACING_m, "
+      "Example: srp calibrate --images 'calib/*.png' --pattern chessboard:9x6:0.025 --out camera.xml --draw drawn\n"
+      "A view whose RMS is 3x the median view's or more is flagged OUTLIER (JSON \"outlier\").\nPatterns: chessboard:COLSxROWS:SQUARE_m, circles:COLSxROWS:SPACING_m, "
       "acircles:COLSxROWS:SPACING_m, apriltag:COLSxROWS:TAG_m:GAP_m[:FIRST_ID] (see 'srp calibrate board').");
   cmd.add_option("--images", intrinsic->images, "image files or quoted patterns ('calib/*.png')");
   cmd.add_option("--pattern", intrinsic->pattern, "calibration target, e.g. chessboard:9x6:0.025");
-  cmd.add_option("--out", intrinsic->out, "ViSP camera XML to write")->capture_default_str();
+  cmd.add_option("--out", intrinsic->out,
+                 "camera file to write (default: camera.xml, camera_info.yaml or camera_opencv.yaml in the current "
+                 "folder, by --format)");
+  cmd.add_option("--format", intrinsic->format,
+                 "visp: ViSP camera XML (what srp reads by default); ros: ROS camera_info YAML (plumb_bob); opencv: "
+                 "OpenCV FileStorage YAML (camera_matrix, distortion_coefficients). srp reads all three")
+      ->check(CLI::IsMember({"visp", "ros", "opencv"}))
+      ->capture_default_str();
   cmd.add_option("--name", intrinsic->name, "camera name in the XML")->capture_default_str();
   cmd.add_option("--draw", intrinsic->drawDir, "write one PNG per image with the detected pattern here");
   cmd.add_flag("--no-distortion", intrinsic->noDistortion, "estimate a pinhole model without distortion");
@@ -214,7 +245,9 @@ void setupCalibrate(CLI::App& cmd) {
   auto tags = std::make_shared<TagArgs>();
   auto* ext = cmd.add_subcommand("extrinsics", "camera pose in the robot base from AprilTags (tag36h11) at known poses");
   ext->add_option("--image", tags->image, "image showing the tags")->required();
-  ext->add_option("--intrinsics", tags->intrinsics, "camera file (ViSP XML or JSON)")->capture_default_str();
+  ext->add_option("--intrinsics", tags->intrinsics,
+                  "camera file (ViSP XML, ROS/OpenCV YAML or JSON; default: the shipped calib/camera.xml of srp's data "
+                  "folder, the synthetic camera of the default scene)");
   ext->add_option("--tag-size", tags->tagSize_m, "side of the tags' black square [m]")->required();
   ext->add_option("--tag", tags->tags, "ID:x,y,z,yaw,pitch,roll of a tag in --frame (m, deg); repeat for more tags")
       ->required();
@@ -255,7 +288,7 @@ void setupCalibrate(CLI::App& cmd) {
   });
 }
 
-const srp::app::CommandRegistrar kReg{"calibrate", "Camera intrinsics from pattern images (ViSP XML) and extrinsics",
+const srp::app::CommandRegistrar kReg{"calibrate", "Camera intrinsics from pattern images (ViSP XML, ROS or OpenCV YAML) and extrinsics",
                                       10, setupCalibrate};
 
 }  // namespace

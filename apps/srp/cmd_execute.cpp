@@ -7,6 +7,7 @@
 #include "srp/calib/CameraExtrinsics.h"
 #include "srp/core/Error.h"
 #include "srp/core/OutputFile.h"
+#include "srp/core/ExitCode.h"
 #include "srp/core/ViewFrame.h"
 #include "srp/execution/ExecutionSession.h"
 #include "srp/execution/RosTrajectoryExporter.h"
@@ -46,7 +47,7 @@ void setupExecute(CLI::App& app) {
                  "sim/scenes/default.json for a task model that stores none)");
   app.add_option("--extrinsics", o->extrinsics,
                  "Camera-to-robot extrinsics JSON of the demonstration's camera ('srp calibrate extrinsics' or "
-                 "'hand-eye' write calib/extrinsics.json): places the robot base in the demonstration's scene (default: "
+                 "'hand-eye' write it, ./extrinsics.json by default): places the robot base in the demonstration's scene (default: "
                  "the calibration stored with the task model, else the table edge opposite the camera, said in the "
                  "report) and turns the demonstrated offsets into a --scene file's frame")
       ->check(CLI::ExistingFile);
@@ -130,14 +131,15 @@ void setupExecute(CLI::App& app) {
       std::cout << result.report.toJson().dump(2) << "\n";
     else
       std::cout << result.report.toText() << "outputs in " << o->out << "/\n";
-    if (!result.report.allSucceeded()) srp::app::commandExitCode() = 2;
+    // 0 every step done with its relations, 3 steps skipped or refused, 1 a step failed.
+    srp::app::commandExitCode() = srp::core::toInt(result.report.exitCode());
     if (o->urscript.empty() && o->trajectoryYaml.empty()) return;
     if (const auto why = result.executed.whyNotExportable()) {
       for (const std::string& path : {o->urscript, o->trajectoryYaml})
         if (!path.empty() && std::filesystem::remove(path))  // never leave an older program where this one was asked
           std::cerr << "srp execute: removed " << path << " (from an earlier run)\n";
       std::cerr << "srp execute: no URScript / trajectory YAML written: " << *why << "\n";
-      srp::app::commandExitCode() = 2;
+      if (srp::app::commandExitCode() == 0) srp::app::commandExitCode() = srp::core::toInt(srp::core::ExitCode::Error);
       return;
     }
     // Both files or neither: a program never sits beside a trajectory of another run.

@@ -1,5 +1,6 @@
 // `srp kb`: the knowledge base (object classes and their CAD meshes).
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include <nlohmann/json.hpp>
@@ -14,22 +15,40 @@
 namespace {
 
 void setupKb(CLI::App& cmd) {
-  auto cataloguePath = std::make_shared<std::string>(srp::core::ObjectCatalogue::defaultPath());
+  auto cataloguePath = std::make_shared<std::string>();  // empty: the shipped catalogue
   auto json = std::make_shared<bool>(false);
   cmd.require_subcommand(1);
+  const auto catalogueOrShipped = [cataloguePath] {
+    return cataloguePath->empty() ? srp::core::ObjectCatalogue::defaultPath() : *cataloguePath;
+  };
 
   auto* build = cmd.add_subcommand("build", "Generate the STL mesh of every catalogue class with a shape generator");
-  build->add_option("--catalogue", *cataloguePath, "catalogue JSON (default: the bundled one)");
+  auto outDir = std::make_shared<std::string>();
+  build->add_option("--catalogue", *cataloguePath,
+                    "catalogue JSON (default: the shipped datasets/kb/catalogue.json of srp's data folder)");
+  build->add_option("-o,--out", *outDir,
+                    "folder to write a copy of the catalogue and its meshes/ into (default: beside the --catalogue "
+                    "given; with the shipped catalogue, the current folder)");
+  build->footer("Example: srp kb build -o my_kb   (my_kb/catalogue.json and my_kb/meshes/*.stl, to edit and use "
+                "with --kb my_kb/catalogue.json)");
   auto overwrite = std::make_shared<bool>(false);
   srp::app::addOverwriteFlag(*build, *overwrite);
-  build->callback([cataloguePath, overwrite]() {
-    const auto catalogue = srp::kb::loadCatalogue(*cataloguePath);
-    std::vector<srp::core::PathRole> meshes;
+  build->callback([cataloguePath, outDir, catalogueOrShipped, overwrite]() {
+    const std::string path = catalogueOrShipped();
+    const std::string dir = !outDir->empty() ? *outDir : cataloguePath->empty() ? "." : "";
+    const auto catalogue = srp::kb::loadCatalogue(path);
+    std::vector<srp::core::PathRole> outputs;
     for (const auto& c : catalogue.classes())
-      if (srp::kb::hasShapeGenerator(c.shape)) meshes.push_back({"mesh of '" + c.name + "'", c.meshPath});
-    srp::core::checkOutputPaths(meshes, {{"--catalogue", *cataloguePath}}, *overwrite);
-    for (const auto& m : srp::kb::buildMeshes(catalogue))
+      if (srp::kb::hasShapeGenerator(c.shape))
+        outputs.push_back({"mesh of '" + c.name + "'",
+                           dir.empty() ? std::filesystem::path(c.meshPath)
+                                       : std::filesystem::path(dir) / "meshes" / std::filesystem::path(c.meshPath).filename()});
+    if (!dir.empty()) outputs.push_back({"catalogue copy", std::filesystem::path(dir) / std::filesystem::path(path).filename()});
+    srp::core::checkOutputPaths(outputs, {{"--catalogue", path}}, *overwrite);
+    if (!dir.empty()) std::filesystem::create_directories(dir);
+    for (const auto& m : srp::kb::buildMeshes(catalogue, dir))
       std::cout << m.className << ": " << m.triangleCount << " triangles -> " << m.path << "\n";
+    if (!dir.empty()) std::cout << "catalogue -> " << srp::kb::copyCatalogue(path, dir).string() << "\n";
   });
 
   auto* add = cmd.add_subcommand(
@@ -111,10 +130,11 @@ void setupKb(CLI::App& cmd) {
   });
 
   auto* list = cmd.add_subcommand("list", "List the catalogue classes");
-  list->add_option("--catalogue", *cataloguePath, "catalogue JSON (default: the bundled one)");
+  list->add_option("--catalogue", *cataloguePath,
+                   "catalogue JSON (default: the shipped datasets/kb/catalogue.json of srp's data folder)");
   list->add_flag("--json", *json, "machine-readable output");
-  list->callback([cataloguePath, json]() {
-    const auto catalogue = srp::kb::loadCatalogue(*cataloguePath);
+  list->callback([catalogueOrShipped, json]() {
+    const auto catalogue = srp::kb::loadCatalogue(catalogueOrShipped());
     nlohmann::json out = nlohmann::json::array();
     for (const auto& c : catalogue.classes()) {
       if (*json) {

@@ -28,7 +28,7 @@ std::vector<std::string> splitList(const std::string& s) {
 }
 
 struct PerceiveOptions {
-  std::string demo, kb = srp::core::ObjectCatalogue::defaultPath(), csv, hand = "marker", draw;
+  std::string demo, kb, csv, hand = "marker", draw;  // kb empty: the shipped catalogue
   int drawEvery = 1;
   std::string objects, staticObjects, scene;
   double tagSize_m = 0.05;
@@ -43,7 +43,7 @@ void run(const PerceiveOptions& o) {
   srp::core::checkOutputPaths({{"--csv", o.csv}, {"--draw", o.draw}},
                               {{"--demo", o.demo}, {"--kb", o.kb}, {"--scene", o.scene}}, o.overwrite);
   if (!o.draw.empty()) srp::core::checkFolderHoldsOnly(o.draw, {"frame_*", "contact_sheet.png"}, "--draw");
-  const auto catalogue = srp::kb::loadCatalogue(o.kb);
+  const auto catalogue = srp::kb::loadCatalogue(o.kb.empty() ? srp::core::ObjectCatalogue::defaultPath() : o.kb);
   PerceptionOptions p;
   p.hand = o.hand == "marker-free" ? PerceptionOptions::HandMethod::MarkerFree
            : o.hand == "none"      ? PerceptionOptions::HandMethod::None
@@ -119,7 +119,8 @@ void run(const PerceiveOptions& o) {
 void setupPerceive(CLI::App& app) {
   auto o = std::make_shared<PerceiveOptions>();
   app.add_option("--demo", o->demo, "Demo RGB-D rawlog (srp record / srp synth-demo)")->required();
-  app.add_option("--kb", o->kb, "Knowledge-base catalogue JSON (classes may be given by a CAD file alone)")->capture_default_str();
+  app.add_option("--kb", o->kb, "Knowledge-base catalogue JSON (classes may be given by a CAD file alone; default: the shipped "
+                 "datasets/kb/catalogue.json of srp's data folder)");
   app.add_option("--hand", o->hand, "Hand detector (none: objects only, a recording without a demonstrator)")
       ->check(CLI::IsMember({"marker", "marker-free", "none"}))
       ->capture_default_str();

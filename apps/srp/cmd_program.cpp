@@ -29,7 +29,7 @@ void setupProgram(CLI::App& cmd) {
   // Recording is its own command (srp record demo.rawlog): programming reads a finished recording,
   // so a failed recording can never leave a half-programmed task.
   cmd.add_option("--demo", a->demo, "Demonstration rawlog (srp record / srp import / srp synth-demo)")->required();
-  cmd.add_option("--kb", a->kb, "Knowledge base catalogue (default: datasets/kb/catalogue.json)");
+  cmd.add_option("--kb", a->kb, "Knowledge base catalogue (default: the shipped datasets/kb/catalogue.json of srp's data folder)");
   cmd.add_option("--scene", a->scene,
                  "The demo's scene JSON (srp synth-demo --scene; for a recording, one listing its instances and "
                  "their colours): a class it holds several times is perceived per instance, and the instruction's "
@@ -44,7 +44,7 @@ void setupProgram(CLI::App& cmd) {
                  "-w and is replaced only when it holds nothing but a report");
   cmd.add_option("--extrinsics", a->extrinsics,
                  "Camera-to-robot extrinsics of the demonstration's camera ('srp calibrate extrinsics' or 'hand-eye' "
-                 "write calib/extrinsics.json), stored with the task model: execution places the robot from it "
+                 "write it, ./extrinsics.json by default), stored with the task model: execution places the robot from it "
                  "(without: at the table edge opposite the camera)")
       ->check(CLI::ExistingFile);
   cmd.add_option("--hand", a->hand, "Hand detector: marker (AprilTag on the glove) or marker-free")

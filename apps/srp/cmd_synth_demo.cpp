@@ -21,7 +21,7 @@
 namespace {
 
 struct SynthDemoArgs {
-  std::string scenePath = srp::core::defaultScenePath();
+  std::string scenePath;  ///< empty: the shipped default scene
   std::string planPath;
   std::string outPath = "demo.rawlog";
   std::string contactSheet, depthCamera;
@@ -79,7 +79,7 @@ void run(const SynthDemoArgs& a) {
   srp::core::checkOutputPaths(
       {{"-o", a.outPath}, {"ground truth", groundTruth}, {"--contact-sheet", a.contactSheet}},
       {{"--scene", a.scenePath}, {"--plan", a.planPath}, {"--depth-camera", a.depthCamera}}, a.overwrite);
-  const auto scene = srp::core::Scene::load(a.scenePath);
+  const auto scene = srp::core::Scene::load(a.scenePath.empty() ? srp::core::defaultScenePath() : a.scenePath);
   const auto catalogue = srp::kb::loadCatalogue(scene.cataloguePath);
   const nlohmann::json plan = a.planPath.empty() ? srp::synth::defaultPlanJson() : srp::core::readJsonFile(a.planPath);
   srp::synth::SynthDemoOptions options;
@@ -158,7 +158,7 @@ void run(const SynthDemoArgs& a) {
 
 void setupSynthDemo(CLI::App& cmd) {
   auto args = std::make_shared<SynthDemoArgs>();
-  cmd.add_option("--scene", args->scenePath, "scene JSON (default: sim/scenes/default.json)");
+  cmd.add_option("--scene", args->scenePath, "scene JSON (default: the shipped sim/scenes/default.json of srp's data folder)");
   cmd.add_option("--plan", args->planPath,
                  "plan JSON in the `srp parse --json` step format (default: instruction 1 of the thesis)");
   cmd.add_option("-o,--out", args->outPath,

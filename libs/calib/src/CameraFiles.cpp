@@ -11,6 +11,7 @@
 #include <regex>
 #include <sstream>
 
+#include "CameraYaml.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/core/OutputFile.h"
@@ -126,8 +127,13 @@ void saveCameraXml(const std::string& path, const CameraCalibration& camera, con
 
 CameraFile loadCameraFile(const std::string& path) {
   CameraFile out;
-  if (std::filesystem::path(path).extension() == ".xml") {
+  const auto extension = std::filesystem::path(path).extension();
+  if (extension == ".xml") {
     out.camera = loadCameraXml(path);
+    return out;
+  }
+  if (extension == ".yaml" || extension == ".yml") {
+    out.camera = loadCameraYaml(path);
     return out;
   }
   const nlohmann::json root = core::readJsonFile(path);

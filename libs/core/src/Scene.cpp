@@ -4,6 +4,7 @@
 #include <map>
 #include <set>
 
+#include "srp/core/DataPaths.h"
 #include "srp/core/DefaultScene.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
@@ -68,7 +69,7 @@ const SceneObject* Scene::findObject(const std::string& id) const {
   return nullptr;
 }
 
-std::string defaultScenePath() { return std::string(SRP_SIM_DIR) + "/scenes/default.json"; }
+std::string defaultScenePath() { return DataPaths::file("sim/scenes/default.json").string(); }
 
 Scene Scene::load(const std::string& path) {
   const nlohmann::json j = readJsonFile(path);

@@ -153,25 +153,17 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
     }
   }
 
-  ExecutionPlan remaining;
-  for (std::size_t i = 0; i < result.plan.steps.size(); ++i) {
-    ExecutionPlan one;
-    one.steps.push_back(result.plan.steps[i]);
-    ExecutionReport part = executor.run(one);
-    part.steps[0].index = static_cast<int>(i);
-    if (request.progress) {
-      std::string text = part.toText();
-      request.progress(text.substr(0, text.find('\n')));
-    }
-    result.report.steps.push_back(part.steps[0]);
-    result.report.pathGenerator = part.pathGenerator;
-    result.report.simulated_s += part.simulated_s;
-    result.report.simulationWall_s += part.simulationWall_s;
-  }
-  result.report.minTableClearance_m = std::numeric_limits<double>::infinity();
-  for (const auto& s : result.report.steps)
-    if (s.status == StepStatus::Done)
-      result.report.minTableClearance_m = std::min(result.report.minTableClearance_m, s.minTableClearance_m);
+  // All placements are planned together before the first step moves; one progress line per step.
+  ExecutionReport report = executor.run(result.plan, [&](const StepReport& step) {
+    if (!request.progress) return;
+    ExecutionReport one;
+    one.steps.push_back(step);
+    const std::string text = one.toText();
+    request.progress(text.substr(0, text.find('\n')));
+  });
+  report.scene = result.report.scene;  // where the scene and the robot base came from (set above)
+  report.robotBase = result.report.robotBase;
+  result.report = std::move(report);
 
   result.executed = ExecutedTask::fromSimulation(robot, request.options.safety, executor.simulator(), result.report);
   result.executed.taskName = model.info.name;

@@ -116,15 +116,42 @@ bool hasShapeGenerator(const std::string& shape) {
          shape == "octagon" || shape == "hull";
 }
 
-std::vector<BuiltMesh> buildMeshes(const srp::core::ObjectCatalogue& catalogue) {
+namespace {
+
+/// Where buildMeshes(catalogue, outDir) writes a generated class's mesh, relative to outDir.
+std::filesystem::path generatedMeshPath(const std::string& meshPath) {
+  return std::filesystem::path("meshes") / std::filesystem::path(meshPath).filename();
+}
+
+}  // namespace
+
+std::vector<BuiltMesh> buildMeshes(const srp::core::ObjectCatalogue& catalogue, const std::filesystem::path& outDir) {
   std::vector<BuiltMesh> built;
   for (const auto& c : catalogue.classes()) {
     if (!hasShapeGenerator(c.shape) || c.meshPath.empty()) continue;  // no file wanted: generated when used
     const TriangleMesh mesh = makeClassMesh(c);
-    mesh.saveStl(c.meshPath, "srp kb: " + c.name + " (" + c.shape + "), metres, object frame = bottom centre");
-    built.push_back({c.name, c.meshPath, mesh.size()});
+    const std::string path = outDir.empty() ? c.meshPath : (outDir / generatedMeshPath(c.meshPath)).string();
+    mesh.saveStl(path, "srp kb: " + c.name + " (" + c.shape + "), metres, object frame = bottom centre");
+    built.push_back({c.name, path, mesh.size()});
   }
   return built;
+}
+
+std::filesystem::path copyCatalogue(const std::string& cataloguePath, const std::filesystem::path& outDir) {
+  namespace fs = std::filesystem;
+  if (!fs::is_directory(outDir)) throw srp::core::FileError(outDir.string(), "not a folder (create it first)");
+  const fs::path target = outDir / fs::path(cataloguePath).filename();
+  srp::core::checkOutputPaths({{"catalogue copy", target}}, {{"--catalogue", cataloguePath}}, /*overwrite=*/true);
+  const srp::core::ObjectCatalogue catalogue(readCatalogueFile(cataloguePath));
+  nlohmann::json j = srp::core::readJsonFile(cataloguePath);
+  for (auto& entry : j.at("classes")) {
+    const srp::core::ObjectClass& c = catalogue.at(entry.at("name").get<std::string>());
+    if (c.meshPath.empty()) continue;
+    entry["mesh"] = hasShapeGenerator(c.shape) ? generatedMeshPath(c.meshPath).string()
+                                               : fs::absolute(c.meshPath).lexically_normal().string();
+  }
+  srp::core::writeFileAtomically(target, j.dump(2) + "\n");
+  return target;
 }
 
 TriangleMesh loadClassMesh(const srp::core::ObjectClass& c) {

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "srp/core/DataPaths.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/core/OutputFile.h"
@@ -888,7 +889,7 @@ AnnotatedSentence LanguageModel::annotate(const std::vector<std::string>& tokens
   return out;
 }
 
-std::string defaultModelPath() { return std::string(SRP_DATASETS_DIR) + "/language/model/language_model.dat"; }
+std::string defaultModelPath() { return core::DataPaths::file("datasets/language/model/language_model.dat").string(); }
 
 std::vector<AnnotatedSentence> readSpertCorpus(const std::string& path) {
   const nlohmann::json j = core::readJsonFile(path);

@@ -84,9 +84,9 @@ std::vector<std::string> writeContactSheet(const std::string& dir, const Program
   std::vector<int> marked;
   for (const auto& ob : segmentation.objects) {
     if (!ob.moved) continue;
-    if (ob.graspFrame >= 0) events[ob.graspFrame].push_back({"GRASP " + ob.name, cv::Scalar(60, 200, 60), ob.lowConfidence});
+    if (ob.graspFrame >= 0) events[ob.graspFrame].push_back({"GRASP " + ob.name, cv::Scalar(60, 200, 60), ob.graspLowConfidence});
     if (ob.releaseFrame >= 0)
-      events[ob.releaseFrame].push_back({"RELEASE " + ob.name, cv::Scalar(230, 150, 40), ob.lowConfidence});
+      events[ob.releaseFrame].push_back({"RELEASE " + ob.name, cv::Scalar(230, 150, 40), ob.releaseLowConfidence});
   }
   for (const auto& [frame, e] : events) marked.push_back(frame);
   const std::vector<int> frames = perception::contactSheetFrames(seen.frames, kContactSheetSpreadFrames, marked);

@@ -70,7 +70,8 @@ class ObjectCatalogue {
   ObjectCatalogue() = default;
   explicit ObjectCatalogue(std::vector<ObjectClass> classes);
 
-  /// The catalogue bundled with the repo (datasets/kb/catalogue.json).
+  /// The shipped catalogue, `datasets/kb/catalogue.json` of srp's data folder
+  /// (DataPaths). Throws FileError when it is not there.
   static std::string defaultPath();
 
   const std::vector<ObjectClass>& classes() const { return classes_; }

@@ -43,6 +43,10 @@ struct CellObject {
   std::optional<srp::core::ObjectClass> observedClass;
 };
 
+/// True when the footprint centre of `part` lies inside `container`'s inner walls (x, y in
+/// the container's frame; the height is not looked at).
+bool isInside(const CellObject& part, const CellObject& container);
+
 /// An oriented box (centre pose and half extents) in the world frame.
 struct WorldBox {
   std::string owner;  ///< object name ("table", "gray box")

@@ -5,6 +5,7 @@
 /// such classes (`srp kb add`).
 
 #include <Eigen/Core>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,10 +23,22 @@ struct BuiltMesh {
 };
 
 /// Generates the mesh of every class whose shape has a generator
-/// (makeClassMesh) and writes it as binary STL to the class' `mesh` path
-/// (creating its folder). Classes with another shape keep their user-supplied
-/// mesh and are skipped. Throws FileError naming the path when writing fails.
-std::vector<BuiltMesh> buildMeshes(const srp::core::ObjectCatalogue& catalogue);
+/// (makeClassMesh) and writes it as binary STL: to the class' `mesh` path
+/// (creating its folder) when `outDir` is empty, else to
+/// `outDir/meshes/<file name of the class' mesh path>` (where copyCatalogue()
+/// points them). Classes with another shape keep their user-supplied mesh and
+/// are skipped. Throws FileError naming the path when writing fails.
+std::vector<BuiltMesh> buildMeshes(const srp::core::ObjectCatalogue& catalogue,
+                                   const std::filesystem::path& outDir = {});
+
+/// Writes a copy of the catalogue file `cataloguePath` as `outDir/<its file
+/// name>` (atomically): a class with a shape generator names
+/// `meshes/<file name>` (what buildMeshes(catalogue, outDir) writes), a class
+/// given by its own CAD file names that file by its absolute path; everything
+/// else is copied as it is. Returns the path written. Throws InvalidInputError
+/// when the copy would replace the catalogue itself, FileError when `outDir` is
+/// not a folder.
+std::filesystem::path copyCatalogue(const std::string& cataloguePath, const std::filesystem::path& outDir);
 
 /// True when makeClassMesh() can generate meshes for this shape.
 bool hasShapeGenerator(const std::string& shape);

@@ -2,6 +2,7 @@
 // per-frame hand (palm centre) and object poses, camera frame.
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -28,13 +29,13 @@ std::vector<std::string> splitList(const std::string& s) {
 }
 
 struct PerceiveOptions {
-  std::string demo, kb, csv, hand = "marker", draw;  // kb empty: the shipped catalogue
+  std::string demo, kb, csv, hand = "auto", draw;  // kb empty: the shipped catalogue
   int drawEvery = 1;
   std::string objects, staticObjects, scene;
   double tagSize_m = 0.05;
   int tagId = 0;
   bool json = false;
-  bool movingCamera = false;
+  bool movingCamera = false, fixedCamera = false;
   bool overwrite = false;
   std::string tracker = "auto";
 };
@@ -47,8 +48,10 @@ void run(const PerceiveOptions& o) {
   PerceptionOptions p;
   p.hand = o.hand == "marker-free" ? PerceptionOptions::HandMethod::MarkerFree
            : o.hand == "none"      ? PerceptionOptions::HandMethod::None
-                                   : PerceptionOptions::HandMethod::Marker;
+           : o.hand == "marker"    ? PerceptionOptions::HandMethod::Marker
+                                   : PerceptionOptions::HandMethod::Auto;
   p.movingCamera = o.movingCamera;
+  p.detectCameraMotion = !o.fixedCamera;
   p.objectTracking = o.tracker == "mbt"      ? PerceptionOptions::ObjectTracking::Mbt
                      : o.tracker == "fitter" ? PerceptionOptions::ObjectTracking::Fitter
                                              : PerceptionOptions::ObjectTracking::Auto;
@@ -73,6 +76,17 @@ void run(const PerceiveOptions& o) {
     nlohmann::json j;
     j["frames"] = r.frames;
     j["frame"] = "camera";
+    j["hand_detector"] = r.handMethod == PerceptionOptions::HandMethod::MarkerFree ? "marker-free"
+                         : r.handMethod == PerceptionOptions::HandMethod::None     ? "none"
+                                                                                  : "marker";
+    j["camera_moved"] = r.cameraMoved;
+    if (r.cameraMoved) {
+      j["camera_moved_at_frame"] = r.cameraMovedAtFrame;
+      j["camera_travel_m"] = r.cameraTravel_m;
+      j["camera_turn_deg"] = r.cameraTurn_rad * 180.0 / M_PI;
+      j["X_camera0_camera"] = nlohmann::json::array();
+      for (const auto& X : r.X_camera0_camera) j["X_camera0_camera"].push_back(srp::core::poseToJson(X));
+    }
     j["hand_detected_frames"] = r.handDetected;
     j["hand_depth_carried_frames"] = r.handDepthCarried;
     for (const auto& s : r.hand.samples())
@@ -97,6 +111,12 @@ void run(const PerceiveOptions& o) {
   }
   std::printf("%d frames, hand detected in %d (%d with carried depth); camera frame, metres\n", r.frames,
               r.handDetected, r.handDepthCarried);
+  if (r.cameraMoved)
+    std::printf("the camera moved (from frame %d on; up to %.1f cm and %.1f deg from frame 0): each frame's poses are in "
+                "its own camera (--json gives each camera's pose in frame 0's)\n",
+                r.cameraMovedAtFrame, 100.0 * r.cameraTravel_m, r.cameraTurn_rad * 180.0 / M_PI);
+  else
+    std::printf("the camera stayed still\n");
   for (const auto& obj : r.objects)
     std::printf("  %-14s %-7s detected in %d frames\n", obj.key().c_str(), obj.isStatic ? "static" : "moving",
                 obj.detectedFrames());
@@ -121,15 +141,21 @@ void setupPerceive(CLI::App& app) {
   app.add_option("--demo", o->demo, "Demo RGB-D rawlog (srp record / srp synth-demo)")->required();
   app.add_option("--kb", o->kb, "Knowledge-base catalogue JSON (classes may be given by a CAD file alone; default: the shipped "
                  "datasets/kb/catalogue.json of srp's data folder)");
-  app.add_option("--hand", o->hand, "Hand detector (none: objects only, a recording without a demonstrator)")
-      ->check(CLI::IsMember({"marker", "marker-free", "none"}))
+  app.add_option("--hand", o->hand,
+                 "Hand detector: auto (the glove's AprilTag when the recording shows it, else the bare hand), marker, "
+                 "marker-free, or none (objects only, a recording without a demonstrator)")
+      ->check(CLI::IsMember({"auto", "marker", "marker-free", "none"}))
       ->capture_default_str();
-  app.add_flag("--moving-camera", o->movingCamera,
-               "Hand-held camera: support plane fitted and objects detected in every frame on its own");
+  auto* moving = app.add_flag("--moving-camera", o->movingCamera,
+                              "Treat the camera as moving from the first frame (by default srp notices a moving camera "
+                              "itself, by depth odometry against the first frame): support plane fitted and objects "
+                              "detected in every frame on its own");
+  app.add_flag("--fixed-camera", o->fixedCamera, "Treat the camera as fixed whatever the frames show (no odometry)")
+      ->excludes(moving);
   app.add_option("--tracker", o->tracker,
                  "How a detected part is followed: mbt (ViSP model-based tracker on KLT points of the colour image; "
                  "back to detection when too few points remain or the depth does not confirm the part), fitter "
-                 "(detected in every frame), auto (mbt with --moving-camera, else fitter)")
+                 "(detected in every frame), auto (mbt once the camera moves, else fitter)")
       ->check(CLI::IsMember({"auto", "mbt", "fitter"}))
       ->capture_default_str();
   app.add_option("--tag-size", o->tagSize_m, "Glove tag (tag36h11) black square side [m]")->capture_default_str();
@@ -155,7 +181,7 @@ void setupPerceive(CLI::App& app) {
       "Object poses are those of each class's mesh frame (a CAD file's own frame), camera optical frame.\n"
       "Example (a real hand-held recording, objects only):\n"
       "  srp import datasets/real/visp-rbt-cube cube.rawlog\n"
-      "  srp perceive --demo cube.rawlog --kb my_parts.json --objects cube --hand none --moving-camera --json");
+      "  srp perceive --demo cube.rawlog --kb my_parts.json --objects cube --hand none --json");
   app.callback([o] { run(*o); });
 }
 

@@ -18,7 +18,7 @@
 namespace {
 
 struct ProgramArgs {
-  std::string instruction, demo, kb, calib, db = "task.db", name = "task", report, hand = "marker", scene, extrinsics;
+  std::string instruction, demo, kb, calib, db = "task.db", name = "task", report, hand = "auto", scene, extrinsics;
   bool json = false, quiet = false, allowTruncated = false, allowPartial = false, overwrite = false;
 };
 
@@ -47,8 +47,10 @@ void setupProgram(CLI::App& cmd) {
                  "write it, ./extrinsics.json by default), stored with the task model: execution places the robot from it "
                  "(without: at the table edge opposite the camera)")
       ->check(CLI::ExistingFile);
-  cmd.add_option("--hand", a->hand, "Hand detector: marker (AprilTag on the glove) or marker-free")
-      ->check(CLI::IsMember({"marker", "marker-free"}))
+  cmd.add_option("--hand", a->hand,
+                 "Hand detector: auto (the glove's AprilTag when the recording shows it, else the bare hand), marker "
+                 "(AprilTag on the glove) or marker-free")
+      ->check(CLI::IsMember({"auto", "marker", "marker-free"}))
       ->capture_default_str();
   cmd.add_flag("--allow-truncated", a->allowTruncated,
                "Use the frames before the damage of a damaged demonstration rawlog (default: fail, store nothing)");
@@ -78,7 +80,8 @@ void setupProgram(CLI::App& cmd) {
       o.X_base_camera = srp::calib::CameraExtrinsics::load(a->extrinsics).X_base_camera;
       o.extrinsicsSource = a->extrinsics;
     }
-    o.markerFreeHand = a->hand == "marker-free";
+    using Hand = srp::programming::ProgrammingOptions::Hand;
+    o.hand = a->hand == "marker-free" ? Hand::MarkerFree : a->hand == "marker" ? Hand::Marker : Hand::Auto;
     // One line per stage on a terminal, redrawn at most every 100 ms; silent otherwise.
     srp::app::ProgressLine bar(!a->quiet && !a->json && isatty(STDERR_FILENO), std::chrono::milliseconds(100));
     o.progress = [&bar](const std::string& s, std::size_t d, std::size_t t) { bar.show(s, d, t, t ? "" : "frames"); };
@@ -91,7 +94,11 @@ void setupProgram(CLI::App& cmd) {
     std::cout << "Stored task model " << r.taskModelId << " ('" << r.name << "' version " << r.version << ") in "
               << a->db << "\n\nPlan:\n";
     for (std::size_t i = 0; i < r.planLines.size(); ++i) std::cout << "  " << i + 1 << ". " << r.planLines[i] << "\n";
-    std::cout << "\nDemonstration: " << r.frames << " frames, hand detected in " << r.handDetectedFrames << "\n\n";
+    std::cout << "\nDemonstration: " << r.frames << " frames, hand (" << r.handDetector << ") detected in "
+              << r.handDetectedFrames << "; camera "
+              << (r.cameraMoved ? "moved (trajectories kept in the first frame's camera)" : "fixed") << "\n";
+    for (const auto& n : r.discoveryNotes) std::cout << "Found in the demonstration: " << n << "\n";
+    std::cout << "\n";
     std::cout << std::left << std::setw(16) << "object" << std::setw(8) << "grasp" << std::setw(9) << "release"
               << std::setw(12) << "reach λ" << std::setw(12) << "move λ" << "note\n";
     for (const auto& ob : r.objects)

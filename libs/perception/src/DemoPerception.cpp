@@ -73,9 +73,9 @@ std::vector<ObjectModel> instanceModels(const core::ObjectCatalogue& catalogue, 
   return models;
 }
 
-bool useModelBasedTracking(const PerceptionOptions& o) {
+bool useModelBasedTracking(const PerceptionOptions& o, bool movingCamera) {
   return o.objectTracking == PerceptionOptions::ObjectTracking::Mbt ||
-         (o.objectTracking == PerceptionOptions::ObjectTracking::Auto && o.movingCamera);
+         (o.objectTracking == PerceptionOptions::ObjectTracking::Auto && movingCamera);
 }
 
 }  // namespace
@@ -87,6 +87,10 @@ struct DemoPerceiver::Impl {
   std::unique_ptr<ObjectDetector> detector;
   std::unique_ptr<ObjectTracker> tracker;
   std::unique_ptr<HandDetector> hand;
+  PerceptionOptions::HandMethod handUsed = PerceptionOptions::HandMethod::Marker;  // Auto until the preview decided
+  std::unique_ptr<HandDetector> tagProbe;  // Auto: the glove's tag looked for in the preview
+  int previewed = 0, tagFrames = 0;
+  std::unique_ptr<ObjectDiscovery> discovery;
   std::map<std::string, std::unique_ptr<ModelBasedTracker>> mbt;  // per moving class, when tracking with ViSP
   // Per moving class, this frame: the pose ViSP tracked but the depth did not confirm (mbtCompareBeforeReinit).
   std::map<std::string, core::Pose3> unconfirmed;
@@ -94,6 +98,9 @@ struct DemoPerceiver::Impl {
   std::map<std::string, core::Pose3> lastConfirmed;
   std::optional<rawlog::RgbdFrame> first;  // images released: only size and intrinsics are kept
   std::optional<Plane> support;
+  std::optional<Plane> firstSupport;  // the support plane in the first frame's camera
+  std::unique_ptr<CameraMotionEstimator> cameraMotion;  // when watched or declared moving
+  bool moving = false;  // perceived as with a moving camera (declared, or from the frame it was noticed)
   std::vector<int> frameIndex;
   std::vector<double> frameTime_s;
   // Per class: per frame, the best detection (if any).
@@ -101,6 +108,7 @@ struct DemoPerceiver::Impl {
   PerceptionResult result;
   bool haveDepth = false;
   double lastZ_m = 0.0;
+  double lastZ_t_s = 0.0;  // when lastZ_m was measured
   const bool debug = std::getenv("SRP_PERCEPTION_DEBUG") != nullptr;
 
   Impl(const core::ObjectCatalogue& c, const PerceptionOptions& o) : catalogue(c), options(o) {}
@@ -257,17 +265,24 @@ DemoPerceiver::DemoPerceiver(const core::ObjectCatalogue& catalogue, const Perce
                                   std::to_string(options.mbtOccluderMargin_m) +
                                   " must be a distance >= 0 [m] (depth this much nearer than the model hides it)");
   // Objects of interest: the plan's, else every class (moving).
+  // Objects of interest: the plan's, else every class (moving) unless only unknown objects are looked for.
   impl_->plan = options.plan;
-  if (impl_->plan.empty())
+  if (impl_->plan.empty() && options.unknownObjects.empty())
     for (const auto& c : catalogue.classes()) impl_->plan.push_back({c.name, false, "", std::nullopt});
-  impl_->detector = std::make_unique<ObjectDetector>(instanceModels(catalogue, impl_->plan), options.objects);
-  ObjectTracker::Options tracking = options.tracking;
-  for (const auto& p : impl_->plan)
-    if (p.isStatic) tracking.staticClasses.insert(p.key());
-  impl_->tracker = std::make_unique<ObjectTracker>(*impl_->detector, tracking);
+  if (!impl_->plan.empty()) {
+    impl_->detector = std::make_unique<ObjectDetector>(instanceModels(catalogue, impl_->plan), options.objects);
+    ObjectTracker::Options tracking = options.tracking;
+    for (const auto& p : impl_->plan)
+      if (p.isStatic) tracking.staticClasses.insert(p.key());
+    impl_->tracker = std::make_unique<ObjectTracker>(*impl_->detector, tracking);
+  }
+  if (!options.unknownObjects.empty())
+    impl_->discovery = std::make_unique<ObjectDiscovery>(options.unknownObjects, options.discovery);
+  impl_->handUsed = options.hand;
   if (options.hand == PerceptionOptions::HandMethod::Marker) impl_->hand = std::make_unique<MarkerHandDetector>(options.marker);
-  else if (options.hand == PerceptionOptions::HandMethod::MarkerFree)
+  else if (options.hand == PerceptionOptions::HandMethod::MarkerFree || options.hand == PerceptionOptions::HandMethod::Auto)
     impl_->hand = std::make_unique<MarkerFreeHandDetector>(options.markerFree);
+  if (options.hand == PerceptionOptions::HandMethod::Auto) impl_->tagProbe = std::make_unique<MarkerHandDetector>(options.marker);
   for (const auto& p : impl_->plan) impl_->perClass[p.key()];
 }
 
@@ -275,7 +290,30 @@ DemoPerceiver::~DemoPerceiver() = default;
 
 int DemoPerceiver::framesAdded() const { return static_cast<int>(impl_->frameIndex.size()); }
 
-void DemoPerceiver::preview(const rawlog::RgbdFrame& f) { impl_->hand->preview(f); }
+bool DemoPerceiver::wantsPreview() const {
+  return impl_->options.hand == PerceptionOptions::HandMethod::MarkerFree ||
+         impl_->options.hand == PerceptionOptions::HandMethod::Auto;
+}
+
+bool DemoPerceiver::previewComplete() const {
+  return impl_->options.hand == PerceptionOptions::HandMethod::Auto &&
+         impl_->handUsed == PerceptionOptions::HandMethod::Marker;
+}
+
+void DemoPerceiver::preview(const rawlog::RgbdFrame& f) {
+  Impl& m = *impl_;
+  if (m.handUsed == PerceptionOptions::HandMethod::Auto) {
+    if (!m.tagProbe) return;  // decided: the glove's tag is seen
+    // The glove's tag, looked for in every probeStride-th frame: seen in enough, the marker hand.
+    if (m.previewed++ % m.options.autoHandProbeStride == 0 && m.tagProbe->detect(f) &&
+        ++m.tagFrames >= m.options.autoHandMinTagFrames) {
+      m.hand = std::move(m.tagProbe);
+      m.handUsed = PerceptionOptions::HandMethod::Marker;
+      return;
+    }
+  }
+  if (m.hand) m.hand->preview(f);
+}
 
 void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
   Impl& m = *impl_;
@@ -289,6 +327,29 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
     m.result.intrinsics = f.intrinsics;
   }
   checkFrame(f, *m.first, i);
+  if (i == 0 && m.handUsed == PerceptionOptions::HandMethod::Auto) {
+    // No tag in the preview (or no preview): the marker-free hand, which learnt from it.
+    m.tagProbe.reset();
+    m.handUsed = m.previewed > 0 ? PerceptionOptions::HandMethod::MarkerFree : PerceptionOptions::HandMethod::Marker;
+    if (m.handUsed == PerceptionOptions::HandMethod::Marker) m.hand = std::make_unique<MarkerHandDetector>(m.options.marker);
+    if (m.debug)
+      std::fprintf(stderr, "hand: %s (glove tag in %d of the %d previewed frames probed)\n",
+                   m.handUsed == PerceptionOptions::HandMethod::Marker ? "marker" : "marker-free", m.tagFrames, m.previewed);
+  }
+  if (i == 0) {
+    m.moving = m.options.movingCamera;
+    if (m.moving) m.result.cameraMovedAtFrame = f.index;
+    if (m.options.movingCamera || m.options.detectCameraMotion)
+      m.cameraMotion = std::make_unique<CameraMotionEstimator>(f.intrinsics, m.options.cameraMotion);
+  }
+  if (m.cameraMotion) {
+    m.cameraMotion->add(f);
+    if (!m.moving && m.cameraMotion->moved()) {
+      m.moving = true;  // from here on as with a moving camera
+      m.result.cameraMovedAtFrame = f.index;
+      if (m.debug) std::fprintf(stderr, "frame %d: the camera moved, perceived as moving from here on\n", f.index);
+    }
+  }
   m.frameIndex.push_back(f.index);
   m.frameTime_s.push_back(f.t_s);
 
@@ -298,9 +359,15 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
   s.valid = false;
   const auto h = m.hand ? m.hand->detect(f) : std::nullopt;
   if (h) {
-    if (h->hasDepth) {
+    // A palm depth farther from the last one than the hand can move since
+    // (a hole in a blurred hand filled by the wall behind it) is a hole too.
+    const bool depthJump = h->hasDepth && m.haveDepth && m.options.maxPalmDepthSpeed_mps > 0.0 &&
+                           std::abs(h->p_camera_palm_m.z() - m.lastZ_m) >
+                               m.options.maxPalmDepthSpeed_mps * std::max(f.t_s - m.lastZ_t_s, 1.0 / 30.0);
+    if (h->hasDepth && !depthJump) {
       s.p_m = h->p_camera_palm_m;
       m.lastZ_m = h->p_camera_palm_m.z();
+      m.lastZ_t_s = f.t_s;
       m.haveDepth = true;
       s.valid = true;
     } else if (m.haveDepth) {
@@ -316,46 +383,59 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
   // Objects after the hand: the hand's segment (and a part it holds) explains no object.
   const auto detectStart = std::chrono::steady_clock::now();  // plane fit and detection: the fitter's cost
   std::optional<Plane> movingPlane;
-  if (m.options.movingCamera) {
+  if (!m.support) {
+    // The first frame's support plane: the table, not a larger wall behind it.
+    m.support = fitSupportPlane(depthToCloud(f.depth_m, CameraModel(f.intrinsics)), m.options.objects.plane);
+    m.firstSupport = m.support;
+    movingPlane = m.support;
+  } else if (m.moving) {
     // The table turns little between frames: the plane is looked for near
     // the last one, so that a wall or board filling more of the image does
     // not take its place (frame 41 of the real RealSense recording).
     PlaneFitOptions po = m.options.objects.plane;
-    if (m.support) {
-      po.expectedNormal = m.support->n;
-      po.maxTilt_rad = m.options.maxPlaneTurnPerFrame_rad;
-    }
+    po.expectedNormal = m.support->n;
+    po.maxTilt_rad = m.options.maxPlaneTurnPerFrame_rad;
     movingPlane = fitDominantPlane(depthToCloud(f.depth_m, CameraModel(f.intrinsics)), po);
     if (!movingPlane) movingPlane = m.support;
-    if (movingPlane) m.support = movingPlane;
+    m.support = movingPlane;
   }
-  // Model-based tracking first: when every moving class is tracked, no detection is needed.
-  const bool useMbt = useModelBasedTracking(m.options);
-  const std::map<std::string, ObjectDetection> tracked = useMbt ? m.trackParts(f) : std::map<std::string, ObjectDetection>{};
-  const bool allTracked =
-      useMbt && m.options.movingCamera && std::all_of(m.plan.begin(), m.plan.end(), [&](const PlanObject& p) {
-        return p.isStatic || tracked.count(p.key()) > 0;
-      });
-  auto detections =
-      m.options.movingCamera
-          ? (movingPlane && !allTracked ? m.detector->detect(f, &*movingPlane) : std::vector<ObjectDetection>{})
-          : m.tracker->update(f, m.options.fixedSupportPlane && m.support ? &*m.support : nullptr,
-                              h ? std::vector<Eigen::Vector2d>{h->palm_px} : std::vector<Eigen::Vector2d>{});
-  if (m.debug)
-    std::fprintf(stderr, "frame %d: %s in %.1f ms\n", f.index, allTracked ? "plane fit (all tracked)" : "detection",
-                 std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - detectStart).count());
-  if (m.options.onFrameDetections) m.options.onFrameDetections(f.index, detections);
-  if (useMbt) m.mergeTracked(f, tracked, detections);
-  if (!m.support) m.support = m.tracker->lastPlane();
-  if (m.debug && !m.options.movingCamera) {
-    const auto& st = m.tracker->lastStats();
-    std::fprintf(stderr, "frame %d: %d segments: %d hand, %d unchanged, %d static verified, %d explained\n", f.index,
-                 st.segments, st.hand, st.unchanged, st.staticVerified, st.explained);
+  if (m.detector) {
+    // Model-based tracking first: when every moving class is tracked, no detection is needed.
+    const bool useMbt = useModelBasedTracking(m.options, m.moving);
+    const std::map<std::string, ObjectDetection> tracked = useMbt ? m.trackParts(f) : std::map<std::string, ObjectDetection>{};
+    const bool allTracked =
+        useMbt && m.moving && std::all_of(m.plan.begin(), m.plan.end(), [&](const PlanObject& p) {
+          return p.isStatic || tracked.count(p.key()) > 0;
+        });
+    auto detections =
+        m.moving
+            ? (movingPlane && !allTracked ? m.detector->detect(f, &*movingPlane) : std::vector<ObjectDetection>{})
+            : m.tracker->update(f, m.options.fixedSupportPlane && m.support ? &*m.support : nullptr,
+                                h ? std::vector<Eigen::Vector2d>{h->palm_px} : std::vector<Eigen::Vector2d>{});
+    if (m.debug)
+      std::fprintf(stderr, "frame %d: %s in %.1f ms\n", f.index, allTracked ? "plane fit (all tracked)" : "detection",
+                   std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - detectStart).count());
+    if (m.options.onFrameDetections) m.options.onFrameDetections(f.index, detections);
+    if (useMbt) m.mergeTracked(f, tracked, detections);
+    if (!m.support) m.support = m.tracker->lastPlane();
+    if (m.debug && !m.moving) {
+      const auto& st = m.tracker->lastStats();
+      std::fprintf(stderr, "frame %d: %d segments: %d hand, %d unchanged, %d static verified, %d explained\n", f.index,
+                   st.segments, st.hand, st.unchanged, st.staticVerified, st.explained);
+    }
+    for (auto& [name, perFrame] : m.perClass) perFrame.emplace_back();
+    for (const auto& d : detections) {
+      auto& slot = m.perClass[d.key].back();
+      if (!slot || d.confidence > slot->confidence) slot = d;
+    }
   }
-  for (auto& [name, perFrame] : m.perClass) perFrame.emplace_back();
-  for (const auto& d : detections) {
-    auto& slot = m.perClass[d.key].back();
-    if (!slot || d.confidence > slot->confidence) slot = d;
+  if (m.discovery && m.firstSupport) {
+    // The table frame in this frame's camera: the first frame's plane, carried by the camera's motion.
+    core::Pose3 X_camera_table = m.firstSupport->X_camera_plane();
+    if (m.moving && m.cameraMotion) X_camera_table = m.cameraMotion->poses().back().inverse() * X_camera_table;
+    const auto* markerFree = dynamic_cast<const MarkerFreeHandDetector*>(m.hand.get());
+    m.discovery->add(f, X_camera_table, s.valid ? std::optional<Eigen::Vector3d>(s.p_m) : std::nullopt,
+                     h && markerFree ? markerFree->lastMask() : cv::Mat());
   }
 
   // Timestamps must increase; folders without timestamps may repeat them.
@@ -370,21 +450,36 @@ PerceptionResult DemoPerceiver::finish() const {
   if (m.result.handDetected == 0 && m.hand)
     throw core::InvalidInputError("the hand was never detected in the " + std::to_string(m.frameIndex.size()) +
                                   " frames of the demo (" +
-                                  (m.options.hand == PerceptionOptions::HandMethod::Marker
+                                  (m.handUsed == PerceptionOptions::HandMethod::Marker
                                        ? std::string("no tag36h11 tag of the glove seen: check the tag size/id, use the marker-free detector, or "
                                                      "perceive objects only (HandMethod::None, srp perceive --hand none)")
-                                       : std::string("no skin-coloured foreground at the end of an arm: is the demonstrator's hand in view and does "
-                                                     "the camera stay still?")) +
+                                       : std::string(m.options.hand == PerceptionOptions::HandMethod::Auto
+                                                         ? "no glove tag and no bare hand (skin-coloured foreground at the end of an arm): "
+                                                         : "no skin-coloured foreground at the end of an arm: ") +
+                                             "is the demonstrator's hand in view and does the camera stay still?") +
                                   "); nothing written");
   PerceptionResult result = m.result;
   result.frames = static_cast<int>(m.frameIndex.size());
-  if (m.support && !m.options.movingCamera) result.X_camera_table = m.support->X_camera_plane();
+  result.handMethod = m.handUsed;
+  if (m.firstSupport) result.X_camera_table = m.firstSupport->X_camera_plane();
+  if (m.cameraMotion) {
+    result.X_camera0_camera = m.cameraMotion->poses();
+    result.cameraTravel_m = m.cameraMotion->maxTranslation_m();
+    result.cameraTurn_rad = m.cameraMotion->maxRotation_rad();
+  }
+  result.cameraMoved = m.moving;
+  // With a moving camera a pose is carried from one frame to another through the camera's motion.
+  const bool carryThroughCamera = m.moving && result.X_camera0_camera.size() == m.frameIndex.size();
+  const auto carry = [&](const core::Pose3& X_cameraFrom_object, std::size_t from, std::size_t to) {
+    if (!carryThroughCamera || from == to) return X_cameraFrom_object;
+    return core::Pose3(result.X_camera0_camera[to].inverse() * result.X_camera0_camera[from] * X_cameraFrom_object);
+  };
 
   // Language-guided refinement: static objects fixed at their most confident
   // detection; moving objects follow their detections, gaps carried from the
   // nearest earlier detection (before the first: the first).
   for (const auto& p : m.plan) {
-    const auto& dets = m.perClass.at(p.key());
+    const auto& dets = m.perClass.at(p.key());  // (an empty plan: no detector, no catalogue objects)
     const core::ObjectClass& cls = m.catalogue.at(p.className);
     ObjectTrajectory traj;
     traj.className = p.className;
@@ -404,7 +499,7 @@ PerceptionResult DemoPerceiver::finish() const {
     }
     // Rests of a moving part: runs of detections near their running median.
     std::vector<std::optional<ObjectDetection>> rested = dets;
-    if (!p.isStatic && m.options.consolidateRests && !m.options.movingCamera) {
+    if (!p.isStatic && m.options.consolidateRests && !m.moving) {
       const ObjectPoseFitter* fitter = m.detector->fitterFor(p.key());
       const double symmetry_rad = fitter ? fitter->model().yawSymmetry_rad : 2 * M_PI;
       const core::Pose3 X_plane_camera = m.support ? m.support->X_camera_plane().inverse() : core::Pose3::Identity();
@@ -455,18 +550,22 @@ PerceptionResult DemoPerceiver::finish() const {
     const ObjectPoseFitter* classFitter = m.detector->fitterFor(p.key());
     const core::Pose3 X_model_mesh = classFitter ? classFitter->model().X_model_mesh : core::Pose3::Identity();
     const ObjectDetection* carried = &*rested[static_cast<std::size_t>(firstFrame)];
+    std::size_t carriedFrom = static_cast<std::size_t>(firstFrame);
     for (std::size_t i = 0; i < dets.size(); ++i) {
       ObjectPoseSample s;
       s.frame = m.frameIndex[i];
       s.t_s = m.frameTime_s[i];
       if (p.isStatic) {
         const auto& best = *dets[static_cast<std::size_t>(bestFrame)];
-        s.X_camera_object = best.X_camera_object;
+        s.X_camera_object = carry(best.X_camera_object, static_cast<std::size_t>(bestFrame), i);
         s.detected = dets[i].has_value();
         s.confidence = best.confidence;
       } else {
-        if (rested[i]) carried = &*rested[i];
-        s.X_camera_object = carried->X_camera_object;
+        if (rested[i]) {
+          carried = &*rested[i];
+          carriedFrom = i;
+        }
+        s.X_camera_object = carry(carried->X_camera_object, carriedFrom, i);
         s.detected = dets[i].has_value();
         s.confidence = dets[i] ? dets[i]->confidence : 0.0;
       }
@@ -475,7 +574,48 @@ PerceptionResult DemoPerceiver::finish() const {
     }
     result.objects.push_back(traj);
   }
+  if (m.discovery) {
+    int freeId = 0;
+    for (const auto& c : m.catalogue.classes()) freeId = std::max(freeId, c.classId + 1);
+    ObjectDiscovery::Result found = m.discovery->finish(result.objects, freeId);
+    result.observedClasses = found.classes;
+    result.discoveryNotes = found.notes;
+    for (auto& t : found.trajectories) result.objects.push_back(std::move(t));
+  }
   return result;
+}
+
+core::ObjectCatalogue withObservedClasses(const core::ObjectCatalogue& catalogue,
+                                          const std::vector<core::ObjectClass>& observed) {
+  std::vector<core::ObjectClass> classes = catalogue.classes();
+  for (const auto& c : observed) {
+    if (catalogue.find(c.name) || catalogue.findById(c.classId))
+      throw core::InvalidInputError("observed class '" + c.name + "' (id " + std::to_string(c.classId) +
+                                    "): the knowledge base has a class of that name or id; give the observed object "
+                                    "another name");
+    classes.push_back(c);
+  }
+  return core::ObjectCatalogue(std::move(classes));
+}
+
+PerceptionResult inFirstCameraFrame(const PerceptionResult& result) {
+  if (!result.cameraMoved) return result;
+  if (result.X_camera0_camera.size() != result.hand.size())
+    throw core::InvalidInputError("perception result: " + std::to_string(result.X_camera0_camera.size()) +
+                                  " camera poses for " + std::to_string(result.hand.size()) +
+                                  " frames; a moving camera needs one pose per frame");
+  PerceptionResult out = result;
+  core::PositionTrajectory hand(result.hand.frame());
+  for (std::size_t i = 0; i < result.hand.size(); ++i) {
+    core::PositionSample s = result.hand[i];
+    if (s.valid) s.p_m = result.X_camera0_camera[i] * s.p_m;
+    hand.append(s);
+  }
+  out.hand = hand;
+  for (auto& o : out.objects)
+    for (std::size_t i = 0; i < o.samples.size() && i < result.X_camera0_camera.size(); ++i)
+      o.samples[i].X_camera_object = result.X_camera0_camera[i] * o.samples[i].X_camera_object;
+  return out;
 }
 
 std::vector<PlanObject> withSceneInstances(const std::vector<PlanObject>& plan, const core::Scene& scene,
@@ -499,9 +639,12 @@ PerceptionResult perceiveFrames(const std::vector<rawlog::RgbdFrame>& frames, co
                                 const PerceptionOptions& options, const std::function<void(int, int)>& progress) {
   if (frames.empty()) throw core::InvalidInputError("the demo has zero frames: nothing to perceive");
   DemoPerceiver perceiver(catalogue, options);
-  // The preview pass only where a detector learns from it (the marker-free hand).
-  if (options.hand == PerceptionOptions::HandMethod::MarkerFree)
-    for (const auto& f : frames) perceiver.preview(f);
+  // The preview pass only where a detector learns from it (the marker-free hand) or is chosen in it.
+  if (perceiver.wantsPreview())
+    for (const auto& f : frames) {
+      if (perceiver.previewComplete()) break;
+      perceiver.preview(f);
+    }
   for (std::size_t i = 0; i < frames.size(); ++i) {
     perceiver.add(frames[i]);
     if (progress) progress(static_cast<int>(i), static_cast<int>(frames.size()));
@@ -515,19 +658,20 @@ PerceptionResult perceiveRawlog(const std::string& rawlogPath, const core::Objec
   // The marker-free hand learns from the whole recording before its first
   // detection: a preview pass (previewRawlog), then the perception pass over a
   // second read. Otherwise a stream: one frame at a time.
-  const bool preview = options.hand == PerceptionOptions::HandMethod::MarkerFree;
+  const bool preview = perceiver.wantsPreview();
   const int previewed = preview ? previewRawlog(perceiver, rawlogPath) : -1;
+  const bool wholePreview = preview && !perceiver.previewComplete();  // not stopped early
   rawlog::RawlogReader reader(rawlogPath);
   while (auto f = reader.next()) {
     perceiver.add(*f);
-    if (progress) progress(perceiver.framesAdded() - 1, previewed);
+    if (progress) progress(perceiver.framesAdded() - 1, wholePreview ? previewed : -1);
   }
   if (reader.damage()) throw core::FileError(rawlogPath, "unreadable rawlog, " + *reader.damage());
   if (perceiver.framesAdded() == 0)
     throw core::FileError(rawlogPath, "no RGB-D frames with depth in this rawlog (" +
                                           std::to_string(reader.objectsSkipped()) +
                                           " other objects skipped): record CObservation3DRangeScan with depth");
-  if (preview && perceiver.framesAdded() != previewed)
+  if (wholePreview && perceiver.framesAdded() != previewed)
     throw core::FileError(rawlogPath, "the rawlog changed between the preview and the perception pass (" +
                                           std::to_string(previewed) + " then " +
                                           std::to_string(perceiver.framesAdded()) + " frames)");

@@ -70,13 +70,22 @@ Plane ransacPlane(const std::vector<Eigen::Vector3d>& pts, int iterations, unsig
 
 }  // namespace
 
-std::optional<Plane> fitDominantPlane(const cv::Mat& cloud, const PlaneFitOptions& o) {
+namespace {
+
+std::vector<Eigen::Vector3d> samplePoints(const cv::Mat& cloud, int stride_px) {
   std::vector<Eigen::Vector3d> pts;
-  for (int v = 0; v < cloud.rows; v += o.sampleStride_px)
-    for (int u = 0; u < cloud.cols; u += o.sampleStride_px) {
+  for (int v = 0; v < cloud.rows; v += stride_px)
+    for (int u = 0; u < cloud.cols; u += stride_px) {
       const cv::Vec3f& p = cloud.at<cv::Vec3f>(v, u);
       if (p[2] > 0.f) pts.emplace_back(p[0], p[1], p[2]);
     }
+  return pts;
+}
+
+/// RANSAC (normals oriented to the camera's side, `accept` filtering them),
+/// then least squares on the inliers, twice.
+template <typename Accept>
+std::optional<Plane> fitPlaneTo(const std::vector<Eigen::Vector3d>& pts, const PlaneFitOptions& o, Accept accept) {
   if (pts.size() < 3) return std::nullopt;
   Plane best = ransacPlane(pts, o.iterations, o.seed, o.inlierTol_m,
                            [&](Eigen::Vector3d n, const Eigen::Vector3d& a) -> std::optional<Plane> {
@@ -85,9 +94,7 @@ std::optional<Plane> fitDominantPlane(const cv::Mat& cloud, const PlaneFitOption
                                n = -n;
                                d = -d;
                              }
-                             if (o.expectedNormal &&
-                                 std::acos(std::clamp(n.dot(o.expectedNormal->normalized()), -1.0, 1.0)) > o.maxTilt_rad)
-                               return std::nullopt;
+                             if (!accept(n)) return std::nullopt;
                              return Plane{n, d, 0};
                            });
   if (best.inliers < 3) return std::nullopt;
@@ -104,6 +111,33 @@ std::optional<Plane> fitDominantPlane(const cv::Mat& cloud, const PlaneFitOption
     best = Plane{n, d, fit->inliers};
   }
   return best;
+}
+
+}  // namespace
+
+std::optional<Plane> fitDominantPlane(const cv::Mat& cloud, const PlaneFitOptions& o) {
+  return fitPlaneTo(samplePoints(cloud, o.sampleStride_px), o, [&](const Eigen::Vector3d& n) {
+    return !o.expectedNormal ||
+           std::acos(std::clamp(n.dot(o.expectedNormal->normalized()), -1.0, 1.0)) <= o.maxTilt_rad;
+  });
+}
+
+std::optional<Plane> fitSupportPlane(const cv::Mat& cloud, const PlaneFitOptions& o) {
+  const std::optional<Plane> dominant = fitDominantPlane(cloud, o);
+  if (!dominant || o.expectedNormal) return dominant;
+  std::vector<Eigen::Vector3d> rest;
+  for (const auto& p : samplePoints(cloud, o.sampleStride_px))
+    if (std::abs(dominant->height(p)) >= o.inlierTol_m) rest.push_back(p);
+  const double cosMinTurn = std::cos(o.secondPlaneMinTurn_rad);
+  // The second plane holds fewer of the points: more hypotheses to draw three of its own.
+  PlaneFitOptions secondOptions = o;
+  secondOptions.iterations = o.iterations * o.secondPlaneIterationFactor;
+  const std::optional<Plane> second = fitPlaneTo(
+      rest, secondOptions, [&](const Eigen::Vector3d& n) { return std::abs(n.dot(dominant->n)) <= cosMinTurn; });
+  if (second && second->inliers >= o.secondPlaneMinShare * dominant->inliers &&
+      second->n.y() <= dominant->n.y() - o.secondPlaneMinUpward)
+    return second;
+  return dominant;
 }
 
 std::optional<Plane> fitLocalPlane(const cv::Mat& cloud, const Plane& global, const cv::Rect& roi_px,

@@ -8,7 +8,9 @@ int previewRawlog(DemoPerceiver& perceiver, const std::string& rawlogPath,
                   const std::optional<core::CameraIntrinsics>& intrinsics, const std::function<void(int)>& progress) {
   rawlog::RawlogReader reader(rawlogPath);
   int previewed = 0;
-  while (auto f = reader.next()) {
+  while (!perceiver.previewComplete()) {
+    auto f = reader.next();
+    if (!f) break;
     if (intrinsics) f->intrinsics = *intrinsics;
     perceiver.preview(*f);
     ++previewed;

@@ -10,6 +10,12 @@
 
 namespace srp::programming {
 
+Eigen::Vector3d p_object_tracked(const std::string& className, const std::vector<core::ObjectClass>& observed) {
+  for (const auto& c : observed)
+    if (c.name == className && c.observed) return Eigen::Vector3d(0, 0, 0.5 * c.dimensions_m.z());
+  return Eigen::Vector3d::Zero();
+}
+
 namespace {
 
 bool rowOf(const MotionInputs::RowKey& key, int classId, const std::string& instanceId) {
@@ -68,13 +74,22 @@ MotionInputs motionInputsFromTaskModel(const taskdb::TaskModel& model) {
     for (const auto& r : model.productPoses)
       if (rowOf(key, r.classId, r.instanceId)) at[r.timeId] = &r;
     if (at.empty()) continue;
+    // The same point demoTracks handed to motion when the model was programmed.
+    std::string className;
+    for (const auto& o : model.scene ? model.scene->objects : std::vector<taskdb::SceneObjectRow>{})
+      if (o.classId == key.classId) className = o.className;
+    const Eigen::Vector3d p_object =
+        model.scene ? p_object_tracked(className, model.scene->observedClasses) : Eigen::Vector3d::Zero();
     motion::ObjectTrack track;
     track.name = name;
     track.positions = core::PositionTrajectory(frame);
     for (int t : times) {
       const auto it = at.find(t);
       const bool ok = it != at.end() && it->second->detected;
-      track.positions.append({t, t / model.info.frameRate_hz, ok ? it->second->p_m : Eigen::Vector3d::Zero(), ok});
+      track.positions.append({t, t / model.info.frameRate_hz,
+                              ok ? Eigen::Vector3d(it->second->p_m + it->second->q.normalized() * p_object)
+                                 : Eigen::Vector3d::Zero(),
+                              ok});
       track.yaw_rad.push_back(it != at.end() ? it->second->yaw_rad() : (track.yaw_rad.empty() ? 0.0 : track.yaw_rad.back()));
     }
     in.objects.push_back(std::move(track));

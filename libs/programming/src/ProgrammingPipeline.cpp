@@ -160,10 +160,18 @@ ProgramResult programTask(const ProgrammingOptions& o) {
   // 3. Environment.
   clock.start("environment");
   const perception::PerceptionResult seen = perceive(grounded, kb, o, result.warnings, scene);
+  // From here on the knowledge base includes what the demonstration showed of the unknown objects.
+  const core::ObjectCatalogue runKb = perception::withObservedClasses(kb, seen.observedClasses);
   // 3b. Each phrase -> the perceived instance it means (several of one class).
-  grounded = groundInstances(grounded, seen, kb, scene);
+  grounded = groundInstances(grounded, seen, runKb, scene);
   result.frames = seen.frames;
   result.handDetectedFrames = seen.handDetected;
+  result.handDetector = seen.handMethod == perception::PerceptionOptions::HandMethod::MarkerFree ? "marker-free" : "marker";
+  result.cameraMoved = seen.cameraMoved;
+  result.cameraTravel_m = seen.cameraTravel_m;
+  result.cameraTurn_rad = seen.cameraTurn_rad;
+  result.observedClasses = seen.observedClasses;
+  result.discoveryNotes = seen.discoveryNotes;
 
   // 4. Motion: the perception result handed over in memory, segmented, DMPs learned.
   clock.start("motion");
@@ -181,7 +189,7 @@ ProgramResult programTask(const ProgrammingOptions& o) {
                                       "missing)");
   }
   // 5. The rows: instruction tables, perception rows, skills, the perceived scene.
-  const taskdb::TaskModel model = buildTaskModel(grounded, o, seen, kb, tracks, skills, scene);
+  const taskdb::TaskModel model = buildTaskModel(grounded, o, seen, runKb, tracks, skills, scene);
   result.skillCount = model.skills.size();
   result.sceneStored = model.scene.has_value();
   if (!model.scene)
@@ -191,7 +199,7 @@ ProgramResult programTask(const ProgrammingOptions& o) {
   for (const auto& seg : segmentation.objects) {
     ObjectOutcome out;
     out.name = seg.name;
-    out.classId = kb.find(seg.name) ? kb.find(seg.name)->classId : -1;
+    out.classId = runKb.find(seg.name) ? runKb.find(seg.name)->classId : -1;
     out.moved = seg.moved;
     out.graspFrame = seg.graspFrame;
     out.releaseFrame = seg.releaseFrame;
@@ -225,7 +233,7 @@ ProgramResult programTask(const ProgrammingOptions& o) {
   // database is locked for writing.
   if (report) {
     clock.start("report");
-    result.reportFiles = writeContactSheet(report->temporaryPath().string(), o, seen, kb, segmentation, model.scene);
+    result.reportFiles = writeContactSheet(report->temporaryPath().string(), o, seen, runKb, segmentation, model.scene);
   }
 
   // 6. One transaction. The report is written inside it, before COMMIT: a
@@ -292,6 +300,20 @@ std::string toJsonText(const ProgramResult& r) {
   j["problems"] = r.problems;
   j["perceived_scene_stored"] = r.sceneStored;
   if (!r.robotBase.empty()) j["robot_base"] = r.robotBase;
+  j["hand_detector"] = r.handDetector;
+  j["camera_moved"] = r.cameraMoved;
+  if (!r.observedClasses.empty()) {
+    j["observed_classes"] = nlohmann::json::array();
+    for (const auto& c : r.observedClasses) {
+      nlohmann::json footprint = nlohmann::json::array();
+      for (const auto& p : c.footprint_object) footprint.push_back({p.x(), p.y()});
+      j["observed_classes"].push_back({{"name", c.name}, {"class_id", c.classId}, {"kind", core::toString(c.kind)},
+                                       {"shape", c.shape}, {"color_name", c.colourName},
+                                       {"dimensions_m", {c.dimensions_m.x(), c.dimensions_m.y(), c.dimensions_m.z()}},
+                                       {"footprint_m", footprint}});
+    }
+    j["discovery"] = r.discoveryNotes;
+  }
   j["report_files"] = r.reportFiles;
   return j.dump(2);
 }

@@ -26,16 +26,14 @@ std::pair<std::string, std::string> wordsOf(const std::string& name, const std::
   return {core::toLowerAscii(name), colour ? core::toLowerAscii(*colour) : std::string()};
 }
 
-// Grounds an instruction's object in the knowledge base, or says which names it knows.
-const core::ObjectClass& ground(const core::ObjectCatalogue& kb, const language::ObjectRef& o) {
+// Grounds an instruction's object in the knowledge base; nullptr when it does not know it.
+const core::ObjectClass* ground(const core::ObjectCatalogue& kb, const language::ObjectRef& o) {
   const auto [noun, colour] = wordsOf(o.name, o.colour);
-  if (const core::ObjectClass* c = kb.ground(noun, colour)) return *c;
-  std::string known;
-  for (const auto& c : kb.classes()) known += (known.empty() ? "" : ", ") + c.name;
-  throw InvalidInputError("the instruction names '" + language::describe(o) +
-                          "', which the knowledge base does not know (it knows: " + known +
-                          "); add a mesh and a catalogue entry, or rephrase");
+  return kb.ground(noun, colour);
 }
+
+// A class the knowledge base names but cannot model: no mesh file and no generator shape.
+bool withoutModel(const core::ObjectClass& c) { return c.shape.empty() && c.meshPath.empty(); }
 
 // The colour word a class answers to: its own, else the basic colour nearest its rgb.
 std::string classColourWord(const core::ObjectClass& c) {
@@ -124,18 +122,37 @@ const std::string& GroundedPlan::classOf(const std::string& name, const std::opt
 GroundedPlan groundPlan(const language::TaskPlan& plan, const core::ObjectCatalogue& kb) {
   GroundedPlan g;
   g.plan = plan;
-  const auto add = [&](const language::ObjectRef& o) -> const std::string& {
-    const std::string& cls = ground(kb, o).name;
+  using Role = perception::UnknownObject::Role;
+  // An object the knowledge base cannot model is found in the demonstration:
+  // a step's object as the part moved, a landmark as the place of `of`.
+  const auto add = [&](const language::ObjectRef& o, Role role, const std::string& of) -> std::string {
+    const core::ObjectClass* c = ground(kb, o);
+    std::string cls;
+    if (c && !withoutModel(*c)) {
+      cls = c->name;
+    } else {
+      perception::UnknownObject u;
+      u.name = c ? c->name : core::toLowerAscii(o.name);
+      u.noun = c && !c->noun.empty() ? c->noun : core::toLowerAscii(o.name);
+      if (o.colour) u.colour = core::toLowerAscii(*o.colour);
+      if (c) u.classId = c->classId;
+      u.role = role;
+      u.of = of;
+      cls = u.name;
+      const auto it = g.unknown.find(cls);
+      if (it == g.unknown.end()) g.unknown.emplace(cls, u);
+      else if (it->second.role != Role::Moved && role == Role::Moved) it->second = u;  // a part moved is a part
+    }
     g.classByWords[wordsOf(o.name, o.colour)] = cls;
     return cls;
   };
   for (const auto& step : plan.steps) {
-    const std::string& cls = add(step.object);
+    const std::string cls = add(step.object, Role::Moved, "");
     g.stepClasses.push_back(cls);
     if (std::find(g.movingClasses.begin(), g.movingClasses.end(), cls) == g.movingClasses.end())
       g.movingClasses.push_back(cls);
-    for (const auto* list : {&step.source, &step.target})
-      for (const auto& loc : *list) g.landmarkClasses.insert(add(loc.landmark));
+    for (const auto& loc : step.source) g.landmarkClasses.insert(add(loc.landmark, Role::PickPlace, cls));
+    for (const auto& loc : step.target) g.landmarkClasses.insert(add(loc.landmark, Role::ReleasePlace, cls));
   }
   // One instance per class until groundInstances says otherwise.
   g.stepObjects = g.stepClasses;
@@ -148,12 +165,22 @@ perception::PerceptionResult perceive(const GroundedPlan& grounded, const core::
                                       const ProgrammingOptions& o, std::vector<std::string>& warnings,
                                       const std::optional<core::Scene>& scene) {
   perception::PerceptionOptions popt;
-  popt.hand = o.markerFreeHand ? perception::PerceptionOptions::HandMethod::MarkerFree
-                               : perception::PerceptionOptions::HandMethod::Marker;
-  for (const auto& cls : grounded.movingClasses) popt.plan.push_back({cls, false, "", std::nullopt});
+  using Hand = ProgrammingOptions::Hand;
+  popt.hand = o.hand == Hand::MarkerFree ? perception::PerceptionOptions::HandMethod::MarkerFree
+              : o.hand == Hand::Marker   ? perception::PerceptionOptions::HandMethod::Marker
+                                         : perception::PerceptionOptions::HandMethod::Auto;
+  const auto known = [&](const std::string& cls) { return grounded.unknown.count(cls) == 0; };
+  for (const auto& cls : grounded.movingClasses)
+    if (known(cls)) popt.plan.push_back({cls, false, "", std::nullopt});
   for (const auto& cls : grounded.landmarkClasses)
-    if (std::find(grounded.movingClasses.begin(), grounded.movingClasses.end(), cls) == grounded.movingClasses.end())
+    if (known(cls) &&
+        std::find(grounded.movingClasses.begin(), grounded.movingClasses.end(), cls) == grounded.movingClasses.end())
       popt.plan.push_back({cls, true, "", std::nullopt});
+  // The unknown objects: the moved parts first (the places refer to them).
+  for (const auto& [cls, u] : grounded.unknown)
+    if (u.role == perception::UnknownObject::Role::Moved) popt.unknownObjects.push_back(u);
+  for (const auto& [cls, u] : grounded.unknown)
+    if (u.role != perception::UnknownObject::Role::Moved) popt.unknownObjects.push_back(u);
   if (scene) popt.plan = perception::withSceneInstances(popt.plan, *scene, kb);
   if (o.scenePath.empty()) {
     // No scene file: a part the instruction names in one colour that is not
@@ -169,7 +196,7 @@ perception::PerceptionResult perceive(const GroundedPlan& grounded, const core::
   }
 
   perception::DemoPerceiver perceiver(kb, popt);
-  if (o.markerFreeHand)  // it learns from the whole recording: a first read (previewRawlog)
+  if (perceiver.wantsPreview())  // the hand learns from (or is chosen in) the whole recording: a first read
     perception::previewRawlog(perceiver, o.demoPath, o.intrinsics, [&](int previewed) {
       if (o.progress) o.progress("environment preview", static_cast<std::size_t>(previewed), 0);
     });
@@ -192,7 +219,7 @@ perception::PerceptionResult perceive(const GroundedPlan& grounded, const core::
   }
   perception::PerceptionResult seen;
   try {
-    seen = perceiver.finish();
+    seen = perception::inFirstCameraFrame(perceiver.finish());
   } catch (const InvalidInputError& e) {
     throw InvalidInputError(std::string("environment: ") + e.what() + "; nothing was stored");
   }
@@ -332,6 +359,7 @@ motion::DemoTracks demoTracks(const perception::PerceptionResult& seen, const Gr
     tracks.hand.append({f, f / frameRate_hz, ok ? it->second->p_m : Eigen::Vector3d::Zero(), ok});
   }
   for (const auto& [cls, t] : moved) {
+    const Eigen::Vector3d p_object = p_object_tracked(t->className, seen.observedClasses);
     std::map<int, const perception::ObjectPoseSample*> at;
     for (const auto& s : t->samples) at[s.frame] = &s;
     motion::ObjectTrack track;
@@ -341,7 +369,7 @@ motion::DemoTracks demoTracks(const perception::PerceptionResult& seen, const Gr
       const auto it = at.find(f);
       const bool ok = it != at.end() && it->second->detected;
       track.positions.append(
-          {f, f / frameRate_hz, ok ? Eigen::Vector3d(it->second->X_camera_object.translation()) : Eigen::Vector3d::Zero(),
+          {f, f / frameRate_hz, ok ? Eigen::Vector3d(it->second->X_camera_object * p_object) : Eigen::Vector3d::Zero(),
            ok});
       if (it != at.end()) {
         // The unit quaternion the ProductPose row stores (normalised again when read back, as yaw_rad() does).

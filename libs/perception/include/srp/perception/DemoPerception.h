@@ -13,11 +13,14 @@
 #include "srp/core/ObjectCatalogue.h"
 #include "srp/core/PositionTrajectory.h"
 #include "srp/core/Scene.h"
+#include "srp/perception/CameraMotionEstimator.h"
 #include "srp/perception/MarkerFreeHandDetector.h"
 #include "srp/perception/MarkerHandDetector.h"
 #include "srp/perception/ModelBasedTracker.h"
 #include "srp/perception/ObjectDetector.h"
+#include "srp/perception/ObjectDiscovery.h"
 #include "srp/perception/ObjectTracker.h"
+#include "srp/perception/ObjectTrajectory.h"
 #include "srp/rawlog/RgbdFrame.h"
 
 namespace srp::perception {
@@ -46,36 +49,23 @@ struct PlanObject {
   const std::string& key() const { return instanceId.empty() ? className : instanceId; }
 };
 
-/// One object's pose in one frame.
-struct ObjectPoseSample {
-  int frame = 0;
-  double t_s = 0.0;
-  /// The class's object frame = its mesh file's frame (bottom centre for the
-  /// generated catalogue shapes, the CAD file's own frame for a mesh-only class).
-  core::Pose3 X_camera_object = core::Pose3::Identity();
-  bool detected = false;     ///< false: carried from the nearest detection
-  double confidence = 0.0;
-};
-
-/// One object's pose trajectory (one sample per frame once it was seen).
-struct ObjectTrajectory {
-  std::string className;
-  int classId = -1;
-  bool isStatic = false;
-  std::vector<ObjectPoseSample> samples;
-  std::string instanceId;  ///< PlanObject::instanceId ("" = the class's one instance)
-  int detectedFrames() const;
-  /// PlanObject::key(): the instance id, else the class name.
-  const std::string& key() const { return instanceId.empty() ? className : instanceId; }
-};
-
 struct PerceptionOptions {
   /// None: objects only (a recording without a demonstrator, e.g. to check
-  /// object poses); finish() then does not require a hand.
-  enum class HandMethod { Marker, MarkerFree, None };
+  /// object poses); finish() then does not require a hand. Auto: the preview
+  /// pass (DemoPerceiver::preview) looks for the glove's tag (`marker`) in
+  /// every autoHandProbeStride-th frame; seen in autoHandMinTagFrames of them,
+  /// the marker hand, else the marker-free one (which learnt from the same
+  /// preview). Without a preview pass, Auto is the marker hand.
+  enum class HandMethod { Marker, MarkerFree, None, Auto };
   HandMethod hand = HandMethod::Marker;
   MarkerHandDetector::Options marker;  ///< defaults: srp synth-demo's glove (tag 0, 5 cm, palm 13.6 mm under the tag)
   MarkerFreeHandDetector::Options markerFree;
+  /// A palm depth that differs from the last measured one by more than this
+  /// speed x the time since [m/s] is carried like a depth hole (the depth
+  /// behind a blurred hand: 0.9 m off in 4 frames of HRT1 task3); 0: off.
+  double maxPalmDepthSpeed_mps = 2.0;
+  int autoHandProbeStride = 5;
+  int autoHandMinTagFrames = 2;
   ObjectDetector::Options objects;
   /// Frame-to-frame reuse (static classes are taken from `plan`).
   ObjectTracker::Options tracking;
@@ -83,6 +73,12 @@ struct PerceptionOptions {
   /// moving. Keys (PlanObject::key) must be unique and differ from the other
   /// plan objects' class names.
   std::vector<PlanObject> plan;
+  /// Objects of the task that the catalogue does not know (or knows without
+  /// a mesh or a shape): found in the demonstration (ObjectDiscovery), their
+  /// classes and trajectories added to the result. Their names must differ
+  /// from the plan's keys.
+  std::vector<UnknownObject> unknownObjects;
+  ObjectDiscovery::Options discovery;
   /// Fit the support plane once on the first frame (the camera is fixed).
   bool fixedSupportPlane = true;
   /// A hand-held or moving camera: the support plane is fitted in every
@@ -90,6 +86,14 @@ struct PerceptionOptions {
   /// reuse of unchanged segments, no "parts move only in the hand" rule, no
   /// rest consolidation, all of which assume a fixed camera).
   bool movingCamera = false;
+  /// A camera not declared moving is watched (CameraMotionEstimator, depth
+  /// ICP against the first frame): from the frame its pose leaves the first
+  /// frame's by more than cameraMotion's thresholds on, the recording is
+  /// perceived as with movingCamera, and the result says so
+  /// (PerceptionResult::cameraMoved). false: the camera is taken as fixed
+  /// whatever it does (`srp perceive --fixed-camera`).
+  bool detectCameraMotion = true;
+  CameraMotionEstimator::Options cameraMotion;
   /// Moving camera: the support plane's normal is looked for within this of
   /// the previous frame's [rad] (a hand-held camera turns a few degrees
   /// between frames; a wall or board is 45-90 deg away).
@@ -176,11 +180,47 @@ struct PerceptionResult {
   int handDetected = 0;        ///< frames with a hand detection
   int handDepthCarried = 0;    ///< of those, frames whose depth was carried forward
   /// The support plane's frame (PlaneFit.h: z = the plane normal towards the
-  /// camera, x = the camera x axis on the plane) with a fixed camera; nullopt
-  /// when no plane was found or the camera moves. Relations such as "on" or
-  /// "left of" between perceived objects are read in it (programming's grounding).
+  /// camera, x = the camera x axis on the plane) in the first frame's camera
+  /// (fitSupportPlane on the first frame); nullopt when no plane was found.
+  /// Relations such as "on" or "left of" between perceived objects are read
+  /// in it (programming's grounding); with a moving camera, on the samples of
+  /// inFirstCameraFrame().
   std::optional<core::Pose3> X_camera_table;
+  /// The camera moved: declared (PerceptionOptions::movingCamera) or noticed
+  /// (detectCameraMotion). Each sample stays in the camera of its own frame;
+  /// inFirstCameraFrame() brings them into one frame.
+  bool cameraMoved = false;
+  /// The first frame (frame number) perceived as with a moving camera; -1 when none.
+  int cameraMovedAtFrame = -1;
+  /// Per frame (the hand's sample order): its camera in the first frame's
+  /// camera, from CameraMotionEstimator (frames between the checks of a still
+  /// camera keep the last checked pose); empty when the camera was neither
+  /// watched nor declared moving.
+  std::vector<core::Pose3> X_camera0_camera;
+  /// The largest distance [m] and turn [rad] of the camera from its pose in the first frame.
+  double cameraTravel_m = 0.0, cameraTurn_rad = 0.0;
+  /// The hand detector used (Auto resolved to Marker or MarkerFree).
+  PerceptionOptions::HandMethod handMethod = PerceptionOptions::HandMethod::Marker;
+  /// The classes of PerceptionOptions::unknownObjects as found in the
+  /// demonstration (shape "hull" for a part, "open_box" for a container,
+  /// observed = true, ids after the catalogue's); their trajectories are in
+  /// `objects` under the same names. A run-local catalogue is the knowledge
+  /// base plus these (withObservedClasses).
+  std::vector<core::ObjectClass> observedClasses;
+  /// What the discovery decided, one line per object (for reports).
+  std::vector<std::string> discoveryNotes;
 };
+
+/// `catalogue` with `observed` appended (the classes a demonstration showed;
+/// their names and ids must be free in it). Throws InvalidInputError naming a
+/// taken name or id.
+core::ObjectCatalogue withObservedClasses(const core::ObjectCatalogue& catalogue,
+                                          const std::vector<core::ObjectClass>& observed);
+
+/// `result` with every hand and object sample in the first frame's camera
+/// (each frame's X_camera0_camera applied; the frame in which
+/// X_camera_table holds); `result` itself when the camera did not move.
+PerceptionResult inFirstCameraFrame(const PerceptionResult& result);
 
 /// The module as a stream: add() frames in time order (each is checked
 /// against the first), then finish(). Keeps per frame only the detections, so
@@ -194,8 +234,13 @@ class DemoPerceiver {
 
   /// Optional pre-pass: every frame of the recording, in order, before the
   /// first add() (the marker-free hand learns its background and skin colour
-  /// from the whole recording; see HandDetector::preview).
+  /// from the whole recording; see HandDetector::preview; HandMethod::Auto
+  /// decides between the hands).
   void preview(const rawlog::RgbdFrame& frame);
+  /// True when the hand method learns from (or is decided in) a preview pass.
+  bool wantsPreview() const;
+  /// True when the preview pass may stop early (Auto found the glove's tag).
+  bool previewComplete() const;
   /// Throws InvalidInputError when the frame lacks depth or colour, or its
   /// size or intrinsics differ from the first frame's.
   void add(const rawlog::RgbdFrame& frame);

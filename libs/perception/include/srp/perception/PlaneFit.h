@@ -30,11 +30,28 @@ struct PlaneFitOptions {
   std::optional<Eigen::Vector3d> expectedNormal;
   double maxTilt_rad = 0.5;
   unsigned seed = 1;
+  /// fitSupportPlane: a second plane, at least secondPlaneMinTurn_rad from the
+  /// dominant one and with at least secondPlaneMinShare of its inliers, is the
+  /// support instead when its normal points up in the image (camera -y) by
+  /// secondPlaneMinUpward more than the dominant one's (a wall behind the table).
+  double secondPlaneMinTurn_rad = 30.0 * 3.14159265358979323846 / 180.0;
+  double secondPlaneMinShare = 0.3;
+  double secondPlaneMinUpward = 0.5;
+  int secondPlaneIterationFactor = 4;  ///< RANSAC iterations for the second plane: this x `iterations`
 };
 
 /// The plane with the most inliers (refined by least squares on them);
 /// nullopt when fewer than 3 valid points or no plane fits the constraint.
 std::optional<Plane> fitDominantPlane(const cv::Mat& cloud, const PlaneFitOptions& options = {});
+
+/// The support plane (the table the objects stand on): the dominant plane,
+/// unless a second large plane at an angle to it faces up in the image more
+/// (PlaneFitOptions::secondPlane*): a camera that looks across a table at a
+/// wall sees more wall than table, and a wall faces the camera, not up.
+/// A camera is taken to be upright (image up is roughly world up) or to look
+/// down; a camera looking straight down sees one dominant plane, the table.
+/// With `expectedNormal` set it is fitDominantPlane (the caller has chosen).
+std::optional<Plane> fitSupportPlane(const cv::Mat& cloud, const PlaneFitOptions& options = {});
 
 /// The support plane where one object stands: a dominant plane fitted over
 /// the whole image is a compromise over a table seen at a grazing angle (its

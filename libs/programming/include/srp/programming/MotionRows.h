@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "srp/core/ObjectCatalogue.h"
 #include "srp/motion/LearnSkills.h"
 #include "srp/motion/SkillSet.h"
 #include "srp/taskdb/TaskDatabase.h"
@@ -32,6 +33,15 @@ struct MotionInputs : motion::DemoTracks {
   };
   std::map<std::string, RowKey> rowKeyByName;  ///< GroundedProducts, by perception key
 };
+
+/// The point of an object that motion follows, in its object frame: the
+/// origin for a catalogue class; the middle of its height for a class seen
+/// in the demonstration without a CAD file (core::ObjectClass::observed),
+/// whose origin is the foot of its observed points, far below where the hand
+/// holds a tall part (HRT1's toy: 19 cm; the segmenter takes a track point
+/// 15 cm from the hand for a false detection). `observed`: the observed
+/// classes of the task model (or perception result); `className` may be any.
+Eigen::Vector3d p_object_tracked(const std::string& className, const std::vector<core::ObjectClass>& observed);
 
 /// Throws InvalidInputError naming the object when a plan object is not
 /// grounded (Products.ClassId missing) or the model has no hand positions.

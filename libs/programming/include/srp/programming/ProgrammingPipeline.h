@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "srp/core/CameraIntrinsics.h"
+#include "srp/core/ObjectCatalogue.h"
 #include "srp/core/Pose.h"
 #include "srp/core/PositionTrajectory.h"
 
@@ -44,7 +45,10 @@ struct ProgrammingOptions {
   std::optional<core::CameraIntrinsics> intrinsics;  ///< overrides the rawlog's (e.g. from calib/*.xml)
   std::string dbPath = "task.db";
   std::string name = "task";      ///< re-using a name makes a new version
-  bool markerFreeHand = false;    ///< hand detector: AprilTag on the glove (default) or marker-free
+  /// Hand detector: Auto (the glove's AprilTag when a preview of the
+  /// recording shows it, else the marker-free hand), the tag, or marker-free.
+  enum class Hand { Auto, Marker, MarkerFree };
+  Hand hand = Hand::Auto;
   /// Empty: no report; else a folder (built aside and renamed into place when
   /// the model is stored: a failed run leaves none) with PNG figures, the
   /// contact sheet of what perception saw, the perceived scene as a scene file
@@ -104,6 +108,14 @@ struct ProgramResult {
   bool sceneStored = false;
   std::string robotBase;  ///< where the report's scene file puts the robot, and why
   std::vector<std::string> reportFiles;
+  std::string handDetector;            ///< "marker" or "marker-free" (the one used)
+  bool cameraMoved = false;            ///< the demonstration's camera moved (trajectories kept in the first frame's camera)
+  double cameraTravel_m = 0.0, cameraTurn_rad = 0.0;
+  /// Objects the knowledge base did not know, found in the demonstration
+  /// (perception::ObjectDiscovery): their classes as stored with the task
+  /// model, and what was decided (one line each).
+  std::vector<core::ObjectClass> observedClasses;
+  std::vector<std::string> discoveryNotes;
 };
 
 /// Runs the whole pipeline and stores the task model with the scene the

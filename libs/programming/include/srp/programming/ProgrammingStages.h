@@ -57,6 +57,11 @@ struct GroundedPlan {
   std::vector<std::string> stepObjects;
   std::vector<std::string> movingObjects;
   std::map<std::pair<std::string, std::string>, std::string> objectByWords;
+  /// Objects the knowledge base does not know (or knows without a mesh or a
+  /// shape), by class name: perceive looks for them in the demonstration
+  /// (perception::ObjectDiscovery). Their class names are in stepClasses,
+  /// landmarkClasses and classByWords like the others'.
+  std::map<std::string, perception::UnknownObject> unknown;
 
   /// The perceived object (key) of a phrase of the plan. Throws
   /// InvalidInputError for an object the plan does not name.
@@ -67,9 +72,12 @@ struct GroundedPlan {
   const std::string& classOf(const std::string& name, const std::optional<std::string>& colour) const;
 };
 
-/// Stage 2: grounds the plan's objects and landmarks, once. Throws
-/// InvalidInputError naming the object and the classes the knowledge base
-/// knows when one is unknown.
+/// Stage 2: grounds the plan's objects and landmarks, once. An object the
+/// knowledge base does not know, or knows without a mesh or a shape, becomes
+/// an unknown object (GroundedPlan::unknown) to be found in the
+/// demonstration: a step's object is the part the hand moves, a landmark the
+/// place where it was let go (target) or picked up (source); its class name
+/// is the noun (the catalogue entry's name when there is one).
 GroundedPlan groundPlan(const language::TaskPlan& plan, const core::ObjectCatalogue& kb);
 
 /// Without a scene file: the instances the instruction's own colour words
@@ -87,8 +95,12 @@ std::optional<core::Scene> instructionInstances(const GroundedPlan& grounded, co
 /// (ProgrammingOptions::scenePath empty), a part class the instruction names
 /// in exactly one basic colour other than its class's is looked for in that
 /// colour (its one instance, InstanceId ""). Appends a warning when a damaged rawlog
-/// is used with allowTruncated. Throws FileError for an unreadable or empty
-/// rawlog, InvalidInputError when no instance of a moved class is ever detected.
+/// is used with allowTruncated. The plan's unknown objects are looked for in
+/// the demonstration (their classes in PerceptionResult::observedClasses).
+/// With a moving camera the result is in the first frame's camera
+/// (perception::inFirstCameraFrame). Throws FileError for an unreadable or
+/// empty rawlog, InvalidInputError when no instance of a moved class is ever
+/// detected or an unknown object is not found (naming what was seen).
 perception::PerceptionResult perceive(const GroundedPlan& grounded, const core::ObjectCatalogue& kb,
                                       const ProgrammingOptions& options, std::vector<std::string>& warnings,
                                       const std::optional<core::Scene>& scene = std::nullopt);
@@ -139,7 +151,9 @@ GroundedPlan groundInstances(const GroundedPlan& grounded, const perception::Per
 /// from the database sees the same inputs); a frame without a detection is a
 /// sample with valid = false (position zero, the previous yaw). Tracks are
 /// keyed and sorted by perception key (class name, or instance id); planOrder
-/// = the step objects.
+/// = the step objects. An object's position is its pose applied to
+/// p_object_tracked (MotionRows.h: the origin of a catalogue class, the
+/// middle of the height of a class found in the demonstration).
 motion::DemoTracks demoTracks(const perception::PerceptionResult& seen, const GroundedPlan& grounded,
                               double frameRate_hz);
 

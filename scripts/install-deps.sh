@@ -43,6 +43,8 @@ TEST_PACKAGES=(
   visp-images-data
   # tests: exported trajectories are read back the way `ros2 topic pub` reads them (PyYAML)
   python3 python3-yaml
+  # scripts/check-format.sh: the changed lines follow .clang-format
+  clang-format
 )
 if [ "${1:-}" = "--test" ]; then PACKAGES+=("${TEST_PACKAGES[@]}"); fi
 

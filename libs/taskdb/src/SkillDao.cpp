@@ -8,7 +8,7 @@ using namespace detail;
 namespace {
 constexpr const char* kSelect = "SELECT ClassId, Skill, StartTimeId, EndTimeId, Parameters, InstanceId FROM Skills";
 
-SkillRow readRow(const SQLite::Statement& st) {
+SkillRow readRow(const Statement& st) {
   SkillRow r;
   r.classId = st.getColumn(0).getInt();
   r.skill = core::skillTypeFromString(st.getColumn(1).getString());
@@ -21,7 +21,7 @@ SkillRow readRow(const SQLite::Statement& st) {
 }  // namespace
 
 void SkillDao::add(int tm, const SkillRow& r) {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "INSERT INTO Skills (TaskModelId, ClassId, Skill, StartTimeId, EndTimeId, Parameters, InstanceId) "
                        "VALUES (?, ?, ?, ?, ?, ?, ?)");
   st.bind(1, tm);
@@ -35,7 +35,7 @@ void SkillDao::add(int tm, const SkillRow& r) {
 }
 
 std::optional<SkillRow> SkillDao::get(int tm, int classId, core::SkillType skill, const std::string& instanceId) const {
-  SQLite::Statement st(db_.connection(), std::string(kSelect) +
+  Statement st(db_, std::string(kSelect) +
                                              " WHERE TaskModelId = ? AND ClassId = ? AND Skill = ? AND InstanceId = ?");
   st.bind(1, tm);
   st.bind(2, classId);
@@ -46,7 +46,7 @@ std::optional<SkillRow> SkillDao::get(int tm, int classId, core::SkillType skill
 }
 
 void SkillDao::update(int tm, const SkillRow& r) {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "UPDATE Skills SET StartTimeId = ?, EndTimeId = ?, Parameters = ? "
                        "WHERE TaskModelId = ? AND ClassId = ? AND Skill = ? AND InstanceId = ?");
   st.bind(1, r.startTimeId);
@@ -61,7 +61,7 @@ void SkillDao::update(int tm, const SkillRow& r) {
 }
 
 bool SkillDao::remove(int tm, int classId, core::SkillType skill, const std::string& instanceId) {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "DELETE FROM Skills WHERE TaskModelId = ? AND ClassId = ? AND Skill = ? AND InstanceId = ?");
   st.bind(1, tm);
   st.bind(2, classId);
@@ -71,7 +71,7 @@ bool SkillDao::remove(int tm, int classId, core::SkillType skill, const std::str
 }
 
 std::vector<SkillRow> SkillDao::list(int tm) const {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        std::string(kSelect) +
                            " WHERE TaskModelId = ? ORDER BY ClassId, InstanceId, CASE Skill WHEN 'Reach' THEN 0 "
                            "WHEN 'Grasp' THEN 1 WHEN 'Move' THEN 2 ELSE 3 END");

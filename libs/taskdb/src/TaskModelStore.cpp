@@ -1,6 +1,6 @@
 #include "srp/taskdb/TaskModelStore.h"
 
-#include <SQLiteCpp/SQLiteCpp.h>
+#include "Backend.h"
 
 #include "srp/core/Error.h"
 #include "srp/taskdb/GroundedProductDao.h"
@@ -20,6 +20,9 @@ namespace {
 // Bulk rows are written in chunks so the progress callback (and a kill) can
 // land in the middle of a task model.
 constexpr std::size_t kChunkRows = 2000;
+// Writers storing the same name at once: the loser of the unique (Name,
+// Version) race takes the next version; bounded so a bug cannot spin forever.
+constexpr int kMaxVersionAttempts = 100;
 
 template <typename Row, typename Dao>
 void writeChunked(Dao& dao, int id, const std::vector<Row>& rows, std::size_t& done, std::size_t total,
@@ -38,8 +41,24 @@ int TaskModelStore::write(const TaskModel& m, const Progress& progress, const Be
   try {
     TaskModelDao models(db_);
     TaskModelInfo info = m.info;
-    info.version = models.nextVersion(info.name);
-    const int id = models.add(info);
+    // Race-free versioning: insert under the UNIQUE (Name, Version)
+    // constraint; a concurrent writer that took the version first makes the
+    // insert fail, the savepoint undoes it and the next version is tried (on a
+    // server each statement sees the other's committed row; SQLite's write
+    // lock already serialises writers).
+    int id = 0;
+    for (int attempt = 1;; ++attempt) {
+      info.version = models.nextVersion(info.name);
+      db_.backend().exec("SAVEPOINT srp_version");
+      try {
+        id = models.add(info);
+        db_.backend().exec("RELEASE SAVEPOINT srp_version");
+        break;
+      } catch (const detail::DbError& e) {
+        if (e.kind() != detail::DbError::Kind::UniqueViolation || attempt >= kMaxVersionAttempts) throw;
+        db_.backend().exec("ROLLBACK TO SAVEPOINT srp_version");
+      }
+    }
     ProductDao products(db_);
     for (const auto& r : m.products) products.add(id, r);
     SourceLocationDao sources(db_);
@@ -63,14 +82,14 @@ int TaskModelStore::write(const TaskModel& m, const Progress& progress, const Be
     if (beforeCommit) beforeCommit(id, info.version);
     tx.commit();  // deferred foreign keys are checked here
     return id;
-  } catch (const SQLite::Exception& e) {
+  } catch (const detail::DbError& e) {
     throw core::InvalidInputError("task model '" + m.info.name + "' not written (database unchanged): " + e.what());
   }
 }
 
 namespace {
 // A page SQLite cannot read mid-query: say which file and what to do.
-[[noreturn]] void rethrowUnreadable(const std::string& path, const SQLite::Exception& e) {
+[[noreturn]] void rethrowUnreadable(const std::string& path, const detail::DbError& e) {
   throw core::FileError(path, std::string("cannot read the task database (") + e.what() +
                                   "); if it is corrupt, restore it from a backup");
 }
@@ -79,7 +98,7 @@ namespace {
 TaskModel TaskModelStore::read(int id) const {
   try {
     return readUnchecked(id);
-  } catch (const SQLite::Exception& e) {
+  } catch (const detail::DbError& e) {
     rethrowUnreadable(db_.path(), e);
   }
 }
@@ -91,7 +110,7 @@ TaskModel TaskModelStore::readUnchecked(int id) const {
     throw core::InvalidInputError("no task model with id " + std::to_string(id) + " in '" + db_.path() +
                                   "' (list them with 'srp db list')");
   // One read transaction: a consistent snapshot even while a writer commits.
-  db_.connection().exec("BEGIN");
+  db_.backend().beginRead();
   try {
     m.info = *info;
     m.products = ProductDao(db_).list(id);
@@ -105,19 +124,19 @@ TaskModel TaskModelStore::readUnchecked(int id) const {
     m.scene = PerceivedSceneDao(db_).get(id);
   } catch (...) {
     try {
-      db_.connection().exec("ROLLBACK");
+      db_.backend().exec("ROLLBACK");
     } catch (...) {
     }
     throw;
   }
-  db_.connection().exec("COMMIT");
+  db_.backend().exec("COMMIT");
   return m;
 }
 
 std::vector<TaskModelInfo> TaskModelStore::list() const {
   try {
     return TaskModelDao(db_).list();
-  } catch (const SQLite::Exception& e) {
+  } catch (const detail::DbError& e) {
     rethrowUnreadable(db_.path(), e);
   }
 }
@@ -138,7 +157,7 @@ void TaskModelStore::replaceSkills(int id, const std::vector<SkillRow>& rows) {
   try {
     for (const auto& r : rows) skills.add(id, r);
     tx.commit();
-  } catch (const SQLite::Exception& e) {
+  } catch (const detail::DbError& e) {
     throw core::InvalidInputError("skills of task model " + std::to_string(id) + " not written (unchanged): " + e.what());
   }
 }

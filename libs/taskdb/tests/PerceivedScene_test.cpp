@@ -6,6 +6,8 @@
 
 #include <limits>
 
+#include "Backends.h"
+#include "SqlUtil.h"
 #include "TestDb.h"
 #include "srp/core/Error.h"
 #include "srp/core/ObjectClassJson.h"
@@ -13,6 +15,7 @@
 #include "srp/taskdb/TaskModelStore.h"
 
 using namespace srp::taskdb;
+using srp::taskdb::test::PerceivedSceneStore;
 
 namespace {
 constexpr double kPoseTol_m = 1e-12;       // stored as REAL: doubles exactly, rotations through a quaternion
@@ -65,9 +68,8 @@ TaskModel modelWith(const PerceivedScene& s) {
 }
 }  // namespace
 
-TEST(PerceivedScene, StoredWithTheTaskModelAndReadBack) {
-  test::TempDbPath path("perceived_scene");
-  auto db = TaskDatabase::open(path.str());
+TEST_P(PerceivedSceneStore, StoredWithTheTaskModelAndReadBack) {
+  auto db = TaskDatabase::open(newDatabase("perceived_scene"));
   const PerceivedScene s = toyScene();
   const int id = TaskModelStore(db).write(modelWith(s));
   const TaskModel back = TaskModelStore(db).read(id);
@@ -98,14 +100,13 @@ TEST(PerceivedScene, StoredWithTheTaskModelAndReadBack) {
   // Deleting the task model deletes its scene.
   TaskModelStore(db).remove(id);
   EXPECT_FALSE(PerceivedSceneDao(db).get(id).has_value());
-  SQLite::Statement left(db.connection(), "SELECT (SELECT COUNT(*) FROM SceneObjects) + (SELECT COUNT(*) FROM ObservedClasses)");
+  detail::Statement left(db, "SELECT (SELECT COUNT(*) FROM SceneObjects) + (SELECT COUNT(*) FROM ObservedClasses)");
   ASSERT_TRUE(left.executeStep());
   EXPECT_EQ(left.getColumn(0).getInt(), 0);
 }
 
-TEST(PerceivedScene, ANonFiniteNumberIsRefusedAndNothingIsWritten) {
-  test::TempDbPath path("perceived_scene_bad");
-  auto db = TaskDatabase::open(path.str());
+TEST_P(PerceivedSceneStore, ANonFiniteNumberIsRefusedAndNothingIsWritten) {
+  auto db = TaskDatabase::open(newDatabase("perceived_scene_bad"));
   PerceivedScene s = toyScene();
   s.objects[1].X_table_object.translation().x() = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(TaskModelStore(db).write(modelWith(s)), srp::core::Error);

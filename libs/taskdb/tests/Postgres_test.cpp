@@ -3,12 +3,17 @@
 // credentials never shown.
 #include <gtest/gtest.h>
 
+#include <SQLiteCpp/SQLiteCpp.h>
+#include <sqlite3.h>
+
+#include <cstdio>
 #include <set>
 #include <thread>
 
 #include "PgCluster.h"
 #include "TestDb.h"
 #include "srp/core/Error.h"
+#include "srp/core/Json.h"
 #include "srp/taskdb/TaskModelDao.h"
 #include "srp/taskdb/TaskModelStore.h"
 
@@ -45,7 +50,86 @@ std::vector<std::string> onThreads(int n, F body) {
   return failed;
 }
 
+// Every row of every table of an SQLite task database, as text (doubles with
+// 17 digits, so a last-bit difference shows).
+std::string dumpFile(const std::string& path) {
+  SQLite::Database db(path, SQLite::OPEN_READONLY);
+  std::string out;
+  for (const char* table : {"TaskModels", "Products", "SourceLocations", "TargetLocations", "TaskModelTargetObjects",
+                            "GroundedProducts", "ProductPose", "HandPositions", "Skills", "PerceivedScenes",
+                            "SceneObjects", "ObservedClasses"}) {
+    SQLite::Statement st(db, std::string("SELECT * FROM ") + table + " ORDER BY 1, 2");
+    out += table;
+    int rows = 0;
+    while (st.executeStep()) {
+      ++rows;
+      out += "\n";
+      for (int c = 0; c < st.getColumnCount(); ++c) {
+        const SQLite::Column col = st.getColumn(c);
+        if (col.getType() == SQLITE_FLOAT) {
+          char buf[32];
+          std::snprintf(buf, sizeof buf, "%.17g", col.getDouble());
+          out += std::string("|") + buf;
+        } else {
+          out += "|" + (col.isNull() ? std::string("NULL") : col.getString());
+        }
+      }
+    }
+    out += "\n" + std::to_string(rows) + " rows\n";
+  }
+  return out;
+}
+
 }  // namespace
+
+// srp db import --from: SQLite -> PostgreSQL -> SQLite keeps every row of
+// every table (the bundled Appendix C task model, a bulk model with skills, a
+// model with a perceived scene).
+TEST_F(Postgres, ImportRoundTripKeepsEveryRow) {
+  test::TempDbPath original("roundtrip_original"), back("roundtrip_back");
+  {
+    auto db = TaskDatabase::open(original.str());
+    TaskModelStore store(db);
+    store.write(taskModelFromJson(srp::core::readJsonFile(std::string(SRP_DATASETS_DIR) +
+                                                          "/examples/appendix_c_instruction1.json"),
+                                  "appendix_c_instruction1.json"));
+    TaskModel bulk = test::bulkModel("bulk", 300, 3);
+    bulk.info.intrinsics = srp::core::CameraIntrinsics{607.178, 607.234, 321.391, 241.918, 640, 480};
+    bulk.info.X_base_camera = srp::core::makePoseYPR({0.1, -0.5, 0.9}, 0.3, 0.0, M_PI);
+    bulk.skills = {{1, srp::core::SkillType::Reach, 0, 95, {{"weights", {0.1, 1.0 / 3.0, -2.718281828459045e-7}}}},
+                   {1, srp::core::SkillType::Grasp, 96, 96, {}}};
+    store.write(bulk);
+    store.write(test::bulkModel("bulk", 10, 1));  // version 2
+    TaskModel scene = test::bulkModel("scene", 5, 1);
+    PerceivedScene s;
+    s.catalogue = "datasets/kb/catalogue.json";
+    s.tableSize_m = {1.2, 0.8};
+    s.X_table_camera = srp::core::makePoseYPR({0.1, -0.2, 0.9}, 0.2, 0.1, M_PI / 3);
+    s.objects = {{"cuboid_red", 3, "cuboid", srp::core::makePoseYPR({0.1, 0.05, 0.02}, 0.4, 0.0, 0.0), "red",
+                  Eigen::Vector3d(0.8, 0.1, 1.0 / 7.0)},
+                 {"box", 1, "box", srp::core::makePoseYPR({-0.2, 0.1, 0.0}, -1.0, 0.0, 0.0), {}, {}}};
+    scene.scene = s;
+    store.write(scene);
+  }
+  const std::string server = test::PgCluster::instance().createDatabase("roundtrip");
+  {
+    auto from = TaskDatabase::open(original.str(), TaskDatabase::Mode::ReadOnly);
+    auto to = TaskDatabase::open(server);
+    EXPECT_EQ(copyTaskModels(from, to).size(), 4u);
+    // Copying again would duplicate names and versions: refused, nothing changes.
+    EXPECT_THROW(copyTaskModels(from, to), srp::core::InvalidInputError);
+    EXPECT_EQ(TaskModelStore(to).list().size(), 4u);
+  }
+  {
+    auto from = TaskDatabase::open(server, TaskDatabase::Mode::ReadOnly);
+    auto to = TaskDatabase::open(back.str());
+    EXPECT_EQ(copyTaskModels(from, to).size(), 4u);
+  }
+  const std::string before = dumpFile(original.str()), after = dumpFile(back.str());
+  EXPECT_EQ(before, after);
+  EXPECT_NE(before.find("TaskModels\n|1|appendix-c"), std::string::npos) << before.substr(0, 200);
+  EXPECT_NE(before.find("\n4 rows\n"), std::string::npos) << "the four task models are in the dump";
+}
 
 TEST_F(Postgres, ConcurrentFirstUseCreatesTheSchemaOnce) {
   constexpr int kWriters = 8;

@@ -13,6 +13,7 @@
 #include "srp/core/Error.h"
 #include "srp/core/ExitCode.h"
 #include "srp/programming/ProgrammingPipeline.h"
+#include "srp/taskdb/TaskDatabase.h"
 
 namespace {
 
@@ -34,7 +35,9 @@ void setupProgram(CLI::App& cmd) {
                  "their colours): a class it holds several times is perceived per instance, and the instruction's "
                  "phrases ('the red cuboid') are grounded to instances (stored as InstanceId)");
   cmd.add_option("--calib", a->calib, "Camera intrinsics (ViSP XML, e.g. calib/camera.xml) overriding the rawlog's");
-  cmd.add_option("--db", a->db, "Task database to store the task model in")->capture_default_str();
+  cmd.add_option("--db", a->db, "Task database to store the task model in: an SQLite file, or a PostgreSQL server as postgresql://user@host:port/dbname (password from PGPASSFILE or PGPASSWORD)")
+      ->envname("SRP_DB")
+      ->capture_default_str();
   cmd.add_option("--name", a->name, "Task model name; an existing name gets a new version")->capture_default_str();
   cmd.add_option("--report", a->report,
                  "Folder for the report: PNG figures, contact_sheet.png (what perception saw on the recording), "
@@ -82,7 +85,7 @@ void setupProgram(CLI::App& cmd) {
       return;
     }
     std::cout << "Stored task model " << r.taskModelId << " ('" << r.name << "' version " << r.version << ") in "
-              << a->db << "\n\nPlan:\n";
+              << srp::taskdb::TaskDatabase::displayName(a->db) << "\n\nPlan:\n";
     for (std::size_t i = 0; i < r.planLines.size(); ++i) std::cout << "  " << i + 1 << ". " << r.planLines[i] << "\n";
     std::cout << "\nDemonstration: " << r.frames << " frames, hand detected in " << r.handDetectedFrames << "\n\n";
     std::cout << std::left << std::setw(16) << "object" << std::setw(8) << "grasp" << std::setw(9) << "release"

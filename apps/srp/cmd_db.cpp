@@ -14,7 +14,7 @@ namespace {
 using namespace srp::taskdb;
 
 struct DbOptions {
-  std::string db = "task.db";
+  std::string db = srp::app::defaultTaskDatabase();
   int id = 0;
   bool json = false;
   std::string format = "appendix-c";
@@ -26,7 +26,7 @@ struct DbOptions {
 };
 
 void addDbOption(CLI::App& c, DbOptions& o) {
-  c.add_option("--db", o.db, "Task database: an SQLite file, or a PostgreSQL server as postgresql://user@host:port/dbname (password from PGPASSFILE or PGPASSWORD)")->envname("SRP_DB")->capture_default_str();
+  c.add_option("--db", o.db, std::string("Task database: ") + srp::app::kTaskDatabaseHelp);
 }
 
 void setupDb(CLI::App& app) {

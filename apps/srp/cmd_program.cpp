@@ -18,7 +18,7 @@
 namespace {
 
 struct ProgramArgs {
-  std::string instruction, demo, kb, calib, db = "task.db", name = "task", report, hand = "marker", scene, extrinsics;
+  std::string instruction, demo, kb, calib, db = srp::app::defaultTaskDatabase(), name = "task", report, hand = "marker", scene, extrinsics;
   bool json = false, quiet = false, allowTruncated = false, allowPartial = false;
 };
 
@@ -35,9 +35,7 @@ void setupProgram(CLI::App& cmd) {
                  "their colours): a class it holds several times is perceived per instance, and the instruction's "
                  "phrases ('the red cuboid') are grounded to instances (stored as InstanceId)");
   cmd.add_option("--calib", a->calib, "Camera intrinsics (ViSP XML, e.g. calib/camera.xml) overriding the rawlog's");
-  cmd.add_option("--db", a->db, "Task database to store the task model in: an SQLite file, or a PostgreSQL server as postgresql://user@host:port/dbname (password from PGPASSFILE or PGPASSWORD)")
-      ->envname("SRP_DB")
-      ->capture_default_str();
+  cmd.add_option("--db", a->db, std::string("Task database to store the task model in: ") + srp::app::kTaskDatabaseHelp);
   cmd.add_option("--name", a->name, "Task model name; an existing name gets a new version")->capture_default_str();
   cmd.add_option("--report", a->report,
                  "Folder for the report: PNG figures, contact_sheet.png (what perception saw on the recording), "

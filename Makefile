@@ -1,7 +1,9 @@
 # The two commands of the README, and a few conveniences.
-#   make demo  - install what is missing, build, run the main job on the bundled default
-#   make test  - install what is missing, configure, build, run the test suite
+#   make demo  - install what is missing, build the srp executable only, run the main job on the bundled default
+#   make test  - install what is missing (with the test packages), configure with the tests, notebooks and
+#                benchmarks on, build everything, run the test suite
 #   make test-slow - the acceptance suites (.ci/run runs them after make test)
+#   make package   - the Debian packages (srp, srp-data, libsrp-dev) in $(BUILD_DIR)/
 BUILD_DIR ?= build
 BUILD_TYPE ?= RelWithDebInfo
 JOBS ?= $(shell nproc)
@@ -10,22 +12,36 @@ CTEST_ARGS ?=
 CCACHE := $(shell command -v ccache 2>/dev/null)
 LAUNCHER := $(if $(CCACHE),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache,)
 
-.PHONY: all deps configure build test test-slow test-sanitize demo bench clean
+.PHONY: all deps deps-test configure configure-demo build build-demo test test-slow test-sanitize demo bench package clean
 
 SANITIZE_DIR ?= build-sanitize
+# The tests, notebooks and benchmarks: on for make test, off for make demo.
+WITH_TESTS := -DSRP_BUILD_TESTS=ON -DSRP_BUILD_NOTEBOOKS=ON -DSRP_BUILD_BENCHMARKS=ON
+WITHOUT_TESTS := -DSRP_BUILD_TESTS=OFF -DSRP_BUILD_NOTEBOOKS=OFF -DSRP_BUILD_BENCHMARKS=OFF
 
 all: build
 
 deps:
 	@bash scripts/install-deps.sh
 
-configure: deps
-	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) $(LAUNCHER) > $(BUILD_DIR).configure.log 2>&1 \
+deps-test:
+	@bash scripts/install-deps.sh --test
+
+configure: deps-test
+	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) $(LAUNCHER) $(WITH_TESTS) > $(BUILD_DIR).configure.log 2>&1 \
+	  || (cat $(BUILD_DIR).configure.log; exit 1)
+	@echo "configured $(BUILD_DIR) ($(BUILD_TYPE), with tests, notebooks and benchmarks)"
+
+configure-demo: deps
+	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) $(LAUNCHER) $(WITHOUT_TESTS) > $(BUILD_DIR).configure.log 2>&1 \
 	  || (cat $(BUILD_DIR).configure.log; exit 1)
 	@echo "configured $(BUILD_DIR) ($(BUILD_TYPE))"
 
 build: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
+
+build-demo: configure-demo
+	@cmake --build $(BUILD_DIR) -j $(JOBS) --target srp
 
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS) -LE slow $(CTEST_ARGS)
@@ -34,20 +50,27 @@ test: build
 test-slow: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS) -L slow $(CTEST_ARGS)
 
-# The rawlog reader and its fuzz test under AddressSanitizer + UBSan, in a
-# build dir of its own (huge allocations return an error instead of aborting,
-# as the fuzz test's memory limit expects).
-test-sanitize: deps
+# The rawlog reader and its fuzz test, and the safety sweep's hostile meshes and
+# task-database cells, under AddressSanitizer + UBSan, in a build dir of its own
+# (huge allocations return an error instead of aborting, as the fuzz tests'
+# memory limit expects).
+test-sanitize: deps-test
 	@cmake -S . -B $(SANITIZE_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSRP_BUILD_BENCHMARKS=OFF $(LAUNCHER) \
 	  -DCMAKE_CXX_FLAGS="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
 	  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" > $(SANITIZE_DIR).configure.log 2>&1 \
 	  || (cat $(SANITIZE_DIR).configure.log; exit 1)
-	@cmake --build $(SANITIZE_DIR) --target srp_rawlog_tests -j $(JOBS)
+	@cmake --build $(SANITIZE_DIR) --target srp_rawlog_tests srp_safety_tests -j $(JOBS)
 	@cd $(SANITIZE_DIR) && ASAN_OPTIONS=allocator_may_return_null=1:max_allocation_size_mb=1024:detect_leaks=1 \
 	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ./libs/rawlog/srp_rawlog_tests
+	@cd $(SANITIZE_DIR) && ASAN_OPTIONS=allocator_may_return_null=1:max_allocation_size_mb=1024:detect_leaks=1 \
+	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ./tests/safety/srp_safety_tests \
+	  --gtest_filter='HostileMeshes.*:HostileTaskDatabase.*:DecompressionBombs.*'
 
-demo: build
+demo: build-demo
 	@bash scripts/demo.sh $(BUILD_DIR)
+
+package: build-demo
+	@cmake --build $(BUILD_DIR) --target package
 
 bench: build
 	@bash scripts/bench.sh $(BUILD_DIR)

@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
-# Installs the Debian packages srp needs to build, test and run the demo.
+# Installs the Debian packages srp needs.
+#   scripts/install-deps.sh          to build srp and run it (make demo)
+#   scripts/install-deps.sh --test   also what the tests, notebooks and benchmarks need (make test)
 # Idempotent: only missing packages are installed; apt-get is the only network use.
 set -euo pipefail
 
 PACKAGES=(
-  # toolchain and test tools
+  # toolchain
   build-essential cmake pkg-config
-  libgtest-dev libgmock-dev libbenchmark-dev time
   # core utilities
   libeigen3-dev nlohmann-json3-dev libcli11-dev
   # taskdb
@@ -25,15 +26,27 @@ PACKAGES=(
   libdlib-dev wordnet-dev wordnet-base
   # motion and execution
   libnlopt-cxx-dev libsimbody-dev liburdfdom-dev liburdfdom-headers-dev
+  # the ROS 2 trajectory export (a YAML emitter, not hand-written text)
+  libyaml-cpp-dev
   # synthetic demos: the hand's AprilTag (tag36h11 bit patterns)
   libapriltag-dev
   # rawlog: gzip members compressed with libdeflate (fast, in parallel)
   libdeflate-dev
   # knowledge base: users' CAD files of their parts (OBJ, STL, PLY, glTF, COLLADA)
   libassimp-dev
-  # test data shipped by Debian
-  visp-images-data
+  # calibration files in ROS camera_info YAML
+  libyaml-cpp-dev
 )
+
+# Only for make test: GoogleTest, Google Benchmark, Debian's ViSP test images,
+# GNU time (bench-program.sh).
+TEST_PACKAGES=(
+  libgtest-dev libgmock-dev libbenchmark-dev time
+  visp-images-data
+  # tests: exported trajectories are read back the way `ros2 topic pub` reads them (PyYAML)
+  python3 python3-yaml
+)
+if [ "${1:-}" = "--test" ]; then PACKAGES+=("${TEST_PACKAGES[@]}"); fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -51,7 +51,14 @@ inline const char* kTaskDatabaseHelp =
     "an SQLite file, or a PostgreSQL server as postgresql://user@host:port/dbname (password from ~/.pgpass, "
     "PGPASSFILE or PGPASSWORD); default: $SRP_DB, else task.db";
 
-/// Exit code a command can request (e.g. 2 for "done, but with skipped steps").
+/// `-w,--overwrite` on a command that writes files: an existing output is
+/// replaced only when it is given (core::checkOutputPaths refuses it otherwise).
+inline CLI::Option* addOverwriteFlag(CLI::App& cmd, bool& overwrite) {
+  return cmd.add_flag("-w,--overwrite", overwrite,
+                      "Replace existing output files (without it an existing output is refused, naming the file)");
+}
+
+/// Exit code a command can request (srp/core/ExitCode.h; e.g. 3 for "done, but with skipped steps").
 int& commandExitCode();
 
 }  // namespace srp::app

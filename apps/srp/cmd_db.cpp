@@ -1,11 +1,12 @@
 // srp db: create, inspect, import and export task databases (libs/taskdb).
-#include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 
 #include "CommandRegistry.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
+#include "srp/core/OutputFile.h"
 #include "srp/taskdb/TaskModelReport.h"
 #include "srp/taskdb/TaskModelStore.h"
 
@@ -23,6 +24,7 @@ struct DbOptions {
   std::string from;
   std::vector<int> ids;
   int maxRows = 0;
+  bool overwrite = false;
 };
 
 void addDbOption(CLI::App& c, DbOptions& o) {
@@ -82,19 +84,18 @@ void setupDb(CLI::App& app) {
   exp->add_option("--format", o->format, "Layout: appendix-c (the thesis' Appendix C tables) or json")
       ->check(CLI::IsMember({"appendix-c", "json"}))
       ->capture_default_str();
-  exp->add_option("--out", o->out, "Output file (default: standard output)");
+  exp->add_option("--out", o->out, "Output file (default: standard output); written whole or not at all");
   exp->add_option("--max-rows", o->maxRows, "Abbreviate long tables to this many rows with '...' (0: all)");
+  srp::app::addOverwriteFlag(*exp, o->overwrite);
   exp->callback([o] {
+    srp::core::checkOutputPaths({{"--out", o->out}}, {{"--db", o->db}}, o->overwrite);
     auto db = TaskDatabase::open(o->db, TaskDatabase::Mode::ReadOnly);
     const TaskModel m = TaskModelStore(db).read(o->id);
-    std::ofstream file;
-    if (!o->out.empty()) {
-      file.open(o->out);
-      if (!file) throw srp::core::FileError(o->out, "cannot write export");
-    }
-    std::ostream& out = o->out.empty() ? std::cout : file;
+    std::ostringstream out;
     if (o->format == "json") out << toJson(m).dump(2) << "\n";
     else writeAppendixC(m, out, o->maxRows);
+    if (o->out.empty()) std::cout << out.str();
+    else srp::core::writeFileAtomically(o->out, out.str());
   });
 
   auto* imp = app.add_subcommand(

@@ -9,6 +9,7 @@
 #include "CommandRegistry.h"
 #include "LanguageSwitches.h"
 #include "srp/core/Json.h"
+#include "srp/core/OutputFile.h"
 #include "srp/language/AnnotationPrecedents.h"
 #include "srp/language/CapabilitySuites.h"
 #include "srp/language/LanguageModel.h"
@@ -17,20 +18,22 @@
 namespace {
 void setupEvalLanguage(CLI::App& app) {
   auto dataPath = std::make_shared<std::string>();
-  auto modelPath = std::make_shared<std::string>(srp::language::defaultModelPath());
+  auto modelPath = std::make_shared<std::string>();
   auto predictionsPath = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
   auto capabilities = std::make_shared<bool>(false);
-  auto capabilitiesDir = std::make_shared<std::string>(srp::language::CapabilitySuites::defaultFolder());
+  auto capabilitiesDir = std::make_shared<std::string>();  // empty: the shipped suites
   auto* input = app.add_option_group("input", "what to score (one of)");
   input->add_option("--data", *dataPath, "SpERT corpus to score (e.g. datasets/language/val.json)")
       ->check(CLI::ExistingFile);
   input->add_flag("--capabilities", *capabilities,
                   "score every capability suite of --capabilities-dir instead (entity and relation F1 per suite)");
   input->require_option(1);
-  app.add_option("--capabilities-dir", *capabilitiesDir, "folder of capability suites (<name>.json, SpERT format)")
-      ->capture_default_str();
-  app.add_option("--model", *modelPath, "language model file")->capture_default_str();
+  app.add_option("--capabilities-dir", *capabilitiesDir,
+                 "folder of capability suites (<name>.json, SpERT format; default: the shipped "
+                 "datasets/language/capabilities of srp's data folder)");
+  app.add_option("--model", *modelPath,
+                 "language model file (default: the shipped datasets/language/model/language_model.dat of srp's data folder)");
   auto rules = std::make_shared<std::vector<std::string>>();
   app.add_option("--rules", *rules,
                  "decoding rules switched from the model's own, e.g. source_is_spatial=1,span_lengths=0; rules: " +
@@ -47,14 +50,21 @@ void setupEvalLanguage(CLI::App& app) {
                  "SpERT corpus (e.g. train.json) to check each error against: how it annotates the same 7 words, "
                  "and the scores if the scored corpus followed it where the model did")
       ->check(CLI::ExistingFile);
+  auto overwrite = std::make_shared<bool>(false);
+  srp::app::addOverwriteFlag(app, *overwrite);
   app.callback([=] {
-    auto model = srp::language::LanguageModel::load(*modelPath);
+    srp::core::checkOutputPaths({{"--predictions", *predictionsPath}},
+                                {{"--data", *dataPath}, {"--model", *modelPath}, {"--precedents", *precedentsPath}},
+                                *overwrite);
+    auto model =
+        srp::language::LanguageModel::load(modelPath->empty() ? srp::language::defaultModelPath() : *modelPath);
     if (!rules->empty()) {
       auto switched = model.decodingRules();
       srp::app::applySwitches(*rules, switched, "decoding rule");
       model.setDecodingRules(switched);
     }
     if (*capabilities) {
+      if (capabilitiesDir->empty()) *capabilitiesDir = srp::language::CapabilitySuites::defaultFolder();
       const auto suites = srp::language::CapabilitySuites::load(*capabilitiesDir);
       const auto results = suites.score(model);
       if (*json)

@@ -6,6 +6,8 @@
 #include "CommandRegistry.h"
 #include "srp/calib/CameraExtrinsics.h"
 #include "srp/core/Error.h"
+#include "srp/core/OutputFile.h"
+#include "srp/core/ExitCode.h"
 #include "srp/core/ViewFrame.h"
 #include "srp/execution/ExecutionSession.h"
 #include "srp/execution/RosTrajectoryExporter.h"
@@ -31,6 +33,7 @@ struct ExecuteOptions {
   double maxAcceleration_radps2 = srp::execution::SafetyLimits{}.maxAcceleration_radps2;
   bool safetySpheres = false;
   std::string view = "demonstrator";
+  bool overwrite = false;
 };
 
 void setupExecute(CLI::App& app) {
@@ -44,7 +47,7 @@ void setupExecute(CLI::App& app) {
                  "sim/scenes/default.json for a task model that stores none)");
   app.add_option("--extrinsics", o->extrinsics,
                  "Camera-to-robot extrinsics JSON of the demonstration's camera ('srp calibrate extrinsics' or "
-                 "'hand-eye' write calib/extrinsics.json): places the robot base in the demonstration's scene (default: "
+                 "'hand-eye' write it, ./extrinsics.json by default): places the robot base in the demonstration's scene (default: "
                  "the calibration stored with the task model, else the table edge opposite the camera, said in the "
                  "report) and turns the demonstrated offsets into a --scene file's frame")
       ->check(CLI::ExistingFile);
@@ -52,7 +55,7 @@ void setupExecute(CLI::App& app) {
                  "Knowledge base of the demonstration's scene (default: the catalogue the task model was programmed "
                  "with)")
       ->check(CLI::ExistingFile);
-  app.add_option("--out", o->out, "Output folder: report.json, report.txt, joints.csv, final_scene.json (the scene after execution, for --scene of the next run), frames/*.png")
+  app.add_option("--out", o->out, "Output folder: report.json, report.txt, joints.csv, final_scene.json (the scene after execution, for --scene of the next run), frames/*.png; written whole or not at all (an existing one needs -w, and is replaced only when it holds nothing else)")
       ->capture_default_str();
   app.add_option("--frame-period", o->framePeriod, "Render every n-th 20 ms snapshot (0: no frames)")
       ->capture_default_str();
@@ -72,8 +75,16 @@ void setupExecute(CLI::App& app) {
       ->capture_default_str();
   app.add_option("--servo-gain", o->ur.servoGain, "URScript: servoj gain (100-2000)")->capture_default_str();
   app.add_option("--ros-point-period", o->ros.pointPeriod_s,
-                 "ROS YAML: keep trajectory knots at least this many seconds apart (0: every 10 ms knot)")
+                 "ROS YAML: keep trajectory knots at least this many seconds apart (0: every 10 ms knot); the "
+                 "spline through the kept knots is checked again (limits, and within --ros-max-deviation of the "
+                 "checked trajectory), else nothing is written")
       ->capture_default_str();
+  app.add_option("--ros-max-deviation", o->ros.maxThinningDeviation_rad,
+                 "ROS YAML with --ros-point-period: largest joint difference [rad] allowed between the thinned and "
+                 "the checked trajectory")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-6, 0.1));
+  srp::app::addOverwriteFlag(app, o->overwrite);
   app.add_option("--velocity-fraction", o->velocityFraction,
                  "Safety check: allow this fraction of the URDF joint speed limits (e.g. 0.5 for a first run on the "
                  "real cell); paths are slowed down to fit, up to 4x, else the step is refused")
@@ -90,9 +101,14 @@ void setupExecute(CLI::App& app) {
                  "(the camera's image axes on the table) or robot (standing at the robot base)")
       ->capture_default_str();
   app.callback([o] {
-    // Bad exporter options fail before the (long) execution.
+    // Bad exporter options and outputs that would destroy an input or an existing file
+    // fail before the (long) execution.
     const srp::execution::UrScriptExporter urExporter(o->ur);
     const srp::execution::RosTrajectoryExporter rosExporter(o->ros);
+    using srp::core::PathRole;
+    srp::core::checkOutputPaths({{"--urscript", o->urscript}, {"--trajectory-yaml", o->trajectoryYaml}, {"--out", o->out}},
+                                {{"--db", o->db}, {"--scene", o->scene}, {"--extrinsics", o->extrinsics}, {"--kb", o->kb}},
+                                o->overwrite);
     srp::execution::ExecuteRequest request;
     request.databasePath = o->db;
     request.taskModelId = o->task;
@@ -115,24 +131,25 @@ void setupExecute(CLI::App& app) {
       std::cout << result.report.toJson().dump(2) << "\n";
     else
       std::cout << result.report.toText() << "outputs in " << o->out << "/\n";
-    if (!result.report.allSucceeded()) srp::app::commandExitCode() = 2;
+    // 0 every step done with its relations, 3 steps skipped or refused, 1 a step failed.
+    srp::app::commandExitCode() = srp::core::toInt(result.report.exitCode());
     if (o->urscript.empty() && o->trajectoryYaml.empty()) return;
     if (const auto why = result.executed.whyNotExportable()) {
       for (const std::string& path : {o->urscript, o->trajectoryYaml})
         if (!path.empty() && std::filesystem::remove(path))  // never leave an older program where this one was asked
           std::cerr << "srp execute: removed " << path << " (from an earlier run)\n";
       std::cerr << "srp execute: no URScript / trajectory YAML written: " << *why << "\n";
-      srp::app::commandExitCode() = 2;
+      if (srp::app::commandExitCode() == 0) srp::app::commandExitCode() = srp::core::toInt(srp::core::ExitCode::Error);
       return;
     }
-    if (!o->urscript.empty()) {
-      urExporter.write(result.executed, o->urscript);
-      (o->json ? std::cerr : std::cout) << "URScript program: " << o->urscript << "\n";
-    }
-    if (!o->trajectoryYaml.empty()) {
-      rosExporter.write(result.executed, o->trajectoryYaml);
+    // Both files or neither: a program never sits beside a trajectory of another run.
+    std::vector<std::pair<std::filesystem::path, std::string>> files;
+    if (!o->urscript.empty()) files.emplace_back(o->urscript, urExporter.toScript(result.executed));
+    if (!o->trajectoryYaml.empty()) files.emplace_back(o->trajectoryYaml, rosExporter.toYaml(result.executed));
+    srp::core::writeFilesTogether(files);
+    if (!o->urscript.empty()) (o->json ? std::cerr : std::cout) << "URScript program: " << o->urscript << "\n";
+    if (!o->trajectoryYaml.empty())
       (o->json ? std::cerr : std::cout) << "ROS 2 JointTrajectory YAML: " << o->trajectoryYaml << "\n";
-    }
   });
 }
 

@@ -37,12 +37,13 @@ std::size_t firstInvalidUtf8(const std::string& s) {
 
 void setupParse(CLI::App& app) {
   auto text = std::make_shared<std::string>();
-  auto modelPath = std::make_shared<std::string>(srp::language::defaultModelPath());
+  auto modelPath = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
   auto showEntities = std::make_shared<bool>(false);
   app.add_option("text", *text, "the instruction, e.g. \"Pick up the cuboid and place it in the gray box.\"")
       ->required();
-  app.add_option("--model", *modelPath, "language model file")->capture_default_str();
+  app.add_option("--model", *modelPath,
+                 "language model file (default: the shipped datasets/language/model/language_model.dat of srp's data folder)");
   app.add_flag("--json", *json, "print the plan as JSON ({\"steps\", \"sentences\", \"warnings\"})");
   auto knownPath = std::make_shared<std::string>();
   app.add_option("--known", *knownPath,
@@ -60,7 +61,7 @@ void setupParse(CLI::App& app) {
       throw srp::core::InvalidInputError("the instruction is not valid UTF-8 (byte " + std::to_string(bad) + " is " +
                                          hex + "); give it as UTF-8 text");
     }
-    const srp::language::InstructionParser parser(*modelPath);
+    const srp::language::InstructionParser parser(modelPath->empty() ? srp::language::defaultModelPath() : *modelPath);
     std::vector<srp::language::PlanStep> known;
     if (!knownPath->empty()) known = srp::language::taskPlanFromJson(srp::core::readJsonFile(*knownPath)).steps;
     const auto plan = parser.parse(*text, known);

@@ -9,6 +9,7 @@
 #include "CommandRegistry.h"
 #include "ProgressLine.h"
 #include "srp/core/Json.h"
+#include "srp/core/OutputFile.h"
 #include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/DemoPerception.h"
 #include "srp/perception/PerceptionDrawing.h"
@@ -27,18 +28,22 @@ std::vector<std::string> splitList(const std::string& s) {
 }
 
 struct PerceiveOptions {
-  std::string demo, kb = srp::core::ObjectCatalogue::defaultPath(), csv, hand = "marker", draw;
+  std::string demo, kb, csv, hand = "marker", draw;  // kb empty: the shipped catalogue
   int drawEvery = 1;
   std::string objects, staticObjects, scene;
   double tagSize_m = 0.05;
   int tagId = 0;
   bool json = false;
   bool movingCamera = false;
+  bool overwrite = false;
   std::string tracker = "auto";
 };
 
 void run(const PerceiveOptions& o) {
-  const auto catalogue = srp::kb::loadCatalogue(o.kb);
+  srp::core::checkOutputPaths({{"--csv", o.csv}, {"--draw", o.draw}},
+                              {{"--demo", o.demo}, {"--kb", o.kb}, {"--scene", o.scene}}, o.overwrite);
+  if (!o.draw.empty()) srp::core::checkFolderHoldsOnly(o.draw, {"frame_*", "contact_sheet.png"}, "--draw");
+  const auto catalogue = srp::kb::loadCatalogue(o.kb.empty() ? srp::core::ObjectCatalogue::defaultPath() : o.kb);
   PerceptionOptions p;
   p.hand = o.hand == "marker-free" ? PerceptionOptions::HandMethod::MarkerFree
            : o.hand == "none"      ? PerceptionOptions::HandMethod::None
@@ -114,7 +119,8 @@ void run(const PerceiveOptions& o) {
 void setupPerceive(CLI::App& app) {
   auto o = std::make_shared<PerceiveOptions>();
   app.add_option("--demo", o->demo, "Demo RGB-D rawlog (srp record / srp synth-demo)")->required();
-  app.add_option("--kb", o->kb, "Knowledge-base catalogue JSON (classes may be given by a CAD file alone)")->capture_default_str();
+  app.add_option("--kb", o->kb, "Knowledge-base catalogue JSON (classes may be given by a CAD file alone; default: the shipped "
+                 "datasets/kb/catalogue.json of srp's data folder)");
   app.add_option("--hand", o->hand, "Hand detector (none: objects only, a recording without a demonstrator)")
       ->check(CLI::IsMember({"marker", "marker-free", "none"}))
       ->capture_default_str();
@@ -137,6 +143,7 @@ void setupPerceive(CLI::App& app) {
   app.add_option("--csv", o->csv,
                  "Write the per-frame CSV in the 'srp segment' format (a sample not detected in its frame, "
                  "e.g. a part in the hand, is written as 0,0,0,0)");
+  srp::app::addOverwriteFlag(app, o->overwrite);
   app.add_option("--draw", o->draw,
                  "Write what perception saw, drawn on the recording, to this folder: frame_NNNNN.png (palm, each "
                  "part and container with its outline, name and confidence, the table frame) and contact_sheet.png "

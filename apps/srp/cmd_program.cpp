@@ -11,6 +11,7 @@
 #include "srp/calib/CameraExtrinsics.h"
 #include "srp/calib/CameraFiles.h"
 #include "srp/core/Error.h"
+#include "srp/core/OutputFile.h"
 #include "srp/core/ExitCode.h"
 #include "srp/programming/ProgrammingPipeline.h"
 #include "srp/taskdb/TaskDatabase.h"
@@ -19,7 +20,7 @@ namespace {
 
 struct ProgramArgs {
   std::string instruction, demo, kb, calib, db = srp::app::defaultTaskDatabase(), name = "task", report, hand = "marker", scene, extrinsics;
-  bool json = false, quiet = false, allowTruncated = false, allowPartial = false;
+  bool json = false, quiet = false, allowTruncated = false, allowPartial = false, overwrite = false;
 };
 
 void setupProgram(CLI::App& cmd) {
@@ -29,7 +30,7 @@ void setupProgram(CLI::App& cmd) {
   // Recording is its own command (srp record demo.rawlog): programming reads a finished recording,
   // so a failed recording can never leave a half-programmed task.
   cmd.add_option("--demo", a->demo, "Demonstration rawlog (srp record / srp import / srp synth-demo)")->required();
-  cmd.add_option("--kb", a->kb, "Knowledge base catalogue (default: datasets/kb/catalogue.json)");
+  cmd.add_option("--kb", a->kb, "Knowledge base catalogue (default: the shipped datasets/kb/catalogue.json of srp's data folder)");
   cmd.add_option("--scene", a->scene,
                  "The demo's scene JSON (srp synth-demo --scene; for a recording, one listing its instances and "
                  "their colours): a class it holds several times is perceived per instance, and the instruction's "
@@ -40,10 +41,11 @@ void setupProgram(CLI::App& cmd) {
   cmd.add_option("--report", a->report,
                  "Folder for the report: PNG figures, contact_sheet.png (what perception saw on the recording), "
                  "scene.json (the scene the demonstration showed, the one 'srp execute' runs in without --scene) and "
-                 "summary.md; written only when the task model is stored");
+                 "summary.md; written whole or not at all, only when the task model is stored; an existing one needs "
+                 "-w and is replaced only when it holds nothing but a report");
   cmd.add_option("--extrinsics", a->extrinsics,
                  "Camera-to-robot extrinsics of the demonstration's camera ('srp calibrate extrinsics' or 'hand-eye' "
-                 "write calib/extrinsics.json), stored with the task model: execution places the robot from it "
+                 "write it, ./extrinsics.json by default), stored with the task model: execution places the robot from it "
                  "(without: at the table edge opposite the camera)")
       ->check(CLI::ExistingFile);
   cmd.add_option("--hand", a->hand, "Hand detector: marker (AprilTag on the glove) or marker-free")
@@ -56,7 +58,12 @@ void setupProgram(CLI::App& cmd) {
                "(default: fail naming the step, store nothing); exits 3 when it did");
   cmd.add_flag("--json", a->json, "Print the result as JSON");
   cmd.add_flag("-q,--quiet", a->quiet, "No progress bar");
+  srp::app::addOverwriteFlag(cmd, a->overwrite);
   cmd.callback([a] {
+    using srp::core::PathRole;
+    const std::vector<PathRole> inputs = {{"--demo", a->demo}, {"--kb", a->kb}, {"--scene", a->scene}, {"--calib", a->calib}};
+    srp::core::checkOutputPaths({{"--db", a->db}}, inputs, true);  // the database is added to, never replaced
+    srp::core::checkOutputPaths({{"--report", a->report}}, inputs, a->overwrite);
     srp::programming::ProgrammingOptions o;
     o.instruction = a->instruction;
     o.demoPath = a->demo;

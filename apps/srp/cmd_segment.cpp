@@ -84,6 +84,8 @@ void runSegment(const SegmentOptions& o) {
         j["release_margin"] = s.releaseMargin;
         j["release_cue_gap_frames"] = s.releaseCueGap;
         j["confidence"] = s.lowConfidence ? "low" : "high";
+        j["grasp_confidence"] = s.graspLowConfidence ? "low" : "high";
+        j["release_confidence"] = s.releaseLowConfidence ? "low" : "high";
       }
       objects.push_back(j);
     }
@@ -101,7 +103,11 @@ void runSegment(const SegmentOptions& o) {
     std::cout << std::setw(8) << s.graspFrame << std::setw(9) << s.releaseFrame;
     if (std::isnan(s.outlierFraction)) std::cout << "-";
     else
-      std::cout << (s.lowConfidence ? "LOW  " : "high ") << "(" << std::fixed << std::setprecision(0)
+      std::cout << (!s.lowConfidence                                      ? "high "
+                    : s.graspLowConfidence && s.releaseLowConfidence ? "LOW (grasp, release) "
+                    : s.graspLowConfidence                          ? "LOW (grasp) "
+                                                                    : "LOW (release) ")
+                << "(" << std::fixed << std::setprecision(0)
                 << 100 * s.outlierFraction << " %, " << std::setprecision(1) << s.releaseMargin << ", "
                 << s.releaseCueGap << ")" << std::defaultfloat;
     std::cout << "\n";
@@ -118,13 +124,14 @@ void setupSegment(CLI::App& app) {
       ->delimiter(',');
   app.add_option("--fps", o->fps, "Frame rate of the table [Hz]")->check(CLI::Range(0.1, 1000.0))->capture_default_str();
   app.add_flag("--json", o->json,
-               R"(Print {"objects":[{"name","grasp_frame","release_frame","outlier_fraction","release_margin","release_cue_gap_frames","confidence"}]})");
+               R"(Print {"objects":[{"name","grasp_frame","release_frame","outlier_fraction","release_margin","release_cue_gap_frames","confidence","grasp_confidence","release_confidence"}]} (confidence: "low" when either event's is))");
   app.add_option("--write-example", o->writeExample, "Write a synthetic 4-object demo table to this CSV and exit");
   app.add_option("--events", o->events,
-                 "Grasp/release estimator: dwell (default, robust: ends of the hand's rests at the object, release "
-                 "into the part's final rest), thesis (the thesis' published code: Kalman, 3-component GMM, first "
-                 "sample of the last sample's component, hand closest to the initial position) or fig6.10 (the "
-                 "robustified thesis-like estimator before issue 18)")
+                 "Grasp/release estimator: dwell (default, robust: grasp = end of the hand's rest at the part, release "
+                 "= where the hand arrives closest to the part's final place, so a hover above it is part of the move; "
+                 "part detections on the hand and ghosts of parts released earlier are ignored), thesis (the thesis' "
+                 "published code: Kalman, 3-component GMM, first sample of the last sample's component, hand closest "
+                 "to the initial position) or fig6.10 (the robustified thesis-like estimator without the hand's rests)")
       ->check(CLI::IsMember({"dwell", "thesis", "fig6.10"}))
       ->capture_default_str();
   app.add_option("--thesis-seed", o->thesisSeed,
@@ -133,7 +140,8 @@ void setupSegment(CLI::App& app) {
       ->capture_default_str();
   app.add_option("--noise", o->noise,
                  "--write-example: detector (the motion module's generator: Gaussian noise, dropouts, flicker) or real "
-                 "(the synth choreography with issue 18's real-track noise: outliers, jumps, lingering, nudges)")
+                 "(the synth choreography with the real-track noise model: outliers, hand jumps, lingering, nudges, a "
+                 "hover before each release, parts hidden under the hand, ghosts of the previous part)")
       ->check(CLI::IsMember({"detector", "real"}))
       ->capture_default_str();
   app.add_option("--seed", o->seed, "Random seed of --write-example")->capture_default_str();

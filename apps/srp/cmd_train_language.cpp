@@ -9,9 +9,11 @@
 #include <vector>
 
 #include "CommandRegistry.h"
+#include "srp/core/DataPaths.h"
 #include "LanguageSwitches.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
+#include "srp/core/OutputFile.h"
 #include "srp/language/CapabilitySuites.h"
 #include "srp/language/LanguageModel.h"
 #include "srp/language/ProtocolComparison.h"
@@ -21,15 +23,14 @@
 namespace {
 
 void setupTrainLanguage(CLI::App& app) {
-  const std::string dir = std::string(SRP_DATASETS_DIR) + "/language/";
-  auto trainPaths = std::make_shared<std::vector<std::string>>(
-      std::vector<std::string>{dir + "train.json", dir + "val.json"});
+  auto trainPaths = std::make_shared<std::vector<std::string>>();
   auto scorePath = std::make_shared<std::string>();
-  auto outPath = std::make_shared<std::string>(srp::language::defaultModelPath());
-  app.add_option("--train", *trainPaths, "SpERT corpora, pooled for training and cross-validation")
-      ->capture_default_str();
+  auto outPath = std::make_shared<std::string>("language_model.dat");
+  app.add_option("--train", *trainPaths,
+                 "SpERT corpora, pooled for training and cross-validation (default: the shipped "
+                 "datasets/language/train.json and val.json of srp's data folder)");
   app.add_option("--score", *scorePath, "SpERT corpus scored after training (not for choosing anything)");
-  app.add_option("--out", *outPath, "model file to write")->capture_default_str();
+  app.add_option("--out", *outPath, "model file to write (use it with 'srp parse --model FILE')")->capture_default_str();
   auto options = std::make_shared<srp::language::LanguageTrainingOptions>();
   app.add_option("--entity-c", options->entityC, "entity tagger SVM C")->capture_default_str();
   app.add_option("--relation-c", options->relationC, "relation classifier SVM C")->capture_default_str();
@@ -64,11 +65,10 @@ void setupTrainLanguage(CLI::App& app) {
   auto errorTypes = std::make_shared<std::vector<std::string>>();
   app.add_flag("--errors", *cvErrors, "with --cv: also print the first seed's out-of-fold entity errors");
   app.add_option("--error-types", *errorTypes, "entity types of the error dump (default: all)")->delimiter(',');
-  auto capabilitiesDir = std::make_shared<std::string>(srp::language::CapabilitySuites::defaultFolder());
+  auto capabilitiesDir = std::make_shared<std::string>();  // empty: the shipped suites
   app.add_option("--capabilities-dir", *capabilitiesDir,
                  "capability suites scored after training, and in --cv mode for each variant (a model trained on "
-                 "the whole pooled corpus)")
-      ->capture_default_str();
+                 "the whole pooled corpus; default: the shipped datasets/language/capabilities of srp's data folder)");
   auto compareTo = std::make_shared<std::string>();
   app.add_option("--compare-to", *compareTo,
                  "with --cv: a --cv-json file of an earlier run (same folds and seeds); prints the protocol's verdict "
@@ -78,7 +78,17 @@ void setupTrainLanguage(CLI::App& app) {
   auto syntheticCount = std::make_shared<int>(200);
   app.add_option("--write-synthetic", *syntheticOut, "only write synthetic commands (SpERT JSON) to this file");
   app.add_option("--synthetic-count", *syntheticCount, "how many, for --write-synthetic")->capture_default_str();
+  auto overwrite = std::make_shared<bool>(false);
+  srp::app::addOverwriteFlag(app, *overwrite);
   app.callback([=] {
+    std::vector<srp::core::PathRole> inputs = {{"--score", *scorePath}};
+    for (const auto& p : *trainPaths) inputs.push_back({"--train", p});
+    std::vector<srp::core::PathRole> outputs = {{"--write-synthetic", *syntheticOut}};
+    if (syntheticOut->empty() && *cvFolds > 0)
+      outputs = {{"--cv-predictions", *cvPredictions}, {"--cv-json", *cvJson}};
+    else if (syntheticOut->empty())
+      outputs = {{"--out", *outPath}};
+    srp::core::checkOutputPaths(outputs, inputs, *overwrite);
     srp::app::applySwitches(*rules, options->rules, "decoding rule");
     srp::app::applySwitches(*features, options->features, "feature group");
     if (!syntheticOut->empty()) {
@@ -90,6 +100,10 @@ void setupTrainLanguage(CLI::App& app) {
       std::cout << "wrote " << out.size() << " synthetic commands to " << *syntheticOut << "\n";
       return;
     }
+    if (trainPaths->empty())
+      for (const char* split : {"train.json", "val.json"})
+        trainPaths->push_back(srp::core::DataPaths::file(std::string("datasets/language/") + split).string());
+    if (capabilitiesDir->empty()) *capabilitiesDir = srp::language::CapabilitySuites::defaultFolder();
     const auto suites = srp::language::CapabilitySuites::load(*capabilitiesDir);
     std::vector<srp::language::AnnotatedSentence> corpus;
     for (const auto& path : *trainPaths) {

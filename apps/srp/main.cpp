@@ -2,9 +2,31 @@
 // each subcommand is a thin front end over its module (see cmd_*.cpp).
 #include <algorithm>
 #include <exception>
+#include <functional>
 #include <iostream>
 
 #include "CommandRegistry.h"
+#include "srp/core/DataPaths.h"
+
+namespace {
+
+/// `--data-dir DIR` on `srp` and on every command (before or after the command's name).
+void addDataDirOption(CLI::App& app) {
+  app.add_option_function<std::string>(
+         "--data-dir", [](const std::string& dir) { srp::core::DataPaths::setDataDir(dir); },
+         "srp's data folder (knowledge base, language model, scenes, UR5 model, cameras); default: SRP_DATA_DIR, "
+         "else <prefix>/share/srp of an installed srp, else the source tree of a build folder")
+      ->type_name("DIR");
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) addDataDirOption(*sub);
+}
+
+std::string dataFolderLine() {
+  const auto root = srp::core::DataPaths::find();
+  if (!root) return "Data folder: not found; give --data-dir DIR or set SRP_DATA_DIR.\n";
+  return "Data folder: " + root->dir.string() + " (" + srp::core::DataPaths::describe(root->origin) + ").\n";
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -13,7 +35,14 @@ int main(int argc, char** argv) {
       "srp"};
   app.set_version_flag("--version", std::string("srp ") + SRP_VERSION);
   app.require_subcommand(1);
-  app.footer("Run 'srp <command> --help' for the options of a command.\n");
+  app.footer([] {
+    return "Run 'srp <command> --help' for the options of a command.\n" + dataFolderLine() +
+           "\nExit codes:\n"
+           "  0  done: the command did all of its job\n"
+           "  1  error: it could not do its job (bad input, a failed step); it says which and why\n"
+           "  2  usage: the command line is wrong (unknown command or option, missing argument)\n"
+           "  3  finished, but some steps were skipped or refused (srp execute: the report says which and why)\n";
+  });
 
   auto& registry = srp::app::commandRegistry();
   std::stable_sort(registry.begin(), registry.end(),
@@ -22,6 +51,7 @@ int main(int argc, char** argv) {
     CLI::App* sub = app.add_subcommand(spec.name, spec.description);
     spec.setup(*sub);
   }
+  addDataDirOption(app);
 
   // An unknown command name: CLI11 would say only "A subcommand is required"
   // or "argument was not expected"; name it and list the commands instead.

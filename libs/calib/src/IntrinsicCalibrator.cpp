@@ -26,7 +26,28 @@ std::vector<std::string> IntrinsicCalibrationResult::rejectedNames() const {
   return names;
 }
 
+std::vector<std::string> IntrinsicCalibrationResult::outlierNames() const {
+  std::vector<std::string> names;
+  for (const auto& v : views)
+    if (v.outlier) names.push_back(v.name);
+  return names;
+}
+
 namespace {
+
+/// Sets medianViewRms_px and flags the views at kOutlierViewFactor x the median or more.
+void flagOutlierViews(IntrinsicCalibrationResult& result) {
+  std::vector<double> rms;
+  for (const auto& v : result.views)
+    if (v.found) rms.push_back(v.rms_px);
+  if (rms.empty()) return;
+  const auto mid = rms.begin() + static_cast<std::ptrdiff_t>(rms.size() / 2);
+  std::nth_element(rms.begin(), mid, rms.end());
+  double median = *mid;
+  if (rms.size() % 2 == 0) median = 0.5 * (median + *std::max_element(rms.begin(), mid));
+  result.medianViewRms_px = median;
+  for (auto& v : result.views) v.outlier = v.found && median > 0.0 && v.rms_px >= kOutlierViewFactor * median;
+}
 
 std::string joinNames(const std::vector<std::string>& names) {
   std::string s;
@@ -111,6 +132,7 @@ IntrinsicCalibrationResult calibrateIntrinsics(const std::vector<cv::Mat>& image
     count += projected.size();
   }
   result.rms_px = std::sqrt(sumSq / count);
+  flagOutlierViews(result);
 
   if (!options.drawDir.empty()) {
     for (size_t i = 0; i < images.size(); ++i) {
@@ -141,6 +163,7 @@ IntrinsicCalibrationResult calibrateIntrinsicsFromFiles(const std::vector<std::s
                                                         const IntrinsicCalibrationOptions& options) {
   if (paths.empty()) throw core::InvalidInputError("calibration: no image files given");
   std::vector<cv::Mat> images;
+  for (const auto& p : paths) checkImageFile(p, options.maxImagePixels);  // all of them, before any is decoded
   for (const auto& p : paths) {
     cv::Mat img = cv::imread(p, cv::IMREAD_UNCHANGED);
     if (img.empty()) throw core::FileError(p, "cannot read this image (missing, or not an image OpenCV can decode)");

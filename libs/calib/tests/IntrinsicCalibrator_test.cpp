@@ -141,8 +141,36 @@ TEST(IntrinsicCalibrator, RealVispChessboardMatchesVispsDocumentedResult) {
   EXPECT_NEAR(K.cx_px, kU0, kRelTol * kU0);
   EXPECT_NEAR(K.cy_px, kV0, kRelTol * kV0);
   EXPECT_LE(r.rms_px, kRealRmsMax_px);
+  // chessboard-02 (the board held close and tilted, reaching the image edge) fits 5x worse
+  // than the median view: the one view flagged.
+  ASSERT_EQ(r.outlierNames().size(), 1u);
+  EXPECT_EQ(fs::path(r.outlierNames().front()).filename(), "chessboard-02.jpg");
   std::cout << "  real: fx " << K.fx_px << " fy " << K.fy_px << " cx " << K.cx_px << " cy " << K.cy_px << " kud "
             << r.camera.kud << " kdu " << r.camera.kdu << " rms " << r.rms_px << " px\n";
+}
+
+// One image taken through another lens (a different radial distortion) among 20 good
+// ones: the calibration still fits the 20, and that view alone is flagged an outlier
+// (RMS at least 3x the median view's). The 20 good views alone: none flagged.
+TEST(IntrinsicCalibrator, FlagsTheViewThatDoesNotFit) {
+  const auto pattern = CalibrationPattern::parse("chessboard:9x6:0.025");
+  const auto truth = trueCamera();
+  const Eigen::Vector3d centre_m{4 * 0.025, 2.5 * 0.025, 0};
+  auto images = renderViews(pattern, truth, centre_m);
+  const auto clean = calibrateIntrinsics(images, labels(images.size()), pattern);
+  EXPECT_TRUE(clean.outlierNames().empty()) << clean.outlierNames().front();
+
+  CameraCalibration otherLens = truth;
+  otherLens.kud = 0.25;
+  images.push_back(renderViews(pattern, otherLens, centre_m, 7).back());
+  auto names = labels(images.size());
+  names.back() = "other_lens.png";
+  const auto r = calibrateIntrinsics(images, names, pattern);
+  ASSERT_EQ(r.viewsUsed(), 21);
+  ASSERT_EQ(r.outlierNames(), std::vector<std::string>{"other_lens.png"});
+  EXPECT_GE(r.views.back().rms_px, kOutlierViewFactor * r.medianViewRms_px);
+  std::cout << "  other lens: view RMS " << r.views.back().rms_px << " px, median view " << r.medianViewRms_px
+            << " px (clean set: median " << clean.medianViewRms_px << " px)\n";
 }
 
 TEST(IntrinsicCalibrator, BadInputIsNamed) {

@@ -2,6 +2,7 @@
 
 #include <set>
 
+#include "srp/core/DataPaths.h"
 #include "srp/core/Error.h"
 
 namespace srp::core {
@@ -15,7 +16,7 @@ ObjectCatalogue::ObjectCatalogue(std::vector<ObjectClass> classes) : classes_(st
   }
 }
 
-std::string ObjectCatalogue::defaultPath() { return std::string(SRP_DATASETS_DIR) + "/kb/catalogue.json"; }
+std::string ObjectCatalogue::defaultPath() { return DataPaths::file("datasets/kb/catalogue.json").string(); }
 
 const ObjectClass* ObjectCatalogue::find(const std::string& name) const {
   for (const auto& c : classes_)

@@ -3,8 +3,15 @@
 #include "srp/kb/KnowledgeBase.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace srp::execution {
+
+bool isInside(const CellObject& part, const CellObject& container) {
+  const Eigen::Vector3d p = container.X_world_object.inverse() * part.X_world_object.translation();
+  return std::abs(p.x()) <= container.size_m.x() / 2 - container.wallThickness_m &&
+         std::abs(p.y()) <= container.size_m.y() / 2 - container.wallThickness_m;
+}
 
 double WorldBox::signedDistance(const Eigen::Vector3d& p_world_m) const {
   const Eigen::Vector3d p = X_world_box.inverse() * p_world_m;
@@ -68,6 +75,7 @@ CellDescription CellDescription::fromScene(const srp::core::Scene& scene,
     o.noun = c.noun;
     o.classId = c.classId;
     o.meshPath = c.meshPath;
+    o.meshScale = c.meshScale;
     if (c.observed) o.observedClass = c;
     cell.objects.push_back(o);
   }

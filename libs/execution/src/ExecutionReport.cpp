@@ -30,6 +30,17 @@ bool ExecutionReport::allSucceeded() const {
   return !steps.empty();
 }
 
+srp::core::ExitCode ExecutionReport::exitCode() const {
+  if (steps.empty()) return srp::core::ExitCode::Error;
+  bool partial = false;
+  for (const auto& s : steps) {
+    if (s.status == StepStatus::Failed || (s.status == StepStatus::Done && !s.relationsHold))
+      return srp::core::ExitCode::Error;
+    partial = partial || s.status != StepStatus::Done;
+  }
+  return partial ? srp::core::ExitCode::Partial : srp::core::ExitCode::Done;
+}
+
 nlohmann::json ExecutionReport::toJson() const {
   nlohmann::json j;
   j["schema_version"] = 1;

@@ -10,6 +10,7 @@
 #include "srp/core/DefaultScene.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
+#include "srp/core/OutputFile.h"
 #include "srp/execution/CellRenderer.h"
 #include "srp/execution/DemonstrationScene.h"
 #include "srp/execution/DmpPathGenerator.h"
@@ -40,6 +41,12 @@ srp::core::Scene sceneAfter(const srp::core::Scene& before, const CellDescriptio
     if (const CellObject* now = perceived.find(o.id)) o.X_world_object = now->X_world_object;
   return after;
 }
+
+namespace {
+/// What `srp execute --out` writes: a folder holding anything else is not replaced.
+const std::vector<std::string> kOutputFolderFiles = {"report.json", "report.txt", "joints.csv", "final_scene.json",
+                                                     "frames"};
+}  // namespace
 
 ExecuteResult executeTask(const ExecuteRequest& request) {
   ExecuteResult result;
@@ -121,10 +128,16 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
   std::unique_ptr<CellRenderer> renderer;
   std::string framesFolder;
   int snapshotCount = 0;
+  // The output folder is built beside its target and renamed into place at the end:
+  // a failed run leaves no half-made folder and a previous one as it was.
+  std::optional<srp::core::AtomicOutputFolder> output;
+  std::string outputFolder;  // where the files go until the commit
   if (!request.outputFolder.empty()) {
-    std::filesystem::create_directories(request.outputFolder);
+    srp::core::checkFolderHoldsOnly(request.outputFolder, kOutputFolderFiles, "--out");
+    output.emplace(request.outputFolder);
+    outputFolder = output->temporaryPath().string();
     if (request.framePeriod > 0) {
-      framesFolder = request.outputFolder + "/frames";
+      framesFolder = outputFolder + "/frames";
       std::filesystem::create_directories(framesFolder);
       CellRendererOptions view;
       view.drawSafetySpheres = request.drawSafetySpheres;
@@ -135,30 +148,22 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
         name << framesFolder << "/frame_" << std::setw(5) << std::setfill('0') << snapshotCount / request.framePeriod
              << ".png";
         renderer->renderPng(s, name.str());
-        result.writtenFiles.push_back(name.str());
+        result.writtenFiles.push_back(request.outputFolder + name.str().substr(outputFolder.size()));
       });
     }
   }
 
-  ExecutionPlan remaining;
-  for (std::size_t i = 0; i < result.plan.steps.size(); ++i) {
-    ExecutionPlan one;
-    one.steps.push_back(result.plan.steps[i]);
-    ExecutionReport part = executor.run(one);
-    part.steps[0].index = static_cast<int>(i);
-    if (request.progress) {
-      std::string text = part.toText();
-      request.progress(text.substr(0, text.find('\n')));
-    }
-    result.report.steps.push_back(part.steps[0]);
-    result.report.pathGenerator = part.pathGenerator;
-    result.report.simulated_s += part.simulated_s;
-    result.report.simulationWall_s += part.simulationWall_s;
-  }
-  result.report.minTableClearance_m = std::numeric_limits<double>::infinity();
-  for (const auto& s : result.report.steps)
-    if (s.status == StepStatus::Done)
-      result.report.minTableClearance_m = std::min(result.report.minTableClearance_m, s.minTableClearance_m);
+  // All placements are planned together before the first step moves; one progress line per step.
+  ExecutionReport report = executor.run(result.plan, [&](const StepReport& step) {
+    if (!request.progress) return;
+    ExecutionReport one;
+    one.steps.push_back(step);
+    const std::string text = one.toText();
+    request.progress(text.substr(0, text.find('\n')));
+  });
+  report.scene = result.report.scene;  // where the scene and the robot base came from (set above)
+  report.robotBase = result.report.robotBase;
+  result.report = std::move(report);
 
   result.executed = ExecutedTask::fromSimulation(robot, request.options.safety, executor.simulator(), result.report);
   result.executed.taskName = model.info.name;
@@ -166,14 +171,15 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
   result.executed.instruction = request.instruction.empty() ? model.info.instruction : request.instruction;
   result.executed.scene = scenePath;
 
-  if (!request.outputFolder.empty()) {
+  if (output) {
     nlohmann::json j = result.report.toJson();
     j["task_model_id"] = request.taskModelId;
     j["scene"] = scenePath;
-    srp::core::writeJsonFile(request.outputFolder + "/report.json", j);
-    std::ofstream(request.outputFolder + "/report.txt") << result.report.toText();
-    executor.writeJointLogCsv(request.outputFolder + "/joints.csv");
-    srp::core::writeJsonFile(request.outputFolder + "/final_scene.json", sceneAfter(scene, executor.perceive()).toJson());
+    srp::core::writeJsonFile(outputFolder + "/report.json", j);
+    srp::core::writeFileAtomically(outputFolder + "/report.txt", result.report.toText());
+    executor.writeJointLogCsv(outputFolder + "/joints.csv");
+    srp::core::writeJsonFile(outputFolder + "/final_scene.json", sceneAfter(scene, executor.perceive()).toJson());
+    output->commit();
     for (const char* f : {"/report.json", "/report.txt", "/joints.csv", "/final_scene.json"}) result.writtenFiles.push_back(request.outputFolder + f);
   }
   return result;

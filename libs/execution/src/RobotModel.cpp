@@ -6,6 +6,7 @@
 #include <fstream>
 #include <functional>
 
+#include "srp/core/DataPaths.h"
 #include "srp/core/Error.h"
 
 namespace srp::execution {
@@ -138,7 +139,7 @@ RobotModel RobotModel::fromUrdf(const std::string& urdfPath) {
   return r;
 }
 
-RobotModel RobotModel::defaultUr5() { return fromUrdf(std::string(SRP_SIM_DIR) + "/ur5/ur5.urdf"); }
+RobotModel RobotModel::defaultUr5() { return fromUrdf(core::DataPaths::file("sim/ur5/ur5.urdf").string()); }
 
 std::array<srp::core::Pose3, 7> RobotModel::linkPoses(const JointVector& q) const {
   std::array<Pose3, 7> X;

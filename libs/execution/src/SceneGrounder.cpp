@@ -9,7 +9,6 @@
 #include "srp/core/Text.h"
 #include "srp/core/Scene.h"
 #include "srp/core/SpatialRelations.h"
-#include "srp/execution/PlacementPlanner.h"
 
 namespace srp::execution {
 namespace {
@@ -137,9 +136,9 @@ bool SceneGrounder::holds(const std::string& relation, const CellObject& o, cons
   };
   switch (r.kind) {
     case RelationKind::In:
-      return l.kind == CellObjectKind::Container ? PlacementPlanner::isInside(o, l) : on(o, l);
+      return l.kind == CellObjectKind::Container ? isInside(o, l) : on(o, l);
     case RelationKind::On:
-      return l.kind == CellObjectKind::Container ? PlacementPlanner::isInside(o, l) : on(o, l);
+      return l.kind == CellObjectKind::Container ? isInside(o, l) : on(o, l);
     case RelationKind::Under:
       return on(l, o);
     case RelationKind::Direction: {

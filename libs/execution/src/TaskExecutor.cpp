@@ -1,12 +1,13 @@
 #include "srp/execution/TaskExecutor.h"
 
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <iomanip>
-#include <cmath>
 #include <sstream>
 
 #include "srp/core/Error.h"
+#include "srp/core/OutputFile.h"
 #include "srp/core/Pose.h"
 #include "srp/execution/MinimumJerkPathGenerator.h"
 #include "srp/execution/PathRetimer.h"
@@ -54,6 +55,7 @@ TaskExecutor::TaskExecutor(const RobotModel& model, const CellDescription& scene
       options_(options),
       safety_(model, scene.X_world_base, options.safety, containerWalls(scene)),
       placement_(options.placement),
+      jointPlacement_(options.placement, options.jointPlacement),
       sim_(std::make_unique<CellSimulator>(model, scene, q_home, options.simulation)) {
   if (!generator_) throw srp::core::InvalidInputError("TaskExecutor: a Cartesian path generator is required");
   if (auto v = safety_.checkConfiguration(q_home, "home configuration"))
@@ -76,8 +78,7 @@ JointVector TaskExecutor::defaultHome(const RobotModel& model, const Pose3& X_wo
 }
 
 void TaskExecutor::writeJointLogCsv(const std::string& path) const {
-  std::ofstream out(path);
-  if (!out) throw srp::core::FileError(path, "cannot write the joint log CSV");
+  std::ostringstream out;
   out << "t_s";
   for (int i = 0; i < 6; ++i) out << "," << model_.joints()[i].name << "_rad";
   for (int i = 0; i < 6; ++i) out << "," << model_.joints()[i].name << "_ref_rad";
@@ -88,6 +89,7 @@ void TaskExecutor::writeJointLogCsv(const std::string& path) const {
     for (int i = 0; i < 6; ++i) out << "," << s.qRef_rad[i];
     out << "," << s.graspedPart.value_or("") << "\n";
   }
+  srp::core::writeFileAtomically(path, out.str());
 }
 
 CellDescription TaskExecutor::perceive() const {
@@ -97,15 +99,22 @@ CellDescription TaskExecutor::perceive() const {
   return scene;
 }
 
-ExecutionReport TaskExecutor::run(const ExecutionPlan& plan) {
+ExecutionReport TaskExecutor::run(const ExecutionPlan& plan, const std::function<void(const StepReport&)>& onStep) {
   ExecutionReport report;
   report.pathGenerator = generator_->name();
   report.minTableClearance_m = std::numeric_limits<double>::infinity();
   const double t0 = sim_->time_s(), wall0 = sim_->wallSeconds();
+  // Every step's placement, planned together before anything moves.
+  const auto planStart = Clock::now();
+  std::vector<PlannedPlacement> planned = jointPlacement_.plan(perceive(), plan);
+  const double jointShare_s = std::chrono::duration<double>(Clock::now() - planStart).count() /
+                              static_cast<double>(std::max<std::size_t>(1, plan.steps.size()));
   for (std::size_t i = 0; i < plan.steps.size(); ++i) {
-    report.steps.push_back(runStep(static_cast<int>(i), plan.steps[i]));
+    report.steps.push_back(runStep(i, plan, planned));
+    report.steps.back().planning_s += jointShare_s;
     if (report.steps.back().status == StepStatus::Done)
       report.minTableClearance_m = std::min(report.minTableClearance_m, report.steps.back().minTableClearance_m);
+    if (onStep) onStep(report.steps.back());
   }
   report.simulated_s = sim_->time_s() - t0;
   report.simulationWall_s = sim_->wallSeconds() - wall0;
@@ -120,9 +129,10 @@ struct TaskExecutor::Segment {
   double slowDown = 1.0;  ///< > 1: slowed (locally, PathRetimer) to respect the joint speed and acceleration limits
 };
 
-StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
+StepReport TaskExecutor::runStep(std::size_t index, const ExecutionPlan& plan, std::vector<PlannedPlacement>& planned) {
+  const ExecutionStep& step = plan.steps[index];
   StepReport r;
-  r.index = index;
+  r.index = static_cast<int>(index);
   r.object = step.object.describe();
   r.relation = describeRelations(step.target);
   const auto planStart = Clock::now();
@@ -147,7 +157,26 @@ StepReport TaskExecutor::runStep(int index, const ExecutionStep& step) {
   }
   r.object = part->name;
   r.X_world_start = part->X_world_object;
-  const Placement placement = placement_.place(scene, *part, step);
+  // The planned place, recomputed from the landmarks where they came to rest (the same
+  // candidate: within kSamePlace_m, a few times the placement error); else as planned if
+  // the scene still allows it; else the scene is not what the plan expected (a part moved,
+  // another instance): the remaining steps are planned again, together, from here.
+  constexpr double kSamePlace_m = 5e-4;
+  const std::optional<Placement> again =
+      planned[index].part == part->name
+          ? placement_.candidateNear(scene, *part, step, planned[index].placement, kSamePlace_m)
+          : std::nullopt;
+  if (again) {
+    planned[index].placement = *again;
+  } else if (planned[index].part != part->name ||
+             (planned[index].placement.X_world_object &&
+              !placement_.stillAllowed(scene, *part, step, planned[index].placement))) {
+    ExecutionPlan rest;
+    rest.steps.assign(plan.steps.begin() + static_cast<std::ptrdiff_t>(index), plan.steps.end());
+    const std::vector<PlannedPlacement> replanned = jointPlacement_.plan(scene, rest);
+    std::copy(replanned.begin(), replanned.end(), planned.begin() + static_cast<std::ptrdiff_t>(index));
+  }
+  const Placement placement = planned[index].placement;
   if (!placement.X_world_object) return finish(StepStatus::Skipped, placement.reason);
   r.X_world_planned = placement.X_world_object;
 
@@ -273,7 +302,7 @@ std::string TaskExecutor::checkOutcome(const CellDescription& scene, const CellO
   placed.X_world_object = X_final;
   bool holds = r.placementError_m <= options_.placementTolerance_m && upright;
   if (!placement.container.empty()) {
-    r.insideContainer = PlacementPlanner::isInside(placed, *scene.find(placement.container));
+    r.insideContainer = isInside(placed, *scene.find(placement.container));
     holds = holds && r.insideContainer;
   }
   if (!placement.neighbour.empty()) {

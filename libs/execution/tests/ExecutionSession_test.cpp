@@ -79,7 +79,7 @@ TEST(ExecutionSession, FinalSceneLetsAReversalRunFromWhereThePreviousRunLeft) {
   ASSERT_TRUE(fs::exists(finalScene));
   const CellDescription after = CellDescription::loadScene(finalScene);
   ASSERT_NE(after.find("cuboid"), nullptr);
-  EXPECT_TRUE(PlacementPlanner::isInside(*after.find("cuboid"), *after.find("gray box")));
+  EXPECT_TRUE(isInside(*after.find("cuboid"), *after.find("gray box")));
   EXPECT_LT((after.find("cuboid")->X_world_object.translation() - a.report.steps[0].X_world_final->translation()).norm(),
             1e-9);
 
@@ -91,5 +91,5 @@ TEST(ExecutionSession, FinalSceneLetsAReversalRunFromWhereThePreviousRunLeft) {
   ASSERT_EQ(b.report.steps.size(), 1u);
   EXPECT_TRUE(b.report.allSucceeded()) << b.report.toText();
   const CellDescription restored = CellDescription::loadScene(back.outputFolder + "/final_scene.json");
-  EXPECT_TRUE(PlacementPlanner::isInside(*restored.find("cuboid"), *restored.find("blue box")));
+  EXPECT_TRUE(isInside(*restored.find("cuboid"), *restored.find("blue box")));
 }

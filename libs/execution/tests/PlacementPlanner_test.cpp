@@ -169,12 +169,14 @@ TEST(PlacementPlanner, BetweenATightGapCentresThePartNearerThanTheClearance) {
   EXPECT_NEAR(p.X_world_object->translation().x(), -0.15, kGridTol_m);
   EXPECT_NEAR(p.X_world_object->translation().y(), 0.1 - 0.025 - 0.0205, kGridTol_m);  // the gap's middle
   expectHolds(planner, c, "cuboid", s, p);
-  // 35 mm: 2.5 mm each side, below betweenMinClearance_m (3 mm): refused, saying so.
+  EXPECT_TRUE(p.tight);
+  // 33 mm: 1.5 mm each side, below minClearance_m (2 mm): refused, saying so.
+  ASSERT_GT(planner.options().minClearance_m, 0.0015);
   for (auto& o : c.objects)
-    if (o.name == "octagon") o.X_world_object = at(-0.15, 0.1 - 0.025 - 0.035 - 0.02);
+    if (o.name == "octagon") o.X_world_object = at(-0.15, 0.1 - 0.025 - 0.033 - 0.02);
   const Placement tight = planner.place(c, get(c, "cuboid"), s);
   EXPECT_FALSE(tight.X_world_object);
-  EXPECT_NE(tight.reason.find("(35.0 mm free along the line between them, 36.0 mm needed"), std::string::npos)
+  EXPECT_NE(tight.reason.find("(33.0 mm free along the line between them, 34.0 mm needed"), std::string::npos)
       << tight.reason;
 }
 

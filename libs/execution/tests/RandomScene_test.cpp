@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "srp/core/Error.h"
-#include "srp/execution/PlacementPlanner.h"
+#include "srp/execution/CellDescription.h"
 
 using namespace srp::execution;
 
@@ -16,7 +16,7 @@ TEST(RandomScene, SeededPartsInsideTheBoxAndApart) {
     std::vector<const CellObject*> parts;
     for (const auto& o : a.objects)
       if (o.kind == CellObjectKind::Part) {
-        EXPECT_TRUE(PlacementPlanner::isInside(o, box)) << o.name << " seed " << seed;
+        EXPECT_TRUE(isInside(o, box)) << o.name << " seed " << seed;
         EXPECT_NEAR(o.X_world_object.translation().z(), box.wallThickness_m, 1e-12);
         EXPECT_TRUE(o.X_world_object.isApprox(b.find(o.name)->X_world_object)) << "not deterministic";
         parts.push_back(&o);

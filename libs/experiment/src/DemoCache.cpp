@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "srp/core/DataPaths.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/core/ObjectCatalogue.h"
@@ -75,7 +76,7 @@ nlohmann::json planOf(const DemoRequest& request)
 }  // namespace
 
 DemoCache::DemoCache(std::filesystem::path rootDir, std::filesystem::path simDir)
-    : rootDir_(std::move(rootDir)), simDir_(simDir.empty() ? std::filesystem::path(SRP_SIM_DIR) : std::move(simDir))
+    : rootDir_(std::move(rootDir)), simDir_(simDir.empty() ? core::DataPaths::file("sim") : std::move(simDir))
 {
 }
 

@@ -5,18 +5,19 @@
 #include <filesystem>
 #include <system_error>
 
+#include "srp/core/DataPaths.h"
 #include "srp/core/Error.h"
 
 namespace srp::experiment {
 
 std::filesystem::path datasetsDirOf(const ExperimentOptions& options)
 {
-  return options.datasetsDir.empty() ? std::filesystem::path(SRP_DATASETS_DIR) : options.datasetsDir;
+  return options.datasetsDir.empty() ? core::DataPaths::file("datasets") : options.datasetsDir;
 }
 
 std::filesystem::path simDirOf(const ExperimentOptions& options)
 {
-  return options.simDir.empty() ? std::filesystem::path(SRP_SIM_DIR) : options.simDir;
+  return options.simDir.empty() ? core::DataPaths::file("sim") : options.simDir;
 }
 
 std::filesystem::path experimentDirOf(const ExperimentOptions& options, const std::string& name)

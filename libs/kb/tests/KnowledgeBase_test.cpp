@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "srp/core/Error.h"
+#include "srp/kb/ShapeMeshes.h"
 
 namespace {
 
@@ -49,6 +50,37 @@ TEST(KnowledgeBase, AddMeshClassWritesAnEntryAndRefusesATakenName) {
   e.name = "ghost";
   e.meshPath = (dir / "missing.stl").string();
   EXPECT_THROW(srp::kb::addMeshClass(path, e), srp::core::FileError);
+}
+
+// `srp kb build -o DIR`: a copy of the catalogue whose generated classes name the
+// meshes written beside it, and whose CAD classes name their file absolutely; the
+// copy loads, and its meshes are the shipped catalogue's shapes. Never over the input.
+TEST(KnowledgeBase, CopiedCatalogueNamesTheMeshesBuiltBesideIt) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "srp_kb_copy_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "mixed");
+  const std::string shipped = std::string(SRP_DATASETS_DIR) + "/kb/catalogue.json";
+  const auto original = srp::kb::loadCatalogue(shipped);
+  const auto built = srp::kb::buildMeshes(original, dir);
+  EXPECT_EQ(built.size(), original.classes().size());
+  const fs::path copy = srp::kb::copyCatalogue(shipped, dir);
+  EXPECT_EQ(copy, dir / "catalogue.json");
+  const auto catalogue = srp::kb::loadCatalogue(copy.string());
+  for (const auto& c : catalogue.classes()) {
+    EXPECT_EQ(fs::path(c.meshPath), dir / "meshes" / fs::path(original.at(c.name).meshPath).filename()) << c.name;
+    EXPECT_EQ(srp::kb::TriangleMesh::load(c.meshPath).size(), srp::kb::makeClassMesh(original.at(c.name)).size());
+  }
+  // A class given by its own CAD file keeps naming that file from the copy's folder.
+  const fs::path cubeCopy = srp::kb::copyCatalogue(kCubeFolder + "/catalogue.json", dir / "mixed");
+  EXPECT_TRUE(fs::equivalent(srp::kb::loadCatalogue(cubeCopy.string()).at("cube").meshPath, kCubeFolder + "/cube.obj"));
+  try {
+    srp::kb::copyCatalogue(copy.string(), dir);
+    FAIL() << "the copy replaced its own input";
+  } catch (const srp::core::InvalidInputError& err) {
+    EXPECT_NE(std::string(err.what()).find("catalogue.json"), std::string::npos) << err.what();
+  }
+  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "srp/core/DataPaths.h"
 #include "srp/core/Error.h"
 
 namespace srp::language {
@@ -25,7 +26,9 @@ TypeScore sumOf(const SpertScores& scores, const std::vector<std::string>& types
 }
 }  // namespace
 
-std::string CapabilitySuites::defaultFolder() { return std::string(SRP_DATASETS_DIR) + "/language/capabilities"; }
+std::string CapabilitySuites::defaultFolder() {
+  return core::DataPaths::file("datasets/language/capabilities").string();
+}
 
 CapabilitySuites CapabilitySuites::load(const std::string& folder) {
   namespace fs = std::filesystem;

@@ -439,16 +439,10 @@ Eigen::Vector3d medianDetection(const core::PositionTrajectory& t, int count, bo
   return m;
 }
 
-}  // namespace
-
-Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std::vector<ObjectTrack>& objects,
-                                const std::vector<std::string>& planOrder) const {
+void validateInputs(const core::PositionTrajectory& hand, const std::map<std::string, const ObjectTrack*>& byName,
+                    const std::vector<std::string>& planOrder) {
   core::require(!planOrder.empty(), "segmentation: the plan has no target object; give the ordered object names");
-  // Robust mode refines the default estimator; the thesis-like estimator keeps its published steps.
-  const bool robust = config_.robust && config_.events == EventEstimator::HandDwellBoundary;
   validateTrajectory(hand, "hand trajectory");
-  std::map<std::string, const ObjectTrack*> byName;
-  for (const auto& o : objects) byName[o.name] = &o;
   for (const auto& name : planOrder) {
     const auto it = byName.find(name);
     if (it == byName.end())
@@ -463,251 +457,470 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
         throw InvalidInputError("trajectory of '" + name + "' sample " + std::to_string(i) + " is frame " +
                                 std::to_string(track[i].frame) + ", the hand's is " + std::to_string(hand[i].frame));
   }
+}
 
-  if (config_.events == EventEstimator::ThesisPublished) return segmentThesisPublished(hand, objects, planOrder);
-  Segmentation result;
-  // Robust mode: hand jumps and carried values dropped before anything uses the hand.
-  double handSpread_m = 0.0;
-  const core::PositionTrajectory handEvents =
-      robust ? dropHandOutliers(hand, config_.handOutlierSigmas, config_.handOutlierMin_m, handSpread_m) : hand;
-  const double restNoiseTol_m = robust ? std::min(config_.restNoiseFactor * handSpread_m, config_.restNoiseMax_m) : 0.0;
-  result.hand = KalmanSmoother(config_.handSmoother).smooth(handEvents);
-  const int n = static_cast<int>(hand.size());
-  result.firstHandIndex = 0;
-  while (result.firstHandIndex < n - 1 && !detected(hand[static_cast<std::size_t>(result.firstHandIndex)])) ++result.firstHandIndex;
-  result.lastHandIndex = n - 1;
-  while (result.lastHandIndex > 0 && !detected(hand[static_cast<std::size_t>(result.lastHandIndex)])) --result.lastHandIndex;
-  const int w = std::max(1, std::min(15, n / 10));
-  int start = 0;
-  for (const auto& name : planOrder) {
-    const ObjectTrack& track = *byName.at(name);
-    ObjectSegmentation seg;
-    seg.name = name;
-    seg.searchStartIndex = start;
-    if (robust) {
+/// The hand as every object's pass reads it (prepared once per demo).
+struct PreparedHand {
+  const core::PositionTrajectory& raw;  ///< as given: frame numbers, first/last detection
+  core::PositionTrajectory events;      ///< detections the events are read from (robust: jumps, repeats dropped)
+  core::PositionTrajectory smoothed;    ///< Kalman/RTS smoothed `events`
+  double restNoiseTol_m = 0.0;          ///< robust: a hand rest's tolerance from the whole track's noise
+};
+
+/// One plan object's segmentation, in the steps of the file comment and the
+/// module README ("Segmentation"): the part's track and rests, not moved, the
+/// final rest's labels, mid-move, coarse release, the grasp valley, the hand's
+/// rest boundaries, confidence.
+class ObjectPass {
+ public:
+  /// `earlier`: the plan objects before this one, segmented.
+  ObjectPass(const Segmenter::Config& config, bool robust, const PreparedHand& hand, const ObjectTrack& track,
+             int start, const std::vector<ObjectSegmentation>& earlier)
+      : c_(config),
+        robust_(robust),
+        cues_(robust && config.placementCues),
+        hand_(hand),
+        track_(track.positions),
+        earlier_(earlier),
+        start_(start),
+        n_(static_cast<int>(hand.raw.size())),
+        w_(std::max(1, std::min(15, n_ / 10))) {
+    seg_.name = track.name;
+    seg_.searchStartIndex = start;
+  }
+
+  /// The object's segmentation; an unusual object adds a warning.
+  ObjectSegmentation run(std::vector<std::string>& warnings) {
+    smoothTrack();
+    if (!moved(warnings)) return std::move(seg_);
+    labelFinalRest();
+    const int searchFrom = midMove();
+    const int coarse = coarseRelease(searchFrom);
+    int from = start_;
+    if (coarse <= start_) {
+      seg_.note = "object '" + seg_.name + "' comes to rest (sample " + std::to_string(coarse) +
+                  ") before the previous plan object's release (sample " + std::to_string(start_) +
+                  "): the plan order and the demo disagree; grasp searched from the demo start";
+      warnings.push_back(seg_.note);
+      from = 0;
+    }
+    // Before the middle of the move (an object put back where it was has the
+    // hand near its initial position at the release too), and not before the
+    // hand has left the part's start area.
+    int to = std::max(std::min(coarse, searchFrom), from + 1);
+    if (cues_) to = untilHandLeftStart(from, to, coarse);
+    const std::vector<int> valley = graspValley(from, to);
+    int grasp = valley[valley.size() / 2], release = coarse;
+    if (c_.events == Segmenter::EventEstimator::HandDwellBoundary) {
+      grasp = refineGrasp(valley, grasp, from, to);
+      if (cues_) grasp = std::max(grasp, lastSeenAtStart(from, to));
+      release = refineRelease(grasp, coarse);
+      if (cues_) release = std::max(grasp + 1, std::min(release, seenAtFinalPlace(grasp + 1)));
+    }
+    seg_.graspIndex = grasp;
+    seg_.releaseIndex = release;
+    seg_.graspFrame = hand_.raw[static_cast<std::size_t>(grasp)].frame;
+    seg_.releaseFrame = hand_.raw[static_cast<std::size_t>(release)].frame;
+    seg_.graspHandDistance_m = handDistance_m_[static_cast<std::size_t>(grasp - from)];
+    if (robust_) confidence(release, coarse);
+    return std::move(seg_);
+  }
+
+ private:
+  const core::PositionSample& raw(int i) const { return track_[static_cast<std::size_t>(i)]; }
+  /// The detection at i if it is evidence of the part (placement cues), else not detected.
+  const core::PositionSample& ev(int i) const { return evidence_[static_cast<std::size_t>(i)]; }
+  const Eigen::Vector3d& smoothedHand(int i) const { return hand_.smoothed[static_cast<std::size_t>(i)].p_m; }
+
+  /// Step 2: the part's track and its rest positions.
+  void smoothTrack() {
+    const std::string& name = seg_.name;
+    if (robust_) {
       // Rest positions: medians of many detections (up to a fifth of them may
       // be outliers); the trajectory: a long running median (outlier runs of
       // a few frames vanish, the move is kept).
-      core::require(track.positions.validCount() > 0, "trajectory of '" + name + "' has no detection");
-      seg.smoothed = runningMedian(track.positions, config_.objectMedianHalfWindow);
-      const int wr = std::max(1, std::min(config_.restMedianSamples, n / 5));
-      seg.p_initial_m = medianDetection(track.positions, wr, false);
-      seg.p_final_m = medianDetection(track.positions, wr, true);
+      core::require(track_.validCount() > 0, "trajectory of '" + name + "' has no detection");
+      const int wr = std::max(1, std::min(c_.restMedianSamples, n_ / 5));
+      evidence_ = cues_ ? partEvidence(wr) : track_;
+      seg_.smoothed = runningMedian(evidence_, c_.objectMedianHalfWindow);
+      seg_.p_initial_m = medianDetection(evidence_, wr, false);
+      seg_.p_final_m = medianDetection(evidence_, wr, true);
     } else {
-      const core::PositionTrajectory filtered =
-          removeFlicker(dropMovesWithoutHand(track.positions, result.hand, config_.flickerGate_m, config_.handReach_m,
-                                             config_.maxObjectSpeed_mps),
-                        config_.medianWindow, config_.flickerGate_m);
+      evidence_ = track_;
+      const core::PositionTrajectory filtered = removeFlicker(
+          dropMovesWithoutHand(track_, hand_.smoothed, c_.flickerGate_m, c_.handReach_m, c_.maxObjectSpeed_mps),
+          c_.medianWindow, c_.flickerGate_m);
       core::require(filtered.validCount() > 0, "trajectory of '" + name + "' has no detection");
-      seg.smoothed = KalmanSmoother(config_.objectSmoother).smooth(filtered);
-      seg.p_initial_m = medianPosition(seg.smoothed, 0, w);
-      seg.p_final_m = medianPosition(seg.smoothed, n - w, n);
+      seg_.smoothed = KalmanSmoother(c_.objectSmoother).smooth(filtered);
+      seg_.p_initial_m = medianPosition(seg_.smoothed, 0, w_);
+      seg_.p_final_m = medianPosition(seg_.smoothed, n_ - w_, n_);
     }
-    for (const auto& s : seg.smoothed.samples())
-      seg.maxExcursion_m = std::max(seg.maxExcursion_m, (s.p_m - seg.p_initial_m).norm());
-    if (seg.maxExcursion_m < config_.minExcursion_m) {
-      std::ostringstream msg;
-      msg << "object '" << name << "' never moves (largest excursion " << seg.maxExcursion_m * 1e3
-          << " mm < " << config_.minExcursion_m * 1e3 << " mm): no grasp or release";
-      seg.note = msg.str();
-      seg.component.assign(static_cast<std::size_t>(n), 0);
-      result.warnings.push_back(seg.note);
-      result.objects.push_back(std::move(seg));
-      continue;
-    }
-    seg.moved = true;
-    if (robust) {
-      // In the final rest: a detection within restTolerance of the final
-      // position (a nudge after the release stays inside it).
-      seg.component.assign(static_cast<std::size_t>(n), 1);
-      for (int i = 0; i < n; ++i)
-        if (detected(track.positions[static_cast<std::size_t>(i)]) &&
-            (track.positions[static_cast<std::size_t>(i)].p_m - seg.p_final_m).norm() < config_.restTolerance_m)
-          seg.component[static_cast<std::size_t>(i)] = 2;
-    } else {
-      seg.component = mixtureLabels(seg.smoothed, seg.p_initial_m, seg.p_final_m, config_.emMaxIterations,
-                                    0.5 * config_.minExcursion_m);
-    }
+    for (const auto& s : seg_.smoothed.samples())
+      seg_.maxExcursion_m = std::max(seg_.maxExcursion_m, (s.p_m - seg_.p_initial_m).norm());
+  }
 
-    // Release: the change point after which the object is in the final
-    // component (the one the trajectory ends in), placed where the fewest
-    // labels disagree: samples before it in the final component plus samples
-    // after it outside. Unlike "the first sample of the last run" this is not
-    // broken by a few flickering or occluded samples after the release.
+  /// Placement cues: the part's detections without those within handRadius of
+  /// the detected hand (the hand labelled as the part) and those at the final
+  /// place of another plan part released earlier, from its release on (that
+  /// part labelled as this one: two parts cannot rest in one place), unless
+  /// this part starts there. All of them when nothing is left.
+  core::PositionTrajectory partEvidence(int restSamples) const {
+    const Eigen::Vector3d p_start = medianDetection(track_, restSamples, false);
+    std::vector<const ObjectSegmentation*> ghosts;
+    for (const auto& o : earlier_)
+      if (o.moved && o.name != seg_.name && (o.p_final_m - p_start).norm() >= c_.restTolerance_m) ghosts.push_back(&o);
+    core::PositionTrajectory out = track_;
+    for (int i = 0; i < n_; ++i) {
+      auto& s = out.samples()[static_cast<std::size_t>(i)];
+      if (!detected(s)) continue;
+      bool drop = detected(hand_.raw[static_cast<std::size_t>(i)]) && (s.p_m - smoothedHand(i)).norm() < c_.handRadius_m;
+      for (const auto* g : ghosts) drop = drop || (i > g->releaseIndex && (s.p_m - g->p_final_m).norm() < c_.restTolerance_m);
+      if (drop) s.valid = false, s.p_m.setZero();
+    }
+    return out.validCount() > 0 ? out : track_;
+  }
+
+  /// Step 3: an object that never leaves its initial position is reported, not segmented.
+  bool moved(std::vector<std::string>& warnings) {
+    if (seg_.maxExcursion_m >= c_.minExcursion_m) return seg_.moved = true;
+    std::ostringstream msg;
+    msg << "object '" << seg_.name << "' never moves (largest excursion " << seg_.maxExcursion_m * 1e3 << " mm < "
+        << c_.minExcursion_m * 1e3 << " mm): no grasp or release";
+    seg_.note = msg.str();
+    seg_.component.assign(static_cast<std::size_t>(n_), 0);
+    warnings.push_back(seg_.note);
+    return false;
+  }
+
+  /// Step 4: per sample, in the final rest or not (robust: a detection within
+  /// restTolerance of the final position, so a nudge after the release stays
+  /// inside it; otherwise the mixture's components and the one the trajectory ends in).
+  void labelFinalRest() {
+    if (robust_) {
+      seg_.component.assign(static_cast<std::size_t>(n_), 1);
+      for (int i = 0; i < n_; ++i)
+        if (detected(ev(i)) && (ev(i).p_m - seg_.p_final_m).norm() < c_.restTolerance_m)
+          seg_.component[static_cast<std::size_t>(i)] = 2;
+      finalComponent_ = 2;
+      return;
+    }
+    seg_.component =
+        mixtureLabels(seg_.smoothed, seg_.p_initial_m, seg_.p_final_m, c_.emMaxIterations, 0.5 * c_.minExcursion_m);
     std::vector<int> tailCount(kComponents, 0);
-    for (int i = n - w; i < n; ++i) ++tailCount[static_cast<std::size_t>(seg.component[static_cast<std::size_t>(i)])];
-    const int finalComponent = robust ? 2 : static_cast<int>(std::max_element(tailCount.begin(), tailCount.end()) - tailCount.begin());
-    auto inFinal = [&](int i) { return seg.component[static_cast<std::size_t>(i)] == finalComponent; };
-    // The release comes after the moving part: search from the sample farthest
-    // from both rest positions (mid-move, or the top of the lift when the
-    // object is put back where it was and the components are out of temporal order).
-    int searchFrom = start;
-    {
-      // Robust: the object is away from its rests only in the hand, and for a
-      // whole carry (1-4 s); outlier clusters that survive the running median
-      // are shorter. So: the longest run (gaps of up to kGap samples) of
-      // samples away from both rests by minExcursion with the hand near, and
-      // the farthest sample in it.
-      constexpr int kGap = 3;
-      auto distanceFromRests = [&](int i) {
-        const Eigen::Vector3d& p = seg.smoothed[static_cast<std::size_t>(i)].p_m;
-        return std::min((p - seg.p_initial_m).norm(), (p - seg.p_final_m).norm());
-      };
-      auto away = [&](int i) {
-        const auto& raw = track.positions[static_cast<std::size_t>(i)];
-        return detected(raw) && std::min((raw.p_m - seg.p_initial_m).norm(), (raw.p_m - seg.p_final_m).norm()) > config_.minExcursion_m &&
-               distanceFromRests(i) > config_.minExcursion_m &&
-               (result.hand[static_cast<std::size_t>(i)].p_m - seg.smoothed[static_cast<std::size_t>(i)].p_m).norm() <=
-                   config_.handReach_m;
-      };
-      int runFrom = -1, runTo = -1, bestFrom = -1, bestTo = -1;
-      if (robust) {
-        for (int i = start; i < n; ++i) {
-          if (!away(i)) continue;
-          if (runFrom >= 0 && i - runTo <= kGap + 1) runTo = i;
-          else runFrom = runTo = i;
-          if (runTo - runFrom > bestTo - bestFrom) bestFrom = runFrom, bestTo = runTo;
+    for (int i = n_ - w_; i < n_; ++i) ++tailCount[static_cast<std::size_t>(seg_.component[static_cast<std::size_t>(i)])];
+    finalComponent_ = static_cast<int>(std::max_element(tailCount.begin(), tailCount.end()) - tailCount.begin());
+  }
+  bool inFinal(int i) const { return seg_.component[static_cast<std::size_t>(i)] == finalComponent_; }
+
+  double distanceFromRests(const Eigen::Vector3d& p) const {
+    return std::min((p - seg_.p_initial_m).norm(), (p - seg_.p_final_m).norm());
+  }
+
+  /// The release comes after the moving part: the sample farthest from both
+  /// rest positions (mid-move, or the top of the lift when the object is put
+  /// back where it was and the components are out of temporal order).
+  int midMove() const {
+    // Robust: the object is away from its rests only in the hand, and for a
+    // whole carry (1-4 s); outlier clusters that survive the running median
+    // are shorter. So: the longest run (gaps of up to kGap samples) of
+    // samples away from both rests by minExcursion with the hand near, and
+    // the farthest sample in it.
+    constexpr int kGap = 3;
+    auto smoothedAway = [&](int i) { return distanceFromRests(seg_.smoothed[static_cast<std::size_t>(i)].p_m); };
+    auto away = [&](int i) {
+      return detected(ev(i)) && distanceFromRests(ev(i).p_m) > c_.minExcursion_m &&
+             smoothedAway(i) > c_.minExcursion_m &&
+             (smoothedHand(i) - seg_.smoothed[static_cast<std::size_t>(i)].p_m).norm() <= c_.handReach_m;
+    };
+    int runFrom = -1, runTo = -1, bestFrom = -1, bestTo = -1;
+    int against = 0;  // placement cues: detections since runTo that are evidence and not away (no evidence: unknown)
+    if (robust_) {
+      for (int i = start_; i < n_; ++i) {
+        if (!away(i)) {
+          against += cues_ && detected(ev(i));
+          continue;
         }
-      }
-      // No such run (a detector that reports nothing while the part is in the
-      // hand, e.g. srp perceive): the farthest sample of the gated, smoothed
-      // track, which bridges the carry (the estimator before issue 18).
-      constexpr int kMinRun = 30;  // a carry lasts 1-4 s (issue 18); shorter runs are occlusion artefacts
-      const bool haveRun = bestFrom >= 0 && bestTo - bestFrom + 1 >= kMinRun;
-      core::PositionTrajectory bridged;
-      if (robust && !haveRun)
-        bridged = KalmanSmoother(config_.objectSmoother)
-                      .smooth(removeFlicker(dropMovesWithoutHand(track.positions, result.hand, config_.flickerGate_m,
-                                                                 config_.handReach_m, config_.maxObjectSpeed_mps),
-                                            config_.medianWindow, config_.flickerGate_m));
-      const int lo = haveRun ? bestFrom : start, hi = haveRun ? bestTo + 1 : n;
-      double farthest = -1.0;
-      for (int i = lo; i < hi; ++i) {
-        double d = distanceFromRests(i);
-        if (!bridged.empty()) {
-          const Eigen::Vector3d& p = bridged[static_cast<std::size_t>(i)].p_m;
-          d = std::min((p - seg.p_initial_m).norm(), (p - seg.p_final_m).norm());
-        }
-        if (d > farthest) farthest = d, searchFrom = i;
+        if (runFrom >= 0 && (cues_ ? against <= kGap : i - runTo <= kGap + 1)) runTo = i;
+        else runFrom = runTo = i;
+        against = 0;
+        if (runTo - runFrom > bestTo - bestFrom) bestFrom = runFrom, bestTo = runTo;
       }
     }
-    int release = n - 1;
-    {
-      // Robust: a Bernoulli change point. While carried, a detection is in
-      // the final rest with probability carriedInRest (the last few frames of the
-      // descent); in the final rest with probability restInRest (outliers and
-      // the hand lingering over the part take the rest). Costs = -log likelihoods;
-      // the mixture's labels (not robust) weigh both kinds of disagreement alike.
-      const double qb = robust ? config_.carriedInRest : 0.5, qa = robust ? config_.restInRest : 0.5;
-      const double inBefore = -std::log(qb), outBefore = -std::log(1 - qb), inAfter = -std::log(qa),
-                   outAfter = -std::log(1 - qa);
-      double after = 0.0;
-      for (int i = searchFrom; i < n; ++i)
-        if (!robust || detected(track.positions[static_cast<std::size_t>(i)])) after += inFinal(i) ? inAfter : outAfter;
-      double before = 0.0, bestCost = std::numeric_limits<double>::infinity();
-      std::vector<double> costs;
-      for (int r = searchFrom; r < n; ++r) {
-        const double cost = before + after;
-        costs.push_back(cost);
-        if (cost < bestCost - 1e-9) bestCost = cost, release = r;
-        if (!robust || detected(track.positions[static_cast<std::size_t>(r)])) {
-          before += inFinal(r) ? inBefore : outBefore;
-          after -= inFinal(r) ? inAfter : outAfter;
-        }
+    // No such run (a detector that reports nothing while the part is in the
+    // hand, e.g. srp perceive): the farthest sample of the gated, smoothed
+    // track, which bridges the carry (the estimator before issue 18).
+    constexpr int kMinRun = 30;  // a carry lasts 1-4 s (issue 18); shorter runs are occlusion artefacts
+    const bool haveRun = bestFrom >= 0 && bestTo - bestFrom + 1 >= kMinRun;
+    core::PositionTrajectory bridged;
+    if (robust_ && !haveRun)
+      bridged = KalmanSmoother(c_.objectSmoother)
+                    .smooth(removeFlicker(dropMovesWithoutHand(evidence_, hand_.smoothed, c_.flickerGate_m,
+                                                               c_.handReach_m, c_.maxObjectSpeed_mps),
+                                          c_.medianWindow, c_.flickerGate_m));
+    const int lo = haveRun ? bestFrom : start_, hi = haveRun ? bestTo + 1 : n_;
+    int searchFrom = start_;
+    double farthest = -1.0;
+    for (int i = lo; i < hi; ++i) {
+      const double d = bridged.empty() ? smoothedAway(i) : distanceFromRests(bridged[static_cast<std::size_t>(i)].p_m);
+      if (d > farthest) farthest = d, searchFrom = i;
+    }
+    return searchFrom;
+  }
+
+  /// Step 5: the release as the change point after which the object is in the
+  /// final component, placed where the fewest labels disagree: samples before
+  /// it in the final component plus samples after it outside. Unlike "the
+  /// first sample of the last run" this is not broken by a few flickering or
+  /// occluded samples after the release. Robust: a Bernoulli change point.
+  /// While carried, a detection is in the final rest with probability
+  /// carriedInRest (the last few frames of the descent); in the final rest
+  /// with probability restInRest (outliers and the hand lingering over the
+  /// part take the rest). Costs = -log likelihoods; the mixture's labels (not
+  /// robust) weigh both kinds of disagreement alike. Sets the release margin.
+  int coarseRelease(int searchFrom) {
+    const double qb = robust_ ? c_.carriedInRest : 0.5, qa = robust_ ? c_.restInRest : 0.5;
+    const double inBefore = -std::log(qb), outBefore = -std::log(1 - qb), inAfter = -std::log(qa),
+                 outAfter = -std::log(1 - qa);
+    auto counts = [&](int i) { return !robust_ || detected(ev(i)); };
+    double after = 0.0;
+    for (int i = searchFrom; i < n_; ++i)
+      if (counts(i)) after += inFinal(i) ? inAfter : outAfter;
+    double before = 0.0, bestCost = std::numeric_limits<double>::infinity();
+    int release = n_ - 1;
+    std::vector<double> costs;
+    for (int r = searchFrom; r < n_; ++r) {
+      const double cost = before + after;
+      costs.push_back(cost);
+      if (cost < bestCost - 1e-9) bestCost = cost, release = r;
+      if (counts(r)) {
+        before += inFinal(r) ? inBefore : outBefore;
+        after -= inFinal(r) ? inAfter : outAfter;
       }
-      // The change point lands on the first final-component sample of its run.
-      while (release < n - 1 && !inFinal(release)) ++release;
-      // Margin: the best change point more than kMarginSamples away, in nats.
-      constexpr int kMarginSamples = 30;  // a competing release a second or more away (a nudge, a lingering hand)
-      double alternative = std::numeric_limits<double>::infinity();
-      for (int r = searchFrom; r < n; ++r)
-        if (std::abs(r - release) > kMarginSamples && detected(track.positions[static_cast<std::size_t>(r)])) alternative = std::min(alternative, costs[static_cast<std::size_t>(r - searchFrom)]);
-      if (robust) seg.releaseMargin = std::isfinite(alternative) ? alternative - bestCost : 0.0;
     }
-    const int coarseRelease = release;
-    int from = start;
-    if (release <= start) {
-      seg.note = "object '" + name + "' comes to rest (sample " + std::to_string(release) +
-                 ") before the previous plan object's release (sample " + std::to_string(start) +
-                 "): the plan order and the demo disagree; grasp searched from the demo start";
-      result.warnings.push_back(seg.note);
-      from = 0;
-    }
-    // Grasp: where the hand is closest to the object's initial position. The
-    // hand stops there, so the distance has a flat valley; its centre is less
-    // noise-sensitive than the bare minimum.
-    // Before the middle of the move (an object put back where it was has the
-    // hand near its initial position at the release too).
-    const int to = std::max(std::min(release, searchFrom), from + 1);
-    std::vector<double> dist(static_cast<std::size_t>(to - from));
-    int grasp = from;
+    // The change point lands on the first final-component sample of its run.
+    while (release < n_ - 1 && !inFinal(release)) ++release;
+    // Margin: the best change point more than kMarginSamples away, in nats.
+    constexpr int kMarginSamples = 30;  // a competing release a second or more away (a nudge, a lingering hand)
+    double alternative = std::numeric_limits<double>::infinity();
+    for (int r = searchFrom; r < n_; ++r)
+      if (std::abs(r - release) > kMarginSamples && detected(ev(r)))
+        alternative = std::min(alternative, costs[static_cast<std::size_t>(r - searchFrom)]);
+    if (robust_) seg_.releaseMargin = std::isfinite(alternative) ? alternative - bestCost : 0.0;
+    // Placement cues: the part seen at its final place for good (a part
+    // lowered through the final place's zone, or a wrong depth on the table
+    // below it, then hidden under the hand until it leaves, is not yet there).
+    if (cues_)
+      while (release < n_ - 1 && !(inFinal(release) && sustained(release, [&](int j) { return inFinal(j); }))) ++release;
+    return release;
+  }
+
+  /// Samples in the window sustainRest_s long that the part's final-place test should hold in.
+  int sustainWindow() const {
+    const double dt_s = n_ > 1 ? (hand_.raw[static_cast<std::size_t>(n_ - 1)].t_s - hand_.raw[0].t_s) / (n_ - 1) : 0.0;
+    return std::max(8, dt_s > 0.0 ? static_cast<int>(std::lround(c_.sustainRest_s / dt_s)) : 0);
+  }
+
+  /// `at(j)` holds for good from r: in at least half of the samples of the
+  /// next sustainRest_s, or in at least half of the part's evidence there
+  /// when that is at least sustainMinSeenShare of the samples (a part
+  /// hidden under a lingering hand for most of the window is still there).
+  template <class At>
+  bool sustained(int r, const At& at) const {
+    const int window = sustainWindow();
+    const int to = std::min(n_, r + window);
+    int in = 0, seen = 0;
+    for (int j = r; j < to; ++j) in += at(j), seen += detected(ev(j));
+    const int minSeen = static_cast<int>(std::ceil(c_.sustainMinSeenShare * window));
+    return 2 * in >= to - r || (seen >= minSeen && 2 * in >= seen);
+  }
+
+  /// Placement cues, release: the first sample from lo at which the part is
+  /// seen at its final place itself (within placeTolerance: not in the hand
+  /// above it) for good; n_ when never. A part already standing at its place
+  /// is let go, whatever the hand still does (it may rest on the part or
+  /// press it down); a hover above the place is not there yet.
+  int seenAtFinalPlace(int lo) const {
+    auto atPlace = [&](int j) { return detected(ev(j)) && (ev(j).p_m - seg_.p_final_m).norm() <= c_.placeTolerance_m; };
+    for (int r = std::max(lo, 0); r < n_; ++r)
+      if (atPlace(r) && sustained(r, atPlace)) return r;
+    return n_;
+  }
+
+  /// Placement cues, grasp: the last sample in [from, to) at which the part
+  /// is seen at its initial place itself (within placeTolerance); -1 when
+  /// never. It is not yet carried there, so the grasp is not earlier.
+  int lastSeenAtStart(int from, int to) const {
+    for (int i = std::min(to, n_) - 1; i >= from; --i)
+      if (detected(ev(i)) && (ev(i).p_m - seg_.p_initial_m).norm() <= c_.placeTolerance_m) return i;
+    return -1;
+  }
+
+  /// Step 6: where the hand is closest to the object's initial position in
+  /// [from, to). The hand stops there, so the distance has a flat valley: the
+  /// samples within graspValleyDepth of the minimum, extended across noise
+  /// bumps of up to kBump samples, in time order (the thesis' grasp is its
+  /// median sample, less noise-sensitive than the bare minimum).
+  std::vector<int> graspValley(int from, int to) {
+    handDistance_m_.assign(static_cast<std::size_t>(to - from), 0.0);
+    int closest = from;
     double best = std::numeric_limits<double>::infinity();
     for (int i = from; i < to; ++i) {
-      dist[static_cast<std::size_t>(i - from)] = (result.hand[static_cast<std::size_t>(i)].p_m - seg.p_initial_m).norm();
-      if (dist[static_cast<std::size_t>(i - from)] < best) best = dist[static_cast<std::size_t>(i - from)], grasp = i;
+      const double d = (smoothedHand(i) - seg_.p_initial_m).norm();
+      handDistance_m_[static_cast<std::size_t>(i - from)] = d;
+      if (d < best) best = d, closest = i;
     }
-    // The valley: samples within graspValleyDepth of the minimum, extended
-    // across noise bumps of up to kBump samples; the grasp is its median sample.
     constexpr int kBump = 3;
-    auto inValley = [&](int i) { return dist[static_cast<std::size_t>(i - from)] < best + config_.graspValleyDepth_m; };
-    std::vector<int> valley{grasp};
+    auto inValley = [&](int i) { return handDistance_m_[static_cast<std::size_t>(i - from)] < best + c_.graspValleyDepth_m; };
+    std::vector<int> valley{closest};
     for (int dir : {-1, 1}) {
       int outside = 0;
-      for (int i = grasp + dir; i >= from && i < to && outside <= kBump; i += dir) {
+      for (int i = closest + dir; i >= from && i < to && outside <= kBump; i += dir) {
         if (inValley(i)) valley.push_back(i), outside = 0;
         else ++outside;
       }
     }
     std::sort(valley.begin(), valley.end());
-    grasp = valley[valley.size() / 2];
-    if (config_.events == EventEstimator::HandDwellBoundary) {
-      // Grasp: the hand's rest at the object ends where the object starts to
-      // move with it; the valley covers the rest and the start of the lift.
-      const int g = restMoveBoundary(handEvents, std::max(from, valley.front()), std::min(to - 1, valley.back() + config_.moveSamples),
-                                     +1, config_.restSamples, config_.moveSamples, [](int) { return true; },
-                                     robust ? config_.boundaryMinMove_m : 0.0);
-      if (g >= 0) grasp = restEnd(handEvents, g, +1, config_.restSamples, from, to - 1, restNoiseTol_m);
-      // Release: the hand's rest at the object's final position starts where
-      // the object stops moving with it (searched from the grasp on: the
-      // object's detections, hence the mid-move sample, are unreliable while
-      // it is in the hand). The hand releases where it is closest to the
-      // object's final position (measured after the hand has left): this
-      // excludes its stops above the place (lift top, end of the retract).
-      const int lo = grasp + 1, hi = std::min(n - 1, release + (robust ? config_.releaseRefineAfter : config_.moveSamples));
-      double closest_m = std::numeric_limits<double>::infinity();
-      for (int i = lo; i <= hi; ++i)
-        closest_m = std::min(closest_m, (result.hand[static_cast<std::size_t>(i)].p_m - seg.p_final_m).norm());
-      auto reachFits = [&](int i) {
-        return (result.hand[static_cast<std::size_t>(i)].p_m - seg.p_final_m).norm() <=
-               closest_m + config_.releaseReachTolerance_m;
-      };
-      const double minMove_m = robust ? config_.boundaryMinMove_m : 0.0;
-      int r = restMoveBoundary(handEvents, lo, hi, -1, config_.restSamples, config_.moveSamples, reachFits, minMove_m);
-      if (r < 0)
-        r = restMoveBoundary(handEvents, lo, hi, -1, config_.restSamples, config_.moveSamples, [](int) { return true; }, minMove_m);
-      if (r >= 0) release = restEnd(handEvents, r, -1, config_.restSamples, lo, n - 1);
+    return valley;
+  }
+
+  /// The grasp search ends no earlier than where the hand, having come closest
+  /// to the initial position, is startAreaLeave farther from it (the hand
+  /// leaves the start area only with the part), and before the coarse release.
+  int untilHandLeftStart(int from, int to, int coarse) const {
+    double closest_m = std::numeric_limits<double>::infinity();
+    for (int i = from; i < to; ++i) closest_m = std::min(closest_m, (smoothedHand(i) - seg_.p_initial_m).norm());
+    int end = to;
+    for (; end < coarse; ++end) {
+      const double d = (smoothedHand(end) - seg_.p_initial_m).norm();
+      if (d > closest_m + c_.startAreaLeave_m) break;
+      closest_m = std::min(closest_m, d);
     }
-    if (robust) {
-      int outliers = 0, count = 0;
-      for (int i = 0; i < n; ++i) {
-        const auto& s = track.positions[static_cast<std::size_t>(i)];
-        if (!detected(s)) continue;
-        ++count;
-        outliers += (s.p_m - seg.smoothed[static_cast<std::size_t>(i)].p_m).norm() > 2 * config_.restTolerance_m;
-      }
-      seg.outlierFraction = count > 0 ? static_cast<double>(outliers) / count : 1.0;
-      // Counted in detections of the part: a part hidden under the open hand
-      // after the release (rendered demos) is not a disagreement.
-      for (int i = std::min(release, coarseRelease); i < std::max(release, coarseRelease); ++i)
-        seg.releaseCueGap += detected(track.positions[static_cast<std::size_t>(i)]) ? (release > coarseRelease ? 1 : -1) : 0;
-      seg.lowConfidence = seg.outlierFraction > 0.3 || seg.releaseMargin < 10.0 || std::abs(seg.releaseCueGap) > 10;
+    return end;
+  }
+
+  /// Step 7, grasp: the hand's rest at the object ends where the object starts
+  /// to move with it; the valley covers the rest and the start of the lift.
+  int refineGrasp(const std::vector<int>& valley, int grasp, int from, int to) {
+    const int g = restMoveBoundary(hand_.events, std::max(from, valley.front()),
+                                   std::min(to - 1, valley.back() + c_.moveSamples), +1, c_.restSamples, c_.moveSamples,
+                                   [](int) { return true; }, robust_ ? c_.boundaryMinMove_m : 0.0);
+    graspRestFound_ = g >= 0;
+    return g >= 0 ? restEnd(hand_.events, g, +1, c_.restSamples, from, to - 1, hand_.restNoiseTol_m) : grasp;
+  }
+
+  /// Step 7, release: the hand's rest at the object's final position starts
+  /// where the object stops moving with it (searched from the grasp on: the
+  /// object's detections, hence the mid-move sample, are unreliable while it
+  /// is in the hand). The hand releases where it is closest to the object's
+  /// final position (measured after the hand has left): this excludes its
+  /// stops above the place (lift top, end of the retract).
+  int refineRelease(int grasp, int coarse) const {
+    const int lo = grasp + 1, hi = std::min(n_ - 1, coarse + (robust_ ? c_.releaseRefineAfter : c_.moveSamples));
+    if (cues_) return arrivalAtPlace(lo, hi);
+    double closest_m = std::numeric_limits<double>::infinity();
+    for (int i = lo; i <= hi; ++i) closest_m = std::min(closest_m, (smoothedHand(i) - seg_.p_final_m).norm());
+    auto reachFits = [&](int i) { return (smoothedHand(i) - seg_.p_final_m).norm() <= closest_m + c_.releaseReachTolerance_m; };
+    const double minMove_m = robust_ ? c_.boundaryMinMove_m : 0.0;
+    int r = restMoveBoundary(hand_.events, lo, hi, -1, c_.restSamples, c_.moveSamples, reachFits, minMove_m);
+    if (r < 0)
+      r = restMoveBoundary(hand_.events, lo, hi, -1, c_.restSamples, c_.moveSamples, [](int) { return true; }, minMove_m);
+    return r >= 0 ? restEnd(hand_.events, r, -1, c_.restSamples, lo, n_ - 1) : coarse;
+  }
+
+  /// Step 7, release with the placement cues: the hand arrives where it comes
+  /// closest to the part's final place: the first sample at which the smoothed
+  /// hand is within closestNoiseMin of its closest approach and the median of
+  /// the hand's detections around it (+-2 samples, at least 3) within twice that (a jump
+  /// the outlier filter kept, which the smoother follows, is not an arrival).
+  /// A hover just above the place stays farther; a hand that lets go and
+  /// leaves at once has no rest there, only this closest approach.
+  int arrivalAtPlace(int lo, int hi) const {
+    constexpr int kHalf = 2;
+    std::vector<double> smoothed_m, median_m, around;
+    for (int i = lo; i <= hi; ++i) {
+      smoothed_m.push_back((smoothedHand(i) - seg_.p_final_m).norm());
+      around.clear();
+      for (int j = std::max(0, i - kHalf); j <= std::min(n_ - 1, i + kHalf); ++j)
+        if (detected(hand_.events[static_cast<std::size_t>(j)]))
+          around.push_back((hand_.events[static_cast<std::size_t>(j)].p_m - seg_.p_final_m).norm());
+      std::nth_element(around.begin(), around.begin() + static_cast<long>(around.size() / 2), around.end());
+      median_m.push_back(around.size() < 3 ? std::numeric_limits<double>::infinity() : around[around.size() / 2]);
     }
-    seg.graspIndex = grasp;
-    seg.releaseIndex = release;
-    seg.graspFrame = hand[static_cast<std::size_t>(grasp)].frame;
-    seg.releaseFrame = hand[static_cast<std::size_t>(release)].frame;
-    seg.graspHandDistance_m = dist[static_cast<std::size_t>(grasp - from)];
-    start = std::max(start, release);
+    auto supported = [&](std::size_t k) { return std::max(smoothed_m[k], median_m[k] - c_.closestNoiseMin_m); };
+    double closest_m = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < smoothed_m.size(); ++k) closest_m = std::min(closest_m, supported(k));
+    for (std::size_t k = 0; k < smoothed_m.size(); ++k)
+      if (supported(k) <= closest_m + c_.closestNoiseMin_m) return lo + static_cast<int>(k);
+    return hi;
+  }
+
+  /// Step 8 (robust): outlier fraction, release cue gap and the confidence flags.
+  void confidence(int release, int coarse) {
+    int outliers = 0, count = 0;
+    for (int i = 0; i < n_; ++i) {
+      if (!detected(raw(i))) continue;
+      ++count;
+      outliers += (raw(i).p_m - seg_.smoothed[static_cast<std::size_t>(i)].p_m).norm() > 2 * c_.restTolerance_m;
+    }
+    seg_.outlierFraction = count > 0 ? static_cast<double>(outliers) / count : 1.0;
+    // Counted in detections of the part: a part hidden under the open hand
+    // after the release (rendered demos) is not a disagreement.
+    for (int i = std::min(release, coarse); i < std::max(release, coarse); ++i)
+      seg_.releaseCueGap += detected(ev(i)) ? (release > coarse ? 1 : -1) : 0;
+    // With the placement cues a part hidden under the hand around its release
+    // leaves the change point's margin small whatever the hand did, so the
+    // margin is reported but does not lower the confidence.
+    const bool messy = seg_.outlierFraction > 0.3;
+    seg_.releaseLowConfidence = messy || (!cues_ && seg_.releaseMargin < 10.0) || std::abs(seg_.releaseCueGap) > 10;
+    seg_.graspLowConfidence = messy || !graspRestFound_ || seg_.graspHandDistance_m > c_.handReach_m;
+    seg_.lowConfidence = seg_.graspLowConfidence || seg_.releaseLowConfidence;
+  }
+
+  const Segmenter::Config& c_;
+  const bool robust_, cues_;
+  const PreparedHand& hand_;
+  const core::PositionTrajectory& track_;
+  const std::vector<ObjectSegmentation>& earlier_;
+  core::PositionTrajectory evidence_;
+  const int start_, n_, w_;
+  ObjectSegmentation seg_;
+  int finalComponent_ = 2;
+  bool graspRestFound_ = false;  ///< the hand's rest at the part was found (step 7)
+  std::vector<double> handDistance_m_;  ///< smoothed hand to p_initial over the grasp search
+};
+
+}  // namespace
+
+Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std::vector<ObjectTrack>& objects,
+                                const std::vector<std::string>& planOrder) const {
+  std::map<std::string, const ObjectTrack*> byName;
+  for (const auto& o : objects) byName[o.name] = &o;
+  validateInputs(hand, byName, planOrder);
+  if (config_.events == EventEstimator::ThesisPublished) return segmentThesisPublished(hand, objects, planOrder);
+
+  // Robust mode refines the default estimator; the thesis-like estimator keeps its published steps.
+  const bool robust = config_.robust && config_.events == EventEstimator::HandDwellBoundary;
+  // Step 1, the hand (robust: jumps and carried values dropped before anything uses it).
+  PreparedHand prepared{hand, hand, {}, 0.0};
+  if (robust) {
+    double handSpread_m = 0.0;
+    prepared.events = dropHandOutliers(hand, config_.handOutlierSigmas, config_.handOutlierMin_m, handSpread_m);
+    prepared.restNoiseTol_m = std::min(config_.restNoiseFactor * handSpread_m, config_.restNoiseMax_m);
+  }
+  prepared.smoothed = KalmanSmoother(config_.handSmoother).smooth(prepared.events);
+  Segmentation result;
+  result.hand = prepared.smoothed;
+  const int n = static_cast<int>(hand.size());
+  result.firstHandIndex = 0;
+  while (result.firstHandIndex < n - 1 && !detected(hand[static_cast<std::size_t>(result.firstHandIndex)])) ++result.firstHandIndex;
+  result.lastHandIndex = n - 1;
+  while (result.lastHandIndex > 0 && !detected(hand[static_cast<std::size_t>(result.lastHandIndex)])) --result.lastHandIndex;
+  // Steps 2-8 per object, in plan order; each search starts at the previous release.
+  int start = 0;
+  for (const auto& name : planOrder) {
+    ObjectSegmentation seg =
+        ObjectPass(config_, robust, prepared, *byName.at(name), start, result.objects).run(result.warnings);
+    if (seg.moved) start = std::max(start, seg.releaseIndex);
     result.objects.push_back(std::move(seg));
   }
   return result;

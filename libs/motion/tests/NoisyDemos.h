@@ -2,7 +2,7 @@
 // Noise-free labelled demos from the synthetic-demo module's choreography
 // (libs/synth planDemonstration: the thesis' default scene and instruction 1,
 // the choreography the rendered demos use) and the error tables of the
-// real-track noise tests (issue 18).
+// real-track noise tests.
 #include <algorithm>
 #include <cstdint>
 #include <string>
@@ -19,10 +19,17 @@ namespace srp::motion::testing {
 /// The synth module's choreography as noise-free labelled tracks (libs/synth LabelledDemo.h).
 inline LabelledDemo cleanSynthDemo(std::uint32_t seed) { return synth::cleanLabelledDemo(seed); }
 
+/// Which real recording's behaviours the noise model adds.
+enum class Recording {
+  First,  ///< outliers, hand jumps, lingering and nudges (RealTrackNoise::Config::placement off)
+  Both,   ///< also the second one's placement behaviours: hover, hidden parts, ghosts (the default)
+};
+
 /// The tracks a segmenter sees (plan objects first, then the others, like a perception CSV).
-inline RealTrackNoise::Result noisySynthDemo(std::uint32_t seed) {
+inline RealTrackNoise::Result noisySynthDemo(std::uint32_t seed, Recording recording = Recording::Both) {
   RealTrackNoise::Config c;
   c.seed = seed;
+  c.placement = recording == Recording::Both;
   return RealTrackNoise(c).apply(cleanSynthDemo(seed));
 }
 
@@ -48,20 +55,28 @@ struct EventErrors {
 
 namespace srp::motion::testing {
 
-/// Grasp/release errors of `config` on the noisy synth demos of `seeds`
-/// (printed per event when `print`).
-inline EventErrors evaluateNoisy(const std::vector<std::uint32_t>& seeds, const Segmenter::Config& config,
+/// The noisy synth demos of `seeds` (a seed for which the synth planner finds
+/// no free spot is not a demo and is left out).
+struct NoisyDemo {
+  std::uint32_t seed = 0;
+  RealTrackNoise::Result result;
+};
+inline std::vector<NoisyDemo> noisyDemos(const std::vector<std::uint32_t>& seeds, Recording recording) {
+  std::vector<NoisyDemo> demos;
+  for (std::uint32_t seed : seeds) {
+    try {
+      demos.push_back({seed, noisySynthDemo(seed, recording)});
+    } catch (const std::exception&) {
+    }
+  }
+  return demos;
+}
+
+/// Grasp/release errors of `config` on `demos` (printed per event when `print`).
+inline EventErrors evaluateNoisy(const std::vector<NoisyDemo>& demos, const Segmenter::Config& config,
                                  const std::string& label, bool print) {
   EventErrors errors;
-  for (std::uint32_t seed : seeds) {
-    RealTrackNoise::Result r;
-    try {
-      r = noisySynthDemo(seed);
-    } catch (const std::exception& e) {
-      // The synth planner finds no free spot for some seeds: not a demo.
-      if (print) std::cout << label << " seed " << seed << ": no demo (" << e.what() << ")\n";
-      continue;
-    }
+  for (const auto& [seed, r] : demos) {
     ++errors.demos;
     const auto seg = Segmenter(config).segment(r.noisy.hand, r.noisy.objects, r.noisy.planOrder);
     for (std::size_t k = 0; k < r.noisy.planOrder.size(); ++k) {
@@ -72,7 +87,10 @@ inline EventErrors evaluateNoisy(const std::vector<std::uint32_t>& seeds, const 
       errors.release.push_back(rel);
       if (print)
         std::cout << label << " seed " << seed << " " << o.name << ": grasp " << g << ", release " << rel
-                  << (r.nudgeIndex[k] >= 0 ? " (nudged)" : "") << "\n";
+                  << " [outliers " << o.outlierFraction << ", margin " << o.releaseMargin << ", gap " << o.releaseCueGap
+                  << (o.lowConfidence ? ", low]" : "]")
+                  << (r.nudgeIndex[k] >= 0 ? " (nudged)" : "") << (r.ghostOf[k] >= 0 ? " (ghost)" : "")
+                  << (r.pauseKept[k] ? "" : " (no pause)") << "\n";
     }
   }
   return errors;

@@ -1,5 +1,6 @@
 #include "srp/programming/ProgramReport.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <sstream>
 
 #include "srp/core/Error.h"
+#include "srp/core/SafeText.h"
 #include "srp/core/OutputFile.h"
 #include "srp/motion/SkillPlots.h"
 #include "srp/perception/PerceptionDrawing.h"
@@ -82,9 +84,9 @@ std::vector<std::string> writeContactSheet(const std::string& dir, const Program
   std::vector<int> marked;
   for (const auto& ob : segmentation.objects) {
     if (!ob.moved) continue;
-    if (ob.graspFrame >= 0) events[ob.graspFrame].push_back({"GRASP " + ob.name, cv::Scalar(60, 200, 60), ob.lowConfidence});
+    if (ob.graspFrame >= 0) events[ob.graspFrame].push_back({"GRASP " + ob.name, cv::Scalar(60, 200, 60), ob.graspLowConfidence});
     if (ob.releaseFrame >= 0)
-      events[ob.releaseFrame].push_back({"RELEASE " + ob.name, cv::Scalar(230, 150, 40), ob.lowConfidence});
+      events[ob.releaseFrame].push_back({"RELEASE " + ob.name, cv::Scalar(230, 150, 40), ob.releaseLowConfidence});
   }
   for (const auto& [frame, e] : events) marked.push_back(frame);
   const std::vector<int> frames = perception::contactSheetFrames(seen.frames, kContactSheetSpreadFrames, marked);
@@ -136,9 +138,7 @@ std::vector<std::string> writeProgramReport(const std::string& dir, const Progra
   for (const auto& s : skills)
     for (const auto& o : segmentation.objects)
       if (o.name == s.objectName && o.moved) {
-        std::string file = o.name;
-        std::replace(file.begin(), file.end(), ' ', '_');
-        const std::string path = dir + "/" + file + "_skills.png";
+        const std::string path = dir + "/" + core::safeFileName(o.name) + "_skills.png";
         motion::writeSkillFigure(path, segmentation, o, s);
         files.push_back(path);
       }

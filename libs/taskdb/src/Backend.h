@@ -42,6 +42,8 @@ class StatementImpl {
   /// Runs the statement on the first call; steps to the next row; false at the end.
   virtual bool step() = 0;
   virtual bool isNull(int column) const = 0;
+  virtual bool isInteger(int column) const = 0;
+  virtual bool isFloat(int column) const = 0;
   virtual long long getInt(int column) const = 0;
   virtual double getDouble(int column) const = 0;
   virtual std::string getText(int column) const = 0;

@@ -10,11 +10,12 @@ constexpr const char* kSelect =
     "SELECT ClassId, ObjectName, SourceLocationId, TargetLocationId, Color, InstanceId FROM GroundedProducts";
 
 GroundedProductRow readRow(const Statement& st) {
+  const RowRef row = rowRef(st, "GroundedProducts", {0, 5});
   GroundedProductRow r;
-  r.classId = st.getColumn(0).getInt();
+  r.classId = checkedInt(st, 0, row);
   r.objectName = st.getColumn(1).getString();
-  r.sourceLocationId = optionalInt(st.getColumn(2));
-  r.targetLocationId = optionalInt(st.getColumn(3));
+  r.sourceLocationId = checkedOptionalInt(st, 2, row);
+  r.targetLocationId = checkedOptionalInt(st, 3, row);
   r.colour = optionalText(st.getColumn(4));
   r.instanceId = st.getColumn(5).getString();
   return r;

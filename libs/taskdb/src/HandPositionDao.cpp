@@ -6,12 +6,15 @@ namespace srp::taskdb {
 using namespace detail;
 
 namespace {
-constexpr const char* kSelect = "SELECT TimeId, X, Y, Z, Detected FROM HandPositions";
+constexpr const char* kSelect = "SELECT TimeId, X, Y, Z, Detected, TaskModelId FROM HandPositions";
 
 HandPositionRow readRow(const Statement& st) {
-  return {st.getColumn(0).getInt(),
-          {st.getColumn(1).getDouble(), st.getColumn(2).getDouble(), st.getColumn(3).getDouble()},
-          st.getColumn(4).getInt() != 0};
+  const RowRef row = rowRef(st, "HandPositions", {5, 0});
+  return {checkedInt(st, 0, row),
+          {checkedReal(st, 1, row, -kMaxCoordinate_m, kMaxCoordinate_m),
+           checkedReal(st, 2, row, -kMaxCoordinate_m, kMaxCoordinate_m),
+           checkedReal(st, 3, row, -kMaxCoordinate_m, kMaxCoordinate_m)},
+          checkedInt(st, 4, row, 0, 1) != 0};
 }
 
 void checkFinite(const HandPositionRow& r) {

@@ -62,10 +62,11 @@ class LocationTable {
 
  private:
   std::string select() const { return "SELECT LocationId, " + col_ + ", Description FROM " + table_; }
-  static Row read(const Statement& st) {
+  Row read(const Statement& st) const {
+    const RowRef row = rowRef(st, table_.c_str(), {0});
     Row r;
-    r.locationId = st.getColumn(0).getInt();
-    landmarkOf(r) = st.getColumn(1).getInt();
+    r.locationId = checkedInt(st, 0, row);
+    landmarkOf(r) = checkedInt(st, 1, row);
     r.description = st.getColumn(2).getString();
     return r;
   }

@@ -95,6 +95,16 @@ class PostgresStatement final : public StatementImpl {
   int exec() override;
   bool step() override;
   bool isNull(int c) const override { return field(c).is_null(); }
+  // A server's columns are typed: the value is of its column's type (OIDs of
+  // int2/int4/int8 and float4/float8/numeric).
+  bool isInteger(int c) const override {
+    const auto t = type(c);
+    return !isNull(c) && (t == 20 || t == 21 || t == 23);
+  }
+  bool isFloat(int c) const override {
+    const auto t = type(c);
+    return !isNull(c) && (t == 700 || t == 701 || t == 1700);
+  }
   long long getInt(int c) const override {
     const auto f = field(c);
     return f.is_null() ? 0 : std::strtoll(f.c_str(), nullptr, 10);
@@ -122,6 +132,10 @@ class PostgresStatement final : public StatementImpl {
     return (*result_)[static_cast<pqxx::result::size_type>(row_)][static_cast<pqxx::row::size_type>(c)];
   }
   pqxx::result run();
+  pqxx::oid type(int c) const {
+    if (!result_) throw DbError("no result", DbError::Kind::Other);
+    return result_->column_type(static_cast<pqxx::row::size_type>(c));
+  }
 
   PostgresBackend& db_;
   std::string name_;

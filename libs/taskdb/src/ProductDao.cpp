@@ -21,15 +21,16 @@ void bindRow(Statement& st, int first, const ProductRow& r) {
 }
 
 ProductRow readRow(const Statement& st) {
+  const RowRef row = rowRef(st, "Products", {0});
   ProductRow r;
-  r.objectId = st.getColumn(0).getInt();
+  r.objectId = checkedInt(st, 0, row);
   r.objectName = st.getColumn(1).getString();
-  r.sourceLocationId = optionalInt(st.getColumn(2));
-  r.targetLocationId = optionalInt(st.getColumn(3));
+  r.sourceLocationId = checkedOptionalInt(st, 2, row);
+  r.targetLocationId = checkedOptionalInt(st, 3, row);
   r.colour = optionalText(st.getColumn(4));
-  r.tokenId = optionalInt(st.getColumn(5));
-  r.sentenceId = optionalInt(st.getColumn(6));
-  r.classId = optionalInt(st.getColumn(7));
+  r.tokenId = checkedOptionalInt(st, 5, row);
+  r.sentenceId = checkedOptionalInt(st, 6, row);
+  r.classId = checkedOptionalInt(st, 7, row);
   r.instanceId = st.getColumn(8).getString();
   return r;
 }

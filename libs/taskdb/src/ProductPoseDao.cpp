@@ -7,8 +7,8 @@ using namespace detail;
 
 namespace {
 constexpr const char* kSelect =
-    "SELECT ClassId, TimeId, X, Y, Z, QW, QX, QY, QZ, Reach, Grasp, Move, Release, Detected, Confidence, InstanceId "
-    "FROM ProductPose";
+    "SELECT ClassId, TimeId, X, Y, Z, QW, QX, QY, QZ, Reach, Grasp, Move, Release, Detected, Confidence, InstanceId, "
+    "TaskModelId FROM ProductPose";
 constexpr const char* kInsert =
     "INSERT INTO ProductPose (TaskModelId, ClassId, TimeId, X, Y, Z, QW, QX, QY, QZ, Reach, Grasp, Move, Release, "
     "Detected, Confidence, InstanceId) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)";
@@ -23,18 +23,23 @@ void bindValues(Statement& st, int first, const ProductPoseRow& r) {
 }
 
 ProductPoseRow readRow(const Statement& st) {
+  const RowRef row = rowRef(st, "ProductPose", {16, 0, 15, 1});
   ProductPoseRow r;
-  r.classId = st.getColumn(0).getInt();
-  r.timeId = st.getColumn(1).getInt();
-  r.p_m = {st.getColumn(2).getDouble(), st.getColumn(3).getDouble(), st.getColumn(4).getDouble()};
-  r.q = Eigen::Quaterniond(st.getColumn(5).getDouble(), st.getColumn(6).getDouble(), st.getColumn(7).getDouble(),
-                           st.getColumn(8).getDouble());
-  r.reach = st.getColumn(9).getInt() != 0;
-  r.grasp = st.getColumn(10).getInt() != 0;
-  r.move = st.getColumn(11).getInt() != 0;
-  r.release = st.getColumn(12).getInt() != 0;
-  r.detected = st.getColumn(13).getInt() != 0;
-  r.confidence = optionalDouble(st.getColumn(14));
+  r.classId = checkedInt(st, 0, row);
+  r.timeId = checkedInt(st, 1, row);
+  r.p_m = {checkedReal(st, 2, row, -kMaxCoordinate_m, kMaxCoordinate_m),
+           checkedReal(st, 3, row, -kMaxCoordinate_m, kMaxCoordinate_m),
+           checkedReal(st, 4, row, -kMaxCoordinate_m, kMaxCoordinate_m)};
+  double q[4];
+  for (int i = 0; i < 4; ++i) q[i] = checkedReal(st, 5 + i, row, -1.0 - 1e-6, 1.0 + 1e-6);
+  r.q = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
+  if (std::abs(r.q.norm() - 1.0) > 0.01) badCell(st, 5, row, "the quaternion QW, QX, QY, QZ is not of unit length");
+  r.reach = checkedInt(st, 9, row, 0, 1) != 0;
+  r.grasp = checkedInt(st, 10, row, 0, 1) != 0;
+  r.move = checkedInt(st, 11, row, 0, 1) != 0;
+  r.release = checkedInt(st, 12, row, 0, 1) != 0;
+  r.detected = checkedInt(st, 13, row, 0, 1) != 0;
+  r.confidence = checkedOptionalReal(st, 14, row, 0.0, 1.0);
   r.instanceId = st.getColumn(15).getString();
   return r;
 }

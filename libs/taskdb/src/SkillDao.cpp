@@ -6,15 +6,22 @@ namespace srp::taskdb {
 using namespace detail;
 
 namespace {
-constexpr const char* kSelect = "SELECT ClassId, Skill, StartTimeId, EndTimeId, Parameters, InstanceId FROM Skills";
+constexpr const char* kSelect =
+    "SELECT ClassId, Skill, StartTimeId, EndTimeId, Parameters, InstanceId, TaskModelId FROM Skills";
 
 SkillRow readRow(const Statement& st) {
+  const RowRef row = rowRef(st, "Skills", {6, 0, 5, 1});
   SkillRow r;
-  r.classId = st.getColumn(0).getInt();
-  r.skill = core::skillTypeFromString(st.getColumn(1).getString());
-  r.startTimeId = st.getColumn(2).getInt();
-  r.endTimeId = st.getColumn(3).getInt();
-  r.parameters = nlohmann::json::parse(st.getColumn(4).getString());
+  r.classId = checkedInt(st, 0, row);
+  try {
+    r.skill = core::skillTypeFromString(st.getColumn(1).getString());
+  } catch (const core::Error& e) {
+    badCell(st, 1, row, e.what());
+  }
+  r.startTimeId = checkedInt(st, 2, row);
+  r.endTimeId = checkedInt(st, 3, row);
+  if (r.endTimeId < r.startTimeId) badCell(st, 3, row, "the skill ends before it starts (EndTimeId < StartTimeId)");
+  r.parameters = checkedJson(st, 4, row);
   r.instanceId = st.getColumn(5).getString();
   return r;
 }

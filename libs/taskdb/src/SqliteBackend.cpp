@@ -51,6 +51,8 @@ class SqliteStatement final : public StatementImpl {
   int exec() override { return translated([&] { return st_.exec(); }); }
   bool step() override { return translated([&] { return st_.executeStep(); }); }
   bool isNull(int c) const override { return translated([&] { return st_.getColumn(c).isNull(); }); }
+  bool isInteger(int c) const override { return translated([&] { return st_.getColumn(c).isInteger(); }); }
+  bool isFloat(int c) const override { return translated([&] { return st_.getColumn(c).isFloat(); }); }
   long long getInt(int c) const override { return translated([&] { return st_.getColumn(c).getInt64(); }); }
   double getDouble(int c) const override { return translated([&] { return st_.getColumn(c).getDouble(); }); }
   std::string getText(int c) const override { return translated([&] { return st_.getColumn(c).getString(); }); }

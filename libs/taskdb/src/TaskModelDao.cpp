@@ -44,17 +44,38 @@ void bindValues(Statement& st, int first, const TaskModelInfo& i) {
 }
 
 TaskModelInfo readRow(const Statement& st) {
+  const RowRef row = rowRef(st, "TaskModels", {0});
   TaskModelInfo i;
-  i.id = st.getColumn(0).getInt();
+  i.id = checkedInt(st, 0, row, 1);
   i.name = st.getColumn(1).getString();
-  i.version = st.getColumn(2).getInt();
+  i.version = checkedInt(st, 2, row, 1);
   i.createdUtc = st.getColumn(3).getString();
   i.instruction = st.getColumn(4).getString();
   i.frame = st.getColumn(5).getString();
-  i.frameRate_hz = st.getColumn(6).getDouble();
-  if (auto k = optionalText(st.getColumn(7))) i.intrinsics = nlohmann::json::parse(*k).get<core::CameraIntrinsics>();
-  if (auto p = optionalText(st.getColumn(8)))
-    i.X_base_camera = core::poseFromJson(nlohmann::json::parse(*p), "TaskModels.X_base_camera");
+  constexpr double kMaxFrameRate_hz = 10000.0;
+  i.frameRate_hz = checkedReal(st, 6, row, 1e-3, kMaxFrameRate_hz);
+  try {
+    if (!st.getColumn(7).isNull()) {
+      i.intrinsics = checkedJson(st, 7, row).get<core::CameraIntrinsics>();
+      i.intrinsics->validate("the camera");
+    }
+  } catch (const core::Error& e) {
+    badCell(st, 7, row, e.what());
+  } catch (const nlohmann::json::exception& e) {
+    badCell(st, 7, row, e.what());
+  }
+  try {
+    if (!st.getColumn(8).isNull()) {
+      i.X_base_camera = core::poseFromJson(checkedJson(st, 8, row), "the camera pose");
+      if (!i.X_base_camera->matrix().allFinite() ||
+          i.X_base_camera->translation().cwiseAbs().maxCoeff() > kMaxCoordinate_m)
+        badCell(st, 8, row, "the camera pose is not finite or is more than 1 km away");
+    }
+  } catch (const core::Error& e) {
+    badCell(st, 8, row, e.what());
+  } catch (const nlohmann::json::exception& e) {
+    badCell(st, 8, row, e.what());
+  }
   return i;
 }
 }  // namespace

@@ -4,6 +4,7 @@
 #include "SqlUtil.h"
 #include "srp/core/Json.h"
 
+#include "SqlUtil.h"
 #include "srp/core/Error.h"
 #include "srp/taskdb/GroundedProductDao.h"
 #include "srp/taskdb/HandPositionDao.h"
@@ -185,6 +186,9 @@ TaskModel TaskModelStore::read(int id) const {
     return readUnchecked(id);
   } catch (const detail::DbError& e) {
     rethrowUnreadable(db_.path(), e);
+  } catch (const detail::BadCellError& e) {
+    throw core::InvalidInputError("task database '" + db_.path() + "', task model " + std::to_string(id) + ": " +
+                                  e.what());
   }
 }
 
@@ -223,6 +227,8 @@ std::vector<TaskModelInfo> TaskModelStore::list() const {
     return TaskModelDao(db_).list();
   } catch (const detail::DbError& e) {
     rethrowUnreadable(db_.path(), e);
+  } catch (const detail::BadCellError& e) {
+    throw core::InvalidInputError("task database '" + db_.path() + "': " + e.what());
   }
 }
 

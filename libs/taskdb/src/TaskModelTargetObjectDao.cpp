@@ -33,10 +33,11 @@ bool TaskModelTargetObjectDao::remove(int tm, int step) {
 
 std::vector<int> TaskModelTargetObjectDao::list(int tm) const {
   Statement st(db_,
-                       "SELECT TargetObjectId FROM TaskModelTargetObjects WHERE TaskModelId = ? ORDER BY StepIndex");
+                       "SELECT TargetObjectId, TaskModelId, StepIndex FROM TaskModelTargetObjects "
+                       "WHERE TaskModelId = ? ORDER BY StepIndex");
   st.bind(1, tm);
   std::vector<int> ids;
-  while (st.executeStep()) ids.push_back(st.getColumn(0).getInt());
+  while (st.executeStep()) ids.push_back(checkedInt(st, 0, rowRef(st, "TaskModelTargetObjects", {1, 2})));
   return ids;
 }
 

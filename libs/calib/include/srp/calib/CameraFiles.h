@@ -1,8 +1,14 @@
 #pragma once
 /// \file CameraFiles.h
 /// \brief Reading and writing camera calibration files: ViSP camera XML
-/// (vpXmlParserCamera) and the JSON intrinsics found next to RGB-D recordings.
-/// Every srp app reads its camera through loadCameraXml / loadCameraFile.
+/// (vpXmlParserCamera), ROS `camera_info` YAML, OpenCV YAML, and the JSON
+/// intrinsics found next to RGB-D recordings. Every srp app reads its camera
+/// through loadCameraXml / loadCameraFile.
+///
+/// The three calibration formats hold the same camera: ViSP's kud is OpenCV's
+/// and ROS' first radial coefficient k1 (plumb_bob D = [kud, 0, 0, 0, 0]); a
+/// file with other non-zero distortion coefficients is refused when read, since
+/// srp models one radial coefficient (CameraCalibration).
 
 #include <optional>
 #include <string>
@@ -29,6 +35,34 @@ CameraCalibration loadCameraXml(const std::string& path, const std::string& came
 void saveCameraXml(const std::string& path, const CameraCalibration& camera,
                    const std::string& comment = "");
 
+/// The calibration file formats `srp calibrate --format` writes.
+enum class CameraFileFormat {
+  Visp,    ///< ViSP camera XML (vpXmlParserCamera), what srp's commands read by default
+  Ros,     ///< ROS `camera_info` YAML as camera_calibration_parsers writes it (plumb_bob)
+  OpenCv,  ///< OpenCV FileStorage YAML: camera_matrix, distortion_coefficients (as OpenCV's calibration sample)
+};
+
+/// "visp", "ros" or "opencv"; throws InvalidInputError naming the bad name.
+CameraFileFormat cameraFileFormatFromName(const std::string& name);
+
+/// The file name `srp calibrate` writes by default in the current folder:
+/// camera.xml, camera_info.yaml, camera_opencv.yaml.
+std::string defaultCameraFileName(CameraFileFormat format);
+
+/// The ROS `camera_info` YAML text of `camera` (yaml-cpp): image size, camera
+/// name, K, D (plumb_bob, [kud, 0, 0, 0, 0]), R = identity and the rectified
+/// projection P = [K' | 0] with K' = cv::getOptimalNewCameraMatrix(K, D, size,
+/// alpha 0), as ROS' camera_calibration computes it for a monocular camera
+/// (K' = K without distortion).
+/// Doubles with 17 significant digits.
+std::string cameraInfoYaml(const CameraCalibration& camera);
+
+/// Writes `camera` to `path` (atomically) in `format`. `comment` goes into the
+/// ViSP XML and as a YAML comment; `rms_px` (when positive) is stored as the
+/// OpenCV file's avg_reprojection_error. Throws FileError when it cannot.
+void saveCameraFile(const std::string& path, const CameraCalibration& camera, CameraFileFormat format,
+                    const std::string& comment = "", double rms_px = 0.0);
+
 /// Intrinsics from a JSON camera file and the depth scale it may carry. Two
 /// layouts are understood: ViSP's RGB-D recordings (`cam.json`: px, py, u0,
 /// v0, w, h, optional depthScale [m per depth unit]) and srp's
@@ -39,8 +73,10 @@ struct CameraFile {
   std::optional<double> depthScale_m;
 };
 
-/// Reads a camera from `path`: `.xml` through loadCameraXml, anything else as
-/// JSON (see CameraFile). Errors name the file and the missing field.
+/// Reads a camera from `path`: `.xml` through loadCameraXml; `.yaml`/`.yml` as
+/// an OpenCV YAML file (first line `%YAML:1.0`) or a ROS camera_info file;
+/// anything else as JSON (see CameraFile). Errors name the file and the
+/// missing field.
 CameraFile loadCameraFile(const std::string& path);
 
 }  // namespace srp::calib

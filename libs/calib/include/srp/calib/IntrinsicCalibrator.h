@@ -11,9 +11,14 @@
 
 #include "srp/calib/CalibrationPattern.h"
 #include "srp/calib/CameraCalibration.h"
+#include "srp/calib/ImageHeader.h"
 #include "srp/core/Pose.h"
 
 namespace srp::calib {
+
+/// A view whose reprojection RMS is this many times the median view's is flagged
+/// CalibrationView::outlier.
+constexpr double kOutlierViewFactor = 3.0;
 
 /// One calibration image: where it came from and what was found in it.
 struct CalibrationView {
@@ -21,6 +26,10 @@ struct CalibrationView {
   bool found = false;                ///< pattern detected (else rejected)
   int points = 0;                    ///< points used
   double rms_px = 0.0;               ///< reprojection RMS of this view with the final camera
+  /// rms_px is at least kOutlierViewFactor times the median of the used views'
+  /// rms_px: a blurred image, a bent board or a wrong detection, to check or drop.
+  /// Flagged only; the view stays in the calibration.
+  bool outlier = false;
   srp::core::Pose3 X_camera_board = srp::core::Pose3::Identity();  ///< estimated board pose
   PatternObservation observation;
 };
@@ -30,14 +39,18 @@ struct IntrinsicCalibrationResult {
   CameraCalibration camera;
   double rms_px = 0.0;               ///< reprojection RMS over all points of the used views
   std::vector<CalibrationView> views;  ///< in input order, rejected ones with found = false
+  double medianViewRms_px = 0.0;     ///< median of the used views' rms_px
   int viewsUsed() const;
   std::vector<std::string> rejectedNames() const;
+  std::vector<std::string> outlierNames() const;  ///< views flagged CalibrationView::outlier, in input order
 };
 
 struct IntrinsicCalibrationOptions {
   bool estimateDistortion = true;    ///< false: kud = kdu = 0
   std::string cameraName = "Camera";
   std::string drawDir;               ///< when set, one PNG per image with the detection
+  /// Images whose header declares more pixels are refused before decoding (ImageHeader.h).
+  std::int64_t maxImagePixels = kMaxImagePixels;
   /// Progress callback (image index, count, name), e.g. to print to stderr.
   std::function<void(int, int, const std::string&)> progress;
 };

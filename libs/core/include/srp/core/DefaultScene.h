@@ -7,7 +7,8 @@
 
 namespace srp::core {
 
-/// sim/scenes/default.json of the source tree (SRP_SIM_DIR).
+/// `sim/scenes/default.json` of srp's data folder (DataPaths); throws FileError
+/// when it is not there.
 std::string defaultScenePath();
 
 }  // namespace srp::core

@@ -35,12 +35,17 @@ struct CellObject {
   std::string noun;       ///< head noun in instructions ("box"), "" if unknown
   int classId = -1;       ///< knowledge-base class id
   std::string meshPath;   ///< the class's mesh (object frame, metres) for rendering; "" or missing: drawn as its box
+  double meshScale = 1.0; ///< metres per unit of the mesh file (ObjectClass::meshScale)
   /// The class of a part or container seen in a demonstration without a CAD
   /// file (ObjectClass::observed: shape "hull" or "open_box"), carried by the
   /// scene: it is simulated as its box (`size_m`) and rendered as its generated
   /// mesh (kb::makeClassMesh). nullopt for a catalogue class.
   std::optional<srp::core::ObjectClass> observedClass;
 };
+
+/// True when the footprint centre of `part` lies inside `container`'s inner walls (x, y in
+/// the container's frame; the height is not looked at).
+bool isInside(const CellObject& part, const CellObject& container);
 
 /// An oriented box (centre pose and half extents) in the world frame.
 struct WorldBox {

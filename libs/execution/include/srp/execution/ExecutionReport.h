@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "srp/core/ExitCode.h"
 #include "srp/core/Pose.h"
 
 namespace srp::execution {
@@ -24,6 +25,9 @@ struct RelationCheck {
   std::string quantity;   ///< what was measured ("gap", "height above support", ...)
   double value_m = 0.0;   ///< its value
   std::string detail;     ///< readable summary of the measurement
+  /// How far inside the relation's limits the measurement is [m] (the smallest of its
+  /// conditions' margins; negative: by how much it is violated). Not serialised.
+  double slack_m = 0.0;
 };
 
 struct StepReport {
@@ -67,6 +71,11 @@ struct ExecutionReport {
   int done() const;
   /// True when every step is Done and its relations hold.
   bool allSucceeded() const;
+  /// How `srp execute` ends (srp/core/ExitCode.h): Done when allSucceeded(); Error when
+  /// a step failed in simulation or its relations do not hold after the placement;
+  /// Partial when the others are done but steps were skipped or refused (nothing moved
+  /// in those); Error for a report without steps.
+  srp::core::ExitCode exitCode() const;
   nlohmann::json toJson() const;
   std::string toText() const;
 };

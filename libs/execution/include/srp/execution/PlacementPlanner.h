@@ -28,14 +28,24 @@
 ///   sideways when that place is taken, as long as the lateral offset stays below
 ///   the offset along d, i.e. within 45 degrees of d).
 /// - "between A and B": on the segment A-B, centred in the free space between their
-///   footprints, clearance_m from A and B when there is room, else in the middle down to
-///   betweenMinClearance_m; refused when the space is narrower than the part's narrower
-///   side plus two betweenMinClearance_m.
+///   footprints, clearance_m from A and B; refused when no place between them keeps
+///   minClearance_m from both (the reason gives the room along the line and what the
+///   part's narrower side needs).
 /// - a place on the table that lies wholly inside a container rests on its floor.
 /// The yaw of a placed part is its container's, else its landmark's; "between" turns the
-/// part's narrower side along A-B.
+/// part's narrower side along A-B; other turns come after (PlacementRelations.h).
+/// Where no place keeps clearance_m and wallMargin_m, a tight place keeps minClearance_m
+/// (PlacementOptions::tight(): also a finer grid and more yaw choices). A placed part's
+/// centre keeps toolClearance_m from the container walls (the suction tool above it).
 /// An impossible placement gives the reason and no pose.
+///
+/// Structure: PlacementTarget.h grounds the landmarks (resolveTarget), PlacementContext.h
+/// holds the scene and the rules above, PlacementRelations.h has one function per
+/// relation proposing candidate poses best first; place() takes the first candidate whose
+/// relations check, and JointPlacementPlanner searches the candidates of every step of an
+/// instruction together.
 
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <utility>
@@ -45,26 +55,9 @@
 #include "srp/execution/CellDescription.h"
 #include "srp/execution/ExecutionPlan.h"
 #include "srp/execution/ExecutionReport.h"
-#include "srp/execution/SceneGrounder.h"
+#include "srp/execution/PlacementContext.h"
 
 namespace srp::execution {
-
-struct PlacementOptions {
-  double neighbourGap_m = 0.015;  ///< gap between footprints of neighbours
-  double wallMargin_m = 0.008;    ///< free space between a placed part and a wall
-  double clearance_m = 0.008;     ///< minimum gap to any other part
-  /// "between A and B" in a gap narrower than the part + 2 x clearance_m: the part goes
-  /// in the middle, at least this far from A and B (other parts keep clearance_m).
-  double betweenMinClearance_m = 0.003;
-  double gridStep_m = 0.005;      ///< candidate spacing for "in X"
-  double minReach_m = 0.15;       ///< horizontal distance from the robot base, at least
-  double maxReach_m = 0.80;       ///< and at most (UR5: 0.85 m)
-  double neighbourTolerance_m = 0.015;  ///< extra gap allowed when checking "next to"
-  double relationTolerance_m = 0.005;  ///< slack of the after-placement relation checks
-  /// How landmarks are found (SceneGrounder) and the view (grounding.viewpoint) in
-  /// which left/right/front/behind/corners are read, for grounding and placement alike.
-  GroundingOptions grounding;
-};
 
 /// The result of placement: a pose, or the reason there is none.
 struct Placement {
@@ -75,6 +68,9 @@ struct Placement {
   /// The instance ids the target relations' landmarks were grounded to, in
   /// step.target order (second: B of "between A and B", else ""), for check().
   std::vector<std::pair<std::string, std::string>> landmarkIds;
+  /// A tight place: nearer the other parts or the walls than clearance_m / wallMargin_m
+  /// (at least minClearance_m, PlacementOptions::tight()), a placement with less margin.
+  bool tight = false;
   std::string reason;     ///< why there is no placement
 };
 
@@ -82,15 +78,37 @@ class PlacementPlanner {
  public:
   explicit PlacementPlanner(PlacementOptions options = {}) : options_(options) {}
 
-  /// True when the footprint centre of `part` lies inside `container`'s inner footprint.
-  static bool isInside(const CellObject& part, const CellObject& container);
-
   /// The view frame of `scene` under options().grounding.viewpoint (viewFrameOf).
   srp::core::ViewFrame viewFrame(const CellDescription& scene) const;
 
   /// Target pose for `part` satisfying `target` in `scene` (which holds the other
-  /// parts at their current poses; `part` itself is ignored as an obstacle).
+  /// parts at their current poses; `part` itself is ignored as an obstacle): the first
+  /// candidate (PlacementRelations.h) whose relations check (check()).
   Placement place(const CellDescription& scene, const CellObject& part, const ExecutionStep& step) const;
+
+  /// The candidates of place() whose relations check, best first, at most `limit` (with
+  /// `tight`, the tight places after the others); empty with `reason` set when there is
+  /// none. The joint planner's choices for one step.
+  std::vector<Placement> candidates(const CellDescription& scene, const CellObject& part, const ExecutionStep& step,
+                                    std::size_t limit, std::string& reason, bool tight = true) const;
+
+  /// True when every target relation of `step` holds (check()) with `part` at X in
+  /// `scene`, the landmarks being the instances `landmarkIds` names.
+  bool holdsAt(const CellDescription& scene, const CellObject& part, const ExecutionStep& step,
+               const std::vector<std::pair<std::string, std::string>>& landmarkIds, const srp::core::Pose3& X) const;
+
+  /// The candidate of `scene` (the landmarks where they are now) nearest to `planned`
+  /// (planned earlier, e.g. in the scene the joint planner expected): the same place,
+  /// recomputed; nullopt when none lies within `tolerance_m` with the same yaw (modulo a
+  /// half turn) or its relations do not check.
+  std::optional<Placement> candidateNear(const CellDescription& scene, const CellObject& part, const ExecutionStep& step,
+                                         const Placement& planned, double tolerance_m) const;
+
+  /// True when `placement` (planned earlier, e.g. by JointPlacementPlanner) is still
+  /// allowed for `part` in `scene`: its relations check and it keeps the walls, the table
+  /// and the clearances (a tight place those of PlacementOptions::tight()).
+  bool stillAllowed(const CellDescription& scene, const CellObject& part, const ExecutionStep& step,
+                    const Placement& placement) const;
 
   /// Each target relation of `step` checked on `scene` (the scene after the
   /// placement; `part` at its final pose in it). A landmark missing from the scene
@@ -103,10 +121,6 @@ class PlacementPlanner {
   const PlacementOptions& options() const { return options_; }
 
  private:
-  /// No other part within clearance_m of `part` at X at its height; `near` (if not
-  /// empty) are kept only `nearClearance_m` away ("between": its two landmarks).
-  bool isFree(const CellDescription& scene, const CellObject& part, const srp::core::Pose3& X,
-              const std::vector<std::string>& near = {}, double nearClearance_m = 0.0) const;
   PlacementOptions options_;
 };
 

@@ -51,7 +51,7 @@ class RobotModel {
   /// the chain from the root is not six revolute joints ending in `tool0` and `tcp`.
   static RobotModel fromUrdf(const std::string& urdfPath);
 
-  /// The project's UR5 (`sim/ur5/ur5.urdf`).
+  /// The shipped UR5, `sim/ur5/ur5.urdf` of srp's data folder (core::DataPaths).
   static RobotModel defaultUr5();
 
   const std::array<ArmJoint, 6>& joints() const { return joints_; }

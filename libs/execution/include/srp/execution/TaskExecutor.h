@@ -2,10 +2,13 @@
 /// \file TaskExecutor.h
 /// \brief The task planner of thesis fig. 7.11 running on the simulated cell.
 ///
-/// For each target object in plan order: perceive the current scene (the cell's
-/// ground truth), find the object and its source location; find the target
-/// location and compute the target pose (PlacementPlanner); if any is missing the
-/// step is skipped with the reason. Otherwise plan, then execute:
+/// Before anything moves, the placements of all steps are planned together
+/// (JointPlacementPlanner): a step no joint plan can satisfy is skipped with the reason,
+/// the others keep room for each other. Then for each target object in plan order:
+/// perceive the current scene (the cell's ground truth), find the object and its source
+/// location; take its planned target pose (planned again, for the remaining steps
+/// together, if the scene no longer allows it); if any is missing the step is skipped
+/// with the reason. Otherwise plan, then execute:
 ///   Reach (path generator, current tcp pose -> pre-grasp = grasp + approach offset
 ///   along world z), approach down, Grasp (weld), lift to post-grasp, Move (path
 ///   generator, post-grasp -> pre-release), lower, Release, retreat up.
@@ -22,6 +25,7 @@
 #include "srp/execution/CellSimulator.h"
 #include "srp/execution/ExecutionPlan.h"
 #include "srp/execution/ExecutionReport.h"
+#include "srp/execution/JointPlacementPlanner.h"
 #include "srp/execution/PlacementPlanner.h"
 #include "srp/execution/SafetyChecker.h"
 #include "srp/execution/UrInverseKinematics.h"
@@ -48,6 +52,7 @@ struct ExecutionOptions {
   double neighbourTolerance_m = 0.015; ///< extra gap allowed for "next to"
   SafetyLimits safety;
   PlacementOptions placement;
+  JointPlacementPlanner::Options jointPlacement;  ///< the search over all steps' placements
   SimulationOptions simulation;
 };
 
@@ -58,9 +63,11 @@ class TaskExecutor {
                std::shared_ptr<const CartesianPathGenerator> generator, ExecutionOptions options = {});
   ~TaskExecutor();
 
-  /// Runs the plan step by step; never throws for expected outcomes (a missing part,
-  /// an unreachable pose): those are reported per step.
-  ExecutionReport run(const ExecutionPlan& plan);
+  /// Plans every step's placement together, then runs the plan step by step; never
+  /// throws for expected outcomes (a missing part, an unreachable pose, no room): those
+  /// are reported per step. `onStep` (may be empty) is called after each step. A step's
+  /// planning_s includes its share of the joint placement planning.
+  ExecutionReport run(const ExecutionPlan& plan, const std::function<void(const StepReport&)>& onStep = {});
 
   /// The scene as perceived now: parts at their simulated poses.
   CellDescription perceive() const;
@@ -78,8 +85,9 @@ class TaskExecutor {
 
  private:
   struct Segment;
-  /// One step of fig. 7.11: perceive, find, place, plan, execute, check.
-  StepReport runStep(int index, const ExecutionStep& step);
+  /// One step of fig. 7.11: perceive, find, place (`planned[index]`, planned again with
+  /// the remaining steps when the scene no longer allows it), plan, execute, check.
+  StepReport runStep(std::size_t index, const ExecutionPlan& plan, std::vector<PlannedPlacement>& planned);
   /// Plans the six segments (Reach, approach, lift, Move, lower, retreat) for both
   /// suction turns and keeps the better; the reason when neither is feasible.
   std::optional<std::string> planMotion(const CellDescription& scene, const CellObject& part,
@@ -102,6 +110,7 @@ class TaskExecutor {
   ExecutionOptions options_;
   SafetyChecker safety_;
   PlacementPlanner placement_;
+  JointPlacementPlanner jointPlacement_;
   std::unique_ptr<CellSimulator> sim_;
 };
 

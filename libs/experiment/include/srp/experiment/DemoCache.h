@@ -67,7 +67,7 @@ class DemoCache
 {
 public:
   /// `rootDir`: where demos are kept (created on first use); `simDir`: the
-  /// repo's sim/ (default scene); empty: the build's SRP_SIM_DIR.
+  /// repo's sim/ (default scene); empty: `sim/` of srp's data folder (core::DataPaths).
   explicit DemoCache(std::filesystem::path rootDir, std::filesystem::path simDir = {});
 
   /// The demo of `request`, rendered now if not cached. `progress(frame, frames)`

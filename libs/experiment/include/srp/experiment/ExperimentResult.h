@@ -20,8 +20,8 @@ namespace srp::experiment {
 struct ExperimentOptions
 {
   std::filesystem::path outDir = "out/experiment";  ///< PNGs and intermediate files go under outDir/<name>/
-  std::filesystem::path datasetsDir;                ///< the repo's datasets/ (default: the build's SRP_DATASETS_DIR)
-  std::filesystem::path simDir;                     ///< the repo's sim/ (default: the build's SRP_SIM_DIR)
+  std::filesystem::path datasetsDir;                ///< default: `datasets/` of srp's data folder (core::DataPaths)
+  std::filesystem::path simDir;                     ///< default: `sim/` of srp's data folder (core::DataPaths)
   int demoCount = 5;                                ///< seeded synthetic demos (the thesis had five videos)
   unsigned firstSeed = 1;                           ///< demos use seeds firstSeed, firstSeed + 1, ...
   bool quick = false;                               ///< smallest sizes that still exercise every part (tests)

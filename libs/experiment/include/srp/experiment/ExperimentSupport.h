@@ -9,10 +9,10 @@
 
 namespace srp::experiment {
 
-/// The repo's datasets/ of a run: `options.datasetsDir`, else the build's SRP_DATASETS_DIR.
+/// The datasets/ of a run: `options.datasetsDir`, else `datasets/` of srp's data folder (core::DataPaths).
 std::filesystem::path datasetsDirOf(const ExperimentOptions& options);
 
-/// The repo's sim/ of a run: `options.simDir`, else the build's SRP_SIM_DIR.
+/// The sim/ of a run: `options.simDir`, else `sim/` of srp's data folder (core::DataPaths).
 std::filesystem::path simDirOf(const ExperimentOptions& options);
 
 /// `<options.outDir>/<name>`, created.

@@ -44,7 +44,8 @@ class CapabilitySuites {
     TypeScore relations;  ///< counts summed over Spatial, Transition
   };
 
-  /// SRP_DATASETS_DIR/language/capabilities.
+  /// The shipped suites, `datasets/language/capabilities` of srp's data folder
+  /// (core::DataPaths). Throws FileError when it is not there.
   static std::string defaultFolder();
   /// Every `*.json` of `folder`, in name order. Throws FileError naming the
   /// folder when it is missing or holds no suite, or naming a malformed file.

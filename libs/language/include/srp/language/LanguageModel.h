@@ -116,7 +116,8 @@ class LanguageModel {
   std::unique_ptr<Impl> impl_;
 };
 
-/// The model shipped in the repo: SRP_DATASETS_DIR/language/model/language_model.dat.
+/// The shipped model, `datasets/language/model/language_model.dat` of srp's data
+/// folder (core::DataPaths). Throws FileError when it is not there.
 std::string defaultModelPath();
 
 /// Reads a SpERT corpus file (a JSON array of sentences); throws FileError /

@@ -36,11 +36,21 @@
 /// it needs only the hand, which the glove tag detects reliably, not the
 /// object, whose detection is unreliable while the hand covers it.
 ///
-/// Robust mode (Config::robust, default; issue 18, real detector tracks): hand
-/// jumps and carried values are dropped first, the object's rests are medians
-/// of its raw detections, the coarse release is a Bernoulli change point into
-/// the final rest (a nudge after the release stays inside it), and each object
-/// reports its outlier fraction, release margin and cue gap (confidence).
+/// Robust mode (Config::robust, default; real detector tracks): hand jumps and
+/// carried values are dropped first, the object's rests are medians of its
+/// detections, the coarse release is a Bernoulli change point into the final
+/// rest (a nudge after the release stays inside it), and each object reports
+/// its outlier fraction, release margin and cue gap (confidence). With the
+/// placement cues (Config::placementCues, default) part detections on the hand
+/// and ghosts (the final place of a part released earlier, labelled as this
+/// one) are not evidence of the part, the grasp is searched until the hand has
+/// left the part's start area, and the release is the start of the hand's rest
+/// where it comes closest to the final place: a hover just above the place,
+/// with the part still in the hand, is part of the move. The part itself
+/// bounds both: the grasp is not before the last sample at which it is seen at
+/// its initial place, the release not after the first from which it is seen
+/// at its final place for good (within placeTolerance_m: a hand that stays on
+/// the part, or presses it down, does not delay the release).
 /// EventEstimator::ThesisPublished is the thesis' published code.
 ///
 /// An object whose positions never leave its
@@ -96,7 +106,13 @@ struct ObjectSegmentation {
   /// (two independent cues that should agree within a few samples), counted in
   /// the part's detections between them.
   int releaseCueGap = 0;
-  bool lowConfidence = false;  ///< any of: outlierFraction > 0.3, releaseMargin < 10, |releaseCueGap| > 10
+  /// Release: any of outlierFraction > 0.3, |releaseCueGap| > 10, releaseMargin < 10 (without the
+  /// placement cues: with them a part hidden under the hand at its release makes every margin small).
+  bool releaseLowConfidence = false;
+  /// Grasp: outlierFraction > 0.3, no rest of the hand found at the part, or the hand never within
+  /// handReach of the part's initial position.
+  bool graspLowConfidence = false;
+  bool lowConfidence = false;  ///< either event's confidence is low
 };
 
 struct Segmentation {
@@ -170,6 +186,20 @@ class Segmenter {
     double restNoiseMax_m = 0.006;    ///< ... at most this (a hand as noisy as the marker-free detector has no mm rests)
     double boundaryMinMove_m = 0.005; ///< a rest/move boundary needs the move side to leave the rest by this
     int releaseRefineAfter = 20;      ///< the hand's rest at the place is searched up to this many samples after the coarse release
+    /// Placement cues (robust mode; false = the robust estimator without them, for comparisons): a part
+    /// detection within handRadius of the hand is the hand labelled as the part, and one at the final place of
+    /// another part released earlier in the plan is that part labelled as this one (a ghost, unless this part
+    /// starts there): neither is evidence of the part; the part is at its final place once seen there in most
+    /// of the samples that follow; the grasp is searched until the hand has left the part's start area; the
+    /// release is where the hand arrives closest to the part's final place, so a hover just above the place
+    /// is part of the move.
+    bool placementCues = true;
+    double handRadius_m = 0.03;        ///< the hand's own detections are within ~1 cm of it; a part held in the hand is 5-8 cm from the palm
+    double sustainRest_s = 1.0;        ///< the part is at its final place once seen there in at least half of the samples of this long ...
+    double sustainMinSeenShare = 0.25; ///< ... or in half of its evidence there, when that is at least this share of the samples
+    double placeTolerance_m = 0.005;   ///< the part itself at its initial / final place (not in the hand just above it): this close
+    double startAreaLeave_m = 0.05;    ///< the hand has left the start area when this much farther from the initial position than its closest approach
+    double closestNoiseMin_m = 0.0015; ///< release: the first sample within max(this, half the hand's rest tolerance) of the closest approach
   };
 
   Segmenter() = default;

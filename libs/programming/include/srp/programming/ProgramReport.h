@@ -32,7 +32,7 @@ inline constexpr int kContactSheetSpreadFrames = 8;
 /// object's grasp and release frame (perception::PerceptionDrawing: palm, each
 /// part and container with outline, name and confidence, the perceived scene's
 /// table frame and rectangle), the events captioned ("GRASP toy") and framed in
-/// colour, an event of low confidence (motion's ObjectSegmentation::lowConfidence)
+/// colour, an event of low confidence (motion's ObjectSegmentation::graspLowConfidence / releaseLowConfidence)
 /// flagged "LOW CONFIDENCE" in red. Returns the path written.
 std::vector<std::string> writeContactSheet(const std::string& dir, const ProgrammingOptions& options,
                                            const perception::PerceptionResult& seen, const core::ObjectCatalogue& kb,

@@ -1,0 +1,98 @@
+#pragma once
+// Footprint geometry shared by the placement context, the relations, the after-placement
+// checks and the joint refinement (private to srp::execution). Frames: world = table
+// frame, z up, metres; a footprint is the part's bounding box seen from above.
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "srp/core/Pose.h"
+#include "srp/execution/CellDescription.h"
+
+namespace srp::execution::placement {
+
+using srp::core::Pose3;
+
+inline double yawOfPose(const Pose3& X) { return srp::core::yawOf(X.linear()); }
+
+inline Pose3 uprightPose(const Eigen::Vector3d& p, double yaw) {
+  Pose3 X = Pose3::Identity();
+  X.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  X.translation() = p;
+  return X;
+}
+
+/// Footprint rectangle corners of a box of `size` at X (world x, y), grown by `inflate` on every side.
+inline std::array<Eigen::Vector2d, 4> footprint(const Eigen::Vector3d& size, const Pose3& X, double inflate) {
+  std::array<Eigen::Vector2d, 4> c;
+  const double hx = size.x() / 2 + inflate, hy = size.y() / 2 + inflate;
+  int i = 0;
+  for (double sx : {-1.0, 1.0})
+    for (double sy : {-1.0, 1.0}) c[i++] = (X * Eigen::Vector3d(sx * hx, sy * hy, 0)).head<2>();
+  return c;
+}
+
+/// Largest gap between two footprints along the four rectangle axes (separating-axis
+/// test): > 0 apart by at least that much along one axis, <= 0 overlapping.
+inline double separation(const std::array<Eigen::Vector2d, 4>& a, const Pose3& Xa,
+                         const std::array<Eigen::Vector2d, 4>& b, const Pose3& Xb) {
+  const Eigen::Vector2d axes[4] = {Xa.linear().col(0).head<2>(), Xa.linear().col(1).head<2>(),
+                                   Xb.linear().col(0).head<2>(), Xb.linear().col(1).head<2>()};
+  double best = -1e9;
+  for (const auto& axis : axes) {
+    double amin = 1e9, amax = -1e9, bmin = 1e9, bmax = -1e9;
+    for (const auto& p : a) amin = std::min(amin, p.dot(axis)), amax = std::max(amax, p.dot(axis));
+    for (const auto& p : b) bmin = std::min(bmin, p.dot(axis)), bmax = std::max(bmax, p.dot(axis));
+    best = std::max(best, std::max(bmin - amax, amin - bmax));
+  }
+  return best;
+}
+
+/// Do two footprints overlap (touching counts as apart)?
+inline bool overlaps(const std::array<Eigen::Vector2d, 4>& a, const Pose3& Xa, const std::array<Eigen::Vector2d, 4>& b,
+                     const Pose3& Xb) {
+  return separation(a, Xa, b, Xb) <= 0.0;
+}
+
+/// Half-width of a rectangle of `size` with yaw `yaw` along world direction d.
+inline double support(const Eigen::Vector3d& size, double yaw, const Eigen::Vector2d& d) {
+  const Eigen::Vector2d ax(std::cos(yaw), std::sin(yaw)), ay(-std::sin(yaw), std::cos(yaw));
+  return std::abs(d.dot(ax)) * size.x() / 2 + std::abs(d.dot(ay)) * size.y() / 2;
+}
+
+inline double support(const CellObject& o, const Eigen::Vector2d& d) {
+  return support(o.size_m, yawOfPose(o.X_world_object), d);
+}
+
+inline Eigen::Vector2d centre(const CellObject& o) { return o.X_world_object.translation().head<2>(); }
+
+/// Vertical extents [bottom, top] overlap (1 mm slack: parts resting on each other touch).
+inline bool verticalOverlap(const CellObject& a, double za, const CellObject& b) {
+  const double zb = b.X_world_object.translation().z();
+  return za < zb + b.size_m.z() - 1e-3 && zb < za + a.size_m.z() - 1e-3;
+}
+
+/// Smallest distance of the footprint of a box of `size` at X to `container`'s inner
+/// walls (negative: over a wall).
+inline double marginToInnerWalls(const Eigen::Vector3d& size, const Pose3& X, const CellObject& container) {
+  const Pose3 X_c = container.X_world_object.inverse() * X;
+  const double yc = yawOfPose(X_c);
+  const double c = std::abs(std::cos(yc)), s = std::abs(std::sin(yc));
+  const double ex = c * size.x() / 2 + s * size.y() / 2, ey = s * size.x() / 2 + c * size.y() / 2;
+  return std::min(container.size_m.x() / 2 - container.wallThickness_m - std::abs(X_c.translation().x()) - ex,
+                  container.size_m.y() / 2 - container.wallThickness_m - std::abs(X_c.translation().y()) - ey);
+}
+
+/// "12.5 mm" for 0.0125.
+inline std::string fmt(double v_m) {
+  std::ostringstream s;
+  s.precision(1);
+  s << std::fixed << v_m * 1000.0 << " mm";
+  return s.str();
+}
+
+}  // namespace srp::execution::placement

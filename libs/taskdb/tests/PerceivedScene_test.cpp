@@ -41,6 +41,7 @@ PerceivedScene toyScene() {
   s.objects = {bin, toy};
   srp::core::ObjectClass toyClass;
   toyClass.name = "toy";
+  toyClass.noun = "toy";  // the JSON form requires a usable noun
   toyClass.classId = 100;
   toyClass.shape = "hull";
   toyClass.dimensions_m = {0.12, 0.08, 0.06};
@@ -49,6 +50,7 @@ PerceivedScene toyScene() {
   toyClass.observed = true;
   srp::core::ObjectClass binClass;
   binClass.name = "bin";
+  binClass.noun = "bin";
   binClass.classId = 101;
   binClass.kind = srp::core::ObjectKind::Container;
   binClass.shape = "open_box";

@@ -12,6 +12,8 @@ PACKAGES=(
   libeigen3-dev nlohmann-json3-dev libcli11-dev
   # taskdb
   libsqlite3-dev libsqlitecpp-dev sqlite3
+  # taskdb on a shared server (libpqxx), and the server its tests start
+  libpqxx-dev postgresql
   # perception and calibration (ViSP modules used, not the meta package)
   libvisp-core-dev libvisp-detection-dev libvisp-vision-dev libvisp-io-dev libvisp-mbt-dev libvisp-klt-dev
   libopencv-dev libopencv-contrib-dev

@@ -16,7 +16,7 @@
 namespace {
 
 struct ExecuteOptions {
-  std::string db = "task.db";
+  std::string db = srp::app::defaultTaskDatabase();
   int task = 0;
   std::string instruction;
   std::string scene;
@@ -38,7 +38,7 @@ struct ExecuteOptions {
 
 void setupExecute(CLI::App& app) {
   auto o = std::make_shared<ExecuteOptions>();
-  app.add_option("--db", o->db, "Task database file (opened read-only)")->capture_default_str();
+  app.add_option("--db", o->db, std::string("Task database, opened read-only: ") + srp::app::kTaskDatabaseHelp);
   app.add_option("--task", o->task, "Task model id (see 'srp db list')")->required();
   app.add_option("--instruction", o->instruction, "A new instruction that re-plans the task (Language Module)");
   app.add_option("--scene", o->scene,

@@ -20,7 +20,7 @@ namespace {
 
 struct MotionOptions {
   int id = 0;
-  std::string db = "task.db";
+  std::string db = srp::app::defaultTaskDatabase();
   std::string outDir;
   bool json = false;
   bool noPlots = false;
@@ -115,7 +115,7 @@ void setupMotion(CLI::App& app) {
   app.add_option("id", o->id, "TaskModelId (see 'srp db list')")->check(srp::app::kDecimalId);
   app.add_flag("--synthetic-demo", o->syntheticDemo,
                "First store a synthetic 4-object demo (noise, dropouts, flicker) as a new task model, then process it");
-  app.add_option("--db", o->db, "Task database file (SQLite)")->capture_default_str();
+  app.add_option("--db", o->db, std::string("Task database: ") + srp::app::kTaskDatabaseHelp);
   app.add_option("--out-dir", o->outDir,
                  "Directory for the PNG per object (default: motion_<id>), written whole or not at all");
   app.add_flag("--no-plots", o->noPlots, "Do not write PNGs");

@@ -14,11 +14,13 @@
 #include "srp/core/OutputFile.h"
 #include "srp/core/ExitCode.h"
 #include "srp/programming/ProgrammingPipeline.h"
+#include "srp/taskdb/TaskDatabase.h"
 
 namespace {
 
 struct ProgramArgs {
-  std::string instruction, demo, kb, calib, db = "task.db", name = "task", report, hand = "auto", scene, extrinsics;
+  std::string instruction, demo, kb, calib, db = srp::app::defaultTaskDatabase(), name = "task", report,
+      hand = "auto", scene, extrinsics;
   bool json = false, quiet = false, allowTruncated = false, allowPartial = false, overwrite = false;
 };
 
@@ -35,7 +37,7 @@ void setupProgram(CLI::App& cmd) {
                  "their colours): a class it holds several times is perceived per instance, and the instruction's "
                  "phrases ('the red cuboid') are grounded to instances (stored as InstanceId)");
   cmd.add_option("--calib", a->calib, "Camera intrinsics (ViSP XML, e.g. calib/camera.xml) overriding the rawlog's");
-  cmd.add_option("--db", a->db, "Task database to store the task model in")->capture_default_str();
+  cmd.add_option("--db", a->db, std::string("Task database to store the task model in: ") + srp::app::kTaskDatabaseHelp);
   cmd.add_option("--name", a->name, "Task model name; an existing name gets a new version")->capture_default_str();
   cmd.add_option("--report", a->report,
                  "Folder for the report: PNG figures, contact_sheet.png (what perception saw on the recording), "
@@ -92,7 +94,7 @@ void setupProgram(CLI::App& cmd) {
       return;
     }
     std::cout << "Stored task model " << r.taskModelId << " ('" << r.name << "' version " << r.version << ") in "
-              << a->db << "\n\nPlan:\n";
+              << srp::taskdb::TaskDatabase::displayName(a->db) << "\n\nPlan:\n";
     for (std::size_t i = 0; i < r.planLines.size(); ++i) std::cout << "  " << i + 1 << ". " << r.planLines[i] << "\n";
     std::cout << "\nDemonstration: " << r.frames << " frames, hand (" << r.handDetector << ") detected in "
               << r.handDetectedFrames << "; camera "

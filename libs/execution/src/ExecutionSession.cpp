@@ -50,7 +50,7 @@ const std::vector<std::string> kOutputFolderFiles = {"report.json", "report.txt"
 
 ExecuteResult executeTask(const ExecuteRequest& request) {
   ExecuteResult result;
-  if (!std::filesystem::exists(request.databasePath))
+  if (!srp::taskdb::TaskDatabase::isServerUri(request.databasePath) && !std::filesystem::exists(request.databasePath))
     throw srp::core::FileError(request.databasePath, "no such task database (create one with 'srp program' or 'srp db')");
   auto db = srp::taskdb::TaskDatabase::open(request.databasePath, srp::taskdb::TaskDatabase::Mode::ReadOnly);
   const srp::taskdb::TaskModelStore store(db);

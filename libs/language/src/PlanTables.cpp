@@ -119,7 +119,7 @@ int storePlan(const TaskPlan& plan, const std::string& dbPath, const std::string
   if (plan.steps.empty()) {
     std::string why;
     for (const auto& w : plan.warnings) why += (why.empty() ? "" : "; ") + w;
-    throw core::InvalidInputError("nothing written to '" + dbPath + "': the plan has no steps" +
+    throw core::InvalidInputError("nothing written to '" + taskdb::TaskDatabase::displayName(dbPath) + "': the plan has no steps" +
                                   (why.empty() ? std::string() : " (" + why + ")"));
   }
   const taskdb::TaskModel model = planToTaskModel(plan, name, instruction);

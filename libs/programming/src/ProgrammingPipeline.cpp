@@ -69,7 +69,7 @@ namespace {
 // must exist and be writable.
 void checkDatabase(const std::string& path) {
   namespace fs = std::filesystem;
-  if (fs::exists(path)) {
+  if (taskdb::TaskDatabase::isServerUri(path) || fs::exists(path)) {
     taskdb::TaskDatabase::open(path);
     return;
   }
@@ -240,7 +240,7 @@ ProgramResult programTask(const ProgrammingOptions& o) {
   // report that cannot be written rolls the model back (all or nothing), and
   // its folder is renamed into place last.
   clock.start("store");
-  const bool newDatabase = !std::filesystem::exists(o.dbPath);
+  const bool newDatabase = !taskdb::TaskDatabase::isServerUri(o.dbPath) && !std::filesystem::exists(o.dbPath);
   bool reportCommitted = false;
   try {
     auto db = taskdb::TaskDatabase::open(o.dbPath);

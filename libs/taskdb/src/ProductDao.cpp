@@ -9,7 +9,7 @@ namespace {
 constexpr const char* kColumns =
     "ObjectId, ObjectName, SourceLocationId, TargetLocationId, Color, TokenId, SentenceId, ClassId, InstanceId";
 
-void bindRow(SQLite::Statement& st, int first, const ProductRow& r) {
+void bindRow(Statement& st, int first, const ProductRow& r) {
   st.bind(first, r.objectName);
   bindOptional(st, first + 1, r.sourceLocationId);
   bindOptional(st, first + 2, r.targetLocationId);
@@ -20,7 +20,7 @@ void bindRow(SQLite::Statement& st, int first, const ProductRow& r) {
   st.bind(first + 7, r.instanceId);
 }
 
-ProductRow readRow(const SQLite::Statement& st) {
+ProductRow readRow(const Statement& st) {
   const RowRef row = rowRef(st, "Products", {0});
   ProductRow r;
   r.objectId = checkedInt(st, 0, row);
@@ -37,7 +37,7 @@ ProductRow readRow(const SQLite::Statement& st) {
 }  // namespace
 
 void ProductDao::add(int tm, const ProductRow& r) {
-  SQLite::Statement st(db_.connection(), std::string("INSERT INTO Products (TaskModelId, ") + kColumns +
+  Statement st(db_, std::string("INSERT INTO Products (TaskModelId, ") + kColumns +
                                              ") VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   st.bind(1, tm);
   st.bind(2, r.objectId);
@@ -46,7 +46,7 @@ void ProductDao::add(int tm, const ProductRow& r) {
 }
 
 std::optional<ProductRow> ProductDao::get(int tm, int objectId) const {
-  SQLite::Statement st(db_.connection(), std::string("SELECT ") + kColumns +
+  Statement st(db_, std::string("SELECT ") + kColumns +
                                              " FROM Products WHERE TaskModelId = ? AND ObjectId = ?");
   st.bind(1, tm);
   st.bind(2, objectId);
@@ -55,7 +55,7 @@ std::optional<ProductRow> ProductDao::get(int tm, int objectId) const {
 }
 
 void ProductDao::update(int tm, const ProductRow& r) {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "UPDATE Products SET ObjectName = ?, SourceLocationId = ?, TargetLocationId = ?, Color = ?, "
                        "TokenId = ?, SentenceId = ?, ClassId = ?, InstanceId = ? WHERE TaskModelId = ? AND ObjectId = ?");
   bindRow(st, 1, r);
@@ -65,14 +65,14 @@ void ProductDao::update(int tm, const ProductRow& r) {
 }
 
 bool ProductDao::remove(int tm, int objectId) {
-  SQLite::Statement st(db_.connection(), "DELETE FROM Products WHERE TaskModelId = ? AND ObjectId = ?");
+  Statement st(db_, "DELETE FROM Products WHERE TaskModelId = ? AND ObjectId = ?");
   st.bind(1, tm);
   st.bind(2, objectId);
   return st.exec() > 0;
 }
 
 std::vector<ProductRow> ProductDao::list(int tm) const {
-  SQLite::Statement st(db_.connection(), std::string("SELECT ") + kColumns +
+  Statement st(db_, std::string("SELECT ") + kColumns +
                                              " FROM Products WHERE TaskModelId = ? ORDER BY ObjectId");
   st.bind(1, tm);
   std::vector<ProductRow> rows;

@@ -14,7 +14,7 @@ constexpr const char* kInsert =
     "Detected, Confidence, InstanceId) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)";
 
 // Binds the value columns X..Confidence starting at `first`.
-void bindValues(SQLite::Statement& st, int first, const ProductPoseRow& r) {
+void bindValues(Statement& st, int first, const ProductPoseRow& r) {
   const double v[] = {r.p_m.x(), r.p_m.y(), r.p_m.z(), r.q.w(), r.q.x(), r.q.y(), r.q.z()};
   for (int i = 0; i < 7; ++i) st.bind(first + i, v[i]);
   const bool flags[] = {r.reach, r.grasp, r.move, r.release, r.detected};
@@ -22,7 +22,7 @@ void bindValues(SQLite::Statement& st, int first, const ProductPoseRow& r) {
   bindOptional(st, first + 12, r.confidence);
 }
 
-ProductPoseRow readRow(const SQLite::Statement& st) {
+ProductPoseRow readRow(const Statement& st) {
   const RowRef row = rowRef(st, "ProductPose", {16, 0, 15, 1});
   ProductPoseRow r;
   r.classId = checkedInt(st, 0, row);
@@ -54,7 +54,7 @@ void checkFinite(const ProductPoseRow& r) {
 void ProductPoseDao::add(int tm, const ProductPoseRow& r) { addMany(tm, {r}); }
 
 void ProductPoseDao::addMany(int tm, const std::vector<ProductPoseRow>& rows) {
-  SQLite::Statement st(db_.connection(), kInsert);
+  Statement st(db_, kInsert);
   for (const auto& r : rows) {
     checkFinite(r);
     st.reset();
@@ -68,7 +68,7 @@ void ProductPoseDao::addMany(int tm, const std::vector<ProductPoseRow>& rows) {
 }
 
 std::optional<ProductPoseRow> ProductPoseDao::get(int tm, int classId, int timeId, const std::string& instanceId) const {
-  SQLite::Statement st(db_.connection(), std::string(kSelect) +
+  Statement st(db_, std::string(kSelect) +
                                              " WHERE TaskModelId = ? AND ClassId = ? AND TimeId = ? AND InstanceId = ?");
   st.bind(1, tm);
   st.bind(2, classId);
@@ -80,7 +80,7 @@ std::optional<ProductPoseRow> ProductPoseDao::get(int tm, int classId, int timeI
 
 void ProductPoseDao::update(int tm, const ProductPoseRow& r) {
   checkFinite(r);
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "UPDATE ProductPose SET X = ?, Y = ?, Z = ?, QW = ?, QX = ?, QY = ?, QZ = ?, Reach = ?, "
                        "Grasp = ?, Move = ?, Release = ?, Detected = ?, Confidence = ? "
                        "WHERE TaskModelId = ? AND ClassId = ? AND TimeId = ? AND InstanceId = ?");
@@ -94,7 +94,7 @@ void ProductPoseDao::update(int tm, const ProductPoseRow& r) {
 }
 
 bool ProductPoseDao::remove(int tm, int classId, int timeId, const std::string& instanceId) {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "DELETE FROM ProductPose WHERE TaskModelId = ? AND ClassId = ? AND TimeId = ? AND InstanceId = ?");
   st.bind(1, tm);
   st.bind(2, classId);
@@ -105,7 +105,7 @@ bool ProductPoseDao::remove(int tm, int classId, int timeId, const std::string& 
 
 std::vector<ProductPoseRow> ProductPoseDao::inFrameRange(int tm, int classId, int first, int last,
                                                         const std::string& instanceId) const {
-  SQLite::Statement st(db_.connection(), std::string(kSelect) +
+  Statement st(db_, std::string(kSelect) +
                                              " WHERE TaskModelId = ? AND ClassId = ? AND InstanceId = ? AND TimeId "
                                              "BETWEEN ? AND ? ORDER BY TimeId");
   st.bind(1, tm);
@@ -119,7 +119,7 @@ std::vector<ProductPoseRow> ProductPoseDao::inFrameRange(int tm, int classId, in
 }
 
 std::vector<ProductPoseRow> ProductPoseDao::list(int tm) const {
-  SQLite::Statement st(db_.connection(), std::string(kSelect) + " WHERE TaskModelId = ? ORDER BY ClassId, InstanceId, TimeId");
+  Statement st(db_, std::string(kSelect) + " WHERE TaskModelId = ? ORDER BY ClassId, InstanceId, TimeId");
   st.bind(1, tm);
   std::vector<ProductPoseRow> rows;
   while (st.executeStep()) rows.push_back(readRow(st));
@@ -127,7 +127,7 @@ std::vector<ProductPoseRow> ProductPoseDao::list(int tm) const {
 }
 
 GraspReleaseFrames ProductPoseDao::graspReleaseFrames(int tm, int classId, const std::string& instanceId) const {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "SELECT (SELECT MIN(TimeId) FROM ProductPose WHERE TaskModelId = ?1 AND ClassId = ?2 AND "
                        "InstanceId = ?3 AND Grasp = 1), "
                        "(SELECT MIN(TimeId) FROM ProductPose WHERE TaskModelId = ?1 AND ClassId = ?2 AND "

@@ -50,17 +50,21 @@ test: build
 test-slow: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS) -L slow $(CTEST_ARGS)
 
-# The rawlog reader and its fuzz test under AddressSanitizer + UBSan, in a
-# build dir of its own (huge allocations return an error instead of aborting,
-# as the fuzz test's memory limit expects).
+# The rawlog reader and its fuzz test, and the safety sweep's hostile meshes and
+# task-database cells, under AddressSanitizer + UBSan, in a build dir of its own
+# (huge allocations return an error instead of aborting, as the fuzz tests'
+# memory limit expects).
 test-sanitize: deps-test
 	@cmake -S . -B $(SANITIZE_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSRP_BUILD_BENCHMARKS=OFF $(LAUNCHER) \
 	  -DCMAKE_CXX_FLAGS="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
 	  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" > $(SANITIZE_DIR).configure.log 2>&1 \
 	  || (cat $(SANITIZE_DIR).configure.log; exit 1)
-	@cmake --build $(SANITIZE_DIR) --target srp_rawlog_tests -j $(JOBS)
+	@cmake --build $(SANITIZE_DIR) --target srp_rawlog_tests srp_safety_tests -j $(JOBS)
 	@cd $(SANITIZE_DIR) && ASAN_OPTIONS=allocator_may_return_null=1:max_allocation_size_mb=1024:detect_leaks=1 \
 	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ./libs/rawlog/srp_rawlog_tests
+	@cd $(SANITIZE_DIR) && ASAN_OPTIONS=allocator_may_return_null=1:max_allocation_size_mb=1024:detect_leaks=1 \
+	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ./tests/safety/srp_safety_tests \
+	  --gtest_filter='HostileMeshes.*:HostileTaskDatabase.*:DecompressionBombs.*'
 
 demo: build-demo
 	@bash scripts/demo.sh $(BUILD_DIR)

@@ -55,10 +55,10 @@ run_case() {  # name, synth-demo args...
   if [ -n "$demos" ] && [ -f "$demos/$name.rawlog" ]; then
     demo="$demos/$name.rawlog"
   else
-    "$srp" synth-demo -q -o "$demo" "$@" > /dev/null
+    "$srp" synth-demo -q -w -o "$demo" "$@" > /dev/null
   fi
   echo "== $name ($demo)"
-  "$srp" perceive --demo "$demo" --csv "$out/$name.perceive.csv" --json > "$out/$name.perceive.json" 2> /dev/null
+  "$srp" perceive --demo "$demo" --csv "$out/$name.perceive.csv" -w --json > "$out/$name.perceive.json" 2> /dev/null
   local db="$out/$name.db"
   rm -f "$db" "$db-wal" "$db-shm"
   # wall times and peak memory change from run to run: left out

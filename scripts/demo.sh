@@ -3,6 +3,7 @@
 # bundled default (SPEC.md §4). Synthesise the demonstration of instruction 1,
 # program the task from it, execute it and two adaptations in simulation, and
 # the task once more in the scene its own demonstration showed.
+# A second run replaces the first run's outputs (-w).
 set -euo pipefail
 build=${1:-build}
 srp="$build/apps/srp"
@@ -22,16 +23,16 @@ step() { printf '\n== %s\n' "$*"; }
 started=$(date +%s)
 
 step "1/6 synthesise the demonstration of instruction 1 ($scene)"
-"$srp" synth-demo --scene "$scene" -o "$out/demo.rawlog" --contact-sheet "$out/contact_sheet.png"
+"$srp" synth-demo --scene "$scene" -o "$out/demo.rawlog" --contact-sheet "$out/contact_sheet.png" -w
 
 step "2/6 program the task: instruction + demonstration -> task model"
 "$srp" program --instruction "$instruction" --demo "$out/demo.rawlog" --db "$db" --name thesis \
-  --report "$out/report"
+  --report "$out/report" -w
 
 run_execute() {  # name, extra args...: every step must be done (exit 0)
   local name=$1; shift
   set +e
-  "$srp" execute --db "$db" --task 1 --out "$out/$name" "$@"
+  "$srp" execute --db "$db" --task 1 --out "$out/$name" -w "$@"
   local rc=$?
   set -e
   if [ $rc -ne 0 ]; then  # 3: steps skipped or refused, 1: a step failed (the report says which)

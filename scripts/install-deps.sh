@@ -12,6 +12,8 @@ PACKAGES=(
   libeigen3-dev nlohmann-json3-dev libcli11-dev
   # taskdb
   libsqlite3-dev libsqlitecpp-dev sqlite3
+  # taskdb on a shared server (libpqxx), and the server its tests start
+  libpqxx-dev postgresql
   # perception and calibration (ViSP modules used, not the meta package)
   libvisp-core-dev libvisp-detection-dev libvisp-vision-dev libvisp-io-dev libvisp-mbt-dev libvisp-klt-dev
   libopencv-dev libopencv-contrib-dev
@@ -24,6 +26,8 @@ PACKAGES=(
   libdlib-dev wordnet-dev wordnet-base
   # motion and execution
   libnlopt-cxx-dev libsimbody-dev liburdfdom-dev liburdfdom-headers-dev
+  # the ROS 2 trajectory export (a YAML emitter, not hand-written text)
+  libyaml-cpp-dev
   # synthetic demos: the hand's AprilTag (tag36h11 bit patterns)
   libapriltag-dev
   # rawlog: gzip members compressed with libdeflate (fast, in parallel)
@@ -39,6 +43,10 @@ PACKAGES=(
 TEST_PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev time
   visp-images-data
+  # tests: exported trajectories are read back the way `ros2 topic pub` reads them (PyYAML)
+  python3 python3-yaml
+  # scripts/check-format.sh: the changed lines follow .clang-format
+  clang-format
 )
 if [ "${1:-}" = "--test" ]; then PACKAGES+=("${TEST_PACKAGES[@]}"); fi
 

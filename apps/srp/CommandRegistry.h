@@ -10,6 +10,7 @@
 /// The callback throws on error; main() prints "srp <cmd>: error: <message>" and exits 1.
 
 #include <CLI/CLI.hpp>
+#include <cstdlib>
 #include <functional>
 #include <string>
 #include <vector>
@@ -38,6 +39,24 @@ inline const CLI::Validator kDecimalId(
       return digits ? std::string() : "'" + text + "' is not a TaskModelId (a decimal number, see 'srp db list')";
     },
     "ID");
+
+/// The task database when --db is not given: $SRP_DB (a file or a
+/// postgresql:// URI), else task.db. Options show it as "SRP_DB or task.db",
+/// never the value (it may hold a password).
+inline std::string defaultTaskDatabase() {
+  const char* env = std::getenv("SRP_DB");
+  return env && *env ? env : "task.db";
+}
+inline const char* kTaskDatabaseHelp =
+    "an SQLite file, or a PostgreSQL server as postgresql://user@host:port/dbname (password from ~/.pgpass, "
+    "PGPASSFILE or PGPASSWORD); default: $SRP_DB, else task.db";
+
+/// `-w,--overwrite` on a command that writes files: an existing output is
+/// replaced only when it is given (core::checkOutputPaths refuses it otherwise).
+inline CLI::Option* addOverwriteFlag(CLI::App& cmd, bool& overwrite) {
+  return cmd.add_flag("-w,--overwrite", overwrite,
+                      "Replace existing output files (without it an existing output is refused, naming the file)");
+}
 
 /// Exit code a command can request (srp/core/ExitCode.h; e.g. 3 for "done, but with skipped steps").
 int& commandExitCode();

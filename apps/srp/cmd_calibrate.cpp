@@ -1,6 +1,8 @@
 // srp calibrate: camera intrinsics from pattern images (ViSP camera XML), and
 // camera-to-robot extrinsics from AprilTags or hand-eye pose pairs.
 #include <cmath>
+#include <filesystem>
+#include <optional>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -12,10 +14,12 @@
 #include "srp/calib/CalibrationPattern.h"
 #include "srp/calib/CameraExtrinsics.h"
 #include "srp/calib/CameraFiles.h"
+#include "srp/calib/ImageHeader.h"
 #include "srp/calib/IntrinsicCalibrator.h"
 #include "srp/core/DataPaths.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
+#include "srp/core/OutputFile.h"
 #include "srp/core/Scene.h"
 
 namespace {
@@ -31,6 +35,7 @@ struct IntrinsicArgs {
   std::string drawDir;
   bool noDistortion = false;
   bool json = false;
+  bool overwrite = false;
 };
 
 struct TagArgs {
@@ -42,18 +47,21 @@ struct TagArgs {
   std::string scene;
   std::string out = "extrinsics.json";
   bool json = false;
+  bool overwrite = false;
 };
 
 struct HandEyeArgs {
   std::string pairs;
   std::string out = "extrinsics.json";
   bool json = false;
+  bool overwrite = false;
 };
 
 struct BoardArgs {
   std::string pattern;
   std::string out;
   double dpi = 300.0;
+  bool overwrite = false;
 };
 
 void runIntrinsics(const IntrinsicArgs& a) {
@@ -63,10 +71,20 @@ void runIntrinsics(const IntrinsicArgs& a) {
   std::vector<std::string> files;
   for (const auto& g : a.images)
     for (const auto& f : srp::calib::expandImageGlob(g)) files.push_back(f);
+  std::vector<srp::core::PathRole> inputs;
+  for (const auto& f : files) inputs.push_back({"--images", f});
+  srp::core::checkOutputPaths({{"--out", a.out}, {"--draw", a.drawDir}}, inputs, a.overwrite);
+  std::optional<srp::core::AtomicOutputFolder> drawn;  // put in place when the calibration is done
+  if (!a.drawDir.empty()) {
+    std::vector<std::string> names;
+    for (const auto& f : files) names.push_back(std::filesystem::path(f).stem().string() + ".png");
+    srp::core::checkFolderHoldsOnly(a.drawDir, names, "--draw");
+    drawn.emplace(std::filesystem::path(a.drawDir).lexically_normal());
+  }
   srp::calib::IntrinsicCalibrationOptions options;
   options.estimateDistortion = !a.noDistortion;
   options.cameraName = a.name;
-  options.drawDir = a.drawDir;
+  if (drawn) options.drawDir = drawn->temporaryPath().string();
   auto line = std::make_shared<srp::app::ProgressLine>();
   options.progress = [line](int i, int n, const std::string& name) {
     line->show("calibrate", static_cast<std::size_t>(i + 1), static_cast<std::size_t>(n), name);
@@ -79,6 +97,7 @@ void runIntrinsics(const IntrinsicArgs& a) {
                              "srp calibrate --pattern " + a.pattern + ": RMS reprojection " + std::to_string(r.rms_px) +
                                  " px over " + std::to_string(r.viewsUsed()) + " images",
                              r.rms_px);
+  if (drawn) drawn->commit();
   // Read back what was written: every app reads this file.
   const auto back = format == srp::calib::CameraFileFormat::Visp ? srp::calib::loadCameraXml(out, a.name)
                                                                  : srp::calib::loadCameraFile(out).camera;
@@ -147,9 +166,12 @@ void printExtrinsics(const srp::calib::CameraExtrinsics& e, const std::string& o
 }
 
 void runTags(const TagArgs& a) {
+  srp::core::checkOutputPaths({{"--out", a.out}},
+                              {{"--image", a.image}, {"--intrinsics", a.intrinsics}, {"--scene", a.scene}}, a.overwrite);
   const std::string intrinsics =
       a.intrinsics.empty() ? srp::core::DataPaths::file("calib/camera.xml").string() : a.intrinsics;
   const auto camera = srp::calib::loadCameraFile(intrinsics).camera;
+  srp::calib::checkImageFile(a.image);
   const cv::Mat image = cv::imread(a.image, cv::IMREAD_COLOR);
   if (image.empty()) throw srp::core::FileError(a.image, "cannot read this image");
   Pose3 X_base_frame = Pose3::Identity();
@@ -171,6 +193,7 @@ void runTags(const TagArgs& a) {
 }
 
 void runHandEye(const HandEyeArgs& a) {
+  srp::core::checkOutputPaths({{"--out", a.out}}, {{"--pairs", a.pairs}}, a.overwrite);
   const auto j = srp::core::readJsonFile(a.pairs);
   std::vector<Pose3> gripper, target;
   const std::string context = "hand-eye pairs '" + a.pairs + "'";
@@ -186,8 +209,12 @@ void runHandEye(const HandEyeArgs& a) {
 void runBoard(const BoardArgs& a) {
   const auto pattern = srp::calib::CalibrationPattern::parse(a.pattern);
   const double ppm = a.dpi / 0.0254;
+  srp::core::checkOutputPaths({{"--out", a.out}}, {}, a.overwrite);
   const auto board = pattern.renderBoard(ppm, 0.01);
-  if (!cv::imwrite(a.out, board.grey8)) throw srp::core::FileError(a.out, "cannot write the board image");
+  srp::core::AtomicOutputFile out(a.out);
+  if (!cv::imwrite(out.temporaryPath().string(), board.grey8))
+    throw srp::core::FileError(a.out, "cannot write the board image (give a .png path)");
+  out.commit();
   std::printf("board %s: %dx%d px at %.0f dpi (print at 100 %% scale) -> %s\n", a.pattern.c_str(), board.grey8.cols,
               board.grey8.rows, a.dpi, a.out.c_str());
 }
@@ -212,6 +239,7 @@ void setupCalibrate(CLI::App& cmd) {
   cmd.add_option("--draw", intrinsic->drawDir, "write one PNG per image with the detected pattern here");
   cmd.add_flag("--no-distortion", intrinsic->noDistortion, "estimate a pinhole model without distortion");
   cmd.add_flag("--json", intrinsic->json, "print the result as JSON");
+  srp::app::addOverwriteFlag(cmd, intrinsic->overwrite);
   cmd.require_subcommand(0, 1);
 
   auto tags = std::make_shared<TagArgs>();
@@ -229,6 +257,7 @@ void setupCalibrate(CLI::App& cmd) {
   ext->add_option("--scene", tags->scene, "scene file giving X_world_base (for --frame world)");
   ext->add_option("--out", tags->out, "extrinsics JSON to write")->capture_default_str();
   ext->add_flag("--json", tags->json, "print the result as JSON");
+  srp::app::addOverwriteFlag(*ext, tags->overwrite);
   ext->footer("Example: srp calibrate extrinsics --image tag.png --tag-size 0.1 --frame world --scene "
               "sim/scenes/default.json --tag 0:0.1,0.1,0,30,0,0");
   ext->callback([tags] { runTags(*tags); });
@@ -240,6 +269,7 @@ void setupCalibrate(CLI::App& cmd) {
       ->required();
   he->add_option("--out", handEye->out, "extrinsics JSON to write")->capture_default_str();
   he->add_flag("--json", handEye->json, "print the result as JSON");
+  srp::app::addOverwriteFlag(*he, handEye->overwrite);
   he->callback([handEye] { runHandEye(*handEye); });
 
   auto boardArgs = std::make_shared<BoardArgs>();
@@ -249,6 +279,7 @@ void setupCalibrate(CLI::App& cmd) {
   board->add_option("--dpi", boardArgs->dpi, "printer resolution [dots per inch]")
       ->check(CLI::Range(30, 4800))
       ->capture_default_str();
+  srp::app::addOverwriteFlag(*board, boardArgs->overwrite);
   board->callback([boardArgs] { runBoard(*boardArgs); });
 
   cmd.callback([&cmd, intrinsic] {

@@ -9,6 +9,7 @@
 #include "CommandRegistry.h"
 #include "LanguageSwitches.h"
 #include "srp/core/Json.h"
+#include "srp/core/OutputFile.h"
 #include "srp/language/AnnotationPrecedents.h"
 #include "srp/language/CapabilitySuites.h"
 #include "srp/language/LanguageModel.h"
@@ -49,7 +50,12 @@ void setupEvalLanguage(CLI::App& app) {
                  "SpERT corpus (e.g. train.json) to check each error against: how it annotates the same 7 words, "
                  "and the scores if the scored corpus followed it where the model did")
       ->check(CLI::ExistingFile);
+  auto overwrite = std::make_shared<bool>(false);
+  srp::app::addOverwriteFlag(app, *overwrite);
   app.callback([=] {
+    srp::core::checkOutputPaths({{"--predictions", *predictionsPath}},
+                                {{"--data", *dataPath}, {"--model", *modelPath}, {"--precedents", *precedentsPath}},
+                                *overwrite);
     auto model =
         srp::language::LanguageModel::load(modelPath->empty() ? srp::language::defaultModelPath() : *modelPath);
     if (!rules->empty()) {

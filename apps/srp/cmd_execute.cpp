@@ -6,6 +6,7 @@
 #include "CommandRegistry.h"
 #include "srp/calib/CameraExtrinsics.h"
 #include "srp/core/Error.h"
+#include "srp/core/OutputFile.h"
 #include "srp/core/ExitCode.h"
 #include "srp/core/ViewFrame.h"
 #include "srp/execution/ExecutionSession.h"
@@ -15,7 +16,7 @@
 namespace {
 
 struct ExecuteOptions {
-  std::string db = "task.db";
+  std::string db = srp::app::defaultTaskDatabase();
   int task = 0;
   std::string instruction;
   std::string scene;
@@ -32,11 +33,12 @@ struct ExecuteOptions {
   double maxAcceleration_radps2 = srp::execution::SafetyLimits{}.maxAcceleration_radps2;
   bool safetySpheres = false;
   std::string view = "demonstrator";
+  bool overwrite = false;
 };
 
 void setupExecute(CLI::App& app) {
   auto o = std::make_shared<ExecuteOptions>();
-  app.add_option("--db", o->db, "Task database file (opened read-only)")->capture_default_str();
+  app.add_option("--db", o->db, std::string("Task database, opened read-only: ") + srp::app::kTaskDatabaseHelp);
   app.add_option("--task", o->task, "Task model id (see 'srp db list')")->required();
   app.add_option("--instruction", o->instruction, "A new instruction that re-plans the task (Language Module)");
   app.add_option("--scene", o->scene,
@@ -53,7 +55,7 @@ void setupExecute(CLI::App& app) {
                  "Knowledge base of the demonstration's scene (default: the catalogue the task model was programmed "
                  "with)")
       ->check(CLI::ExistingFile);
-  app.add_option("--out", o->out, "Output folder: report.json, report.txt, joints.csv, final_scene.json (the scene after execution, for --scene of the next run), frames/*.png")
+  app.add_option("--out", o->out, "Output folder: report.json, report.txt, joints.csv, final_scene.json (the scene after execution, for --scene of the next run), frames/*.png; written whole or not at all (an existing one needs -w, and is replaced only when it holds nothing else)")
       ->capture_default_str();
   app.add_option("--frame-period", o->framePeriod, "Render every n-th 20 ms snapshot (0: no frames)")
       ->capture_default_str();
@@ -73,8 +75,16 @@ void setupExecute(CLI::App& app) {
       ->capture_default_str();
   app.add_option("--servo-gain", o->ur.servoGain, "URScript: servoj gain (100-2000)")->capture_default_str();
   app.add_option("--ros-point-period", o->ros.pointPeriod_s,
-                 "ROS YAML: keep trajectory knots at least this many seconds apart (0: every 10 ms knot)")
+                 "ROS YAML: keep trajectory knots at least this many seconds apart (0: every 10 ms knot); the "
+                 "spline through the kept knots is checked again (limits, and within --ros-max-deviation of the "
+                 "checked trajectory), else nothing is written")
       ->capture_default_str();
+  app.add_option("--ros-max-deviation", o->ros.maxThinningDeviation_rad,
+                 "ROS YAML with --ros-point-period: largest joint difference [rad] allowed between the thinned and "
+                 "the checked trajectory")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-6, 0.1));
+  srp::app::addOverwriteFlag(app, o->overwrite);
   app.add_option("--velocity-fraction", o->velocityFraction,
                  "Safety check: allow this fraction of the URDF joint speed limits (e.g. 0.5 for a first run on the "
                  "real cell); paths are slowed down to fit, up to 4x, else the step is refused")
@@ -91,9 +101,14 @@ void setupExecute(CLI::App& app) {
                  "(the camera's image axes on the table) or robot (standing at the robot base)")
       ->capture_default_str();
   app.callback([o] {
-    // Bad exporter options fail before the (long) execution.
+    // Bad exporter options and outputs that would destroy an input or an existing file
+    // fail before the (long) execution.
     const srp::execution::UrScriptExporter urExporter(o->ur);
     const srp::execution::RosTrajectoryExporter rosExporter(o->ros);
+    using srp::core::PathRole;
+    srp::core::checkOutputPaths({{"--urscript", o->urscript}, {"--trajectory-yaml", o->trajectoryYaml}, {"--out", o->out}},
+                                {{"--db", o->db}, {"--scene", o->scene}, {"--extrinsics", o->extrinsics}, {"--kb", o->kb}},
+                                o->overwrite);
     srp::execution::ExecuteRequest request;
     request.databasePath = o->db;
     request.taskModelId = o->task;
@@ -127,14 +142,14 @@ void setupExecute(CLI::App& app) {
       if (srp::app::commandExitCode() == 0) srp::app::commandExitCode() = srp::core::toInt(srp::core::ExitCode::Error);
       return;
     }
-    if (!o->urscript.empty()) {
-      urExporter.write(result.executed, o->urscript);
-      (o->json ? std::cerr : std::cout) << "URScript program: " << o->urscript << "\n";
-    }
-    if (!o->trajectoryYaml.empty()) {
-      rosExporter.write(result.executed, o->trajectoryYaml);
+    // Both files or neither: a program never sits beside a trajectory of another run.
+    std::vector<std::pair<std::filesystem::path, std::string>> files;
+    if (!o->urscript.empty()) files.emplace_back(o->urscript, urExporter.toScript(result.executed));
+    if (!o->trajectoryYaml.empty()) files.emplace_back(o->trajectoryYaml, rosExporter.toYaml(result.executed));
+    srp::core::writeFilesTogether(files);
+    if (!o->urscript.empty()) (o->json ? std::cerr : std::cout) << "URScript program: " << o->urscript << "\n";
+    if (!o->trajectoryYaml.empty())
       (o->json ? std::cerr : std::cout) << "ROS 2 JointTrajectory YAML: " << o->trajectoryYaml << "\n";
-    }
   });
 }
 

@@ -1,11 +1,11 @@
 // `srp experiment <name>`: the thesis' chapter 8 evaluation on our system, the
 // thesis' numbers beside ours (libs/experiment).
-#include <fstream>
 #include <iostream>
 
 #include "CommandRegistry.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
+#include "srp/core/OutputFile.h"
 #include "srp/experiment/ExperimentReport.h"
 #include "srp/experiment/ExperimentSupport.h"
 #include "srp/experiment/Experiments.h"
@@ -17,7 +17,7 @@ struct ExperimentArgs {
   std::string outDir = "out/experiment";
   int demos = 5;
   unsigned seed = 1;
-  bool quick = false, json = false, quiet = false;
+  bool quick = false, json = false, quiet = false, overwrite = false;
 };
 
 void run(const ExperimentArgs& a) {
@@ -38,6 +38,11 @@ void run(const ExperimentArgs& a) {
     for (const auto& e : ex::experiments()) names.push_back(e.name);
   else
     names.push_back(a.name);
+  // The reports are the outputs (the demo cache in <out>/demos/ is re-used on purpose).
+  std::vector<srp::core::PathRole> reports;
+  for (const auto& name : names) reports.push_back({"--out", options.outDir / name / "report.md"});
+  if (a.name == "all") reports.push_back({"--out", options.outDir / "report.md"});
+  srp::core::checkOutputPaths(reports, {}, a.overwrite);
 
   const ex::WallClock clock;
   std::vector<ex::ExperimentOutcome> outcomes;
@@ -62,11 +67,7 @@ void run(const ExperimentArgs& a) {
   if (a.name == "all") {
     srp::core::writeJsonFile((options.outDir / "result.json").string(), ex::combinedJson(outcomes, total));
     const auto md = options.outDir / "report.md";
-    {
-      std::ofstream out(md);
-      if (!out) throw srp::core::FileError(md.string(), "cannot write the report; check --out");
-      out << ex::combinedMarkdown(outcomes, options.outDir, total);
-    }
+    srp::core::writeFileAtomically(md, ex::combinedMarkdown(outcomes, options.outDir, total));
     if (!a.json)
       std::cout << "all: " << outcomes.size() - failed << "/" << outcomes.size() << " experiments done in "
                 << ex::formatNumber(total, 1) << " s; report " << md.string() << "\n";
@@ -96,6 +97,7 @@ void setupExperiment(CLI::App& cmd) {
   cmd.add_flag("--quick", args->quick, "smallest sizes that still exercise every part (one short 320x240 demo)");
   cmd.add_flag("--json", args->json, "print the result JSON instead of the tables");
   cmd.add_flag("-q,--quiet", args->quiet, "no progress on stderr");
+  srp::app::addOverwriteFlag(cmd, args->overwrite);
   cmd.callback([args]() { run(*args); });
 }
 

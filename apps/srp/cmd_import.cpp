@@ -8,6 +8,7 @@
 #include "CommandRegistry.h"
 #include "ProgressLine.h"
 #include "srp/calib/RgbdImporter.h"
+#include "srp/core/OutputFile.h"
 
 namespace {
 
@@ -17,7 +18,7 @@ struct Args {
   double depthScale_m = 0.0;
   double fps = 0.0;  // 0: the folder's timestamps, else assumed (warned)
   double maxDt_s = 0.02;
-  bool json = false;
+  bool json = false, overwrite = false;
 };
 
 void setupImport(CLI::App& cmd) {
@@ -48,7 +49,12 @@ void setupImport(CLI::App& cmd) {
       ->capture_default_str();
   cmd.add_flag("--json", a->json, "print the summary as JSON");
   cmd.footer("Example: srp import datasets/real/visp-rbt-cube cube.rawlog");
+  srp::app::addOverwriteFlag(cmd, a->overwrite);
   cmd.callback([a] {
+    srp::core::checkOutputPaths({{"out", a->out}},
+                                {{"folder", a->folder}, {"--intrinsics", a->intrinsics},
+                                 {"--depth-intrinsics", a->depthIntrinsics}, {"--depth-M-color", a->depthMColor}},
+                                a->overwrite);
     srp::calib::ImportOptions o;
     o.cameraPath = a->intrinsics;
     o.depthCameraPath = a->depthIntrinsics;

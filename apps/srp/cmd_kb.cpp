@@ -8,7 +8,9 @@
 #include "CommandRegistry.h"
 #include "srp/core/Error.h"
 #include "srp/core/ObjectCatalogue.h"
+#include "srp/core/OutputFile.h"
 #include "srp/kb/KnowledgeBase.h"
+#include "srp/kb/MeshValidator.h"
 
 namespace {
 
@@ -29,11 +31,21 @@ void setupKb(CLI::App& cmd) {
                     "given; with the shipped catalogue, the current folder)");
   build->footer("Example: srp kb build -o my_kb   (my_kb/catalogue.json and my_kb/meshes/*.stl, to edit and use "
                 "with --kb my_kb/catalogue.json)");
-  build->callback([cataloguePath, outDir, catalogueOrShipped]() {
+  auto overwrite = std::make_shared<bool>(false);
+  srp::app::addOverwriteFlag(*build, *overwrite);
+  build->callback([cataloguePath, outDir, catalogueOrShipped, overwrite]() {
     const std::string path = catalogueOrShipped();
     const std::string dir = !outDir->empty() ? *outDir : cataloguePath->empty() ? "." : "";
-    if (!dir.empty()) std::filesystem::create_directories(dir);
     const auto catalogue = srp::kb::loadCatalogue(path);
+    std::vector<srp::core::PathRole> outputs;
+    for (const auto& c : catalogue.classes())
+      if (srp::kb::hasShapeGenerator(c.shape))
+        outputs.push_back({"mesh of '" + c.name + "'",
+                           dir.empty() ? std::filesystem::path(c.meshPath)
+                                       : std::filesystem::path(dir) / "meshes" / std::filesystem::path(c.meshPath).filename()});
+    if (!dir.empty()) outputs.push_back({"catalogue copy", std::filesystem::path(dir) / std::filesystem::path(path).filename()});
+    srp::core::checkOutputPaths(outputs, {{"--catalogue", path}}, *overwrite);
+    if (!dir.empty()) std::filesystem::create_directories(dir);
     for (const auto& m : srp::kb::buildMeshes(catalogue, dir))
       std::cout << m.className << ": " << m.triangleCount << " triangles -> " << m.path << "\n";
     if (!dir.empty()) std::cout << "catalogue -> " << srp::kb::copyCatalogue(path, dir).string() << "\n";
@@ -61,16 +73,29 @@ void setupKb(CLI::App& cmd) {
   add->add_option("--noun", entry->noun, "head noun in instructions (default: the name)");
   add->add_option("--kind", entry->kind, "part or container")->check(CLI::IsMember({"part", "container"}))->capture_default_str();
   add->add_option("--rgb", *rgb, "linear RGB in [0, 1] when the colour identifies the part (default: none)")->expected(3);
-  add->add_option("--mass", *mass, "mass [kg] (default: the volume at 1000 kg/m^3)");
+  add->add_option("--mass", *mass, "mass [kg] (default: the mesh's or the box's volume at 1000 kg/m^3)");
+  auto units = std::make_shared<std::string>("m");
+  add->add_option("--units", *units, "length unit of the CAD file: m, cm, mm or in (the part must be 1 mm - 2 m)")
+      ->check(CLI::IsMember({"m", "cm", "mm", "in"}))
+      ->capture_default_str()
+      ->excludes(box);
+  add->add_option("--scale", entry->scale, "metres per file unit, instead of --units (e.g. 0.001)")
+      ->excludes("--units")
+      ->excludes(box)
+      ->check(CLI::PositiveNumber);
+  add->add_flag("--flat", entry->flat, "a flat part (a sheet, a label): its mesh need not enclose a volume")
+      ->excludes(box);
   add->add_flag("--json", *json, "machine-readable output");
   add->footer("Examples:\n  srp kb add --catalogue my_parts.json --name cube --mesh cube.obj\n"
               "  srp kb add toy --catalogue my_parts.json --shape box --size 0.12 0.08 0.06 --rgb 0.1 0.2 0.7");
-  add->callback([cataloguePath, entry, rgb, mass, shape, size, json]() {
+  add->callback([add, cataloguePath, entry, rgb, mass, shape, size, json, units]() {
     if (rgb->size() == 3) entry->rgb = Eigen::Vector3d((*rgb)[0], (*rgb)[1], (*rgb)[2]);
-    if (*mass > 0.0) entry->mass_kg = *mass;
+    if (add->count("--mass")) entry->mass_kg = *mass;
+    if (!add->count("--scale")) entry->scale = srp::kb::unitScale(*units);
     if (entry->meshPath.empty() && shape->empty())
       throw srp::core::InvalidInputError("srp kb add: give the part's CAD file (--mesh FILE) or, without one, its box "
                                          "(--shape box --size X Y Z, metres)");
+    std::vector<std::string> warnings;
     srp::core::ObjectClass c;
     if (!shape->empty()) {
       if (size->size() != 3)
@@ -85,14 +110,16 @@ void setupKb(CLI::App& cmd) {
       b.mass_kg = entry->mass_kg;
       c = srp::kb::addBoxClass(*cataloguePath, b);
     } else {
-      c = srp::kb::addMeshClass(*cataloguePath, *entry);
+      c = srp::kb::addMeshClass(*cataloguePath, *entry, &warnings);
     }
+    for (const auto& w : warnings) std::cerr << "srp kb add: warning: " << w << "\n";
     const Eigen::Vector3d& d = c.dimensions_m;
     const std::string from = c.meshPath.empty() ? "a box without a mesh" : "mesh " + c.meshPath;
     if (*json) {
       std::cout << nlohmann::json{{"catalogue", *cataloguePath}, {"name", c.name}, {"class_id", c.classId},
                                   {"kind", srp::core::toString(c.kind)}, {"shape", c.shape}, {"mesh", c.meshPath},
-                                  {"dimensions_m", {d.x(), d.y(), d.z()}}, {"mass_kg", c.mass_kg}}
+                                  {"dimensions_m", {d.x(), d.y(), d.z()}}, {"mass_kg", c.mass_kg},
+                                  {"warnings", warnings}}
                        .dump(2)
                 << "\n";
       return;

@@ -3,10 +3,13 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "CommandRegistry.h"
 #include "srp/core/Error.h"
+#include "srp/core/OutputFile.h"
+#include "srp/core/SafeText.h"
 #include "srp/motion/SkillLearner.h"
 #include "srp/motion/SkillPlots.h"
 #include "srp/programming/MotionRows.h"
@@ -17,15 +20,24 @@ namespace {
 
 struct MotionOptions {
   int id = 0;
-  std::string db = "task.db";
+  std::string db = srp::app::defaultTaskDatabase();
   std::string outDir;
   bool json = false;
   bool noPlots = false;
   bool syntheticDemo = false;
+  bool overwrite = false;
 };
 
 void runMotion(const MotionOptions& o) {
   using namespace srp;
+  // The plot folder is checked before anything is stored, and built beside its target.
+  const std::string dir = o.outDir.empty() ? "motion_" + std::to_string(o.id) : o.outDir;
+  std::optional<core::AtomicOutputFolder> plots;
+  if (!o.noPlots && !o.syntheticDemo) {
+    core::checkOutputPaths({{"--out-dir", dir}}, {{"--db", o.db}}, o.overwrite);
+    core::checkFolderHoldsOnly(dir, {"*.png"}, "--out-dir");
+    plots.emplace(std::filesystem::path(dir).lexically_normal());
+  }
   auto db = taskdb::TaskDatabase::open(o.db);
   taskdb::TaskModelStore store(db);
   int id = o.id;
@@ -49,14 +61,21 @@ void runMotion(const MotionOptions& o) {
 
   std::vector<std::string> pngs;
   if (!o.noPlots) {
-    const std::string dir = o.outDir.empty() ? "motion_" + std::to_string(id) : o.outDir;
-    std::filesystem::create_directories(dir);
+    if (!plots) {  // --synthetic-demo: the id is known only now
+      const std::string out = o.outDir.empty() ? "motion_" + std::to_string(id) : o.outDir;
+      core::checkOutputPaths({{"--out-dir", out}}, {{"--db", o.db}}, o.overwrite);
+      core::checkFolderHoldsOnly(out, {"*.png"}, "--out-dir");
+      plots.emplace(std::filesystem::path(out).lexically_normal());
+    }
+    const std::string staged = plots->temporaryPath().string();
     for (const auto& s : skills)
       for (const auto& obj : seg.objects)
         if (obj.name == s.objectName) {
-          pngs.push_back(dir + "/" + s.objectName + ".png");
-          motion::writeSkillFigure(pngs.back(), seg, obj, s);
+          const std::string file = "/" + core::safeFileName(s.objectName) + ".png";
+          motion::writeSkillFigure(staged + file, seg, obj, s);
+          pngs.push_back(plots->target().string() + file);
         }
+    plots->commit();
   }
   if (o.json) {
     nlohmann::json objects = nlohmann::json::array();
@@ -96,10 +115,12 @@ void setupMotion(CLI::App& app) {
   app.add_option("id", o->id, "TaskModelId (see 'srp db list')")->check(srp::app::kDecimalId);
   app.add_flag("--synthetic-demo", o->syntheticDemo,
                "First store a synthetic 4-object demo (noise, dropouts, flicker) as a new task model, then process it");
-  app.add_option("--db", o->db, "Task database file (SQLite)")->capture_default_str();
-  app.add_option("--out-dir", o->outDir, "Directory for the PNG per object (default: motion_<id>)");
+  app.add_option("--db", o->db, std::string("Task database: ") + srp::app::kTaskDatabaseHelp);
+  app.add_option("--out-dir", o->outDir,
+                 "Directory for the PNG per object (default: motion_<id>), written whole or not at all");
   app.add_flag("--no-plots", o->noPlots, "Do not write PNGs");
   app.add_flag("--json", o->json, "Print the result as JSON");
+  srp::app::addOverwriteFlag(app, o->overwrite);
   app.callback([o] { runMotion(*o); });
 }
 

@@ -8,6 +8,7 @@
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/language/PlanTables.h"
+#include "srp/taskdb/TaskDatabase.h"
 
 namespace {
 // Index of the first byte that is not part of well-formed UTF-8 (RFC 3629), or npos.
@@ -79,11 +80,11 @@ void setupParse(CLI::App& app) {
         }
     }
     if (plan.steps.empty()) {
-      if (!dbPath->empty()) std::cerr << "srp parse: nothing written to " << *dbPath << " (the plan has no steps)\n";
+      if (!dbPath->empty()) std::cerr << "srp parse: nothing written to " << srp::taskdb::TaskDatabase::displayName(*dbPath) << " (the plan has no steps)\n";
       srp::app::commandExitCode() = 2;
     } else if (!dbPath->empty()) {
       const int id = srp::language::storePlan(plan, *dbPath, *name, *text);
-      std::cerr << "stored as task model " << id << " in " << *dbPath << "\n";
+      std::cerr << "stored as task model " << id << " in " << srp::taskdb::TaskDatabase::displayName(*dbPath) << "\n";
     }
   });
 }

@@ -10,6 +10,7 @@
 #include "CommandRegistry.h"
 #include "ProgressLine.h"
 #include "srp/core/Json.h"
+#include "srp/core/OutputFile.h"
 #include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/DemoPerception.h"
 #include "srp/perception/PerceptionDrawing.h"
@@ -35,10 +36,14 @@ struct PerceiveOptions {
   int tagId = 0;
   bool json = false;
   bool movingCamera = false, fixedCamera = false;
+  bool overwrite = false;
   std::string tracker = "auto";
 };
 
 void run(const PerceiveOptions& o) {
+  srp::core::checkOutputPaths({{"--csv", o.csv}, {"--draw", o.draw}},
+                              {{"--demo", o.demo}, {"--kb", o.kb}, {"--scene", o.scene}}, o.overwrite);
+  if (!o.draw.empty()) srp::core::checkFolderHoldsOnly(o.draw, {"frame_*", "contact_sheet.png"}, "--draw");
   const auto catalogue = srp::kb::loadCatalogue(o.kb.empty() ? srp::core::ObjectCatalogue::defaultPath() : o.kb);
   PerceptionOptions p;
   p.hand = o.hand == "marker-free" ? PerceptionOptions::HandMethod::MarkerFree
@@ -164,6 +169,7 @@ void setupPerceive(CLI::App& app) {
   app.add_option("--csv", o->csv,
                  "Write the per-frame CSV in the 'srp segment' format (a sample not detected in its frame, "
                  "e.g. a part in the hand, is written as 0,0,0,0)");
+  srp::app::addOverwriteFlag(app, o->overwrite);
   app.add_option("--draw", o->draw,
                  "Write what perception saw, drawn on the recording, to this folder: frame_NNNNN.png (palm, each "
                  "part and container with its outline, name and confidence, the table frame) and contact_sheet.png "

@@ -11,14 +11,17 @@
 #include "srp/calib/CameraExtrinsics.h"
 #include "srp/calib/CameraFiles.h"
 #include "srp/core/Error.h"
+#include "srp/core/OutputFile.h"
 #include "srp/core/ExitCode.h"
 #include "srp/programming/ProgrammingPipeline.h"
+#include "srp/taskdb/TaskDatabase.h"
 
 namespace {
 
 struct ProgramArgs {
-  std::string instruction, demo, kb, calib, db = "task.db", name = "task", report, hand = "auto", scene, extrinsics;
-  bool json = false, quiet = false, allowTruncated = false, allowPartial = false;
+  std::string instruction, demo, kb, calib, db = srp::app::defaultTaskDatabase(), name = "task", report,
+      hand = "auto", scene, extrinsics;
+  bool json = false, quiet = false, allowTruncated = false, allowPartial = false, overwrite = false;
 };
 
 void setupProgram(CLI::App& cmd) {
@@ -34,12 +37,13 @@ void setupProgram(CLI::App& cmd) {
                  "their colours): a class it holds several times is perceived per instance, and the instruction's "
                  "phrases ('the red cuboid') are grounded to instances (stored as InstanceId)");
   cmd.add_option("--calib", a->calib, "Camera intrinsics (ViSP XML, e.g. calib/camera.xml) overriding the rawlog's");
-  cmd.add_option("--db", a->db, "Task database to store the task model in")->capture_default_str();
+  cmd.add_option("--db", a->db, std::string("Task database to store the task model in: ") + srp::app::kTaskDatabaseHelp);
   cmd.add_option("--name", a->name, "Task model name; an existing name gets a new version")->capture_default_str();
   cmd.add_option("--report", a->report,
                  "Folder for the report: PNG figures, contact_sheet.png (what perception saw on the recording), "
                  "scene.json (the scene the demonstration showed, the one 'srp execute' runs in without --scene) and "
-                 "summary.md; written only when the task model is stored");
+                 "summary.md; written whole or not at all, only when the task model is stored; an existing one needs "
+                 "-w and is replaced only when it holds nothing but a report");
   cmd.add_option("--extrinsics", a->extrinsics,
                  "Camera-to-robot extrinsics of the demonstration's camera ('srp calibrate extrinsics' or 'hand-eye' "
                  "write it, ./extrinsics.json by default), stored with the task model: execution places the robot from it "
@@ -57,7 +61,12 @@ void setupProgram(CLI::App& cmd) {
                "(default: fail naming the step, store nothing); exits 3 when it did");
   cmd.add_flag("--json", a->json, "Print the result as JSON");
   cmd.add_flag("-q,--quiet", a->quiet, "No progress bar");
+  srp::app::addOverwriteFlag(cmd, a->overwrite);
   cmd.callback([a] {
+    using srp::core::PathRole;
+    const std::vector<PathRole> inputs = {{"--demo", a->demo}, {"--kb", a->kb}, {"--scene", a->scene}, {"--calib", a->calib}};
+    srp::core::checkOutputPaths({{"--db", a->db}}, inputs, true);  // the database is added to, never replaced
+    srp::core::checkOutputPaths({{"--report", a->report}}, inputs, a->overwrite);
     srp::programming::ProgrammingOptions o;
     o.instruction = a->instruction;
     o.demoPath = a->demo;
@@ -85,7 +94,7 @@ void setupProgram(CLI::App& cmd) {
       return;
     }
     std::cout << "Stored task model " << r.taskModelId << " ('" << r.name << "' version " << r.version << ") in "
-              << a->db << "\n\nPlan:\n";
+              << srp::taskdb::TaskDatabase::displayName(a->db) << "\n\nPlan:\n";
     for (std::size_t i = 0; i < r.planLines.size(); ++i) std::cout << "  " << i + 1 << ". " << r.planLines[i] << "\n";
     std::cout << "\nDemonstration: " << r.frames << " frames, hand (" << r.handDetector << ") detected in "
               << r.handDetectedFrames << "; camera "

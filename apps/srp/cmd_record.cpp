@@ -5,12 +5,14 @@
 #include "CommandRegistry.h"
 #include "ProgressLine.h"
 #include "srp/calib/RgbdRecorder.h"
+#include "srp/core/OutputFile.h"
 
 namespace {
 
 struct Args {
   std::string out;
   srp::calib::RecordOptions options;
+  bool overwrite = false;
 };
 
 void setupRecord(CLI::App& cmd) {
@@ -21,8 +23,10 @@ void setupRecord(CLI::App& cmd) {
       ->capture_default_str();
   cmd.add_option("--device", a->options.deviceIndex, "OpenNI2 device number")->capture_default_str();
   cmd.add_option("--depth-unit", a->options.depthUnit_m, "depth step stored in the rawlog [m]")->capture_default_str();
+  srp::app::addOverwriteFlag(cmd, a->overwrite);
   cmd.footer("Example: srp record demo.rawlog --duration 20\nNo camera? Convert recorded images: srp import FOLDER OUT.rawlog");
   cmd.callback([a] {
+    srp::core::checkOutputPaths({{"out", a->out}}, {}, a->overwrite);
     srp::app::ProgressLine line;
     a->options.progress = [&line](int frames, double elapsed_s) {
       line.show("recording:", static_cast<std::size_t>(frames), 0, "frames, " + std::to_string(static_cast<int>(elapsed_s)) + " s");

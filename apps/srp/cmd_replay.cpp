@@ -1,5 +1,7 @@
 // srp replay: summary of an RGB-D rawlog, PNG export and video.
+#include <filesystem>
 #include <iostream>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "CommandRegistry.h"
@@ -7,6 +9,7 @@
 #include "srp/calib/RawlogReplay.h"
 #include "srp/calib/TaskModelOverlay.h"
 #include "srp/core/Error.h"
+#include "srp/core/OutputFile.h"
 #include "srp/taskdb/TaskDatabase.h"
 #include "srp/taskdb/TaskModelStore.h"
 
@@ -18,7 +21,7 @@ struct Args {
   int firstTimeId = 0;
   double depthScale_m = 0.0;
   double fps = 0.0;
-  bool json = false;
+  bool json = false, overwrite = false;
 };
 
 void setupReplay(CLI::App& cmd) {
@@ -37,12 +40,24 @@ void setupReplay(CLI::App& cmd) {
   cmd.add_option("--task-id", a->taskId, "task model to draw (default: the newest)")->check(srp::app::kDecimalId);
   cmd.add_option("--first-time-id", a->firstTimeId, "TimeId of the rawlog's first frame")->capture_default_str();
   cmd.add_flag("--json", a->json, "print the summary as JSON");
+  srp::app::addOverwriteFlag(cmd, a->overwrite);
   cmd.footer("Example: srp replay demo.rawlog --export frames/ --video demo.avi --overlay task.db");
   cmd.callback([a] {
+    using srp::core::PathRole;
+    srp::core::checkOutputPaths({{"--export", a->exportDir}, {"--video", a->video}},
+                                {{"rawlog", a->rawlog}, {"--overlay", a->overlayDb}}, a->overwrite);
+    // Outputs are made beside their targets and put in place when the replay is done.
+    std::optional<srp::core::AtomicOutputFolder> exportFolder;
+    std::optional<srp::core::AtomicOutputFile> videoFile;
+    if (!a->exportDir.empty()) {
+      srp::core::checkFolderHoldsOnly(a->exportDir, {"color_*", "depth_*", "overlay_*", "cam.json"}, "--export");
+      exportFolder.emplace(std::filesystem::path(a->exportDir).lexically_normal());
+    }
+    if (!a->video.empty()) videoFile.emplace(a->video);
     srp::calib::ReplayOptions o;
-    o.exportDir = a->exportDir;
+    if (exportFolder) o.exportDir = exportFolder->temporaryPath().string();
     if (a->depthScale_m > 0.0) o.exportDepthScale_m = a->depthScale_m;
-    o.videoPath = a->video;
+    if (videoFile) o.videoPath = videoFile->temporaryPath().string();
     o.videoFps = a->fps;
     std::shared_ptr<srp::calib::TaskModelOverlay> overlay;
     if (!a->overlayDb.empty()) {
@@ -67,6 +82,8 @@ void setupReplay(CLI::App& cmd) {
     };
     const auto s = srp::calib::replayRawlog(a->rawlog, o);
     line.finish("replayed " + std::to_string(s.frames) + " frames");
+    if (videoFile) videoFile->commit();
+    if (exportFolder) exportFolder->commit();
     if (a->json) std::cout << s.toJson().dump(2) << "\n";
     else std::cout << s.toText();
     if (!a->exportDir.empty() && !a->json) std::cout << "  exported to " << a->exportDir << "\n";

@@ -1,14 +1,18 @@
 // `srp synth-demo`: scene + instruction plan -> synthetic RGB-D demo rawlog + ground truth.
 #include <algorithm>
+#include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
 #include "CommandRegistry.h"
 #include "ProgressLine.h"
 #include "srp/core/DefaultScene.h"
+#include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/core/ObjectCatalogue.h"
+#include "srp/core/OutputFile.h"
 #include "srp/core/Scene.h"
 #include "srp/kb/KnowledgeBase.h"
 #include "srp/synth/DemoGenerator.h"
@@ -24,10 +28,57 @@ struct SynthDemoArgs {
   long long seed = -1;
   int width = 0, height = 0, maxFrames = -1, colourNoiseBlock = -1, depthNoiseBlock = -1;
   double speed = 1.0;
-  bool clean = false, noRandomise = false, motionBlur = false, json = false, quiet = false;
+  bool clean = false, noRandomise = false, motionBlur = false, json = false, quiet = false, overwrite = false;
+};
+
+namespace fs = std::filesystem;
+
+/// The demo is generated into a folder beside the output and moved into place
+/// when it is complete: a failed or killed run leaves no partial rawlog that
+/// reads as a shorter demo, and an earlier demo stays as it was.
+class StagedDemo {
+  static fs::path withoutTrailingSlash(const fs::path& p) { return p.has_filename() ? p : p.parent_path(); }
+
+ public:
+  StagedDemo(const std::string& outPath, bool folderOutput)
+      : target_(withoutTrailingSlash(fs::path(outPath).lexically_normal())),
+        stage_(target_.parent_path() / ("." + target_.filename().string() + ".srp-stage")),
+        staged_(stage_.temporaryPath() / target_.filename()) {
+    if (folderOutput) fs::create_directory(staged_);
+  }
+  /// Where the generator writes the rawlog (or the two-camera folder).
+  std::string stagedPath() const { return staged_.string(); }
+  /// Moves the rawlog (or folder) and its ground truth into place, both or neither.
+  void commit(const std::string& stagedGroundTruth) {
+    const fs::path gt = target_.parent_path() / fs::path(stagedGroundTruth).filename();
+    const fs::path old = fs::path(stage_.temporaryPath()) / ".previous";
+    std::error_code ec;
+    if (fs::exists(target_)) fs::rename(target_, old, ec);  // kept until the new demo is in place
+    if (ec) throw srp::core::FileError(target_.string(), "cannot move the previous output aside (" + ec.message() + ")");
+    fs::rename(staged_, target_, ec);
+    if (!ec) fs::rename(stagedGroundTruth, gt, ec);
+    if (ec) {
+      std::error_code ignored;
+      fs::remove_all(target_, ignored);
+      if (fs::exists(old)) fs::rename(old, target_, ignored);
+      throw srp::core::FileError(target_.string(), "cannot move the new demo into place (" + ec.message() + ")");
+    }
+  }
+  std::string finalPath(const std::string& stagedFile) const {
+    return (target_.parent_path() / fs::path(stagedFile).filename()).string();
+  }
+
+ private:
+  fs::path target_;
+  srp::core::AtomicOutputFolder stage_;  // removed with whatever is left in it
+  fs::path staged_;
 };
 
 void run(const SynthDemoArgs& a) {
+  const std::string groundTruth = fs::path(a.outPath).lexically_normal().replace_extension(".gt.json").string();
+  srp::core::checkOutputPaths(
+      {{"-o", a.outPath}, {"ground truth", groundTruth}, {"--contact-sheet", a.contactSheet}},
+      {{"--scene", a.scenePath}, {"--plan", a.planPath}, {"--depth-camera", a.depthCamera}}, a.overwrite);
   const auto scene = srp::core::Scene::load(a.scenePath.empty() ? srp::core::defaultScenePath() : a.scenePath);
   const auto catalogue = srp::kb::loadCatalogue(scene.cataloguePath);
   const nlohmann::json plan = a.planPath.empty() ? srp::synth::defaultPlanJson() : srp::core::readJsonFile(a.planPath);
@@ -42,7 +93,11 @@ void run(const SynthDemoArgs& a) {
   options.width_px = a.width;
   options.height_px = a.height;
   options.maxFrames = a.maxFrames;
-  options.contactSheetPath = a.contactSheet;
+  std::optional<srp::core::AtomicOutputFile> contactSheet;
+  if (!a.contactSheet.empty()) {
+    contactSheet.emplace(a.contactSheet);
+    options.contactSheetPath = contactSheet->temporaryPath().string();
+  }
   if (!a.depthCamera.empty()) {
     // {"intrinsics": {fx, fy, cx, cy, width, height}, "X_colour_depth": {"translation": [m], "quaternion": [w, x, y, z]}}
     const nlohmann::json j = srp::core::readJsonFile(a.depthCamera);
@@ -53,10 +108,16 @@ void run(const SynthDemoArgs& a) {
     options.depthCamera = d;
   }
   srp::app::ProgressLine line(!a.quiet);
-  const auto result = srp::synth::generateSyntheticDemo(scene, catalogue, plan, options, a.outPath, [&line](int k, int n) {
+  StagedDemo staged(a.outPath, options.depthCamera.has_value());
+  auto result = srp::synth::generateSyntheticDemo(scene, catalogue, plan, options, staged.stagedPath(), [&line](int k, int n) {
     if (k % 30 == 0 || k + 1 == n) line.show("synth-demo: frame", static_cast<std::size_t>(k + 1), static_cast<std::size_t>(n));
   });
   line.finish();
+  if (contactSheet && !result.contactSheetPath.empty()) contactSheet->commit();
+  staged.commit(result.groundTruthPath);
+  result.rawlogPath = a.outPath;
+  result.groundTruthPath = staged.finalPath(result.groundTruthPath);
+  if (!result.contactSheetPath.empty()) result.contactSheetPath = a.contactSheet;
   const double fps = result.frameCount / result.totalTime_s;
   const double n = std::max(1, result.frameCount);
   const double rawlogMBPerMin = result.duration_s > 0.0 ? result.rawlogBytes / 1e6 / (result.duration_s / 60.0) : 0.0;
@@ -100,7 +161,8 @@ void setupSynthDemo(CLI::App& cmd) {
   cmd.add_option("--scene", args->scenePath, "scene JSON (default: the shipped sim/scenes/default.json of srp's data folder)");
   cmd.add_option("--plan", args->planPath,
                  "plan JSON in the `srp parse --json` step format (default: instruction 1 of the thesis)");
-  cmd.add_option("-o,--out", args->outPath, "output rawlog; the ground truth goes next to it as <name>.gt.json");
+  cmd.add_option("-o,--out", args->outPath,
+                 "output rawlog; the ground truth goes next to it as <name>.gt.json (both written whole or not at all)");
   cmd.add_option("--seed", args->seed, "randomisation seed (default: the scene's)");
   cmd.add_flag("--no-randomise", args->noRandomise, "use the scene exactly as given, nominal speed");
   cmd.add_option("--speed", args->speed, "demonstrator speed factor (>1 faster)")->check(CLI::Range(0.05, 20.0));
@@ -123,6 +185,7 @@ void setupSynthDemo(CLI::App& cmd) {
                  "RealSense records it); example: sim/cameras/realsense_d435_depth.json");
   cmd.add_flag("--json", args->json, "print the result as JSON");
   cmd.add_flag("-q,--quiet", args->quiet, "no progress on stderr");
+  srp::app::addOverwriteFlag(cmd, args->overwrite);
   cmd.callback([args]() { run(*args); });
 }
 

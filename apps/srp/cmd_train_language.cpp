@@ -13,6 +13,7 @@
 #include "LanguageSwitches.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
+#include "srp/core/OutputFile.h"
 #include "srp/language/CapabilitySuites.h"
 #include "srp/language/LanguageModel.h"
 #include "srp/language/ProtocolComparison.h"
@@ -77,7 +78,17 @@ void setupTrainLanguage(CLI::App& app) {
   auto syntheticCount = std::make_shared<int>(200);
   app.add_option("--write-synthetic", *syntheticOut, "only write synthetic commands (SpERT JSON) to this file");
   app.add_option("--synthetic-count", *syntheticCount, "how many, for --write-synthetic")->capture_default_str();
+  auto overwrite = std::make_shared<bool>(false);
+  srp::app::addOverwriteFlag(app, *overwrite);
   app.callback([=] {
+    std::vector<srp::core::PathRole> inputs = {{"--score", *scorePath}};
+    for (const auto& p : *trainPaths) inputs.push_back({"--train", p});
+    std::vector<srp::core::PathRole> outputs = {{"--write-synthetic", *syntheticOut}};
+    if (syntheticOut->empty() && *cvFolds > 0)
+      outputs = {{"--cv-predictions", *cvPredictions}, {"--cv-json", *cvJson}};
+    else if (syntheticOut->empty())
+      outputs = {{"--out", *outPath}};
+    srp::core::checkOutputPaths(outputs, inputs, *overwrite);
     srp::app::applySwitches(*rules, options->rules, "decoding rule");
     srp::app::applySwitches(*features, options->features, "feature group");
     if (!syntheticOut->empty()) {

@@ -38,21 +38,26 @@ CalibrationPattern CalibrationPattern::parse(const std::string& spec) {
             : kind == "circles"  ? Kind::Circles
             : kind == "acircles" ? Kind::AsymmetricCircles
                                  : Kind::AprilTagBoard;
-  p.cols_ = std::stoi(m[2]);
-  p.rows_ = std::stoi(m[3]);
   try {
+    if (m[2].length() > 4 || m[3].length() > 4 || (m[6].matched && m[6].length() > 6)) throw std::out_of_range("count");
+    p.cols_ = std::stoi(m[2]);
+    p.rows_ = std::stoi(m[3]);
     p.spacing_m_ = std::stod(m[4]);
     if (m[5].matched) p.gap_m_ = std::stod(m[5]);
+    if (m[6].matched) p.firstId_ = std::stoi(m[6]);
   } catch (const std::exception&) {
     throw core::InvalidInputError(usage);
   }
-  if (m[6].matched) p.firstId_ = std::stoi(m[6]);
   if (p.kind_ == Kind::AprilTagBoard && !m[5].matched)
     throw core::InvalidInputError("pattern '" + spec + "': an AprilTag board needs TAG_m and GAP_m (apriltag:4x3:0.04:0.01)");
   if (p.kind_ != Kind::AprilTagBoard && (m[5].matched || m[6].matched)) throw core::InvalidInputError(usage);
   const int minSide = p.kind_ == Kind::AprilTagBoard ? 1 : 2;
   if (p.cols_ < minSide || p.rows_ < minSide || !(p.spacing_m_ > 0.0) || p.gap_m_ < 0.0)
     throw core::InvalidInputError("pattern '" + spec + "': sizes must be positive (at least 2x2 points for grids)");
+  if (p.cols_ > kMaxSide || p.rows_ > kMaxSide || !(p.spacing_m_ <= kMaxSpacing_m) || !(p.gap_m_ <= kMaxSpacing_m))
+    throw core::InvalidInputError("pattern '" + spec + "': at most " + std::to_string(kMaxSide) + " x " +
+                                  std::to_string(kMaxSide) + " points, squares and gaps at most " +
+                                  std::to_string(kMaxSpacing_m) + " m");
   return p;
 }
 
@@ -170,6 +175,12 @@ CalibrationPattern::BoardImage CalibrationPattern::renderBoard(double ppm, doubl
     }
   }
   x0 -= margin_m, y0 -= margin_m, x1 += margin_m, y1 += margin_m;
+  const double width_px = std::ceil((x1 - x0) * ppm), height_px = std::ceil((y1 - y0) * ppm);
+  if (!(width_px >= 1.0 && height_px >= 1.0 && width_px * height_px <= kMaxBoardPixels))
+    throw core::InvalidInputError("the board image would be " + std::to_string(static_cast<long long>(width_px)) +
+                                  " x " + std::to_string(static_cast<long long>(height_px)) + " px, above the limit of " +
+                                  std::to_string(static_cast<long long>(kMaxBoardPixels / 1e6)) +
+                                  " MP; lower --dpi or print a smaller pattern");
   b.origin_px = cv::Point2d(-x0 * ppm, -y0 * ppm);
   b.grey8 = cv::Mat(static_cast<int>(std::ceil((y1 - y0) * ppm)), static_cast<int>(std::ceil((x1 - x0) * ppm)), CV_8UC1,
                     cv::Scalar(255));

@@ -1,17 +1,20 @@
 #include "srp/calib/CameraFiles.h"
 
+#include <unistd.h>
 #include <visp3/core/vpXmlParserCamera.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <regex>
 #include <sstream>
 
 #include "CameraYaml.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
+#include "srp/core/OutputFile.h"
 
 namespace srp::calib {
 
@@ -97,8 +100,9 @@ void saveCameraXml(const std::string& path, const CameraCalibration& camera, con
     cam.initPersProjWithDistortion(K.fx_px, K.fy_px, K.cx_px, K.cy_px, camera.kud, camera.kdu);
   else
     cam.initPersProjWithoutDistortion(K.fx_px, K.fy_px, K.cx_px, K.cy_px);
-  // vpXmlParserCamera adds to an existing file; we replace it, atomically.
-  const std::string tmp = path + ".tmp.xml";
+  // vpXmlParserCamera adds to an existing file: it writes a fresh scratch file,
+  // whose bytes then replace the target atomically (core::writeFileAtomically).
+  const std::string tmp = path + ".srp-xml-" + std::to_string(::getpid()) + ".xml";
   std::error_code ec;
   std::filesystem::remove(tmp, ec);
   vpXmlParserCamera parser;
@@ -108,10 +112,17 @@ void saveCameraXml(const std::string& path, const CameraCalibration& camera, con
     status = parser.save(cam, tmp, camera.name, static_cast<unsigned>(K.width_px), static_cast<unsigned>(K.height_px),
                          comment);
   }
-  if (status != vpXmlParserCamera::SEQUENCE_OK || !std::filesystem::exists(tmp))
+  if (status != vpXmlParserCamera::SEQUENCE_OK || !std::filesystem::exists(tmp)) {
+    std::filesystem::remove(tmp, ec);
     throw core::FileError(path, "cannot write camera XML (is the folder there and writable?)");
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw core::FileError(path, "cannot replace the file: " + ec.message());
+  }
+  std::string bytes;
+  {
+    std::ifstream in(tmp, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  std::filesystem::remove(tmp, ec);
+  core::writeFileAtomically(path, bytes);
 }
 
 CameraFile loadCameraFile(const std::string& path) {

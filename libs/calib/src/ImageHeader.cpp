@@ -1,72 +1,134 @@
+#include "srp/calib/ImageHeader.h"
+
 #include "ImageHeader.h"
 
-#include <array>
+#include <cctype>
+#include <climits>
+#include <cstring>
 #include <fstream>
+#include <vector>
 
-namespace srp::calib::detail {
+#include "srp/core/Error.h"
 
+namespace srp::calib {
 namespace {
 
-// A JPEG header is read at most this far for its SOF segment (EXIF
-// thumbnails come before it; 1 MB is far beyond any camera's).
-constexpr std::streamoff kMaxJpegHeaderScan_bytes = 1 << 20;
-
-unsigned be16(const unsigned char* p) { return (static_cast<unsigned>(p[0]) << 8) | p[1]; }
-unsigned long be32(const unsigned char* p) {
-  return (static_cast<unsigned long>(p[0]) << 24) | (static_cast<unsigned long>(p[1]) << 16) |
-         (static_cast<unsigned long>(p[2]) << 8) | p[3];
+std::uint32_t be32(const unsigned char* p) {
+  return (std::uint32_t(p[0]) << 24) | (std::uint32_t(p[1]) << 16) | (std::uint32_t(p[2]) << 8) | p[3];
 }
-
-std::optional<cv::Size> pngSize(std::ifstream& in) {
-  std::array<unsigned char, 24> h{};
-  in.seekg(0);
-  if (!in.read(reinterpret_cast<char*>(h.data()), h.size())) return std::nullopt;
-  static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
-  for (int i = 0; i < 8; ++i)
-    if (h[i] != kSignature[i]) return std::nullopt;
-  if (h[12] != 'I' || h[13] != 'H' || h[14] != 'D' || h[15] != 'R') return std::nullopt;
-  const unsigned long w = be32(&h[16]), ht = be32(&h[20]);
-  if (w == 0 || ht == 0 || w > 0x7fffffffUL || ht > 0x7fffffffUL) return std::nullopt;
-  return cv::Size(static_cast<int>(w), static_cast<int>(ht));
+std::uint16_t be16(const unsigned char* p) { return static_cast<std::uint16_t>((p[0] << 8) | p[1]); }
+std::uint32_t le32(const unsigned char* p) {
+  return std::uint32_t(p[0]) | (std::uint32_t(p[1]) << 8) | (std::uint32_t(p[2]) << 16) | (std::uint32_t(p[3]) << 24);
 }
+std::uint16_t le16(const unsigned char* p) { return static_cast<std::uint16_t>(p[0] | (p[1] << 8)); }
 
-std::optional<cv::Size> jpegSize(std::ifstream& in) {
-  in.seekg(0);
-  unsigned char soi[2];
-  if (!in.read(reinterpret_cast<char*>(soi), 2) || soi[0] != 0xFF || soi[1] != 0xD8) return std::nullopt;
-  while (in && in.tellg() < kMaxJpegHeaderScan_bytes) {
-    int c = in.get();
-    if (c != 0xFF) return std::nullopt;
-    do c = in.get();
-    while (c == 0xFF);  // fill bytes
-    if (c == EOF) return std::nullopt;
-    const int marker = c;
-    if (marker == 0x01 || (marker >= 0xD0 && marker <= 0xD7)) continue;  // no length
-    unsigned char len[2];
-    if (!in.read(reinterpret_cast<char*>(len), 2)) return std::nullopt;
-    const unsigned length = be16(len);
-    if (length < 2) return std::nullopt;
+std::optional<ImageSize> jpegSize(std::ifstream& in) {
+  in.seekg(2);
+  unsigned char m[9];
+  for (int guard = 0; guard < 10000 && in.read(reinterpret_cast<char*>(m), 4); ++guard) {
+    if (m[0] != 0xFF) return std::nullopt;
+    const unsigned char marker = m[1];
+    if (marker == 0xFF) {  // fill byte: step one byte
+      in.seekg(-3, std::ios::cur);
+      continue;
+    }
+    const std::uint16_t length = be16(m + 2);
     const bool sof = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
     if (sof) {
-      unsigned char f[5];
-      if (length < 7 || !in.read(reinterpret_cast<char*>(f), 5)) return std::nullopt;
-      const unsigned h = be16(&f[1]), w = be16(&f[3]);
-      if (w == 0 || h == 0) return std::nullopt;
-      return cv::Size(static_cast<int>(w), static_cast<int>(h));
+      if (!in.read(reinterpret_cast<char*>(m), 5)) return std::nullopt;
+      return ImageSize{be16(m + 3), be16(m + 1)};
     }
+    if (length < 2) return std::nullopt;
     in.seekg(length - 2, std::ios::cur);
   }
   return std::nullopt;
 }
 
-}  // namespace
-
-std::optional<cv::Size> imageSizeFromHeader(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  if (const auto s = pngSize(in)) return s;
-  in.clear();
-  return jpegSize(in);
+std::optional<ImageSize> pnmSize(std::ifstream& in) {
+  in.seekg(2);
+  std::int64_t values[2];
+  for (auto& v : values) {
+    int c = in.get();
+    while (c != EOF && (std::isspace(c) || c == '#')) {
+      if (c == '#')
+        while (c != EOF && c != '\n') c = in.get();
+      c = in.get();
+    }
+    if (c == EOF || !std::isdigit(c)) return std::nullopt;
+    v = 0;
+    for (int digits = 0; c != EOF && std::isdigit(c) && digits < 12; ++digits, c = in.get()) v = v * 10 + (c - '0');
+  }
+  return ImageSize{values[0], values[1]};
 }
 
-}  // namespace srp::calib::detail
+std::optional<ImageSize> tiffSize(std::ifstream& in, bool little) {
+  unsigned char b[12];
+  in.seekg(4);
+  if (!in.read(reinterpret_cast<char*>(b), 4)) return std::nullopt;
+  const auto u16 = [little](const unsigned char* p) { return little ? le16(p) : be16(p); };
+  const auto u32 = [little](const unsigned char* p) { return little ? le32(p) : be32(p); };
+  in.seekg(u32(b));
+  if (!in.read(reinterpret_cast<char*>(b), 2)) return std::nullopt;
+  const int entries = u16(b);
+  std::optional<std::int64_t> width, height;
+  for (int i = 0; i < entries && i < 1000; ++i) {
+    if (!in.read(reinterpret_cast<char*>(b), 12)) return std::nullopt;
+    const int tag = u16(b), type = u16(b + 2);
+    const std::int64_t value = type == 3 ? u16(b + 8) : u32(b + 8);  // SHORT or LONG
+    if (tag == 256) width = value;
+    if (tag == 257) height = value;
+  }
+  if (!width || !height) return std::nullopt;
+  return ImageSize{*width, *height};
+}
+
+}  // namespace
+
+std::optional<ImageSize> readImageSize(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw core::FileError(path, "cannot open this image");
+  unsigned char h[32] = {};
+  in.read(reinterpret_cast<char*>(h), sizeof(h));
+  const std::streamsize n = in.gcount();
+  in.clear();
+  static const unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  if (n >= 24 && std::memcmp(h, kPng, 8) == 0 && std::memcmp(h + 12, "IHDR", 4) == 0)
+    return ImageSize{be32(h + 16), be32(h + 20)};
+  if (n >= 4 && h[0] == 0xFF && h[1] == 0xD8) return jpegSize(in);
+  if (n >= 26 && h[0] == 'B' && h[1] == 'M') {
+    const std::int32_t height = static_cast<std::int32_t>(le32(h + 22));
+    return ImageSize{static_cast<std::int32_t>(le32(h + 18)), height < 0 ? -std::int64_t(height) : height};
+  }
+  if (n >= 3 && h[0] == 'P' && h[1] >= '1' && h[1] <= '6') return pnmSize(in);
+  if (n >= 8 && ((h[0] == 'I' && h[1] == 'I' && h[2] == 42) || (h[0] == 'M' && h[1] == 'M' && h[3] == 42)))
+    return tiffSize(in, h[0] == 'I');
+  return std::nullopt;
+}
+
+ImageSize checkImageFile(const std::string& path, std::int64_t maxPixels) {
+  const std::optional<ImageSize> size = readImageSize(path);
+  if (!size)
+    throw core::FileError(path, "not a PNG, JPEG, BMP, PNM or TIFF image whose size can be read before decoding; "
+                                "convert it to PNG");
+  if (size->width_px <= 0 || size->height_px <= 0 || size->width_px > maxPixels || size->height_px > maxPixels ||
+      size->width_px * size->height_px > maxPixels)
+    throw core::FileError(path, "the image declares " + std::to_string(size->width_px) + " x " +
+                                    std::to_string(size->height_px) + " px, outside the limit of " +
+                                    std::to_string(maxPixels / 1000000) +
+                                    " MP (a damaged file, or a decompression bomb); it was not decoded");
+  return *size;
+}
+
+namespace detail {
+
+std::optional<cv::Size> imageSizeFromHeader(const std::string& path) {
+  if (!std::ifstream(path, std::ios::binary)) return std::nullopt;
+  const std::optional<ImageSize> size = readImageSize(path);
+  if (!size || size->width_px <= 0 || size->height_px <= 0 || size->width_px > INT_MAX || size->height_px > INT_MAX)
+    return std::nullopt;
+  return cv::Size(static_cast<int>(size->width_px), static_cast<int>(size->height_px));
+}
+
+}  // namespace detail
+
+}  // namespace srp::calib

@@ -163,6 +163,7 @@ IntrinsicCalibrationResult calibrateIntrinsicsFromFiles(const std::vector<std::s
                                                         const IntrinsicCalibrationOptions& options) {
   if (paths.empty()) throw core::InvalidInputError("calibration: no image files given");
   std::vector<cv::Mat> images;
+  for (const auto& p : paths) checkImageFile(p, options.maxImagePixels);  // all of them, before any is decoded
   for (const auto& p : paths) {
     cv::Mat img = cv::imread(p, cv::IMREAD_UNCHANGED);
     if (img.empty()) throw core::FileError(p, "cannot read this image (missing, or not an image OpenCV can decode)");

@@ -4,6 +4,7 @@
 
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
+#include "srp/core/SafeText.h"
 
 namespace srp::core {
 namespace {
@@ -54,13 +55,15 @@ ObjectClass objectClassFromJson(const nlohmann::json& j, const std::string& cont
   ObjectClass c;
   try {
     c.name = requireField(j, "name", context).get<std::string>();
-    if (c.name.empty()) throw InvalidInputError(context + ": field 'name' is empty");
+    requireSafeName(c.name, context + ": field 'name'");
     const std::string ctx = context + " ('" + c.name + "')";
     const auto& id = requireField(j, "class_id", ctx);
     if (!id.is_number_integer()) throw InvalidInputError(ctx + ": field 'class_id' must be a whole number");
     c.classId = id.get<int>();
     c.noun = j.value("noun", c.name);
     c.colourName = j.value("color_name", "");
+    requireSafeName(c.noun, ctx + ": field 'noun'");
+    if (!c.colourName.empty()) requireSafeName(c.colourName, ctx + ": field 'color_name'");
     const std::string kind = requireField(j, "kind", ctx).get<std::string>();
     if (kind == "part") c.kind = ObjectKind::Part;
     else if (kind == "container") c.kind = ObjectKind::Container;

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -18,16 +19,19 @@ namespace {
 std::atomic<std::int64_t> gFailAfterBytes{-1};  // < 0: off
 std::atomic<unsigned> gTemporaryCounter{0};
 
+// `.<name>.srp-<kind>-<pid>-<n><extension>`: the target's extension is kept, so a
+// library that picks its format by the extension (cv::imwrite, cv::VideoWriter)
+// writes the temporary as it would the target.
 fs::path temporarySibling(const fs::path& target, const char* kind) {
   const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
   return parent / ("." + target.filename().string() + ".srp-" + kind + "-" + std::to_string(::getpid()) + "-" +
-                   std::to_string(gTemporaryCounter.fetch_add(1)));
+                   std::to_string(gTemporaryCounter.fetch_add(1)) + target.extension().string());
 }
 
 fs::path normalised(const fs::path& p) {
   std::error_code ec;
-  fs::path c = fs::weakly_canonical(p, ec);
-  return ec ? fs::absolute(p).lexically_normal() : c;
+  fs::path c = fs::weakly_canonical(fs::absolute(p), ec);  // "./x" and "x" alike, also when x does not exist
+  return (ec ? fs::absolute(p) : c).lexically_normal();
 }
 
 void fsyncFolder(const fs::path& folder) {
@@ -70,6 +74,9 @@ void checkOutputPaths(const std::vector<PathRole>& outputs, const std::vector<Pa
         throw InvalidInputError("the output " + describe(out) + " is the input " + describe(in) +
                                 (inputIsFolder ? " or inside it" : "") +
                                 ": writing it would destroy the input; choose another output path");
+      if (fs::is_directory(out.path, ec) && isBelow(in.path, out.path))
+        throw InvalidInputError("the output folder " + describe(out) + " holds the input " + describe(in) +
+                                ": replacing the folder would destroy the input; choose another output folder");
     }
     for (std::size_t j = 0; j < i; ++j)
       if (!outputs[j].path.empty() && isSameFile(out.path, outputs[j].path))
@@ -80,6 +87,29 @@ void checkOutputPaths(const std::vector<PathRole>& outputs, const std::vector<Pa
       throw InvalidInputError("the output " + describe(out) +
                               " exists already; pass -w/--overwrite to replace it, or choose another path");
   }
+}
+
+void checkFolderHoldsOnly(const fs::path& folder, const std::vector<std::string>& names, const std::string& role) {
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) return;
+  std::string foreign;
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(folder, ec)) {
+    const std::string name = entry.path().filename().string();
+    const auto matches = [&name](const std::string& pattern) {
+      if (!pattern.empty() && pattern.back() == '*') return name.rfind(pattern.substr(0, pattern.size() - 1), 0) == 0;
+      if (!pattern.empty() && pattern.front() == '*')
+        return name.size() >= pattern.size() - 1 && name.compare(name.size() - (pattern.size() - 1), std::string::npos,
+                                                                 pattern, 1, std::string::npos) == 0;
+      return name == pattern;
+    };
+    if (std::any_of(names.begin(), names.end(), matches)) continue;
+    if (++count <= 3) foreign += (foreign.empty() ? "'" : ", '") + name + "'";
+  }
+  if (count > 0)
+    throw InvalidInputError("the output folder " + role + " '" + folder.string() + "' holds " + std::to_string(count) +
+                            " file(s) this command did not write (" + foreign + (count > 3 ? ", ..." : "") +
+                            "), which replacing it would delete; choose a new or empty folder");
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -156,11 +186,11 @@ void AtomicOutputFile::prepare() {
   prepared_ = true;
 }
 
-void AtomicOutputFile::renameOverTarget() {
+void AtomicOutputFile::renameOverTarget(bool syncFolder) {
   if (::rename(temporary_.c_str(), target_.c_str()) != 0)
     throw FileError(target_.string(), std::string("cannot replace it (") + std::strerror(errno) + ")");
   committed_ = true;
-  fsyncFolder(target_.has_parent_path() ? target_.parent_path() : fs::path("."));
+  if (syncFolder) fsyncFolder(target_.has_parent_path() ? target_.parent_path() : fs::path("."));
 }
 
 void AtomicOutputFile::commit() {
@@ -196,9 +226,12 @@ void writeFilesTogether(const std::vector<std::pair<fs::path, std::string>>& fil
       throw FileError(outs[i].target().string(), "cannot keep a backup of the previous file (" + ec.message() + ")");
     }
   }
+  // The renames back to back (the folders are fsync'ed after the last one), so
+  // that the moment in which a kill could leave one new and one previous file
+  // is as short as two system calls.
   std::size_t renamed = 0;
   try {
-    for (; renamed < outs.size(); ++renamed) outs[renamed].renameOverTarget();
+    for (; renamed < outs.size(); ++renamed) outs[renamed].renameOverTarget(false);
   } catch (...) {
     std::error_code ec;
     for (std::size_t i = 0; i < renamed; ++i) {
@@ -211,6 +244,7 @@ void writeFilesTogether(const std::vector<std::pair<fs::path, std::string>>& fil
       if (!backups[i].empty()) fs::remove(backups[i], ec);
     throw;
   }
+  for (const auto& o : outs) fsyncFolder(o.target().has_parent_path() ? o.target().parent_path() : fs::path("."));
   std::error_code ec;
   for (const auto& b : backups)
     if (!b.empty()) fs::remove(b, ec);

@@ -8,6 +8,7 @@
 #include "srp/core/DefaultScene.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
+#include "srp/core/SafeText.h"
 #include "srp/core/ObjectClassJson.h"
 
 namespace srp::core {
@@ -83,6 +84,7 @@ Scene Scene::fromJson(const nlohmann::json& j, const std::string& ctx, const std
       throw InvalidInputError(ctx + ": scene schema_version " + std::to_string(version) +
                               " is not supported by this build (expected 1)");
     s.name = j.value("name", s.name);
+    requireSafeName(s.name, ctx + ": field 'name'");
     s.seed = j.value("seed", 0);
     // Absolute, so a scene written elsewhere (toJson) still finds its catalogue.
     s.cataloguePath = j.contains("catalogue")
@@ -122,10 +124,13 @@ Scene Scene::fromJson(const nlohmann::json& j, const std::string& ctx, const std
       const std::string octx = ctx + ": objects[" + std::to_string(i) + "]";
       SceneObject o;
       o.id = requireField(objects[i], "id", octx).get<std::string>();
+      requireSafeName(o.id, octx + " field 'id'");
       o.className = requireField(objects[i], "class", octx + " ('" + o.id + "')").get<std::string>();
+      requireSafeName(o.className, octx + " ('" + o.id + "') field 'class'");
       o.X_world_object = poseFromJson(requireField(objects[i], "X_world_object", octx + " ('" + o.id + "')"),
                                       octx + " ('" + o.id + "').X_world_object");
       o.colour = objects[i].value("color", std::string());
+      if (!o.colour.empty()) requireSafeName(o.colour, octx + " ('" + o.id + "') field 'color'");
       if (objects[i].contains("rgb")) {
         o.rgb = vec3(objects[i].at("rgb"), octx + " ('" + o.id + "'): field 'rgb'");
         if ((o.rgb->array() < 0.0).any() || (o.rgb->array() > 1.0).any())

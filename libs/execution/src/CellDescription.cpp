@@ -75,6 +75,7 @@ CellDescription CellDescription::fromScene(const srp::core::Scene& scene,
     o.noun = c.noun;
     o.classId = c.classId;
     o.meshPath = c.meshPath;
+    o.meshScale = c.meshScale;
     if (c.observed) o.observedClass = c;
     cell.objects.push_back(o);
   }

@@ -101,7 +101,7 @@ CellRenderer::CellRenderer(RobotModel model, CellDescription cell, CellRendererO
     if (o.observedClass)  // seen without a CAD file: its hull prism
       m.partMeshes[o.name] = triangles(srp::kb::makeClassMesh(*o.observedClass), Pose3::Identity(), o.rgb);
     else if (!o.meshPath.empty() && std::filesystem::exists(o.meshPath))
-      m.partMeshes[o.name] = triangles(srp::kb::TriangleMesh::load(o.meshPath), Pose3::Identity(), o.rgb);
+      m.partMeshes[o.name] = triangles(srp::kb::TriangleMesh::load(o.meshPath).scaled(o.meshScale), Pose3::Identity(), o.rgb);
   }
   try {
     m.fbo = std::make_unique<mrpt::opengl::CFBORender>(options.width_px, options.height_px);

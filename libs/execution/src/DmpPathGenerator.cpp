@@ -6,10 +6,14 @@
 #include <vector>
 
 #include "srp/core/Error.h"
+#include "srp/core/SafeText.h"
 
 namespace srp::execution {
 
 namespace {
+/// Longest demonstrated Reach or Move segment a DMP may replay [s].
+constexpr double kMaxSegmentDuration_s = 600.0;
+
 double minimumJerk(double tau) {
   tau = std::clamp(tau, 0.0, 1.0);
   return tau * tau * tau * (10.0 - 15.0 * tau + 6.0 * tau * tau);
@@ -50,11 +54,20 @@ DmpPathGenerator DmpPathGenerator::fromTaskModel(const srp::taskdb::TaskModel& m
     if (row.skill != srp::core::SkillType::Reach && row.skill != srp::core::SkillType::Move) continue;
     const auto* grounded = model.findGrounded(row.classId);
     const std::string object = grounded ? grounded->objectName : "class " + std::to_string(row.classId);
-    if (!row.parameters.contains("dmp") || row.parameters.at("dmp").is_null()) continue;
+    const std::string where = "Skills row " + srp::core::toString(row.skill) + " of the " + object + " of task model " +
+                              std::to_string(model.info.id) + ", column Parameters";
+    // A row that is there must be usable: never a silent fall-back to another path.
+    if (!row.parameters.is_object() || !row.parameters.contains("dmp") || !row.parameters.at("dmp").is_object())
+      throw srp::core::InvalidInputError(where + ": no learned DMP (field 'dmp' " +
+                                         (row.parameters.is_object() && row.parameters.contains("dmp")
+                                              ? std::string("is ") + row.parameters.at("dmp").type_name()
+                                              : std::string("is missing")) +
+                                         "); re-learn the skills with 'srp motion', or remove the task's Skills rows "
+                                         "to execute with minimum-jerk paths");
     const std::string frame = row.parameters.value("frame", std::string("camera"));
     if (frame != "camera")
-      throw srp::core::InvalidInputError("Skills row " + srp::core::toString(row.skill) + " of the " + object +
-                                         ": frame '" + frame + "' is not supported (DMPs are executed from the camera frame)");
+      throw srp::core::InvalidInputError(where + ": frame '" + srp::core::exportSafeText(frame, 40) +
+                                         "' is not supported (DMPs are executed from the camera frame)");
     try {
       srp::motion::Dmp dmp = srp::motion::Dmp::fromJson(row.parameters.at("dmp"));
       // Re-targeted to a start/goal in another direction, an unscaled forcing term
@@ -69,11 +82,15 @@ DmpPathGenerator DmpPathGenerator::fromTaskModel(const srp::taskdb::TaskModel& m
       }
       if (dmp.dimensions() != 3)
         throw srp::core::InvalidInputError("the DMP has " + std::to_string(dmp.dimensions()) + " dimensions, not 3");
+      // A rollout is as long as the demonstrated segment: bound it before anything is allocated.
+      if (!(dmp.demoDuration_s() <= kMaxSegmentDuration_s))
+        throw srp::core::InvalidInputError("the DMP's demonstrated duration " + std::to_string(dmp.demoDuration_s()) +
+                                           " s is above " + std::to_string(kMaxSegmentDuration_s) + " s");
       (row.skill == srp::core::SkillType::Reach ? skills[object].reach : skills[object].move) = std::move(dmp);
     } catch (const srp::core::Error& e) {
-      throw srp::core::InvalidInputError("Skills row " + srp::core::toString(row.skill) + " of the " + object +
-                                         " of task model " + std::to_string(model.info.id) + ": " + e.what() +
-                                         " (re-learn the skills with 'srp motion')");
+      throw srp::core::InvalidInputError(where + ": " + e.what() + " (re-learn the skills with 'srp motion')");
+    } catch (const nlohmann::json::exception& e) {
+      throw srp::core::InvalidInputError(where + ": " + e.what() + " (re-learn the skills with 'srp motion')");
     }
   }
   return DmpPathGenerator(std::move(skills), X_world_camera, fallback, endHeight_m, moveEndHeight_m);

@@ -1,5 +1,8 @@
 #include "srp/execution/ExecutedTask.h"
 
+#include <cstdint>
+#include <cstdio>
+
 #include "srp/core/Error.h"
 
 namespace srp::execution {
@@ -28,6 +31,27 @@ std::optional<std::string> ExecutedTask::whyNotExportable() const {
   if (report.done() == 0) return std::string("no step was done, there is no motion to export");
   if (trajectory.empty()) return std::string("no commanded trajectory was recorded");
   return std::nullopt;
+}
+
+std::string ExecutedTask::trajectoryId() const {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a, 64 bit
+  const auto mix = [&h](const void* data, std::size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
+  };
+  for (const auto& s : trajectory.samples()) {
+    mix(&s.t_s, sizeof(s.t_s));
+    mix(s.q_rad.data(), sizeof(double) * 6);
+    mix(s.qd_radps.data(), sizeof(double) * 6);
+  }
+  for (const auto& e : gripperEvents) {
+    const int kind = e.kind == GripperEvent::Kind::Grasp ? 1 : 2;
+    mix(&kind, sizeof(kind));
+    mix(&e.t_s, sizeof(e.t_s));
+  }
+  char text[17];
+  std::snprintf(text, sizeof(text), "%016llx", static_cast<unsigned long long>(h));
+  return text;
 }
 
 void ExecutedTask::requireExportable(const std::string& what) const {

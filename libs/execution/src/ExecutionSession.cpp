@@ -11,6 +11,7 @@
 #include "srp/core/DefaultScene.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
+#include "srp/core/OutputFile.h"
 #include "srp/execution/CellRenderer.h"
 #include "srp/execution/DemonstrationScene.h"
 #include "srp/execution/DmpPathGenerator.h"
@@ -60,9 +61,15 @@ srp::core::Scene sceneAfter(const srp::core::Scene& before, const CellDescriptio
   return after;
 }
 
+namespace {
+/// What `srp execute --out` writes: a folder holding anything else is not replaced.
+const std::vector<std::string> kOutputFolderFiles = {"report.json", "report.txt", "joints.csv", "final_scene.json",
+                                                     "frames"};
+}  // namespace
+
 ExecuteResult executeTask(const ExecuteRequest& request) {
   ExecuteResult result;
-  if (!std::filesystem::exists(request.databasePath))
+  if (!srp::taskdb::TaskDatabase::isServerUri(request.databasePath) && !std::filesystem::exists(request.databasePath))
     throw srp::core::FileError(request.databasePath, "no such task database (create one with 'srp program' or 'srp db')");
   auto db = srp::taskdb::TaskDatabase::open(request.databasePath, srp::taskdb::TaskDatabase::Mode::ReadOnly);
   const srp::taskdb::TaskModelStore store(db);
@@ -146,10 +153,16 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
   std::unique_ptr<CellRenderer> renderer;
   std::string framesFolder;
   int snapshotCount = 0;
+  // The output folder is built beside its target and renamed into place at the end:
+  // a failed run leaves no half-made folder and a previous one as it was.
+  std::optional<srp::core::AtomicOutputFolder> output;
+  std::string outputFolder;  // where the files go until the commit
   if (!request.outputFolder.empty()) {
-    std::filesystem::create_directories(request.outputFolder);
+    srp::core::checkFolderHoldsOnly(request.outputFolder, kOutputFolderFiles, "--out");
+    output.emplace(request.outputFolder);
+    outputFolder = output->temporaryPath().string();
     if (request.framePeriod > 0) {
-      framesFolder = request.outputFolder + "/frames";
+      framesFolder = outputFolder + "/frames";
       std::filesystem::create_directories(framesFolder);
       CellRendererOptions view;
       view.drawSafetySpheres = request.drawSafetySpheres;
@@ -160,7 +173,7 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
         name << framesFolder << "/frame_" << std::setw(5) << std::setfill('0') << snapshotCount / request.framePeriod
              << ".png";
         renderer->renderPng(s, name.str());
-        result.writtenFiles.push_back(name.str());
+        result.writtenFiles.push_back(request.outputFolder + name.str().substr(outputFolder.size()));
       });
     }
   }
@@ -183,14 +196,15 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
   result.executed.instruction = request.instruction.empty() ? model.info.instruction : request.instruction;
   result.executed.scene = scenePath;
 
-  if (!request.outputFolder.empty()) {
+  if (output) {
     nlohmann::json j = result.report.toJson();
     j["task_model_id"] = request.taskModelId;
     j["scene"] = scenePath;
-    srp::core::writeJsonFile(request.outputFolder + "/report.json", j);
-    std::ofstream(request.outputFolder + "/report.txt") << result.report.toText();
-    executor.writeJointLogCsv(request.outputFolder + "/joints.csv");
-    srp::core::writeJsonFile(request.outputFolder + "/final_scene.json", sceneAfter(scene, executor.perceive()).toJson());
+    srp::core::writeJsonFile(outputFolder + "/report.json", j);
+    srp::core::writeFileAtomically(outputFolder + "/report.txt", result.report.toText());
+    executor.writeJointLogCsv(outputFolder + "/joints.csv");
+    srp::core::writeJsonFile(outputFolder + "/final_scene.json", sceneAfter(scene, executor.perceive()).toJson());
+    output->commit();
     for (const char* f : {"/report.json", "/report.txt", "/joints.csv", "/final_scene.json"}) result.writtenFiles.push_back(request.outputFolder + f);
   }
   return result;

@@ -4,8 +4,10 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <sstream>
 
 #include "srp/core/Error.h"
+#include "srp/core/OutputFile.h"
 
 namespace srp::execution {
 
@@ -112,8 +114,7 @@ void JointTrajectory::append(const JointTrajectory& next) {
 }
 
 void JointTrajectory::writeCsv(const std::string& path) const {
-  std::ofstream out(path);
-  if (!out) throw srp::core::FileError(path, "cannot write the joint trajectory CSV");
+  std::ostringstream out;
   out << "t_s";
   for (int i = 1; i <= 6; ++i) out << ",q" << i << "_rad";
   for (int i = 1; i <= 6; ++i) out << ",qd" << i << "_radps";
@@ -124,6 +125,7 @@ void JointTrajectory::writeCsv(const std::string& path) const {
     for (int i = 0; i < 6; ++i) out << "," << s.qd_radps[i];
     out << "\n";
   }
+  srp::core::writeFileAtomically(path, out.str());
 }
 
 }  // namespace srp::execution

@@ -1,12 +1,13 @@
 #include "srp/execution/TaskExecutor.h"
 
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <iomanip>
-#include <cmath>
 #include <sstream>
 
 #include "srp/core/Error.h"
+#include "srp/core/OutputFile.h"
 #include "srp/core/Pose.h"
 #include "srp/execution/MinimumJerkPathGenerator.h"
 #include "srp/execution/PathRetimer.h"
@@ -77,8 +78,7 @@ JointVector TaskExecutor::defaultHome(const RobotModel& model, const Pose3& X_wo
 }
 
 void TaskExecutor::writeJointLogCsv(const std::string& path) const {
-  std::ofstream out(path);
-  if (!out) throw srp::core::FileError(path, "cannot write the joint log CSV");
+  std::ostringstream out;
   out << "t_s";
   for (int i = 0; i < 6; ++i) out << "," << model_.joints()[i].name << "_rad";
   for (int i = 0; i < 6; ++i) out << "," << model_.joints()[i].name << "_ref_rad";
@@ -89,6 +89,7 @@ void TaskExecutor::writeJointLogCsv(const std::string& path) const {
     for (int i = 0; i < 6; ++i) out << "," << s.qRef_rad[i];
     out << "," << s.graspedPart.value_or("") << "\n";
   }
+  srp::core::writeFileAtomically(path, out.str());
 }
 
 CellDescription TaskExecutor::perceive() const {

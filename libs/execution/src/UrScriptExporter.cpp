@@ -1,11 +1,13 @@
 #include "srp/execution/UrScriptExporter.h"
 
+#include <cctype>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <sstream>
 
 #include "srp/core/Error.h"
+#include "srp/core/OutputFile.h"
+#include "srp/core/SafeText.h"
 
 namespace srp::execution {
 namespace {
@@ -18,11 +20,14 @@ std::string jointList(const JointVector& q, int decimals) {
   return o.str();
 }
 
-/// A comment line: no line breaks inside.
-std::string oneLine(std::string s) {
-  for (char& c : s)
-    if (c == '\n' || c == '\r') c = ' ';
-  return s;
+/// Text from a user or a file inside a comment: printable ASCII only (core/SafeText.h).
+std::string oneLine(const std::string& s) { return srp::core::exportSafeText(s); }
+
+bool isIdentifier(const std::string& name) {
+  if (name.empty() || name.size() > 64 || !std::isalpha(static_cast<unsigned char>(name[0]))) return false;
+  for (char c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_') return false;
+  return true;
 }
 
 }  // namespace
@@ -44,8 +49,9 @@ UrScriptExporter::UrScriptExporter(UrScriptOptions options) : options_(std::move
   if (!(o.preambleSpeed_radps > 0.0 && o.preambleSpeed_radps <= 1.0) || !(o.preambleAcceleration_radps2 > 0.0) ||
       !(o.stopDeceleration_radps2 > 0.0))
     bad("preamble speed must be within (0, 1] rad/s and the accelerations positive");
-  if (o.programName.empty() || !std::isalpha(static_cast<unsigned char>(o.programName[0])))
-    bad("program name '" + o.programName + "' must start with a letter");
+  if (!isIdentifier(o.programName))
+    bad("program name '" + oneLine(o.programName) +
+        "' must be a URScript identifier: a letter, then up to 63 letters, digits or '_'");
 }
 
 std::string UrScriptExporter::toScript(const ExecutedTask& task) const {
@@ -61,15 +67,17 @@ std::string UrScriptExporter::toScript(const ExecutedTask& task) const {
   double peakSpeed = 0.0, peakAcc = 0.0;
   int peakSpeedJoint = 0;
   for (int k = 0; k < ticks; ++k) {
+    if (!q[k].allFinite())
+      throw srp::core::InvalidInputError("UrScriptExporter: tick " + std::to_string(k) + " holds a non-finite joint position");
     for (int j = 0; j < 6; ++j) {
       if (q[k][j] < task.lower_rad[j] || q[k][j] > task.upper_rad[j])
         throw srp::core::InvalidInputError("UrScriptExporter: tick " + std::to_string(k) + " puts " +
-                                           task.jointNames[j] + " outside its position limits");
+                                           oneLine(task.jointNames[j]) + " outside its position limits");
       if (k == 0) continue;
       const double v = std::abs(q[k][j] - q[k - 1][j]) / T;
       if (v > task.maxVelocity_radps[j] * (1.0 + 1e-9))
         throw srp::core::InvalidInputError("UrScriptExporter: tick " + std::to_string(k) + " moves " +
-                                           task.jointNames[j] + " at " + std::to_string(v) +
+                                           oneLine(task.jointNames[j]) + " at " + std::to_string(v) +
                                            " rad/s, above its checked limit " +
                                            std::to_string(task.maxVelocity_radps[j]) + " rad/s");
       if (v > peakSpeed) peakSpeed = v, peakSpeedJoint = j;
@@ -86,6 +94,7 @@ std::string UrScriptExporter::toScript(const ExecutedTask& task) const {
   s << "# task model: " << (task.taskModelId ? std::to_string(task.taskModelId) : std::string("-")) << " '"
     << oneLine(task.taskName) << "'\n";
   s << "# instruction: " << (task.instruction.empty() ? "(the stored plan)" : oneLine(task.instruction)) << "\n";
+  s << "# trajectory id: " << task.trajectoryId() << " (the ROS 2 YAML of the same execution has the same id)\n";
   if (!task.scene.empty()) s << "# scene: " << oneLine(task.scene) << "\n";
   for (const auto& st : task.report.steps)
     s << "# step " << st.index + 1 << ": " << oneLine(st.object) << " -> " << oneLine(st.relation) << ": "
@@ -95,13 +104,13 @@ std::string UrScriptExporter::toScript(const ExecutedTask& task) const {
     << " Hz), lookahead " << o.servoLookahead_s << " s, gain " << std::setprecision(0) << o.servoGain
     << std::setprecision(3) << "; " << ticks << " ticks\n";
   s << "# joints (rad, base to wrist):";
-  for (int j = 0; j < 6; ++j) s << " " << task.jointNames[j];
+  for (int j = 0; j < 6; ++j) s << " " << oneLine(task.jointNames[j]);
   s << "\n# limits checked: joint positions within the URDF limits; joint speeds <= URDF limit x "
     << task.velocityFraction << " =";
   for (int j = 0; j < 6; ++j) s << " " << task.maxVelocity_radps[j];
   s << " rad/s;\n#   joint accelerations on the spline <= " << task.maxAcceleration_radps2
     << " rad/s^2; arm above the table and clear of the container walls (SafetyChecker)\n";
-  s << "# in this program: peak joint speed " << peakSpeed << " rad/s (" << task.jointNames[peakSpeedJoint]
+  s << "# in this program: peak joint speed " << peakSpeed << " rad/s (" << oneLine(task.jointNames[peakSpeedJoint])
     << "), peak joint acceleration " << peakAcc << " rad/s^2\n";
   s << "# gripper: tool digital output " << o.gripperDigitalOut << ": True = grasp (suction on), False = release; wait "
     << o.gripperWait_s << " s after each switch\n";
@@ -147,11 +156,7 @@ std::string UrScriptExporter::toScript(const ExecutedTask& task) const {
 }
 
 void UrScriptExporter::write(const ExecutedTask& task, const std::string& path) const {
-  const std::string text = toScript(task);
-  std::ofstream out(path);
-  if (!out) throw srp::core::FileError(path, "cannot write the URScript program");
-  out << text;
-  if (!out) throw srp::core::FileError(path, "writing the URScript program failed");
+  srp::core::writeFileAtomically(path, toScript(task));
 }
 
 }  // namespace srp::execution

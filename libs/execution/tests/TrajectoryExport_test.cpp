@@ -9,6 +9,8 @@
 #include <regex>
 #include <sstream>
 
+#include <yaml-cpp/yaml.h>
+
 #include "srp/core/Error.h"
 #include "srp/execution/ExecutedTask.h"
 #include "srp/execution/MinimumJerkPathGenerator.h"
@@ -113,31 +115,42 @@ struct ParsedYaml {
   std::vector<YamlPoint> points;
 };
 
+/// Reads the YAML with a YAML parser (yaml-cpp), as a ROS tool would: exactly one document.
 ParsedYaml readYaml(const std::string& text) {
   ParsedYaml y;
-  std::istringstream in(text);
-  std::string line;
-  std::smatch m;
-  const std::regex names(R"(^joint_names: \[(.*)\]$)");
-  const std::regex pos(R"(^- positions: \[(.*)\]$)");
-  const std::regex vel(R"(^  velocities: \[(.*)\]$)");
-  const std::regex time(R"(^  time_from_start: \{sec: ([0-9]+), nanosec: ([0-9]+)\}$)");
-  while (std::getline(in, line)) {
-    if (std::regex_match(line, m, names)) {
-      std::istringstream l(m[1].str());
-      std::string n;
-      while (std::getline(l, n, ',')) y.jointNames.push_back(n.substr(n.find_first_not_of(' ')));
-    } else if (std::regex_match(line, m, pos)) {
-      y.points.emplace_back();
-      y.points.back().q = parseJoints(m[1]);
-    } else if (std::regex_match(line, m, vel) && !y.points.empty()) {
-      y.points.back().qd = parseJoints(m[1]);
-    } else if (std::regex_match(line, m, time) && !y.points.empty()) {
-      y.points.back().sec = std::stoll(m[1]);
-      y.points.back().nanosec = std::stoll(m[2]);
-    }
+  const std::vector<YAML::Node> documents = YAML::LoadAll(text);
+  EXPECT_EQ(documents.size(), 1u);
+  if (documents.size() != 1) return y;
+  const YAML::Node& d = documents.front();
+  for (const auto& n : d["joint_names"]) y.jointNames.push_back(n.as<std::string>());
+  auto joints = [](const YAML::Node& list) {
+    JointVector q = JointVector::Constant(std::nan(""));
+    for (std::size_t i = 0; i < 6 && i < list.size(); ++i) q[static_cast<int>(i)] = list[i].as<double>();
+    return q;
+  };
+  for (const auto& p : d["points"]) {
+    YamlPoint point;
+    point.q = joints(p["positions"]);
+    point.qd = joints(p["velocities"]);
+    point.sec = p["time_from_start"]["sec"].as<long long>();
+    point.nanosec = p["time_from_start"]["nanosec"].as<long long>();
+    y.points.push_back(point);
   }
   return y;
+}
+
+/// What a joint_trajectory_controller interpolates: the cubic Hermite spline through
+/// the points' positions and velocities.
+JointTrajectory controllerSpline(const ParsedYaml& y) {
+  std::vector<JointTrajectorySample> knots;
+  for (const auto& p : y.points) {
+    JointTrajectorySample s;
+    s.t_s = p.sec + p.nanosec * 1e-9;
+    s.q_rad = p.q;
+    s.qd_radps = p.qd;
+    knots.push_back(s);
+  }
+  return JointTrajectory::fromSamples(knots);
 }
 
 }  // namespace
@@ -243,29 +256,35 @@ TEST(TrajectoryExport, RosYamlHoldsTheCheckedTrajectory) {
   }
   // A joint_trajectory_controller interpolates positions + velocities with cubic
   // Hermite splines: between the points that is the checked trajectory again.
-  std::vector<double> t;
-  std::vector<JointTrajectorySample> knots;
-  for (const auto& p : y.points) {
-    JointTrajectorySample s;
-    s.t_s = p.sec + p.nanosec * 1e-9;
-    s.q_rad = p.q;
-    s.qd_radps = p.qd;
-    knots.push_back(s);
-  }
-  const JointTrajectory controller = JointTrajectory::fromSamples(knots);
+  const JointTrajectory controller = controllerSpline(y);
   for (double ts = 0.0; ts < task.trajectory.duration_s(); ts += 0.0037)
     ASSERT_LT((controller.at(ts).q_rad - task.trajectory.at(ts).q_rad).cwiseAbs().maxCoeff(), kPositionTol_rad) << ts;
 
-  // Thinned for small messages: points at least 0.1 s apart, the ends kept.
-  RosTrajectoryOptions thin;
-  thin.pointPeriod_s = 0.1;
-  const ParsedYaml few = readYaml(RosTrajectoryExporter(thin).toYaml(task));
-  ASSERT_GE(few.points.size(), 2u);
-  EXPECT_LT(few.points.size(), samples.size() / 5);
-  for (std::size_t i = 1; i + 1 < few.points.size(); ++i)
-    EXPECT_GE((few.points[i].sec - few.points[i - 1].sec) + (few.points[i].nanosec - few.points[i - 1].nanosec) * 1e-9,
-              0.1 - kTimeTol_s);
-  EXPECT_NEAR(few.points.back().sec + few.points.back().nanosec * 1e-9, task.trajectory.duration_s(), kTimeTol_s);
+  // Thinned for small messages: about one point per period, the ends kept, a knot
+  // dropped only where the controller's spline through the others keeps the limits
+  // and stays within maxThinningDeviation_rad of the checked trajectory.
+  int thinnedWritten = 0, thinnedRefused = 0;
+  for (const double period : {0.02, 0.05, 0.1, 0.5}) {
+    RosTrajectoryOptions thin;
+    thin.pointPeriod_s = period;
+    try {
+      const ParsedYaml few = readYaml(RosTrajectoryExporter(thin).toYaml(task));
+      ++thinnedWritten;
+      ASSERT_GE(few.points.size(), 2u);
+      EXPECT_LT(few.points.size(), samples.size());
+      EXPECT_NEAR(few.points.back().sec + few.points.back().nanosec * 1e-9, task.trajectory.duration_s(), kTimeTol_s);
+      const double off = RosTrajectoryExporter::deviation_rad(controllerSpline(few), task.trajectory);
+      EXPECT_LE(off, thin.maxThinningDeviation_rad + kPositionTol_rad) << "period " << period;
+      std::printf("thinned every %.2f s: %zu of %zu points, %.2f mrad from the checked trajectory\n", period,
+                  few.points.size(), samples.size(), 1000.0 * off);
+    } catch (const srp::core::InvalidInputError& e) {
+      ++thinnedRefused;
+      EXPECT_NE(std::string(e.what()).find("--ros-point-period"), std::string::npos) << e.what();
+      std::printf("thinned every %.2f s: refused (%s)\n", period, e.what());
+    }
+  }
+  EXPECT_EQ(thinnedWritten, 4);  // where a limit binds, knots are kept rather than the export refused
+  EXPECT_EQ(thinnedRefused, 0);
 }
 
 // A step refused by the safety check (a path too fast for the joints, no slow-down

@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/core/OutputFile.h"
+#include "srp/core/SafeText.h"
+#include "srp/kb/MeshValidator.h"
 #include "srp/kb/ShapeMeshes.h"
 
 namespace srp::kb {
@@ -18,6 +19,27 @@ Eigen::Vector3d vec3(const nlohmann::json& j, const std::string& context) {
   if (!j.is_array() || j.size() != 3)
     throw srp::core::InvalidInputError(context + ": expected an array of 3 numbers");
   return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+}
+
+/// The numbers of a class as written: finite, sizes within what a robot cell
+/// handles (MeshValidator::Options), masses positive.
+void checkNumbers(const srp::core::ObjectClass& c, const std::string& ctx, bool meshOnly) {
+  using srp::core::InvalidInputError;
+  const MeshValidator::Options rules;
+  if (!(c.meshScale > 0.0) || !std::isfinite(c.meshScale))
+    throw InvalidInputError(ctx + ": field 'mesh_scale' must be a positive number (0.001 for a file in millimetres)");
+  const bool sized = (c.dimensions_m.array() > 0.0).all();
+  if (sized && !(c.dimensions_m.maxCoeff() <= rules.maxSize_m && c.dimensions_m.maxCoeff() >= rules.minSize_m))
+    throw InvalidInputError(ctx + ": field 'dimensions_m' must be within " + std::to_string(rules.minSize_m) + "-" +
+                            std::to_string(rules.maxSize_m) + " m (metres, not millimetres)");
+  if (!(c.mass_kg >= 0.0) || !std::isfinite(c.mass_kg) || (!meshOnly && !(c.mass_kg > 0.0)))
+    throw InvalidInputError(ctx + ": field 'mass_kg' must be a positive number of kilograms");
+  if (!(c.wallThickness_m >= 0.0) || (sized && !(c.wallThickness_m < c.dimensions_m.minCoeff())))
+    throw InvalidInputError(ctx + ": field 'wall_thickness_m' must be >= 0 and thinner than the box");
+  if (!c.rgb.allFinite() || (c.rgb.array() < 0.0).any() || (c.rgb.array() > 1.0).any())
+    throw InvalidInputError(ctx + ": field 'rgb' must be three numbers in [0, 1]");
+  if (!c.graspAxis_object.allFinite())
+    throw InvalidInputError(ctx + ": field 'grasp_axis' must be a non-zero direction");
 }
 
 /// The catalogue file's classes as written (a mesh-only class keeps zero size
@@ -37,10 +59,13 @@ std::vector<srp::core::ObjectClass> readCatalogueFile(const std::string& path) {
       srp::core::ObjectClass c;
       const std::string ctx0 = path + ": class";
       c.name = requireField(e, "name", ctx0).get<std::string>();
+      srp::core::requireSafeName(c.name, ctx0 + " field 'name'");
       const std::string ctx = path + ": class '" + c.name + "'";
       c.classId = requireField(e, "class_id", ctx).get<int>();
       c.noun = e.value("noun", c.name);
+      srp::core::requireSafeName(c.noun, ctx + " field 'noun'");
       c.colourName = e.value("color_name", "");
+      if (!c.colourName.empty()) srp::core::requireSafeName(c.colourName, ctx + " field 'color_name'");
       const std::string kind = requireField(e, "kind", ctx).get<std::string>();
       if (kind == "part") c.kind = srp::core::ObjectKind::Part;
       else if (kind == "container") c.kind = srp::core::ObjectKind::Container;
@@ -59,6 +84,9 @@ std::vector<srp::core::ObjectClass> readCatalogueFile(const std::string& path) {
       }
       c.wallThickness_m = e.value("wall_thickness_m", 0.0);
       c.mass_kg = meshOnly ? e.value("mass_kg", 0.0) : requireField(e, "mass_kg", ctx).get<double>();
+      c.meshScale = e.value("mesh_scale", 1.0);
+      c.flat = e.value("flat", false);
+      checkNumbers(c, ctx, meshOnly);
       if (c.shape == "hull") {
         const auto& fp = requireField(e, "footprint_m", ctx);
         if (!fp.is_array() || fp.size() < 3)
@@ -127,20 +155,39 @@ std::filesystem::path copyCatalogue(const std::string& cataloguePath, const std:
 }
 
 TriangleMesh loadClassMesh(const srp::core::ObjectClass& c) {
-  if (!c.meshPath.empty() && std::filesystem::exists(c.meshPath)) return TriangleMesh::load(c.meshPath);
+  if (!c.meshPath.empty() && std::filesystem::exists(c.meshPath)) {
+    TriangleMesh mesh = TriangleMesh::load(c.meshPath);
+    return c.meshScale == 1.0 ? mesh : mesh.scaled(c.meshScale);
+  }
   if (hasShapeGenerator(c.shape)) return makeClassMesh(c);
   throw srp::core::FileError(c.meshPath, "mesh of class '" + c.name + "' (shape '" + c.shape +
                                              "') is missing and cannot be generated; add the mesh file (STL, OBJ, PLY, glTF, COLLADA)");
 }
 
+namespace {
+
+/// Checks the mesh of a class given by its CAD file alone (MeshValidator) and
+/// measures it: bounding-box size and, without a mass, the mass of its volume
+/// (a flat part: of its box, each side at least the validator's minimum size).
+std::vector<std::string> measureMeshClass(srp::core::ObjectClass& c, const std::string& what) {
+  const TriangleMesh mesh = loadClassMesh(c);
+  MeshValidator::Options rules;
+  rules.flat = c.flat;
+  std::vector<std::string> warnings = MeshValidator(rules).check(mesh, what);
+  const Eigen::Vector3d size = mesh.bounds().sizes().cwiseMax(c.flat ? rules.minSize_m : 0.0);
+  if ((c.dimensions_m.array() <= 0.0).any()) c.dimensions_m = size;
+  if (!(c.mass_kg > 0.0))
+    c.mass_kg = (c.flat ? size.prod() : std::abs(mesh.volume())) * kDefaultPartDensity_kg_m3;
+  return warnings;
+}
+
+}  // namespace
+
 srp::core::ObjectCatalogue loadCatalogue(const std::string& path) {
   std::vector<srp::core::ObjectClass> classes = readCatalogueFile(path);
-  for (auto& c : classes) {
-    if (!c.shape.empty() || c.meshPath.empty()) continue;  // generated shapes carry their size
-    const TriangleMesh mesh = TriangleMesh::load(c.meshPath);
-    if ((c.dimensions_m.array() <= 0.0).any()) c.dimensions_m = mesh.bounds().sizes();
-    if (!(c.mass_kg > 0.0)) c.mass_kg = std::abs(mesh.volume()) * kDefaultPartDensity_kg_m3;
-  }
+  for (auto& c : classes)
+    if (c.shape.empty() && !c.meshPath.empty())  // generated shapes carry their size
+      measureMeshClass(c, path + ": class '" + c.name + "' (mesh " + c.meshPath + ")");
   return srp::core::ObjectCatalogue(std::move(classes));
 }
 
@@ -172,12 +219,30 @@ void appendClass(const std::string& cataloguePath, nlohmann::json e) {
 }
 }  // namespace
 
-srp::core::ObjectClass addMeshClass(const std::string& cataloguePath, const MeshClassEntry& entry) {
+srp::core::ObjectClass addMeshClass(const std::string& cataloguePath, const MeshClassEntry& entry,
+                                    std::vector<std::string>* warnings) {
   namespace fs = std::filesystem;
-  srp::core::require(!entry.name.empty(), "srp kb add: the class needs a name (--name)");
+  srp::core::requireSafeName(entry.name, "srp kb add --name");
+  if (!entry.noun.empty()) srp::core::requireSafeName(entry.noun, "srp kb add --noun");
   srp::core::require(entry.kind == "part" || entry.kind == "container",
                      "srp kb add: kind must be \"part\" or \"container\", not \"" + entry.kind + "\"");
-  TriangleMesh::load(entry.meshPath);  // readable, has triangles
+  srp::core::checkOutputPaths({{"--catalogue", cataloguePath}}, {{"--mesh", entry.meshPath}}, true);
+  if (!(entry.scale > 0.0) || !std::isfinite(entry.scale))
+    throw srp::core::InvalidInputError("srp kb add: --scale " + std::to_string(entry.scale) +
+                                       " must be a positive number (0.001 for a file in millimetres)");
+  if (entry.mass_kg && (!(*entry.mass_kg > 0.0) || !std::isfinite(*entry.mass_kg)))
+    throw srp::core::InvalidInputError("srp kb add: --mass must be a positive number of kilograms");
+  if (entry.rgb && (!entry.rgb->allFinite() || (entry.rgb->array() < 0.0).any() || (entry.rgb->array() > 1.0).any()))
+    throw srp::core::InvalidInputError("srp kb add: --rgb must be three numbers in [0, 1]");
+  {  // the mesh as the catalogue will read it: valid, and its warnings for the user
+    srp::core::ObjectClass probe;
+    probe.name = entry.name;
+    probe.meshPath = entry.meshPath;
+    probe.meshScale = entry.scale;
+    probe.flat = entry.flat;
+    if (warnings) *warnings = measureMeshClass(probe, "srp kb add --mesh " + entry.meshPath);
+    else measureMeshClass(probe, "srp kb add --mesh " + entry.meshPath);
+  }
   const fs::path folder = fs::absolute(cataloguePath).parent_path();
   nlohmann::json e{{"name", entry.name},
                    {"class_id", entry.classId},
@@ -186,12 +251,15 @@ srp::core::ObjectClass addMeshClass(const std::string& cataloguePath, const Mesh
                    {"mesh", fs::absolute(entry.meshPath).lexically_relative(folder).generic_string()}};
   if (entry.rgb) e["rgb"] = {entry.rgb->x(), entry.rgb->y(), entry.rgb->z()};
   if (entry.mass_kg) e["mass_kg"] = *entry.mass_kg;
+  if (entry.scale != 1.0) e["mesh_scale"] = entry.scale;
+  if (entry.flat) e["flat"] = true;
   appendClass(cataloguePath, e);
   return loadCatalogue(cataloguePath).at(entry.name);
 }
 
 srp::core::ObjectClass addBoxClass(const std::string& cataloguePath, const BoxClassEntry& entry) {
-  srp::core::require(!entry.name.empty(), "srp kb add: the class needs a name");
+  srp::core::requireSafeName(entry.name, "srp kb add --name");
+  if (!entry.noun.empty()) srp::core::requireSafeName(entry.noun, "srp kb add --noun");
   srp::core::require(entry.kind == "part" || entry.kind == "container",
                      "srp kb add: kind must be \"part\" or \"container\", not \"" + entry.kind + "\"");
   const Eigen::Vector3d& d = entry.size_m;

@@ -73,6 +73,14 @@ TEST(Scene, BadScenesNameTheField) {
   j = good;
   j["camera"]["intrinsics"]["fx"] = -1;
   EXPECT_NE(expectInvalid(j).find("focal"), std::string::npos);
+  // Names that would reach a robot program's comments: refused where the scene is read.
+  for (const char* field : {"id", "color"}) {
+    j = good;
+    j["objects"][2][field] = "cuboid\r\n---\npoints: []";
+    const std::string message = expectInvalid(j);
+    EXPECT_NE(message.find(std::string("field '") + field + "'"), std::string::npos) << message;
+    EXPECT_EQ(message.find('\r'), std::string::npos) << "the message itself is printable";
+  }
 }
 
 TEST(Scene, InstancesOfOneClassCarryTheirOwnColour) {

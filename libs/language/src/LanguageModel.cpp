@@ -7,11 +7,13 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
 #include <unordered_map>
 
 #include "srp/core/DataPaths.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
+#include "srp/core/OutputFile.h"
 #include "srp/language/IndicatorConventions.h"
 #include "srp/language/PhraseRules.h"
 #include "srp/language/SyntheticCommandGrammar.h"
@@ -787,8 +789,7 @@ LanguageModel LanguageModel::train(const std::vector<AnnotatedSentence>& corpus,
 }
 
 void LanguageModel::save(const std::string& path) const {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw core::FileError(path, "cannot be written (check the folder exists and is writable)");
+  std::ostringstream out(std::ios::binary);
   const Impl& m = *impl_;
   dlib::serialize(std::string("srp-language-model"), out);
   dlib::serialize(kModelFormatVersion, out);
@@ -800,7 +801,7 @@ void LanguageModel::save(const std::string& path) const {
   dlib::serialize(m.indicatorConventions.toJson().dump(), out);
   dlib::serialize(nlohmann::json{{"rules", switchesToJson(m.rules)}, {"features", switchesToJson(m.features)}}.dump(),
                   out);
-  if (!out) throw core::FileError(path, "write failed (disk full?)");
+  core::writeFileAtomically(path, out.str());  // a model is replaced whole or not at all
 }
 
 LanguageModel LanguageModel::load(const std::string& path) {

@@ -3,6 +3,7 @@
 #include <set>
 
 #include "srp/core/Error.h"
+#include "srp/core/SafeText.h"
 #include "srp/taskdb/TaskDatabase.h"
 #include "srp/taskdb/TaskModelStore.h"
 
@@ -114,10 +115,11 @@ std::vector<PlanStep> planStepsFromTaskModel(const taskdb::TaskModel& model) {
 }
 
 int storePlan(const TaskPlan& plan, const std::string& dbPath, const std::string& name, const std::string& instruction) {
+  core::requireSafeName(name, "task model name (--name)");
   if (plan.steps.empty()) {
     std::string why;
     for (const auto& w : plan.warnings) why += (why.empty() ? "" : "; ") + w;
-    throw core::InvalidInputError("nothing written to '" + dbPath + "': the plan has no steps" +
+    throw core::InvalidInputError("nothing written to '" + taskdb::TaskDatabase::displayName(dbPath) + "': the plan has no steps" +
                                   (why.empty() ? std::string() : " (" + why + ")"));
   }
   const taskdb::TaskModel model = planToTaskModel(plan, name, instruction);

@@ -12,8 +12,10 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <sstream>
 
 #include "srp/core/Error.h"
+#include "srp/core/OutputFile.h"
 #include "srp/perception/DepthCloud.h"
 #include "srp/perception/PreviewRawlog.h"
 #include "srp/rawlog/RawlogReader.h"
@@ -677,10 +679,8 @@ PerceptionResult perceiveRawlog(const std::string& rawlogPath, const core::Objec
 }
 
 void writeSegmentCsv(const PerceptionResult& result, const std::string& path) {
-  const std::string tmp = path + ".tmp";
   {
-    std::ofstream out(tmp);
-    if (!out) throw core::FileError(path, "cannot write the CSV (folder missing or read-only?)");
+    std::ostringstream out;
     out << "frame,hand_x,hand_y,hand_z";
     for (const auto& o : result.objects) {
       std::string n = o.key();
@@ -712,9 +712,8 @@ void writeSegmentCsv(const PerceptionResult& result, const std::string& path) {
       }
       out << '\n';
     }
-    if (!out) throw core::FileError(path, "write failed (disk full?)");
+    core::writeFileAtomically(path, out.str());
   }
-  std::filesystem::rename(tmp, path);
 }
 
 }  // namespace srp::perception

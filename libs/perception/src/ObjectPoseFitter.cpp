@@ -39,13 +39,28 @@ ObjectPoseFitter::ObjectPoseFitter(const ObjectModel& model, const Options& opti
   for (const auto& s : model.surface) centre += s.p_m.head<2>() / static_cast<double>(model.surface.size());
   symmetryCentre_xy_ = centre;
   Eigen::AlignedBox3d box;
-  for (const auto& s : model.surface) box.extend(s.p_m);
+  for (const auto& s : model.surface) {
+    // A NaN would be skipped by the box (min/max ignore it) and then index the grid at random.
+    if (!s.p_m.allFinite() || !s.n.allFinite())
+      throw core::InvalidInputError("ObjectPoseFitter: model '" + model.name +
+                                    "' has a non-finite surface sample (a mesh with NaN or Inf vertices)");
+    box.extend(s.p_m);
+  }
+  core::require(options.gridCell_m > 0.0 && options.maxGridCells >= 8,
+                "ObjectPoseFitter: gridCell_m must be > 0 and maxGridCells >= 8");
   const double margin = 0.03;
-  impl_->cell = options.gridCell_m;
-  impl_->invCell = 1.0 / options.gridCell_m;
+  // Cells per axis in double first: a huge model must not overflow an int; the
+  // cell grows until the grid fits maxGridCells.
+  const Eigen::Vector3d extent = box.sizes() + Eigen::Vector3d::Constant(2 * margin);
+  double cell = options.gridCell_m;
+  const auto cellsOf = [&extent](double c) { return ((extent / c).array().ceil() + 1.0).matrix().eval(); };
+  while (cellsOf(cell).prod() > static_cast<double>(options.maxGridCells)) cell *= 1.25;
+  impl_->cell = cell;
+  impl_->invCell = 1.0 / cell;
   impl_->origin = box.min() - Eigen::Vector3d::Constant(margin);
-  impl_->size = ((box.sizes() + Eigen::Vector3d::Constant(2 * margin)) / impl_->cell).array().ceil().cast<int>() + 1;
-  const std::size_t n = static_cast<std::size_t>(impl_->size.prod());
+  impl_->size = cellsOf(cell).cast<int>();
+  const std::size_t n = static_cast<std::size_t>(impl_->size.x()) * static_cast<std::size_t>(impl_->size.y()) *
+                        static_cast<std::size_t>(impl_->size.z());
   impl_->nearest.assign(n, -1);
   std::deque<std::size_t> queue;
   auto index = [this](const Eigen::Vector3i& c) {

@@ -1,5 +1,6 @@
 #include "srp/programming/ProgramReport.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <sstream>
 
 #include "srp/core/Error.h"
+#include "srp/core/SafeText.h"
 #include "srp/core/OutputFile.h"
 #include "srp/motion/SkillPlots.h"
 #include "srp/perception/PerceptionDrawing.h"
@@ -136,9 +138,7 @@ std::vector<std::string> writeProgramReport(const std::string& dir, const Progra
   for (const auto& s : skills)
     for (const auto& o : segmentation.objects)
       if (o.name == s.objectName && o.moved) {
-        std::string file = o.name;
-        std::replace(file.begin(), file.end(), ' ', '_');
-        const std::string path = dir + "/" + file + "_skills.png";
+        const std::string path = dir + "/" + core::safeFileName(o.name) + "_skills.png";
         motion::writeSkillFigure(path, segmentation, o, s);
         files.push_back(path);
       }

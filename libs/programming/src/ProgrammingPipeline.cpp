@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "srp/core/Error.h"
@@ -15,6 +14,8 @@
 #include "srp/core/OutputFile.h"
 #include "srp/execution/DemonstrationScene.h"
 #include "srp/core/ObjectCatalogue.h"
+#include "srp/core/OutputFile.h"
+#include "srp/core/SafeText.h"
 #include "srp/motion/SkillPlots.h"
 #include "srp/perception/DemoPerception.h"
 #include "srp/programming/ProgramReport.h"
@@ -68,7 +69,7 @@ namespace {
 // must exist and be writable.
 void checkDatabase(const std::string& path) {
   namespace fs = std::filesystem;
-  if (fs::exists(path)) {
+  if (taskdb::TaskDatabase::isServerUri(path) || fs::exists(path)) {
     taskdb::TaskDatabase::open(path);
     return;
   }
@@ -93,6 +94,11 @@ void removeIfCreatedEmpty(const std::string& path) {
   for (const char* suffix : {"", "-wal", "-shm", "-journal"}) fs::remove(path + suffix, ec);
 }
 
+// The files a report folder holds: an existing --report folder holding anything
+// else is not replaced (core::checkFolderHoldsOnly).
+const std::vector<std::string> kReportFiles = {"hand_trajectory.png", "summary.md", "contact_sheet.png",
+                                               "scene.json", "*_skills.png"};
+
 // The report folder, built aside and renamed into place with the model
 // (core::AtomicOutputFolder); its parent is created here, before anything runs.
 std::unique_ptr<core::AtomicOutputFolder> startReportFolder(const std::string& dir) {
@@ -107,6 +113,7 @@ std::unique_ptr<core::AtomicOutputFolder> startReportFolder(const std::string& d
   if (fs::exists(target) && !fs::is_directory(target))
     throw core::FileError(dir, "cannot create the report folder (a file of that name is in the way); nothing was "
                                "stored. Give a writable folder with --report");
+  core::checkFolderHoldsOnly(target, kReportFiles, "--report");
   try {
     return std::make_unique<core::AtomicOutputFolder>(target.has_filename() ? target : target.parent_path());
   } catch (const core::FileError& e) {
@@ -128,7 +135,7 @@ ProgramResult programTask(const ProgrammingOptions& o) {
   const auto progress = [&](const std::string& stage, std::size_t done, std::size_t total) {
     if (o.progress) o.progress(stage, done, total);
   };
-  if (o.name.empty()) throw InvalidInputError("a task model needs a name (--name)");
+  core::requireSafeName(o.name, "task model name (--name)");
   if (o.demoPath.empty()) throw InvalidInputError("no demonstration given (--demo demo.rawlog)");
   // Check the database and the report folder first: a bad file fails
   // before minutes of perception.
@@ -233,7 +240,7 @@ ProgramResult programTask(const ProgrammingOptions& o) {
   // report that cannot be written rolls the model back (all or nothing), and
   // its folder is renamed into place last.
   clock.start("store");
-  const bool newDatabase = !std::filesystem::exists(o.dbPath);
+  const bool newDatabase = !taskdb::TaskDatabase::isServerUri(o.dbPath) && !std::filesystem::exists(o.dbPath);
   bool reportCommitted = false;
   try {
     auto db = taskdb::TaskDatabase::open(o.dbPath);

@@ -9,12 +9,13 @@ namespace {
 constexpr const char* kSelect =
     "SELECT ClassId, ObjectName, SourceLocationId, TargetLocationId, Color, InstanceId FROM GroundedProducts";
 
-GroundedProductRow readRow(const SQLite::Statement& st) {
+GroundedProductRow readRow(const Statement& st) {
+  const RowRef row = rowRef(st, "GroundedProducts", {0, 5});
   GroundedProductRow r;
-  r.classId = st.getColumn(0).getInt();
+  r.classId = checkedInt(st, 0, row);
   r.objectName = st.getColumn(1).getString();
-  r.sourceLocationId = optionalInt(st.getColumn(2));
-  r.targetLocationId = optionalInt(st.getColumn(3));
+  r.sourceLocationId = checkedOptionalInt(st, 2, row);
+  r.targetLocationId = checkedOptionalInt(st, 3, row);
   r.colour = optionalText(st.getColumn(4));
   r.instanceId = st.getColumn(5).getString();
   return r;
@@ -22,7 +23,7 @@ GroundedProductRow readRow(const SQLite::Statement& st) {
 }  // namespace
 
 void GroundedProductDao::add(int tm, const GroundedProductRow& r) {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "INSERT INTO GroundedProducts (TaskModelId, ClassId, ObjectName, SourceLocationId, "
                        "TargetLocationId, Color, InstanceId) VALUES (?, ?, ?, ?, ?, ?, ?)");
   st.bind(1, tm);
@@ -36,7 +37,7 @@ void GroundedProductDao::add(int tm, const GroundedProductRow& r) {
 }
 
 std::optional<GroundedProductRow> GroundedProductDao::get(int tm, int classId, const std::string& instanceId) const {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        std::string(kSelect) + " WHERE TaskModelId = ? AND ClassId = ? AND InstanceId = ?");
   st.bind(1, tm);
   st.bind(2, classId);
@@ -46,7 +47,7 @@ std::optional<GroundedProductRow> GroundedProductDao::get(int tm, int classId, c
 }
 
 void GroundedProductDao::update(int tm, const GroundedProductRow& r) {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "UPDATE GroundedProducts SET ObjectName = ?, SourceLocationId = ?, TargetLocationId = ?, "
                        "Color = ? WHERE TaskModelId = ? AND ClassId = ? AND InstanceId = ?");
   st.bind(1, r.objectName);
@@ -60,7 +61,7 @@ void GroundedProductDao::update(int tm, const GroundedProductRow& r) {
 }
 
 bool GroundedProductDao::remove(int tm, int classId, const std::string& instanceId) {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "DELETE FROM GroundedProducts WHERE TaskModelId = ? AND ClassId = ? AND InstanceId = ?");
   st.bind(1, tm);
   st.bind(2, classId);
@@ -69,7 +70,7 @@ bool GroundedProductDao::remove(int tm, int classId, const std::string& instance
 }
 
 std::vector<GroundedProductRow> GroundedProductDao::list(int tm) const {
-  SQLite::Statement st(db_.connection(), std::string(kSelect) + " WHERE TaskModelId = ? ORDER BY ClassId, InstanceId");
+  Statement st(db_, std::string(kSelect) + " WHERE TaskModelId = ? ORDER BY ClassId, InstanceId");
   st.bind(1, tm);
   std::vector<GroundedProductRow> rows;
   while (st.executeStep()) rows.push_back(readRow(st));

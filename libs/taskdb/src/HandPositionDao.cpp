@@ -6,12 +6,15 @@ namespace srp::taskdb {
 using namespace detail;
 
 namespace {
-constexpr const char* kSelect = "SELECT TimeId, X, Y, Z, Detected FROM HandPositions";
+constexpr const char* kSelect = "SELECT TimeId, X, Y, Z, Detected, TaskModelId FROM HandPositions";
 
-HandPositionRow readRow(const SQLite::Statement& st) {
-  return {st.getColumn(0).getInt(),
-          {st.getColumn(1).getDouble(), st.getColumn(2).getDouble(), st.getColumn(3).getDouble()},
-          st.getColumn(4).getInt() != 0};
+HandPositionRow readRow(const Statement& st) {
+  const RowRef row = rowRef(st, "HandPositions", {5, 0});
+  return {checkedInt(st, 0, row),
+          {checkedReal(st, 1, row, -kMaxCoordinate_m, kMaxCoordinate_m),
+           checkedReal(st, 2, row, -kMaxCoordinate_m, kMaxCoordinate_m),
+           checkedReal(st, 3, row, -kMaxCoordinate_m, kMaxCoordinate_m)},
+          checkedInt(st, 4, row, 0, 1) != 0};
 }
 
 void checkFinite(const HandPositionRow& r) {
@@ -24,7 +27,7 @@ void checkFinite(const HandPositionRow& r) {
 void HandPositionDao::add(int tm, const HandPositionRow& r) { addMany(tm, {r}); }
 
 void HandPositionDao::addMany(int tm, const std::vector<HandPositionRow>& rows) {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "INSERT INTO HandPositions (TimeId, TaskModelId, X, Y, Z, Detected) VALUES (?, ?, ?, ?, ?, ?)");
   for (const auto& r : rows) {
     checkFinite(r);
@@ -40,7 +43,7 @@ void HandPositionDao::addMany(int tm, const std::vector<HandPositionRow>& rows) 
 }
 
 std::optional<HandPositionRow> HandPositionDao::get(int tm, int timeId) const {
-  SQLite::Statement st(db_.connection(), std::string(kSelect) + " WHERE TaskModelId = ? AND TimeId = ?");
+  Statement st(db_, std::string(kSelect) + " WHERE TaskModelId = ? AND TimeId = ?");
   st.bind(1, tm);
   st.bind(2, timeId);
   if (!st.executeStep()) return std::nullopt;
@@ -49,7 +52,7 @@ std::optional<HandPositionRow> HandPositionDao::get(int tm, int timeId) const {
 
 void HandPositionDao::update(int tm, const HandPositionRow& r) {
   checkFinite(r);
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "UPDATE HandPositions SET X = ?, Y = ?, Z = ?, Detected = ? WHERE TaskModelId = ? AND TimeId = ?");
   st.bind(1, r.p_m.x());
   st.bind(2, r.p_m.y());
@@ -61,14 +64,14 @@ void HandPositionDao::update(int tm, const HandPositionRow& r) {
 }
 
 bool HandPositionDao::remove(int tm, int timeId) {
-  SQLite::Statement st(db_.connection(), "DELETE FROM HandPositions WHERE TaskModelId = ? AND TimeId = ?");
+  Statement st(db_, "DELETE FROM HandPositions WHERE TaskModelId = ? AND TimeId = ?");
   st.bind(1, tm);
   st.bind(2, timeId);
   return st.exec() > 0;
 }
 
 std::vector<HandPositionRow> HandPositionDao::inFrameRange(int tm, int first, int last) const {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        std::string(kSelect) + " WHERE TaskModelId = ? AND TimeId BETWEEN ? AND ? ORDER BY TimeId");
   st.bind(1, tm);
   st.bind(2, first);
@@ -79,7 +82,7 @@ std::vector<HandPositionRow> HandPositionDao::inFrameRange(int tm, int first, in
 }
 
 std::vector<HandPositionRow> HandPositionDao::list(int tm) const {
-  SQLite::Statement st(db_.connection(), std::string(kSelect) + " WHERE TaskModelId = ? ORDER BY TimeId");
+  Statement st(db_, std::string(kSelect) + " WHERE TaskModelId = ? ORDER BY TimeId");
   st.bind(1, tm);
   std::vector<HandPositionRow> rows;
   while (st.executeStep()) rows.push_back(readRow(st));

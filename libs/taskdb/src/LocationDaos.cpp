@@ -21,7 +21,7 @@ class LocationTable {
       : db_(db), table_(std::move(table)), col_(std::move(landmarkColumn)) {}
 
   void add(int tm, const Row& r) {
-    SQLite::Statement st(db_.connection(), "INSERT INTO " + table_ + " (TaskModelId, LocationId, " + col_ +
+    Statement st(db_, "INSERT INTO " + table_ + " (TaskModelId, LocationId, " + col_ +
                                                ", Description) VALUES (?, ?, ?, ?)");
     st.bind(1, tm);
     st.bind(2, r.locationId);
@@ -30,14 +30,14 @@ class LocationTable {
     st.exec();
   }
   std::optional<Row> get(int tm, int id) const {
-    SQLite::Statement st(db_.connection(), select() + " WHERE TaskModelId = ? AND LocationId = ?");
+    Statement st(db_, select() + " WHERE TaskModelId = ? AND LocationId = ?");
     st.bind(1, tm);
     st.bind(2, id);
     if (!st.executeStep()) return std::nullopt;
     return read(st);
   }
   void update(int tm, const Row& r) {
-    SQLite::Statement st(db_.connection(), "UPDATE " + table_ + " SET " + col_ +
+    Statement st(db_, "UPDATE " + table_ + " SET " + col_ +
                                                " = ?, Description = ? WHERE TaskModelId = ? AND LocationId = ?");
     st.bind(1, landmarkOf(r));
     st.bind(2, r.description);
@@ -47,13 +47,13 @@ class LocationTable {
                              std::to_string(tm));
   }
   bool remove(int tm, int id) {
-    SQLite::Statement st(db_.connection(), "DELETE FROM " + table_ + " WHERE TaskModelId = ? AND LocationId = ?");
+    Statement st(db_, "DELETE FROM " + table_ + " WHERE TaskModelId = ? AND LocationId = ?");
     st.bind(1, tm);
     st.bind(2, id);
     return st.exec() > 0;
   }
   std::vector<Row> list(int tm) const {
-    SQLite::Statement st(db_.connection(), select() + " WHERE TaskModelId = ? ORDER BY LocationId");
+    Statement st(db_, select() + " WHERE TaskModelId = ? ORDER BY LocationId");
     st.bind(1, tm);
     std::vector<Row> rows;
     while (st.executeStep()) rows.push_back(read(st));
@@ -62,10 +62,11 @@ class LocationTable {
 
  private:
   std::string select() const { return "SELECT LocationId, " + col_ + ", Description FROM " + table_; }
-  static Row read(const SQLite::Statement& st) {
+  Row read(const Statement& st) const {
+    const RowRef row = rowRef(st, table_.c_str(), {0});
     Row r;
-    r.locationId = st.getColumn(0).getInt();
-    landmarkOf(r) = st.getColumn(1).getInt();
+    r.locationId = checkedInt(st, 0, row);
+    landmarkOf(r) = checkedInt(st, 1, row);
     r.description = st.getColumn(2).getString();
     return r;
   }

@@ -13,7 +13,7 @@ namespace {
 // The least norm a stored quaternion may have (it is normalised when read).
 constexpr double kMinQuaternionNorm = 0.5;
 
-void bindPose(SQLite::Statement& st, int first, const core::Pose3& X) {
+void bindPose(Statement& st, int first, const core::Pose3& X) {
   const Eigen::Quaterniond q(X.linear());
   const double v[] = {X.translation().x(), X.translation().y(), X.translation().z(), q.w(), q.x(), q.y(), q.z()};
   for (int i = 0; i < 7; ++i) st.bind(first + i, v[i]);
@@ -24,8 +24,8 @@ void checkPose(const core::Pose3& X, const std::string& what) {
 }
 
 // A number read back; a FileError naming table, row and column when it is not finite.
-double finiteColumn(const SQLite::Statement& st, int column, const std::string& where, const std::string& path) {
-  const SQLite::Column c = st.getColumn(column);
+double finiteColumn(const Statement& st, int column, const std::string& where, const std::string& path) {
+  const Column c = st.getColumn(column);
   const double v = c.getDouble();
   if (c.isNull() || !std::isfinite(v))
     throw core::FileError(path, where + " column " + c.getName() + " is not a finite number; the task model is "
@@ -33,7 +33,7 @@ double finiteColumn(const SQLite::Statement& st, int column, const std::string& 
   return v;
 }
 
-core::Pose3 readPose(const SQLite::Statement& st, int first, const std::string& where, const std::string& path) {
+core::Pose3 readPose(const Statement& st, int first, const std::string& where, const std::string& path) {
   double v[7];
   for (int i = 0; i < 7; ++i) v[i] = finiteColumn(st, first + i, where, path);
   const Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
@@ -53,7 +53,7 @@ void PerceivedSceneDao::add(int tm, const PerceivedScene& s) {
   if (!s.tableSize_m.allFinite() || (s.tableSize_m.array() <= 0.0).any())
     throw core::InvalidInputError(ctx + ": the table size must be two positive numbers");
   checkPose(s.X_table_camera, ctx + ": the camera pose");
-  SQLite::Statement scene(db_.connection(),
+  Statement scene(db_,
                           "INSERT INTO PerceivedScenes (TaskModelId, Catalogue, TableSizeX_m, TableSizeY_m, CameraX, "
                           "CameraY, CameraZ, CameraQW, CameraQX, CameraQY, CameraQZ) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   scene.bind(1, tm);
@@ -63,7 +63,7 @@ void PerceivedSceneDao::add(int tm, const PerceivedScene& s) {
   bindPose(scene, 5, s.X_table_camera);
   scene.exec();
 
-  SQLite::Statement object(db_.connection(),
+  Statement object(db_,
                            "INSERT INTO SceneObjects (TaskModelId, ObjectId, ClassId, ClassName, X, Y, Z, QW, QX, QY, "
                            "QZ, Color, R, G, B) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   for (const auto& o : s.objects) {
@@ -81,7 +81,7 @@ void PerceivedSceneDao::add(int tm, const PerceivedScene& s) {
     object.exec();
   }
 
-  SQLite::Statement cls(db_.connection(),
+  Statement cls(db_,
                         "INSERT INTO ObservedClasses (TaskModelId, ClassId, Name, Definition) VALUES (?, ?, ?, ?)");
   for (const auto& c : s.observedClasses) {
     const nlohmann::json definition = core::objectClassToJson(c);
@@ -98,7 +98,7 @@ void PerceivedSceneDao::add(int tm, const PerceivedScene& s) {
 std::optional<PerceivedScene> PerceivedSceneDao::get(int tm) const {
   const std::string& path = db_.path();
   const std::string model = "task model " + std::to_string(tm);
-  SQLite::Statement scene(db_.connection(),
+  Statement scene(db_,
                           "SELECT Catalogue, TableSizeX_m, TableSizeY_m, CameraX, CameraY, CameraZ, CameraQW, CameraQX, "
                           "CameraQY, CameraQZ FROM PerceivedScenes WHERE TaskModelId = ?");
   scene.bind(1, tm);
@@ -111,9 +111,10 @@ std::optional<PerceivedScene> PerceivedSceneDao::get(int tm) const {
     throw core::FileError(path, sceneRow + " the table size is not positive; the task model is damaged");
   s.X_table_camera = readPose(scene, 3, sceneRow, path);
 
-  SQLite::Statement object(db_.connection(),
+  Statement object(db_,
                            "SELECT ObjectId, ClassId, ClassName, X, Y, Z, QW, QX, QY, QZ, Color, R, G, B FROM "
-                           "SceneObjects WHERE TaskModelId = ? ORDER BY rowid");
+                           "SceneObjects WHERE TaskModelId = ? ORDER BY " +
+                               std::string(db_.isPostgres() ? "Seq" : "rowid"));
   object.bind(1, tm);
   while (object.executeStep()) {
     SceneObjectRow o;
@@ -133,7 +134,7 @@ std::optional<PerceivedScene> PerceivedSceneDao::get(int tm) const {
     s.objects.push_back(o);
   }
 
-  SQLite::Statement cls(db_.connection(),
+  Statement cls(db_,
                         "SELECT ClassId, Name, Definition FROM ObservedClasses WHERE TaskModelId = ? ORDER BY ClassId");
   cls.bind(1, tm);
   while (cls.executeStep()) {
@@ -156,13 +157,13 @@ std::optional<PerceivedScene> PerceivedSceneDao::get(int tm) const {
 }
 
 bool PerceivedSceneDao::remove(int tm) {
-  SQLite::Statement classes(db_.connection(), "DELETE FROM ObservedClasses WHERE TaskModelId = ?");
+  Statement classes(db_, "DELETE FROM ObservedClasses WHERE TaskModelId = ?");
   classes.bind(1, tm);
   classes.exec();
-  SQLite::Statement objects(db_.connection(), "DELETE FROM SceneObjects WHERE TaskModelId = ?");
+  Statement objects(db_, "DELETE FROM SceneObjects WHERE TaskModelId = ?");
   objects.bind(1, tm);
   objects.exec();
-  SQLite::Statement scene(db_.connection(), "DELETE FROM PerceivedScenes WHERE TaskModelId = ?");
+  Statement scene(db_, "DELETE FROM PerceivedScenes WHERE TaskModelId = ?");
   scene.bind(1, tm);
   return scene.exec() > 0;
 }

@@ -9,7 +9,7 @@ namespace {
 constexpr const char* kColumns =
     "ObjectId, ObjectName, SourceLocationId, TargetLocationId, Color, TokenId, SentenceId, ClassId, InstanceId";
 
-void bindRow(SQLite::Statement& st, int first, const ProductRow& r) {
+void bindRow(Statement& st, int first, const ProductRow& r) {
   st.bind(first, r.objectName);
   bindOptional(st, first + 1, r.sourceLocationId);
   bindOptional(st, first + 2, r.targetLocationId);
@@ -20,23 +20,24 @@ void bindRow(SQLite::Statement& st, int first, const ProductRow& r) {
   st.bind(first + 7, r.instanceId);
 }
 
-ProductRow readRow(const SQLite::Statement& st) {
+ProductRow readRow(const Statement& st) {
+  const RowRef row = rowRef(st, "Products", {0});
   ProductRow r;
-  r.objectId = st.getColumn(0).getInt();
+  r.objectId = checkedInt(st, 0, row);
   r.objectName = st.getColumn(1).getString();
-  r.sourceLocationId = optionalInt(st.getColumn(2));
-  r.targetLocationId = optionalInt(st.getColumn(3));
+  r.sourceLocationId = checkedOptionalInt(st, 2, row);
+  r.targetLocationId = checkedOptionalInt(st, 3, row);
   r.colour = optionalText(st.getColumn(4));
-  r.tokenId = optionalInt(st.getColumn(5));
-  r.sentenceId = optionalInt(st.getColumn(6));
-  r.classId = optionalInt(st.getColumn(7));
+  r.tokenId = checkedOptionalInt(st, 5, row);
+  r.sentenceId = checkedOptionalInt(st, 6, row);
+  r.classId = checkedOptionalInt(st, 7, row);
   r.instanceId = st.getColumn(8).getString();
   return r;
 }
 }  // namespace
 
 void ProductDao::add(int tm, const ProductRow& r) {
-  SQLite::Statement st(db_.connection(), std::string("INSERT INTO Products (TaskModelId, ") + kColumns +
+  Statement st(db_, std::string("INSERT INTO Products (TaskModelId, ") + kColumns +
                                              ") VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   st.bind(1, tm);
   st.bind(2, r.objectId);
@@ -45,7 +46,7 @@ void ProductDao::add(int tm, const ProductRow& r) {
 }
 
 std::optional<ProductRow> ProductDao::get(int tm, int objectId) const {
-  SQLite::Statement st(db_.connection(), std::string("SELECT ") + kColumns +
+  Statement st(db_, std::string("SELECT ") + kColumns +
                                              " FROM Products WHERE TaskModelId = ? AND ObjectId = ?");
   st.bind(1, tm);
   st.bind(2, objectId);
@@ -54,7 +55,7 @@ std::optional<ProductRow> ProductDao::get(int tm, int objectId) const {
 }
 
 void ProductDao::update(int tm, const ProductRow& r) {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "UPDATE Products SET ObjectName = ?, SourceLocationId = ?, TargetLocationId = ?, Color = ?, "
                        "TokenId = ?, SentenceId = ?, ClassId = ?, InstanceId = ? WHERE TaskModelId = ? AND ObjectId = ?");
   bindRow(st, 1, r);
@@ -64,14 +65,14 @@ void ProductDao::update(int tm, const ProductRow& r) {
 }
 
 bool ProductDao::remove(int tm, int objectId) {
-  SQLite::Statement st(db_.connection(), "DELETE FROM Products WHERE TaskModelId = ? AND ObjectId = ?");
+  Statement st(db_, "DELETE FROM Products WHERE TaskModelId = ? AND ObjectId = ?");
   st.bind(1, tm);
   st.bind(2, objectId);
   return st.exec() > 0;
 }
 
 std::vector<ProductRow> ProductDao::list(int tm) const {
-  SQLite::Statement st(db_.connection(), std::string("SELECT ") + kColumns +
+  Statement st(db_, std::string("SELECT ") + kColumns +
                                              " FROM Products WHERE TaskModelId = ? ORDER BY ObjectId");
   st.bind(1, tm);
   std::vector<ProductRow> rows;

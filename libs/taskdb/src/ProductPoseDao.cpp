@@ -7,14 +7,14 @@ using namespace detail;
 
 namespace {
 constexpr const char* kSelect =
-    "SELECT ClassId, TimeId, X, Y, Z, QW, QX, QY, QZ, Reach, Grasp, Move, Release, Detected, Confidence, InstanceId "
-    "FROM ProductPose";
+    "SELECT ClassId, TimeId, X, Y, Z, QW, QX, QY, QZ, Reach, Grasp, Move, Release, Detected, Confidence, InstanceId, "
+    "TaskModelId FROM ProductPose";
 constexpr const char* kInsert =
     "INSERT INTO ProductPose (TaskModelId, ClassId, TimeId, X, Y, Z, QW, QX, QY, QZ, Reach, Grasp, Move, Release, "
     "Detected, Confidence, InstanceId) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)";
 
 // Binds the value columns X..Confidence starting at `first`.
-void bindValues(SQLite::Statement& st, int first, const ProductPoseRow& r) {
+void bindValues(Statement& st, int first, const ProductPoseRow& r) {
   const double v[] = {r.p_m.x(), r.p_m.y(), r.p_m.z(), r.q.w(), r.q.x(), r.q.y(), r.q.z()};
   for (int i = 0; i < 7; ++i) st.bind(first + i, v[i]);
   const bool flags[] = {r.reach, r.grasp, r.move, r.release, r.detected};
@@ -22,19 +22,24 @@ void bindValues(SQLite::Statement& st, int first, const ProductPoseRow& r) {
   bindOptional(st, first + 12, r.confidence);
 }
 
-ProductPoseRow readRow(const SQLite::Statement& st) {
+ProductPoseRow readRow(const Statement& st) {
+  const RowRef row = rowRef(st, "ProductPose", {16, 0, 15, 1});
   ProductPoseRow r;
-  r.classId = st.getColumn(0).getInt();
-  r.timeId = st.getColumn(1).getInt();
-  r.p_m = {st.getColumn(2).getDouble(), st.getColumn(3).getDouble(), st.getColumn(4).getDouble()};
-  r.q = Eigen::Quaterniond(st.getColumn(5).getDouble(), st.getColumn(6).getDouble(), st.getColumn(7).getDouble(),
-                           st.getColumn(8).getDouble());
-  r.reach = st.getColumn(9).getInt() != 0;
-  r.grasp = st.getColumn(10).getInt() != 0;
-  r.move = st.getColumn(11).getInt() != 0;
-  r.release = st.getColumn(12).getInt() != 0;
-  r.detected = st.getColumn(13).getInt() != 0;
-  r.confidence = optionalDouble(st.getColumn(14));
+  r.classId = checkedInt(st, 0, row);
+  r.timeId = checkedInt(st, 1, row);
+  r.p_m = {checkedReal(st, 2, row, -kMaxCoordinate_m, kMaxCoordinate_m),
+           checkedReal(st, 3, row, -kMaxCoordinate_m, kMaxCoordinate_m),
+           checkedReal(st, 4, row, -kMaxCoordinate_m, kMaxCoordinate_m)};
+  double q[4];
+  for (int i = 0; i < 4; ++i) q[i] = checkedReal(st, 5 + i, row, -1.0 - 1e-6, 1.0 + 1e-6);
+  r.q = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
+  if (std::abs(r.q.norm() - 1.0) > 0.01) badCell(st, 5, row, "the quaternion QW, QX, QY, QZ is not of unit length");
+  r.reach = checkedInt(st, 9, row, 0, 1) != 0;
+  r.grasp = checkedInt(st, 10, row, 0, 1) != 0;
+  r.move = checkedInt(st, 11, row, 0, 1) != 0;
+  r.release = checkedInt(st, 12, row, 0, 1) != 0;
+  r.detected = checkedInt(st, 13, row, 0, 1) != 0;
+  r.confidence = checkedOptionalReal(st, 14, row, 0.0, 1.0);
   r.instanceId = st.getColumn(15).getString();
   return r;
 }
@@ -49,7 +54,7 @@ void checkFinite(const ProductPoseRow& r) {
 void ProductPoseDao::add(int tm, const ProductPoseRow& r) { addMany(tm, {r}); }
 
 void ProductPoseDao::addMany(int tm, const std::vector<ProductPoseRow>& rows) {
-  SQLite::Statement st(db_.connection(), kInsert);
+  Statement st(db_, kInsert);
   for (const auto& r : rows) {
     checkFinite(r);
     st.reset();
@@ -63,7 +68,7 @@ void ProductPoseDao::addMany(int tm, const std::vector<ProductPoseRow>& rows) {
 }
 
 std::optional<ProductPoseRow> ProductPoseDao::get(int tm, int classId, int timeId, const std::string& instanceId) const {
-  SQLite::Statement st(db_.connection(), std::string(kSelect) +
+  Statement st(db_, std::string(kSelect) +
                                              " WHERE TaskModelId = ? AND ClassId = ? AND TimeId = ? AND InstanceId = ?");
   st.bind(1, tm);
   st.bind(2, classId);
@@ -75,7 +80,7 @@ std::optional<ProductPoseRow> ProductPoseDao::get(int tm, int classId, int timeI
 
 void ProductPoseDao::update(int tm, const ProductPoseRow& r) {
   checkFinite(r);
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "UPDATE ProductPose SET X = ?, Y = ?, Z = ?, QW = ?, QX = ?, QY = ?, QZ = ?, Reach = ?, "
                        "Grasp = ?, Move = ?, Release = ?, Detected = ?, Confidence = ? "
                        "WHERE TaskModelId = ? AND ClassId = ? AND TimeId = ? AND InstanceId = ?");
@@ -89,7 +94,7 @@ void ProductPoseDao::update(int tm, const ProductPoseRow& r) {
 }
 
 bool ProductPoseDao::remove(int tm, int classId, int timeId, const std::string& instanceId) {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "DELETE FROM ProductPose WHERE TaskModelId = ? AND ClassId = ? AND TimeId = ? AND InstanceId = ?");
   st.bind(1, tm);
   st.bind(2, classId);
@@ -100,7 +105,7 @@ bool ProductPoseDao::remove(int tm, int classId, int timeId, const std::string& 
 
 std::vector<ProductPoseRow> ProductPoseDao::inFrameRange(int tm, int classId, int first, int last,
                                                         const std::string& instanceId) const {
-  SQLite::Statement st(db_.connection(), std::string(kSelect) +
+  Statement st(db_, std::string(kSelect) +
                                              " WHERE TaskModelId = ? AND ClassId = ? AND InstanceId = ? AND TimeId "
                                              "BETWEEN ? AND ? ORDER BY TimeId");
   st.bind(1, tm);
@@ -114,7 +119,7 @@ std::vector<ProductPoseRow> ProductPoseDao::inFrameRange(int tm, int classId, in
 }
 
 std::vector<ProductPoseRow> ProductPoseDao::list(int tm) const {
-  SQLite::Statement st(db_.connection(), std::string(kSelect) + " WHERE TaskModelId = ? ORDER BY ClassId, InstanceId, TimeId");
+  Statement st(db_, std::string(kSelect) + " WHERE TaskModelId = ? ORDER BY ClassId, InstanceId, TimeId");
   st.bind(1, tm);
   std::vector<ProductPoseRow> rows;
   while (st.executeStep()) rows.push_back(readRow(st));
@@ -122,7 +127,7 @@ std::vector<ProductPoseRow> ProductPoseDao::list(int tm) const {
 }
 
 GraspReleaseFrames ProductPoseDao::graspReleaseFrames(int tm, int classId, const std::string& instanceId) const {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "SELECT (SELECT MIN(TimeId) FROM ProductPose WHERE TaskModelId = ?1 AND ClassId = ?2 AND "
                        "InstanceId = ?3 AND Grasp = 1), "
                        "(SELECT MIN(TimeId) FROM ProductPose WHERE TaskModelId = ?1 AND ClassId = ?2 AND "

@@ -9,3 +9,8 @@ namespace srp::taskdb::detail {
 const std::vector<std::string>& migrations();
 
 }  // namespace srp::taskdb::detail
+
+namespace srp::taskdb::detail {
+/// The PostgreSQL schema: [0] creates the current version on an empty database.
+const std::vector<std::string>& postgresMigrations();
+}  // namespace srp::taskdb::detail

@@ -6,22 +6,29 @@ namespace srp::taskdb {
 using namespace detail;
 
 namespace {
-constexpr const char* kSelect = "SELECT ClassId, Skill, StartTimeId, EndTimeId, Parameters, InstanceId FROM Skills";
+constexpr const char* kSelect =
+    "SELECT ClassId, Skill, StartTimeId, EndTimeId, Parameters, InstanceId, TaskModelId FROM Skills";
 
-SkillRow readRow(const SQLite::Statement& st) {
+SkillRow readRow(const Statement& st) {
+  const RowRef row = rowRef(st, "Skills", {6, 0, 5, 1});
   SkillRow r;
-  r.classId = st.getColumn(0).getInt();
-  r.skill = core::skillTypeFromString(st.getColumn(1).getString());
-  r.startTimeId = st.getColumn(2).getInt();
-  r.endTimeId = st.getColumn(3).getInt();
-  r.parameters = nlohmann::json::parse(st.getColumn(4).getString());
+  r.classId = checkedInt(st, 0, row);
+  try {
+    r.skill = core::skillTypeFromString(st.getColumn(1).getString());
+  } catch (const core::Error& e) {
+    badCell(st, 1, row, e.what());
+  }
+  r.startTimeId = checkedInt(st, 2, row);
+  r.endTimeId = checkedInt(st, 3, row);
+  if (r.endTimeId < r.startTimeId) badCell(st, 3, row, "the skill ends before it starts (EndTimeId < StartTimeId)");
+  r.parameters = checkedJson(st, 4, row);
   r.instanceId = st.getColumn(5).getString();
   return r;
 }
 }  // namespace
 
 void SkillDao::add(int tm, const SkillRow& r) {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "INSERT INTO Skills (TaskModelId, ClassId, Skill, StartTimeId, EndTimeId, Parameters, InstanceId) "
                        "VALUES (?, ?, ?, ?, ?, ?, ?)");
   st.bind(1, tm);
@@ -35,7 +42,7 @@ void SkillDao::add(int tm, const SkillRow& r) {
 }
 
 std::optional<SkillRow> SkillDao::get(int tm, int classId, core::SkillType skill, const std::string& instanceId) const {
-  SQLite::Statement st(db_.connection(), std::string(kSelect) +
+  Statement st(db_, std::string(kSelect) +
                                              " WHERE TaskModelId = ? AND ClassId = ? AND Skill = ? AND InstanceId = ?");
   st.bind(1, tm);
   st.bind(2, classId);
@@ -46,7 +53,7 @@ std::optional<SkillRow> SkillDao::get(int tm, int classId, core::SkillType skill
 }
 
 void SkillDao::update(int tm, const SkillRow& r) {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "UPDATE Skills SET StartTimeId = ?, EndTimeId = ?, Parameters = ? "
                        "WHERE TaskModelId = ? AND ClassId = ? AND Skill = ? AND InstanceId = ?");
   st.bind(1, r.startTimeId);
@@ -61,7 +68,7 @@ void SkillDao::update(int tm, const SkillRow& r) {
 }
 
 bool SkillDao::remove(int tm, int classId, core::SkillType skill, const std::string& instanceId) {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "DELETE FROM Skills WHERE TaskModelId = ? AND ClassId = ? AND Skill = ? AND InstanceId = ?");
   st.bind(1, tm);
   st.bind(2, classId);
@@ -71,7 +78,7 @@ bool SkillDao::remove(int tm, int classId, core::SkillType skill, const std::str
 }
 
 std::vector<SkillRow> SkillDao::list(int tm) const {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        std::string(kSelect) +
                            " WHERE TaskModelId = ? ORDER BY ClassId, InstanceId, CASE Skill WHEN 'Reach' THEN 0 "
                            "WHEN 'Grasp' THEN 1 WHEN 'Move' THEN 2 ELSE 3 END");

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "Backend.h"
 #include "Schema.h"
 #include "srp/core/Error.h"
 
@@ -158,15 +159,28 @@ std::string uriOf(const std::string& path) {
 
 }  // namespace
 
-TaskDatabase::TaskDatabase(std::string path, std::unique_ptr<SQLite::Database> db, int busyTimeout_ms)
-    : path_(std::move(path)), busyTimeout_ms_(busyTimeout_ms), db_(std::move(db)) {}
+TaskDatabase::TaskDatabase(std::string path, std::unique_ptr<detail::Backend> backend, int busyTimeout_ms)
+    : path_(std::move(path)), busyTimeout_ms_(busyTimeout_ms), backend_(std::move(backend)) {}
 TaskDatabase::TaskDatabase(TaskDatabase&&) noexcept = default;
 TaskDatabase& TaskDatabase::operator=(TaskDatabase&&) noexcept = default;
 TaskDatabase::~TaskDatabase() = default;
 
+bool TaskDatabase::isServerUri(const std::string& target) { return detail::isServerUri(target); }
+
+std::string TaskDatabase::displayName(const std::string& target) {
+  return isServerUri(target) ? detail::redactUri(target) : target;
+}
+
+bool TaskDatabase::isPostgres() const { return backend_->isPostgres(); }
+
 TaskDatabase TaskDatabase::open(const std::string& path, Mode mode, int busyTimeout_ms) {
   if (path.empty()) throw core::InvalidInputError("task database path is empty (give one with --db FILE)");
   const bool readOnly = mode == Mode::ReadOnly;
+  if (isServerUri(path)) {
+    std::string shown = displayName(path);
+    auto backend = detail::openPostgres(path, shown, readOnly);
+    return TaskDatabase(std::move(shown), std::move(backend), busyTimeout_ms);
+  }
   if (readOnly && !std::filesystem::exists(path))
     throw FileError(path, "task database not found (create one with 'srp db init' or 'srp program')");
   checkHeader(path);
@@ -185,7 +199,7 @@ TaskDatabase TaskDatabase::open(const std::string& path, Mode mode, int busyTime
                                                  "; open it once read-write to migrate it to version " +
                                                  std::to_string(kSchemaVersion));
       db->exec("PRAGMA foreign_keys = ON");
-      return TaskDatabase(path, std::move(db), busyTimeout_ms);
+      return TaskDatabase(path, detail::makeSqliteBackend(std::move(db)), busyTimeout_ms);
     }
     db = std::make_unique<SQLite::Database>(path, SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE, busyTimeout_ms);
     {
@@ -205,34 +219,40 @@ TaskDatabase TaskDatabase::open(const std::string& path, Mode mode, int busyTime
   } catch (const SQLite::Exception& e) {
     throw FileError(path, explain(e, readOnly, busyTimeout_ms));
   }
-  return TaskDatabase(path, std::move(db), busyTimeout_ms);
+  return TaskDatabase(path, detail::makeSqliteBackend(std::move(db)), busyTimeout_ms);
 }
 
-int TaskDatabase::schemaVersion() const { return db_->execAndGet("PRAGMA user_version").getInt(); }
+int TaskDatabase::schemaVersion() const { return backend_->schemaVersion(); }
 
-SQLite::Database& TaskDatabase::connection() { return *db_; }
+SQLite::Database& TaskDatabase::connection() {
+  if (auto* db = backend_->sqlite()) return *db;
+  throw core::InvalidInputError("task database '" + path_ + "' is a PostgreSQL server, not an SQLite file");
+}
 
 ScopedTransaction::ScopedTransaction(TaskDatabase& db) : db_(db) {
   // IMMEDIATE takes the write lock now, so a concurrent writer waits here
   // (busy timeout) instead of failing at its first write.
   try {
-    db_.connection().exec("BEGIN IMMEDIATE");
+    db_.backend().beginWrite();
   } catch (const SQLite::Exception& e) {
     throw FileError(db_.path(), explain(e, false, db_.busyTimeout_ms()));
+  } catch (const detail::DbError& e) {
+    if (e.sqliteCode() == 0) throw FileError(db_.path(), std::string("cannot start a transaction (") + e.what() + ")");
+    throw FileError(db_.path(), explain(SQLite::Exception(e.what(), e.sqliteCode()), false, db_.busyTimeout_ms()));
   }
 }
 
 ScopedTransaction::~ScopedTransaction() {
   if (!done_) {
     try {
-      db_.connection().exec("ROLLBACK");
+      db_.backend().exec("ROLLBACK");
     } catch (...) {
     }
   }
 }
 
 void ScopedTransaction::commit() {
-  db_.connection().exec("COMMIT");
+  db_.backend().exec("COMMIT");
   done_ = true;
 }
 

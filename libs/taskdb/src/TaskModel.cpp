@@ -2,6 +2,7 @@
 
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
+#include "srp/core/SafeText.h"
 #include "srp/core/ObjectClassJson.h"
 
 namespace srp::taskdb {
@@ -158,6 +159,7 @@ TaskModel taskModelFromJson(const json& j, const std::string& ctx) {
     const json& i = core::requireField(j, "task_model", ctx);
     m.info.id = i.value("id", 0);
     m.info.name = core::requireField(i, "name", ctx + ": task_model").get<std::string>();
+    core::requireSafeName(m.info.name, ctx + ": task_model field 'name'");
     m.info.version = i.value("version", 1);
     m.info.createdUtc = i.value("created_utc", "");
     m.info.instruction = i.value("instruction", "");

@@ -32,7 +32,7 @@ std::optional<std::string> poseText(const TaskModelInfo& i) {
   return core::poseToJson(*i.X_base_camera).dump();
 }
 
-void bindValues(SQLite::Statement& st, int first, const TaskModelInfo& i) {
+void bindValues(Statement& st, int first, const TaskModelInfo& i) {
   st.bind(first, i.name);
   st.bind(first + 1, i.version);
   st.bind(first + 2, i.createdUtc.empty() ? nowUtc() : i.createdUtc);
@@ -43,41 +43,64 @@ void bindValues(SQLite::Statement& st, int first, const TaskModelInfo& i) {
   bindOptional(st, first + 7, poseText(i));
 }
 
-TaskModelInfo readRow(const SQLite::Statement& st) {
+TaskModelInfo readRow(const Statement& st) {
+  const RowRef row = rowRef(st, "TaskModels", {0});
   TaskModelInfo i;
-  i.id = st.getColumn(0).getInt();
+  i.id = checkedInt(st, 0, row, 1);
   i.name = st.getColumn(1).getString();
-  i.version = st.getColumn(2).getInt();
+  i.version = checkedInt(st, 2, row, 1);
   i.createdUtc = st.getColumn(3).getString();
   i.instruction = st.getColumn(4).getString();
   i.frame = st.getColumn(5).getString();
-  i.frameRate_hz = st.getColumn(6).getDouble();
-  if (auto k = optionalText(st.getColumn(7))) i.intrinsics = nlohmann::json::parse(*k).get<core::CameraIntrinsics>();
-  if (auto p = optionalText(st.getColumn(8)))
-    i.X_base_camera = core::poseFromJson(nlohmann::json::parse(*p), "TaskModels.X_base_camera");
+  constexpr double kMaxFrameRate_hz = 10000.0;
+  i.frameRate_hz = checkedReal(st, 6, row, 1e-3, kMaxFrameRate_hz);
+  try {
+    if (!st.getColumn(7).isNull()) {
+      i.intrinsics = checkedJson(st, 7, row).get<core::CameraIntrinsics>();
+      i.intrinsics->validate("the camera");
+    }
+  } catch (const core::Error& e) {
+    badCell(st, 7, row, e.what());
+  } catch (const nlohmann::json::exception& e) {
+    badCell(st, 7, row, e.what());
+  }
+  try {
+    if (!st.getColumn(8).isNull()) {
+      i.X_base_camera = core::poseFromJson(checkedJson(st, 8, row), "the camera pose");
+      if (!i.X_base_camera->matrix().allFinite() ||
+          i.X_base_camera->translation().cwiseAbs().maxCoeff() > kMaxCoordinate_m)
+        badCell(st, 8, row, "the camera pose is not finite or is more than 1 km away");
+    }
+  } catch (const core::Error& e) {
+    badCell(st, 8, row, e.what());
+  } catch (const nlohmann::json::exception& e) {
+    badCell(st, 8, row, e.what());
+  }
   return i;
 }
 }  // namespace
 
 int TaskModelDao::add(const TaskModelInfo& info) {
   if (info.name.empty()) throw core::InvalidInputError("a task model needs a name");
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "INSERT INTO TaskModels (Name, Version, CreatedUtc, Instruction, Frame, FrameRate_Hz, "
-                       "Intrinsics, X_base_camera) VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
+                       "Intrinsics, X_base_camera) VALUES (?, ?, ?, ?, ?, ?, ?, ?) RETURNING TaskModelId");
   bindValues(st, 1, info);
-  st.exec();
-  return static_cast<int>(db_.connection().getLastInsertRowid());
+  st.executeStep();
+  const int id = st.getColumn(0).getInt();
+  st.reset();  // SQLite finishes the INSERT on the step after its RETURNING row
+  return id;
 }
 
 std::optional<TaskModelInfo> TaskModelDao::get(int id) const {
-  SQLite::Statement st(db_.connection(), std::string(kSelect) + " WHERE TaskModelId = ?");
+  Statement st(db_, std::string(kSelect) + " WHERE TaskModelId = ?");
   st.bind(1, id);
   if (!st.executeStep()) return std::nullopt;
   return readRow(st);
 }
 
 void TaskModelDao::update(const TaskModelInfo& info) {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "UPDATE TaskModels SET Name = ?, Version = ?, CreatedUtc = ?, Instruction = ?, Frame = ?, "
                        "FrameRate_Hz = ?, Intrinsics = ?, X_base_camera = ? WHERE TaskModelId = ?");
   bindValues(st, 1, info);
@@ -86,27 +109,27 @@ void TaskModelDao::update(const TaskModelInfo& info) {
 }
 
 bool TaskModelDao::remove(int id) {
-  SQLite::Statement st(db_.connection(), "DELETE FROM TaskModels WHERE TaskModelId = ?");
+  Statement st(db_, "DELETE FROM TaskModels WHERE TaskModelId = ?");
   st.bind(1, id);
   return st.exec() > 0;
 }
 
 std::vector<TaskModelInfo> TaskModelDao::list() const {
-  SQLite::Statement st(db_.connection(), std::string(kSelect) + " ORDER BY TaskModelId");
+  Statement st(db_, std::string(kSelect) + " ORDER BY TaskModelId");
   std::vector<TaskModelInfo> rows;
   while (st.executeStep()) rows.push_back(readRow(st));
   return rows;
 }
 
 int TaskModelDao::nextVersion(const std::string& name) const {
-  SQLite::Statement st(db_.connection(), "SELECT COALESCE(MAX(Version), 0) + 1 FROM TaskModels WHERE Name = ?");
+  Statement st(db_, "SELECT COALESCE(MAX(Version), 0) + 1 FROM TaskModels WHERE Name = ?");
   st.bind(1, name);
   st.executeStep();
   return st.getColumn(0).getInt();
 }
 
 std::optional<TaskModelInfo> TaskModelDao::latestByName(const std::string& name) const {
-  SQLite::Statement st(db_.connection(), std::string(kSelect) + " WHERE Name = ? ORDER BY Version DESC LIMIT 1");
+  Statement st(db_, std::string(kSelect) + " WHERE Name = ? ORDER BY Version DESC LIMIT 1");
   st.bind(1, name);
   if (!st.executeStep()) return std::nullopt;
   return readRow(st);

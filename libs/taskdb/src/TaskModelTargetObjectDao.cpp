@@ -7,7 +7,7 @@ namespace srp::taskdb {
 using namespace detail;
 
 void TaskModelTargetObjectDao::add(int tm, int step, int objectId) {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "INSERT INTO TaskModelTargetObjects (TaskModelId, StepIndex, TargetObjectId) VALUES (?, ?, ?)");
   st.bind(1, tm);
   st.bind(2, step);
@@ -16,7 +16,7 @@ void TaskModelTargetObjectDao::add(int tm, int step, int objectId) {
 }
 
 void TaskModelTargetObjectDao::update(int tm, int step, int objectId) {
-  SQLite::Statement st(db_.connection(),
+  Statement st(db_,
                        "UPDATE TaskModelTargetObjects SET TargetObjectId = ? WHERE TaskModelId = ? AND StepIndex = ?");
   st.bind(1, objectId);
   st.bind(2, tm);
@@ -25,18 +25,19 @@ void TaskModelTargetObjectDao::update(int tm, int step, int objectId) {
 }
 
 bool TaskModelTargetObjectDao::remove(int tm, int step) {
-  SQLite::Statement st(db_.connection(), "DELETE FROM TaskModelTargetObjects WHERE TaskModelId = ? AND StepIndex = ?");
+  Statement st(db_, "DELETE FROM TaskModelTargetObjects WHERE TaskModelId = ? AND StepIndex = ?");
   st.bind(1, tm);
   st.bind(2, step);
   return st.exec() > 0;
 }
 
 std::vector<int> TaskModelTargetObjectDao::list(int tm) const {
-  SQLite::Statement st(db_.connection(),
-                       "SELECT TargetObjectId FROM TaskModelTargetObjects WHERE TaskModelId = ? ORDER BY StepIndex");
+  Statement st(db_,
+                       "SELECT TargetObjectId, TaskModelId, StepIndex FROM TaskModelTargetObjects "
+                       "WHERE TaskModelId = ? ORDER BY StepIndex");
   st.bind(1, tm);
   std::vector<int> ids;
-  while (st.executeStep()) ids.push_back(st.getColumn(0).getInt());
+  while (st.executeStep()) ids.push_back(checkedInt(st, 0, rowRef(st, "TaskModelTargetObjects", {1, 2})));
   return ids;
 }
 

@@ -4,6 +4,7 @@
 
 #include <sstream>
 
+#include "Backends.h"
 #include "TestDb.h"
 #include "srp/core/Json.h"
 #include "srp/taskdb/GroundedProductDao.h"
@@ -18,6 +19,7 @@
 #include "srp/taskdb/TaskModelTargetObjectDao.h"
 
 using namespace srp::taskdb;
+using srp::taskdb::test::AppendixC;
 using srp::taskdb::test::yawQuaternion;
 
 namespace {
@@ -83,9 +85,8 @@ int writeThroughDaos(TaskDatabase& db) {
 }
 }  // namespace
 
-TEST(AppendixC, EveryRowReadsBackThroughTheDaos) {
-  test::TempDbPath path("appendix_c");
-  auto db = TaskDatabase::open(path.str());
+TEST_P(AppendixC, EveryRowReadsBackThroughTheDaos) {
+  auto db = TaskDatabase::open(newDatabase("appendix_c"));
   const int id = writeThroughDaos(db);
   EXPECT_EQ(id, 1);  // the thesis' TaskModelId
 
@@ -128,9 +129,8 @@ TEST(AppendixC, EveryRowReadsBackThroughTheDaos) {
   EXPECT_FALSE(ProductPoseDao(db).graspReleaseFrames(id, 5).graspTimeId.has_value());
 }
 
-TEST(AppendixC, BundledExampleIsTheSameModelAndReportsTheFourSteps) {
-  test::TempDbPath path("appendix_c_json");
-  auto db = TaskDatabase::open(path.str());
+TEST_P(AppendixC, BundledExampleIsTheSameModelAndReportsTheFourSteps) {
+  auto db = TaskDatabase::open(newDatabase("appendix_c_json"));
   const int viaDaos = writeThroughDaos(db);
   const TaskModel example = taskModelFromJson(
       srp::core::readJsonFile(std::string(SRP_DATASETS_DIR) + "/examples/appendix_c_instruction1.json"), "example");

@@ -2,6 +2,7 @@
 
 #include <limits>
 
+#include "Backends.h"
 #include "TestDb.h"
 #include "srp/core/Error.h"
 #include "srp/taskdb/GroundedProductDao.h"
@@ -14,11 +15,11 @@
 #include "srp/taskdb/TaskModelStore.h"
 
 using namespace srp::taskdb;
+using srp::taskdb::test::Daos;
 using srp::core::InvalidInputError;
 
-TEST(Daos, AddGetUpdateRemove) {
-  test::TempDbPath path("crud");
-  auto db = TaskDatabase::open(path.str());
+TEST_P(Daos, AddGetUpdateRemove) {
+  auto db = TaskDatabase::open(newDatabase("crud"));
   TaskModelInfo info;
   info.name = "crud";
   info.intrinsics = srp::core::CameraIntrinsics{607.178, 607.234, 321.391, 241.918, 640, 480};
@@ -55,9 +56,8 @@ TEST(Daos, AddGetUpdateRemove) {
   EXPECT_THROW(hands.add(id, {11, {std::numeric_limits<double>::quiet_NaN(), 0, 0}, true}), InvalidInputError);
 }
 
-TEST(Daos, SkillParametersRoundTripExactly) {
-  test::TempDbPath path("skills");
-  auto db = TaskDatabase::open(path.str());
+TEST_P(Daos, SkillParametersRoundTripExactly) {
+  auto db = TaskDatabase::open(newDatabase("skills"));
   TaskModel m;
   m.info.name = "skills";
   m.groundedProducts = {{3, "cuboid", {}, {}, {}}};
@@ -92,9 +92,8 @@ TEST(Daos, SkillParametersRoundTripExactly) {
   EXPECT_FALSE(SkillDao(db).get(twoId, 3, srp::core::SkillType::Grasp, "cuboid_red"));
 }
 
-TEST(Daos, DeletingATaskModelCascadesAndVersionsCount) {
-  test::TempDbPath path("cascade");
-  auto db = TaskDatabase::open(path.str());
+TEST_P(Daos, DeletingATaskModelCascadesAndVersionsCount) {
+  auto db = TaskDatabase::open(newDatabase("cascade"));
   TaskModelStore store(db);
   const int a = store.write(test::bulkModel("demo", 50, 2));
   const int b = store.write(test::bulkModel("demo", 30, 1));
@@ -109,13 +108,41 @@ TEST(Daos, DeletingATaskModelCascadesAndVersionsCount) {
   EXPECT_THROW(store.remove(a), InvalidInputError);
 }
 
-TEST(Daos, DanglingReferenceRejectsTheWholeModel) {
-  test::TempDbPath path("dangling");
-  auto db = TaskDatabase::open(path.str());
+TEST_P(Daos, DanglingReferenceRejectsTheWholeModel) {
+  auto db = TaskDatabase::open(newDatabase("dangling"));
   TaskModelStore store(db);
   TaskModel m;
   m.info.name = "dangling";
   m.products = {{0, "cuboid", 5, {}, {}, {}, {}, {}}};  // source location 5 does not exist
   EXPECT_THROW(store.write(m), InvalidInputError);
   EXPECT_TRUE(store.list().empty());
+}
+
+// Names and texts are bound as parameters, never spliced into SQL: quotes,
+// semicolons, dollar quoting, backslashes and SQL fragments come back verbatim.
+TEST_P(Daos, HostileNamesAreStoredVerbatim) {
+  auto db = TaskDatabase::open(newDatabase("hostile"));
+  TaskModelStore store(db);
+  const std::vector<std::string> names = {"O'Brien's \"task\"", "a; DROP TABLE TaskModels; --", "$$ $tag$ $$",
+                                          "back\\slash ? ?1 $1 %s", "'); DELETE FROM Products; --", "ünïcødé ✓"};
+  std::vector<int> ids;
+  for (const auto& name : names) {
+    TaskModel m = test::bulkModel(name, 3, 1);
+    m.info.instruction = name;
+    m.groundedProducts[0].objectName = name;
+    m.groundedProducts[0].instanceId = name;
+    for (auto& pose : m.productPoses) pose.instanceId = name;
+    ids.push_back(store.write(m));
+  }
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const TaskModel back = store.read(ids[i]);
+    EXPECT_EQ(back.info.name, names[i]);
+    EXPECT_EQ(back.info.instruction, names[i]);
+    ASSERT_EQ(back.groundedProducts.size(), 1u);
+    EXPECT_EQ(back.groundedProducts[0].objectName, names[i]);
+    EXPECT_EQ(back.groundedProducts[0].instanceId, names[i]);
+    EXPECT_EQ(back.productPoses.size(), 3u);
+    EXPECT_EQ(TaskModelDao(db).latestByName(names[i])->id, ids[i]);
+  }
+  EXPECT_EQ(store.list().size(), names.size());
 }

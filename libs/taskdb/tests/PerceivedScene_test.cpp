@@ -6,6 +6,8 @@
 
 #include <limits>
 
+#include "Backends.h"
+#include "SqlUtil.h"
 #include "TestDb.h"
 #include "srp/core/Error.h"
 #include "srp/core/ObjectClassJson.h"
@@ -13,6 +15,7 @@
 #include "srp/taskdb/TaskModelStore.h"
 
 using namespace srp::taskdb;
+using srp::taskdb::test::PerceivedSceneStore;
 
 namespace {
 constexpr double kPoseTol_m = 1e-12;       // stored as REAL: doubles exactly, rotations through a quaternion
@@ -38,6 +41,7 @@ PerceivedScene toyScene() {
   s.objects = {bin, toy};
   srp::core::ObjectClass toyClass;
   toyClass.name = "toy";
+  toyClass.noun = "toy";  // the JSON form requires a usable noun
   toyClass.classId = 100;
   toyClass.shape = "hull";
   toyClass.dimensions_m = {0.12, 0.08, 0.06};
@@ -46,6 +50,7 @@ PerceivedScene toyScene() {
   toyClass.observed = true;
   srp::core::ObjectClass binClass;
   binClass.name = "bin";
+  binClass.noun = "bin";
   binClass.classId = 101;
   binClass.kind = srp::core::ObjectKind::Container;
   binClass.shape = "open_box";
@@ -65,9 +70,8 @@ TaskModel modelWith(const PerceivedScene& s) {
 }
 }  // namespace
 
-TEST(PerceivedScene, StoredWithTheTaskModelAndReadBack) {
-  test::TempDbPath path("perceived_scene");
-  auto db = TaskDatabase::open(path.str());
+TEST_P(PerceivedSceneStore, StoredWithTheTaskModelAndReadBack) {
+  auto db = TaskDatabase::open(newDatabase("perceived_scene"));
   const PerceivedScene s = toyScene();
   const int id = TaskModelStore(db).write(modelWith(s));
   const TaskModel back = TaskModelStore(db).read(id);
@@ -98,14 +102,13 @@ TEST(PerceivedScene, StoredWithTheTaskModelAndReadBack) {
   // Deleting the task model deletes its scene.
   TaskModelStore(db).remove(id);
   EXPECT_FALSE(PerceivedSceneDao(db).get(id).has_value());
-  SQLite::Statement left(db.connection(), "SELECT (SELECT COUNT(*) FROM SceneObjects) + (SELECT COUNT(*) FROM ObservedClasses)");
+  detail::Statement left(db, "SELECT (SELECT COUNT(*) FROM SceneObjects) + (SELECT COUNT(*) FROM ObservedClasses)");
   ASSERT_TRUE(left.executeStep());
   EXPECT_EQ(left.getColumn(0).getInt(), 0);
 }
 
-TEST(PerceivedScene, ANonFiniteNumberIsRefusedAndNothingIsWritten) {
-  test::TempDbPath path("perceived_scene_bad");
-  auto db = TaskDatabase::open(path.str());
+TEST_P(PerceivedSceneStore, ANonFiniteNumberIsRefusedAndNothingIsWritten) {
+  auto db = TaskDatabase::open(newDatabase("perceived_scene_bad"));
   PerceivedScene s = toyScene();
   s.objects[1].X_table_object.translation().x() = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(TaskModelStore(db).write(modelWith(s)), srp::core::Error);

@@ -63,7 +63,13 @@ class CalibrationPattern {
     cv::Point2d origin_px;
     double pixelsPerMetre = 0.0;
   };
+  /// Throws InvalidInputError when the image would have more than kMaxBoardPixels.
   BoardImage renderBoard(double pixelsPerMetre, double margin_m) const;
+
+  /// Bounds of a pattern spec (parse() refuses larger) and of a board image.
+  static constexpr int kMaxSide = 200;               ///< points (or tags) per row and column
+  static constexpr double kMaxSpacing_m = 1.0;       ///< square, spacing, tag and gap [m]
+  static constexpr double kMaxBoardPixels = 200e6;   ///< renderBoard(): 200 MP (an A0 sheet at 600 dpi is 65 MP)
 
  private:
   Kind kind_ = Kind::Chessboard;

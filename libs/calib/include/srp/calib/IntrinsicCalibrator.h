@@ -11,6 +11,7 @@
 
 #include "srp/calib/CalibrationPattern.h"
 #include "srp/calib/CameraCalibration.h"
+#include "srp/calib/ImageHeader.h"
 #include "srp/core/Pose.h"
 
 namespace srp::calib {
@@ -48,6 +49,8 @@ struct IntrinsicCalibrationOptions {
   bool estimateDistortion = true;    ///< false: kud = kdu = 0
   std::string cameraName = "Camera";
   std::string drawDir;               ///< when set, one PNG per image with the detection
+  /// Images whose header declares more pixels are refused before decoding (ImageHeader.h).
+  std::int64_t maxImagePixels = kMaxImagePixels;
   /// Progress callback (image index, count, name), e.g. to print to stderr.
   std::function<void(int, int, const std::string&)> progress;
 };

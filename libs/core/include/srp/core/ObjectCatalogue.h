@@ -47,6 +47,8 @@ struct ObjectClass {
   double wallThickness_m = 0.0;                             ///< containers only
   double mass_kg = 0.0;    ///< zero for a mesh-only class without "mass_kg" until kb::loadCatalogue estimates it
   std::string meshPath;    ///< absolute (resolved against the catalogue's folder); may not exist yet
+  double meshScale = 1.0;  ///< metres per unit of the mesh file (JSON "mesh_scale"; 0.001: drawn in millimetres)
+  bool flat = false;       ///< a flat part (a sheet, a label) whose mesh encloses no volume (JSON "flat")
   Eigen::Vector3d graspAxis_object = Eigen::Vector3d::UnitY();  ///< gripper closing direction
   /// Footprint of shape "hull" (a prism from z = 0 to dimensions_m.z()):
   /// convex polygon in the object frame, counter-clockwise, metres, inside the

@@ -6,7 +6,8 @@
 ///
 /// Every command that writes goes through these helpers:
 /// - **Atomic.** Bytes go to a temporary file in the target's folder
-///   (`.<name>.srp-tmp-<pid>-<n>`), which is flushed, fsync'ed and renamed over
+///   (`.<name>.srp-tmp-<pid>-<n><ext>`, the target's extension kept for writers
+///   that choose the format by it), which is flushed, fsync'ed and renamed over
 ///   the target; the folder is fsync'ed after the rename. A crash, a kill or a
 ///   full disk at any point leaves the previous file (or no file) as it was, and
 ///   at most a stray temporary that no reader mistakes for the output.
@@ -53,8 +54,19 @@ bool isSameFile(const std::filesystem::path& a, const std::filesystem::path& b);
 /// Refuses (InvalidInputError, naming both roles and paths) an output that is
 /// one of `inputs`, or the same file as another output, or, unless
 /// `overwrite`, an existing file. An input that is a folder also protects every
-/// file below it.
+/// file below it; an output that is an existing folder holding an input is
+/// refused too (replacing the folder would remove the input).
 void checkOutputPaths(const std::vector<PathRole>& outputs, const std::vector<PathRole>& inputs, bool overwrite);
+
+/// Refuses (InvalidInputError naming `role`, the folder and up to three of the
+/// files) an existing output folder that holds anything but `names`: an
+/// AtomicOutputFolder replaces the whole folder, so a folder given by mistake
+/// (the home folder, a data folder) must not be replaced, -w or not. A name
+/// ending in '*' stands for every name starting with the rest ("frame_*"), one
+/// starting with '*' for every name ending with the rest ("*_skills.png"). A
+/// missing folder passes.
+void checkFolderHoldsOnly(const std::filesystem::path& folder, const std::vector<std::string>& names,
+                          const std::string& role);
 
 /// One output file written atomically. Write through stream() / write(), or let
 /// another library write temporaryPath(); then commit(). Destroyed uncommitted,
@@ -87,7 +99,7 @@ class AtomicOutputFile {
 
  private:
   friend void writeFilesTogether(const std::vector<std::pair<std::filesystem::path, std::string>>& files);
-  void renameOverTarget();
+  void renameOverTarget(bool syncFolder = true);
   void closeFd();
 
   std::filesystem::path target_, temporary_;

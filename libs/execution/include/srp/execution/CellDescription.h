@@ -35,6 +35,7 @@ struct CellObject {
   std::string noun;       ///< head noun in instructions ("box"), "" if unknown
   int classId = -1;       ///< knowledge-base class id
   std::string meshPath;   ///< the class's mesh (object frame, metres) for rendering; "" or missing: drawn as its box
+  double meshScale = 1.0; ///< metres per unit of the mesh file (ObjectClass::meshScale)
   /// The class of a part or container seen in a demonstration without a CAD
   /// file (ObjectClass::observed: shape "hull" or "open_box"), carried by the
   /// scene: it is simulated as its box (`size_m`) and rendered as its generated

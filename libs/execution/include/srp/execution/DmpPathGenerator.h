@@ -57,8 +57,11 @@ class DmpPathGenerator : public CartesianPathGenerator {
                    std::optional<double> moveEndHeight_m = std::nullopt);
 
   /// The Reach and Move rows of the task model's Skills table (parameters "dmp",
-  /// "frame"; object names from GroundedProducts). Throws InvalidInputError naming
-  /// the object when a row's DMP JSON is malformed or its frame is not "camera".
+  /// "frame"; object names from GroundedProducts). Without Skills rows every path
+  /// is the fall-back's; a row that is there must be usable. Throws
+  /// InvalidInputError naming the row, the object and the task model when a row
+  /// has no DMP (`Parameters='{}'`, "dmp": null), a malformed one, a demonstrated
+  /// segment longer than 600 s, or a frame other than "camera".
   /// `endHeight_m`, `moveEndHeight_m` as in the constructor.
   static DmpPathGenerator fromTaskModel(const srp::taskdb::TaskModel& model, const srp::core::Pose3& X_world_camera,
                                         MinimumJerkOptions fallback = {}, double endHeight_m = kDefaultEndHeight_m,

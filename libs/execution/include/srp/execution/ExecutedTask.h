@@ -51,6 +51,12 @@ struct ExecutedTask {
   /// not in the scene) do not block; the exporters list them in the header.
   std::optional<std::string> whyNotExportable() const;
 
+  /// 16 hex digits identifying the commanded trajectory and the gripper events
+  /// (FNV-1a over their bytes): the URScript program and the ROS 2 YAML of one
+  /// execution carry the same id in their headers, so a pair left by two different
+  /// runs (a kill between the two renames of writeFilesTogether) can be told.
+  std::string trajectoryId() const;
+
   /// Throws InvalidInputError with whyNotExportable() when there is a reason;
   /// `what` names the export in the message ("URScript").
   void requireExportable(const std::string& what) const;

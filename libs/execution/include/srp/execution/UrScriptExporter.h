@@ -26,7 +26,7 @@
 namespace srp::execution {
 
 struct UrScriptOptions {
-  std::string programName = "srp_task";
+  std::string programName = "srp_task";  ///< a URScript identifier (letter, then letters, digits, '_')
   int gripperDigitalOut = 0;     ///< tool digital output (0 or 1): True = grasp (suction on), False = release
   double gripperWait_s = 0.3;    ///< wait after switching the output (vacuum build-up / release)
   double servoPeriod_s = 0.008;  ///< servoj t: 0.008 s = the CB3 / e-Series 125 Hz control loop
@@ -48,7 +48,8 @@ class UrScriptExporter {
   /// position or speed limit (not expected: the spline was checked; never clipped).
   std::string toScript(const ExecutedTask& task) const;
 
-  /// toScript() into `path`; throws FileError when it cannot be written.
+  /// toScript() into `path`, atomically (core::writeFileAtomically); throws
+  /// FileError when it cannot be written, leaving a previous file as it was.
   void write(const ExecutedTask& task, const std::string& path) const;
 
   const UrScriptOptions& options() const { return options_; }

@@ -43,8 +43,8 @@ std::filesystem::path copyCatalogue(const std::string& cataloguePath, const std:
 /// True when makeClassMesh() can generate meshes for this shape.
 bool hasShapeGenerator(const std::string& shape);
 
-/// The mesh of a class: its STL file when present, else the generated one (so
-/// a fresh checkout renders before `srp kb build`). Throws FileError naming the
+/// The mesh of a class: its file when present (times the class' meshScale),
+/// else the generated one (so a fresh checkout renders before `srp kb build`). Throws FileError naming the
 /// path when the file is absent and the shape has no generator.
 TriangleMesh loadClassMesh(const srp::core::ObjectClass& objectClass);
 
@@ -53,11 +53,14 @@ TriangleMesh loadClassMesh(const srp::core::ObjectClass& objectClass);
 constexpr double kDefaultPartDensity_kg_m3 = 1000.0;
 
 /// The one catalogue loader (every command and library reads a catalogue file
-/// through it): reads the file (ObjectCatalogue.h gives the format), then every
-/// class given by its mesh alone gets its bounding-box size (`dimensions_m`, in
-/// the mesh's frame) and, without "mass_kg", the mass of its volume at
-/// kDefaultPartDensity_kg_m3 from the mesh file. Throws FileError or
-/// InvalidInputError naming the file and the field, or a mesh that cannot be read.
+/// through it): reads the file (ObjectCatalogue.h gives the format), checks
+/// every name (core::isSafeName) and number (finite; sizes within
+/// MeshValidator's 1 mm - 2 m; masses positive), then every class given by its
+/// mesh alone has its mesh checked (MeshValidator, at its "mesh_scale", "flat")
+/// and gets its bounding-box size (`dimensions_m`, in the mesh's frame) and,
+/// without "mass_kg", the mass of its volume at kDefaultPartDensity_kg_m3.
+/// Throws FileError or InvalidInputError naming the file, the class and the
+/// field, or a mesh that cannot be read or breaks a rule.
 srp::core::ObjectCatalogue loadCatalogue(const std::string& path);
 
 /// A class given by its CAD file alone (`srp kb add`).
@@ -69,6 +72,8 @@ struct MeshClassEntry {
   std::string meshPath;             ///< the CAD file (any path; stored relative to the catalogue)
   std::optional<Eigen::Vector3d> rgb;  ///< linear RGB [0, 1] when the colour identifies it
   std::optional<double> mass_kg;
+  double scale = 1.0;               ///< metres per file unit (0.001: the file is in millimetres)
+  bool flat = false;                ///< a flat part (a sheet): no enclosed volume needed
 };
 
 /// A part or container without a mesh, given by its box size (`srp kb add NAME
@@ -96,11 +101,16 @@ constexpr double kBoxContainerWall_m = 0.005;
 /// the bad value, FileError for an unreadable catalogue.
 srp::core::ObjectClass addBoxClass(const std::string& cataloguePath, const BoxClassEntry& entry);
 
-/// Appends `entry` to the catalogue file (created when missing), after
-/// checking that its mesh loads and its name and id are free; the file keeps
-/// its other content. Returns the class as loadCatalogue() reads it back.
-/// Throws InvalidInputError naming a taken name or id or a bad kind, and
-/// FileError naming an unreadable mesh or catalogue.
-srp::core::ObjectClass addMeshClass(const std::string& cataloguePath, const MeshClassEntry& entry);
+/// Appends `entry` to the catalogue file (created when missing; replaced
+/// atomically), after checking its name (core::isSafeName), that its mesh loads
+/// and passes MeshValidator (at `entry.scale`, `entry.flat`), and that its name
+/// and id are free; the file keeps its other content. Returns the class as
+/// loadCatalogue() reads it back; `warnings` (if given) receives the
+/// validator's warnings (a part that looks drawn in millimetres). Throws
+/// InvalidInputError naming a taken name or id, a bad kind or name, a mesh that
+/// breaks a rule, or a mesh that is the catalogue itself; FileError naming an
+/// unreadable mesh or catalogue.
+srp::core::ObjectClass addMeshClass(const std::string& cataloguePath, const MeshClassEntry& entry,
+                                    std::vector<std::string>* warnings = nullptr);
 
 }  // namespace srp::kb

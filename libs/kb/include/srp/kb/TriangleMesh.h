@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,14 @@ struct SurfacePoint {
 class TriangleMesh {
  public:
   using Triangle = std::array<Eigen::Vector3d, 3>;
+
+  /// Bounds on what load() reads, checked before the file is decoded where the
+  /// format declares its counts (PLY element counts, binary STL triangle count:
+  /// against the file's size), and while it is read.
+  struct LoadOptions {
+    std::uintmax_t maxFileBytes = 512ull << 20;  ///< larger files are refused unread
+    std::size_t maxTriangles = 4'000'000;       ///< about 290 MB as doubles
+  };
 
   TriangleMesh() = default;
   explicit TriangleMesh(std::vector<Triangle> triangles) : triangles_(std::move(triangles)) {}
@@ -69,8 +78,14 @@ class TriangleMesh {
   /// file's scene, placed by its node transforms, polygons triangulated;
   /// coordinates as stored (metres expected; COLLADA's up axis is not
   /// applied, so the object frame is the file's own). Throws FileError naming
-  /// the path when it is missing, unreadable, truncated or has no triangles.
-  static TriangleMesh load(const std::string& path);
+  /// the path when it is missing, unreadable, truncated, has no triangles, has
+  /// a non-finite (NaN, Inf) vertex, or breaks `options` (a header declaring more
+  /// than the file can hold is refused before anything is allocated).
+  static TriangleMesh load(const std::string& path, const LoadOptions& options);
+  static TriangleMesh load(const std::string& path) { return load(path, LoadOptions{}); }
+
+  /// The mesh with every coordinate multiplied by `factor` (a file in millimetres: 0.001).
+  TriangleMesh scaled(double factor) const;
 
  private:
   std::vector<Triangle> triangles_;

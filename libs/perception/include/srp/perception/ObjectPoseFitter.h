@@ -37,6 +37,9 @@ class ObjectPoseFitter {
     double yawStep_rad = 15.0 * 3.14159265358979323846 / 180.0;  ///< start yaws within the model's symmetry
     int maxPoints = 800;     ///< segment points used (evenly subsampled)
     double gridCell_m = 0.002;
+    /// Bound on the nearest-sample grid (4 bytes a cell): a larger model gets
+    /// coarser cells rather than more memory (the default catalogue needs < 1.2 M).
+    std::size_t maxGridCells = 16'000'000;
     bool refineTilt = true;      ///< finish with a 6-DOF ICP (tilt against the plane up to maxTilt_rad)
     double maxTilt_rad = 10.0 * 3.14159265358979323846 / 180.0;
     int minPoints = 10;              ///< a segment with fewer points is not fitted (score 0)

@@ -52,7 +52,8 @@ struct ProgrammingOptions {
   /// Empty: no report; else a folder (built aside and renamed into place when
   /// the model is stored: a failed run leaves none) with PNG figures, the
   /// contact sheet of what perception saw, the perceived scene as a scene file
-  /// (scene.json) and summary.md. Its parent is checked before anything runs.
+  /// (scene.json) and summary.md. Its parent is checked before anything runs; an
+  /// existing folder holding anything but a report is refused.
   std::string reportDir;
   /// A damaged demonstration rawlog fails the run (nothing stored) unless
   /// this is set; then the frames before the damage are used, with a warning.

@@ -1,6 +1,7 @@
 #pragma once
 /// \file TaskDatabase.h
-/// \brief A connection to a task database file (SQLite, WAL mode, foreign keys on).
+/// \brief A connection to a task database: an SQLite file (WAL mode, foreign keys
+/// on) or a PostgreSQL server (a postgresql:// URI).
 
 #include <memory>
 #include <string>
@@ -10,11 +11,23 @@ class Database;
 }
 
 namespace srp::taskdb {
+namespace detail {
+class Backend;
+}
 
 /// The schema version this build reads and writes (`PRAGMA user_version`).
 inline constexpr int kSchemaVersion = 3;
 
 /// One connection to a task database.
+///
+/// The target is an SQLite file path (the default) or a PostgreSQL URI
+/// `postgresql://user@host:port/dbname` (also `postgres://`). For a server the
+/// schema is created on first use inside one transaction holding an advisory
+/// lock (two programs connecting to a new database take turns), with the same
+/// tables, columns and schema version as a file; read-only connections run
+/// every transaction READ ONLY. Credentials come from the URI, `PGPASSFILE`
+/// or libpq's environment (`PGPASSWORD`, ...) and are never shown: path()
+/// and every message show the URI without its password.
 ///
 /// ReadWrite creates the file and the schema when missing and migrates older
 /// schema versions forward, both inside one `BEGIN IMMEDIATE` transaction, so
@@ -46,23 +59,31 @@ class TaskDatabase {
 
   static TaskDatabase open(const std::string& path, Mode mode = Mode::ReadWrite,
                            int busyTimeout_ms = kDefaultBusyTimeout_ms);
+  /// True for a `postgresql://` or `postgres://` URI (a server), false for a file path.
+  static bool isServerUri(const std::string& target);
+  /// The target as it may be shown: a URI loses its password.
+  static std::string displayName(const std::string& target);
 
   TaskDatabase(TaskDatabase&&) noexcept;
   TaskDatabase& operator=(TaskDatabase&&) noexcept;
   ~TaskDatabase();
 
+  /// The file path, or the server URI without credentials.
   const std::string& path() const { return path_; }
+  bool isPostgres() const;
   int schemaVersion() const;
   int busyTimeout_ms() const { return busyTimeout_ms_; }
 
-  /// The underlying connection, for the DAOs (SQLiteCpp stays out of the public API).
+  /// The SQLite connection (tests, file maintenance); throws InvalidInputError on a server.
   SQLite::Database& connection();
+  /// The backend, for the DAOs (SQLiteCpp and libpqxx stay out of the public API).
+  detail::Backend& backend() { return *backend_; }
 
  private:
-  TaskDatabase(std::string path, std::unique_ptr<SQLite::Database> db, int busyTimeout_ms);
+  TaskDatabase(std::string path, std::unique_ptr<detail::Backend> backend, int busyTimeout_ms);
   std::string path_;
   int busyTimeout_ms_ = kDefaultBusyTimeout_ms;
-  std::unique_ptr<SQLite::Database> db_;
+  std::unique_ptr<detail::Backend> backend_;
 };
 
 /// RAII transaction: commits on commit(), rolls back in the destructor

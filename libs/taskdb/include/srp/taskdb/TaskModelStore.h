@@ -3,6 +3,7 @@
 /// \brief Writes and reads whole task models atomically.
 
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "srp/taskdb/TaskDatabase.h"
@@ -35,8 +36,21 @@ class TaskModelStore {
   void replaceSkills(int taskModelId, const std::vector<SkillRow>& skills);
 
  private:
+  friend std::vector<std::pair<int, int>> copyTaskModels(TaskDatabase&, TaskDatabase&, const std::vector<int>&);
+  /// Inside the caller's transaction: the TaskModels row (a new version, or
+  /// the model's own with keepVersion) and every other row; returns (id, version).
+  std::pair<int, int> writeRows(const TaskModel& model, bool keepVersion, const Progress& progress);
+  int writeChildren(const TaskModel& model, int taskModelId, const Progress& progress);
   TaskModel readUnchecked(int taskModelId) const;
   TaskDatabase& db_;
 };
+
+/// Copies task models (all when `ids` is empty) from one task database to
+/// another, in either direction between an SQLite file and a server, in one
+/// transaction of the destination: every row, with its name, version and
+/// creation time (the destination numbers the ids). A name and version
+/// already in the destination refuses the whole copy. Returns (source id,
+/// destination id) pairs.
+std::vector<std::pair<int, int>> copyTaskModels(TaskDatabase& from, TaskDatabase& to, const std::vector<int>& ids = {});
 
 }  // namespace srp::taskdb

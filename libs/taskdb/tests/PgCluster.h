@@ -1,0 +1,161 @@
+#pragma once
+// A throw-away PostgreSQL cluster for the tests: initdb + pg_ctl on a free
+// local port under a temporary folder, started once per test binary (on first
+// use) and stopped at exit. The server refuses to run as root, so under root
+// (CI) every server command runs as `nobody` through runuser.
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <pwd.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <pqxx/pqxx>
+
+#include <algorithm>
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace srp::taskdb::test {
+
+class PgCluster {
+ public:
+  /// The one cluster of this process (started on first call).
+  static PgCluster& instance() {
+    static PgCluster cluster;
+    return cluster;
+  }
+  bool available() const { return running_; }
+  /// Why there is no server (for GTEST_SKIP / failures).
+  const std::string& problem() const { return problem_; }
+  /// True when the machine has no server binary at all (the only reason to skip).
+  bool noBinary() const { return binDir_.empty(); }
+  /// URI of the cluster's maintenance database.
+  std::string adminUri() const { return uri("postgres"); }
+  std::string uri(const std::string& database) const {
+    return "postgresql://srp@127.0.0.1:" + std::to_string(port_) + "/" + database;
+  }
+  /// Creates a new empty database and returns its URI.
+  std::string createDatabase(const std::string& hint) {
+    std::string name = "t" + std::to_string(++databases_) + "_";
+    for (const char c : hint) name += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::tolower(c)) : '_';
+    name = name.substr(0, 60);
+    pqxx::connection c(adminUri());
+    pqxx::nontransaction n(c);
+    n.exec("CREATE DATABASE " + c.quote_name(name));
+    return uri(name);
+  }
+
+  ~PgCluster() {
+    if (running_) run({binDir_ + "/pg_ctl", "-D", dir_ + "/data", "-m", "immediate", "-w", "stop"});
+    if (!dir_.empty()) {
+      std::error_code ec;
+      std::filesystem::remove_all(dir_, ec);
+    }
+  }
+
+ private:
+  PgCluster() {
+    binDir_ = findBinDir();
+    if (binDir_.empty()) {
+      problem_ = "no PostgreSQL server binary (initdb, pg_ctl) under /usr/lib/postgresql/*/bin; install the "
+                 "'postgresql' package (scripts/install-deps.sh) to run the PostgreSQL tests";
+      return;
+    }
+    char tmpl[] = "/tmp/srp_pg_XXXXXX";
+    if (!::mkdtemp(tmpl)) {
+      problem_ = "cannot create a temporary folder for the cluster";
+      return;
+    }
+    dir_ = tmpl;
+    if (::geteuid() == 0) {
+      const passwd* pw = ::getpwnam("nobody");
+      if (!pw || ::chown(dir_.c_str(), pw->pw_uid, pw->pw_gid) != 0) {
+        problem_ = "running as root and cannot hand " + dir_ + " to user nobody";
+        return;
+      }
+      asUser_ = {"runuser", "-u", "nobody", "--"};
+    }
+    port_ = freePort();
+    if (run({binDir_ + "/initdb", "-D", dir_ + "/data", "-U", "srp", "--auth=trust", "-E", "UTF8", "--no-locale",
+             "--no-sync"}) != 0) {
+      problem_ = "initdb failed (log: " + dir_ + "/server.log)";
+      return;
+    }
+    const std::string options = "-p " + std::to_string(port_) + " -k " + dir_ +
+                                " -c listen_addresses=127.0.0.1 -c fsync=off -c full_page_writes=off"
+                                " -c max_connections=200";
+    if (run({binDir_ + "/pg_ctl", "-D", dir_ + "/data", "-l", dir_ + "/server.log", "-w", "-t", "60", "-o", options,
+             "start"}) != 0) {
+      problem_ = "pg_ctl start failed (log: " + dir_ + "/server.log)";
+      return;
+    }
+    running_ = true;
+  }
+
+  static std::string findBinDir() {
+    std::vector<std::string> dirs;
+    std::error_code ec;
+    for (const auto& e : std::filesystem::directory_iterator("/usr/lib/postgresql", ec)) {
+      const auto bin = e.path() / "bin";
+      if (std::filesystem::exists(bin / "initdb") && std::filesystem::exists(bin / "pg_ctl")) dirs.push_back(bin);
+    }
+    if (dirs.empty()) return {};
+    std::sort(dirs.begin(), dirs.end(), [](const std::string& a, const std::string& b) {
+      return a.size() != b.size() ? a.size() < b.size() : a < b;
+    });
+    return dirs.back();  // the newest version
+  }
+
+  static int freePort() {
+    const int s = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    a.sin_port = 0;
+    socklen_t len = sizeof a;
+    int port = 0;
+    if (::bind(s, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0 &&
+        ::getsockname(s, reinterpret_cast<sockaddr*>(&a), &len) == 0)
+      port = ntohs(a.sin_port);
+    ::close(s);
+    return port;
+  }
+
+  // Runs a server command (as nobody under root) in the cluster folder; its
+  // output goes to server.log's neighbour, commands.log.
+  int run(std::vector<std::string> argv) const {
+    argv.insert(argv.begin(), asUser_.begin(), asUser_.end());
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      if (::chdir(dir_.c_str()) != 0) ::_exit(126);
+      const int log = ::open((dir_ + "/commands.log").c_str(), O_WRONLY | O_CREAT | O_APPEND, 0666);
+      if (log >= 0) {
+        ::dup2(log, 1);
+        ::dup2(log, 2);
+      }
+      std::vector<char*> args;
+      for (auto& a : argv) args.push_back(a.data());
+      args.push_back(nullptr);
+      ::execvp(args[0], args.data());
+      ::_exit(127);
+    }
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+  }
+
+  std::string binDir_, dir_, problem_;
+  std::vector<std::string> asUser_;
+  int port_ = 0;
+  bool running_ = false;
+  std::atomic<int> databases_{0};
+};
+
+}  // namespace srp::taskdb::test

@@ -43,8 +43,11 @@ double demonstratedSideStep_m(const srp::motion::Dmp& learned, double dt_s) {
 DmpPathGenerator::DmpPathGenerator(std::map<std::string, LearnedPathSkills> skillsByObject,
                                    const srp::core::Pose3& X_world_demo, MinimumJerkOptions fallback,
                                    double endHeight_m, std::optional<double> moveEndHeight_m)
-    : skills_(std::move(skillsByObject)), X_world_demo_(X_world_demo), fallback_(fallback),
-      endHeight_m_(endHeight_m), moveEndHeight_m_(moveEndHeight_m.value_or(endHeight_m)) {}
+    : skills_(std::move(skillsByObject)),
+      X_world_demo_(X_world_demo),
+      fallback_(fallback),
+      endHeight_m_(endHeight_m),
+      moveEndHeight_m_(moveEndHeight_m.value_or(endHeight_m)) {}
 
 DmpPathGenerator DmpPathGenerator::fromTaskModel(const srp::taskdb::TaskModel& model,
                                                  const srp::core::Pose3& X_world_camera, MinimumJerkOptions fallback,
@@ -209,7 +212,8 @@ CartesianPath DmpPathGenerator::rollout(const srp::motion::Dmp& learned, const s
     const Eigen::Vector3d d = p_demo[i] - p_demo_start, along = d.dot(u) * u;
     s.X_world_tcp = srp::core::Pose3::Identity();
     s.X_world_tcp.linear() = q_start.slerp(minimumJerk(s.t_s / T), q_goal).toRotationMatrix();
-    s.X_world_tcp.translation() = X_world_demo_ * (keep < 1.0 ? Eigen::Vector3d(p_demo_start + along + keep * (d - along)) : p_demo[i]);
+    s.X_world_tcp.translation() =
+        X_world_demo_ * (keep < 1.0 ? Eigen::Vector3d(p_demo_start + along + keep * (d - along)) : p_demo[i]);
     path.push_back(s);
   }
   // The rollout converges to the goal; the path contract is start and goal exactly.

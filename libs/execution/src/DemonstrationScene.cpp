@@ -79,7 +79,7 @@ srp::core::Scene demonstrationScene(const taskdb::TaskModel& model, const RobotP
         "') stores no perceived scene (programmed by an older srp, or its demonstration showed no table plane); "
         "give the scene to execute in with --scene FILE");
   srp::core::Scene s;
-  s.name = "demonstration of task model " + std::to_string(model.info.id) + " ('" + model.info.name + "')";
+  s.name = "demonstration of task model " + std::to_string(model.info.id);  // a usable scene name (Scene.h)
   if (model.info.intrinsics) s.intrinsics = *model.info.intrinsics;
   s.fps = model.info.frameRate_hz;
   return demonstrationScene(*model.scene, placement, s);

@@ -421,21 +421,29 @@ core::PositionTrajectory runningMedian(const core::PositionTrajectory& in, int h
   return out;
 }
 
-/// Per-axis median of the detections among the first (fromEnd: last) `count`
-/// samples; when fewer than 5 are detected there (a part hidden at the start or
-/// end), of the first (last) `count` detections.
-Eigen::Vector3d medianDetection(const core::PositionTrajectory& t, int count, bool fromEnd) {
+/// Per-axis median of the detections among the `count` samples from the
+/// first (fromEnd: last) detection; when fewer than 5 are detected there (a
+/// part seen only now and then), the window is extended to 5 detections, but
+/// only by detections within `restTolerance_m` of the window's median: a part
+/// seen once at its start and then only at its final place keeps its start.
+Eigen::Vector3d medianDetection(const core::PositionTrajectory& t, int count, bool fromEnd, double restTolerance_m) {
   core::PositionTrajectory part(t.frame());
   const int n = static_cast<int>(t.size());
   constexpr int kMinDetections = 5;
-  for (int k = 0; k < n; ++k) {
-    if (k >= count && static_cast<int>(part.size()) >= kMinDetections) break;
-    if (static_cast<int>(part.size()) >= count) break;
-    const auto& s = t[static_cast<std::size_t>(fromEnd ? n - 1 - k : k)];
-    if (detected(s)) part.samples().push_back(s);  // order does not matter for the median
-  }
+  auto at = [&](int k) -> const core::PositionSample& { return t[static_cast<std::size_t>(fromEnd ? n - 1 - k : k)]; };
+  int first = 0;
+  while (first < n && !detected(at(first))) ++first;
+  int k = first;
+  for (; k < n && k < first + count; ++k)
+    if (detected(at(k))) part.samples().push_back(at(k));  // order does not matter for the median
   Eigen::Vector3d m = Eigen::Vector3d::Zero();
-  if (!part.empty()) windowMedian(part, 0, static_cast<int>(part.size()), 1, m);
+  if (part.empty()) return m;
+  windowMedian(part, 0, static_cast<int>(part.size()), 1, m);
+  if (static_cast<int>(part.size()) >= kMinDetections) return m;
+  const Eigen::Vector3d windowMedian_m = m;
+  for (; k < n && static_cast<int>(part.size()) < kMinDetections; ++k)
+    if (detected(at(k)) && (at(k).p_m - windowMedian_m).norm() <= restTolerance_m) part.samples().push_back(at(k));
+  windowMedian(part, 0, static_cast<int>(part.size()), 1, m);
   return m;
 }
 
@@ -543,8 +551,8 @@ class ObjectPass {
       const int wr = std::max(1, std::min(c_.restMedianSamples, n_ / 5));
       evidence_ = cues_ ? partEvidence(wr) : track_;
       seg_.smoothed = runningMedian(evidence_, c_.objectMedianHalfWindow);
-      seg_.p_initial_m = medianDetection(evidence_, wr, false);
-      seg_.p_final_m = medianDetection(evidence_, wr, true);
+      seg_.p_initial_m = medianDetection(evidence_, wr, false, c_.restTolerance_m);
+      seg_.p_final_m = medianDetection(evidence_, wr, true, c_.restTolerance_m);
     } else {
       evidence_ = track_;
       const core::PositionTrajectory filtered = removeFlicker(
@@ -565,7 +573,7 @@ class ObjectPass {
   /// part labelled as this one: two parts cannot rest in one place), unless
   /// this part starts there. All of them when nothing is left.
   core::PositionTrajectory partEvidence(int restSamples) const {
-    const Eigen::Vector3d p_start = medianDetection(track_, restSamples, false);
+    const Eigen::Vector3d p_start = medianDetection(track_, restSamples, false, c_.restTolerance_m);
     std::vector<const ObjectSegmentation*> ghosts;
     for (const auto& o : earlier_)
       if (o.moved && o.name != seg_.name && (o.p_final_m - p_start).norm() >= c_.restTolerance_m) ghosts.push_back(&o);

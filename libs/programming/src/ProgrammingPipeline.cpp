@@ -223,7 +223,9 @@ ProgramResult programTask(const ProgrammingOptions& o) {
     const auto placement = execution::RobotPlacement::of(*model.scene, o.X_base_camera, o.extrinsicsSource);
     result.robotBase = placement.description;
     core::Scene base;
-    base.name = "demonstration '" + o.name + "'";
+    // The scene file is read back by `srp execute --scene`, which takes only safe names.
+    base.name = "demonstration " + o.name;
+    if (!core::isSafeName(base.name)) base.name = "demonstration";
     base.intrinsics = seen.intrinsics;
     base.fps = model.info.frameRate_hz;
     sceneFile = execution::demonstrationScene(*model.scene, placement, base);

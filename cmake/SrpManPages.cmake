@@ -31,10 +31,14 @@ function(srp_subcommands path out)
 endfunction()
 
 function(srp_man_page path description)
-  string(REPLACE ";" "-" page "srp;${path}")
+  if(path STREQUAL "")
+    set(page srp)
+  else()
+    string(REPLACE ";" "-" page "srp;${path}")
+  endif()
   string(REPLACE ";" " " words "${path}")
   execute_process(
-    COMMAND "${SRP_HELP2MAN}" --no-info --no-discard-stderr "--version-string=srp ${SRP_VERSION}"
+    COMMAND "${SRP_HELP2MAN}" --no-info --no-discard-stderr "--version-string=${page} ${SRP_VERSION}"
             "--name=${description}" --section=1 --output=${SRP_MAN_DIR}/${page}.1
             "${SRP_MAN_DIR}/bin/srp ${words}"
     RESULT_VARIABLE rc)

@@ -31,7 +31,7 @@ void run(const ExperimentArgs& a) {
   options.demoCount = a.demos;
   options.firstSeed = a.seed;
   options.quick = a.quick;
-  if (!srp::app::quietFlag())
+  if (srp::app::progressWanted(a.json))  // a terminal, no -q, no --json
     options.progress = [](const std::string& what, double fraction) {
       std::cerr << "[" << static_cast<int>(100.0 * fraction) << " %] " << what << "\n";
     };

@@ -103,6 +103,9 @@ quiet=$("$SRP" perceive --demo "$TMP/demo.rawlog" --hand none -q --draw "$TMP/dr
 [ -z "$quiet" ] || fail "perceive -q wrote on stderr: $quiet"
 noisy=$("$SRP" perceive --demo "$TMP/demo.rawlog" --hand none --draw "$TMP/drawn" -w 2>&1 >/dev/null)
 grep -q "drew .* frames" <<<"$noisy" || fail "perceive --draw without -q wrote no note: $noisy"
+legacy=$(SRP_PERCEPTION_DEBUG=1 "$SRP" perceive --demo "$TMP/demo.rawlog" --hand none 2>&1 >/dev/null)
+grep -q "SRP_PERCEPTION_DEBUG is deprecated; use --log-level perception=debug" <<<"$legacy" \
+  && grep -q "^perception: debug:" <<<"$legacy" || fail "SRP_PERCEPTION_DEBUG: no deprecation line or no debug lines: $legacy"
 "$SRP" kb list --log-level loud > "$TMP/ll.txt" 2>&1
 rc=$?
 [ $rc = 2 ] && grep -q "log level 'loud': not a level" "$TMP/ll.txt" || fail "--log-level loud: exit $rc: $(cat "$TMP/ll.txt")"

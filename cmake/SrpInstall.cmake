@@ -69,5 +69,5 @@ set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS
 libvisp-core-dev, libvisp-detection-dev, libvisp-vision-dev, libvisp-mbt-dev, libvisp-klt-dev, libvisp-me-dev, \
 libopencv-dev, libopencv-contrib-dev, libmrpt-poses-dev, libmrpt-obs-dev, libmrpt-opengl-dev, libmrpt-img-dev, \
 libmrpt-hwdrivers-dev, libegl-dev, libdlib-dev, wordnet-dev, libnlopt-cxx-dev, libsimbody-dev, liburdfdom-dev, \
-libapriltag-dev, libdeflate-dev, libassimp-dev, libyaml-cpp-dev, zlib1g-dev")
+libapriltag-dev, libdeflate-dev, libassimp-dev, libyaml-cpp-dev, libspdlog-dev, zlib1g-dev")
 include(CPack)

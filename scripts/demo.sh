@@ -27,7 +27,7 @@ step "1/6 synthesise the demonstration of instruction 1 ($scene)"
 
 step "2/6 program the task: instruction + demonstration -> task model"
 "$srp" program --instruction "$instruction" --demo "$out/demo.rawlog" --db "$db" --name thesis \
-  --report "$out/report" -w
+  -o "$out/report" -w
 
 run_execute() {  # name, extra args...: every step must be done (exit 0)
   local name=$1; shift

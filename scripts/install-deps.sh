@@ -36,6 +36,10 @@ PACKAGES=(
   libassimp-dev
   # calibration files in ROS camera_info YAML
   libyaml-cpp-dev
+  # diagnostics: srp's log categories (srp/core/Log.h)
+  libspdlog-dev
+  # the man pages, generated from each command's --help at build time
+  help2man
 )
 
 # Only for make test: GoogleTest, Google Benchmark, Debian's ViSP test images,

@@ -6,7 +6,7 @@
 /// finish() or the destructor. A new label starts a new line (a new stage).
 ///
 /// \code
-///   ProgressLine line(!quiet);
+///   ProgressLine line(progressWanted(json));  // CommonOptions.h: a terminal, no -q, no --json
 ///   for (int k = 0; k < n; ++k) line.show("synth-demo: frame", k + 1, n);
 ///   line.finish();
 /// \endcode
@@ -22,7 +22,7 @@ class ProgressLine {
  public:
   /// `enabled` false: silent (--quiet, --json). `minInterval`: redraws of
   /// one label closer together than this are skipped, except the last (done == total).
-  explicit ProgressLine(bool enabled = true, std::chrono::milliseconds minInterval = std::chrono::milliseconds(0))
+  explicit ProgressLine(bool enabled, std::chrono::milliseconds minInterval = std::chrono::milliseconds(0))
       : enabled_(enabled), minInterval_(minInterval) {}
   ProgressLine(const ProgressLine&) = delete;
   ProgressLine& operator=(const ProgressLine&) = delete;

@@ -10,6 +10,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "CommandRegistry.h"
+#include "CommonOptions.h"
 #include "ProgressLine.h"
 #include "srp/calib/CalibrationPattern.h"
 #include "srp/calib/CameraExtrinsics.h"
@@ -85,7 +86,7 @@ void runIntrinsics(const IntrinsicArgs& a) {
   options.estimateDistortion = !a.noDistortion;
   options.cameraName = a.name;
   if (drawn) options.drawDir = drawn->temporaryPath().string();
-  auto line = std::make_shared<srp::app::ProgressLine>();
+  auto line = std::make_shared<srp::app::ProgressLine>(srp::app::progressWanted(a.json));
   options.progress = [line](int i, int n, const std::string& name) {
     line->show("calibrate", static_cast<std::size_t>(i + 1), static_cast<std::size_t>(n), name);
     if (i + 1 == n) line->finish();
@@ -227,7 +228,7 @@ void setupCalibrate(CLI::App& cmd) {
       "acircles:COLSxROWS:SPACING_m, apriltag:COLSxROWS:TAG_m:GAP_m[:FIRST_ID] (see 'srp calibrate board').");
   cmd.add_option("--images", intrinsic->images, "image files or quoted patterns ('calib/*.png')");
   cmd.add_option("--pattern", intrinsic->pattern, "calibration target, e.g. chessboard:9x6:0.025");
-  cmd.add_option("--out", intrinsic->out,
+  cmd.add_option("-o,--out", intrinsic->out,
                  "camera file to write (default: camera.xml, camera_info.yaml or camera_opencv.yaml in the current "
                  "folder, by --format)");
   cmd.add_option("--format", intrinsic->format,
@@ -255,7 +256,7 @@ void setupCalibrate(CLI::App& cmd) {
       ->check(CLI::IsMember({"base", "world"}))
       ->capture_default_str();
   ext->add_option("--scene", tags->scene, "scene file giving X_world_base (for --frame world)");
-  ext->add_option("--out", tags->out, "extrinsics JSON to write")->capture_default_str();
+  ext->add_option("-o,--out", tags->out, "extrinsics JSON to write")->capture_default_str();
   ext->add_flag("--json", tags->json, "print the result as JSON");
   srp::app::addOverwriteFlag(*ext, tags->overwrite);
   ext->footer("Example: srp calibrate extrinsics --image tag.png --tag-size 0.1 --frame world --scene "
@@ -267,7 +268,7 @@ void setupCalibrate(CLI::App& cmd) {
   he->add_option("--pairs", handEye->pairs,
                  "JSON {\"pairs\": [{\"X_base_gripper\": pose, \"X_camera_target\": pose}, ...]}")
       ->required();
-  he->add_option("--out", handEye->out, "extrinsics JSON to write")->capture_default_str();
+  he->add_option("-o,--out", handEye->out, "extrinsics JSON to write")->capture_default_str();
   he->add_flag("--json", handEye->json, "print the result as JSON");
   srp::app::addOverwriteFlag(*he, handEye->overwrite);
   he->callback([handEye] { runHandEye(*handEye); });
@@ -275,7 +276,7 @@ void setupCalibrate(CLI::App& cmd) {
   auto boardArgs = std::make_shared<BoardArgs>();
   auto* board = cmd.add_subcommand("board", "write a printable image of a calibration pattern");
   board->add_option("--pattern", boardArgs->pattern, "e.g. apriltag:4x3:0.04:0.01 or chessboard:9x6:0.025")->required();
-  board->add_option("--out", boardArgs->out, "PNG to write")->required();
+  board->add_option("-o,--out", boardArgs->out, "PNG to write")->required();
   board->add_option("--dpi", boardArgs->dpi, "printer resolution [dots per inch]")
       ->check(CLI::Range(30, 4800))
       ->capture_default_str();

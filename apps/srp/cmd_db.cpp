@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "CommandRegistry.h"
+#include "CommonOptions.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/core/OutputFile.h"
@@ -31,12 +32,21 @@ void addDbOption(CLI::App& c, DbOptions& o) {
   c.add_option("--db", o.db, std::string("Task database: ") + srp::app::kTaskDatabaseHelp);
 }
 
+/// `--task ID` (the positional ID of earlier releases still works, with a warning).
+void addTaskOption(CLI::App& c, int& id) {
+  c.add_option("--task", id, "TaskModelId (see 'srp db list')")->check(srp::app::kDecimalId);
+  srp::app::addDeprecatedPositional(c, "id", id, "--task")->check(srp::app::kDecimalId);
+}
+
+void requireTask(const CLI::App& c) { srp::app::requireOneOf(c, "--task", "id"); }
+
 void setupDb(CLI::App& app) {
   auto o = std::make_shared<DbOptions>();
   app.require_subcommand(1);
 
   auto* init = app.add_subcommand("init", "Create an empty task database (or migrate an older one)");
-  init->add_option("file", o->db, "Task database to create: an SQLite file or a postgresql:// URI")->required();
+  init->add_option("--db", o->db, std::string("Task database to create: ") + srp::app::kTaskDatabaseHelp);
+  srp::app::addDeprecatedPositional(*init, "file", o->db, "--db");
   init->callback([o] {
     auto db = TaskDatabase::open(o->db);
     std::cout << "task database '" << db.path() << "' ready (schema version " << db.schemaVersion() << ")\n";
@@ -68,10 +78,11 @@ void setupDb(CLI::App& app) {
   });
 
   auto* show = app.add_subcommand("show", "Show one task model: plan, grounded objects, skills");
-  show->add_option("id", o->id, "TaskModelId (see 'srp db list')")->required()->check(srp::app::kDecimalId);
+  addTaskOption(*show, o->id);
   addDbOption(*show, *o);
   show->add_flag("--json", o->json, "Print the whole task model as JSON (the form 'srp db import' reads)");
-  show->callback([o] {
+  show->callback([o, show] {
+    requireTask(*show);
     auto db = TaskDatabase::open(o->db, TaskDatabase::Mode::ReadOnly);
     const TaskModel m = TaskModelStore(db).read(o->id);
     if (o->json) std::cout << toJson(m).dump(2) << "\n";
@@ -79,15 +90,16 @@ void setupDb(CLI::App& app) {
   });
 
   auto* exp = app.add_subcommand("export", "Export a task model in another layout");
-  exp->add_option("id", o->id, "TaskModelId")->required()->check(srp::app::kDecimalId);
+  addTaskOption(*exp, o->id);
   addDbOption(*exp, *o);
   exp->add_option("--format", o->format, "Layout: appendix-c (the thesis' Appendix C tables) or json")
       ->check(CLI::IsMember({"appendix-c", "json"}))
       ->capture_default_str();
-  exp->add_option("--out", o->out, "Output file (default: standard output); written whole or not at all");
+  exp->add_option("-o,--out", o->out, "Output file (default: standard output); written whole or not at all");
   exp->add_option("--max-rows", o->maxRows, "Abbreviate long tables to this many rows with '...' (0: all)");
   srp::app::addOverwriteFlag(*exp, o->overwrite);
-  exp->callback([o] {
+  exp->callback([o, exp] {
+    requireTask(*exp);
     srp::core::checkOutputPaths({{"--out", o->out}}, {{"--db", o->db}}, o->overwrite);
     auto db = TaskDatabase::open(o->db, TaskDatabase::Mode::ReadOnly);
     const TaskModel m = TaskModelStore(db).read(o->id);
@@ -130,9 +142,10 @@ void setupDb(CLI::App& app) {
   });
 
   auto* del = app.add_subcommand("delete", "Delete a task model and all its rows");
-  del->add_option("id", o->id, "TaskModelId")->required()->check(srp::app::kDecimalId);
+  addTaskOption(*del, o->id);
   addDbOption(*del, *o);
-  del->callback([o] {
+  del->callback([o, del] {
+    requireTask(*del);
     auto db = TaskDatabase::open(o->db);
     TaskModelStore(db).remove(o->id);
     std::cout << "deleted task model " << o->id << "\n";

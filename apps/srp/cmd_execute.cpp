@@ -4,10 +4,11 @@
 #include <nlohmann/json.hpp>
 
 #include "CommandRegistry.h"
+#include "CommonOptions.h"
 #include "srp/calib/CameraExtrinsics.h"
 #include "srp/core/Error.h"
-#include "srp/core/OutputFile.h"
 #include "srp/core/ExitCode.h"
+#include "srp/core/OutputFile.h"
 #include "srp/core/ViewFrame.h"
 #include "srp/execution/ExecutionSession.h"
 #include "srp/execution/RosTrajectoryExporter.h"
@@ -55,7 +56,10 @@ void setupExecute(CLI::App& app) {
                  "Knowledge base of the demonstration's scene (default: the catalogue the task model was programmed "
                  "with)")
       ->check(CLI::ExistingFile);
-  app.add_option("--out", o->out, "Output folder: report.json, report.txt, joints.csv, final_scene.json (the scene after execution, for --scene of the next run), frames/*.png; written whole or not at all (an existing one needs -w, and is replaced only when it holds nothing else)")
+  app.add_option("-o,--out", o->out,
+                 "Output folder: report.json, report.txt, joints.csv, final_scene.json (the scene after execution, for "
+                 "--scene of the next run), frames/*.png; written whole or not at all (an existing one needs -w, and "
+                 "is replaced only when it holds nothing else)")
       ->capture_default_str();
   app.add_option("--frame-period", o->framePeriod, "Render every n-th 20 ms snapshot (0: no frames)")
       ->capture_default_str();
@@ -125,7 +129,7 @@ void setupExecute(CLI::App& app) {
     request.options.safety.velocityFraction = o->velocityFraction;
     request.options.safety.maxAcceleration_radps2 = o->maxAcceleration_radps2;
     request.options.placement.grounding.viewpoint = srp::core::viewpointFromString(o->view);
-    request.progress = [](const std::string& line) { std::cerr << line << "\n"; };
+    if (!srp::app::quietFlag()) request.progress = [](const std::string& line) { std::cerr << line << "\n"; };
     const auto result = srp::execution::executeTask(request);
     if (o->json)
       std::cout << result.report.toJson().dump(2) << "\n";

@@ -3,7 +3,9 @@
 #include <iostream>
 
 #include "CommandRegistry.h"
+#include "CommonOptions.h"
 #include "srp/core/Error.h"
+#include "srp/core/ExitCode.h"
 #include "srp/core/Json.h"
 #include "srp/core/OutputFile.h"
 #include "srp/experiment/ExperimentReport.h"
@@ -17,7 +19,7 @@ struct ExperimentArgs {
   std::string outDir = "out/experiment";
   int demos = 5;
   unsigned seed = 1;
-  bool quick = false, json = false, quiet = false, overwrite = false;
+  bool quick = false, json = false, overwrite = false;
 };
 
 void run(const ExperimentArgs& a) {
@@ -29,7 +31,7 @@ void run(const ExperimentArgs& a) {
   options.demoCount = a.demos;
   options.firstSeed = a.seed;
   options.quick = a.quick;
-  if (!a.quiet)
+  if (srp::app::progressWanted(a.json))  // a terminal, no -q, no --json
     options.progress = [](const std::string& what, double fraction) {
       std::cerr << "[" << static_cast<int>(100.0 * fraction) << " %] " << what << "\n";
     };
@@ -47,7 +49,7 @@ void run(const ExperimentArgs& a) {
   const ex::WallClock clock;
   std::vector<ex::ExperimentOutcome> outcomes;
   for (const auto& name : names) {
-    if (!a.quiet) std::cerr << "srp experiment: " << name << " ...\n";
+    if (!srp::app::quietFlag()) std::cerr << "srp experiment: " << name << " ...\n";
     outcomes.push_back(ex::runExperiment(name, options));
     const auto& o = outcomes.back();
     if (!o.succeeded) {
@@ -80,7 +82,7 @@ void run(const ExperimentArgs& a) {
   }
   // A single experiment that failed is an error; in `all` the others still ran.
   if (a.name != "all" && failed) throw srp::core::Error(outcomes.front().error);
-  if (failed) srp::app::commandExitCode() = 2;
+  if (failed) srp::app::commandExitCode() = srp::core::toInt(srp::core::ExitCode::Partial);
 }
 
 void setupExperiment(CLI::App& cmd) {
@@ -96,7 +98,6 @@ void setupExperiment(CLI::App& cmd) {
   cmd.add_option("--seed", args->seed, "seed of the first demo (then seed+1, ...)")->capture_default_str();
   cmd.add_flag("--quick", args->quick, "smallest sizes that still exercise every part (one short 320x240 demo)");
   cmd.add_flag("--json", args->json, "print the result JSON instead of the tables");
-  cmd.add_flag("-q,--quiet", args->quiet, "no progress on stderr");
   srp::app::addOverwriteFlag(cmd, args->overwrite);
   cmd.callback([args]() { run(*args); });
 }

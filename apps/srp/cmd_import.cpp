@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "CommandRegistry.h"
+#include "CommonOptions.h"
 #include "ProgressLine.h"
 #include "srp/calib/RgbdImporter.h"
 #include "srp/core/OutputFile.h"
@@ -24,7 +25,8 @@ struct Args {
 void setupImport(CLI::App& cmd) {
   auto a = std::make_shared<Args>();
   cmd.add_option("folder", a->folder, "image folder (color_N + depth_N images) or TUM RGB-D sequence")->required();
-  cmd.add_option("out", a->out, "rawlog to write")->required();
+  cmd.add_option("-o,--out", a->out, "rawlog to write");
+  srp::app::addDeprecatedPositional(cmd, "out", a->out, "--out");
   cmd.add_option("--layout", a->layout, "auto (TUM when rgb.txt is there), folder or tum")
       ->check(CLI::IsMember({"auto", "folder", "tum"}))
       ->capture_default_str();
@@ -48,12 +50,15 @@ void setupImport(CLI::App& cmd) {
       ->check(CLI::Range(0.0, 10.0))
       ->capture_default_str();
   cmd.add_flag("--json", a->json, "print the summary as JSON");
-  cmd.footer("Example: srp import datasets/real/visp-rbt-cube cube.rawlog");
+  cmd.footer("Example: srp import datasets/real/visp-rbt-cube -o cube.rawlog");
   srp::app::addOverwriteFlag(cmd, a->overwrite);
-  cmd.callback([a] {
-    srp::core::checkOutputPaths({{"out", a->out}},
-                                {{"folder", a->folder}, {"--intrinsics", a->intrinsics},
-                                 {"--depth-intrinsics", a->depthIntrinsics}, {"--depth-M-color", a->depthMColor}},
+  cmd.callback([a, &cmd] {
+    srp::app::requireOneOf(cmd, "--out", "out");
+    srp::core::checkOutputPaths({{"--out", a->out}},
+                                {{"folder", a->folder},
+                                 {"--intrinsics", a->intrinsics},
+                                 {"--depth-intrinsics", a->depthIntrinsics},
+                                 {"--depth-M-color", a->depthMColor}},
                                 a->overwrite);
     srp::calib::ImportOptions o;
     o.cameraPath = a->intrinsics;
@@ -62,7 +67,7 @@ void setupImport(CLI::App& cmd) {
     if (a->depthScale_m > 0.0) o.depthScale_m = a->depthScale_m;
     if (a->fps > 0.0) o.fps = a->fps;
     o.maxTimeDifference_s = a->maxDt_s;
-    srp::app::ProgressLine line(isatty(STDERR_FILENO) && !a->json);  // progress only on a terminal
+    srp::app::ProgressLine line(srp::app::progressWanted(a->json));
     o.progress = [&line](int done, int total) {
       line.show("importing", static_cast<std::size_t>(done), static_cast<std::size_t>(total));
       if (done == total) line.finish();

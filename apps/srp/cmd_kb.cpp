@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "CommandRegistry.h"
+#include "CommonOptions.h"
 #include "srp/core/Error.h"
 #include "srp/core/ObjectCatalogue.h"
 #include "srp/core/OutputFile.h"
@@ -24,16 +25,19 @@ void setupKb(CLI::App& cmd) {
 
   auto* build = cmd.add_subcommand("build", "Generate the STL mesh of every catalogue class with a shape generator");
   auto outDir = std::make_shared<std::string>();
-  build->add_option("--catalogue", *cataloguePath,
+  build->add_option("--kb", *cataloguePath,
                     "catalogue JSON (default: the shipped datasets/kb/catalogue.json of srp's data folder)");
+  srp::app::addDeprecatedOption(*build, "--catalogue", *cataloguePath, "--kb");
   build->add_option("-o,--out", *outDir,
-                    "folder to write a copy of the catalogue and its meshes/ into (default: beside the --catalogue "
+                    "folder to write a copy of the catalogue and its meshes/ into (default: beside the --kb "
                     "given; with the shipped catalogue, the current folder)");
   build->footer("Example: srp kb build -o my_kb   (my_kb/catalogue.json and my_kb/meshes/*.stl, to edit and use "
                 "with --kb my_kb/catalogue.json)");
   auto overwrite = std::make_shared<bool>(false);
   srp::app::addOverwriteFlag(*build, *overwrite);
-  build->callback([cataloguePath, outDir, catalogueOrShipped, overwrite]() {
+  auto buildJson = std::make_shared<bool>(false);
+  build->add_flag("--json", *buildJson, "print the meshes written (class, triangles, file) as JSON");
+  build->callback([cataloguePath, outDir, catalogueOrShipped, overwrite, buildJson]() {
     const std::string path = catalogueOrShipped();
     const std::string dir = !outDir->empty() ? *outDir : cataloguePath->empty() ? "." : "";
     const auto catalogue = srp::kb::loadCatalogue(path);
@@ -43,12 +47,19 @@ void setupKb(CLI::App& cmd) {
         outputs.push_back({"mesh of '" + c.name + "'",
                            dir.empty() ? std::filesystem::path(c.meshPath)
                                        : std::filesystem::path(dir) / "meshes" / std::filesystem::path(c.meshPath).filename()});
-    if (!dir.empty()) outputs.push_back({"catalogue copy", std::filesystem::path(dir) / std::filesystem::path(path).filename()});
-    srp::core::checkOutputPaths(outputs, {{"--catalogue", path}}, *overwrite);
+    if (!dir.empty())
+      outputs.push_back({"catalogue copy", std::filesystem::path(dir) / std::filesystem::path(path).filename()});
+    srp::core::checkOutputPaths(outputs, {{"--kb", path}}, *overwrite);
     if (!dir.empty()) std::filesystem::create_directories(dir);
-    for (const auto& m : srp::kb::buildMeshes(catalogue, dir))
-      std::cout << m.className << ": " << m.triangleCount << " triangles -> " << m.path << "\n";
-    if (!dir.empty()) std::cout << "catalogue -> " << srp::kb::copyCatalogue(path, dir).string() << "\n";
+    nlohmann::json meshes = nlohmann::json::array();
+    for (const auto& m : srp::kb::buildMeshes(catalogue, dir)) {
+      if (*buildJson) meshes.push_back({{"class", m.className}, {"triangles", m.triangleCount}, {"mesh", m.path}});
+      else std::cout << m.className << ": " << m.triangleCount << " triangles -> " << m.path << "\n";
+    }
+    const std::string copy = dir.empty() ? "" : srp::kb::copyCatalogue(path, dir).string();
+    if (*buildJson)
+      std::cout << nlohmann::json{{"meshes", meshes}, {"catalogue", copy.empty() ? path : copy}}.dump(2) << "\n";
+    else if (!copy.empty()) std::cout << "catalogue -> " << copy << "\n";
   });
 
   auto* add = cmd.add_subcommand(
@@ -58,7 +69,8 @@ void setupKb(CLI::App& cmd) {
   auto mass = std::make_shared<double>(0.0);
   auto shape = std::make_shared<std::string>();
   auto size = std::make_shared<std::vector<double>>();
-  add->add_option("--catalogue", *cataloguePath, "catalogue JSON to add to (created when missing)")->required();
+  add->add_option("--kb", *cataloguePath, "catalogue JSON to add to (created when missing)");
+  srp::app::addDeprecatedOption(*add, "--catalogue", *cataloguePath, "--kb");
   add->add_option("name,--name", entry->name, "class name, unique in the catalogue")->required();
   auto* mesh = add->add_option("--mesh", entry->meshPath,
                                "CAD file in metres; its frame becomes the class's object frame (+z up when the part rests)")
@@ -86,9 +98,11 @@ void setupKb(CLI::App& cmd) {
   add->add_flag("--flat", entry->flat, "a flat part (a sheet, a label): its mesh need not enclose a volume")
       ->excludes(box);
   add->add_flag("--json", *json, "machine-readable output");
-  add->footer("Examples:\n  srp kb add --catalogue my_parts.json --name cube --mesh cube.obj\n"
-              "  srp kb add toy --catalogue my_parts.json --shape box --size 0.12 0.08 0.06 --rgb 0.1 0.2 0.7");
+  add->footer(
+      "Examples:\n  srp kb add --kb my_parts.json --name cube --mesh cube.obj\n"
+      "  srp kb add toy --kb my_parts.json --shape box --size 0.12 0.08 0.06 --rgb 0.1 0.2 0.7");
   add->callback([add, cataloguePath, entry, rgb, mass, shape, size, json, units]() {
+    srp::app::requireOneOf(*add, "--kb", "--catalogue");
     if (rgb->size() == 3) entry->rgb = Eigen::Vector3d((*rgb)[0], (*rgb)[1], (*rgb)[2]);
     if (add->count("--mass")) entry->mass_kg = *mass;
     if (!add->count("--scale")) entry->scale = srp::kb::unitScale(*units);
@@ -130,8 +144,9 @@ void setupKb(CLI::App& cmd) {
   });
 
   auto* list = cmd.add_subcommand("list", "List the catalogue classes");
-  list->add_option("--catalogue", *cataloguePath,
+  list->add_option("--kb", *cataloguePath,
                    "catalogue JSON (default: the shipped datasets/kb/catalogue.json of srp's data folder)");
+  srp::app::addDeprecatedOption(*list, "--catalogue", *cataloguePath, "--kb");
   list->add_flag("--json", *json, "machine-readable output");
   list->callback([catalogueOrShipped, json]() {
     const auto catalogue = srp::kb::loadCatalogue(catalogueOrShipped());

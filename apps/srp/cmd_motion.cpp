@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "CommandRegistry.h"
+#include "CommonOptions.h"
 #include "srp/core/Error.h"
 #include "srp/core/OutputFile.h"
 #include "srp/core/SafeText.h"
@@ -34,8 +35,8 @@ void runMotion(const MotionOptions& o) {
   const std::string dir = o.outDir.empty() ? "motion_" + std::to_string(o.id) : o.outDir;
   std::optional<core::AtomicOutputFolder> plots;
   if (!o.noPlots && !o.syntheticDemo) {
-    core::checkOutputPaths({{"--out-dir", dir}}, {{"--db", o.db}}, o.overwrite);
-    core::checkFolderHoldsOnly(dir, {"*.png"}, "--out-dir");
+    core::checkOutputPaths({{"--out", dir}}, {{"--db", o.db}}, o.overwrite);
+    core::checkFolderHoldsOnly(dir, {"*.png"}, "--out");
     plots.emplace(std::filesystem::path(dir).lexically_normal());
   }
   auto db = taskdb::TaskDatabase::open(o.db);
@@ -44,15 +45,16 @@ void runMotion(const MotionOptions& o) {
   if (o.syntheticDemo) {
     const auto demo = synth::SyntheticPickPlaceGenerator(synth::SyntheticPickPlaceConfig{}).generate();
     id = store.write(programming::taskModelFromTracks(demo, "synthetic-demo", demo.instruction()));
-    std::cerr << "srp motion: stored a synthetic 4-object demo as task model " << id << "\n";
+    if (!app::quietFlag()) std::cerr << "srp motion: stored a synthetic 4-object demo as task model " << id << "\n";
   } else if (id <= 0) {
-    throw core::InvalidInputError("give a TaskModelId (see 'srp db list') or --synthetic-demo");
+    throw core::InvalidInputError("give --task ID (see 'srp db list') or --synthetic-demo");
   }
   const taskdb::TaskModel model = store.read(id);
-  std::cerr << "srp motion: task model " << id << " '" << model.info.name << "': segmenting "
-            << model.handPositions.size() << " hand positions\n";
+  if (!app::quietFlag())
+    std::cerr << "srp motion: task model " << id << " '" << model.info.name << "': segmenting "
+              << model.handPositions.size() << " hand positions\n";
   const programming::MotionInputs inputs = programming::motionInputsFromTaskModel(model);
-  std::cerr << "srp motion: segmenting and learning DMPs\n";
+  if (!app::quietFlag()) std::cerr << "srp motion: segmenting and learning DMPs\n";
   const motion::LearnedSkills learned = motion::learnSkills(inputs);
   const auto& seg = learned.segmentation;
   const auto& skills = learned.skills;
@@ -63,8 +65,8 @@ void runMotion(const MotionOptions& o) {
   if (!o.noPlots) {
     if (!plots) {  // --synthetic-demo: the id is known only now
       const std::string out = o.outDir.empty() ? "motion_" + std::to_string(id) : o.outDir;
-      core::checkOutputPaths({{"--out-dir", out}}, {{"--db", o.db}}, o.overwrite);
-      core::checkFolderHoldsOnly(out, {"*.png"}, "--out-dir");
+      core::checkOutputPaths({{"--out", out}}, {{"--db", o.db}}, o.overwrite);
+      core::checkFolderHoldsOnly(out, {"*.png"}, "--out");
       plots.emplace(std::filesystem::path(out).lexically_normal());
     }
     const std::string staged = plots->temporaryPath().string();
@@ -112,12 +114,14 @@ void runMotion(const MotionOptions& o) {
 
 void setupMotion(CLI::App& app) {
   auto o = std::make_shared<MotionOptions>();
-  app.add_option("id", o->id, "TaskModelId (see 'srp db list')")->check(srp::app::kDecimalId);
+  app.add_option("--task", o->id, "TaskModelId (see 'srp db list')")->check(srp::app::kDecimalId);
+  srp::app::addDeprecatedPositional(app, "id", o->id, "--task")->check(srp::app::kDecimalId);
   app.add_flag("--synthetic-demo", o->syntheticDemo,
                "First store a synthetic 4-object demo (noise, dropouts, flicker) as a new task model, then process it");
   app.add_option("--db", o->db, std::string("Task database: ") + srp::app::kTaskDatabaseHelp);
-  app.add_option("--out-dir", o->outDir,
+  app.add_option("-o,--out", o->outDir,
                  "Directory for the PNG per object (default: motion_<id>), written whole or not at all");
+  srp::app::addDeprecatedOption(app, "--out-dir", o->outDir, "--out");
   app.add_flag("--no-plots", o->noPlots, "Do not write PNGs");
   app.add_flag("--json", o->json, "Print the result as JSON");
   srp::app::addOverwriteFlag(app, o->overwrite);

@@ -4,9 +4,10 @@
 #include <iostream>
 
 #include "CommandRegistry.h"
-#include "srp/language/InstructionParser.h"
 #include "srp/core/Error.h"
+#include "srp/core/ExitCode.h"
 #include "srp/core/Json.h"
+#include "srp/language/InstructionParser.h"
 #include "srp/language/PlanTables.h"
 #include "srp/taskdb/TaskDatabase.h"
 
@@ -81,7 +82,7 @@ void setupParse(CLI::App& app) {
     }
     if (plan.steps.empty()) {
       if (!dbPath->empty()) std::cerr << "srp parse: nothing written to " << srp::taskdb::TaskDatabase::displayName(*dbPath) << " (the plan has no steps)\n";
-      srp::app::commandExitCode() = 2;
+      srp::app::commandExitCode() = srp::core::toInt(srp::core::ExitCode::Error);  // nothing to do is not success
     } else if (!dbPath->empty()) {
       const int id = srp::language::storePlan(plan, *dbPath, *name, *text);
       std::cerr << "stored as task model " << id << " in " << srp::taskdb::TaskDatabase::displayName(*dbPath) << "\n";

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "CommandRegistry.h"
+#include "CommonOptions.h"
 #include "ProgressLine.h"
 #include "srp/core/Json.h"
 #include "srp/core/OutputFile.h"
@@ -41,7 +42,7 @@ struct PerceiveOptions {
 };
 
 void run(const PerceiveOptions& o) {
-  srp::core::checkOutputPaths({{"--csv", o.csv}, {"--draw", o.draw}},
+  srp::core::checkOutputPaths({{"--out", o.csv}, {"--draw", o.draw}},
                               {{"--demo", o.demo}, {"--kb", o.kb}, {"--scene", o.scene}}, o.overwrite);
   if (!o.draw.empty()) srp::core::checkFolderHoldsOnly(o.draw, {"frame_*", "contact_sheet.png"}, "--draw");
   const auto catalogue = srp::kb::loadCatalogue(o.kb.empty() ? srp::core::ObjectCatalogue::defaultPath() : o.kb);
@@ -61,7 +62,7 @@ void run(const PerceiveOptions& o) {
   for (const auto& n : splitList(o.objects)) p.plan.push_back({n, false, "", std::nullopt});
   for (const auto& n : statics) p.plan.push_back({n, true, "", std::nullopt});
   if (!o.scene.empty()) p.plan = withSceneInstances(p.plan, srp::core::Scene::load(o.scene), catalogue);
-  srp::app::ProgressLine line(isatty(STDERR_FILENO) != 0);  // progress only on a terminal
+  srp::app::ProgressLine line(srp::app::progressWanted(o.json));
   const PerceptionResult r = perceiveRawlog(o.demo, catalogue, p, [&line](int i, int) {
     if ((i + 1) % 30 == 0) line.show("perceive: frame", static_cast<std::size_t>(i + 1));
   });
@@ -69,7 +70,8 @@ void run(const PerceiveOptions& o) {
   if (!o.csv.empty()) writeSegmentCsv(r, o.csv);
   if (!o.draw.empty()) {
     const auto files = writeDrawnFrames(o.demo, r, catalogue, o.draw, o.drawEvery);
-    std::fprintf(stderr, "drew %zu frames and a contact sheet in %s\n", files.size() - 1, o.draw.c_str());
+    if (!srp::app::quietFlag())
+      std::fprintf(stderr, "drew %zu frames and a contact sheet in %s\n", files.size() - 1, o.draw.c_str());
   }
 
   if (o.json) {
@@ -166,9 +168,10 @@ void setupPerceive(CLI::App& app) {
                  "Scene JSON of the demo (srp synth-demo --scene): a listed class the scene holds several times is "
                  "tracked per instance (its id and colour; JSON 'instance', CSV columns named by the instance id)");
   app.add_flag("--json", o->json, "Print JSON");
-  app.add_option("--csv", o->csv,
+  app.add_option("-o,--out", o->csv,
                  "Write the per-frame CSV in the 'srp segment' format (a sample not detected in its frame, "
                  "e.g. a part in the hand, is written as 0,0,0,0)");
+  srp::app::addDeprecatedOption(app, "--csv", o->csv, "--out");
   srp::app::addOverwriteFlag(app, o->overwrite);
   app.add_option("--draw", o->draw,
                  "Write what perception saw, drawn on the recording, to this folder: frame_NNNNN.png (palm, each "
@@ -180,7 +183,7 @@ void setupPerceive(CLI::App& app) {
   app.footer(
       "Object poses are those of each class's mesh frame (a CAD file's own frame), camera optical frame.\n"
       "Example (a real hand-held recording, objects only):\n"
-      "  srp import datasets/real/visp-rbt-cube cube.rawlog\n"
+      "  srp import datasets/real/visp-rbt-cube -o cube.rawlog\n"
       "  srp perceive --demo cube.rawlog --kb my_parts.json --objects cube --hand none --json");
   app.callback([o] { run(*o); });
 }

@@ -7,12 +7,13 @@
 #include <iostream>
 
 #include "CommandRegistry.h"
+#include "CommonOptions.h"
 #include "ProgressLine.h"
 #include "srp/calib/CameraExtrinsics.h"
 #include "srp/calib/CameraFiles.h"
 #include "srp/core/Error.h"
-#include "srp/core/OutputFile.h"
 #include "srp/core/ExitCode.h"
+#include "srp/core/OutputFile.h"
 #include "srp/programming/ProgrammingPipeline.h"
 #include "srp/taskdb/TaskDatabase.h"
 
@@ -21,7 +22,7 @@ namespace {
 struct ProgramArgs {
   std::string instruction, demo, kb, calib, db = srp::app::defaultTaskDatabase(), name = "task", report,
       hand = "auto", scene, extrinsics;
-  bool json = false, quiet = false, allowTruncated = false, allowPartial = false, overwrite = false;
+  bool json = false, allowTruncated = false, allowPartial = false, overwrite = false;
 };
 
 void setupProgram(CLI::App& cmd) {
@@ -36,14 +37,18 @@ void setupProgram(CLI::App& cmd) {
                  "The demo's scene JSON (srp synth-demo --scene; for a recording, one listing its instances and "
                  "their colours): a class it holds several times is perceived per instance, and the instruction's "
                  "phrases ('the red cuboid') are grounded to instances (stored as InstanceId)");
-  cmd.add_option("--calib", a->calib, "Camera intrinsics (ViSP XML, e.g. calib/camera.xml) overriding the rawlog's");
+  cmd.add_option(
+      "--intrinsics", a->calib,
+      "Camera file (ViSP XML, ROS/OpenCV YAML or JSON, e.g. calib/camera.xml) overriding the rawlog's intrinsics");
+  srp::app::addDeprecatedOption(cmd, "--calib", a->calib, "--intrinsics");
   cmd.add_option("--db", a->db, std::string("Task database to store the task model in: ") + srp::app::kTaskDatabaseHelp);
   cmd.add_option("--name", a->name, "Task model name; an existing name gets a new version")->capture_default_str();
-  cmd.add_option("--report", a->report,
+  cmd.add_option("-o,--out", a->report,
                  "Folder for the report: PNG figures, contact_sheet.png (what perception saw on the recording), "
                  "scene.json (the scene the demonstration showed, the one 'srp execute' runs in without --scene) and "
                  "summary.md; written whole or not at all, only when the task model is stored; an existing one needs "
                  "-w and is replaced only when it holds nothing but a report");
+  srp::app::addDeprecatedOption(cmd, "--report", a->report, "--out");
   cmd.add_option("--extrinsics", a->extrinsics,
                  "Camera-to-robot extrinsics of the demonstration's camera ('srp calibrate extrinsics' or 'hand-eye' "
                  "write it, ./extrinsics.json by default), stored with the task model: execution places the robot from it "
@@ -60,13 +65,13 @@ void setupProgram(CLI::App& cmd) {
                "Store the task model even when a step of the plan has no grasp or no release in the demonstration "
                "(default: fail naming the step, store nothing); exits 3 when it did");
   cmd.add_flag("--json", a->json, "Print the result as JSON");
-  cmd.add_flag("-q,--quiet", a->quiet, "No progress bar");
   srp::app::addOverwriteFlag(cmd, a->overwrite);
   cmd.callback([a] {
     using srp::core::PathRole;
-    const std::vector<PathRole> inputs = {{"--demo", a->demo}, {"--kb", a->kb}, {"--scene", a->scene}, {"--calib", a->calib}};
+    const std::vector<PathRole> inputs = {
+        {"--demo", a->demo}, {"--kb", a->kb}, {"--scene", a->scene}, {"--intrinsics", a->calib}};
     srp::core::checkOutputPaths({{"--db", a->db}}, inputs, true);  // the database is added to, never replaced
-    srp::core::checkOutputPaths({{"--report", a->report}}, inputs, a->overwrite);
+    srp::core::checkOutputPaths({{"--out", a->report}}, inputs, a->overwrite);
     srp::programming::ProgrammingOptions o;
     o.instruction = a->instruction;
     o.demoPath = a->demo;
@@ -85,7 +90,7 @@ void setupProgram(CLI::App& cmd) {
     using Hand = srp::programming::ProgrammingOptions::Hand;
     o.hand = a->hand == "marker-free" ? Hand::MarkerFree : a->hand == "marker" ? Hand::Marker : Hand::Auto;
     // One line per stage on a terminal, redrawn at most every 100 ms; silent otherwise.
-    srp::app::ProgressLine bar(!a->quiet && !a->json && isatty(STDERR_FILENO), std::chrono::milliseconds(100));
+    srp::app::ProgressLine bar(srp::app::progressWanted(a->json), std::chrono::milliseconds(100));
     o.progress = [&bar](const std::string& s, std::size_t d, std::size_t t) { bar.show(s, d, t, t ? "" : "frames"); };
     const srp::programming::ProgramResult r = srp::programming::programTask(o);
     if (!r.problems.empty()) srp::app::commandExitCode() = srp::core::toInt(srp::core::ExitCode::Partial);

@@ -5,10 +5,12 @@
 #include <nlohmann/json.hpp>
 
 #include "CommandRegistry.h"
+#include "CommonOptions.h"
 #include "ProgressLine.h"
 #include "srp/calib/RawlogReplay.h"
 #include "srp/calib/TaskModelOverlay.h"
 #include "srp/core/Error.h"
+#include "srp/core/ExitCode.h"
 #include "srp/core/OutputFile.h"
 #include "srp/taskdb/TaskDatabase.h"
 #include "srp/taskdb/TaskModelStore.h"
@@ -27,8 +29,9 @@ struct Args {
 void setupReplay(CLI::App& cmd) {
   auto a = std::make_shared<Args>();
   cmd.add_option("rawlog", a->rawlog, "rawlog to replay")->required();
-  cmd.add_option("--export", a->exportDir,
+  cmd.add_option("-o,--out", a->exportDir,
                  "write color_NNNN.png, 16-bit depth_NNNN.png and cam.json here (importable again)");
+  srp::app::addDeprecatedOption(cmd, "--export", a->exportDir, "--out");
   cmd.add_option("--depth-scale", a->depthScale_m,
                  "metres per exported depth unit (default: the rawlog's own unit, lossless)")
       ->check(CLI::Range(1e-6, 1.0));
@@ -36,21 +39,22 @@ void setupReplay(CLI::App& cmd) {
   cmd.add_option("--fps", a->fps, "video frame rate (default: the recording's)")->check(CLI::Range(0.1, 1000.0));
   cmd.add_option("--overlay", a->overlayDb,
                  "task database: draw a task model's trajectories, detections and skills on the video and as "
-                 "overlay_NNNN.png in --export");
-  cmd.add_option("--task-id", a->taskId, "task model to draw (default: the newest)")->check(srp::app::kDecimalId);
+                 "overlay_NNNN.png in --out");
+  cmd.add_option("--task", a->taskId, "task model to draw (default: the newest)")->check(srp::app::kDecimalId);
+  srp::app::addDeprecatedOption(cmd, "--task-id", a->taskId, "--task")->check(srp::app::kDecimalId);
   cmd.add_option("--first-time-id", a->firstTimeId, "TimeId of the rawlog's first frame")->capture_default_str();
   cmd.add_flag("--json", a->json, "print the summary as JSON");
   srp::app::addOverwriteFlag(cmd, a->overwrite);
-  cmd.footer("Example: srp replay demo.rawlog --export frames/ --video demo.avi --overlay task.db");
+  cmd.footer("Example: srp replay demo.rawlog -o frames/ --video demo.avi --overlay task.db");
   cmd.callback([a] {
     using srp::core::PathRole;
-    srp::core::checkOutputPaths({{"--export", a->exportDir}, {"--video", a->video}},
+    srp::core::checkOutputPaths({{"--out", a->exportDir}, {"--video", a->video}},
                                 {{"rawlog", a->rawlog}, {"--overlay", a->overlayDb}}, a->overwrite);
     // Outputs are made beside their targets and put in place when the replay is done.
     std::optional<srp::core::AtomicOutputFolder> exportFolder;
     std::optional<srp::core::AtomicOutputFile> videoFile;
     if (!a->exportDir.empty()) {
-      srp::core::checkFolderHoldsOnly(a->exportDir, {"color_*", "depth_*", "overlay_*", "cam.json"}, "--export");
+      srp::core::checkFolderHoldsOnly(a->exportDir, {"color_*", "depth_*", "overlay_*", "cam.json"}, "--out");
       exportFolder.emplace(std::filesystem::path(a->exportDir).lexically_normal());
     }
     if (!a->video.empty()) videoFile.emplace(a->video);
@@ -62,7 +66,7 @@ void setupReplay(CLI::App& cmd) {
     std::shared_ptr<srp::calib::TaskModelOverlay> overlay;
     if (!a->overlayDb.empty()) {
       if (a->exportDir.empty() && a->video.empty())
-        throw srp::core::InvalidInputError("--overlay draws into --video and/or --export: give one of them");
+        throw srp::core::InvalidInputError("--overlay draws into --video and/or --out: give one of them");
       auto db = srp::taskdb::TaskDatabase::open(a->overlayDb, srp::taskdb::TaskDatabase::Mode::ReadOnly);
       srp::taskdb::TaskModelStore store(db);
       int id = a->taskId;
@@ -76,7 +80,7 @@ void setupReplay(CLI::App& cmd) {
       o.exportOverlay = true;
     }
     const bool slow = !o.exportDir.empty() || !o.videoPath.empty();
-    srp::app::ProgressLine line(slow);
+    srp::app::ProgressLine line(slow && srp::app::progressWanted(a->json));
     o.progress = [&line](int frames) {
       if (frames % 10 == 0) line.show("replayed", static_cast<std::size_t>(frames), 0, "frames");
     };
@@ -88,7 +92,8 @@ void setupReplay(CLI::App& cmd) {
     else std::cout << s.toText();
     if (!a->exportDir.empty() && !a->json) std::cout << "  exported to " << a->exportDir << "\n";
     if (!a->video.empty() && !a->json) std::cout << "  video " << a->video << "\n";
-    if (s.damage) srp::app::commandExitCode() = 2;  // frames replayed, but the file is damaged
+    if (s.damage)  // frames replayed, but the file is damaged
+      srp::app::commandExitCode() = srp::core::toInt(srp::core::ExitCode::Partial);
   });
 }
 

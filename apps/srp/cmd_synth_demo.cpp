@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "CommandRegistry.h"
+#include "CommonOptions.h"
 #include "ProgressLine.h"
 #include "srp/core/DefaultScene.h"
 #include "srp/core/Error.h"
@@ -28,7 +29,7 @@ struct SynthDemoArgs {
   long long seed = -1;
   int width = 0, height = 0, maxFrames = -1, colourNoiseBlock = -1, depthNoiseBlock = -1;
   double speed = 1.0;
-  bool clean = false, noRandomise = false, motionBlur = false, json = false, quiet = false, overwrite = false;
+  bool clean = false, noRandomise = false, motionBlur = false, json = false, overwrite = false;
 };
 
 namespace fs = std::filesystem;
@@ -107,7 +108,7 @@ void run(const SynthDemoArgs& a) {
     if (j.contains("X_colour_depth")) d.X_colour_depth = srp::core::poseFromJson(j.at("X_colour_depth"), context);
     options.depthCamera = d;
   }
-  srp::app::ProgressLine line(!a.quiet);
+  srp::app::ProgressLine line(srp::app::progressWanted(a.json));
   StagedDemo staged(a.outPath, options.depthCamera.has_value());
   auto result = srp::synth::generateSyntheticDemo(scene, catalogue, plan, options, staged.stagedPath(), [&line](int k, int n) {
     if (k % 30 == 0 || k + 1 == n) line.show("synth-demo: frame", static_cast<std::size_t>(k + 1), static_cast<std::size_t>(n));
@@ -184,7 +185,6 @@ void setupSynthDemo(CLI::App& cmd) {
                  "rendered by it and -o names an image folder for 'srp import' (unregistered RGB-D, as a "
                  "RealSense records it); example: sim/cameras/realsense_d435_depth.json");
   cmd.add_flag("--json", args->json, "print the result as JSON");
-  cmd.add_flag("-q,--quiet", args->quiet, "no progress on stderr");
   srp::app::addOverwriteFlag(cmd, args->overwrite);
   cmd.callback([args]() { run(*args); });
 }

@@ -9,8 +9,9 @@
 #include <vector>
 
 #include "CommandRegistry.h"
-#include "srp/core/DataPaths.h"
+#include "CommonOptions.h"
 #include "LanguageSwitches.h"
+#include "srp/core/DataPaths.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/core/OutputFile.h"
@@ -30,7 +31,12 @@ void setupTrainLanguage(CLI::App& app) {
                  "SpERT corpora, pooled for training and cross-validation (default: the shipped "
                  "datasets/language/train.json and val.json of srp's data folder)");
   app.add_option("--score", *scorePath, "SpERT corpus scored after training (not for choosing anything)");
-  app.add_option("--out", *outPath, "model file to write (use it with 'srp parse --model FILE')")->capture_default_str();
+  app.add_option("-o,--out", *outPath, "model file to write (use it with 'srp parse --model FILE')")
+      ->capture_default_str();
+  auto json = std::make_shared<bool>(false);
+  app.add_flag("--json", *json,
+               "print the result as JSON: with --cv the summary --cv-json writes, else the model file, the corpus size "
+               "and the training time");
   auto options = std::make_shared<srp::language::LanguageTrainingOptions>();
   app.add_option("--entity-c", options->entityC, "entity tagger SVM C")->capture_default_str();
   app.add_option("--relation-c", options->relationC, "relation classifier SVM C")->capture_default_str();
@@ -119,11 +125,13 @@ void setupTrainLanguage(CLI::App& app) {
           variants.push_back({name + ((r.*member) ? "=1" : "=0"), r});
         }
       const nlohmann::json earlier = compareTo->empty() ? nlohmann::json() : srp::core::readJsonFile(*compareTo);
-      std::cerr << *cvFolds << "-fold x " << *cvSeeds << " cross-validation on " << corpus.size()
-                << " pooled sentences...\n";
+      if (!srp::app::quietFlag())
+        std::cerr << *cvFolds << "-fold x " << *cvSeeds << " cross-validation on " << corpus.size()
+                  << " pooled sentences...\n";
       const auto cv = srp::language::repeatedCrossValidate(corpus, *options, *cvFolds, *cvSeeds, *cvThreads, variants);
       // The suites are scored by one model trained on the whole pooled corpus, under each variant's rules.
-      std::cerr << "training on " << corpus.size() << " pooled sentences for the capability suites...\n";
+      if (!srp::app::quietFlag())
+        std::cerr << "training on " << corpus.size() << " pooled sentences for the capability suites...\n";
       auto full = srp::language::LanguageModel::train(corpus, *options);
       std::vector<std::vector<srp::language::CapabilitySuites::Result>> suiteResults{suites.score(full)};
       for (const auto& variant : variants) {
@@ -136,6 +144,10 @@ void setupTrainLanguage(CLI::App& app) {
         srp::core::writeJsonFile(*cvPredictions, out);
       }
       if (!cvJson->empty()) srp::core::writeJsonFile(*cvJson, srp::language::toJson(cv, suiteResults));
+      if (*json) {
+        std::cout << srp::language::toJson(cv, suiteResults).dump(2) << "\n";
+        return;
+      }
       std::cout << "pooled corpus:";
       for (const auto& p : *trainPaths) std::cout << " " << p;
       std::cout << " (" << corpus.size() << " sentences)\n" << srp::language::formatCrossValidation(cv);
@@ -159,11 +171,16 @@ void setupTrainLanguage(CLI::App& app) {
                                                        std::set<std::string>(errorTypes->begin(), errorTypes->end()));
       return;
     }
-    std::cerr << "training on " << corpus.size() << " pooled sentences...\n";
+    if (!srp::app::quietFlag()) std::cerr << "training on " << corpus.size() << " pooled sentences...\n";
     const auto t0 = std::chrono::steady_clock::now();
     const auto model = srp::language::LanguageModel::train(corpus, *options);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     model.save(*outPath);
+    if (*json) {
+      std::cout << nlohmann::json{{"model", *outPath}, {"sentences", corpus.size()}, {"train_s", seconds}}.dump(2)
+                << "\n";
+      return;
+    }
     std::cout << "trained in " << seconds << " s, wrote " << *outPath << "\n"
               << "capability suites (" << *capabilitiesDir << "):\n"
               << srp::language::CapabilitySuites::formatTable(suites.score(model));

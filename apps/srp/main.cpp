@@ -4,9 +4,12 @@
 #include <exception>
 #include <functional>
 #include <iostream>
+#include <string>
 
 #include "CommandRegistry.h"
+#include "CommonOptions.h"
 #include "srp/core/DataPaths.h"
+#include "srp/core/Log.h"
 
 namespace {
 
@@ -36,7 +39,21 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("srp ") + SRP_VERSION);
   app.require_subcommand(1);
   app.footer([] {
+    std::string categories;
+    for (const auto& [name, what] : srp::core::Log::categories())
+      categories += "      " + name + std::string(name.size() < 11 ? 11 - name.size() : 1, ' ') + what + "\n";
     return "Run 'srp <command> --help' for the options of a command.\n" + dataFolderLine() +
+           "\nEvery command takes:\n"
+           "  -o, --out        its main output (file or folder), where it writes one\n"
+           "  -w, --overwrite  replace existing outputs (refused otherwise, naming the file)\n"
+           "  --json           the result as JSON on stdout, where the result is data\n"
+           "  -q, --quiet      no progress lines (progress is drawn only on a terminal anyway)\n"
+           "  -v, --verbose    debug lines of every log category (= --log-level debug)\n"
+           "  --log-level SPEC a level (trace, debug, info, warning, error, off) and/or CATEGORY=LEVEL pairs:\n" +
+           categories +
+           "  --data-dir DIR   srp's data folder\n"
+           "Spellings of earlier releases (--catalogue, --report, --export, --csv, --out-dir, --task-id, --calib, "
+           "positional outputs and ids) still work and print a deprecation warning.\n"
            "\nExit codes:\n"
            "  0  done: the command did all of its job\n"
            "  1  error: it could not do its job (bad input, a failed step); it says which and why\n"
@@ -52,6 +69,7 @@ int main(int argc, char** argv) {
     spec.setup(*sub);
   }
   addDataDirOption(app);
+  srp::app::addVerbosityOptions(app);
 
   // An unknown command name: CLI11 would say only "A subcommand is required"
   // or "argument was not expected"; name it and list the commands instead.

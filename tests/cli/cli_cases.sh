@@ -93,7 +93,7 @@ case $CASE in
       "$SRP" program -i "Pick up the cuboid and place it in the gray box." --demo "$TMP/demo.rawlog" \
       --db "$TMP/t.db" -q
     no_database_left
-    expect 2 'DAMAGED' -- "$SRP" replay "$TMP/demo.rawlog" ;;
+    expect 3 'DAMAGED' -- "$SRP" replay "$TMP/demo.rawlog" ;;
   program_unwritable_report)
     small_demo
     touch "$TMP/file"

@@ -21,15 +21,21 @@ case $mode in
     for f in bin/srp share/srp/datasets/kb/catalogue.json share/srp/datasets/language/model/language_model.dat \
              share/srp/sim/scenes/default.json share/srp/sim/ur5/ur5.urdf share/srp/calib/camera.xml \
              share/srp/datasets/real/visp-rbt-cube/color_0000.png include/srp/core/DataPaths.h \
-             include/srp/language/InstructionParser.h; do
+             include/srp/language/InstructionParser.h share/bash-completion/completions/srp \
+             share/man/man1/srp.1 share/man/man1/srp-program.1 share/man/man1/srp-db-show.1; do
       [ -e "$prefix/$f" ] || fail "not installed: $prefix/$f"
     done
+    # The man pages are the commands' --help, without the build machine's data folder.
+    grep -q -- "intrinsics" "$prefix/share/man/man1/srp-program.1" || fail "srp-program.1 lacks --intrinsics"
+    if grep -q "Data folder:" "$prefix"/share/man/man1/*.1; then fail "a man page names the build's data folder"; fi
+    pages=$(ls "$prefix"/share/man/man1/srp*.1 | wc -l)
+    [ "$pages" -ge 25 ] || fail "only $pages man pages"
     config=$(find "$prefix" -name srpConfig.cmake | head -1)
     [ -n "$config" ] || fail "no srpConfig.cmake under $prefix"
     for m in core taskdb language perception motion programming execution calib kb rawlog synth plot experiment; do
       [ -n "$(find "$prefix" -name "libsrp_$m.a")" ] || fail "libsrp_$m.a not installed"
     done
-    echo "installed into $prefix: $(du -sh "$prefix" | cut -f1) ($config)"
+    echo "installed into $prefix: $(du -sh "$prefix" | cut -f1) ($config), $pages man pages"
     ;;
 
   consumer)

@@ -1,4 +1,5 @@
 #include "srp/perception/DemoPerception.h"
+#include "srp/core/Log.h"
 
 #include <algorithm>
 #include <chrono>
@@ -109,7 +110,7 @@ struct DemoPerceiver::Impl {
   bool haveDepth = false;
   double lastZ_m = 0.0;
   double lastZ_t_s = 0.0;  // when lastZ_m was measured
-  const bool debug = std::getenv("SRP_PERCEPTION_DEBUG") != nullptr;
+  const bool debug = core::Log::enabled("perception", core::Log::Level::Debug);
 
   Impl(const core::ObjectCatalogue& c, const PerceptionOptions& o) : catalogue(c), options(o) {}
   std::map<std::string, ObjectDetection> trackParts(const rawlog::RgbdFrame& f);
@@ -132,8 +133,9 @@ bool DemoPerceiver::Impl::visibleEnough(const rawlog::RgbdFrame& f, const Object
   const double support = e.inView > 0 ? static_cast<double>(e.supported) / e.inView : 0.0;
   const bool ok = visible >= o.mbtMinDetectionVisibleFraction && support >= o.mbtMinDetectionSupport;
   if (debug)
-    std::fprintf(stderr, "frame %d: %s (re)initialisation gate: %d samples, visible %.2f, supported %.2f: %s\n",
-                 f.index, key.c_str(), e.inView, visible, support, ok ? "used" : "rejected");
+    core::Log::writef("perception", core::Log::Level::Debug,
+                      "frame %d: %s (re)initialisation gate: %d samples, visible %.2f, supported %.2f: %s\n", f.index,
+                      key.c_str(), e.inView, visible, support, ok ? "used" : "rejected");
   return ok;
 }
 
@@ -170,11 +172,12 @@ std::map<std::string, ObjectDetection> DemoPerceiver::Impl::trackParts(const raw
     }
     const bool tracked = r.tracked && coverage >= m.options.mbtMinCoverage;
     if (m.debug)
-      std::fprintf(stderr,
-                   "frame %d: %s mbt %s in %.1f ms: %d klt, %d depth, %d edge features, projection error %.1f deg, "
-                   "coverage %.2f\n",
-                   f.index, p.key().c_str(), tracked ? "tracked" : "lost", track_ms, r.kltPoints, r.depthFeatures,
-                   r.edgeFeatures, r.projectionError_deg, coverage);
+      core::Log::writef(
+          "perception", core::Log::Level::Debug,
+          "frame %d: %s mbt %s in %.1f ms: %d klt, %d depth, %d edge features, projection error %.1f deg, "
+          "coverage %.2f\n",
+          f.index, p.key().c_str(), tracked ? "tracked" : "lost", track_ms, r.kltPoints, r.depthFeatures,
+          r.edgeFeatures, r.projectionError_deg, coverage);
     if (!tracked) {
       if (r.tracked && m.options.mbtCompareBeforeReinit && coverage >= m.options.mbtKeepMinCoverage) {
         m.unconfirmed[p.key()] = r.X_camera_mesh;  // weighed against the detection in mergeTracked
@@ -222,8 +225,9 @@ void DemoPerceiver::Impl::mergeTracked(const rawlog::RgbdFrame& f, const std::ma
       const double detectedEdge_px =
           detected != detections.end() ? tracker->edgeDistance_px(f, detected->X_camera_object) : 1e9;
       if (m.debug)
-        std::fprintf(stderr, "frame %d: %s unconfirmed: edges %.2f px tracked, %.2f px detected\n", f.index,
-                     p.key().c_str(), trackedEdge_px, detected != detections.end() ? detectedEdge_px : -1.0);
+        core::Log::writef("perception", core::Log::Level::Debug,
+                          "frame %d: %s unconfirmed: edges %.2f px tracked, %.2f px detected\n", f.index,
+                          p.key().c_str(), trackedEdge_px, detected != detections.end() ? detectedEdge_px : -1.0);
       if (detected != detections.end() && trackedEdge_px <= detectedEdge_px + m.options.mbtReinitEdgeMargin_px) {
         detected->X_camera_object = unconfirmed->second;
         detected->p_camera_median_m = unconfirmed->second.translation();
@@ -333,8 +337,9 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
     m.handUsed = m.previewed > 0 ? PerceptionOptions::HandMethod::MarkerFree : PerceptionOptions::HandMethod::Marker;
     if (m.handUsed == PerceptionOptions::HandMethod::Marker) m.hand = std::make_unique<MarkerHandDetector>(m.options.marker);
     if (m.debug)
-      std::fprintf(stderr, "hand: %s (glove tag in %d of the %d previewed frames probed)\n",
-                   m.handUsed == PerceptionOptions::HandMethod::Marker ? "marker" : "marker-free", m.tagFrames, m.previewed);
+      core::Log::writef(
+          "perception", core::Log::Level::Debug, "hand: %s (glove tag in %d of the %d previewed frames probed)\n",
+          m.handUsed == PerceptionOptions::HandMethod::Marker ? "marker" : "marker-free", m.tagFrames, m.previewed);
   }
   if (i == 0) {
     m.moving = m.options.movingCamera;
@@ -347,7 +352,9 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
     if (!m.moving && m.cameraMotion->moved()) {
       m.moving = true;  // from here on as with a moving camera
       m.result.cameraMovedAtFrame = f.index;
-      if (m.debug) std::fprintf(stderr, "frame %d: the camera moved, perceived as moving from here on\n", f.index);
+      if (m.debug)
+        core::Log::writef("perception", core::Log::Level::Debug,
+                          "frame %d: the camera moved, perceived as moving from here on\n", f.index);
     }
   }
   m.frameIndex.push_back(f.index);
@@ -413,15 +420,18 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
             : m.tracker->update(f, m.options.fixedSupportPlane && m.support ? &*m.support : nullptr,
                                 h ? std::vector<Eigen::Vector2d>{h->palm_px} : std::vector<Eigen::Vector2d>{});
     if (m.debug)
-      std::fprintf(stderr, "frame %d: %s in %.1f ms\n", f.index, allTracked ? "plane fit (all tracked)" : "detection",
-                   std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - detectStart).count());
+      core::Log::writef(
+          "perception", core::Log::Level::Debug, "frame %d: %s in %.1f ms\n", f.index,
+          allTracked ? "plane fit (all tracked)" : "detection",
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - detectStart).count());
     if (m.options.onFrameDetections) m.options.onFrameDetections(f.index, detections);
     if (useMbt) m.mergeTracked(f, tracked, detections);
     if (!m.support) m.support = m.tracker->lastPlane();
     if (m.debug && !m.moving) {
       const auto& st = m.tracker->lastStats();
-      std::fprintf(stderr, "frame %d: %d segments: %d hand, %d unchanged, %d static verified, %d explained\n", f.index,
-                   st.segments, st.hand, st.unchanged, st.staticVerified, st.explained);
+      core::Log::writef("perception", core::Log::Level::Debug,
+                        "frame %d: %d segments: %d hand, %d unchanged, %d static verified, %d explained\n", f.index,
+                        st.segments, st.hand, st.unchanged, st.staticVerified, st.explained);
     }
     for (auto& [name, perFrame] : m.perClass) perFrame.emplace_back();
     for (const auto& d : detections) {

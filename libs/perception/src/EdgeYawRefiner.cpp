@@ -1,4 +1,5 @@
 #include "srp/perception/EdgeYawRefiner.h"
+#include "srp/core/Log.h"
 
 #include "srp/core/Angles.h"
 #include "srp/perception/SegmentColour.h"
@@ -183,9 +184,10 @@ std::optional<core::Pose3> EdgeYawRefiner::refine(const core::Pose3& X_camera_ob
       }
     }
     const double coherence = bestScore / partWeight;
-    if (std::getenv("SRP_PERCEPTION_DEBUG"))
-      std::fprintf(stderr, "edges (%zu directions): %d px, coherence %.2f, correction %.2f deg\n", sideNormals_rad_.size(),
-                   partEdgePixels, coherence, best * binWidth * 180 / kPi);
+    if (core::Log::enabled("perception", core::Log::Level::Debug))
+      core::Log::writef("perception", core::Log::Level::Debug,
+                        "edges (%zu directions): %d px, coherence %.2f, correction %.2f deg\n", sideNormals_rad_.size(),
+                        partEdgePixels, coherence, best * binWidth * 180 / kPi);
     // At the search's border the optimum lies beyond it: distrusted.
     if (coherence < options_.minOutlineCoherence || std::abs(best) >= steps) return std::nullopt;
     const double l = scores[static_cast<std::size_t>(best + steps - 1)], c = bestScore,
@@ -223,16 +225,18 @@ std::optional<core::Pose3> EdgeYawRefiner::refine(const core::Pose3& X_camera_ob
       ++edgePixels;
     }
   }
-  if (std::getenv("SRP_PERCEPTION_DEBUG"))
-    std::fprintf(stderr, "edges: %d px, coherence %.2f\n", edgePixels, std::abs(sum) / std::max(1e-9, weight));
+  if (core::Log::enabled("perception", core::Log::Level::Debug))
+    core::Log::writef("perception", core::Log::Level::Debug, "edges: %d px, coherence %.2f\n", edgePixels,
+                      std::abs(sum) / std::max(1e-9, weight));
   if (edgePixels < options_.minEdgePixels || std::abs(sum) < options_.minCoherence * weight) return std::nullopt;
 
   const double yawEdges = (std::arg(sum) - modelPhase_rad_) / order_;
   const double period = 2 * kPi / order_;
   double delta = std::remainder(yawEdges - yawFit, period);  // the branch nearest the fit
-  if (std::getenv("SRP_PERCEPTION_DEBUG"))
-    std::fprintf(stderr, "edges: fit yaw %.2f deg, edge yaw %.2f deg, correction %.2f deg\n", yawFit * 180 / kPi,
-                 yawEdges * 180 / kPi, delta * 180 / kPi);
+  if (core::Log::enabled("perception", core::Log::Level::Debug))
+    core::Log::writef("perception", core::Log::Level::Debug,
+                      "edges: fit yaw %.2f deg, edge yaw %.2f deg, correction %.2f deg\n", yawFit * 180 / kPi,
+                      yawEdges * 180 / kPi, delta * 180 / kPi);
   if (std::abs(delta) > options_.maxCorrection_rad) return std::nullopt;
   return turned(delta);
 }

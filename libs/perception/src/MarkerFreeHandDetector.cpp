@@ -1,4 +1,5 @@
 #include "srp/perception/MarkerFreeHandDetector.h"
+#include "srp/core/Log.h"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -299,8 +300,9 @@ void MarkerFreeHandDetector::decideBareForearms(const cv::Mat& bgHalf) {
     if ((endPoint(sMax) - endPoint(sMin)).norm() > options_.maxHandLength_m) ++bare;
   }
   bareForearms_ = withSkin > 0 && bare >= options_.bareForearmFraction * withSkin;
-  if (std::getenv("SRP_HAND_TRACE"))
-    std::fprintf(stderr, "bare forearm in %d of %d samples: %s\n", bare, withSkin, bareForearms_ ? "yes" : "no");
+  if (core::Log::enabled("hand", core::Log::Level::Debug))
+    core::Log::writef("hand", core::Log::Level::Debug, "bare forearm in %d of %d samples: %s\n", bare, withSkin,
+                      bareForearms_ ? "yes" : "no");
 }
 
 void MarkerFreeHandDetector::accumulateSkin(const cv::Mat& colour_bgr8, const cv::Mat& foreground, int step) {
@@ -421,9 +423,11 @@ void MarkerFreeHandDetector::fitSkin() {
   skin_.covariance = cov;
   skin_.mean = mean;
   skin_.learnt = true;
-  if (std::getenv("SRP_HAND_TRACE"))
-    std::fprintf(stderr, "skin: mode %d %d, mean %.1f %.1f, cov %.1f %.1f %.1f, luma %.1f sd %.1f, %d px\n", mode.y,
-                 mode.x, mean.x(), mean.y(), cov(0, 0), cov(1, 1), cov(0, 1), skin_.meanLuma, skin_.sdLuma, skin_.samples);
+  if (core::Log::enabled("hand", core::Log::Level::Debug))
+    core::Log::writef("hand", core::Log::Level::Debug,
+                      "skin: mode %d %d, mean %.1f %.1f, cov %.1f %.1f %.1f, luma %.1f sd %.1f, %d px\n", mode.y,
+                      mode.x, mean.x(), mean.y(), cov(0, 0), cov(1, 1), cov(0, 1), skin_.meanLuma, skin_.sdLuma,
+                      skin_.samples);
 }
 
 cv::Mat MarkerFreeHandDetector::skinMask(const cv::Mat& colour_bgr8, bool learnt, double maxMahalanobis) const {
@@ -509,15 +513,18 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
       bestTouches = touches;
     }
   }
-  const bool trace = std::getenv("SRP_HAND_TRACE") != nullptr;
+  const bool trace = core::Log::enabled("hand", core::Log::Level::Debug);
   if (trace)
     for (int l = 1; l < n; ++l)
       if (stats.at<int>(l, cv::CC_STAT_AREA) >= options_.minPixels)
-        std::fprintf(stderr, "frame %d: component %d px, box %d %d %d %d, view %d %d %d %d\n", frame.index,
-                     stats.at<int>(l, cv::CC_STAT_AREA), stats.at<int>(l, 0), stats.at<int>(l, 1), stats.at<int>(l, 2),
-                     stats.at<int>(l, 3), view_.x, view_.y, view_.width, view_.height);
+        core::Log::writef("hand", core::Log::Level::Debug,
+                          "frame %d: component %d px, box %d %d %d %d, view %d %d %d %d\n", frame.index,
+                          stats.at<int>(l, cv::CC_STAT_AREA), stats.at<int>(l, 0), stats.at<int>(l, 1),
+                          stats.at<int>(l, 2), stats.at<int>(l, 3), view_.x, view_.y, view_.width, view_.height);
   if (bestLabel < 0) {
-    if (trace) std::fprintf(stderr, "frame %d: no foreground component of %d px\n", frame.index, options_.minPixels);
+    if (trace)
+      core::Log::writef("hand", core::Log::Level::Debug, "frame %d: no foreground component of %d px\n", frame.index,
+                        options_.minPixels);
     return std::nullopt;
   }
   const cv::Mat arm = (labels == bestLabel);
@@ -526,8 +533,9 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   HandBlob hand;
   hand.mask = handMask(frame, arm);
   if (hand.mask.empty()) {
-    if (trace) std::fprintf(stderr, "frame %d: arm %d px (border %d), skin on it below %d px\n", frame.index, bestArea,
-                            bestTouches, options_.minHandPixels);
+    if (trace)
+      core::Log::writef("hand", core::Log::Level::Debug, "frame %d: arm %d px (border %d), skin on it below %d px\n",
+                        frame.index, bestArea, bestTouches, options_.minHandPixels);
     return std::nullopt;
   }
   lastMask_ = hand.mask;
@@ -559,7 +567,9 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   bool refused = false;
   std::optional<Anchor> anchor = bareForearmAnchor(frame, arm, entry, hand, refused);
   if (refused) {
-    if (trace) std::fprintf(stderr, "frame %d: skin only near the body's entry, no palm\n", frame.index);
+    if (trace)
+      core::Log::writef("hand", core::Log::Level::Debug, "frame %d: skin only near the body's entry, no palm\n",
+                        frame.index);
     return std::nullopt;
   }
   if (!anchor) anchor = cuffAnchor(hand.mask, sleeve, entry);
@@ -576,8 +586,9 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
     const double dt_s = std::max(0.0, frame.t_s - lastPalmT_s_);
     const double shift_m = (h.palm_px - lastPalm_px_).norm() * h.p_camera_palm_m.z() / frame.intrinsics.fx_px;
     if (shift_m > options_.maxPalmSpeed_mps * dt_s) {
-      if (trace) std::fprintf(stderr, "frame %d: palm refused, %.3f m from the last in %.3f s\n", frame.index,
-                              shift_m, dt_s);
+      if (trace)
+        core::Log::writef("hand", core::Log::Level::Debug, "frame %d: palm refused, %.3f m from the last in %.3f s\n",
+                          frame.index, shift_m, dt_s);
       if (++palmRefusals_ <= options_.maxPalmRefusals) return std::nullopt;
       palmTrack_ = 0;  // refused too often: the track itself may be wrong, start a new one
     }
@@ -813,9 +824,10 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::bareForear
   }
   const double z_comp = medianDepthInDisc(frame.depth_m, comp, ax->mean, 1e4, options_.minDepthSamples).value_or(hand.z_m);
   const double compPxPerM = k.fx_px / z_comp;
-  if (std::getenv("SRP_HAND_TRACE"))
-    std::fprintf(stderr, "frame %d: comp area %d of %d, extent %.0f px = %.3f m at z %.2f, entry %.0f %.0f\n",
-                 frame.index, bestArea, nc - 1, sMax - sMin, (sMax - sMin) / compPxPerM, z_comp, entry.x(), entry.y());
+  if (core::Log::enabled("hand", core::Log::Level::Debug))
+    core::Log::writef("hand", core::Log::Level::Debug,
+                      "frame %d: comp area %d of %d, extent %.0f px = %.3f m at z %.2f, entry %.0f %.0f\n", frame.index,
+                      bestArea, nc - 1, sMax - sMin, (sMax - sMin) / compPxPerM, z_comp, entry.x(), entry.y());
   // Its length in 3D (a forearm pointing at the camera looks short).
   auto endPoint = [&](double sEnd) {
     const Eigen::Vector2d e = ax->mean + sEnd * axis;
@@ -824,16 +836,17 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::bareForear
     return Eigen::Vector3d((e.x() - k.cx_px) * z / k.fx_px, (e.y() - k.cy_px) * z / k.fy_px, z);
   };
   const double length3d_m = (endPoint(sMax) - endPoint(sMin)).norm();
-  if (std::getenv("SRP_HAND_TRACE")) std::fprintf(stderr, "  3D length %.3f m\n", length3d_m);
+  if (core::Log::enabled("hand", core::Log::Level::Debug))
+    core::Log::writef("hand", core::Log::Level::Debug, "  3D length %.3f m\n", length3d_m);
   if (!(length3d_m > options_.maxHandLength_m || bareForearms_)) return std::nullopt;
   // The hand is the arm's far end over the workspace: skin that reaches no
   // farther than minSkinReach_m from where the body enters the view (along
   // the body) is the face, the neck or the shoulder, with the forearm's skin
   // lost (dark light): no palm rather than one on the head.
   const double reach_m = reachCells >= 0 ? reachCells * options_.geodesicStep_px / compPxPerM : -1.0;
-  if (std::getenv("SRP_HAND_TRACE"))
-    std::fprintf(stderr, "frame %d: skin reach %.3f m (%d cells), body reach %d cells\n", frame.index, reach_m,
-                 reachCells, bodyReachCells);
+  if (core::Log::enabled("hand", core::Log::Level::Debug))
+    core::Log::writef("hand", core::Log::Level::Debug, "frame %d: skin reach %.3f m (%d cells), body reach %d cells\n",
+                      frame.index, reach_m, reachCells, bodyReachCells);
   if (options_.minSkinReach_m > 0.0 && reachCells >= 0 && reach_m < options_.minSkinReach_m) {
     refused = true;
     return std::nullopt;
@@ -926,10 +939,11 @@ int MarkerFreeHandDetector::farthestSkinComponent(const cv::Mat& region, const c
   }
   if (reachCells) *reachCells = best > 0 ? reach[static_cast<std::size_t>(best)] : -1;
   if (bodyReachCells) *bodyReachCells = *std::max_element(dist.begin(), dist.end());
-  if (std::getenv("SRP_HAND_TRACE"))
+  if (core::Log::enabled("hand", core::Log::Level::Debug))
     for (int l = 1; l < n; ++l)
-      std::fprintf(stderr, "  skin component %d: %d px, reach %d cells%s\n", l, stats.at<int>(l, cv::CC_STAT_AREA),
-                   reach[static_cast<std::size_t>(l)], l == best ? " (picked)" : "");
+      core::Log::writef("hand", core::Log::Level::Debug, "  skin component %d: %d px, reach %d cells%s\n", l,
+                        stats.at<int>(l, cv::CC_STAT_AREA), reach[static_cast<std::size_t>(l)],
+                        l == best ? " (picked)" : "");
   return best;
 }
 

@@ -1,4 +1,5 @@
 #include "srp/perception/ObjectDetector.h"
+#include "srp/core/Log.h"
 
 #include <algorithm>
 #include <cmath>
@@ -299,11 +300,12 @@ std::optional<ObjectDetection> ObjectDetector::explain(const ObjectSegment& seg,
     const ObjectPoseFit fit = fitter.fit(seg.points_camera_m, support, cloud, camera, nullptr,
                                          options_.giveUpShare * std::max(options_.minConfidence, bestConfidence) / colour);
     const double confidence = fit.score * colour;
-    if (std::getenv("SRP_PERCEPTION_DEBUG"))
-      std::fprintf(stderr, "segment (%zu px) %s: inliers %.2f coverage %.2f colour %.2f at %.3f %.3f %.3f\n",
-                   seg.points_camera_m.size(), model.name.c_str(), fit.inlierRatio, fit.coverage, colour,
-                   fit.X_camera_object.translation().x(), fit.X_camera_object.translation().y(),
-                   fit.X_camera_object.translation().z());
+    if (core::Log::enabled("perception", core::Log::Level::Debug))
+      core::Log::writef("perception", core::Log::Level::Debug,
+                        "segment (%zu px) %s: inliers %.2f coverage %.2f colour %.2f at %.3f %.3f %.3f\n",
+                        seg.points_camera_m.size(), model.name.c_str(), fit.inlierRatio, fit.coverage, colour,
+                        fit.X_camera_object.translation().x(), fit.X_camera_object.translation().y(),
+                        fit.X_camera_object.translation().z());
     if (confidence > bestConfidence) {
       bestFitter = &fitter;
       bestPose = fit.X_camera_object;
@@ -320,10 +322,12 @@ std::optional<ObjectDetection> ObjectDetector::explain(const ObjectSegment& seg,
     std::vector<double> iou;
     const auto k = branchPicker_.pick(bestFitter->model().mesh, branches, seg.pixels, seg.colour_bgr8,
                                       camera, &iou);
-    if (std::getenv("SRP_PERCEPTION_DEBUG")) {
-      std::fprintf(stderr, "%s branches (IoU):", bestFitter->model().name.c_str());
-      for (double v : iou) std::fprintf(stderr, " %.3f", v);
-      std::fprintf(stderr, " -> %d\n", k ? static_cast<int>(*k) : -1);
+    if (core::Log::enabled("perception", core::Log::Level::Debug)) {
+      std::string line = bestFitter->model().name + " branches (IoU):";
+      char value[32];
+      for (double v : iou) line += (std::snprintf(value, sizeof value, " %.3f", v), value);
+      core::Log::write("perception", core::Log::Level::Debug,
+                       line + " -> " + std::to_string(k ? static_cast<int>(*k) : -1));
     }
     std::size_t chosen = k ? *k : 0;
     const auto prev = previous.find(bestFitter->model().name);

@@ -1,4 +1,5 @@
 #include "srp/perception/ObjectDiscovery.h"
+#include "srp/core/Log.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -136,7 +137,7 @@ struct ObjectDiscovery::Impl {
   std::vector<int> frameNumber;
   std::vector<double> time_s;
   std::vector<cv::Point2f> table;  ///< the table top (table frame), from the first frame
-  const bool debug = std::getenv("SRP_DISCOVERY_DEBUG") != nullptr;
+  const bool debug = core::Log::enabled("discovery", core::Log::Level::Debug);
 
   void findTable(const cv::Mat& q, const cv::Mat& valid);
   void assign(int s, std::vector<Eigen::Vector3f>&& points);
@@ -444,9 +445,10 @@ ObjectDiscovery::Result ObjectDiscovery::finish(const std::vector<ObjectTrajecto
   };
   if (m.debug)
     for (std::size_t r = 0; r < m.rests.size(); ++r)
-      std::fprintf(stderr, "discovery: rest %zu: %s, %d sightings, bottom %.3f%s\n", r, m.describe(m.rests[r]).c_str(),
-                   sightingsOf(m.rests[r]), bottomOf(m.rests[r]),
-                   std::find(statics.begin(), statics.end(), static_cast<int>(r)) != statics.end() ? ", static" : "");
+      core::Log::writef(
+          "discovery", core::Log::Level::Debug, "rest %zu: %s, %d sightings, bottom %.3f%s\n", r,
+          m.describe(m.rests[r]).c_str(), sightingsOf(m.rests[r]), bottomOf(m.rests[r]),
+          std::find(statics.begin(), statics.end(), static_cast<int>(r)) != statics.end() ? ", static" : "");
   const auto startScene = [&]() {
     std::string s;
     for (const auto& r : m.rests)
@@ -626,8 +628,10 @@ ObjectDiscovery::Result ObjectDiscovery::finish(const std::vector<ObjectTrajecto
           const auto fi = static_cast<std::size_t>(i);
           const Eigen::Vector3d p = X_table_object[fi] ? Eigen::Vector3d(X_table_object[fi]->translation()) : Eigen::Vector3d::Zero();
           const Eigen::Vector3d h = m.palm[fi] ? *m.palm[fi] : Eigen::Vector3d::Zero();
-          std::fprintf(stderr, "discovery: %s frame %d: %s (%.3f %.3f %.3f) palm (%.3f %.3f %.3f)\n", u.name.c_str(),
-                       m.frameNumber[fi], detected[fi] ? "seen" : "-   ", p.x(), p.y(), p.z(), h.x(), h.y(), h.z());
+          core::Log::writef("discovery", core::Log::Level::Debug,
+                            "%s frame %d: %s (%.3f %.3f %.3f) palm (%.3f %.3f %.3f)\n", u.name.c_str(),
+                            m.frameNumber[fi], detected[fi] ? "seen" : "-   ", p.x(), p.y(), p.z(), h.x(), h.y(),
+                            h.z());
         }
     } else {
       // The place where a moved object was let go (or picked up).
@@ -688,8 +692,8 @@ ObjectDiscovery::Result ObjectDiscovery::finish(const std::vector<ObjectTrajecto
       const double highShare = inner > 0 ? static_cast<double>(innerHigh) / inner : 0.0;
       const bool container = highShare < o.maxInnerHighShare;
       if (m.debug)
-        std::fprintf(stderr, "discovery: %s: %d inner points, %.2f high -> %s\n", u.name.c_str(), inner, highShare,
-                     container ? "container" : "part");
+        core::Log::writef("discovery", core::Log::Level::Debug, "%s: %d inner points, %.2f high -> %s\n",
+                          u.name.c_str(), inner, highShare, container ? "container" : "part");
       cls.dimensions_m = fp->size_m;
       if (container) {
         cls.kind = core::ObjectKind::Container;

@@ -1,4 +1,5 @@
 #include "srp/perception/ObjectTracker.h"
+#include "srp/core/Log.h"
 
 #include <algorithm>
 #include <cmath>
@@ -39,10 +40,11 @@ bool ObjectTracker::placeVacated(const std::string& className, const core::Pose3
   const ObjectPoseFitter* fitter = detector_.fitterFor(className);
   if (!fitter) return false;
   const ObjectPoseFitter::SurfaceEvidence e = fitter->surfaceEvidence(X_camera_object, cloud, camera);
-  if (std::getenv("SRP_PERCEPTION_DEBUG"))
-    std::fprintf(stderr, "frame %d: %s's last place (%.3f %.3f %.3f): %d samples supported, %d seen through\n",
-                 frame_ - 1, className.c_str(), X_camera_object.translation().x(), X_camera_object.translation().y(),
-                 X_camera_object.translation().z(), e.supported, e.seenThrough);
+  if (core::Log::enabled("perception", core::Log::Level::Debug))
+    core::Log::writef("perception", core::Log::Level::Debug,
+                      "frame %d: %s's last place (%.3f %.3f %.3f): %d samples supported, %d seen through\n", frame_ - 1,
+                      className.c_str(), X_camera_object.translation().x(), X_camera_object.translation().y(),
+                      X_camera_object.translation().z(), e.supported, e.seenThrough);
   return e.total() >= options_.vacatedMinEvidence && e.seenThrough >= options_.vacatedSeenThrough * e.total();
 }
 

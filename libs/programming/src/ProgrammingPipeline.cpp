@@ -94,7 +94,7 @@ void removeIfCreatedEmpty(const std::string& path) {
   for (const char* suffix : {"", "-wal", "-shm", "-journal"}) fs::remove(path + suffix, ec);
 }
 
-// The files a report folder holds: an existing --report folder holding anything
+// The files a report folder holds: an existing report folder (srp program -o) holding anything
 // else is not replaced (core::checkFolderHoldsOnly).
 const std::vector<std::string> kReportFiles = {"hand_trajectory.png", "summary.md", "contact_sheet.png",
                                                "scene.json", "*_skills.png"};
@@ -113,7 +113,7 @@ std::unique_ptr<core::AtomicOutputFolder> startReportFolder(const std::string& d
   if (fs::exists(target) && !fs::is_directory(target))
     throw core::FileError(dir, "cannot create the report folder (a file of that name is in the way); nothing was "
                                "stored. Give a writable folder with --report");
-  core::checkFolderHoldsOnly(target, kReportFiles, "--report");
+  core::checkFolderHoldsOnly(target, kReportFiles, "--out");
   try {
     return std::make_unique<core::AtomicOutputFolder>(target.has_filename() ? target : target.parent_path());
   } catch (const core::FileError& e) {

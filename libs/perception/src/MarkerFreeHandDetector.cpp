@@ -111,6 +111,19 @@ std::optional<double> medianDepthInDisc(const cv::Mat& depth_m, const cv::Mat& m
   return depths[depths.size() / 2];
 }
 
+/// The maximum of the distance transform inside `mask` (CV_8UC1); nullopt when empty.
+std::optional<Eigen::Vector2d> thickestPoint(const cv::Mat& mask) {
+  // The maximum of the distance transform inside the mask (on its bounding box, with a free margin).
+  const cv::Rect box = cv::boundingRect(mask);
+  if (box.area() == 0) return std::nullopt;
+  cv::Mat padded(box.height + 2, box.width + 2, CV_8UC1, cv::Scalar(0)), distance;
+  mask(box).copyTo(padded(cv::Rect(1, 1, box.width, box.height)));
+  cv::distanceTransform(padded, distance, cv::DIST_L2, cv::DIST_MASK_5);
+  cv::Point best;
+  cv::minMaxLoc(distance, nullptr, nullptr, nullptr, &best);
+  return Eigen::Vector2d(box.x + best.x - 1, box.y + best.y - 1);
+}
+
 }  // namespace
 
 MarkerFreeHandDetector::MarkerFreeHandDetector(const Options& options) : options_(options) {
@@ -976,10 +989,15 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::cuffAnchor
       }
   }
   if (nCuff < options_.minCuffPixels) return std::nullopt;
-  // The palm a fixed length from the cuff along the arm (sleeve + hand) axis.
+  // The palm a fixed length from the cuff towards the hand's thickest point
+  // (cuffTowardsThickest; else along the arm's, sleeve + hand, axis).
   Anchor a;
   a.anchor_px = wrist / nCuff;
   a.dir = principalAxis(hand, sleeve, entry, options_.axisStride_px, options_.minElongation)->dir;
+  if (options_.cuffTowardsThickest) {
+    if (const auto thickest = thickestPoint(hand); thickest && (*thickest - a.anchor_px).norm() > options_.openDiameter_px)
+      a.dir = (*thickest - a.anchor_px).normalized();
+  }
   a.length_m = options_.palmFromWrist_m;
   geometry_.haveWrist = true;
   geometry_.wrist_px = a.anchor_px;

@@ -57,7 +57,8 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                 {"geodesicStep_px", &o.geodesicStep_px},
                                 {"skinColourBlur_px", &o.skinColourBlur_px},
                                 {"minTiltSamples", &o.minTiltSamples}};
-  std::map<std::string, bool*> b{{"walkOnDepth", &o.walkOnDepth}, {"palmAlongNormal", &o.palmAlongNormal}};
+  std::map<std::string, bool*> b{{"walkOnDepth", &o.walkOnDepth}, {"palmAlongNormal", &o.palmAlongNormal},
+                                 {"cuffTowardsThickest", &o.cuffTowardsThickest}};
   std::stringstream ss(env);
   std::string item;
   while (std::getline(ss, item, ',')) {

@@ -191,6 +191,12 @@ class MarkerFreeHandDetector : public HandDetector {
     /// disc's 3D points), not along the camera's ray: a hand seen obliquely.
     /// false: along the ray.
     bool palmAlongNormal = true;
+    /// Cuff rule: the palm lies from the cuff towards the hand's thickest
+    /// point (the maximum of the distance transform of the hand's mask: the
+    /// palm, not a thumb or a finger), not along the principal axis of sleeve
+    /// and hand (which perspective turns when the forearm comes at the
+    /// camera). false: that axis.
+    bool cuffTowardsThickest = true;
     /// That normal is used when the disc is flat: its smallest spread at most
     /// this share of the next [ratio].
     double maxNormalFlatness = 0.25;

@@ -99,6 +99,25 @@ struct HandEvaluation {
   std::map<std::string, std::pair<int, int>> detectedByPhase;  ///< phase -> (detected, in view)
 
   double rate() const { return static_cast<double>(error_m.size()) / std::max(1, handInView); }
+  /// Pools another evaluation's frames into this one.
+  void add(const HandEvaluation& o) {
+    frames += o.frames;
+    handInView += o.handInView;
+    handWithoutHand += o.handWithoutHand;
+    depthCarried += o.depthCarried;
+    detectCpu_s += o.detectCpu_s;
+    timedFrames += o.timedFrames;
+    error_m.insert(error_m.end(), o.error_m.begin(), o.error_m.end());
+    error640_px.insert(error640_px.end(), o.error640_px.begin(), o.error640_px.end());
+    for (const auto& [phase, e] : o.errorByPhase_m) errorByPhase_m[phase].insert(errorByPhase_m[phase].end(), e.begin(), e.end());
+    for (const auto& [phase, n] : o.detectedByPhase) {
+      detectedByPhase[phase].first += n.first;
+      detectedByPhase[phase].second += n.second;
+    }
+    carried += o.carried;
+    farSide += o.farSide;
+    worstFarSide_m = std::max(worstFarSide_m, o.worstFarSide_m);
+  }
   /// Share of the hand-in-view frames with a palm within `tol_px` (at 640-px width); a miss counts as outside.
   double within640(double tol_px) const {
     return static_cast<double>(std::count_if(error640_px.begin(), error640_px.end(),

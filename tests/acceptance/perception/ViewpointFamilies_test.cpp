@@ -63,16 +63,7 @@ testing::HandEvaluation evaluateFamily(synth::ViewpointFamily family) {
         },
         true);
     ev.print(spec.name());
-    pooled.frames += ev.frames;
-    pooled.handInView += ev.handInView;
-    pooled.handWithoutHand += ev.handWithoutHand;
-    pooled.detectCpu_s += ev.detectCpu_s;
-    pooled.timedFrames += ev.timedFrames;
-    pooled.error_m.insert(pooled.error_m.end(), ev.error_m.begin(), ev.error_m.end());
-    pooled.error640_px.insert(pooled.error640_px.end(), ev.error640_px.begin(), ev.error640_px.end());
-    pooled.carried += ev.carried;
-    pooled.farSide += ev.farSide;
-    pooled.worstFarSide_m = std::max(pooled.worstFarSide_m, ev.worstFarSide_m);
+    pooled.add(ev);
   }
   pooled.print(synth::viewpointFamilyName(family) + ", pooled");
   return pooled;

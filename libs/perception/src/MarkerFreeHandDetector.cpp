@@ -995,7 +995,8 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::cuffAnchor
   a.anchor_px = wrist / nCuff;
   a.dir = principalAxis(hand, sleeve, entry, options_.axisStride_px, options_.minElongation)->dir;
   if (options_.cuffTowardsThickest) {
-    if (const auto thickest = thickestPoint(hand); thickest && (*thickest - a.anchor_px).norm() > options_.openDiameter_px)
+    if (const auto thickest = thickestPoint(hand);
+        thickest && (*thickest - a.anchor_px).norm() > options_.openDiameter_px)
       a.dir = (*thickest - a.anchor_px).normalized();
   }
   a.length_m = options_.palmFromWrist_m;

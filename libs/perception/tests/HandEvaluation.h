@@ -8,15 +8,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <functional>
 #include <map>
-#include <sstream>
-#include <stdexcept>
-#include <optional>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
 #include <string>
-#include <ctime>
 #include <vector>
 
 #include "srp/perception/MarkerFreeHandDetector.h"
@@ -57,7 +57,8 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                 {"geodesicStep_px", &o.geodesicStep_px},
                                 {"skinColourBlur_px", &o.skinColourBlur_px},
                                 {"minTiltSamples", &o.minTiltSamples}};
-  std::map<std::string, bool*> b{{"walkOnDepth", &o.walkOnDepth}, {"palmAlongNormal", &o.palmAlongNormal},
+  std::map<std::string, bool*> b{{"walkOnDepth", &o.walkOnDepth},
+                                 {"palmAlongNormal", &o.palmAlongNormal},
                                  {"cuffTowardsThickest", &o.cuffTowardsThickest}};
   std::stringstream ss(env);
   std::string item;
@@ -90,7 +91,7 @@ struct HandEvaluation {
   std::vector<double> error_m;  ///< palm centre 3D error of every detection in a hand-in-view frame
   /// Image error of the same detections [px, scaled to a 640-px wide image].
   std::vector<double> error640_px;
-  int carried = 0;       ///< hand-in-view frames with a part in the hand
+  int carried = 0;  ///< hand-in-view frames with a part in the hand
   /// Of those, palms past the held part: beyond its origin (the centre of its bottom face) on the line from
   /// the true palm, (palm - true palm) . u > |part - true palm|, u the unit vector towards the part (3D).
   int farSide = 0;
@@ -109,7 +110,8 @@ struct HandEvaluation {
     timedFrames += o.timedFrames;
     error_m.insert(error_m.end(), o.error_m.begin(), o.error_m.end());
     error640_px.insert(error640_px.end(), o.error640_px.begin(), o.error640_px.end());
-    for (const auto& [phase, e] : o.errorByPhase_m) errorByPhase_m[phase].insert(errorByPhase_m[phase].end(), e.begin(), e.end());
+    for (const auto& [phase, e] : o.errorByPhase_m)
+      errorByPhase_m[phase].insert(errorByPhase_m[phase].end(), e.begin(), e.end());
     for (const auto& [phase, n] : o.detectedByPhase) {
       detectedByPhase[phase].first += n.first;
       detectedByPhase[phase].second += n.second;
@@ -120,8 +122,8 @@ struct HandEvaluation {
   }
   /// Share of the hand-in-view frames with a palm within `tol_px` (at 640-px width); a miss counts as outside.
   double within640(double tol_px) const {
-    return static_cast<double>(std::count_if(error640_px.begin(), error640_px.end(),
-                                             [&](double e) { return e <= tol_px; })) /
+    return static_cast<double>(
+               std::count_if(error640_px.begin(), error640_px.end(), [&](double e) { return e <= tol_px; })) /
            std::max(1, handInView);
   }
   double median_m() const { return percentile(error_m, 0.5); }
@@ -134,9 +136,10 @@ struct HandEvaluation {
                 what.c_str(), frames, error_m.size(), handInView, 100.0 * rate(), depthCarried, 1e3 * median_m(),
                 1e3 * p95_m(), 1e3 * percentile(error_m, 1.0), handWithoutHand,
                 1e3 * detectCpu_s / std::max(1, timedFrames));
-    std::printf("[ figures  ]   within 40 px (640-px width) %.1f %%, image median %.1f px; palm past the held part in %d "
-                "of %d carry frames (closest %.0f mm)\n",
-                100.0 * within640(40.0), percentile(error640_px, 0.5), farSide, carried, 1e3 * worstFarSide_m);
+    std::printf(
+        "[ figures  ]   within 40 px (640-px width) %.1f %%, image median %.1f px; palm past the held part in %d "
+        "of %d carry frames (closest %.0f mm)\n",
+        100.0 * within640(40.0), percentile(error640_px, 0.5), farSide, carried, 1e3 * worstFarSide_m);
     for (const auto& [phase, e] : errorByPhase_m)
       std::printf("[ figures  ]   %-8s detected %3d/%3d, median %5.1f mm, p95 %5.1f mm\n", phase.c_str(),
                   detectedByPhase.at(phase).first, detectedByPhase.at(phase).second, 1e3 * percentile(e, 0.5),

@@ -23,11 +23,11 @@ namespace srp::perception::testing {
 /// One rendered carry demonstration.
 struct ViewpointDemoSpec {
   synth::ViewpointFamily family = synth::ViewpointFamily::Egocentric;
-  int variant = 0;             ///< Viewpoint.h's variants (azimuth, distance, side)
-  double partScale = 1.0;      ///< the carried parts' size, times the catalogue's
-  bool bareForearm = false;    ///< the sleeve in skin colour (a bare forearm) instead of the demonstrator's sleeve
-  int width_px = 640;          ///< 640x480 or smaller (same field of view)
-  int maxFrames = -1;          ///< -1: the whole demonstration
+  int variant = 0;           ///< Viewpoint.h's variants (azimuth, distance, side)
+  double partScale = 1.0;    ///< the carried parts' size, times the catalogue's
+  bool bareForearm = false;  ///< the sleeve in skin colour (a bare forearm) instead of the demonstrator's sleeve
+  int width_px = 640;        ///< 640x480 or smaller (same field of view)
+  int maxFrames = -1;        ///< -1: the whole demonstration
   std::uint32_t seed = 1;
   std::string name() const {
     char s[120];

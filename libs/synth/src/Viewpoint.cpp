@@ -17,9 +17,12 @@ ViewpointFamily viewpointFamilyFromName(const std::string& name) {
 
 std::string viewpointFamilyName(ViewpointFamily family) {
   switch (family) {
-    case ViewpointFamily::Egocentric: return "egocentric";
-    case ViewpointFamily::Side: return "side";
-    case ViewpointFamily::TopDown: return "top-down";
+    case ViewpointFamily::Egocentric:
+      return "egocentric";
+    case ViewpointFamily::Side:
+      return "side";
+    case ViewpointFamily::TopDown:
+      return "top-down";
   }
   return "?";
 }
@@ -55,7 +58,8 @@ Viewpoint makeViewpoint(ViewpointFamily family, int variant, const Eigen::Vector
     case ViewpointFamily::Egocentric: {
       // A standing person's eyes: ~0.85 m above the table, ~0.55 m back from the work.
       const Eigen::Vector3d offset = turn * (0.55 * side) + Eigen::Vector3d(0, 0, 0.85);
-      out.X_world_camera = lookAt(target_world + distance * offset, target_world - 0.05 * side, Eigen::Vector3d::UnitZ());
+      out.X_world_camera =
+          lookAt(target_world + distance * offset, target_world - 0.05 * side, Eigen::Vector3d::UnitZ());
       break;
     }
     case ViewpointFamily::Side: {

@@ -57,7 +57,9 @@ testing::HandEvaluation evaluateFamily(synth::ViewpointFamily family) {
           if (debugDir.empty() || (!truth.handInView && !p_m)) return;
           char name[96];
           std::snprintf(name, sizeof name, "/hand_%04d_%s_%s%03.0fmm.png", truth.index, truth.phase.c_str(),
-                        !truth.handInView ? "nohand_" : truth.carriedObject.empty() ? "" : "carry_",
+                        !truth.handInView             ? "nohand_"
+                        : truth.carriedObject.empty() ? ""
+                                                      : "carry_",
                         p_m ? 1e3 * (*p_m - truth.p_camera_palm_m).norm() : 999.0);
           testing::drawHandGeometry(f, d, truth, debugDir + name);
         },

@@ -8,7 +8,7 @@
 // top-down are only checked (perception README). Each family's reached figures
 // are guarded (the acceptance is not reached on the checked families).
 //
-// SRP_VIEW_DIR=<dir> keeps the renders there (default: the build folder);
+// SRP_VIEW_DIR=<dir> keeps the renders there (default: rendered into the build folder and deleted once scored);
 // SRP_VIEW_FAMILY=egocentric|side|top-down runs one family;
 // SRP_HAND_DEBUG_DIR=<dir> draws every hand frame with the found geometry;
 // SRP_HAND_OPTIONS=name=value,... overrides detector options (HandEvaluation.h).
@@ -66,6 +66,10 @@ testing::HandEvaluation evaluateFamily(synth::ViewpointFamily family) {
         true);
     ev.print(spec.name());
     pooled.add(ev);
+    if (!dir) {  // ~100 MB per render: kept only where SRP_VIEW_DIR asks for it
+      std::filesystem::remove(rawlog);
+      std::filesystem::remove(synth::groundTruthPathFor(rawlog));
+    }
   }
   pooled.print(synth::viewpointFamilyName(family) + ", pooled");
   return pooled;

@@ -1,6 +1,6 @@
 #include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/DemoPerception.h"
-#include "srp/perception/PreviewRawlog.h"
+#include "srp/perception/RawlogPerception.h"
 
 #include <gtest/gtest.h>
 

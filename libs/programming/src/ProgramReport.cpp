@@ -14,6 +14,7 @@
 #include "srp/motion/SkillPlots.h"
 #include "srp/perception/PerceptionDrawing.h"
 #include "srp/plot/Figure.h"
+#include "srp/programming/ProgrammingStages.h"
 #include "srp/rawlog/RawlogReader.h"
 
 #include <opencv2/imgcodecs.hpp>

@@ -272,16 +272,6 @@ PerceptionResult perceiveFrames(const std::vector<rawlog::RgbdFrame>& frames, co
                                 const PerceptionOptions& options,
                                 const std::function<void(int, int)>& progress = {});
 
-/// Reads the demo rawlog (RawlogReader) and runs it as perceiveFrames. With
-/// the marker-free hand the file is read twice (previewRawlog over the whole
-/// recording, then perception) so memory stays flat on long demos; otherwise
-/// frames are perceived as they are read. Throws FileError for an unreadable
-/// or damaged rawlog, one without RGB-D frames, or one that changes between
-/// the two reads.
-PerceptionResult perceiveRawlog(const std::string& rawlogPath, const core::ObjectCatalogue& catalogue,
-                                const PerceptionOptions& options,
-                                const std::function<void(int, int)>& progress = {});
-
 /// Writes the `srp segment` CSV: frame,hand_x,hand_y,hand_z,<name>_x,<name>_y,
 /// <name>_z,<name>_rz,... (camera frame, metres, radians; <name> = the
 /// object's key, i.e. its instance id when it has one, else its class name;

@@ -1,7 +1,9 @@
 #pragma once
-/// \file PreviewRawlog.h
-/// \brief The preview pass over a recorded demo: every frame of a rawlog
-/// shown to DemoPerceiver::preview() before the perception pass.
+/// \file RawlogPerception.h
+/// \brief The Environment module on a recorded demo (an MRPT rawlog): the
+/// preview pass (every frame shown to DemoPerceiver::preview()) and the whole
+/// module read from the file (perceiveRawlog), as `srp perceive` and
+/// `srp program` run it.
 
 #include <functional>
 #include <optional>
@@ -30,5 +32,15 @@ namespace srp::perception {
 int previewRawlog(DemoPerceiver& perceiver, const std::string& rawlogPath,
                   const std::optional<core::CameraIntrinsics>& intrinsics = std::nullopt,
                   const std::function<void(int)>& progress = {});
+
+/// Reads the demo rawlog (RawlogReader) and runs it as perceiveFrames. With
+/// the marker-free hand the file is read twice (previewRawlog over the whole
+/// recording, then perception) so memory stays flat on long demos; otherwise
+/// frames are perceived as they are read. Throws FileError for an unreadable
+/// or damaged rawlog, one without RGB-D frames, or one that changes between
+/// the two reads.
+PerceptionResult perceiveRawlog(const std::string& rawlogPath, const core::ObjectCatalogue& catalogue,
+                                const PerceptionOptions& options,
+                                const std::function<void(int, int)>& progress = {});
 
 }  // namespace srp::perception

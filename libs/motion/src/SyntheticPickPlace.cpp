@@ -1,11 +1,11 @@
-#include "srp/synth/SyntheticPickPlace.h"
+#include "srp/motion/SyntheticPickPlace.h"
 
 #include <cmath>
 #include <random>
 
 #include "srp/core/Error.h"
 
-namespace srp::synth {
+namespace srp::motion {
 namespace {
 
 double minJerk(double s) { return s * s * s * (10 - 15 * s + 6 * s * s); }
@@ -106,7 +106,7 @@ SyntheticPickPlace SyntheticPickPlaceGenerator::generate() const {
     out.hand.append(s);
   }
   for (std::size_t i = 0; i < nAll; ++i) {
-    motion::ObjectTrack t;
+    ObjectTrack t;
     t.name = i < nMoved ? c.movedObjects[i] : c.staticObjects[i - nMoved];
     t.positions = core::PositionTrajectory("camera");
     int flicker = 0;
@@ -147,4 +147,4 @@ std::string SyntheticPickPlace::instruction() const {
   return text;
 }
 
-}  // namespace srp::synth
+}  // namespace srp::motion

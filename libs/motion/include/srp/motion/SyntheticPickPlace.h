@@ -20,7 +20,7 @@
 
 #include "srp/motion/LearnSkills.h"
 
-namespace srp::synth {
+namespace srp::motion {
 
 struct SyntheticPickPlaceConfig {
   std::vector<std::string> movedObjects = {"cuboid", "star", "parallelogram", "octagon"};  ///< in plan order
@@ -43,7 +43,7 @@ struct SyntheticPickPlaceConfig {
 
 /// The demo's tracks (hand: invalid samples have p = (0, 0, 0) as the CSV
 /// convention; objects; plan order = the moved objects) and the truth.
-struct SyntheticPickPlace : motion::DemoTracks {
+struct SyntheticPickPlace : DemoTracks {
   std::vector<int> graspIndex, releaseIndex;  ///< truth per moved object, plan order
 
   /// "Synthetic demo: pick and place the cuboid, then the star, ..." (plan order).
@@ -59,4 +59,4 @@ class SyntheticPickPlaceGenerator {
   SyntheticPickPlaceConfig config_;
 };
 
-}  // namespace srp::synth
+}  // namespace srp::motion

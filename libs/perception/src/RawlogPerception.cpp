@@ -23,7 +23,8 @@ int previewRawlog(DemoPerceiver& perceiver, const std::string& rawlogPath,
 }
 
 PerceptionResult perceiveRawlog(const std::string& rawlogPath, const core::ObjectCatalogue& catalogue,
-                                const PerceptionOptions& options, const std::function<void(int, int)>& progress) {
+                                const PerceptionOptions& options, const std::function<void(int, int)>& progress,
+                                const FrameHook& onFrame) {
   DemoPerceiver perceiver(catalogue, options);
   // The marker-free hand learns from the whole recording before its first
   // detection: a preview pass (previewRawlog), then the perception pass over a
@@ -34,6 +35,7 @@ PerceptionResult perceiveRawlog(const std::string& rawlogPath, const core::Objec
   rawlog::RawlogReader reader(rawlogPath);
   while (auto f = reader.next()) {
     perceiver.add(*f);
+    if (onFrame) onFrame(*f, perceiver.framesAdded() - 1);
     if (progress) progress(perceiver.framesAdded() - 1, wholePreview ? previewed : -1);
   }
   if (reader.damage()) throw core::FileError(rawlogPath, "unreadable rawlog, " + *reader.damage());

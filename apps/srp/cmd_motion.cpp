@@ -12,8 +12,8 @@
 #include "srp/core/SafeText.h"
 #include "srp/motion/SkillLearner.h"
 #include "srp/motion/SkillPlots.h"
-#include "srp/programming/MotionRows.h"
 #include "srp/motion/SyntheticPickPlace.h"
+#include "srp/programming/MotionRows.h"
 #include "srp/taskdb/TaskModelStore.h"
 
 namespace {

@@ -57,8 +57,8 @@
 #include "srp/language/InstructionParser.h"
 #include "srp/motion/Segmenter.h"
 #include "srp/motion/SkillLearner.h"
-#include "srp/programming/MotionRows.h"
 #include "srp/motion/SyntheticPickPlace.h"
+#include "srp/programming/MotionRows.h"
 #include "srp/taskdb/TaskModelStore.h"
 
 namespace {

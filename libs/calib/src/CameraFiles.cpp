@@ -177,9 +177,12 @@ CameraFileFormat cameraFileFormatFromName(const std::string& name) {
 
 std::string defaultCameraFileName(CameraFileFormat format) {
   switch (format) {
-    case CameraFileFormat::Visp: return "camera.xml";
-    case CameraFileFormat::Ros: return "camera_info.yaml";
-    case CameraFileFormat::OpenCv: return "camera_opencv.yaml";
+    case CameraFileFormat::Visp:
+      return "camera.xml";
+    case CameraFileFormat::Ros:
+      return "camera_info.yaml";
+    case CameraFileFormat::OpenCv:
+      return "camera_opencv.yaml";
   }
   return "camera.xml";
 }
@@ -188,11 +191,15 @@ void saveCameraFile(const std::string& path, const CameraCalibration& camera, Ca
                     const std::string& comment, double rms_px) {
   camera.intrinsics.validate("camera to save to '" + path + "'");
   switch (format) {
-    case CameraFileFormat::Visp: saveCameraXml(path, camera, comment); return;
+    case CameraFileFormat::Visp:
+      saveCameraXml(path, camera, comment);
+      return;
     case CameraFileFormat::Ros:
       core::writeFileAtomically(path, (comment.empty() ? "" : "# " + comment + "\n") + cameraInfoYaml(camera));
       return;
-    case CameraFileFormat::OpenCv: core::writeFileAtomically(path, openCvYaml(camera, comment, rms_px)); return;
+    case CameraFileFormat::OpenCv:
+      core::writeFileAtomically(path, openCvYaml(camera, comment, rms_px));
+      return;
   }
 }
 

@@ -14,8 +14,8 @@
 #include <mrpt/poses/CPose3D.h>
 
 #include "srp/core/Error.h"
-#include "srp/interop/PoseConversions.h"
 #include "srp/execution/SafetyChecker.h"
+#include "srp/interop/PoseConversions.h"
 #include "srp/kb/ShapeMeshes.h"
 #include "srp/kb/TriangleMesh.h"
 

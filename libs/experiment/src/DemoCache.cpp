@@ -74,8 +74,7 @@ nlohmann::json planOf(const DemoRequest& request)
   return request.plan.is_null() ? synth::defaultPlanJson() : request.plan;
 }
 
-std::string keyFor(const std::string& sceneText, const DemoRequest& request)
-{
+std::string keyFor(const std::string& sceneText, const DemoRequest& request) {
   const nlohmann::json key{{"scene", sceneText},
                            {"plan", planOf(request)},
                            {"seed", request.seed},
@@ -89,8 +88,7 @@ std::string keyFor(const std::string& sceneText, const DemoRequest& request)
 }
 
 /// The scene file's text (the cache key hashes it) and the scene parsed from that same text.
-core::Scene sceneFromText(const std::string& text, const std::filesystem::path& path)
-{
+core::Scene sceneFromText(const std::string& text, const std::filesystem::path& path) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
@@ -227,8 +225,7 @@ DemoRequest standardDemoRequest(const ExperimentOptions& options, int index)
   return request;
 }
 
-std::filesystem::path defaultScenePathIn(const std::filesystem::path& simDir)
-{
+std::filesystem::path defaultScenePathIn(const std::filesystem::path& simDir) {
   return simDir.empty() ? std::filesystem::path(core::defaultScenePath()) : simDir / "scenes" / "default.json";
 }
 

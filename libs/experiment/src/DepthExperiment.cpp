@@ -55,16 +55,14 @@ struct Fraction
 };
 
 /// One demo's share of valid depth on the hand and the objects.
-struct DemoDepth
-{
+struct DemoDepth {
   Fraction handSamples, objectSamples;
   Stats handPixels, objectPixels;
 };
 
 /// Errors of the hand's depth [m] (|z - z_true| of the palm centre) by source, over every demo,
 /// and demo 1's depth over time for the figure.
-struct HandDepthErrors
-{
+struct HandDepthErrors {
   Stats tagOnly, tagRefined, tagUnrefined, carried, rawPalm;
   std::vector<double> plotT, plotTruth, plotFilled, plotRaw;
 };
@@ -73,8 +71,7 @@ struct HandDepthErrors
 /// hand's depth from the tag alone, tag + depth, and carried forward (added to `errors`; the
 /// plot series only for demo 0).
 DemoDepth measureDemo(const ExperimentOptions& options, const CachedDemo& demo, const synth::DemoGroundTruth& gt, int d,
-                      int count, const std::string& label, HandDepthErrors& errors)
-{
+                      int count, const std::string& label, HandDepthErrors& errors) {
   perception::MarkerHandDetector::Options withDepth, tagAlone;
   withDepth.tagSize_m = tagAlone.tagSize_m = gt.tagSize_m;
   withDepth.tagId = tagAlone.tagId = gt.tagId;
@@ -130,23 +127,21 @@ DemoDepth measureDemo(const ExperimentOptions& options, const CachedDemo& demo, 
     }
   }
   if (reader.damage())
-    throw core::FileError(demo.rawlogPath.string(), "damaged demo rawlog (" + *reader.damage() +
-                                                        "); delete the demo cache folder and run again");
+    throw core::FileError(demo.rawlogPath.string(),
+                          "damaged demo rawlog (" + *reader.damage() + "); delete the demo cache folder and run again");
   return out;
 }
 
 /// The table of the hand's depth error by source (and its metrics).
-ResultTable handDepthErrorTable(const HandDepthErrors& e, ExperimentResult& result)
-{
+ResultTable handDepthErrorTable(const HandDepthErrors& e, ExperimentResult& result) {
   ResultTable fill;
   fill.title = "Section 8.3.3: error of the hand's depth (palm centre, |z - z_true|) by source";
   fill.columns = {"source", "frames", "median [mm]", "p95 [mm]", "thesis"};
   const auto row = [&](const std::string& source, const Stats& s, const std::string& thesis, const std::string& key) {
     fill.rows.push_back({source, std::to_string(s.values.size()), formatNumber(1e3 * s.quantile(0.5), 1),
                          formatNumber(1e3 * s.quantile(0.95), 1), thesis});
-    result.metrics["hand_depth_error_m"][key] = {{"frames", s.values.size()},
-                                                 {"median", s.quantile(0.5)},
-                                                 {"p95", s.quantile(0.95)}};
+    result.metrics["hand_depth_error_m"][key] = {
+        {"frames", s.values.size()}, {"median", s.quantile(0.5)}, {"p95", s.quantile(0.95)}};
   };
   row("tag pose alone (all tag frames)", e.tagOnly, "—", "tag_only");
   row("tag + median depth inside the tag (frames with valid depth there; perception's default)", e.tagRefined, "—",
@@ -155,15 +150,15 @@ ResultTable handDepthErrorTable(const HandDepthErrors& e, ExperimentResult& resu
       "< 10 mm (monocular depth network vs valid camera depth)", "tag_unrefined");
   row("last valid depth carried forward (thesis' fallback; marker-free detector)", e.carried, "—", "carried_forward");
   row("raw depth at the palm pixel, where valid (back of the hand)", e.rawPalm, "—", "raw_palm_pixel");
-  fill.note = "Truth: the renderer's palm centre. The tag gives the palm's depth from the tag's size wherever the tag "
-              "is readable, so a depth hole needs no network; the raw pixel sees the back of the hand, ~1.4 cm above "
-              "the palm centre.";
+  fill.note =
+      "Truth: the renderer's palm centre. The tag gives the palm's depth from the tag's size wherever the tag "
+      "is readable, so a depth hole needs no network; the raw pixel sees the back of the hand, ~1.4 cm above "
+      "the palm centre.";
   return fill;
 }
 
 /// Demo 1's hand depth over time (truth, perception, raw pixel) as `<dir>/hand_depth.png`.
-std::filesystem::path handDepthFigure(const HandDepthErrors& e, unsigned seed, const std::filesystem::path& dir)
-{
+std::filesystem::path handDepthFigure(const HandDepthErrors& e, unsigned seed, const std::filesystem::path& dir) {
   plot::Figure fig(1000, 420);
   fig.title = "Hand depth, demo seed " + std::to_string(seed);
   auto& ax = fig.axes();
@@ -236,13 +231,16 @@ ExperimentResult runDepthExperiment(const ExperimentOptions& options)
                            {"object_pixels_valid", objectPixelsAll.mean()},
                            {"object_samples_valid", objectSamplesAll.value()}};
   result.tables.push_back(handDepthErrorTable(errors, result));
-  if (!errors.plotT.empty()) result.figures.push_back(handDepthFigure(errors, standardDemoRequest(options, 0).seed, dir));
+  if (!errors.plotT.empty())
+    result.figures.push_back(handDepthFigure(errors, standardDemoRequest(options, 0).seed, dir));
 
   result.summary = "Valid depth on the hand " + formatPercent(handSamplesAll.value()) + " of samples (" +
                    formatPercent(handPixelsAll.mean()) + " of pixels), on objects " +
-                   formatPercent(objectSamplesAll.value()) + " (thesis: < 50 %, > 70 %); the hand's depth where the "
-                   "image has a hole: median error " + formatNumber(1e3 * errors.tagUnrefined.quantile(0.5), 1) +
-                   " mm from the tag, " + formatNumber(1e3 * errors.carried.quantile(0.5), 1) + " mm carried forward.";
+                   formatPercent(objectSamplesAll.value()) +
+                   " (thesis: < 50 %, > 70 %); the hand's depth where the "
+                   "image has a hole: median error " +
+                   formatNumber(1e3 * errors.tagUnrefined.quantile(0.5), 1) + " mm from the tag, " +
+                   formatNumber(1e3 * errors.carried.quantile(0.5), 1) + " mm carried forward.";
   result.wallTime_s = clock.seconds();
   return result;
 }

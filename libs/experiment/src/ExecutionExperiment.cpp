@@ -15,8 +15,8 @@
 #include "srp/execution/PlanConversion.h"
 #include "srp/execution/RandomScene.h"
 #include "srp/execution/TaskExecutor.h"
-#include "srp/experiment/Experiments.h"
 #include "srp/experiment/ExperimentSupport.h"
+#include "srp/experiment/Experiments.h"
 #include "srp/language/InstructionParser.h"
 #include "srp/language/PlanTables.h"
 

@@ -9,11 +9,11 @@
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/core/Scene.h"
+#include "srp/experiment/DemoCache.h"
+#include "srp/experiment/ExperimentSupport.h"
 #include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/MarkerFreeHandDetector.h"
 #include "srp/perception/RawlogPerception.h"
-#include "srp/experiment/DemoCache.h"
-#include "srp/experiment/ExperimentSupport.h"
 
 namespace srp::experiment::detail {
 
@@ -141,8 +141,9 @@ PerceivedDemo perceiveDemo(const ExperimentOptions& options, unsigned seed, cons
   const perception::PerceptionResult result =
       perception::perceiveRawlog(files.rawlogPath.string(), catalogue, o, progress, detectMarkerFree);
   if (result.frames != size.framesPerDemo)
-    throw core::FileError(files.rawlogPath.string(), "has " + std::to_string(result.frames) + " frames, the study needs " +
-                                                     std::to_string(size.framesPerDemo) + "; delete it to render it again");
+    throw core::FileError(files.rawlogPath.string(),
+                          "has " + std::to_string(result.frames) + " frames, the study needs " +
+                              std::to_string(size.framesPerDemo) + "; delete it to render it again");
   demo.perceptionTime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   demo.frames = result.frames;
 

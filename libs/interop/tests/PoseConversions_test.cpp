@@ -11,9 +11,7 @@ using namespace srp::interop;
 namespace {
 constexpr double kExact = 1e-12;  // conversions only copy or multiply doubles
 
-Pose3 samplePose() {
-  return srp::core::makePoseYPR({0.12, -0.34, 0.56}, 0.7, -0.3, 1.1);
-}
+Pose3 samplePose() { return srp::core::makePoseYPR({0.12, -0.34, 0.56}, 0.7, -0.3, 1.1); }
 }  // namespace
 
 TEST(PoseConversions, ViSPRoundTripAndMeaning) {

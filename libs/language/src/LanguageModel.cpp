@@ -279,8 +279,9 @@ struct LanguageModel::Impl {
                   (s.nextPrep[i] != "<none>" ? "p" : "-"));
     }
     if (kPrepositions.count(w[i])) {
-      f.push_back(std::string("prep|nounSinceAct=") + (c.nounSinceAction ? "1" : "0") + (c.prepSinceAction ? "1" : "0") +
-                  std::to_string(std::min(c.actionsBefore, 2)) + (c.pronounSinceAction ? "p" : "-"));
+      f.push_back(std::string("prep|nounSinceAct=") + (c.nounSinceAction ? "1" : "0") +
+                  (c.prepSinceAction ? "1" : "0") + std::to_string(std::min(c.actionsBefore, 2)) +
+                  (c.pronounSinceAction ? "p" : "-"));
     }
     bool relativeAhead = false;
     for (int k = i + 1; k <= i + 3 && k < s.n; ++k) relativeAhead |= w[k] == "that" || w[k] == "which" || w[k] == "who";
@@ -339,8 +340,8 @@ struct LanguageModel::Impl {
   void locationFeatures(const SentenceWords& s, int i, ClauseState& c, std::vector<std::string>& f) const {
     const auto& w = s.w;
     const int n = s.n;
-    const bool prepLike = kPrepositions.count(w[i]) > 0 || kRelationalAdjectives.count(w[i]) > 0 ||
-                          kDirectionNouns.count(w[i]) > 0;
+    const bool prepLike =
+        kPrepositions.count(w[i]) > 0 || kRelationalAdjectives.count(w[i]) > 0 || kDirectionNouns.count(w[i]) > 0;
     if (features.sourceGoalRole && prepLike) {
       const std::string vclass = c.actionsBefore > 0 ? verbClassOf(c.prevAction) : "none";
       std::string role = "other";

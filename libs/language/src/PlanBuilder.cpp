@@ -428,8 +428,8 @@ class PlanStepsBuilder {
     bool directionalGoalLater = false;
     for (int j = landmarkEnd; j < clauseEnd; ++j) {
       const std::string& w = v.lower(j);
-      directionalGoalLater |= v.typeAt(j) == "GoalIndicator" && (w == "to" || w == "onto" || w == "into" ||
-                                                                 w == "toward" || w == "towards");
+      directionalGoalLater |= v.typeAt(j) == "GoalIndicator" &&
+                              (w == "to" || w == "onto" || w == "into" || w == "toward" || w == "towards");
     }
     return !targetSeen && directionalGoalLater;
   }

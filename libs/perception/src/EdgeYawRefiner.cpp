@@ -4,12 +4,12 @@
 #include "srp/perception/SegmentColour.h"
 
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <cstdlib>
-#include <complex>
+#include <opencv2/imgproc.hpp>
 #include <optional>
 #include <vector>
-#include <opencv2/imgproc.hpp>
 
 namespace srp::perception {
 using srp::core::kPi;
@@ -149,7 +149,8 @@ std::optional<double> sideNormalCorrection(const OutlineView& view, const std::v
     float* l = likeness.ptr<float>(y);
     for (int x = 0; x < roi.width; ++x) {
       int d = 0;
-      for (int k3 = 0; k3 < 3; ++k3) d = std::max(d, std::abs(static_cast<int>(c[x][k3]) - static_cast<int>(topColour[k3])));
+      for (int k3 = 0; k3 < 3; ++k3)
+        d = std::max(d, std::abs(static_cast<int>(c[x][k3]) - static_cast<int>(topColour[k3])));
       const double r = d / (255.0 * options.colourLikeness);
       l[x] = static_cast<float>(std::exp(-r * r));
     }
@@ -168,10 +169,11 @@ std::optional<double> sideNormalCorrection(const OutlineView& view, const std::v
       const double gx1 = lx.at<float>(y, x), gy1 = ly.at<float>(y, x);
       const double strength = gx1 * gx1 + gy1 * gy1;
       if (strength < options.minLikenessGradient2) continue;  // a full step gives ~48^2
-      const double theta = std::atan2(gy1, gx1);  // gradient direction
+      const double theta = std::atan2(gy1, gx1);              // gradient direction
       const Eigen::Vector3d t = -std::sin(theta) * view.ex + std::cos(theta) * view.ey;
       const double normal = std::fmod(std::atan2(t.y(), t.x()) + 0.5 * kPi + 4 * kPi, kPi);
-      normals[static_cast<std::size_t>(std::min(kNormalBins - 1.0, std::floor(normal / kPi * kNormalBins)))] += strength;
+      normals[static_cast<std::size_t>(std::min(kNormalBins - 1.0, std::floor(normal / kPi * kNormalBins)))] +=
+          strength;
       partWeight += strength;
       ++partEdgePixels;
     }
@@ -180,14 +182,17 @@ std::optional<double> sideNormalCorrection(const OutlineView& view, const std::v
   const double binWidth = kPi / kNormalBins;
   constexpr int kReach = 48;  // 12 deg = 4 sigma
   std::vector<double> kernel(2 * kReach + 1);
-  for (int d = -kReach; d <= kReach; ++d) kernel[static_cast<std::size_t>(d + kReach)] = std::exp(90.0 * (std::cos(2 * d * binWidth) - 1.0));
+  for (int d = -kReach; d <= kReach; ++d)
+    kernel[static_cast<std::size_t>(d + kReach)] = std::exp(90.0 * (std::cos(2 * d * binWidth) - 1.0));
   const int steps = static_cast<int>(options.maxCorrection_rad / binWidth);
   auto score = [&](int step) {
     double v = 0.0;
     for (double beta : sideNormals_rad) {
-      const int c = static_cast<int>(std::lround(std::fmod(beta + view.yawFit + step * binWidth + 8 * kPi, kPi) / binWidth));
+      const int c =
+          static_cast<int>(std::lround(std::fmod(beta + view.yawFit + step * binWidth + 8 * kPi, kPi) / binWidth));
       for (int d = -kReach; d <= kReach; ++d)
-        v += normals[static_cast<std::size_t>(((c + d) % kNormalBins + kNormalBins) % kNormalBins)] * kernel[static_cast<std::size_t>(d + kReach)];
+        v += normals[static_cast<std::size_t>(((c + d) % kNormalBins + kNormalBins) % kNormalBins)] *
+             kernel[static_cast<std::size_t>(d + kReach)];
     }
     return v;
   };
@@ -238,7 +243,7 @@ std::optional<double> regularOutlineCorrection(const OutlineView& view, int orde
         jxy += ax[x][c] * ay[x][c];
       }
       const double strength = std::sqrt((jxx - jyy) * (jxx - jyy) + 4 * jxy * jxy);
-      if (strength < options.minStructureStrength) continue;  // flat
+      if (strength < options.minStructureStrength) continue;      // flat
       const double theta = 0.5 * std::atan2(2 * jxy, jxx - jyy);  // gradient direction, mod pi
       const Eigen::Vector3d t = -std::sin(theta) * view.ex + std::cos(theta) * view.ey;  // tangent on the plane
       const double tangent = std::atan2(t.y(), t.x());
@@ -267,13 +272,14 @@ std::optional<core::Pose3> EdgeYawRefiner::refine(const core::Pose3& X_camera_ob
                                                   const std::vector<cv::Point>& segmentPixels,
                                                   const cv::Mat& colour_bgr8, const CameraModel& camera,
                                                   const Plane& plane) const {
-  if ((order_ == 0 && sideNormals_rad_.empty()) || colour_bgr8.empty() || segmentPixels.size() < 10) return std::nullopt;
+  if ((order_ == 0 && sideNormals_rad_.empty()) || colour_bgr8.empty() || segmentPixels.size() < 10)
+    return std::nullopt;
   const std::optional<OutlineView> view =
       outlineView(X_camera_object, segmentPixels, colour_bgr8, camera, plane, options_.ringWidth_px, top_m_);
   if (!view) return std::nullopt;
-  const std::optional<double> delta = order_ == 0
-                                          ? sideNormalCorrection(*view, segmentPixels, colour_bgr8, sideNormals_rad_, options_)
-                                          : regularOutlineCorrection(*view, order_, modelPhase_rad_, options_);
+  const std::optional<double> delta =
+      order_ == 0 ? sideNormalCorrection(*view, segmentPixels, colour_bgr8, sideNormals_rad_, options_)
+                  : regularOutlineCorrection(*view, order_, modelPhase_rad_, options_);
   if (!delta) return std::nullopt;
   core::Pose3 X = X_camera_object;
   X.linear() = X_camera_object.linear() * Eigen::AngleAxisd(*delta, Eigen::Vector3d::UnitZ()).toRotationMatrix();

@@ -308,8 +308,8 @@ void ModelBasedTracker::initialise(const rawlog::RgbdFrame& frame, const core::P
   m.setImages(frame);
   std::map<std::string, const vpImage<unsigned char>*> images;
   for (const auto& n : m.tracker->getCameraNames()) images[n] = &m.grey;
-  m.tracker->initFromPose(images, std::map<std::string, vpHomogeneousMatrix>{{m.tracker->getCameraNames().front(),
-                                                                              interop::toVisp(X_camera_mesh)}});
+  m.tracker->initFromPose(images, std::map<std::string, vpHomogeneousMatrix>{
+                                      {m.tracker->getCameraNames().front(), interop::toVisp(X_camera_mesh)}});
   m.initialised = true;
 }
 

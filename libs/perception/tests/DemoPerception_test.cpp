@@ -1,5 +1,5 @@
-#include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/DemoPerception.h"
+#include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/RawlogPerception.h"
 
 #include <gtest/gtest.h>
@@ -130,11 +130,11 @@ TEST(DemoPerception, RawlogPerceivedGivesTheResultOfItsFrames) {
     for (const auto& f : testing::handFrames(20, 10)) writer.write(f);
   }
   std::vector<int> hooked;  // the per-frame hook sees every perceived frame once, in order
-  const PerceptionResult fromFile = perceiveRawlog(rawlogPath, catalogue(), markerFreeOptions(), {},
-                                                   [&](const rawlog::RgbdFrame& f, int i) {
-                                                     EXPECT_FALSE(f.depth_m.empty()) << "frame " << i;
-                                                     hooked.push_back(i);
-                                                   });
+  const PerceptionResult fromFile =
+      perceiveRawlog(rawlogPath, catalogue(), markerFreeOptions(), {}, [&](const rawlog::RgbdFrame& f, int i) {
+        EXPECT_FALSE(f.depth_m.empty()) << "frame " << i;
+        hooked.push_back(i);
+      });
   ASSERT_EQ(hooked.size(), 20u);
   for (std::size_t i = 0; i < hooked.size(); ++i) EXPECT_EQ(hooked[i], static_cast<int>(i));
   const PerceptionResult fromFrames =

@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "srp/core/Error.h"
-#include "srp/core/SafeText.h"
 #include "srp/core/OutputFile.h"
+#include "srp/core/SafeText.h"
 #include "srp/motion/SkillPlots.h"
 #include "srp/perception/PerceptionDrawing.h"
 #include "srp/plot/Figure.h"

@@ -15,10 +15,16 @@ std::string toJsonText(const ProgramResult& r) {
   j["skills"] = r.skillCount;
   j["objects"] = nlohmann::json::array();
   for (const auto& o : r.objects)
-    j["objects"].push_back({{"name", o.name}, {"instance", o.instanceId}, {"class_id", o.classId}, {"moved", o.moved},
-                            {"grasp_frame", o.graspFrame}, {"release_frame", o.releaseFrame},
-                            {"detected_frames", o.detectedFrames}, {"reach_lambda", o.reachLambda},
-                            {"move_lambda", o.moveLambda}, {"note", o.note}});
+    j["objects"].push_back({{"name", o.name},
+                            {"instance", o.instanceId},
+                            {"class_id", o.classId},
+                            {"moved", o.moved},
+                            {"grasp_frame", o.graspFrame},
+                            {"release_frame", o.releaseFrame},
+                            {"detected_frames", o.detectedFrames},
+                            {"reach_lambda", o.reachLambda},
+                            {"move_lambda", o.moveLambda},
+                            {"note", o.note}});
   j["timings_s"] = nlohmann::json::object();
   for (const auto& t : r.timings) j["timings_s"][t.stage] = t.wall_s;
   j["peak_memory_MB"] = r.peakResidentMemory_MB;
@@ -33,8 +39,11 @@ std::string toJsonText(const ProgramResult& r) {
     for (const auto& c : r.observedClasses) {
       nlohmann::json footprint = nlohmann::json::array();
       for (const auto& p : c.footprint_object) footprint.push_back({p.x(), p.y()});
-      j["observed_classes"].push_back({{"name", c.name}, {"class_id", c.classId}, {"kind", core::toString(c.kind)},
-                                       {"shape", c.shape}, {"color_name", c.colourName},
+      j["observed_classes"].push_back({{"name", c.name},
+                                       {"class_id", c.classId},
+                                       {"kind", core::toString(c.kind)},
+                                       {"shape", c.shape},
+                                       {"color_name", c.colourName},
                                        {"dimensions_m", {c.dimensions_m.x(), c.dimensions_m.y(), c.dimensions_m.z()}},
                                        {"footprint_m", footprint}});
     }

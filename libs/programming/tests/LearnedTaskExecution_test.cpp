@@ -73,7 +73,8 @@ TEST(DmpPathGenerator, LearnedSkillsFromATaskModelExecuteWithDmpPaths) {
   // pipeline without the rendering: synthetic demo, learned DMPs, instruction 1) keeps
   // every joint under the acceleration limit between its 8 ms servoj ticks (35.9 rad/s^2
   // before the limit, on the make-demo task).
-  const ExecutedTask task = ExecutedTask::fromSimulation(robot, ExecutionOptions{}.safety, executor.simulator(), report);
+  const ExecutedTask task =
+      ExecutedTask::fromSimulation(robot, ExecutionOptions{}.safety, executor.simulator(), report);
   ASSERT_FALSE(task.whyNotExportable()) << *task.whyNotExportable();
   EXPECT_DOUBLE_EQ(task.maxAcceleration_radps2, SafetyLimits{}.maxAcceleration_radps2);
   const UrScriptOptions urOptions;

@@ -2,16 +2,16 @@
 // default scene, the adaptations, and 50 seeded randomised scenes. Prints the figures.
 #include <gtest/gtest.h>
 
-#include "srp/execution/MinimumJerkPathGenerator.h"
 #include "srp/execution/DmpPathGenerator.h"
-#include "srp/execution/RandomScene.h"
-#include "srp/motion/SkillLearner.h"
-#include "srp/programming/MotionRows.h"
-#include "srp/motion/SyntheticPickPlace.h"
-#include "srp/execution/TaskExecutor.h"
 #include "srp/execution/ExecutionSession.h"
+#include "srp/execution/MinimumJerkPathGenerator.h"
 #include "srp/execution/PlanConversion.h"
+#include "srp/execution/RandomScene.h"
+#include "srp/execution/TaskExecutor.h"
 #include "srp/language/InstructionParser.h"
+#include "srp/motion/SkillLearner.h"
+#include "srp/motion/SyntheticPickPlace.h"
+#include "srp/programming/MotionRows.h"
 
 using namespace srp::execution;
 

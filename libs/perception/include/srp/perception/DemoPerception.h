@@ -269,8 +269,7 @@ std::vector<PlanObject> withSceneInstances(const std::vector<PlanObject>& plan, 
 /// `progress(frameIndex, frameCount)` is called after each frame when given
 /// (frameCount -1 when unknown, as for a rawlog read as a stream).
 PerceptionResult perceiveFrames(const std::vector<rawlog::RgbdFrame>& frames, const core::ObjectCatalogue& catalogue,
-                                const PerceptionOptions& options,
-                                const std::function<void(int, int)>& progress = {});
+                                const PerceptionOptions& options, const std::function<void(int, int)>& progress = {});
 
 /// Writes the `srp segment` CSV: frame,hand_x,hand_y,hand_z,<name>_x,<name>_y,
 /// <name>_z,<name>_rz,... (camera frame, metres, radians; <name> = the

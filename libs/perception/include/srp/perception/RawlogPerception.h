@@ -48,8 +48,7 @@ using FrameHook = std::function<void(const rawlog::RgbdFrame& frame, int frameIn
 /// Throws FileError for an unreadable or damaged rawlog, one without RGB-D
 /// frames, or one that changes between the two reads.
 PerceptionResult perceiveRawlog(const std::string& rawlogPath, const core::ObjectCatalogue& catalogue,
-                                const PerceptionOptions& options,
-                                const std::function<void(int, int)>& progress = {},
+                                const PerceptionOptions& options, const std::function<void(int, int)>& progress = {},
                                 const FrameHook& onFrame = {});
 
 }  // namespace srp::perception

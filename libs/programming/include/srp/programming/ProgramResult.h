@@ -47,8 +47,8 @@ struct ProgramResult {
   bool sceneStored = false;
   std::string robotBase;  ///< where the report's scene file puts the robot, and why
   std::vector<std::string> reportFiles;
-  std::string handDetector;            ///< "marker" or "marker-free" (the one used)
-  bool cameraMoved = false;            ///< the demonstration's camera moved (trajectories kept in the first frame's camera)
+  std::string handDetector;  ///< "marker" or "marker-free" (the one used)
+  bool cameraMoved = false;  ///< the demonstration's camera moved (trajectories kept in the first frame's camera)
   double cameraTravel_m = 0.0, cameraTurn_rad = 0.0;
   /// Objects the knowledge base did not know, found in the demonstration
   /// (perception::ObjectDiscovery): their classes as stored with the task

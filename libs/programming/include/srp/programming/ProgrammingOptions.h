@@ -18,8 +18,8 @@ using StageProgress = std::function<void(const std::string& stage, std::size_t d
 
 struct ProgrammingOptions {
   std::string instruction;
-  std::string demoPath;           ///< MRPT rawlog of the demonstration
-  std::string cataloguePath;      ///< empty: the bundled knowledge base
+  std::string demoPath;       ///< MRPT rawlog of the demonstration
+  std::string cataloguePath;  ///< empty: the bundled knowledge base
   /// The demo's scene file (srp synth-demo --scene; for a recording, one that
   /// lists its instances and their colours); empty: none. A class the scene
   /// holds several times is perceived per instance and the instruction's
@@ -27,7 +27,7 @@ struct ProgrammingOptions {
   std::string scenePath;
   std::optional<core::CameraIntrinsics> intrinsics;  ///< overrides the rawlog's (e.g. from calib/*.xml)
   std::string dbPath = "task.db";
-  std::string name = "task";      ///< re-using a name makes a new version
+  std::string name = "task";  ///< re-using a name makes a new version
   /// Hand detector: Auto (the glove's AprilTag when a preview of the
   /// recording shows it, else the marker-free hand), the tag, or marker-free.
   enum class Hand { Auto, Marker, MarkerFree };

@@ -18,6 +18,8 @@ namespace srp::perception {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+/// A segment whose 99th percentile height comes this close to maxHeight_m was cut by the band: part of something taller.
+constexpr double kBandCut_m = 0.02;
 
 /// One segment in one frame (table frame, metres).
 struct Sighting {
@@ -139,6 +141,8 @@ struct ObjectDiscovery::Impl {
   const bool debug = std::getenv("SRP_DISCOVERY_DEBUG") != nullptr;
 
   void findTable(const cv::Mat& q, const cv::Mat& valid);
+  /// A segment's pixels (`q`: table-frame points) stand on the table top and below the band.
+  bool onTableTop(const cv::Mat& q, const std::vector<cv::Point>& px) const;
   void assign(int s, std::vector<Eigen::Vector3f>&& points);
   std::string describe(const Rest& r) const;
   Eigen::Vector3d restCentre3(const Rest& r) const {
@@ -179,6 +183,19 @@ void ObjectDiscovery::Impl::findTable(const cv::Mat& q, const cv::Mat& valid) {
     for (int u = 0; u < q.cols; ++u)
       if (labels.at<int>(v, u) == best) feet.emplace_back(q.at<cv::Vec3f>(v, u)[0], q.at<cv::Vec3f>(v, u)[1]);
   cv::convexHull(feet, table);
+}
+
+bool ObjectDiscovery::Impl::onTableTop(const cv::Mat& q, const std::vector<cv::Point>& px) const {
+  int inside = 0;
+  std::vector<double> heights;
+  heights.reserve(px.size());
+  for (const auto& p : px) {
+    const cv::Vec3f& a = q.at<cv::Vec3f>(p);
+    heights.push_back(a[2]);
+    if (cv::pointPolygonTest(table, cv::Point2f(a[0], a[1]), true) >= -o.tableMargin_m) ++inside;
+  }
+  return inside >= o.minInsideShare * static_cast<double>(px.size()) &&
+         percentile(heights, 0.99) <= o.maxHeight_m - kBandCut_m;
 }
 
 void ObjectDiscovery::add(const rawlog::RgbdFrame& frame, const core::Pose3& X_camera_table,
@@ -236,13 +253,37 @@ void ObjectDiscovery::add(const rawlog::RgbdFrame& frame, const core::Pose3& X_c
       candidate.at<uchar>(v, u) = 255;
     }
   cv::Mat labels, stats, centroids;
-  const int n = cv::connectedComponentsWithStats(candidate, labels, stats, centroids, 4, CV_32S);
-  std::vector<std::vector<cv::Point>> pixels(static_cast<std::size_t>(n));
-  for (int v = 0; v < H; ++v)
-    for (int u = 0; u < W; ++u) {
-      const int l = labels.at<int>(v, u);
-      if (l > 0 && stats.at<int>(l, cv::CC_STAT_AREA) >= o.minPixels) pixels[static_cast<std::size_t>(l)].emplace_back(u, v);
+  int n = 0;
+  std::vector<std::vector<cv::Point>> pixels;
+  const auto label = [&]() {
+    n = cv::connectedComponentsWithStats(candidate, labels, stats, centroids, 4, CV_32S);
+    pixels.assign(static_cast<std::size_t>(n), {});
+    for (int v = 0; v < H; ++v)
+      for (int u = 0; u < W; ++u) {
+        const int l = labels.at<int>(v, u);
+        if (l > 0 && stats.at<int>(l, cv::CC_STAT_AREA) >= o.minPixels) pixels[static_cast<std::size_t>(l)].emplace_back(u, v);
+      }
+  };
+  label();
+  // A segment that reaches off the table top or up to a person, with the palm
+  // on it, is a part held by an arm the hand mask did not cover: the arm (its
+  // points higher than the palm) is cut off and the rest segmented again.
+  if (palm) {
+    bool cut = false;
+    for (int l = 1; l < n; ++l) {
+      const auto& px = pixels[static_cast<std::size_t>(l)];
+      if (px.empty() || m.onTableTop(q, px)) continue;
+      double nearest = kInf;
+      for (const auto& p : px) {
+        const cv::Vec3f& a = q.at<cv::Vec3f>(p);
+        nearest = std::min(nearest, (Eigen::Vector3d(a[0], a[1], a[2]) - *palm).norm());
+      }
+      if (nearest > o.handRadius_m) continue;
+      for (const auto& p : px)
+        if (q.at<cv::Vec3f>(p)[2] > palm->z() + o.armAbovePalm_m) candidate.at<uchar>(p) = 0, cut = true;
     }
+    if (cut) label();
+  }
   cv::Mat colour;
   if (!frame.colour_bgr8.empty()) cv::resize(frame.colour_bgr8, colour, cv::Size(W, H), 0, 0, cv::INTER_NEAREST);
   cv::Mat trace;  // SRP_DISCOVERY_TRACE=<folder>: each frame's segments drawn (for tuning on a new recording)
@@ -260,12 +301,11 @@ void ObjectDiscovery::add(const rawlog::RgbdFrame& frame, const core::Pose3& X_c
   }
   for (int l = 1; l < n; ++l) {
     const auto& px = pixels[static_cast<std::size_t>(l)];
-    if (px.empty()) continue;
+    if (px.empty() || !m.onTableTop(q, px)) continue;  // off the table top, or part of something taller
     std::vector<cv::Point2f> feet;
     std::vector<double> heights;
     std::vector<Eigen::Vector3f> points;
     feet.reserve(px.size());
-    int inside = 0;
     Sighting sg;
     sg.frame = index;
     sg.pixels = static_cast<int>(px.size());
@@ -275,15 +315,12 @@ void ObjectDiscovery::add(const rawlog::RgbdFrame& frame, const core::Pose3& X_c
       heights.push_back(a[2]);
       points.emplace_back(a[0], a[1], a[2]);
       sg.centre += Eigen::Vector2d(a[0], a[1]);
-      if (cv::pointPolygonTest(m.table, feet.back(), true) >= -o.tableMargin_m) ++inside;
       if (palm) sg.handDistance_m = std::min(sg.handDistance_m, (Eigen::Vector3d(a[0], a[1], a[2]) - *palm).norm());
       if (!colour.empty()) {
         const cv::Vec3b c = colour.at<cv::Vec3b>(p);
         sg.meanBgr += Eigen::Vector3d(c[0], c[1], c[2]) / 255.0;
       }
     }
-    if (inside < o.minInsideShare * static_cast<double>(px.size())) continue;  // not on the table top
-    if (percentile(heights, 0.99) > o.maxHeight_m - 0.02) continue;           // cut by the band: something taller
     sg.centre /= static_cast<double>(px.size());
     sg.meanBgr /= static_cast<double>(px.size());
     cv::convexHull(feet, sg.hull);

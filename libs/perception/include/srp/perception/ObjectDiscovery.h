@@ -94,6 +94,7 @@ class ObjectDiscovery {
     double minInsideShare = 0.8;      ///< of a segment's feet on the table top
     double handRadius_m = 0.12;       ///< points this close to the palm are the hand
     int handMaskGrow_px = 2;          ///< the hand mask grown by this (reduced resolution)
+    double armAbovePalm_m = 0.02;     ///< a held part's segment is cut this far above the palm (the arm)
     double minRestOverlap = 0.5;      ///< footprints overlapping this much (IoU) are one place
     double restRadius_m = 0.05;
     double restTopTol_m = 0.05;

@@ -614,12 +614,15 @@ ObjectDiscovery::Result ObjectDiscovery::finish(const std::vector<ObjectTrajecto
         area2 += a.x() * b.y() - b.x() * a.y();
       }
       cls.mass_kg = std::max(0.01, 0.5 * std::abs(area2) * fp->size_m.z() * o.partDensity_kg_m3);
-      // A's place: the model's; B's: the median of its sightings, its bottom below its top by the model's height.
+      // A's place: the model's; B's: the median of its sightings' footprint
+      // centres (not of their points, which lean towards the camera: the far
+      // side is not seen), its bottom below its top by the model's height.
       std::vector<double> bx, by, btop;
       for (int s : B.sightings) {
         const Sighting& sb = m.sightings[static_cast<std::size_t>(s)];
-        bx.push_back(sb.centre.x());
-        by.push_back(sb.centre.y());
+        const cv::Point2f c = cv::minAreaRect(sb.hull).center;
+        bx.push_back(c.x);
+        by.push_back(c.y);
         btop.push_back(sb.top_m);
       }
       core::Pose3 atB = fp->X_table_object;

@@ -64,6 +64,9 @@ double overlap(const std::vector<cv::Point2f>& a, const std::vector<cv::Point2f>
   return uni > 0.0 ? std::max(0.0, inter) / uni : 0.0;
 }
 
+/// An sRGB value [0, 1] made linear.
+double linearOf(double srgb) { return srgb <= 0.04045 ? srgb / 12.92 : std::pow((srgb + 0.055) / 1.055, 2.4); }
+
 double percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0.0;
   const std::size_t k = std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5));
@@ -126,6 +129,57 @@ std::optional<Footprint> footprintOf(const std::vector<Eigen::Vector3f>& points)
   return f;
 }
 
+/// A frame at a reduced resolution: each pixel's point in the table frame (q),
+/// whether it has depth (valid), its depth (z).
+struct TableView {
+  cv::Mat q, valid, z;
+};
+
+TableView tableViewOf(const rawlog::RgbdFrame& frame, const core::Pose3& X_table_camera, int s) {
+  const int W = frame.depth_m.cols / s, H = frame.depth_m.rows / s;
+  const auto& k = frame.intrinsics;
+  TableView view{cv::Mat(H, W, CV_32FC3, cv::Scalar::all(0)), cv::Mat(H, W, CV_8UC1, cv::Scalar(0)),
+                 cv::Mat(H, W, CV_32FC1, cv::Scalar(0))};
+  const Eigen::Matrix3f R = X_table_camera.linear().cast<float>();
+  const Eigen::Vector3f t = X_table_camera.translation().cast<float>();
+  for (int v = 0; v < H; ++v)
+    for (int u = 0; u < W; ++u) {
+      const float d = frame.depth_m.at<float>(v * s, u * s);
+      if (!(d > 0.0f) || !std::isfinite(d)) continue;
+      const Eigen::Vector3f p(static_cast<float>((u * s - k.cx_px) * d / k.fx_px),
+                              static_cast<float>((v * s - k.cy_px) * d / k.fy_px), d);
+      const Eigen::Vector3f pt = R * p + t;
+      view.q.at<cv::Vec3f>(v, u) = cv::Vec3f(pt.x(), pt.y(), pt.z());
+      view.z.at<float>(v, u) = d;
+      view.valid.at<uchar>(v, u) = 255;
+    }
+  return view;
+}
+
+/// The pixels of `view` that may belong to something standing on the table:
+/// between minHeight_m and maxHeight_m above it, not in `excluded` (the hand),
+/// not within handRadius_m of `palm`, not beside a depth step.
+cv::Mat candidatesOf(const TableView& view, const ObjectDiscovery::Options& o, const cv::Mat& excluded,
+                     const std::optional<Eigen::Vector3d>& palm) {
+  const cv::Mat &q = view.q, &valid = view.valid, &z = view.z;
+  const int W = q.cols, H = q.rows;
+  cv::Mat candidate(H, W, CV_8UC1, cv::Scalar(0));
+  for (int v = 0; v < H; ++v)
+    for (int u = 0; u < W; ++u) {
+      if (!valid.at<uchar>(v, u) || (!excluded.empty() && excluded.at<uchar>(v, u))) continue;
+      const cv::Vec3f& p = q.at<cv::Vec3f>(v, u);
+      if (p[2] < o.minHeight_m || p[2] > o.maxHeight_m) continue;
+      if (palm && (Eigen::Vector3d(p[0], p[1], p[2]) - *palm).norm() < o.handRadius_m) continue;
+      const float d = z.at<float>(v, u);
+      const float edge = static_cast<float>(o.depthEdge_m) * std::max(1.0f, d);
+      if ((u + 1 < W && valid.at<uchar>(v, u + 1) && std::abs(z.at<float>(v, u + 1) - d) > edge) ||
+          (v + 1 < H && valid.at<uchar>(v + 1, u) && std::abs(z.at<float>(v + 1, u) - d) > edge))
+        continue;
+      candidate.at<uchar>(v, u) = 255;
+    }
+  return candidate;
+}
+
 }  // namespace
 
 struct ObjectDiscovery::Impl {
@@ -152,6 +206,55 @@ struct ObjectDiscovery::Impl {
   double handDistanceNear(const Rest& r, int frame) const;
   std::vector<Eigen::Vector3f> fused(const Rest& r) const;
 };
+
+std::optional<ObjectDiscovery::Measured> ObjectDiscovery::measureAt(const rawlog::RgbdFrame& frame,
+                                                                    const core::Pose3& X_camera_table,
+                                                                    const Eigen::Vector2d& at_px, const Options& o) {
+  if (o.stride < 1) throw core::InvalidInputError("object discovery options: stride must be >= 1");
+  const TableView view = tableViewOf(frame, X_camera_table.inverse(), o.stride);
+  const cv::Mat candidate = candidatesOf(view, o, cv::Mat(), std::nullopt);
+  cv::Mat labels;
+  cv::connectedComponents(candidate, labels, 4, CV_32S);
+  // The segment at the pixel, else the nearest within 3 sample steps.
+  constexpr int kSearch = 3;
+  const int u0 = static_cast<int>(std::lround(at_px.x() / o.stride)), v0 = static_cast<int>(std::lround(at_px.y() / o.stride));
+  int label = 0, best = std::numeric_limits<int>::max();
+  for (int v = std::max(0, v0 - kSearch); v <= std::min(labels.rows - 1, v0 + kSearch); ++v)
+    for (int u = std::max(0, u0 - kSearch); u <= std::min(labels.cols - 1, u0 + kSearch); ++u) {
+      const int d2 = (u - u0) * (u - u0) + (v - v0) * (v - v0);
+      if (labels.at<int>(v, u) > 0 && d2 < best) best = d2, label = labels.at<int>(v, u);
+    }
+  if (label == 0) return std::nullopt;
+  std::vector<cv::Point> px;
+  std::vector<Eigen::Vector3f> points;
+  for (int v = 0; v < labels.rows; ++v)
+    for (int u = 0; u < labels.cols; ++u)
+      if (labels.at<int>(v, u) == label) {
+        px.emplace_back(u, v);
+        const cv::Vec3f& a = view.q.at<cv::Vec3f>(v, u);
+        points.emplace_back(a[0], a[1], a[2]);
+      }
+  const auto fp = footprintOf(points);
+  if (!fp) return std::nullopt;
+  Measured out;
+  out.X_table_object = fp->X_table_object;
+  out.size_m = fp->size_m;
+  out.footprint_object = fp->hull_object;
+  out.points = static_cast<int>(points.size());
+  if (!frame.colour_bgr8.empty()) {
+    cv::Mat colour;
+    cv::resize(frame.colour_bgr8, colour, labels.size(), 0, 0, cv::INTER_NEAREST);
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const auto& p : px) {
+      const cv::Vec3b c = colour.at<cv::Vec3b>(p);
+      mean += Eigen::Vector3d(c[2], c[1], c[0]) / 255.0;
+    }
+    mean /= static_cast<double>(px.size());
+    for (int c = 0; c < 3; ++c) out.rgb[c] = linearOf(mean[c]);
+    out.colourWord = dominantColourWord(colourShares(px, colour));
+  }
+  return out;
+}
 
 ObjectDiscovery::ObjectDiscovery(std::vector<UnknownObject> objects) : ObjectDiscovery(std::move(objects), Options{}) {}
 
@@ -210,23 +313,9 @@ void ObjectDiscovery::add(const rawlog::RgbdFrame& frame, const core::Pose3& X_c
   m.palm.push_back(p_camera_palm ? std::optional<Eigen::Vector3d>(X_table_camera * *p_camera_palm) : std::nullopt);
 
   // The frame at the reduced resolution: points in the table frame.
-  const int s = o.stride;
-  const int W = frame.depth_m.cols / s, H = frame.depth_m.rows / s;
-  const auto& k = frame.intrinsics;
-  cv::Mat q(H, W, CV_32FC3, cv::Scalar::all(0)), valid(H, W, CV_8UC1, cv::Scalar(0)), z(H, W, CV_32FC1, cv::Scalar(0));
-  const Eigen::Matrix3f R = X_table_camera.linear().cast<float>();
-  const Eigen::Vector3f t = X_table_camera.translation().cast<float>();
-  for (int v = 0; v < H; ++v)
-    for (int u = 0; u < W; ++u) {
-      const float d = frame.depth_m.at<float>(v * s, u * s);
-      if (!(d > 0.0f) || !std::isfinite(d)) continue;
-      const Eigen::Vector3f p(static_cast<float>((u * s - k.cx_px) * d / k.fx_px),
-                              static_cast<float>((v * s - k.cy_px) * d / k.fy_px), d);
-      const Eigen::Vector3f pt = R * p + t;
-      q.at<cv::Vec3f>(v, u) = cv::Vec3f(pt.x(), pt.y(), pt.z());
-      z.at<float>(v, u) = d;
-      valid.at<uchar>(v, u) = 255;
-    }
+  const TableView view = tableViewOf(frame, X_table_camera, o.stride);
+  const cv::Mat &q = view.q, &valid = view.valid;
+  const int W = q.cols, H = q.rows;
   if (m.table.empty()) m.findTable(q, valid);
   if (m.table.size() < 3) return;  // no table top seen yet
 
@@ -238,20 +327,7 @@ void ObjectDiscovery::add(const rawlog::RgbdFrame& frame, const core::Pose3& X_c
       cv::dilate(hand, hand, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * o.handMaskGrow_px + 1, 2 * o.handMaskGrow_px + 1)));
   }
   const std::optional<Eigen::Vector3d>& palm = m.palm.back();
-  cv::Mat candidate(H, W, CV_8UC1, cv::Scalar(0));
-  for (int v = 0; v < H; ++v)
-    for (int u = 0; u < W; ++u) {
-      if (!valid.at<uchar>(v, u) || hand.at<uchar>(v, u)) continue;
-      const cv::Vec3f& p = q.at<cv::Vec3f>(v, u);
-      if (p[2] < o.minHeight_m || p[2] > o.maxHeight_m) continue;
-      if (handMask.empty() && palm && (Eigen::Vector3d(p[0], p[1], p[2]) - *palm).norm() < o.handRadius_m) continue;
-      const float d = z.at<float>(v, u);
-      const float edge = static_cast<float>(o.depthEdge_m) * std::max(1.0f, d);
-      if ((u + 1 < W && valid.at<uchar>(v, u + 1) && std::abs(z.at<float>(v, u + 1) - d) > edge) ||
-          (v + 1 < H && valid.at<uchar>(v + 1, u) && std::abs(z.at<float>(v + 1, u) - d) > edge))
-        continue;
-      candidate.at<uchar>(v, u) = 255;
-    }
+  cv::Mat candidate = candidatesOf(view, o, hand, handMask.empty() ? palm : std::nullopt);
   cv::Mat labels, stats, centroids;
   int n = 0;
   std::vector<std::vector<cv::Point>> pixels;
@@ -761,7 +837,7 @@ ObjectDiscovery::Result ObjectDiscovery::finish(const std::vector<ObjectTrajecto
                                                             : dominantColourWord(anchor.colours, o.minColourShare);
     for (int c = 0; c < 3; ++c) {
       const double srgb = anchor.meanBgr[2 - c];
-      cls.rgb[c] = srgb <= 0.04045 ? srgb / 12.92 : std::pow((srgb + 0.055) / 1.055, 2.4);
+      cls.rgb[c] = linearOf(srgb);
     }
     cls.graspAxis_object = Eigen::Vector3d::UnitY();
     // One sample per frame: a frame without a pose carries the last one (before the first: the first).

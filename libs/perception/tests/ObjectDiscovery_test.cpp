@@ -166,5 +166,33 @@ TEST(ObjectDiscovery, APartTheHandDoesNotMoveIsRefusedNamingWhatStood) {
   }
 }
 
+// srp kb add --from-demo: the segment at a pixel of one frame, measured.
+TEST(ObjectDiscovery, MeasuresWhatStandsAtAPixel) {
+  const Demo d = makeDemo(false);
+  const rawlog::RgbdFrame& f = d.frames.front();
+  const core::Pose3 X_camera_table = d.X_table_camera.inverse();
+  const auto pixelOf = [&](const Eigen::Vector3d& p_table) {
+    const Eigen::Vector3d p = X_camera_table * p_table;
+    return Eigen::Vector2d(f.intrinsics.fx_px * p.x() / p.z() + f.intrinsics.cx_px,
+                           f.intrinsics.fy_px * p.y() / p.z() + f.intrinsics.cy_px);
+  };
+  const auto toy = ObjectDiscovery::measureAt(f, X_camera_table, pixelOf({kStart_m.x(), kStart_m.y(), kPartSize_m.z()}),
+                                              ObjectDiscovery::Options{});
+  ASSERT_TRUE(toy.has_value());
+  EXPECT_NEAR(toy->size_m.x(), kPartSize_m.x(), kSize_m);
+  EXPECT_NEAR(toy->size_m.y(), kPartSize_m.y(), kSize_m);
+  EXPECT_NEAR(toy->size_m.z(), kPartSize_m.z(), kSize_m);
+  EXPECT_LT((toy->X_table_object.translation().head<2>() - kStart_m).norm(), kPlace_m);
+  EXPECT_EQ(toy->colourWord, "blue");
+  EXPECT_GT(toy->rgb.z(), toy->rgb.x()) << "linear RGB, blue above red";
+  const auto bin = ObjectDiscovery::measureAt(f, X_camera_table, pixelOf({kBin_m.x() + kBinSize_m.x() / 2, kBin_m.y(), kBinSize_m.z()}),
+                                              ObjectDiscovery::Options{});
+  ASSERT_TRUE(bin.has_value()) << "a pixel on the bin's right wall";
+  EXPECT_NEAR(bin->size_m.x(), kBinSize_m.x(), kSize_m);
+  EXPECT_NEAR(bin->size_m.z(), kBinSize_m.z(), kSize_m);
+  EXPECT_FALSE(ObjectDiscovery::measureAt(f, X_camera_table, pixelOf({0.0, -0.25, 0.0}), ObjectDiscovery::Options{}))
+      << "the bare table top";
+}
+
 }  // namespace
 }  // namespace srp::perception

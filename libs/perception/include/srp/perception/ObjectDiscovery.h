@@ -126,6 +126,24 @@ class ObjectDiscovery {
     std::vector<std::string> notes;
   };
 
+  /// What stands on the table at one pixel of one frame, measured (`srp kb
+  /// add --from-demo`): the segment (as add() cuts them, without a hand) that
+  /// holds pixel `at_px` or lies within 3 sample steps of it; in the table
+  /// frame its footprint frame (x along the longer side, origin at the bottom
+  /// centre), size (long, short, 95th percentile height), footprint hull, and
+  /// its pixels' mean colour (linear RGB) and dominant colour word.
+  struct Measured {
+    core::Pose3 X_table_object = core::Pose3::Identity();
+    Eigen::Vector3d size_m = Eigen::Vector3d::Zero();
+    std::vector<Eigen::Vector2d> footprint_object;
+    Eigen::Vector3d rgb = Eigen::Vector3d::Zero();
+    std::string colourWord;
+    int points = 0;
+  };
+  /// nullopt when no segment is at or near `at_px` (the table, the background, a hole).
+  static std::optional<Measured> measureAt(const rawlog::RgbdFrame& frame, const core::Pose3& X_camera_table,
+                                           const Eigen::Vector2d& at_px, const Options& options);
+
   ObjectDiscovery(std::vector<UnknownObject> objects, const Options& options);
   explicit ObjectDiscovery(std::vector<UnknownObject> objects);
   ~ObjectDiscovery();

@@ -12,6 +12,10 @@
 #include <set>
 
 #include "srp/core/Error.h"
+#include "srp/perception/CameraModel.h"
+#include "srp/perception/DepthCloud.h"
+#include "srp/perception/PlaneFit.h"
+#include "srp/rawlog/RawlogReader.h"
 
 namespace srp::perception {
 
@@ -254,6 +258,31 @@ std::optional<ObjectDiscovery::Measured> ObjectDiscovery::measureAt(const rawlog
     out.colourWord = dominantColourWord(colourShares(px, colour));
   }
   return out;
+}
+
+ObjectDiscovery::Measured ObjectDiscovery::measureInRecording(const std::string& rawlogPath, int frame,
+                                                              const Eigen::Vector2d& at_px, const Options& options) {
+  char where[160];
+  std::snprintf(where, sizeof(where), "pixel (%.0f, %.0f) of frame %d of ", at_px.x(), at_px.y(), frame);
+  const std::string here = where + rawlogPath;
+  if (frame < 0) throw core::InvalidInputError("frame " + std::to_string(frame) + ": frames are counted from 0");
+  rawlog::RawlogReader reader(rawlogPath, 0);
+  std::optional<rawlog::RgbdFrame> f;
+  for (int i = 0; i <= frame; ++i)
+    if (!(f = reader.next()))
+      throw core::InvalidInputError(rawlogPath + " has " + std::to_string(i) + " RGB-D frames: give a frame below " +
+                                    std::to_string(i));
+  const auto& k = f->intrinsics;
+  if (at_px.x() < 0 || at_px.y() < 0 || at_px.x() > k.width_px - 1 || at_px.y() > k.height_px - 1)
+    throw core::InvalidInputError(here + ": outside the " + std::to_string(k.width_px) + " x " +
+                                  std::to_string(k.height_px) + " image");
+  const auto plane = fitSupportPlane(depthToCloud(f->depth_m, CameraModel(k)));
+  if (!plane) throw core::InvalidInputError(here + ": no table plane is seen in that frame; give a frame that shows the table");
+  const auto m = measureAt(*f, plane->X_camera_plane(), at_px, options);
+  if (!m)
+    throw core::InvalidInputError(here + ": nothing stands on the table there (the table top, the background or no "
+                                  "depth); give a pixel on the object (srp replay --export shows the frames)");
+  return *m;
 }
 
 ObjectDiscovery::ObjectDiscovery(std::vector<UnknownObject> objects) : ObjectDiscovery(std::move(objects), Options{}) {}

@@ -144,6 +144,14 @@ class ObjectDiscovery {
   static std::optional<Measured> measureAt(const rawlog::RgbdFrame& frame, const core::Pose3& X_camera_table,
                                            const Eigen::Vector2d& at_px, const Options& options);
 
+  /// measureAt() in frame `frame` (counted from 0) of a rawlog, in the table
+  /// frame of that frame's support plane (fitSupportPlane). Throws
+  /// InvalidInputError naming the recording, the frame and the pixel when the
+  /// recording is shorter, the pixel outside the image, no table plane is
+  /// seen, or nothing stands on the table there.
+  static Measured measureInRecording(const std::string& rawlogPath, int frame, const Eigen::Vector2d& at_px,
+                                     const Options& options);
+
   ObjectDiscovery(std::vector<UnknownObject> objects, const Options& options);
   explicit ObjectDiscovery(std::vector<UnknownObject> objects);
   ~ObjectDiscovery();

@@ -521,7 +521,7 @@ class ObjectPass {
     int grasp = valley[valley.size() / 2], release = coarse;
     if (c_.events == Segmenter::EventEstimator::HandDwellBoundary) {
       grasp = refineGrasp(valley, grasp, from, to);
-      if (cues_) grasp = std::max(grasp, lastSeenAtStart(from, to));
+      if (cues_) grasp = partStillAtStart(grasp, from, to);
       release = refineRelease(grasp, coarse);
       if (cues_) release = std::max(grasp + 1, std::min(release, seenAtFinalPlace(grasp + 1)));
     }
@@ -764,6 +764,19 @@ class ObjectPass {
     for (int i = std::min(to, n_) - 1; i >= from; --i)
       if (detected(ev(i)) && (ev(i).p_m - seg_.p_initial_m).norm() <= c_.placeTolerance_m) return i;
     return -1;
+  }
+
+  /// Placement cues, grasp: not before the last sample in [from, to) at which
+  /// the part is seen at its initial place, unless the hand is out of the
+  /// start area there (farther than startAreaLeave from the initial position
+  /// than at the grasp): a part is not grasped by a hand that is not at it, so
+  /// what is seen there is not this part (a look-alike beside it) and the
+  /// hand's grasp stands.
+  int partStillAtStart(int grasp, int from, int to) const {
+    const int seen = lastSeenAtStart(from, to);
+    if (seen <= grasp) return grasp;
+    const double atGrasp_m = (smoothedHand(grasp) - seg_.p_initial_m).norm();
+    return (smoothedHand(seen) - seg_.p_initial_m).norm() <= atGrasp_m + c_.startAreaLeave_m ? seen : grasp;
   }
 
   /// Step 6: where the hand is closest to the object's initial position in

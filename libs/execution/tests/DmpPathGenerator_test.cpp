@@ -7,6 +7,7 @@
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/core/Scene.h"
+#include "srp/execution/CellDescription.h"
 #include "srp/execution/ExecutionSession.h"
 #include "srp/execution/TaskExecutor.h"
 #include "srp/execution/UrScriptExporter.h"
@@ -110,6 +111,58 @@ TEST(DmpPathGenerator, ReplaysTheDemoInTheWorldAndRetargetsExactly) {
     }
   }
   EXPECT_THROW(gen.generate(SkillType::Grasp, "cuboid", a, b, 0.01), srp::core::InvalidInputError);
+}
+
+// Known geometry: a 18.8 cm toy held at its top, carried from the table into a bin
+// with 14.9 cm walls. At the cell's carry height (CellDescription::carryHeight_m) the
+// toy's bottom clears the wall top by the clearance wherever the tcp is not straight
+// above an end, for the learned Move (the demo's arc between raised ends) and for the
+// minimum-jerk fallback; at the default end height the learned Move would sweep the toy
+// through the wall (the check can fail).
+TEST(DmpPathGenerator, AMoveAtTheCarryHeightCarriesTheTallestPartOverTheWall) {
+  constexpr double kClearanceTol_m = 1e-6;  // the raised ends are exact; the DMP between them lifts
+  constexpr double kToyHeight_m = 0.188, kWall_m = 0.149, kFloor_m = 0.006;
+  CellDescription cell;
+  CellObject bin;
+  bin.name = "bin";
+  bin.kind = CellObjectKind::Container;
+  bin.size_m = {0.40, 0.31, kWall_m};
+  bin.wallThickness_m = kFloor_m;
+  bin.X_world_object.translation() = Eigen::Vector3d(0.3, 0.0, 0.0);
+  CellObject toy;
+  toy.name = "toy";
+  toy.size_m = {0.22, 0.13, kToyHeight_m};
+  toy.X_world_object.translation() = Eigen::Vector3d(-0.15, 0.05, 0.0);
+  cell.objects = {bin, toy};
+  const double carry_m = cell.carryHeight_m();
+  ASSERT_NEAR(carry_m, kWall_m + kToyHeight_m + CellDescription::kCarriedAboveWalls_m, 1e-9);
+
+  const ArcDemo demo;
+  std::map<std::string, LearnedPathSkills> skills;
+  skills["toy"].move = srp::motion::Dmp::imitate(demo.t_s, demo.p_camera_m, srp::motion::DmpConfig{});
+  MinimumJerkOptions fallback;
+  fallback.clearanceHeight_m = std::max(fallback.clearanceHeight_m, carry_m);
+  const DmpPathGenerator gen(skills, demo.X_world_camera, fallback, DmpPathGenerator::kDefaultEndHeight_m, carry_m);
+  const Pose3 start = toolDown({-0.15, 0.05, kToyHeight_m}), goal = toolDown({0.3, 0.0, kFloor_m + kToyHeight_m});
+  // The lowest bottom of the toy [m] while the tcp is not straight above an end.
+  const auto lowestCrossing_m = [&](const CartesianPath& path) {
+    double lowest = 1e9;
+    for (const auto& s : path) {
+      const Eigen::Vector3d p = s.X_world_tcp.translation();
+      if ((p - start.translation()).head<2>().norm() < 1e-6 || (p - goal.translation()).head<2>().norm() < 1e-6) continue;
+      lowest = std::min(lowest, p.z() - kToyHeight_m);
+    }
+    return lowest;
+  };
+  const double wallClear_m = kWall_m + CellDescription::kCarriedAboveWalls_m;
+  for (const std::string object : {"toy", "star"}) {  // learned; the minimum-jerk fallback
+    const CartesianPath path = gen.generate(srp::core::SkillType::Move, object, start, goal, 0.01);
+    EXPECT_LT((path.back().X_world_tcp.translation() - goal.translation()).norm(), kEndpointTol_m) << object;
+    EXPECT_GE(lowestCrossing_m(path), wallClear_m - kClearanceTol_m) << object << ": the toy's bottom over the wall";
+  }
+  const DmpPathGenerator low(skills, demo.X_world_camera);
+  EXPECT_LT(lowestCrossing_m(low.generate(srp::core::SkillType::Move, "toy", start, goal, 0.01)), kWall_m)
+      << "at the default end height the toy would cross through the wall";
 }
 
 // A hand that moves 5 cm sideways onto a part but dips 4 cm on the way (a short

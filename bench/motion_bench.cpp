@@ -10,7 +10,7 @@
 
 #include "srp/motion/Dmp.h"
 #include "srp/motion/Segmenter.h"
-#include "srp/synth/SyntheticPickPlace.h"
+#include "srp/motion/SyntheticPickPlace.h"
 
 namespace {
 
@@ -63,12 +63,12 @@ void BM_DmpImitateAndRollout_Reference(benchmark::State& state) {
 BENCHMARK(BM_DmpImitateAndRollout_Reference)->Unit(benchmark::kMicrosecond);
 
 void BM_Segment60sDemo4Objects(benchmark::State& state) {
-  srp::synth::SyntheticPickPlaceConfig c;
+  srp::motion::SyntheticPickPlaceConfig c;
   c.reachDuration_s = 4.0;  // stretched so the 4 pick & place steps fill 60 s
   c.moveDuration_s = 5.0;
   c.idleBetween_s = 4.5;
   c.handAbsent_s = 2.0;
-  const auto demo = srp::synth::SyntheticPickPlaceGenerator(c).generate();
+  const auto demo = srp::motion::SyntheticPickPlaceGenerator(c).generate();
   state.counters["frames"] = static_cast<double>(demo.hand.size());
   for (auto _ : state) {
     const auto seg = Segmenter().segment(demo.hand, demo.objects, demo.planOrder);

@@ -51,6 +51,8 @@ TEST_PACKAGES=(
   python3 python3-yaml
   # scripts/check-format.sh: the changed lines follow .clang-format
   clang-format
+  # scripts/check-structure.py: function lengths
+  universal-ctags
 )
 if [ "${1:-}" = "--test" ]; then PACKAGES+=("${TEST_PACKAGES[@]}"); fi
 

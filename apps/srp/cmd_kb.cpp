@@ -12,6 +12,7 @@
 #include "srp/core/OutputFile.h"
 #include "srp/kb/KnowledgeBase.h"
 #include "srp/kb/MeshValidator.h"
+#include "srp/perception/ObjectDiscovery.h"
 
 namespace {
 
@@ -81,11 +82,31 @@ void setupKb(CLI::App& cmd) {
       ->expected(3)
       ->needs(box);
   mesh->excludes(box);
+  auto demo = std::make_shared<std::string>();
+  auto at = std::make_shared<std::vector<double>>();
+  auto frame = std::make_shared<int>(0);
+  auto* fromDemo = add->add_option("--from-demo", *demo,
+                                   "a part or container without a CAD file, measured in a recording (rawlog): the box "
+                                   "of what stands on the table at --at in --frame (x its longer side)")
+                       ->check(CLI::ExistingFile)
+                       ->excludes(mesh)
+                       ->excludes(box);
+  auto* atOption = add->add_option("--at", *at, "U,V: a pixel of the object in that frame (srp replay --export shows "
+                                                "the frames)")
+                       ->expected(2)
+                       ->delimiter(',')
+                       ->needs(fromDemo);
+  fromDemo->needs(atOption);
+  add->add_option("--frame", *frame, "the frame to measure it in, counted from 0")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber)
+      ->needs(fromDemo);
   add->add_option("--id", entry->classId, "class_id (default: the next free one)");
   add->add_option("--noun", entry->noun, "head noun in instructions (default: the name)");
   add->add_option("--kind", entry->kind, "part or container")->check(CLI::IsMember({"part", "container"}))->capture_default_str();
   add->add_option("--rgb", *rgb, "linear RGB in [0, 1] when the colour identifies the part (default: none)")->expected(3);
-  add->add_option("--mass", *mass, "mass [kg] (default: the mesh's or the box's volume at 1000 kg/m^3)");
+  add->add_option("--mass", *mass, "mass [kg] (default: the mesh's or the box's volume at 1000 kg/m^3; --from-demo: "
+                                   "at 150 kg/m^3, a container 0.3 kg)");
   auto units = std::make_shared<std::string>("m");
   add->add_option("--units", *units, "length unit of the CAD file: m, cm, mm or in (the part must be 1 mm - 2 m)")
       ->check(CLI::IsMember({"m", "cm", "mm", "in"}))
@@ -99,40 +120,61 @@ void setupKb(CLI::App& cmd) {
       ->excludes(box);
   add->add_flag("--json", *json, "machine-readable output");
   add->footer(
-      "Examples:\n  srp kb add --kb my_parts.json --name cube --mesh cube.obj\n"
-      "  srp kb add toy --kb my_parts.json --shape box --size 0.12 0.08 0.06 --rgb 0.1 0.2 0.7");
-  add->callback([add, cataloguePath, entry, rgb, mass, shape, size, json, units]() {
+      "Examples:
+  srp kb add --kb my_parts.json --name cube --mesh cube.obj
+"
+      "  srp kb add toy --kb my_parts.json --shape box --size 0.12 0.08 0.06 --rgb 0.1 0.2 0.7
+"
+      "  srp kb add toy --kb my_parts.json --from-demo demo.rawlog --at 410,260");
+  add->callback([add, cataloguePath, entry, rgb, mass, shape, size, json, units, demo, at, frame]() {
     srp::app::requireOneOf(*add, "--kb", "--catalogue");
     if (rgb->size() == 3) entry->rgb = Eigen::Vector3d((*rgb)[0], (*rgb)[1], (*rgb)[2]);
     if (add->count("--mass")) entry->mass_kg = *mass;
     if (!add->count("--scale")) entry->scale = srp::kb::unitScale(*units);
-    if (entry->meshPath.empty() && shape->empty())
+    if (entry->meshPath.empty() && shape->empty() && demo->empty())
       throw srp::core::InvalidInputError("srp kb add: give the part's CAD file (--mesh FILE) or, without one, its box "
-                                         "(--shape box --size X Y Z, metres)");
+                                         "(--shape box --size X Y Z, metres, or --from-demo REC --at U,V)");
     std::vector<std::string> warnings;
     srp::core::ObjectClass c;
-    if (!shape->empty()) {
-      if (size->size() != 3)
+    std::optional<srp::perception::ObjectDiscovery::Measured> measured;
+    if (!demo->empty())
+      measured = srp::perception::ObjectDiscovery::measureInRecording(*demo, *frame, {(*at)[0], (*at)[1]},
+                                                                      srp::perception::ObjectDiscovery::Options{});
+    if (!shape->empty() || measured) {
+      if (!measured && size->size() != 3)
         throw srp::core::InvalidInputError("srp kb add: --shape box needs --size X Y Z (metres)");
       srp::kb::BoxClassEntry b;
       b.name = entry->name;
       b.classId = entry->classId;
       b.noun = entry->noun;
       b.kind = entry->kind;
-      b.size_m = Eigen::Vector3d((*size)[0], (*size)[1], (*size)[2]);
-      b.rgb = entry->rgb;
+      b.size_m = measured ? measured->size_m : Eigen::Vector3d((*size)[0], (*size)[1], (*size)[2]);
+      b.rgb = entry->rgb || !measured ? entry->rgb : std::optional<Eigen::Vector3d>(measured->rgb);
       b.mass_kg = entry->mass_kg;
+      if (measured && !b.mass_kg) {  // an object seen, of unknown material: as the demonstration's discovery weighs it
+        const srp::perception::ObjectDiscovery::Options seen;
+        b.mass_kg = b.kind == "container" ? seen.containerMass_kg : b.size_m.prod() * seen.partDensity_kg_m3;
+      }
       c = srp::kb::addBoxClass(*cataloguePath, b);
     } else {
       c = srp::kb::addMeshClass(*cataloguePath, *entry, &warnings);
     }
     for (const auto& w : warnings) std::cerr << "srp kb add: warning: " << w << "\n";
     const Eigen::Vector3d& d = c.dimensions_m;
-    const std::string from = c.meshPath.empty() ? "a box without a mesh" : "mesh " + c.meshPath;
+    std::string from = c.meshPath.empty() ? "a box without a mesh" : "mesh " + c.meshPath;
+    if (measured)
+      from += ", measured at (" + std::to_string(static_cast<int>((*at)[0])) + ", " +
+              std::to_string(static_cast<int>((*at)[1])) + ") of frame " + std::to_string(*frame) + " of " + *demo +
+              " (" + std::to_string(measured->points) + " points, mostly " + measured->colourWord + ")";
     if (*json) {
       std::cout << nlohmann::json{{"catalogue", *cataloguePath}, {"name", c.name}, {"class_id", c.classId},
                                   {"kind", srp::core::toString(c.kind)}, {"shape", c.shape}, {"mesh", c.meshPath},
                                   {"dimensions_m", {d.x(), d.y(), d.z()}}, {"mass_kg", c.mass_kg},
+                                  {"measured_from", measured ? nlohmann::json{{"rawlog", *demo}, {"frame", *frame},
+                                                                              {"at_px", *at},
+                                                                              {"colour", measured->colourWord},
+                                                                              {"points", measured->points}}
+                                                             : nlohmann::json()},
                                   {"warnings", warnings}}
                        .dump(2)
                 << "\n";

@@ -13,8 +13,8 @@
 #include "srp/core/SafeText.h"
 #include "srp/motion/SkillLearner.h"
 #include "srp/motion/SkillPlots.h"
+#include "srp/motion/SyntheticPickPlace.h"
 #include "srp/programming/MotionRows.h"
-#include "srp/synth/SyntheticPickPlace.h"
 #include "srp/taskdb/TaskModelStore.h"
 
 namespace {
@@ -43,7 +43,7 @@ void runMotion(const MotionOptions& o) {
   taskdb::TaskModelStore store(db);
   int id = o.id;
   if (o.syntheticDemo) {
-    const auto demo = synth::SyntheticPickPlaceGenerator(synth::SyntheticPickPlaceConfig{}).generate();
+    const auto demo = motion::SyntheticPickPlaceGenerator(motion::SyntheticPickPlaceConfig{}).generate();
     id = store.write(programming::taskModelFromTracks(demo, "synthetic-demo", demo.instruction()));
     if (!app::quietFlag()) std::cerr << "srp motion: stored a synthetic 4-object demo as task model " << id << "\n";
   } else if (id <= 0) {

@@ -15,6 +15,7 @@
 #include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/DemoPerception.h"
 #include "srp/perception/PerceptionDrawing.h"
+#include "srp/perception/RawlogPerception.h"
 
 namespace {
 

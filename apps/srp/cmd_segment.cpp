@@ -10,7 +10,7 @@
 #include "srp/core/Pose.h"
 #include "srp/motion/RealTrackNoise.h"
 #include "srp/motion/Segmenter.h"
-#include "srp/synth/SyntheticPickPlace.h"
+#include "srp/motion/SyntheticPickPlace.h"
 #include "srp/motion/TrajectoryTable.h"
 #include "srp/synth/LabelledDemo.h"
 
@@ -45,9 +45,9 @@ void writeExample(const SegmentOptions& o) {
     std::cout << "\n";
     return;
   }
-  srp::synth::SyntheticPickPlaceConfig c;
+  srp::motion::SyntheticPickPlaceConfig c;
   c.seed = o.seed;
-  const auto demo = srp::synth::SyntheticPickPlaceGenerator(c).generate();
+  const auto demo = srp::motion::SyntheticPickPlaceGenerator(c).generate();
   srp::motion::TrajectoryTable{demo.hand, demo.objects}.writeCsv(o.writeExample);
   std::cout << "wrote a synthetic demo (" << demo.hand.size() << " frames at 30 FPS) to " << o.writeExample
             << "\nground truth (frames):\n";

@@ -57,8 +57,8 @@
 #include "srp/language/InstructionParser.h"
 #include "srp/motion/Segmenter.h"
 #include "srp/motion/SkillLearner.h"
+#include "srp/motion/SyntheticPickPlace.h"
 #include "srp/programming/MotionRows.h"
-#include "srp/synth/SyntheticPickPlace.h"
 #include "srp/taskdb/TaskModelStore.h"
 
 namespace {
@@ -82,7 +82,7 @@ int run(int argc, char** argv) {
   // Step 1: learn the skills. The demonstration's hand and object
   // trajectories (camera frame) are segmented per object in plan order and
   // each Reach and Move segment is learned as a DMP.
-  const auto demo = srp::synth::SyntheticPickPlaceGenerator(srp::synth::SyntheticPickPlaceConfig{}).generate();
+  const auto demo = srp::motion::SyntheticPickPlaceGenerator(srp::motion::SyntheticPickPlaceConfig{}).generate();
   srp::taskdb::TaskModel learned = srp::programming::taskModelFromTracks(demo, "notebook-execution", demo.instruction());
   srp::programming::learnSkills(learned);
 

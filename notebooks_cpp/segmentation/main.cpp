@@ -50,7 +50,7 @@
 #include "srp/core/Scene.h"
 #include "srp/kb/KnowledgeBase.h"
 #include "srp/motion/Segmenter.h"
-#include "srp/perception/DemoPerception.h"
+#include "srp/perception/RawlogPerception.h"
 #include "srp/plot/Figure.h"
 #include "srp/synth/DemoGenerator.h"
 #include "srp/synth/PickPlacePlan.h"

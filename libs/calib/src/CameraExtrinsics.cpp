@@ -11,7 +11,7 @@
 #include "OpenCvPose.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
-#include "srp/core/PoseConversions.h"
+#include "srp/interop/PoseConversions.h"
 
 namespace srp::calib {
 
@@ -86,7 +86,7 @@ std::vector<TagObservation> detectTags(const cv::Mat& image, const CameraCalibra
     if (!detector.getPose(i, tagSize_m, cam, cMo)) continue;
     TagObservation t;
     t.id = ids[i];
-    t.X_camera_tag = core::fromVisp(cMo);
+    t.X_camera_tag = interop::fromVisp(cMo);
     double sumSq = 0.0;
     for (int c = 0; c < 4; ++c) {
       t.corners_px.emplace_back(static_cast<float>(corners[i][c].get_u()), static_cast<float>(corners[i][c].get_v()));

@@ -11,7 +11,7 @@
 #include <regex>
 #include <sstream>
 
-#include "CameraYaml.h"
+#include "srp/calib/CameraYaml.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/core/OutputFile.h"
@@ -166,6 +166,41 @@ CameraFile loadCameraFile(const std::string& path) {
   if (out.depthScale_m && !(*out.depthScale_m > 0.0))
     throw core::FileError(path, "depth scale must be positive (metres per depth unit, e.g. 0.001)");
   return out;
+}
+
+CameraFileFormat cameraFileFormatFromName(const std::string& name) {
+  if (name == "visp") return CameraFileFormat::Visp;
+  if (name == "ros") return CameraFileFormat::Ros;
+  if (name == "opencv") return CameraFileFormat::OpenCv;
+  throw core::InvalidInputError("camera file format '" + name + "' is not one of visp, ros, opencv");
+}
+
+std::string defaultCameraFileName(CameraFileFormat format) {
+  switch (format) {
+    case CameraFileFormat::Visp:
+      return "camera.xml";
+    case CameraFileFormat::Ros:
+      return "camera_info.yaml";
+    case CameraFileFormat::OpenCv:
+      return "camera_opencv.yaml";
+  }
+  return "camera.xml";
+}
+
+void saveCameraFile(const std::string& path, const CameraCalibration& camera, CameraFileFormat format,
+                    const std::string& comment, double rms_px) {
+  camera.intrinsics.validate("camera to save to '" + path + "'");
+  switch (format) {
+    case CameraFileFormat::Visp:
+      saveCameraXml(path, camera, comment);
+      return;
+    case CameraFileFormat::Ros:
+      core::writeFileAtomically(path, (comment.empty() ? "" : "# " + comment + "\n") + cameraInfoYaml(camera));
+      return;
+    case CameraFileFormat::OpenCv:
+      core::writeFileAtomically(path, openCvYaml(camera, comment, rms_px));
+      return;
+  }
 }
 
 }  // namespace srp::calib

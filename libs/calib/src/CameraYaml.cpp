@@ -1,5 +1,4 @@
-// The YAML camera files of CameraFiles.h: ROS camera_info (yaml-cpp) and OpenCV
-// FileStorage YAML; the format switch of `srp calibrate --format`.
+// The YAML camera files (CameraYaml.h): ROS camera_info (yaml-cpp) and OpenCV FileStorage YAML.
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -7,8 +6,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/persistence.hpp>
 
-#include "CameraYaml.h"
-#include "srp/calib/CameraFiles.h"
+#include "srp/calib/CameraYaml.h"
 #include "srp/core/Error.h"
 #include "srp/core/OutputFile.h"
 
@@ -55,6 +53,8 @@ std::vector<double> values(const cv::Mat& m) {
   return std::vector<double>(d.begin<double>(), d.end<double>());
 }
 
+}  // namespace
+
 std::string openCvYaml(const CameraCalibration& camera, const std::string& comment, double rms_px) {
   cv::FileStorage fs(".yaml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
   if (!comment.empty()) fs.writeComment(comment);
@@ -64,24 +64,6 @@ std::string openCvYaml(const CameraCalibration& camera, const std::string& comme
   fs << "distortion_coefficients" << plumbBob(camera.kud);
   if (rms_px > 0.0) fs << "avg_reprojection_error" << rms_px;
   return fs.releaseAndGetString();
-}
-
-}  // namespace
-
-CameraFileFormat cameraFileFormatFromName(const std::string& name) {
-  if (name == "visp") return CameraFileFormat::Visp;
-  if (name == "ros") return CameraFileFormat::Ros;
-  if (name == "opencv") return CameraFileFormat::OpenCv;
-  throw core::InvalidInputError("camera file format '" + name + "' is not one of visp, ros, opencv");
-}
-
-std::string defaultCameraFileName(CameraFileFormat format) {
-  switch (format) {
-    case CameraFileFormat::Visp: return "camera.xml";
-    case CameraFileFormat::Ros: return "camera_info.yaml";
-    case CameraFileFormat::OpenCv: return "camera_opencv.yaml";
-  }
-  return "camera.xml";
 }
 
 std::string cameraInfoYaml(const CameraCalibration& camera) {
@@ -108,18 +90,6 @@ std::string cameraInfoYaml(const CameraCalibration& camera) {
   emitMatrix(out, "projection_matrix", 3, 4, P);
   out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
-}
-
-void saveCameraFile(const std::string& path, const CameraCalibration& camera, CameraFileFormat format,
-                    const std::string& comment, double rms_px) {
-  camera.intrinsics.validate("camera to save to '" + path + "'");
-  switch (format) {
-    case CameraFileFormat::Visp: saveCameraXml(path, camera, comment); return;
-    case CameraFileFormat::Ros:
-      core::writeFileAtomically(path, (comment.empty() ? "" : "# " + comment + "\n") + cameraInfoYaml(camera));
-      return;
-    case CameraFileFormat::OpenCv: core::writeFileAtomically(path, openCvYaml(camera, comment, rms_px)); return;
-  }
 }
 
 CameraCalibration loadCameraYaml(const std::string& path) {

@@ -1,4 +1,5 @@
 #include "srp/calib/CameraFiles.h"
+#include "srp/calib/CameraYaml.h"
 
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>

@@ -1,12 +1,8 @@
 #include <gtest/gtest.h>
 
-#include <mrpt/poses/CPose3D.h>
-#include <visp3/core/vpHomogeneousMatrix.h>
-
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/core/Pose.h"
-#include "srp/core/PoseConversions.h"
 
 using namespace srp::core;
 
@@ -36,28 +32,6 @@ TEST(Pose, YawOfYprRoundTrips) {
   }
   EXPECT_NEAR(angleDifference(3.1, -3.1), 6.2 - 2 * M_PI, kExact);
   EXPECT_NEAR(angleDifference(-3.1, 3.1), 2 * M_PI - 6.2, kExact);
-}
-
-TEST(PoseConversions, ViSPRoundTripAndMeaning) {
-  const Pose3 X = samplePose();
-  const vpHomogeneousMatrix M = toVisp(X);
-  const vpColVector p_b({0.3, 0.2, 0.1, 1.0});
-  const vpColVector p_a = M * p_b;
-  const Eigen::Vector3d expected = X * Eigen::Vector3d(0.3, 0.2, 0.1);
-  for (int i = 0; i < 3; ++i) EXPECT_NEAR(p_a[i], expected[i], kExact);
-  const Pose3 back = fromVisp(M);
-  EXPECT_LT((back.matrix() - X.matrix()).cwiseAbs().maxCoeff(), kExact);
-}
-
-TEST(PoseConversions, MrptRoundTripAndYprConvention) {
-  const Pose3 X = samplePose();
-  const mrpt::poses::CPose3D P = toMrpt(X);
-  EXPECT_NEAR(P.yaw(), 0.7, 1e-12);
-  EXPECT_NEAR(P.pitch(), -0.3, 1e-12);
-  EXPECT_NEAR(P.roll(), 1.1, 1e-12);
-  EXPECT_NEAR(P.x(), 0.12, kExact);
-  const Pose3 back = fromMrpt(P);
-  EXPECT_LT((back.matrix() - X.matrix()).cwiseAbs().maxCoeff(), kExact);
 }
 
 TEST(Json, PoseRoundTripAndMatrixForm) {

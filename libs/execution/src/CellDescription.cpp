@@ -106,4 +106,16 @@ std::vector<WorldBox> CellDescription::staticBoxes() const {
   return boxes;
 }
 
+double CellDescription::carryHeight_m(double clearance_m) const {
+  double wallTop_m = 0.0, tallestPart_m = 0.0;
+  for (const auto& box : staticBoxes()) {
+    if (box.owner == "table") continue;
+    const Eigen::Vector3d up = box.X_world_box.linear().transpose().col(2);  // world z in the box frame
+    wallTop_m = std::max(wallTop_m, box.X_world_box.translation().z() + up.cwiseAbs().dot(box.halfExtents_m));
+  }
+  for (const auto& o : objects)
+    if (o.kind == CellObjectKind::Part) tallestPart_m = std::max(tallestPart_m, o.size_m.z());
+  return wallTop_m > 0.0 ? wallTop_m + tallestPart_m + clearance_m : 0.0;
+}
+
 }  // namespace srp::execution

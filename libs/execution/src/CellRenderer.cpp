@@ -14,8 +14,8 @@
 #include <mrpt/poses/CPose3D.h>
 
 #include "srp/core/Error.h"
-#include "srp/core/PoseConversions.h"
 #include "srp/execution/SafetyChecker.h"
+#include "srp/interop/PoseConversions.h"
 #include "srp/kb/ShapeMeshes.h"
 #include "srp/kb/TriangleMesh.h"
 
@@ -41,7 +41,7 @@ mrpt::opengl::CBox::Ptr box(const WorldBox& b, const Eigen::Vector3d& rgb) {
   const Eigen::Vector3d h = b.halfExtents_m;
   auto o = mrpt::opengl::CBox::Create(mrpt::math::TPoint3D(-h.x(), -h.y(), -h.z()),
                                       mrpt::math::TPoint3D(h.x(), h.y(), h.z()));
-  o->setPose(srp::core::toMrpt(b.X_world_box));
+  o->setPose(srp::interop::toMrpt(b.X_world_box));
   o->setColor(static_cast<float>(rgb.x()), static_cast<float>(rgb.y()), static_cast<float>(rgb.z()));
   return o;
 }
@@ -132,7 +132,7 @@ void CellRenderer::renderPng(const CellSnapshot& snapshot, const std::string& pa
     const auto it = snapshot.X_world_parts.find(o.name);
     const Pose3 X_world_part = it != snapshot.X_world_parts.end() ? it->second : o.X_world_object;
     if (const auto mesh = m.partMeshes.find(o.name); mesh != m.partMeshes.end()) {
-      mesh->second->setPose(srp::core::toMrpt(X_world_part));
+      mesh->second->setPose(srp::interop::toMrpt(X_world_part));
       scene.insert(mesh->second);
     } else {
       WorldBox b;
@@ -145,13 +145,13 @@ void CellRenderer::renderPng(const CellSnapshot& snapshot, const std::string& pa
   const auto X_base_links = m.model.linkPoses(snapshot.q_rad);
   for (int i = 0; i < 7; ++i) {
     if (!m.links[i]) continue;
-    m.links[i]->setPose(srp::core::toMrpt(Pose3(m.cell.X_world_base * X_base_links[i])));
+    m.links[i]->setPose(srp::interop::toMrpt(Pose3(m.cell.X_world_base * X_base_links[i])));
     scene.insert(m.links[i]);
   }
   const Pose3 X_world_tool0 = m.cell.X_world_base * X_base_links[6] * m.model.X_wrist3_tool0();
   for (const auto& g : m.gripper) {
     const Eigen::Vector3d offset(0, 0, g == m.gripper.front() ? 0.0 : kCupStart_m);
-    g->setPose(srp::core::toMrpt(Pose3(X_world_tool0 * Eigen::Translation3d(offset))));
+    g->setPose(srp::interop::toMrpt(Pose3(X_world_tool0 * Eigen::Translation3d(offset))));
     scene.insert(g);
   }
   if (m.options.drawSafetySpheres) {

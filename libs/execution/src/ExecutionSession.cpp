@@ -36,24 +36,6 @@ srp::core::Pose3 defaultHomeTcp(const CellDescription& cell) {
   return X;
 }
 
-// Tcp height [m, world z] at which a carried part (held at its top) clears every
-// container wall by kCarriedAboveWalls_m, for the tallest part of the scene: the
-// default 0.12 m end height of the learned paths assumes 6 cm walls and parts of a few
-// cm, and a taller part (a toy seen in a demonstration, 19 cm) swept through a bin's
-// 15 cm wall.
-double carryHeight_m(const CellDescription& cell) {
-  constexpr double kCarriedAboveWalls_m = 0.02;
-  double wallTop_m = 0.0, tallestPart_m = 0.0;
-  for (const auto& box : cell.staticBoxes()) {
-    if (box.owner == "table") continue;
-    const Eigen::Vector3d up = box.X_world_box.linear().transpose().col(2);  // world z in the box frame
-    wallTop_m = std::max(wallTop_m, box.X_world_box.translation().z() + up.cwiseAbs().dot(box.halfExtents_m));
-  }
-  for (const auto& o : cell.objects)
-    if (o.kind == CellObjectKind::Part) tallestPart_m = std::max(tallestPart_m, o.size_m.z());
-  return wallTop_m > 0.0 ? wallTop_m + tallestPart_m + kCarriedAboveWalls_m : 0.0;
-}
-
 srp::core::Scene sceneAfter(const srp::core::Scene& before, const CellDescription& perceived) {
   srp::core::Scene after = before;
   for (auto& o : after.objects)
@@ -142,7 +124,7 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
   const JointVector home = TaskExecutor::defaultHome(robot, cell.X_world_base, defaultHomeTcp(cell));
   // Learned Reach/Move DMPs where the task model has Skills rows, minimum-jerk otherwise;
   // a Move, learned or not, crosses high enough for the tallest part to clear the tallest wall.
-  const double carry_m = carryHeight_m(cell);
+  const double carry_m = cell.carryHeight_m();
   MinimumJerkOptions fallback;
   fallback.clearanceHeight_m = std::max(fallback.clearanceHeight_m, carry_m);
   auto generator = std::make_shared<DmpPathGenerator>(

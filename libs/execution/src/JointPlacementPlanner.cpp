@@ -15,12 +15,6 @@ namespace {
 
 using namespace placement;
 
-CellDescription withPartAt(CellDescription scene, const std::string& name, const Pose3& X) {
-  for (auto& o : scene.objects)
-    if (o.name == name) o.X_world_object = X;
-  return scene;
-}
-
 /// The step's part in `scene` (SceneGrounder, with the step's source locations), else nullptr and why.
 const CellObject* groundPart(const CellDescription& scene, const ExecutionStep& step, const GroundingOptions& options,
                              std::string& reason) {
@@ -208,13 +202,6 @@ JointPlacementPlanner::JointPlacementPlanner(PlacementOptions placement)
     : JointPlacementPlanner(std::move(placement), Options{}) {}
 JointPlacementPlanner::JointPlacementPlanner(PlacementOptions placement, Options options)
     : planner_(std::move(placement)), options_(options) {}
-
-CellDescription JointPlacementPlanner::sceneAfter(const CellDescription& scene, const std::vector<PlannedPlacement>& steps) {
-  CellDescription now = scene;
-  for (const auto& s : steps)
-    if (s.placement.X_world_object) now = withPartAt(now, s.part, *s.placement.X_world_object);
-  return now;
-}
 
 std::vector<PlannedPlacement> JointPlacementPlanner::plan(const CellDescription& scene, const ExecutionPlan& plan) const {
   // Each step's part as the initial scene grounds it (for the forward checks only).

@@ -249,7 +249,7 @@ void refineClearances(const PlacementPlanner& planner, const CellDescription& sc
   // A step that now keeps the full clearances is no longer tight.
   for (std::size_t i = 0; i < steps.size(); ++i) {
     if (!steps[i].placement.X_world_object || !steps[i].placement.tight) continue;
-    const CellDescription now = JointPlacementPlanner::sceneAfter(scene, {steps.begin(), steps.begin() + i + 1});
+    const CellDescription now = sceneAfterPlacements(scene, {steps.begin(), steps.begin() + i + 1});
     Placement full = steps[i].placement;
     full.tight = false;
     steps[i].placement.tight = !planner.stillAllowed(now, *now.find(steps[i].part), plan.steps[i], full);

@@ -6,8 +6,8 @@
 
 #include "srp/execution/CellDescription.h"
 #include "srp/execution/ExecutionPlan.h"
-#include "srp/execution/JointPlacementPlanner.h"
 #include "srp/execution/PlacementPlanner.h"
+#include "srp/execution/PlannedPlacement.h"
 
 namespace srp::execution {
 

@@ -93,3 +93,45 @@ TEST(ExecutionSession, FinalSceneLetsAReversalRunFromWhereThePreviousRunLeft) {
   const CellDescription restored = CellDescription::loadScene(back.outputFolder + "/final_scene.json");
   EXPECT_TRUE(isInside(*restored.find("cuboid"), *restored.find("blue box")));
 }
+
+// `srp execute` loads the scene's catalogue through kb::loadCatalogue, so a part given by its
+// CAD file alone (no shape, size or mass in the catalogue) is measured from its mesh and handled
+// like the shipped classes: here the cuboid, described only by the shipped cuboid.stl.
+TEST(ExecutionSession, HandlesAPartGivenByItsMeshAlone) {
+  constexpr double kSizeTol_m = 1e-4;  // the mesh's bounding box against the catalogue's size
+  const std::string folder = std::string(SRP_BINARY_DIR) + "/execution_mesh_only_test";
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  auto catalogue = srp::core::readJsonFile(std::string(SRP_DATASETS_DIR) + "/kb/catalogue.json");
+  Eigen::Vector3d shippedSize_m = Eigen::Vector3d::Zero();
+  for (auto& c : catalogue["classes"]) {
+    c["mesh"] = std::string(SRP_DATASETS_DIR) + "/kb/" + c["mesh"].get<std::string>();
+    if (c["name"] != "cuboid") continue;
+    for (int i = 0; i < 3; ++i) shippedSize_m[i] = c["dimensions_m"][i].get<double>();
+    c.erase("shape");
+    c.erase("dimensions_m");
+    c.erase("mass_kg");
+  }
+  ASSERT_GT(shippedSize_m.minCoeff(), 0.0);
+  std::ofstream(folder + "/catalogue.json") << catalogue.dump(1);
+  auto scene = srp::core::readJsonFile(std::string(SRP_SOURCE_DIR) + "/sim/scenes/default.json");
+  scene["catalogue"] = folder + "/catalogue.json";
+  std::ofstream(folder + "/scene.json") << scene.dump(1);
+
+  ExecuteRequest request;
+  request.databasePath = folder + "/task.db";
+  request.taskModelId = importAppendixC(request.databasePath);
+  request.scenePath = folder + "/scene.json";
+  request.outputFolder = folder + "/out";
+  request.framePeriod = 0;
+  request.instruction = "Pick up the cuboid from the blue box and place it in the gray box.";
+  const ExecuteResult result = executeTask(request);
+  ASSERT_EQ(result.report.steps.size(), 1u);
+  EXPECT_TRUE(result.report.allSucceeded()) << result.report.toText();
+  const CellDescription after = CellDescription::loadScene(folder + "/out/final_scene.json");
+  ASSERT_NE(after.find("cuboid"), nullptr);
+  EXPECT_TRUE(isInside(*after.find("cuboid"), *after.find("gray box")));
+  const Eigen::Vector3d measured_m = after.find("cuboid")->size_m;
+  EXPECT_LT((measured_m - shippedSize_m).cwiseAbs().maxCoeff(), kSizeTol_m)
+      << "measured " << measured_m.transpose() << ", shipped " << shippedSize_m.transpose();
+}

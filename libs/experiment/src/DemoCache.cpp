@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "srp/core/DataPaths.h"
+#include "srp/core/DefaultScene.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/core/ObjectCatalogue.h"
@@ -73,21 +74,8 @@ nlohmann::json planOf(const DemoRequest& request)
   return request.plan.is_null() ? synth::defaultPlanJson() : request.plan;
 }
 
-}  // namespace
-
-DemoCache::DemoCache(std::filesystem::path rootDir, std::filesystem::path simDir)
-    : rootDir_(std::move(rootDir)), simDir_(simDir.empty() ? core::DataPaths::file("sim") : std::move(simDir))
-{
-}
-
-std::filesystem::path DemoCache::scenePathOf(const DemoRequest& request) const
-{
-  return request.scenePath.empty() ? simDir_ / "scenes" / "default.json" : request.scenePath;
-}
-
-std::string DemoCache::keyOf(const DemoRequest& request) const
-{
-  const nlohmann::json key{{"scene", readWholeFile(scenePathOf(request))},
+std::string keyFor(const std::string& sceneText, const DemoRequest& request) {
+  const nlohmann::json key{{"scene", sceneText},
                            {"plan", planOf(request)},
                            {"seed", request.seed},
                            {"max_frames", request.maxFrames},
@@ -99,9 +87,39 @@ std::string DemoCache::keyOf(const DemoRequest& request) const
   return hex;
 }
 
+/// The scene file's text (the cache key hashes it) and the scene parsed from that same text.
+core::Scene sceneFromText(const std::string& text, const std::filesystem::path& path) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    throw core::FileError(path.string(), std::string("malformed scene JSON: ") + e.what() + "; fix the file");
+  }
+  return core::Scene::fromJson(j, path.string(), path.parent_path().string());
+}
+
+}  // namespace
+
+DemoCache::DemoCache(std::filesystem::path rootDir, std::filesystem::path simDir)
+    : rootDir_(std::move(rootDir)), simDir_(simDir.empty() ? core::DataPaths::file("sim") : std::move(simDir))
+{
+}
+
+std::filesystem::path DemoCache::scenePathOf(const DemoRequest& request) const
+{
+  return request.scenePath.empty() ? defaultScenePathIn(simDir_) : request.scenePath;
+}
+
+std::string DemoCache::keyOf(const DemoRequest& request) const
+{
+  return keyFor(readWholeFile(scenePathOf(request)), request);
+}
+
 CachedDemo DemoCache::get(const DemoRequest& request, const std::function<void(int, int)>& progress) const
 {
-  const std::string key = keyOf(request);
+  const auto scenePath = scenePathOf(request);
+  const std::string sceneText = readWholeFile(scenePath);  // the one read: key, scene and catalogue
+  const std::string key = keyFor(sceneText, request);
   const auto dir = rootDir_ / std::to_string(request.seed);
   const auto donePath = dir / (key + ".done.json");
   const nlohmann::json plan = planOf(request);
@@ -110,6 +128,9 @@ CachedDemo DemoCache::get(const DemoRequest& request, const std::function<void(i
   demo.rawlogPath = dir / (key + ".rawlog");
   demo.groundTruthPath = synth::groundTruthPathFor(demo.rawlogPath.string());
   demo.instruction = plan.value("instruction", std::string());
+  demo.key = key;
+  demo.scene = sceneFromText(sceneText, scenePath);
+  demo.catalogue = kb::loadCatalogue(demo.scene.cataloguePath);
   std::filesystem::create_directories(dir);
   const FileLock lock(dir / (key + ".lock"));
   if (std::filesystem::exists(donePath) && std::filesystem::exists(demo.rawlogPath) &&
@@ -119,21 +140,20 @@ CachedDemo DemoCache::get(const DemoRequest& request, const std::function<void(i
   }
 
   const auto t0 = std::chrono::steady_clock::now();
-  const auto scene = core::Scene::load(scenePathOf(request).string());
-  const auto catalogue = kb::loadCatalogue(scene.cataloguePath);
   synth::SynthDemoOptions options;
   options.demo.seed = request.seed;
   options.sensor.enabled = request.sensorRealism;
   options.width_px = request.width_px;
   options.height_px = request.height_px;
   options.maxFrames = request.maxFrames;
-  const auto result = synth::generateSyntheticDemo(scene, catalogue, plan, options, demo.rawlogPath.string(), progress);
+  const auto result =
+      synth::generateSyntheticDemo(demo.scene, demo.catalogue, plan, options, demo.rawlogPath.string(), progress);
   demo.frameCount = result.frameCount;
   demo.renderedNow = true;
   demo.renderTime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   // Written last: its presence says the rawlog and ground truth are complete.
   core::writeJsonFile(donePath.string(), {{"frames", result.frameCount},
-                                          {"scene", scenePathOf(request).string()},
+                                          {"scene", scenePath.string()},
                                           {"seed", request.seed},
                                           {"max_frames", request.maxFrames},
                                           {"width_px", request.width_px},
@@ -203,6 +223,10 @@ DemoRequest standardDemoRequest(const ExperimentOptions& options, int index)
     request.plan = plan;
   }
   return request;
+}
+
+std::filesystem::path defaultScenePathIn(const std::filesystem::path& simDir) {
+  return simDir.empty() ? std::filesystem::path(core::defaultScenePath()) : simDir / "scenes" / "default.json";
 }
 
 DemoCache demoCacheFor(const ExperimentOptions& options)

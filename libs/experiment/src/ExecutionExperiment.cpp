@@ -15,9 +15,8 @@
 #include "srp/execution/PlanConversion.h"
 #include "srp/execution/RandomScene.h"
 #include "srp/execution/TaskExecutor.h"
-#include "srp/experiment/Experiments.h"
 #include "srp/experiment/ExperimentSupport.h"
-#include "srp/kb/KnowledgeBase.h"
+#include "srp/experiment/Experiments.h"
 #include "srp/language/InstructionParser.h"
 #include "srp/language/PlanTables.h"
 
@@ -132,9 +131,9 @@ ExperimentResult runExecutionExperiment(const ExperimentOptions& options)
   const AnalysedDemo demo = analyseDemo(options, 0, result.name);
   Cell cell(modelPath.string());
   cell.model = demo.model;
-  const auto scenePath = simDirOf(options) / "scenes" / "default.json";
-  const core::Scene scene = core::Scene::load(scenePath.string());
-  const auto catalogue = kb::loadCatalogue(scene.cataloguePath);
+  // The scene and catalogue demo 1 was rendered in (the default scene), read with it.
+  const core::Scene& scene = demo.programmed.demo.scene;
+  const core::ObjectCatalogue& catalogue = demo.programmed.demo.catalogue;
   const auto base = execution::CellDescription::fromScene(scene, catalogue);
   cell.X_world_camera = cell.model.info.X_base_camera ? core::Pose3(scene.X_world_base * *cell.model.info.X_base_camera)
                                                       : scene.X_world_camera;

@@ -9,12 +9,11 @@
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
 #include "srp/core/Scene.h"
-#include "srp/kb/KnowledgeBase.h"
-#include "srp/perception/DemoPerception.h"
-#include "srp/perception/MarkerFreeHandDetector.h"
-#include "srp/rawlog/RawlogReader.h"
 #include "srp/experiment/DemoCache.h"
 #include "srp/experiment/ExperimentSupport.h"
+#include "srp/kb/KnowledgeBase.h"
+#include "srp/perception/MarkerFreeHandDetector.h"
+#include "srp/perception/RawlogPerception.h"
 
 namespace srp::experiment::detail {
 
@@ -23,12 +22,6 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr int kCacheSchemaVersion = 1;
-
-core::Scene defaultScene(const ExperimentOptions& options)
-{
-  // Scene::load names the file when it is missing or broken.
-  return core::Scene::load((simDirOf(options) / "scenes" / "default.json").string());
-}
 
 /// The demo of `seed` for this study: the default scene and instruction 1
 /// (SPEC.md §4), seeded randomisation, default sensor noise, the scene
@@ -101,31 +94,28 @@ PerceivedDemo perceiveDemo(const ExperimentOptions& options, unsigned seed, cons
   o.marker.tagSize_m = demo.groundTruth.tagSize_m;
   o.marker.tagId = demo.groundTruth.tagId;
   o.marker.p_tag_palm_m = demo.groundTruth.X_hand_tag.inverse().translation();
-  // Instruction 1 names the four parts (moved) and the two boxes (static).
-  for (const auto& object : demo.groundTruth.objects) {
-    const bool isStatic = catalogue.at(object.className).kind == core::ObjectKind::Container;
-    o.plan.push_back({object.className, isStatic, "", std::nullopt});
-    demo.isStatic[object.className] = isStatic;
-  }
+  // Instruction 1 names the four parts (moved) and the two boxes (static):
+  // the plan `srp perceive --objects <parts> --static <boxes>` makes, parts first.
+  for (const bool containers : {false, true})
+    for (const auto& object : demo.groundTruth.objects) {
+      const bool isStatic = catalogue.at(object.className).kind == core::ObjectKind::Container;
+      if (isStatic != containers) continue;
+      o.plan.push_back({object.className, isStatic, "", std::nullopt});
+      demo.isStatic[object.className] = isStatic;
+    }
   o.onFrameDetections = [&demo](int, const std::vector<perception::ObjectDetection>& detections) {
     demo.raw.emplace_back();
     for (const auto& d : detections) demo.raw.back().push_back({d.key, d.confidence, d.X_camera_object, true});
   };
   perception::MarkerFreeHandDetector markerFree(o.markerFree);
-
-  const auto start = std::chrono::steady_clock::now();
-  perception::DemoPerceiver perceiver(catalogue, o);
-  rawlog::RawlogReader reader(files.rawlogPath.string());
   bool haveDepth = false;
   double lastZ_m = 0.0;
-  while (perceiver.framesAdded() < size.framesPerDemo) {
-    const auto frame = reader.next();
-    if (!frame) break;
-    perceiver.add(*frame);
-    // The marker-free hand, its depth holes filled as the module fills them:
-    // the last depth carried along the palm pixel's ray.
+  // The marker-free hand alone on each frame the module perceives, its depth
+  // holes filled as the module fills them: the last depth carried along the
+  // palm pixel's ray.
+  const auto detectMarkerFree = [&](const rawlog::RgbdFrame& frame, int) {
     PerceivedHand h;
-    if (const auto obs = markerFree.detect(*frame)) {
+    if (const auto obs = markerFree.detect(frame)) {
       h.detected = true;
       if (obs->hasDepth) {
         h.hasPoint = true;
@@ -134,19 +124,26 @@ PerceivedDemo perceiveDemo(const ExperimentOptions& options, unsigned seed, cons
         haveDepth = true;
       } else if (haveDepth) {
         h.hasPoint = true;
-        h.p_camera_palm_m = frame->intrinsics.backProject(obs->palm_px.x(), obs->palm_px.y(), lastZ_m);
+        h.p_camera_palm_m = frame.intrinsics.backProject(obs->palm_px.x(), obs->palm_px.y(), lastZ_m);
       }
     }
     demo.markerFree.push_back(h);
-    if (perceiver.framesAdded() % 10 == 0)
+  };
+  const auto progress = [&](int frame, int) {
+    if ((frame + 1) % 10 == 0)
       reportProgress(options, what + ": perceiving demo seed " + std::to_string(seed),
-                     (demoIndex + 0.5 + 0.5 * perceiver.framesAdded() / size.framesPerDemo) / size.demoCount);
-  }
-  if (reader.damage()) throw core::FileError(files.rawlogPath.string(), "damaged rawlog: " + *reader.damage() + "; delete it to render it again");
-  if (perceiver.framesAdded() < size.framesPerDemo)
-    throw core::FileError(files.rawlogPath.string(), "has " + std::to_string(perceiver.framesAdded()) + " frames, the study needs " +
-                                                     std::to_string(size.framesPerDemo) + "; delete it to render it again");
-  const perception::PerceptionResult result = perceiver.finish();
+                     (demoIndex + 0.5 + 0.5 * (frame + 1) / size.framesPerDemo) / size.demoCount);
+  };
+
+  // The module as `srp perceive` runs it (perception::perceiveRawlog: the
+  // preview pass, then perception), on the demo rendered with the study's frames.
+  const auto start = std::chrono::steady_clock::now();
+  const perception::PerceptionResult result =
+      perception::perceiveRawlog(files.rawlogPath.string(), catalogue, o, progress, detectMarkerFree);
+  if (result.frames != size.framesPerDemo)
+    throw core::FileError(files.rawlogPath.string(),
+                          "has " + std::to_string(result.frames) + " frames, the study needs " +
+                              std::to_string(size.framesPerDemo) + "; delete it to render it again");
   demo.perceptionTime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   demo.frames = result.frames;
 
@@ -190,25 +187,25 @@ PerceptionStudySize studySize(const ExperimentOptions& options)
 
 core::ObjectCatalogue studyCatalogue(const ExperimentOptions& options)
 {
-  return kb::loadCatalogue(defaultScene(options).cataloguePath);
+  // Scene::load names the file when it is missing or broken.
+  return kb::loadCatalogue(core::Scene::load(defaultScenePathIn(options.simDir).string()).cataloguePath);
 }
 
 std::vector<PerceivedDemo> perceivedDemos(const ExperimentOptions& options, const std::string& what)
 {
   const PerceptionStudySize size = studySize(options);
-  const core::ObjectCatalogue catalogue = studyCatalogue(options);
+  const DemoCache demoCache = demoCacheFor(options);
   std::vector<PerceivedDemo> demos;
   for (int k = 0; k < size.demoCount; ++k) {
     const unsigned seed = options.firstSeed + static_cast<unsigned>(k);
     const fs::path cachePath =
         options.outDir / "perception" / ((options.quick ? "quick-seed-" : "seed-") + std::to_string(seed) + ".json");
-    const DemoCache demoCache = demoCacheFor(options);
     const DemoRequest request = studyDemoRequest(seed, size);
     const CachedDemo files = demoCache.get(request, [&](int frame, int frames) {
       if (frame % 20 == 0) reportProgress(options, what + ": rendering demo seed " + std::to_string(seed),
                                           (k + 0.5 * frame / std::max(1, frames)) / size.demoCount);
     });
-    const std::string demoKey = demoCache.keyOf(request);
+    const std::string& demoKey = files.key;
     if (fs::exists(cachePath)) {
       try {
         const nlohmann::json j = core::readJsonFile(cachePath.string());
@@ -233,7 +230,7 @@ std::vector<PerceivedDemo> perceivedDemos(const ExperimentOptions& options, cons
         // Unreadable or from another version: perceive again.
       }
     }
-    PerceivedDemo demo = perceiveDemo(options, seed, size, files, catalogue, k, what);
+    PerceivedDemo demo = perceiveDemo(options, seed, size, files, files.catalogue, k, what);
     fs::create_directories(cachePath.parent_path());
     const nlohmann::json cache{{"schema_version", kCacheSchemaVersion},
                                              {"seed", seed},

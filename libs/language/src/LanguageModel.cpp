@@ -177,181 +177,235 @@ struct LanguageModel::Impl {
     return actionLemmaSet.count(lower) > 0 || actionLemmaSet.count(lemmaOf(lower)) > 0;
   }
 
-  /// Feature strings of every token (label-independent).
-  std::vector<std::vector<std::string>> tokenFeatures(const std::vector<std::string>& tokens) const {
-    const int n = static_cast<int>(tokens.size());
-    std::vector<std::string> w(n);
-    std::vector<WordInfo> info(n);
-    for (int i = 0; i < n; ++i) {
-      w[i] = lowerOf(tokens[i]);
-      info[i] = lexicon.lookup(w[i]);
-    }
-    auto word = [&](int i) -> std::string { return i < 0 ? "<s>" : i >= n ? "</s>" : w[i]; };
-    auto wnClasses = [&](int i, const std::string& prefix, std::vector<std::string>& out) {
-      if (i < 0 || i >= n) return;
-      const WordInfo& k = info[i];
-      if (k.noun) out.push_back(prefix + "n");
-      if (k.verb) out.push_back(prefix + "v");
-      if (k.adjective) out.push_back(prefix + "a");
-      if (k.colour) out.push_back(prefix + "color");
-      if (k.artifact) out.push_back(prefix + "artifact");
-      if (k.shape) out.push_back(prefix + "shape");
-      if (k.location) out.push_back(prefix + "loc");
-      if (kPrepositions.count(w[i])) out.push_back(prefix + "prep");
-      if (kPronouns.count(w[i])) out.push_back(prefix + "pron");
-    };
+  /// A sentence's lower-cased words with what the lexicon and the clause
+  /// structure say about each (tokenFeatures).
+  struct SentenceWords {
+    int n = 0;
+    std::vector<std::string> w;
+    std::vector<WordInfo> info;
+    std::vector<std::string> nextPrep;  ///< the next preposition in the clause (up to an action word or stop), "<none>"
+    std::vector<bool> laterPhrase;      ///< a preposition after a noun later in the clause
+    std::vector<bool> actionAheadOf;    ///< an action word later in the sentence
+    std::string word(int i) const { return i < 0 ? "<s>" : i >= n ? "</s>" : w[i]; }
+  };
 
-    std::vector<std::vector<std::string>> feats(n);
+  /// What the tokens before the current one showed (tokenFeatures' running state).
+  struct ClauseState {
     int actionsBefore = 0, andsBefore = 0;
     std::string prevAction = "<none>";
     bool pronounSinceAction = false, nounSinceAction = false, prepSinceAction = false;
     bool sourceSinceAction = false, goalSinceAction = false;
-    std::vector<int> inDirectionPhrase(n, 0);  // 1 inside, 2 last word of a direction phrase
-    auto nounish = [&](int i) {
-      return info[i].noun && !info[i].colour && !kPrepositions.count(w[i]) && !kPronouns.count(w[i]) &&
-             !kDeterminers.count(w[i]) && !isActionWord(w[i]);
-    };
-    // The next preposition after each token within its clause (up to the next action word or stop).
-    std::vector<std::string> nextPrep(n, "<none>");
-    {
-      std::string next = "<none>";
-      for (int i = n - 1; i >= 0; --i) {
-        nextPrep[i] = next;
-        if (isActionWord(w[i]) || w[i] == "." || w[i] == ";") next = "<none>";
-        if (kPrepositions.count(w[i])) next = w[i];
-      }
+    std::vector<int> inDirectionPhrase;  ///< 1 inside, 2 last word of a direction phrase
+  };
+
+  bool nounish(const SentenceWords& s, int i) const {
+    return s.info[i].noun && !s.info[i].colour && !kPrepositions.count(s.w[i]) && !kPronouns.count(s.w[i]) &&
+           !kDeterminers.count(s.w[i]) && !isActionWord(s.w[i]);
+  }
+
+  SentenceWords sentenceWords(const std::vector<std::string>& tokens) const {
+    SentenceWords s;
+    const int n = s.n = static_cast<int>(tokens.size());
+    s.w.resize(n);
+    s.info.resize(n);
+    for (int i = 0; i < n; ++i) {
+      s.w[i] = lowerOf(tokens[i]);
+      s.info[i] = lexicon.lookup(s.w[i]);
     }
-    // Is there another prepositional phrase later in the clause (a preposition after a noun after i)?
-    std::vector<bool> laterPhrase(n, false);
-    {
-      bool prepSeen = false, phrase = false;
-      for (int i = n - 1; i >= 0; --i) {
-        laterPhrase[i] = phrase;
-        if (isActionWord(w[i]) || w[i] == "." || w[i] == ";") prepSeen = phrase = false;
-        if (kPrepositions.count(w[i])) prepSeen = true;
-        if (nounish(i) && prepSeen) phrase = true;
-      }
+    const auto& w = s.w;
+    s.nextPrep.assign(n, "<none>");
+    std::string next = "<none>";
+    for (int i = n - 1; i >= 0; --i) {
+      s.nextPrep[i] = next;
+      if (isActionWord(w[i]) || w[i] == "." || w[i] == ";") next = "<none>";
+      if (kPrepositions.count(w[i])) next = w[i];
+    }
+    s.laterPhrase.assign(n, false);
+    bool prepSeen = false, phrase = false;
+    for (int i = n - 1; i >= 0; --i) {
+      s.laterPhrase[i] = phrase;
+      if (isActionWord(w[i]) || w[i] == "." || w[i] == ";") prepSeen = phrase = false;
+      if (kPrepositions.count(w[i])) prepSeen = true;
+      if (nounish(s, i) && prepSeen) phrase = true;
     }
     bool anyActionAhead = false;
-    std::vector<bool> actionAheadOf(n, false);
+    s.actionAheadOf.assign(n, false);
     for (int i = n - 1; i >= 0; --i) {
-      actionAheadOf[i] = anyActionAhead;
+      s.actionAheadOf[i] = anyActionAhead;
       anyActionAhead |= isActionWord(w[i]);
     }
-    for (int i = 0; i < n; ++i) {
-      auto& f = feats[i];
-      const bool action = isActionWord(w[i]);
-      const bool firstNounHere = actionsBefore > 0 && !nounSinceAction && nounish(i);
-      if (kPrepositions.count(w[i]) || info[i].noun) {
-        const std::string ctx = std::string(laterPhrase[i] ? "L" : "-") + (actionAheadOf[i] ? "A" : "-") +
-                                std::to_string(std::min(actionsBefore, 2)) + (pronounSinceAction ? "p" : "-") +
-                                (nounSinceAction ? "n" : "-");
-        f.push_back("ctx=" + ctx);
-        if (kPrepositions.count(w[i])) {
-          f.push_back("prep|ctx=" + ctx);
-          f.push_back("prep|act|ctx=" + prevAction + "|" + ctx);
-        } else if (firstNounHere) {
-          f.push_back("noun1|act|ctx=" + prevAction + "|" + ctx);
-        }
-        f.push_back("w|ctx=" + w[i] + "|" + ctx);
-      }
-      const bool firstNoun = actionsBefore > 0 && !nounSinceAction && nounish(i);
-      f.push_back("nextPrep=" + nextPrep[i]);
-      if (nextPrep[i] != "<none>") f.push_back("hasNextPrep");
-      if (firstNoun) {
-        f.push_back("firstNoun");
-        f.push_back("firstNoun|nextPrep=" + nextPrep[i]);
-        f.push_back("firstNoun|nact=" + std::to_string(std::min(actionsBefore, 2)) + (nextPrep[i] != "<none>" ? "p" : "-"));
-      }
-      if (kPrepositions.count(w[i])) {
-        f.push_back(std::string("prep|nounSinceAct=") + (nounSinceAction ? "1" : "0") + (prepSinceAction ? "1" : "0") +
-                    std::to_string(std::min(actionsBefore, 2)) + (pronounSinceAction ? "p" : "-"));
-      }
-      bool relativeAhead = false;
-      for (int k = i + 1; k <= i + 3 && k < n; ++k) relativeAhead |= w[k] == "that" || w[k] == "which" || w[k] == "who";
-      if (relativeAhead) f.push_back("relAhead3");
-      f.push_back("bias");
-      f.push_back("w=" + w[i]);
-      f.push_back("lem=" + lemmaOf(w[i]));
-      f.push_back("w-1=" + word(i - 1));
-      f.push_back("w+1=" + word(i + 1));
-      f.push_back("w-2=" + word(i - 2));
-      f.push_back("w+2=" + word(i + 2));
-      f.push_back("w-1w=" + word(i - 1) + "|" + w[i]);
-      f.push_back("ww+1=" + w[i] + "|" + word(i + 1));
-      f.push_back("w+1w+2=" + word(i + 1) + "|" + word(i + 2));
-      f.push_back("w-2w-1=" + word(i - 2) + "|" + word(i - 1));
-      if (w[i].size() > 3) f.push_back("suf3=" + w[i].substr(w[i].size() - 3));
-      f.push_back("shape=" + shapeOf(tokens[i]));
-      if (isPunct(w[i])) f.push_back("punct");
-      wnClasses(i, "wn:", f);
-      wnClasses(i - 1, "wn-1:", f);
-      wnClasses(i + 1, "wn+1:", f);
-      wnClasses(i + 2, "wn+2:", f);
-      if (action) f.push_back("actlex");
-      if (i > 0 && isActionWord(w[i - 1])) f.push_back("actlex-1");
-      f.push_back("nact=" + std::to_string(std::min(actionsBefore, 2)));
-      f.push_back("prevact=" + prevAction);
-      f.push_back("nand=" + std::to_string(std::min(andsBefore, 2)));
-      if (pronounSinceAction) f.push_back("pronSinceAct");
-      if (nounSinceAction) f.push_back("nounSinceAct");
-      if (prepSinceAction) f.push_back("prepSinceAct");
-      f.push_back("nact|pron=" + std::to_string(std::min(actionsBefore, 2)) + (pronounSinceAction ? "p" : "-") +
-                  (prepSinceAction ? "x" : "-"));
-      bool prepAhead = false;
-      for (int k = i + 1; k <= i + 3 && k < n; ++k) prepAhead |= kPrepositions.count(w[k]) > 0;
-      if (prepAhead) f.push_back("prepAhead3");
-      bool actionAhead = false;
-      for (int k = i + 1; k < n; ++k) actionAhead |= isActionWord(w[k]);
-      if (actionAhead) f.push_back("actionAhead");
-      f.push_back("pos=" + std::string(i == 0 ? "first" : i == n - 1 ? "last" : "mid"));
-      const bool prepLike = kPrepositions.count(w[i]) > 0 || kRelationalAdjectives.count(w[i]) > 0 ||
-                            kDirectionNouns.count(w[i]) > 0;
-      if (features.sourceGoalRole && prepLike) {
-        const std::string vclass = actionsBefore > 0 ? verbClassOf(prevAction) : "none";
-        std::string role = "other";
-        if (kSourcePreps.count(w[i]) || (w[i] == "out" && word(i + 1) == "of")) role = "source";
-        else if (kGoalPreps.count(w[i])) role = "goal";
-        else if (vclass == "place" && kPrepositions.count(w[i])) role = "placeLoc";
-        const std::string seen = std::string(sourceSinceAction ? "S" : "-") + (goalSinceAction ? "G" : "-");
-        f.push_back("role=" + role);
-        f.push_back("role|v=" + role + "|" + vclass);
-        f.push_back("role|seen=" + role + "|" + seen);
-        f.push_back("role|v|seen=" + role + "|" + vclass + "|" + seen);
-      }
-      if (features.directionPhrases) {
-        if (const int len = directionPhraseLength(w, i)) {
-          f.push_back("dp=B");
-          f.push_back("dp|len=" + std::to_string(std::min(len, 5)));
-          f.push_back(std::string("dp|end=") + (w[i + len - 1] == "of" || w[i + len - 1] == "to" ? "prep" : "noun"));
-          for (int k = i + 1; k < i + len; ++k) inDirectionPhrase[k] = i + len - 1 == k ? 2 : 1;
-        }
-        if (inDirectionPhrase[i] == 1) f.push_back("dp=I");
-        if (inDirectionPhrase[i] == 2) f.push_back("dp=L");
-      }
-      if (features.noLandmark && prepLike) {
-        int k = i + 1;
-        while (k < n && kDirectionModifiers.count(w[k])) ++k;
-        const bool landmarkless = k >= n || isPunct(w[k]) || w[k] == "and" || isActionWord(w[k]);
-        if (landmarkless) {
-          f.push_back("noLm");
-          f.push_back("noLm|w=" + w[i]);
-        }
-        if (i > 0 && kDegreeAdverbs.count(w[i - 1])) f.push_back("advBefore");
-      }
+    return s;
+  }
 
-      if (action) {
-        ++actionsBefore;
-        prevAction = lemmaOf(w[i]);
-        pronounSinceAction = nounSinceAction = prepSinceAction = sourceSinceAction = goalSinceAction = false;
-      } else {
-        sourceSinceAction |= kSourcePreps.count(w[i]) > 0 || (w[i] == "out" && word(i + 1) == "of");
-        goalSinceAction |= kGoalPreps.count(w[i]) > 0;
-        pronounSinceAction |= kPronouns.count(w[i]) > 0;
-        nounSinceAction |= nounish(i);
-        prepSinceAction |= kPrepositions.count(w[i]) > 0;
+  /// WordNet classes of word i (none outside the sentence), each as `prefix` + class.
+  static void wnClasses(const SentenceWords& s, int i, const std::string& prefix, std::vector<std::string>& out) {
+    if (i < 0 || i >= s.n) return;
+    const WordInfo& k = s.info[i];
+    if (k.noun) out.push_back(prefix + "n");
+    if (k.verb) out.push_back(prefix + "v");
+    if (k.adjective) out.push_back(prefix + "a");
+    if (k.colour) out.push_back(prefix + "color");
+    if (k.artifact) out.push_back(prefix + "artifact");
+    if (k.shape) out.push_back(prefix + "shape");
+    if (k.location) out.push_back(prefix + "loc");
+    if (kPrepositions.count(s.w[i])) out.push_back(prefix + "prep");
+    if (kPronouns.count(s.w[i])) out.push_back(prefix + "pron");
+  }
+
+  /// Where word i stands in its clause: the clause context of a preposition or
+  /// noun, the first noun after the action, the next preposition, a relative ahead.
+  void clauseContextFeatures(const SentenceWords& s, int i, const ClauseState& c, std::vector<std::string>& f) const {
+    const auto& w = s.w;
+    const bool firstNoun = c.actionsBefore > 0 && !c.nounSinceAction && nounish(s, i);
+    if (kPrepositions.count(w[i]) || s.info[i].noun) {
+      const std::string ctx = std::string(s.laterPhrase[i] ? "L" : "-") + (s.actionAheadOf[i] ? "A" : "-") +
+                              std::to_string(std::min(c.actionsBefore, 2)) + (c.pronounSinceAction ? "p" : "-") +
+                              (c.nounSinceAction ? "n" : "-");
+      f.push_back("ctx=" + ctx);
+      if (kPrepositions.count(w[i])) {
+        f.push_back("prep|ctx=" + ctx);
+        f.push_back("prep|act|ctx=" + c.prevAction + "|" + ctx);
+      } else if (firstNoun) {
+        f.push_back("noun1|act|ctx=" + c.prevAction + "|" + ctx);
       }
-      if (w[i] == "and" || w[i] == ",") ++andsBefore;
+      f.push_back("w|ctx=" + w[i] + "|" + ctx);
+    }
+    f.push_back("nextPrep=" + s.nextPrep[i]);
+    if (s.nextPrep[i] != "<none>") f.push_back("hasNextPrep");
+    if (firstNoun) {
+      f.push_back("firstNoun");
+      f.push_back("firstNoun|nextPrep=" + s.nextPrep[i]);
+      f.push_back("firstNoun|nact=" + std::to_string(std::min(c.actionsBefore, 2)) +
+                  (s.nextPrep[i] != "<none>" ? "p" : "-"));
+    }
+    if (kPrepositions.count(w[i])) {
+      f.push_back(std::string("prep|nounSinceAct=") + (c.nounSinceAction ? "1" : "0") +
+                  (c.prepSinceAction ? "1" : "0") + std::to_string(std::min(c.actionsBefore, 2)) +
+                  (c.pronounSinceAction ? "p" : "-"));
+    }
+    bool relativeAhead = false;
+    for (int k = i + 1; k <= i + 3 && k < s.n; ++k) relativeAhead |= w[k] == "that" || w[k] == "which" || w[k] == "who";
+    if (relativeAhead) f.push_back("relAhead3");
+  }
+
+  /// The word itself and its neighbours: words, lemma, suffix, shape, WordNet classes, action words.
+  void lexicalFeatures(const SentenceWords& s, const std::vector<std::string>& tokens, int i,
+                       std::vector<std::string>& f) const {
+    const auto& w = s.w;
+    f.push_back("bias");
+    f.push_back("w=" + w[i]);
+    f.push_back("lem=" + lemmaOf(w[i]));
+    f.push_back("w-1=" + s.word(i - 1));
+    f.push_back("w+1=" + s.word(i + 1));
+    f.push_back("w-2=" + s.word(i - 2));
+    f.push_back("w+2=" + s.word(i + 2));
+    f.push_back("w-1w=" + s.word(i - 1) + "|" + w[i]);
+    f.push_back("ww+1=" + w[i] + "|" + s.word(i + 1));
+    f.push_back("w+1w+2=" + s.word(i + 1) + "|" + s.word(i + 2));
+    f.push_back("w-2w-1=" + s.word(i - 2) + "|" + s.word(i - 1));
+    if (w[i].size() > 3) f.push_back("suf3=" + w[i].substr(w[i].size() - 3));
+    f.push_back("shape=" + shapeOf(tokens[i]));
+    if (isPunct(w[i])) f.push_back("punct");
+    wnClasses(s, i, "wn:", f);
+    wnClasses(s, i - 1, "wn-1:", f);
+    wnClasses(s, i + 1, "wn+1:", f);
+    wnClasses(s, i + 2, "wn+2:", f);
+    if (isActionWord(w[i])) f.push_back("actlex");
+    if (i > 0 && isActionWord(w[i - 1])) f.push_back("actlex-1");
+  }
+
+  /// What the clause showed before word i: actions, "and"s, pronouns, nouns, prepositions; what lies ahead.
+  void clauseStateFeatures(const SentenceWords& s, int i, const ClauseState& c, std::vector<std::string>& f) const {
+    const auto& w = s.w;
+    const int n = s.n;
+    f.push_back("nact=" + std::to_string(std::min(c.actionsBefore, 2)));
+    f.push_back("prevact=" + c.prevAction);
+    f.push_back("nand=" + std::to_string(std::min(c.andsBefore, 2)));
+    if (c.pronounSinceAction) f.push_back("pronSinceAct");
+    if (c.nounSinceAction) f.push_back("nounSinceAct");
+    if (c.prepSinceAction) f.push_back("prepSinceAct");
+    f.push_back("nact|pron=" + std::to_string(std::min(c.actionsBefore, 2)) + (c.pronounSinceAction ? "p" : "-") +
+                (c.prepSinceAction ? "x" : "-"));
+    bool prepAhead = false;
+    for (int k = i + 1; k <= i + 3 && k < n; ++k) prepAhead |= kPrepositions.count(w[k]) > 0;
+    if (prepAhead) f.push_back("prepAhead3");
+    bool actionAhead = false;
+    for (int k = i + 1; k < n; ++k) actionAhead |= isActionWord(w[k]);
+    if (actionAhead) f.push_back("actionAhead");
+    f.push_back("pos=" + std::string(i == 0 ? "first" : i == n - 1 ? "last" : "mid"));
+  }
+
+  /// Location words (prepositions, relational adjectives, direction nouns): their
+  /// source/goal role, direction phrases ("in front of") and a missing landmark.
+  void locationFeatures(const SentenceWords& s, int i, ClauseState& c, std::vector<std::string>& f) const {
+    const auto& w = s.w;
+    const int n = s.n;
+    const bool prepLike =
+        kPrepositions.count(w[i]) > 0 || kRelationalAdjectives.count(w[i]) > 0 || kDirectionNouns.count(w[i]) > 0;
+    if (features.sourceGoalRole && prepLike) {
+      const std::string vclass = c.actionsBefore > 0 ? verbClassOf(c.prevAction) : "none";
+      std::string role = "other";
+      if (kSourcePreps.count(w[i]) || (w[i] == "out" && s.word(i + 1) == "of")) role = "source";
+      else if (kGoalPreps.count(w[i])) role = "goal";
+      else if (vclass == "place" && kPrepositions.count(w[i])) role = "placeLoc";
+      const std::string seen = std::string(c.sourceSinceAction ? "S" : "-") + (c.goalSinceAction ? "G" : "-");
+      f.push_back("role=" + role);
+      f.push_back("role|v=" + role + "|" + vclass);
+      f.push_back("role|seen=" + role + "|" + seen);
+      f.push_back("role|v|seen=" + role + "|" + vclass + "|" + seen);
+    }
+    if (features.directionPhrases) {
+      if (const int len = directionPhraseLength(w, i)) {
+        f.push_back("dp=B");
+        f.push_back("dp|len=" + std::to_string(std::min(len, 5)));
+        f.push_back(std::string("dp|end=") + (w[i + len - 1] == "of" || w[i + len - 1] == "to" ? "prep" : "noun"));
+        for (int k = i + 1; k < i + len; ++k) c.inDirectionPhrase[k] = i + len - 1 == k ? 2 : 1;
+      }
+      if (c.inDirectionPhrase[i] == 1) f.push_back("dp=I");
+      if (c.inDirectionPhrase[i] == 2) f.push_back("dp=L");
+    }
+    if (features.noLandmark && prepLike) {
+      int k = i + 1;
+      while (k < n && kDirectionModifiers.count(w[k])) ++k;
+      const bool landmarkless = k >= n || isPunct(w[k]) || w[k] == "and" || isActionWord(w[k]);
+      if (landmarkless) {
+        f.push_back("noLm");
+        f.push_back("noLm|w=" + w[i]);
+      }
+      if (i > 0 && kDegreeAdverbs.count(w[i - 1])) f.push_back("advBefore");
+    }
+  }
+
+  /// The state after word i: an action word starts a new clause.
+  void advance(const SentenceWords& s, int i, ClauseState& c) const {
+    const auto& w = s.w;
+    if (isActionWord(w[i])) {
+      ++c.actionsBefore;
+      c.prevAction = lemmaOf(w[i]);
+      c.pronounSinceAction = c.nounSinceAction = c.prepSinceAction = c.sourceSinceAction = c.goalSinceAction = false;
+    } else {
+      c.sourceSinceAction |= kSourcePreps.count(w[i]) > 0 || (w[i] == "out" && s.word(i + 1) == "of");
+      c.goalSinceAction |= kGoalPreps.count(w[i]) > 0;
+      c.pronounSinceAction |= kPronouns.count(w[i]) > 0;
+      c.nounSinceAction |= nounish(s, i);
+      c.prepSinceAction |= kPrepositions.count(w[i]) > 0;
+    }
+    if (w[i] == "and" || w[i] == ",") ++c.andsBefore;
+  }
+
+  /// Feature strings of every token (label-independent).
+  std::vector<std::vector<std::string>> tokenFeatures(const std::vector<std::string>& tokens) const {
+    const SentenceWords s = sentenceWords(tokens);
+    std::vector<std::vector<std::string>> feats(s.n);
+    ClauseState c;
+    c.inDirectionPhrase.assign(s.n, 0);
+    for (int i = 0; i < s.n; ++i) {
+      auto& f = feats[i];
+      clauseContextFeatures(s, i, c, f);
+      lexicalFeatures(s, tokens, i, f);
+      clauseStateFeatures(s, i, c, f);
+      locationFeatures(s, i, c, f);
+      advance(s, i, c);
     }
     return feats;
   }

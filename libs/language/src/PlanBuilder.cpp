@@ -294,174 +294,204 @@ bool sameObject(const ObjectRef& a, const ObjectRef& b) {
          (a.superlative.empty() || b.superlative.empty() || a.superlative == b.superlative);
 }
 
-}  // namespace
+/// The steps an instruction's clauses make, in order (buildPlanSteps): each
+/// clause's target objects (a noun phrase list after the verb, or the latest
+/// clause's objects for a pronoun) and its source and target locations.
+class PlanStepsBuilder {
+ public:
+  explicit PlanStepsBuilder(std::vector<std::string>& warnings) : warnings_(warnings) {}
 
-std::vector<PlanStep> buildPlanSteps(const std::vector<AnnotatedSentence>& sentences, const WordNetLexicon& lexicon,
-                                     const std::vector<PlanStep>& knownSteps, std::vector<std::string>& warnings) {
-  std::vector<PlanStep> steps;
-  Referent last;  // steps of the latest clause that named objects
-  // Reuse an open step of the same object (picked, not yet placed), else a new step.
-  auto stepFor = [&steps](const Mention& m) {
-    for (int s = static_cast<int>(steps.size()) - 1; s >= 0; --s)
-      if (sameObject(steps[s].object, m.object) && steps[s].target.empty()) return s;
+  void addSentence(const SentenceView& v, std::size_t sid) {
+    std::vector<int> actions;
+    for (int k = 0; k < v.size(); ++k)
+      if (v.isAction(k) && (actions.empty() || actions.back() != k - 1 || v.typeAt(k) != "Action")) actions.push_back(k);
+    for (std::size_t a = 0; a < actions.size(); ++a)
+      addClause(v, sid, actions[a], a + 1 < actions.size() ? actions[a + 1] : v.size());
+  }
+
+  std::vector<PlanStep>& steps() { return steps_; }
+
+ private:
+  void addClause(const SentenceView& v, std::size_t sid, int verb, int clauseEnd) {
+    const VerbKind kind = v.verbKind(verb).value_or(VerbKind::Move);
+    int k = verb + 1;
+    while (k < clauseEnd && (kParticles.count(v.lower(k)) || v.typeAt(k) == "Action")) ++k;
+
+    bool namedObjects = false;
+    std::vector<int> clauseSteps = clauseObjects(v, sid, k, clauseEnd, namedObjects);
+    if (clauseSteps.empty()) clauseSteps = last_.stepIndices;
+    if (!namedObjects && clauseSteps.empty()) return;
+    std::sort(clauseSteps.begin(), clauseSteps.end());
+    clauseSteps.erase(std::unique(clauseSteps.begin(), clauseSteps.end()), clauseSteps.end());
+
+    applyLocations(clauseSteps, clauseLocations(v, k, clauseEnd, kind, clauseSteps));
+    last_.stepIndices = clauseSteps;
+  }
+
+  /// Target objects: a noun phrase list right after the verb, from `k` (left
+  /// after the list); `namedObjects` is set when one is not a pronoun.
+  std::vector<int> clauseObjects(const SentenceView& v, std::size_t sid, int& k, int clauseEnd, bool& namedObjects) {
+    std::vector<int> clauseSteps;
+    while (k < clauseEnd) {
+      const auto np = v.nounPhrase(k);
+      if (!np || np->end > clauseEnd) break;
+      if (np->pronoun) {
+        clauseSteps.insert(clauseSteps.end(), last_.stepIndices.begin(), last_.stepIndices.end());
+        if (last_.stepIndices.empty())
+          warnings_.push_back("sentence " + std::to_string(sid + 1) + ": '" + v.lower(k) +
+                              "' refers to no earlier object; ignored");
+      } else {
+        namedObjects = true;
+        clauseSteps.push_back(stepFor(*np->mention));
+      }
+      k = np->end;
+      // "X and Y", "X, Y and Z": more objects unless an action or indicator follows.
+      if (k < clauseEnd && (v.lower(k) == "and" || v.lower(k) == ",")) {
+        int j = k + 1;
+        if (j < clauseEnd && v.lower(j) == "and") ++j;
+        if (j < clauseEnd && !v.isIndicatorStart(j) && v.nounPhrase(j)) {
+          k = j;
+          continue;
+        }
+      }
+      break;
+    }
+    return clauseSteps;
+  }
+
+  /// Locations: indicator + landmark phrases anywhere in the rest of the clause
+  /// (from `k`). Gapping ("place the cuboid in the gray box and the star next to
+  /// the cuboid") applies the locations so far and moves on to the next object:
+  /// `clauseSteps` is then that object's step. Returns the last object's locations.
+  std::vector<Location> clauseLocations(const SentenceView& v, int k, int clauseEnd, VerbKind kind,
+                                        std::vector<int>& clauseSteps) {
+    std::vector<Location> locations;
+    for (int i = k; i < clauseEnd;) {
+      int len = v.indicatorLength(i);
+      if (len == 0) {
+        // Gapping: "place the cuboid in the gray box and the star next to the cuboid".
+        if (v.lower(i) == "and" || v.lower(i) == ",") {
+          int j = i + 1;
+          if (j < clauseEnd && v.lower(j) == "and") ++j;
+          const auto np = v.nounPhrase(j);
+          if (np && !np->pronoun && np->end < clauseEnd && v.isIndicatorStart(np->end)) {
+            applyLocations(clauseSteps, locations);
+            locations.clear();
+            clauseSteps = {stepFor(*np->mention)};
+            i = np->end;
+            continue;
+          }
+        }
+        ++i;
+        continue;
+      }
+      // A recognised "adjacent"/"close" without its "to": take the connecting word along.
+      if (i + len < clauseEnd && !v.nounPhrase(i + len) &&
+          (v.lower(i + len) == "to" || v.lower(i + len) == "of" || v.lower(i + len) == "from"))
+        ++len;
+      std::string relation;
+      for (int j = i; j < i + len; ++j) relation += (j > i ? " " : "") + v.lower(j);
+      auto np = v.nounPhrase(i + len);
+      if (np && np->pronoun && np->end <= clauseEnd) {
+        // "next to it": the latest object that is not the one being moved.
+        for (int s : last_.stepIndices)
+          if (std::find(clauseSteps.begin(), clauseSteps.end(), s) == clauseSteps.end() && !np->mention)
+            np->mention = Mention{steps_[s].object, steps_[s].objectAnchor};
+      }
+      if (!np || !np->mention || np->end > clauseEnd) {
+        i += len;
+        continue;
+      }
+      Location loc;
+      loc.ref = {relation, np->mention->object, std::nullopt, cornerOf(relation)};
+      loc.anchor = np->mention->anchor;
+      loc.back = i > 0 && v.lower(i - 1) == "back";
+      loc.source = isSource(v, i, np->end, clauseEnd, kind, locations);
+      locations.push_back(loc);
+      i = np->end;
+    }
+    return locations;
+  }
+
+  /// Whether the location phrase at `i` (its landmark ending at `landmarkEnd`)
+  /// says where the objects come from, after `earlier` locations of the clause.
+  static bool isSource(const SentenceView& v, int i, int landmarkEnd, int clauseEnd, VerbKind kind,
+                       const std::vector<Location>& earlier) {
+    const std::string type = v.typeAt(i);
+    if (kSourceWords.count(v.lower(i))) return true;
+    if (type == "GoalIndicator") return false;
+    if (type != "SpatialIndicator" && !type.empty()) return false;  // a Location's default
+    const bool targetSeen = std::any_of(earlier.begin(), earlier.end(), [](const Location& l) { return !l.source; });
+    if (kind == VerbKind::Pick) return !targetSeen;
+    if (kind == VerbKind::Place) return false;  // "place X next to Y in Z": every phrase says where X goes
+    // "move X on top of Y to Z": a spatial phrase before a directional goal is the source.
+    bool directionalGoalLater = false;
+    for (int j = landmarkEnd; j < clauseEnd; ++j) {
+      const std::string& w = v.lower(j);
+      directionalGoalLater |= v.typeAt(j) == "GoalIndicator" &&
+                              (w == "to" || w == "onto" || w == "into" || w == "toward" || w == "towards");
+    }
+    return !targetSeen && directionalGoalLater;
+  }
+
+  /// Reuse an open step of the same object (picked, not yet placed), else a new step.
+  int stepFor(const Mention& m) {
+    for (int s = static_cast<int>(steps_.size()) - 1; s >= 0; --s)
+      if (sameObject(steps_[s].object, m.object) && steps_[s].target.empty()) return s;
     PlanStep step;
     step.object = m.object;
     step.objectAnchor = m.anchor;
-    steps.push_back(step);
-    return static_cast<int>(steps.size()) - 1;
-  };
-  auto applyLocations = [&steps](const std::vector<int>& stepIndices, const std::vector<Location>& locations) {
+    steps_.push_back(step);
+    return static_cast<int>(steps_.size()) - 1;
+  }
+
+  void applyLocations(const std::vector<int>& stepIndices, const std::vector<Location>& locations) {
     for (int s : stepIndices)
       for (const auto& loc : locations) {
-        auto& list = loc.source ? steps[s].source : steps[s].target;
-        auto& anchors = loc.source ? steps[s].sourceAnchors : steps[s].targetAnchors;
+        auto& list = loc.source ? steps_[s].source : steps_[s].target;
+        auto& anchors = loc.source ? steps_[s].sourceAnchors : steps_[s].targetAnchors;
         if (std::find(list.begin(), list.end(), loc.ref) == list.end()) {
           list.push_back(loc.ref);
           anchors.push_back(loc.anchor);
         }
-        steps[s].isReturn |= loc.back;
+        steps_[s].isReturn |= loc.back;
       }
-  };
-  for (size_t sid = 0; sid < sentences.size(); ++sid) {
+  }
+
+  std::vector<PlanStep> steps_;
+  Referent last_;  // steps of the latest clause that named objects
+  std::vector<std::string>& warnings_;
+};
+
+/// "Only the star this time": no action, but objects of the known plan -> those known steps.
+std::vector<PlanStep> knownStepsNamed(const std::vector<AnnotatedSentence>& sentences, const WordNetLexicon& lexicon,
+                                      const std::vector<PlanStep>& knownSteps) {
+  std::vector<PlanStep> steps;
+  for (std::size_t sid = 0; sid < sentences.size(); ++sid) {
     const SentenceView v(sentences[sid], static_cast<int>(sid), lexicon);
-    std::vector<int> actions;
-    for (int k = 0; k < v.size(); ++k)
-      if (v.isAction(k) && (actions.empty() || actions.back() != k - 1 || v.typeAt(k) != "Action")) actions.push_back(k);
-    for (size_t a = 0; a < actions.size(); ++a) {
-      const int verb = actions[a];
-      const int clauseEnd = a + 1 < actions.size() ? actions[a + 1] : v.size();
-      const VerbKind kind = v.verbKind(verb).value_or(VerbKind::Move);
-      int k = verb + 1;
-      while (k < clauseEnd && (kParticles.count(v.lower(k)) || v.typeAt(k) == "Action")) ++k;
-
-      // Target objects: a noun phrase list right after the verb.
-      std::vector<int> clauseSteps;
-      bool namedObjects = false;
-      while (k < clauseEnd) {
-        const auto np = v.nounPhrase(k);
-        if (!np || np->end > clauseEnd) break;
-        if (np->pronoun) {
-          clauseSteps.insert(clauseSteps.end(), last.stepIndices.begin(), last.stepIndices.end());
-          if (last.stepIndices.empty())
-            warnings.push_back("sentence " + std::to_string(sid + 1) + ": '" + v.lower(k) +
-                               "' refers to no earlier object; ignored");
-        } else {
-          namedObjects = true;
-          clauseSteps.push_back(stepFor(*np->mention));
+    for (int k = 0; k < v.size(); ++k) {
+      const auto np = v.nounPhrase(k);
+      if (!np || !np->mention) continue;
+      for (const auto& known : knownSteps)
+        if (sameObject(known.object, np->mention->object) &&
+            std::none_of(steps.begin(), steps.end(), [&](const PlanStep& s) { return s.object == known.object; })) {
+          steps.push_back(known);
+          steps.back().objectAnchor = np->mention->anchor;
         }
-        k = np->end;
-        // "X and Y", "X, Y and Z": more objects unless an action or indicator follows.
-        if (k < clauseEnd && (v.lower(k) == "and" || v.lower(k) == ",")) {
-          int j = k + 1;
-          if (j < clauseEnd && v.lower(j) == "and") ++j;
-          if (j < clauseEnd && !v.isIndicatorStart(j) && v.nounPhrase(j)) {
-            k = j;
-            continue;
-          }
-        }
-        break;
-      }
-      if (clauseSteps.empty()) clauseSteps = last.stepIndices;
-      if (!namedObjects && clauseSteps.empty()) continue;
-      std::sort(clauseSteps.begin(), clauseSteps.end());
-      clauseSteps.erase(std::unique(clauseSteps.begin(), clauseSteps.end()), clauseSteps.end());
-
-      // Locations: indicator + landmark phrases anywhere in the rest of the clause.
-      std::vector<Location> locations;
-      for (int i = k; i < clauseEnd;) {
-        int len = v.indicatorLength(i);
-        if (len == 0) {
-          // Gapping: "place the cuboid in the gray box and the star next to the cuboid".
-          if (v.lower(i) == "and" || v.lower(i) == ",") {
-            int j = i + 1;
-            if (j < clauseEnd && v.lower(j) == "and") ++j;
-            const auto np = v.nounPhrase(j);
-            if (np && !np->pronoun && np->end < clauseEnd && v.isIndicatorStart(np->end)) {
-              applyLocations(clauseSteps, locations);
-              locations.clear();
-              clauseSteps = {stepFor(*np->mention)};
-              i = np->end;
-              continue;
-            }
-          }
-          ++i;
-          continue;
-        }
-        // A recognised "adjacent"/"close" without its "to": take the connecting word along.
-        if (i + len < clauseEnd && !v.nounPhrase(i + len) &&
-            (v.lower(i + len) == "to" || v.lower(i + len) == "of" || v.lower(i + len) == "from"))
-          ++len;
-        std::string relation;
-        for (int j = i; j < i + len; ++j) relation += (j > i ? " " : "") + v.lower(j);
-        auto np = v.nounPhrase(i + len);
-        if (np && np->pronoun && np->end <= clauseEnd) {
-          // "next to it": the latest object that is not the one being moved.
-          for (int s : last.stepIndices)
-            if (std::find(clauseSteps.begin(), clauseSteps.end(), s) == clauseSteps.end() && !np->mention)
-              np->mention = Mention{steps[s].object, steps[s].objectAnchor};
-        }
-        if (!np || !np->mention || np->end > clauseEnd) {
-          i += len;
-          continue;
-        }
-        Location loc;
-        loc.ref = {relation, np->mention->object, std::nullopt, cornerOf(relation)};
-        loc.anchor = np->mention->anchor;
-        loc.back = i > 0 && v.lower(i - 1) == "back";
-        const std::string type = v.typeAt(i);
-        if (kSourceWords.count(v.lower(i))) {
-          loc.source = true;
-        } else if (type == "GoalIndicator") {
-          loc.source = false;
-        } else if (type == "SpatialIndicator" || type.empty()) {
-          const bool targetSeen = std::any_of(locations.begin(), locations.end(), [](const Location& l) { return !l.source; });
-          if (kind == VerbKind::Pick) {
-            loc.source = !targetSeen;
-          } else if (kind == VerbKind::Place) {
-            loc.source = false;  // "place X next to Y in Z": every phrase says where X goes
-          } else {
-            // "move X on top of Y to Z": a spatial phrase before a directional goal is the source.
-            bool directionalGoalLater = false;
-            for (int j = np->end; j < clauseEnd; ++j) {
-              const std::string& w = v.lower(j);
-              directionalGoalLater |= v.typeAt(j) == "GoalIndicator" && (w == "to" || w == "onto" || w == "into" ||
-                                                                         w == "toward" || w == "towards");
-            }
-            loc.source = !targetSeen && directionalGoalLater;
-          }
-        }
-        locations.push_back(loc);
-        i = np->end;
-      }
-      applyLocations(clauseSteps, locations);
-      last.stepIndices = clauseSteps;
+      k = np->end - 1;
     }
   }
+  return steps;
+}
 
-  // "Only the star this time": no action, but objects of the known plan -> those known steps.
-  if (steps.empty() && !knownSteps.empty()) {
-    for (size_t sid = 0; sid < sentences.size(); ++sid) {
-      const SentenceView v(sentences[sid], static_cast<int>(sid), lexicon);
-      for (int k = 0; k < v.size(); ++k) {
-        const auto np = v.nounPhrase(k);
-        if (!np || !np->mention) continue;
-        for (const auto& known : knownSteps)
-          if (sameObject(known.object, np->mention->object) &&
-              std::none_of(steps.begin(), steps.end(), [&](const PlanStep& s) { return s.object == known.object; })) {
-            steps.push_back(known);
-            steps.back().objectAnchor = np->mention->anchor;
-          }
-        k = np->end - 1;
-      }
-    }
-  }
-
-  // "back to": complete a return from the move it reverses.
-  for (size_t s = 0; s < steps.size(); ++s) {
+/// "back to": complete a return from the move it reverses (an earlier step, else a known one).
+void completeReturns(std::vector<PlanStep>& steps, const std::vector<PlanStep>& knownSteps,
+                     std::vector<std::string>& warnings) {
+  for (std::size_t s = 0; s < steps.size(); ++s) {
     auto& step = steps[s];
     if (!step.isReturn || (!step.source.empty() && !step.target.empty())) continue;
     const PlanStep* known = nullptr;
-    for (size_t j = 0; j < s; ++j)
+    for (std::size_t j = 0; j < s; ++j)
       if (sameObject(steps[j].object, step.object) && !steps[j].isReturn) known = &steps[j];
     if (!known)
       for (const auto& j : knownSteps)
@@ -479,6 +509,18 @@ std::vector<PlanStep> buildPlanSteps(const std::vector<AnnotatedSentence>& sente
       step.targetAnchors.assign(step.target.size(), TokenAnchor{});
     }
   }
+}
+
+}  // namespace
+
+std::vector<PlanStep> buildPlanSteps(const std::vector<AnnotatedSentence>& sentences, const WordNetLexicon& lexicon,
+                                     const std::vector<PlanStep>& knownSteps, std::vector<std::string>& warnings) {
+  PlanStepsBuilder builder(warnings);
+  for (std::size_t sid = 0; sid < sentences.size(); ++sid)
+    builder.addSentence(SentenceView(sentences[sid], static_cast<int>(sid), lexicon), sid);
+  std::vector<PlanStep> steps = std::move(builder.steps());
+  if (steps.empty() && !knownSteps.empty()) steps = knownStepsNamed(sentences, lexicon, knownSteps);
+  completeReturns(steps, knownSteps, warnings);
   return steps;
 }
 

@@ -550,7 +550,10 @@ class ObjectPass {
       core::require(track_.validCount() > 0, "trajectory of '" + name + "' has no detection");
       const int wr = std::max(1, std::min(c_.restMedianSamples, n_ / 5));
       evidence_ = cues_ ? partEvidence(wr) : track_;
-      seg_.smoothed = runningMedian(evidence_, c_.objectMedianHalfWindow);
+      // The running median never outvotes a rest of wr samples: its window
+      // (2 half + 1 samples, full size at the ends) holds at most 2 wr - 1, so
+      // a short recording's final rest survives it.
+      seg_.smoothed = runningMedian(evidence_, std::min(c_.objectMedianHalfWindow, std::max(1, wr - 1)));
       seg_.p_initial_m = medianDetection(evidence_, wr, false, c_.restTolerance_m);
       seg_.p_final_m = medianDetection(evidence_, wr, true, c_.restTolerance_m);
     } else {

@@ -6,14 +6,14 @@
 #include <iostream>
 
 #include "srp/core/Error.h"
-#include "srp/synth/SyntheticPickPlace.h"
+#include "srp/motion/SyntheticPickPlace.h"
 
 namespace srp::motion {
 namespace {
 
 constexpr int kFrameTol = 3;  // issue 6: grasp and release within +-3 frames of the truth
 
-// synth::SyntheticPickPlaceGenerator's truth is the thesis' definition (grasp in the
+// motion::SyntheticPickPlaceGenerator's truth is the thesis' definition (grasp in the
 // middle of the hand's hold at the object), so these tests run the thesis'
 // estimator; the default (hand-dwell boundaries) is checked against
 // srp::synth's ground truth (grasp = end of the hold) in the programming tests.
@@ -27,7 +27,7 @@ Segmenter thesisSegmenter() {
 constexpr int kHeavyFlickerTol = 8;  // 8 % of frames flicker for 1-3 frames
 constexpr int kPutBackGraspTol = 8;  // the hand lingers near the object before a short reach
 
-void expectWithinTolerance(const synth::SyntheticPickPlace& demo, const Segmentation& seg, const std::string& tag,
+void expectWithinTolerance(const motion::SyntheticPickPlace& demo, const Segmentation& seg, const std::string& tag,
                            int graspTol = kFrameTol, int releaseTol = kFrameTol) {
   ASSERT_EQ(seg.objects.size(), demo.planOrder.size()) << tag;
   int worstGrasp = 0, worstRelease = 0;
@@ -49,9 +49,9 @@ void expectWithinTolerance(const synth::SyntheticPickPlace& demo, const Segmenta
 TEST(Segmenter, FindsGraspAndReleaseOnNoisyDemosWithFlicker) {
   int worstGrasp = 0, worstRelease = 0;
   for (std::uint32_t seed = 1; seed <= 12; ++seed) {
-    synth::SyntheticPickPlaceConfig c;
+    motion::SyntheticPickPlaceConfig c;
     c.seed = seed;
-    const auto demo = synth::SyntheticPickPlaceGenerator(c).generate();
+    const auto demo = motion::SyntheticPickPlaceGenerator(c).generate();
     const auto seg = thesisSegmenter().segment(demo.hand, demo.objects, demo.planOrder);
     expectWithinTolerance(demo, seg, "seed " + std::to_string(seed));
     for (std::size_t i = 0; i < seg.objects.size(); ++i) {
@@ -63,22 +63,22 @@ TEST(Segmenter, FindsGraspAndReleaseOnNoisyDemosWithFlicker) {
 }
 
 TEST(Segmenter, ToleratesHeavyFlickerBetweenTwoPositions) {
-  synth::SyntheticPickPlaceConfig c;
+  motion::SyntheticPickPlaceConfig c;
   c.flickerRate = 0.08;
   c.objectDropoutRate = 0.10;
   for (std::uint32_t seed = 20; seed < 24; ++seed) {
     c.seed = seed;
-    const auto demo = synth::SyntheticPickPlaceGenerator(c).generate();
+    const auto demo = motion::SyntheticPickPlaceGenerator(c).generate();
     expectWithinTolerance(demo, thesisSegmenter().segment(demo.hand, demo.objects, demo.planOrder),
                           "heavy flicker seed " + std::to_string(seed), kHeavyFlickerTol, kHeavyFlickerTol);
   }
 }
 
 TEST(Segmenter, ReportsAnObjectThatNeverMoves) {
-  synth::SyntheticPickPlaceConfig c;
+  motion::SyntheticPickPlaceConfig c;
   c.movedObjects = {"cuboid", "star"};
   c.staticObjects = {"octagon"};
-  const auto demo = synth::SyntheticPickPlaceGenerator(c).generate();
+  const auto demo = motion::SyntheticPickPlaceGenerator(c).generate();
   const std::vector<std::string> plan = {"cuboid", "octagon", "star"};
   const auto seg = thesisSegmenter().segment(demo.hand, demo.objects, plan);
   ASSERT_EQ(seg.objects.size(), 3u);
@@ -95,19 +95,19 @@ TEST(Segmenter, ReportsAnObjectThatNeverMoves) {
 TEST(Segmenter, ObjectsPutBackWhereTheyWereAreSegmented) {
   // Source = target: the "before" and "after" mixture components are the same
   // place, so the components are not in temporal order.
-  synth::SyntheticPickPlaceConfig c;
+  motion::SyntheticPickPlaceConfig c;
   c.putBackWhereTaken = true;
   c.lift_m = 0.2;
   for (std::uint32_t seed = 30; seed < 34; ++seed) {
     c.seed = seed;
-    const auto demo = synth::SyntheticPickPlaceGenerator(c).generate();
+    const auto demo = motion::SyntheticPickPlaceGenerator(c).generate();
     expectWithinTolerance(demo, thesisSegmenter().segment(demo.hand, demo.objects, demo.planOrder),
                           "put back, seed " + std::to_string(seed), kPutBackGraspTol, kFrameTol);
   }
 }
 
 TEST(Segmenter, RejectsBadInput) {
-  const auto demo = synth::SyntheticPickPlaceGenerator(synth::SyntheticPickPlaceConfig{}).generate();
+  const auto demo = motion::SyntheticPickPlaceGenerator(motion::SyntheticPickPlaceConfig{}).generate();
   // A plan object without trajectory.
   EXPECT_THROW(Segmenter().segment(demo.hand, demo.objects, {"cuboid", "banana"}), core::InvalidInputError);
   // Empty and single-sample hand.

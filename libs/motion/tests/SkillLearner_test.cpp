@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "srp/core/Error.h"
-#include "srp/synth/SyntheticPickPlace.h"
+#include "srp/motion/SyntheticPickPlace.h"
 
 namespace srp::motion {
 namespace {
@@ -16,21 +16,21 @@ constexpr double kDmpFollowTol_m = 2e-3;  // the learned DMP follows the smoothe
 constexpr double kGoalTol_m = 1e-3;
 
 struct Learned {
-  synth::SyntheticPickPlace demo;
+  motion::SyntheticPickPlace demo;
   Segmentation seg;
   std::vector<SkillSet> skills;
 };
 
-Learned learnDemo(synth::SyntheticPickPlaceConfig c) {
+Learned learnDemo(motion::SyntheticPickPlaceConfig c) {
   Learned l;
-  l.demo = synth::SyntheticPickPlaceGenerator(std::move(c)).generate();
+  l.demo = motion::SyntheticPickPlaceGenerator(std::move(c)).generate();
   l.seg = Segmenter().segment(l.demo.hand, l.demo.objects, l.demo.planOrder);
   l.skills = SkillLearner().learn(l.seg, l.demo.objects);
   return l;
 }
 
 TEST(SkillLearner, LearnsReachAndMoveWithPrePostPoses) {
-  const Learned l = learnDemo(synth::SyntheticPickPlaceConfig{});
+  const Learned l = learnDemo(motion::SyntheticPickPlaceConfig{});
   ASSERT_EQ(l.skills.size(), 4u);
   int previousRelease = -1;
   for (const auto& s : l.skills) {
@@ -66,7 +66,7 @@ TEST(SkillLearner, LearnsReachAndMoveWithPrePostPoses) {
 }
 
 TEST(SkillLearner, RecordsCarryDmpsThatRollOutIdentically) {
-  const Learned l = learnDemo(synth::SyntheticPickPlaceConfig{});
+  const Learned l = learnDemo(motion::SyntheticPickPlaceConfig{});
   const auto records = skillRecords(l.skills[1]);
   ASSERT_EQ(records.size(), 4u);
   EXPECT_EQ(records[0].skill, core::SkillType::Reach);
@@ -79,10 +79,10 @@ TEST(SkillLearner, RecordsCarryDmpsThatRollOutIdentically) {
 }
 
 TEST(SkillLearner, SkipsObjectsThatNeverMoved) {
-  synth::SyntheticPickPlaceConfig c;
+  motion::SyntheticPickPlaceConfig c;
   c.movedObjects = {"cuboid", "star"};
   c.staticObjects = {"octagon"};
-  auto demo = synth::SyntheticPickPlaceGenerator(c).generate();
+  auto demo = motion::SyntheticPickPlaceGenerator(c).generate();
   const auto seg = Segmenter().segment(demo.hand, demo.objects, {"cuboid", "octagon", "star"});
   const auto skills = SkillLearner().learn(seg, demo.objects);
   ASSERT_EQ(skills.size(), 2u);

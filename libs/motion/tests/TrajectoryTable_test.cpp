@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "srp/core/Error.h"
-#include "srp/synth/SyntheticPickPlace.h"
+#include "srp/motion/SyntheticPickPlace.h"
 
 namespace srp::motion {
 namespace {
@@ -16,7 +16,7 @@ std::string tempPath(const std::string& name) { return std::string(SRP_BINARY_DI
 void writeText(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
 TEST(TrajectoryTable, RoundTripsASyntheticDemoAndSegmentsTheSame) {
-  const auto demo = synth::SyntheticPickPlaceGenerator(synth::SyntheticPickPlaceConfig{}).generate();
+  const auto demo = motion::SyntheticPickPlaceGenerator(motion::SyntheticPickPlaceConfig{}).generate();
   TrajectoryTable table{demo.hand, demo.objects};
   const std::string path = tempPath("roundtrip.csv");
   table.writeCsv(path);

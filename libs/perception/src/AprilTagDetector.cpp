@@ -12,7 +12,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "srp/core/Error.h"
-#include "srp/core/PoseConversions.h"
+#include "srp/interop/PoseConversions.h"
 
 namespace srp::perception {
 
@@ -60,7 +60,7 @@ std::vector<TagDetection> AprilTagDetector::detect(const cv::Mat& image, const c
     // ViSP's tag frame has y up and z out of the tag (towards the camera);
     // AprilTag's, used here: y down as read, z into the tag.
     const Eigen::Matrix3d F = Eigen::Vector3d(1, -1, -1).asDiagonal();
-    t.X_camera_tag = core::fromVisp(cMo[i]);
+    t.X_camera_tag = interop::fromVisp(cMo[i]);
     t.X_camera_tag.linear() = t.X_camera_tag.linear() * F;
     double sq = 0.0;
     for (int c = 0; c < 4; ++c) {

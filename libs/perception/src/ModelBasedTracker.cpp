@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "srp/core/Error.h"
+#include "srp/interop/PoseConversions.h"
 
 namespace srp::perception {
 
@@ -51,24 +52,6 @@ WeldedMesh weldVertices(const kb::TriangleMesh& mesh) {
     out.triangles.push_back(ids);
   }
   return out;
-}
-
-vpHomogeneousMatrix toVisp(const core::Pose3& X) {
-  vpHomogeneousMatrix M;
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) M[r][c] = X.linear()(r, c);
-    M[r][3] = X.translation()(r);
-  }
-  return M;
-}
-
-core::Pose3 fromVisp(const vpHomogeneousMatrix& M) {
-  core::Pose3 X = core::Pose3::Identity();
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) X.linear()(r, c) = M[r][c];
-    X.translation()(r) = M[r][3];
-  }
-  return X;
 }
 
 }  // namespace
@@ -325,8 +308,8 @@ void ModelBasedTracker::initialise(const rawlog::RgbdFrame& frame, const core::P
   m.setImages(frame);
   std::map<std::string, const vpImage<unsigned char>*> images;
   for (const auto& n : m.tracker->getCameraNames()) images[n] = &m.grey;
-  m.tracker->initFromPose(images, std::map<std::string, vpHomogeneousMatrix>{{m.tracker->getCameraNames().front(),
-                                                                              toVisp(X_camera_mesh)}});
+  m.tracker->initFromPose(images, std::map<std::string, vpHomogeneousMatrix>{
+                                      {m.tracker->getCameraNames().front(), interop::toVisp(X_camera_mesh)}});
   m.initialised = true;
 }
 
@@ -411,7 +394,7 @@ ModelBasedTracker::Result ModelBasedTracker::track(const rawlog::RgbdFrame& fram
     m.initialised = false;
     return r;
   }
-  r.X_camera_mesh = fromVisp(m.tracker->getPose());
+  r.X_camera_mesh = interop::fromVisp(m.tracker->getPose());
   r.projectionError_deg = m.tracker->getProjectionError();
   r.kltPoints = m.options.useKlt ? m.tracker->getKltNbPoints() : 0;
   r.depthFeatures = static_cast<int>(m.tracker->getNbFeaturesDepthDense());

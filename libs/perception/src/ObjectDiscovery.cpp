@@ -13,12 +13,18 @@
 #include <set>
 
 #include "srp/core/Error.h"
+#include "srp/perception/CameraModel.h"
+#include "srp/perception/DepthCloud.h"
+#include "srp/perception/PlaneFit.h"
+#include "srp/rawlog/RawlogReader.h"
 
 namespace srp::perception {
 
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+/// A segment whose 99th percentile height comes this close to maxHeight_m was cut by the band: part of something taller.
+constexpr double kBandCut_m = 0.02;
 
 /// One segment in one frame (table frame, metres).
 struct Sighting {
@@ -62,6 +68,9 @@ double overlap(const std::vector<cv::Point2f>& a, const std::vector<cv::Point2f>
   const double uni = cv::contourArea(a) + cv::contourArea(b) - inter;
   return uni > 0.0 ? std::max(0.0, inter) / uni : 0.0;
 }
+
+/// An sRGB value [0, 1] made linear.
+double linearOf(double srgb) { return srgb <= 0.04045 ? srgb / 12.92 : std::pow((srgb + 0.055) / 1.055, 2.4); }
 
 double percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0.0;
@@ -125,6 +134,57 @@ std::optional<Footprint> footprintOf(const std::vector<Eigen::Vector3f>& points)
   return f;
 }
 
+/// A frame at a reduced resolution: each pixel's point in the table frame (q),
+/// whether it has depth (valid), its depth (z).
+struct TableView {
+  cv::Mat q, valid, z;
+};
+
+TableView tableViewOf(const rawlog::RgbdFrame& frame, const core::Pose3& X_table_camera, int s) {
+  const int W = frame.depth_m.cols / s, H = frame.depth_m.rows / s;
+  const auto& k = frame.intrinsics;
+  TableView view{cv::Mat(H, W, CV_32FC3, cv::Scalar::all(0)), cv::Mat(H, W, CV_8UC1, cv::Scalar(0)),
+                 cv::Mat(H, W, CV_32FC1, cv::Scalar(0))};
+  const Eigen::Matrix3f R = X_table_camera.linear().cast<float>();
+  const Eigen::Vector3f t = X_table_camera.translation().cast<float>();
+  for (int v = 0; v < H; ++v)
+    for (int u = 0; u < W; ++u) {
+      const float d = frame.depth_m.at<float>(v * s, u * s);
+      if (!(d > 0.0f) || !std::isfinite(d)) continue;
+      const Eigen::Vector3f p(static_cast<float>((u * s - k.cx_px) * d / k.fx_px),
+                              static_cast<float>((v * s - k.cy_px) * d / k.fy_px), d);
+      const Eigen::Vector3f pt = R * p + t;
+      view.q.at<cv::Vec3f>(v, u) = cv::Vec3f(pt.x(), pt.y(), pt.z());
+      view.z.at<float>(v, u) = d;
+      view.valid.at<uchar>(v, u) = 255;
+    }
+  return view;
+}
+
+/// The pixels of `view` that may belong to something standing on the table:
+/// between minHeight_m and maxHeight_m above it, not in `excluded` (the hand),
+/// not within handRadius_m of `palm`, not beside a depth step.
+cv::Mat candidatesOf(const TableView& view, const ObjectDiscovery::Options& o, const cv::Mat& excluded,
+                     const std::optional<Eigen::Vector3d>& palm) {
+  const cv::Mat &q = view.q, &valid = view.valid, &z = view.z;
+  const int W = q.cols, H = q.rows;
+  cv::Mat candidate(H, W, CV_8UC1, cv::Scalar(0));
+  for (int v = 0; v < H; ++v)
+    for (int u = 0; u < W; ++u) {
+      if (!valid.at<uchar>(v, u) || (!excluded.empty() && excluded.at<uchar>(v, u))) continue;
+      const cv::Vec3f& p = q.at<cv::Vec3f>(v, u);
+      if (p[2] < o.minHeight_m || p[2] > o.maxHeight_m) continue;
+      if (palm && (Eigen::Vector3d(p[0], p[1], p[2]) - *palm).norm() < o.handRadius_m) continue;
+      const float d = z.at<float>(v, u);
+      const float edge = static_cast<float>(o.depthEdge_m) * std::max(1.0f, d);
+      if ((u + 1 < W && valid.at<uchar>(v, u + 1) && std::abs(z.at<float>(v, u + 1) - d) > edge) ||
+          (v + 1 < H && valid.at<uchar>(v + 1, u) && std::abs(z.at<float>(v + 1, u) - d) > edge))
+        continue;
+      candidate.at<uchar>(v, u) = 255;
+    }
+  return candidate;
+}
+
 }  // namespace
 
 struct ObjectDiscovery::Impl {
@@ -140,6 +200,8 @@ struct ObjectDiscovery::Impl {
   const bool debug = core::Log::enabled("discovery", core::Log::Level::Debug);
 
   void findTable(const cv::Mat& q, const cv::Mat& valid);
+  /// A segment's pixels (`q`: table-frame points) stand on the table top and below the band.
+  bool onTableTop(const cv::Mat& q, const std::vector<cv::Point>& px) const;
   void assign(int s, std::vector<Eigen::Vector3f>&& points);
   std::string describe(const Rest& r) const;
   Eigen::Vector3d restCentre3(const Rest& r) const {
@@ -149,6 +211,80 @@ struct ObjectDiscovery::Impl {
   double handDistanceNear(const Rest& r, int frame) const;
   std::vector<Eigen::Vector3f> fused(const Rest& r) const;
 };
+
+std::optional<ObjectDiscovery::Measured> ObjectDiscovery::measureAt(const rawlog::RgbdFrame& frame,
+                                                                    const core::Pose3& X_camera_table,
+                                                                    const Eigen::Vector2d& at_px, const Options& o) {
+  if (o.stride < 1) throw core::InvalidInputError("object discovery options: stride must be >= 1");
+  const TableView view = tableViewOf(frame, X_camera_table.inverse(), o.stride);
+  const cv::Mat candidate = candidatesOf(view, o, cv::Mat(), std::nullopt);
+  cv::Mat labels;
+  cv::connectedComponents(candidate, labels, 4, CV_32S);
+  // The segment at the pixel, else the nearest within 3 sample steps.
+  constexpr int kSearch = 3;
+  const int u0 = static_cast<int>(std::lround(at_px.x() / o.stride)), v0 = static_cast<int>(std::lround(at_px.y() / o.stride));
+  int label = 0, best = std::numeric_limits<int>::max();
+  for (int v = std::max(0, v0 - kSearch); v <= std::min(labels.rows - 1, v0 + kSearch); ++v)
+    for (int u = std::max(0, u0 - kSearch); u <= std::min(labels.cols - 1, u0 + kSearch); ++u) {
+      const int d2 = (u - u0) * (u - u0) + (v - v0) * (v - v0);
+      if (labels.at<int>(v, u) > 0 && d2 < best) best = d2, label = labels.at<int>(v, u);
+    }
+  if (label == 0) return std::nullopt;
+  std::vector<cv::Point> px;
+  std::vector<Eigen::Vector3f> points;
+  for (int v = 0; v < labels.rows; ++v)
+    for (int u = 0; u < labels.cols; ++u)
+      if (labels.at<int>(v, u) == label) {
+        px.emplace_back(u, v);
+        const cv::Vec3f& a = view.q.at<cv::Vec3f>(v, u);
+        points.emplace_back(a[0], a[1], a[2]);
+      }
+  const auto fp = footprintOf(points);
+  if (!fp) return std::nullopt;
+  Measured out;
+  out.X_table_object = fp->X_table_object;
+  out.size_m = fp->size_m;
+  out.footprint_object = fp->hull_object;
+  out.points = static_cast<int>(points.size());
+  if (!frame.colour_bgr8.empty()) {
+    cv::Mat colour;
+    cv::resize(frame.colour_bgr8, colour, labels.size(), 0, 0, cv::INTER_NEAREST);
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const auto& p : px) {
+      const cv::Vec3b c = colour.at<cv::Vec3b>(p);
+      mean += Eigen::Vector3d(c[2], c[1], c[0]) / 255.0;
+    }
+    mean /= static_cast<double>(px.size());
+    for (int c = 0; c < 3; ++c) out.rgb[c] = linearOf(mean[c]);
+    out.colourWord = dominantColourWord(colourShares(px, colour));
+  }
+  return out;
+}
+
+ObjectDiscovery::Measured ObjectDiscovery::measureInRecording(const std::string& rawlogPath, int frame,
+                                                              const Eigen::Vector2d& at_px, const Options& options) {
+  char where[160];
+  std::snprintf(where, sizeof(where), "pixel (%.0f, %.0f) of frame %d of ", at_px.x(), at_px.y(), frame);
+  const std::string here = where + rawlogPath;
+  if (frame < 0) throw core::InvalidInputError("frame " + std::to_string(frame) + ": frames are counted from 0");
+  rawlog::RawlogReader reader(rawlogPath, 0);
+  std::optional<rawlog::RgbdFrame> f;
+  for (int i = 0; i <= frame; ++i)
+    if (!(f = reader.next()))
+      throw core::InvalidInputError(rawlogPath + " has " + std::to_string(i) + " RGB-D frames: give a frame below " +
+                                    std::to_string(i));
+  const auto& k = f->intrinsics;
+  if (at_px.x() < 0 || at_px.y() < 0 || at_px.x() > k.width_px - 1 || at_px.y() > k.height_px - 1)
+    throw core::InvalidInputError(here + ": outside the " + std::to_string(k.width_px) + " x " +
+                                  std::to_string(k.height_px) + " image");
+  const auto plane = fitSupportPlane(depthToCloud(f->depth_m, CameraModel(k)));
+  if (!plane) throw core::InvalidInputError(here + ": no table plane is seen in that frame; give a frame that shows the table");
+  const auto m = measureAt(*f, plane->X_camera_plane(), at_px, options);
+  if (!m)
+    throw core::InvalidInputError(here + ": nothing stands on the table there (the table top, the background or no "
+                                  "depth); give a pixel on the object (srp replay --export shows the frames)");
+  return *m;
+}
 
 ObjectDiscovery::ObjectDiscovery(std::vector<UnknownObject> objects) : ObjectDiscovery(std::move(objects), Options{}) {}
 
@@ -182,6 +318,19 @@ void ObjectDiscovery::Impl::findTable(const cv::Mat& q, const cv::Mat& valid) {
   cv::convexHull(feet, table);
 }
 
+bool ObjectDiscovery::Impl::onTableTop(const cv::Mat& q, const std::vector<cv::Point>& px) const {
+  int inside = 0;
+  std::vector<double> heights;
+  heights.reserve(px.size());
+  for (const auto& p : px) {
+    const cv::Vec3f& a = q.at<cv::Vec3f>(p);
+    heights.push_back(a[2]);
+    if (cv::pointPolygonTest(table, cv::Point2f(a[0], a[1]), true) >= -o.tableMargin_m) ++inside;
+  }
+  return inside >= o.minInsideShare * static_cast<double>(px.size()) &&
+         percentile(heights, 0.99) <= o.maxHeight_m - kBandCut_m;
+}
+
 void ObjectDiscovery::add(const rawlog::RgbdFrame& frame, const core::Pose3& X_camera_table,
                           const std::optional<Eigen::Vector3d>& p_camera_palm, const cv::Mat& handMask) {
   Impl& m = *impl_;
@@ -194,23 +343,9 @@ void ObjectDiscovery::add(const rawlog::RgbdFrame& frame, const core::Pose3& X_c
   m.palm.push_back(p_camera_palm ? std::optional<Eigen::Vector3d>(X_table_camera * *p_camera_palm) : std::nullopt);
 
   // The frame at the reduced resolution: points in the table frame.
-  const int s = o.stride;
-  const int W = frame.depth_m.cols / s, H = frame.depth_m.rows / s;
-  const auto& k = frame.intrinsics;
-  cv::Mat q(H, W, CV_32FC3, cv::Scalar::all(0)), valid(H, W, CV_8UC1, cv::Scalar(0)), z(H, W, CV_32FC1, cv::Scalar(0));
-  const Eigen::Matrix3f R = X_table_camera.linear().cast<float>();
-  const Eigen::Vector3f t = X_table_camera.translation().cast<float>();
-  for (int v = 0; v < H; ++v)
-    for (int u = 0; u < W; ++u) {
-      const float d = frame.depth_m.at<float>(v * s, u * s);
-      if (!(d > 0.0f) || !std::isfinite(d)) continue;
-      const Eigen::Vector3f p(static_cast<float>((u * s - k.cx_px) * d / k.fx_px),
-                              static_cast<float>((v * s - k.cy_px) * d / k.fy_px), d);
-      const Eigen::Vector3f pt = R * p + t;
-      q.at<cv::Vec3f>(v, u) = cv::Vec3f(pt.x(), pt.y(), pt.z());
-      z.at<float>(v, u) = d;
-      valid.at<uchar>(v, u) = 255;
-    }
+  const TableView view = tableViewOf(frame, X_table_camera, o.stride);
+  const cv::Mat &q = view.q, &valid = view.valid;
+  const int W = q.cols, H = q.rows;
   if (m.table.empty()) m.findTable(q, valid);
   if (m.table.size() < 3) return;  // no table top seen yet
 
@@ -222,28 +357,39 @@ void ObjectDiscovery::add(const rawlog::RgbdFrame& frame, const core::Pose3& X_c
       cv::dilate(hand, hand, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * o.handMaskGrow_px + 1, 2 * o.handMaskGrow_px + 1)));
   }
   const std::optional<Eigen::Vector3d>& palm = m.palm.back();
-  cv::Mat candidate(H, W, CV_8UC1, cv::Scalar(0));
-  for (int v = 0; v < H; ++v)
-    for (int u = 0; u < W; ++u) {
-      if (!valid.at<uchar>(v, u) || hand.at<uchar>(v, u)) continue;
-      const cv::Vec3f& p = q.at<cv::Vec3f>(v, u);
-      if (p[2] < o.minHeight_m || p[2] > o.maxHeight_m) continue;
-      if (handMask.empty() && palm && (Eigen::Vector3d(p[0], p[1], p[2]) - *palm).norm() < o.handRadius_m) continue;
-      const float d = z.at<float>(v, u);
-      const float edge = static_cast<float>(o.depthEdge_m) * std::max(1.0f, d);
-      if ((u + 1 < W && valid.at<uchar>(v, u + 1) && std::abs(z.at<float>(v, u + 1) - d) > edge) ||
-          (v + 1 < H && valid.at<uchar>(v + 1, u) && std::abs(z.at<float>(v + 1, u) - d) > edge))
-        continue;
-      candidate.at<uchar>(v, u) = 255;
-    }
+  cv::Mat candidate = candidatesOf(view, o, hand, handMask.empty() ? palm : std::nullopt);
   cv::Mat labels, stats, centroids;
-  const int n = cv::connectedComponentsWithStats(candidate, labels, stats, centroids, 4, CV_32S);
-  std::vector<std::vector<cv::Point>> pixels(static_cast<std::size_t>(n));
-  for (int v = 0; v < H; ++v)
-    for (int u = 0; u < W; ++u) {
-      const int l = labels.at<int>(v, u);
-      if (l > 0 && stats.at<int>(l, cv::CC_STAT_AREA) >= o.minPixels) pixels[static_cast<std::size_t>(l)].emplace_back(u, v);
+  int n = 0;
+  std::vector<std::vector<cv::Point>> pixels;
+  const auto label = [&]() {
+    n = cv::connectedComponentsWithStats(candidate, labels, stats, centroids, 4, CV_32S);
+    pixels.assign(static_cast<std::size_t>(n), {});
+    for (int v = 0; v < H; ++v)
+      for (int u = 0; u < W; ++u) {
+        const int l = labels.at<int>(v, u);
+        if (l > 0 && stats.at<int>(l, cv::CC_STAT_AREA) >= o.minPixels) pixels[static_cast<std::size_t>(l)].emplace_back(u, v);
+      }
+  };
+  label();
+  // A segment that reaches off the table top or up to a person, with the palm
+  // on it, is a part held by an arm the hand mask did not cover: the arm (its
+  // points higher than the palm) is cut off and the rest segmented again.
+  if (palm) {
+    bool cut = false;
+    for (int l = 1; l < n; ++l) {
+      const auto& px = pixels[static_cast<std::size_t>(l)];
+      if (px.empty() || m.onTableTop(q, px)) continue;
+      double nearest = kInf;
+      for (const auto& p : px) {
+        const cv::Vec3f& a = q.at<cv::Vec3f>(p);
+        nearest = std::min(nearest, (Eigen::Vector3d(a[0], a[1], a[2]) - *palm).norm());
+      }
+      if (nearest > o.handRadius_m) continue;
+      for (const auto& p : px)
+        if (q.at<cv::Vec3f>(p)[2] > palm->z() + o.armAbovePalm_m) candidate.at<uchar>(p) = 0, cut = true;
     }
+    if (cut) label();
+  }
   cv::Mat colour;
   if (!frame.colour_bgr8.empty()) cv::resize(frame.colour_bgr8, colour, cv::Size(W, H), 0, 0, cv::INTER_NEAREST);
   cv::Mat trace;  // SRP_DISCOVERY_TRACE=<folder>: each frame's segments drawn (for tuning on a new recording)
@@ -261,12 +407,11 @@ void ObjectDiscovery::add(const rawlog::RgbdFrame& frame, const core::Pose3& X_c
   }
   for (int l = 1; l < n; ++l) {
     const auto& px = pixels[static_cast<std::size_t>(l)];
-    if (px.empty()) continue;
+    if (px.empty() || !m.onTableTop(q, px)) continue;  // off the table top, or part of something taller
     std::vector<cv::Point2f> feet;
     std::vector<double> heights;
     std::vector<Eigen::Vector3f> points;
     feet.reserve(px.size());
-    int inside = 0;
     Sighting sg;
     sg.frame = index;
     sg.pixels = static_cast<int>(px.size());
@@ -276,15 +421,12 @@ void ObjectDiscovery::add(const rawlog::RgbdFrame& frame, const core::Pose3& X_c
       heights.push_back(a[2]);
       points.emplace_back(a[0], a[1], a[2]);
       sg.centre += Eigen::Vector2d(a[0], a[1]);
-      if (cv::pointPolygonTest(m.table, feet.back(), true) >= -o.tableMargin_m) ++inside;
       if (palm) sg.handDistance_m = std::min(sg.handDistance_m, (Eigen::Vector3d(a[0], a[1], a[2]) - *palm).norm());
       if (!colour.empty()) {
         const cv::Vec3b c = colour.at<cv::Vec3b>(p);
         sg.meanBgr += Eigen::Vector3d(c[0], c[1], c[2]) / 255.0;
       }
     }
-    if (inside < o.minInsideShare * static_cast<double>(px.size())) continue;  // not on the table top
-    if (percentile(heights, 0.99) > o.maxHeight_m - 0.02) continue;           // cut by the band: something taller
     sg.centre /= static_cast<double>(px.size());
     sg.meanBgr /= static_cast<double>(px.size());
     cv::convexHull(feet, sg.hull);
@@ -579,12 +721,15 @@ ObjectDiscovery::Result ObjectDiscovery::finish(const std::vector<ObjectTrajecto
         area2 += a.x() * b.y() - b.x() * a.y();
       }
       cls.mass_kg = std::max(0.01, 0.5 * std::abs(area2) * fp->size_m.z() * o.partDensity_kg_m3);
-      // A's place: the model's; B's: the median of its sightings, its bottom below its top by the model's height.
+      // A's place: the model's; B's: the median of its sightings' footprint
+      // centres (not of their points, which lean towards the camera: the far
+      // side is not seen), its bottom below its top by the model's height.
       std::vector<double> bx, by, btop;
       for (int s : B.sightings) {
         const Sighting& sb = m.sightings[static_cast<std::size_t>(s)];
-        bx.push_back(sb.centre.x());
-        by.push_back(sb.centre.y());
+        const cv::Point2f c = cv::minAreaRect(sb.hull).center;
+        bx.push_back(c.x);
+        by.push_back(c.y);
         btop.push_back(sb.top_m);
       }
       core::Pose3 atB = fp->X_table_object;
@@ -725,7 +870,7 @@ ObjectDiscovery::Result ObjectDiscovery::finish(const std::vector<ObjectTrajecto
                                                             : dominantColourWord(anchor.colours, o.minColourShare);
     for (int c = 0; c < 3; ++c) {
       const double srgb = anchor.meanBgr[2 - c];
-      cls.rgb[c] = srgb <= 0.04045 ? srgb / 12.92 : std::pow((srgb + 0.055) / 1.055, 2.4);
+      cls.rgb[c] = linearOf(srgb);
     }
     cls.graspAxis_object = Eigen::Vector3d::UnitY();
     // One sample per frame: a frame without a pose carries the last one (before the first: the first).

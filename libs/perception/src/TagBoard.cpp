@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "srp/core/Error.h"
-#include "srp/core/PoseConversions.h"
+#include "srp/interop/PoseConversions.h"
 
 namespace srp::perception {
 
@@ -70,11 +70,11 @@ std::optional<BoardPose> estimateBoardPose(const std::vector<TagDetection>& tags
   const double scaleBest = layout.tagSize_m / (2.0 * best->corners_tag_m[0].head<2>().cwiseAbs().maxCoeff());
   core::Pose3 X_camera_tag = best->X_camera_tag;
   X_camera_tag.translation() *= scaleBest;
-  vpHomogeneousMatrix cMo = core::toVisp(X_camera_tag * layout.X_board_tag.at(best->id).inverse());
+  vpHomogeneousMatrix cMo = interop::toVisp(X_camera_tag * layout.X_board_tag.at(best->id).inverse());
   pose.computePose(vpPose::VIRTUAL_VS, cMo);
 
   BoardPose out;
-  out.X_camera_board = core::fromVisp(cMo);
+  out.X_camera_board = interop::fromVisp(cMo);
   out.tagsUsed = used;
   double sq = 0.0;
   for (const Obs& o : obs) {

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "RenderedDemo.h"
-#include "srp/perception/DemoPerception.h"
+#include "srp/perception/RawlogPerception.h"
 
 namespace srp::perception {
 namespace {

@@ -1,6 +1,6 @@
-#include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/DemoPerception.h"
-#include "srp/perception/PreviewRawlog.h"
+#include "srp/kb/KnowledgeBase.h"
+#include "srp/perception/RawlogPerception.h"
 
 #include <gtest/gtest.h>
 
@@ -129,7 +129,14 @@ TEST(DemoPerception, RawlogPerceivedGivesTheResultOfItsFrames) {
     rawlog::RawlogWriter writer(rawlogPath);
     for (const auto& f : testing::handFrames(20, 10)) writer.write(f);
   }
-  const PerceptionResult fromFile = perceiveRawlog(rawlogPath, catalogue(), markerFreeOptions());
+  std::vector<int> hooked;  // the per-frame hook sees every perceived frame once, in order
+  const PerceptionResult fromFile =
+      perceiveRawlog(rawlogPath, catalogue(), markerFreeOptions(), {}, [&](const rawlog::RgbdFrame& f, int i) {
+        EXPECT_FALSE(f.depth_m.empty()) << "frame " << i;
+        hooked.push_back(i);
+      });
+  ASSERT_EQ(hooked.size(), 20u);
+  for (std::size_t i = 0; i < hooked.size(); ++i) EXPECT_EQ(hooked[i], static_cast<int>(i));
   const PerceptionResult fromFrames =
       perceiveFrames(rawlog::RawlogReader::readAll(rawlogPath), catalogue(), markerFreeOptions());
   ASSERT_EQ(fromFile.hand.size(), fromFrames.hand.size());

@@ -12,7 +12,7 @@
 
 #include "srp/core/Error.h"
 #include "srp/kb/KnowledgeBase.h"
-#include "srp/perception/DemoPerception.h"
+#include "srp/perception/RawlogPerception.h"
 #include "srp/synth/DemoGenerator.h"
 #include "srp/synth/DuplicatePartsDemo.h"
 

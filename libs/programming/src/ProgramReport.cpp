@@ -9,11 +9,12 @@
 #include <sstream>
 
 #include "srp/core/Error.h"
-#include "srp/core/SafeText.h"
 #include "srp/core/OutputFile.h"
+#include "srp/core/SafeText.h"
 #include "srp/motion/SkillPlots.h"
 #include "srp/perception/PerceptionDrawing.h"
 #include "srp/plot/Figure.h"
+#include "srp/programming/ProgrammingStages.h"
 #include "srp/rawlog/RawlogReader.h"
 
 #include <opencv2/imgcodecs.hpp>

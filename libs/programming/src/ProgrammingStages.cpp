@@ -11,7 +11,7 @@
 #include "srp/execution/SceneGrounder.h"
 #include "srp/language/InstructionParser.h"
 #include "srp/language/PlanTables.h"
-#include "srp/perception/PreviewRawlog.h"
+#include "srp/perception/RawlogPerception.h"
 #include "srp/programming/MotionRows.h"
 #include "srp/programming/PerceptionRows.h"
 #include "srp/rawlog/RawlogReader.h"
@@ -465,6 +465,17 @@ taskdb::TaskModel buildTaskModel(const GroundedPlan& grounded, const Programming
   model.skills = skillRows(skills, inputs);
   setSkillFlags(model.productPoses, skills, inputs);
   return model;
+}
+
+double frameRateOf(const core::PositionTrajectory& samples) {
+  std::vector<double> dt;
+  for (std::size_t i = 1; i < samples.size(); ++i)
+    if (samples[i].frame > samples[i - 1].frame)
+      dt.push_back((samples[i].t_s - samples[i - 1].t_s) / (samples[i].frame - samples[i - 1].frame));
+  if (dt.empty()) return 30.0;
+  std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
+  const double median = dt[dt.size() / 2];
+  return median > 0.0 ? 1.0 / median : 30.0;
 }
 
 }  // namespace srp::programming

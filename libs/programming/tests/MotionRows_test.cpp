@@ -8,7 +8,7 @@
 
 #include "srp/core/Error.h"
 #include "srp/motion/SkillLearner.h"
-#include "srp/synth/SyntheticPickPlace.h"
+#include "srp/motion/SyntheticPickPlace.h"
 #include "srp/taskdb/ProductPoseDao.h"
 #include "srp/taskdb/TaskModelStore.h"
 
@@ -24,7 +24,7 @@ void removeDb(const std::string& path) {
 }
 
 TEST(MotionRows, StoredDemoSegmentsLearnsAndStoresSkillsThatRollOutIdentically) {
-  const auto demo = synth::SyntheticPickPlaceGenerator(synth::SyntheticPickPlaceConfig{}).generate();
+  const auto demo = motion::SyntheticPickPlaceGenerator(motion::SyntheticPickPlaceConfig{}).generate();
   const std::string path = tempPath("mapping.db");
   removeDb(path);
   auto db = taskdb::TaskDatabase::open(path);
@@ -72,7 +72,7 @@ TEST(MotionRows, StoredDemoSegmentsLearnsAndStoresSkillsThatRollOutIdentically) 
 }
 
 TEST(MotionRows, PlanObjectWithoutPosesIsAnErrorAndNothingIsStored) {
-  const auto demo = synth::SyntheticPickPlaceGenerator(synth::SyntheticPickPlaceConfig{}).generate();
+  const auto demo = motion::SyntheticPickPlaceGenerator(motion::SyntheticPickPlaceConfig{}).generate();
   taskdb::TaskModel model = taskModelFromTracks(demo, "broken", demo.instruction());
   // The star has no ProductPose rows.
   std::vector<taskdb::ProductPoseRow> kept;
@@ -92,7 +92,7 @@ TEST(MotionRows, PlanObjectWithoutPosesIsAnErrorAndNothingIsStored) {
 TEST(MotionRows, SrpMotionCommandStoresSkillsAndWritesPlots) {
   const std::string srp = std::string(SRP_BINARY_DIR) + "/apps/srp";
   if (!std::filesystem::exists(srp)) FAIL() << srp << " missing: build the srp target (make build) before this test";
-  const auto demo = synth::SyntheticPickPlaceGenerator(synth::SyntheticPickPlaceConfig{}).generate();
+  const auto demo = motion::SyntheticPickPlaceGenerator(motion::SyntheticPickPlaceConfig{}).generate();
   const std::string path = tempPath("cmd.db"), outDir = tempPath("cmd_plots");
   removeDb(path);
   std::filesystem::remove_all(outDir);

@@ -12,7 +12,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "srp/core/Error.h"
-#include "srp/core/PoseConversions.h"
+#include "srp/interop/PoseConversions.h"
 
 namespace srp::synth {
 namespace {
@@ -129,7 +129,7 @@ int SceneRenderer::addBody(const std::string& name, const srp::kb::TriangleMesh&
 }
 
 void SceneRenderer::setBodyPose(int body, const srp::core::Pose3& X_world_body) {
-  impl_->bodies.at(body)->setPose(srp::core::toMrpt(X_world_body));
+  impl_->bodies.at(body)->setPose(srp::interop::toMrpt(X_world_body));
 }
 
 void SceneRenderer::setBodyVisible(int body, bool visible) { impl_->bodies.at(body)->setVisibility(visible); }
@@ -154,7 +154,7 @@ void SceneRenderer::setBackground(const Eigen::Vector3d& rgb) {
 
 srp::rawlog::RgbdFrame SceneRenderer::render(const srp::core::Pose3& X_world_camera) {
   impl_->makeCurrent();
-  impl_->fbo->getCamera(impl_->scene).setPose(srp::core::toMrpt(X_world_camera));
+  impl_->fbo->getCamera(impl_->scene).setPose(srp::interop::toMrpt(X_world_camera));
   impl_->fbo->render_RGBD(impl_->scene, impl_->rgb, impl_->depth);
   srp::rawlog::RgbdFrame frame;
   frame.intrinsics = K_;

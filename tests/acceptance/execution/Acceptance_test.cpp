@@ -2,16 +2,16 @@
 // default scene, the adaptations, and 50 seeded randomised scenes. Prints the figures.
 #include <gtest/gtest.h>
 
-#include "srp/execution/MinimumJerkPathGenerator.h"
 #include "srp/execution/DmpPathGenerator.h"
-#include "srp/execution/RandomScene.h"
-#include "srp/motion/SkillLearner.h"
-#include "srp/programming/MotionRows.h"
-#include "srp/synth/SyntheticPickPlace.h"
-#include "srp/execution/TaskExecutor.h"
 #include "srp/execution/ExecutionSession.h"
+#include "srp/execution/MinimumJerkPathGenerator.h"
 #include "srp/execution/PlanConversion.h"
+#include "srp/execution/RandomScene.h"
+#include "srp/execution/TaskExecutor.h"
 #include "srp/language/InstructionParser.h"
+#include "srp/motion/SkillLearner.h"
+#include "srp/motion/SyntheticPickPlace.h"
+#include "srp/programming/MotionRows.h"
 
 using namespace srp::execution;
 
@@ -231,7 +231,7 @@ TEST(Acceptance, FiftySeededRandomScenes) {
 // The same 50 scenes with DMP paths: skills learned from a synthetic 4-object demo
 // (Segmenter + SkillLearner, Skills rows as `srp motion` stores them).
 TEST(Acceptance, FiftySeededRandomScenesWithLearnedDmps) {
-  const auto demo = srp::synth::SyntheticPickPlaceGenerator(srp::synth::SyntheticPickPlaceConfig{}).generate();
+  const auto demo = srp::motion::SyntheticPickPlaceGenerator(srp::motion::SyntheticPickPlaceConfig{}).generate();
   srp::taskdb::TaskModel model = srp::programming::taskModelFromTracks(demo, "synthetic", demo.instruction());
   srp::programming::learnSkills(model);
   const srp::core::Scene scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");

@@ -24,11 +24,10 @@
 namespace srp {
 namespace {
 
-constexpr int kEventTol_frames = 4;     // as OwnRecording_test (the issue's goal is 2)
-// The issue asks >= 90 % of the perturbed cases; 29/42 succeed (see the
-// programming README: 5 discovery failures, 8 toys whose track never leaves
-// its rest). This floor guards what holds.
-constexpr double kMinSuccessRate = 0.5;
+constexpr int kEventTol_frames = 2;  // as OwnRecording_test (issue 30: within 2 frames at 10 Hz)
+// Issue 30: >= 90 % of the perturbed cases succeed (39/42 measured, see the
+// programming README).
+constexpr double kMinSuccessRate = 0.9;
 
 struct Outcome {
   bool ok = false;
@@ -86,6 +85,7 @@ TEST(OwnRecording, Hrt1UnderPerturbations) {
   std::filesystem::create_directories(dir);
   int cases = 0, ok = 0;
   for (const std::string task : {"task2", "task3"}) {
+    if (const char* only = std::getenv("SRP_OWN_TASK"); only && task != only) continue;  // one recording, to look at
     const perception::testing::Hrt1Task original = perception::testing::loadHrt1(task);
     for (const auto& p : perception::testing::hrt1Perturbations()) {
       if (const char* only = std::getenv("SRP_OWN_PERTURBATION"); only && p.name != only) continue;  // one case, to look at

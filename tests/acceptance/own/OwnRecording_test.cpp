@@ -23,7 +23,7 @@
 #include "srp/core/Json.h"
 #include "srp/execution/ExecutionSession.h"
 #include "srp/kb/KnowledgeBase.h"
-#include "srp/perception/DemoPerception.h"
+#include "srp/perception/RawlogPerception.h"
 #include "srp/programming/ProgrammingPipeline.h"
 #include "srp/taskdb/TaskDatabase.h"
 #include "srp/taskdb/TaskModelStore.h"

@@ -20,7 +20,7 @@
 #include "srp/calib/RgbdImporter.h"
 #include "srp/core/ObjectCatalogue.h"
 #include "srp/kb/KnowledgeBase.h"
-#include "srp/perception/DemoPerception.h"
+#include "srp/perception/RawlogPerception.h"
 
 namespace srp::perception {
 namespace {

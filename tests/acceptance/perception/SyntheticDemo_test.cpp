@@ -11,7 +11,7 @@
 
 #include "HandEvaluation.h"
 #include "RenderedDemo.h"
-#include "srp/perception/DemoPerception.h"
+#include "srp/perception/RawlogPerception.h"
 
 namespace srp::perception {
 namespace {

@@ -12,7 +12,7 @@
 #include "RenderedDemo.h"
 #include "srp/calib/RgbdImporter.h"
 #include "srp/core/Json.h"
-#include "srp/perception/DemoPerception.h"
+#include "srp/perception/RawlogPerception.h"
 
 namespace srp::perception {
 namespace {

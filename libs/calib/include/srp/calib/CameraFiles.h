@@ -49,14 +49,6 @@ CameraFileFormat cameraFileFormatFromName(const std::string& name);
 /// camera.xml, camera_info.yaml, camera_opencv.yaml.
 std::string defaultCameraFileName(CameraFileFormat format);
 
-/// The ROS `camera_info` YAML text of `camera` (yaml-cpp): image size, camera
-/// name, K, D (plumb_bob, [kud, 0, 0, 0, 0]), R = identity and the rectified
-/// projection P = [K' | 0] with K' = cv::getOptimalNewCameraMatrix(K, D, size,
-/// alpha 0), as ROS' camera_calibration computes it for a monocular camera
-/// (K' = K without distortion).
-/// Doubles with 17 significant digits.
-std::string cameraInfoYaml(const CameraCalibration& camera);
-
 /// Writes `camera` to `path` (atomically) in `format`. `comment` goes into the
 /// ViSP XML and as a YAML comment; `rms_px` (when positive) is stored as the
 /// OpenCV file's avg_reprojection_error. Throws FileError when it cannot.

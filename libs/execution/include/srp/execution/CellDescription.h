@@ -78,6 +78,13 @@ struct CellDescription {
   /// floor and four walls.
   std::vector<WorldBox> staticBoxes() const;
 
+  /// The tcp height [m, world z] at which a Move crosses between places: the top
+  /// of the highest container wall (its boxes' highest corner) + the tallest part
+  /// (a part is held at its top) + `clearance_m`, so that any part carried clears
+  /// any wall by `clearance_m`; 0 when the cell has no container.
+  double carryHeight_m(double clearance_m = kCarriedAboveWalls_m) const;
+  static constexpr double kCarriedAboveWalls_m = 0.02;
+
   /// Floor and walls of one container, in its own object frame (centre pose, half extents).
   static std::vector<WorldBox> containerBoxes(const CellObject& container);
 

@@ -33,17 +33,9 @@
 #include "srp/execution/CellDescription.h"
 #include "srp/execution/ExecutionPlan.h"
 #include "srp/execution/PlacementPlanner.h"
+#include "srp/execution/PlannedPlacement.h"
 
 namespace srp::execution {
-
-/// Where one step of a plan puts its part, or why it does not.
-struct PlannedPlacement {
-  std::string part;     ///< instance id of the step's part; "" when it could not be grounded
-  Placement placement;  ///< the pose (and landmarks), or the reason
-  /// No joint plan could place the step (or every place for it would block more later
-  /// steps): refused before anything moves. False for a part that is not in the scene.
-  bool refused = false;
-};
 
 class JointPlacementPlanner {
  public:
@@ -65,9 +57,6 @@ class JointPlacementPlanner {
   /// runs (the steps' parts are grounded there, a later step's in the scene the earlier
   /// planned placements leave).
   std::vector<PlannedPlacement> plan(const CellDescription& scene, const ExecutionPlan& plan) const;
-
-  /// The scene after `steps` with every planned part at its planned pose.
-  static CellDescription sceneAfter(const CellDescription& scene, const std::vector<PlannedPlacement>& steps);
 
   const PlacementPlanner& planner() const { return planner_; }
   const Options& options() const { return options_; }

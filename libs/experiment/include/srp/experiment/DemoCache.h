@@ -6,6 +6,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "srp/core/ObjectCatalogue.h"
+#include "srp/core/Scene.h"
+
 namespace srp::experiment {
 
 /**
@@ -14,7 +17,7 @@ namespace srp::experiment {
  */
 struct DemoRequest
 {
-  std::filesystem::path scenePath;  ///< scene JSON; empty: <simDir>/scenes/default.json
+  std::filesystem::path scenePath;  ///< scene JSON; empty: the default scene (defaultScenePathIn(simDir))
   /// Plan in the `srp parse --json` step format (may carry "instruction");
   /// null: instruction 1 of the thesis (srp::synth::defaultPlanJson()).
   nlohmann::json plan;
@@ -34,6 +37,9 @@ struct CachedDemo
   int frameCount = 0;
   bool renderedNow = false;               ///< false: found in the cache
   double renderTime_s = 0.0;              ///< wall time of the rendering (0 when cached)
+  std::string key;                        ///< the request's cache key (DemoCache::keyOf)
+  core::Scene scene;                      ///< the scene the demo shows, from the read the key was made of
+  core::ObjectCatalogue catalogue;        ///< its catalogue (kb::loadCatalogue)
 };
 
 /// A cached demo programmed by `srp::programming::programTask` (as `srp
@@ -70,7 +76,8 @@ public:
   /// repo's sim/ (default scene); empty: `sim/` of srp's data folder (core::DataPaths).
   explicit DemoCache(std::filesystem::path rootDir, std::filesystem::path simDir = {});
 
-  /// The demo of `request`, rendered now if not cached. `progress(frame, frames)`
+  /// The demo of `request`, rendered now if not cached, with its key, scene and
+  /// catalogue (the scene file is read once). `progress(frame, frames)`
   /// is called while rendering. Throws FileError naming a missing scene or
   /// catalogue, InvalidInputError for a plan the scene cannot carry out.
   CachedDemo get(const DemoRequest& request, const std::function<void(int, int)>& progress = {}) const;
@@ -97,6 +104,11 @@ private:
 };
 
 struct ExperimentOptions;
+
+/// The default scene of a run: `<simDir>/scenes/default.json`; an empty
+/// `simDir`: core::defaultScenePath() (sim/ of srp's data folder). The one
+/// place the experiments resolve it (demo cache, studies, execution).
+std::filesystem::path defaultScenePathIn(const std::filesystem::path& simDir);
 
 /// Image size of the shared demos (the scene camera's intrinsics scaled).
 constexpr int kStandardWidth_px = 320;

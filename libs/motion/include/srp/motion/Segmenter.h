@@ -178,7 +178,7 @@ class Segmenter {
     bool robust = true;
     double handOutlierSigmas = 4.0;   ///< hand detection dropped beyond this many robust sigmas of its neighbours' interpolation
     double handOutlierMin_m = 0.015;  ///< ... and beyond this distance
-    int objectMedianHalfWindow = 15;  ///< running median of the object's detections, +-samples
+    int objectMedianHalfWindow = 15;  ///< running median of the object's detections, +-samples (at most the rest window - 1)
     int restMedianSamples = 30;       ///< initial/final position = median of the first/last this many detections
     double restTolerance_m = 0.025;   ///< a detection this close to the final position is in the final rest
     double carriedInRest = 0.05;      ///< release change point: P(detection in the final rest) while carried

@@ -94,6 +94,7 @@ class ObjectDiscovery {
     double minInsideShare = 0.8;      ///< of a segment's feet on the table top
     double handRadius_m = 0.12;       ///< points this close to the palm are the hand
     int handMaskGrow_px = 2;          ///< the hand mask grown by this (reduced resolution)
+    double armAbovePalm_m = 0.02;     ///< a held part's segment is cut this far above the palm (the arm)
     double minRestOverlap = 0.5;      ///< footprints overlapping this much (IoU) are one place
     double restRadius_m = 0.05;
     double restTopTol_m = 0.05;
@@ -124,6 +125,32 @@ class ObjectDiscovery {
     std::vector<ObjectTrajectory> trajectories;
     std::vector<std::string> notes;
   };
+
+  /// What stands on the table at one pixel of one frame, measured (`srp kb
+  /// add --from-demo`): the segment (as add() cuts them, without a hand) that
+  /// holds pixel `at_px` or lies within 3 sample steps of it; in the table
+  /// frame its footprint frame (x along the longer side, origin at the bottom
+  /// centre), size (long, short, 95th percentile height), footprint hull, and
+  /// its pixels' mean colour (linear RGB) and dominant colour word.
+  struct Measured {
+    core::Pose3 X_table_object = core::Pose3::Identity();
+    Eigen::Vector3d size_m = Eigen::Vector3d::Zero();
+    std::vector<Eigen::Vector2d> footprint_object;
+    Eigen::Vector3d rgb = Eigen::Vector3d::Zero();
+    std::string colourWord;
+    int points = 0;
+  };
+  /// nullopt when no segment is at or near `at_px` (the table, the background, a hole).
+  static std::optional<Measured> measureAt(const rawlog::RgbdFrame& frame, const core::Pose3& X_camera_table,
+                                           const Eigen::Vector2d& at_px, const Options& options);
+
+  /// measureAt() in frame `frame` (counted from 0) of a rawlog, in the table
+  /// frame of that frame's support plane (fitSupportPlane). Throws
+  /// InvalidInputError naming the recording, the frame and the pixel when the
+  /// recording is shorter, the pixel outside the image, no table plane is
+  /// seen, or nothing stands on the table there.
+  static Measured measureInRecording(const std::string& rawlogPath, int frame, const Eigen::Vector2d& at_px,
+                                     const Options& options);
 
   ObjectDiscovery(std::vector<UnknownObject> objects, const Options& options);
   explicit ObjectDiscovery(std::vector<UnknownObject> objects);

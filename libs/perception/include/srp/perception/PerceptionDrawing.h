@@ -6,7 +6,7 @@
 /// frames with captions (`srp program --report`, `srp perceive --draw`).
 ///
 /// \code
-///   const srp::perception::PerceptionResult seen = perceiveRawlog(path, kb, options);
+///   const srp::perception::PerceptionResult seen = perceiveRawlog(path, kb, options);  // RawlogPerception.h
 ///   const srp::perception::PerceptionDrawing drawing(seen, kb);
 ///   srp::rawlog::RawlogReader reader(path);
 ///   while (auto f = reader.next()) {

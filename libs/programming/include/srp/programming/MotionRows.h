@@ -75,7 +75,7 @@ void setSkillFlags(std::vector<taskdb::ProductPoseRow>& rows, const std::vector<
 void storeSkills(taskdb::TaskDatabase& db, int taskModelId, const std::vector<motion::SkillSet>& skills,
                  const MotionInputs& inputs);
 
-/// A task model holding a demo's tracks (e.g. synth::SyntheticPickPlace): one
+/// A task model holding a demo's tracks (e.g. motion::SyntheticPickPlace): one
 /// Product and GroundedProduct per track (ObjectId = ClassId = index), the
 /// plan order as the plan, the tracks' poses (yaw about the camera z axis) and
 /// the hand positions (invalid samples stored with Detected = false), frame

@@ -10,7 +10,8 @@
 #include "srp/motion/Segmenter.h"
 #include "srp/motion/SkillSet.h"
 #include "srp/perception/DemoPerception.h"
-#include "srp/programming/ProgrammingPipeline.h"
+#include "srp/programming/ProgramResult.h"
+#include "srp/programming/ProgrammingOptions.h"
 #include "srp/taskdb/Rows.h"
 
 namespace srp::programming {

@@ -25,12 +25,13 @@
 #include <vector>
 
 #include "srp/core/ObjectCatalogue.h"
+#include "srp/core/PositionTrajectory.h"
 #include "srp/core/Scene.h"
 #include "srp/execution/CellDescription.h"
 #include "srp/language/TaskPlan.h"
 #include "srp/motion/LearnSkills.h"
 #include "srp/perception/DemoPerception.h"
-#include "srp/programming/ProgrammingPipeline.h"
+#include "srp/programming/ProgrammingOptions.h"
 #include "srp/taskdb/TaskModel.h"
 
 namespace srp::programming {
@@ -177,5 +178,8 @@ taskdb::TaskModel buildTaskModel(const GroundedPlan& grounded, const Programming
                                  const perception::PerceptionResult& seen, const core::ObjectCatalogue& kb,
                                  const motion::DemoTracks& tracks, const std::vector<motion::SkillSet>& skills,
                                  const std::optional<core::Scene>& scene = std::nullopt);
+
+/// Frame rate [Hz] of a recording from its timestamps (median frame period; 30 when unknown).
+double frameRateOf(const core::PositionTrajectory& samples);
 
 }  // namespace srp::programming

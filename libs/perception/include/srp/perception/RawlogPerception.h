@@ -1,7 +1,9 @@
 #pragma once
-/// \file PreviewRawlog.h
-/// \brief The preview pass over a recorded demo: every frame of a rawlog
-/// shown to DemoPerceiver::preview() before the perception pass.
+/// \file RawlogPerception.h
+/// \brief The Environment module on a recorded demo (an MRPT rawlog): the
+/// preview pass (every frame shown to DemoPerceiver::preview()) and the whole
+/// module read from the file (perceiveRawlog), as `srp perceive` and
+/// `srp program` run it.
 
 #include <functional>
 #include <optional>
@@ -9,6 +11,7 @@
 
 #include "srp/core/CameraIntrinsics.h"
 #include "srp/perception/DemoPerception.h"
+#include "srp/rawlog/RgbdFrame.h"
 
 namespace srp::perception {
 
@@ -30,5 +33,22 @@ namespace srp::perception {
 int previewRawlog(DemoPerceiver& perceiver, const std::string& rawlogPath,
                   const std::optional<core::CameraIntrinsics>& intrinsics = std::nullopt,
                   const std::function<void(int)>& progress = {});
+
+/// Called with each frame of the perception pass, after DemoPerceiver::add(),
+/// and its index (0-based): a study scores its own detector on the frames the
+/// module perceives, without reading the rawlog again.
+using FrameHook = std::function<void(const rawlog::RgbdFrame& frame, int frameIndex)>;
+
+/// Reads the demo rawlog (RawlogReader) and runs it as perceiveFrames: the
+/// Environment module as `srp perceive` runs it. With the marker-free hand the
+/// file is read twice (previewRawlog over the whole recording, then
+/// perception) so memory stays flat on long demos; otherwise frames are
+/// perceived as they are read. `progress(frameIndex, frameCount)` and
+/// `onFrame` are called after each frame of the perception pass when given.
+/// Throws FileError for an unreadable or damaged rawlog, one without RGB-D
+/// frames, or one that changes between the two reads.
+PerceptionResult perceiveRawlog(const std::string& rawlogPath, const core::ObjectCatalogue& catalogue,
+                                const PerceptionOptions& options, const std::function<void(int, int)>& progress = {},
+                                const FrameHook& onFrame = {});
 
 }  // namespace srp::perception

@@ -1,11 +1,11 @@
-#include "srp/synth/SyntheticPickPlace.h"
+#include "srp/motion/SyntheticPickPlace.h"
 
 #include <cmath>
 #include <random>
 
 #include "srp/core/Error.h"
 
-namespace srp::synth {
+namespace srp::motion {
 namespace {
 
 double minJerk(double s) { return s * s * s * (10 - 15 * s + 6 * s * s); }
@@ -20,7 +20,9 @@ SyntheticPickPlace SyntheticPickPlaceGenerator::generate() const {
   std::uniform_real_distribution<double> uni(0.0, 1.0);
   std::normal_distribution<double> gauss(0.0, 1.0);
   const double dt = 1.0 / c.frameRate_hz;
-  const auto frames = [&](double seconds) { return std::max(1, static_cast<int>(std::lround(seconds * c.frameRate_hz))); };
+  const auto frames = [&](double seconds) {
+    return std::max(1, static_cast<int>(std::lround(seconds * c.frameRate_hz)));
+  };
 
   // Scene: sources in the "blue box" (left), targets in the "gray box" (right).
   const std::size_t nMoved = c.movedObjects.size(), nAll = nMoved + c.staticObjects.size();
@@ -99,14 +101,13 @@ SyntheticPickPlace SyntheticPickPlaceGenerator::generate() const {
     const bool detected = handVisible[static_cast<std::size_t>(k)] && burst == 0 && uni(rng) >= c.handDropoutRate;
     if (burst > 0) --burst;
     if (detected)
-      s.p_m = hand[static_cast<std::size_t>(k)] + Eigen::Vector3d(c.handNoiseXY_m * gauss(rng),
-                                                                 c.handNoiseXY_m * gauss(rng), c.handNoiseZ_m * gauss(rng));
-    else
-      s.p_m.setZero(), s.valid = false;
+      s.p_m = hand[static_cast<std::size_t>(k)] +
+              Eigen::Vector3d(c.handNoiseXY_m * gauss(rng), c.handNoiseXY_m * gauss(rng), c.handNoiseZ_m * gauss(rng));
+    else s.p_m.setZero(), s.valid = false;
     out.hand.append(s);
   }
   for (std::size_t i = 0; i < nAll; ++i) {
-    motion::ObjectTrack t;
+    ObjectTrack t;
     t.name = i < nMoved ? c.movedObjects[i] : c.staticObjects[i - nMoved];
     t.positions = core::PositionTrajectory("camera");
     int flicker = 0;
@@ -147,4 +148,4 @@ std::string SyntheticPickPlace::instruction() const {
   return text;
 }
 
-}  // namespace srp::synth
+}  // namespace srp::motion

@@ -20,30 +20,30 @@
 
 #include "srp/motion/LearnSkills.h"
 
-namespace srp::synth {
+namespace srp::motion {
 
 struct SyntheticPickPlaceConfig {
   std::vector<std::string> movedObjects = {"cuboid", "star", "parallelogram", "octagon"};  ///< in plan order
-  std::vector<std::string> staticObjects;  ///< tracked but never moved
+  std::vector<std::string> staticObjects;                                                  ///< tracked but never moved
   double frameRate_hz = 30.0;
-  double handAbsent_s = 1.0;              ///< at the start and at the end
+  double handAbsent_s = 1.0;                           ///< at the start and at the end
   double reachDuration_s = 1.3, moveDuration_s = 1.6;  ///< +-25 % random per object
-  double idleBetween_s = 0.3;             ///< hand lifts off 6 cm after each release
+  double idleBetween_s = 0.3;                          ///< hand lifts off 6 cm after each release
   int graspHoldFrames = 4, releaseHoldFrames = 3;
   double lift_m = 0.12;
-  bool putBackWhereTaken = false;         ///< each object is lifted and put back where it was
+  bool putBackWhereTaken = false;  ///< each object is lifted and put back where it was
   double handAboveObject_m = 0.04;
   double handNoiseXY_m = 0.004, handNoiseZ_m = 0.008, objectNoise_m = 0.002;
-  double handDropoutRate = 0.10;          ///< per frame, on top of bursts
+  double handDropoutRate = 0.10;  ///< per frame, on top of bursts
   double objectDropoutRate = 0.03;
-  double occlusionDropoutRate = 0.4;      ///< object missing when the hand is within 6 cm (plus its height above it)
-  double flickerRate = 0.03;              ///< per frame: detection jumps to another object for 1-3 frames
+  double occlusionDropoutRate = 0.4;  ///< object missing when the hand is within 6 cm (plus its height above it)
+  double flickerRate = 0.03;          ///< per frame: detection jumps to another object for 1-3 frames
   std::uint32_t seed = 1;
 };
 
 /// The demo's tracks (hand: invalid samples have p = (0, 0, 0) as the CSV
 /// convention; objects; plan order = the moved objects) and the truth.
-struct SyntheticPickPlace : motion::DemoTracks {
+struct SyntheticPickPlace : DemoTracks {
   std::vector<int> graspIndex, releaseIndex;  ///< truth per moved object, plan order
 
   /// "Synthetic demo: pick and place the cuboid, then the star, ..." (plan order).
@@ -59,4 +59,4 @@ class SyntheticPickPlaceGenerator {
   SyntheticPickPlaceConfig config_;
 };
 
-}  // namespace srp::synth
+}  // namespace srp::motion

@@ -56,14 +56,17 @@ TEST(SegmenterOnSynthTimeline, DefaultDemoGraspAndReleaseNearTheTimelineEvents) 
     for (const auto& f : timeline.frames) {
       const Eigen::Vector3d p_hand = X_camera_world * f.X_world_hand.translation();
       const bool handSeen = f.phase != "idle" && u(rng) > 0.1;
-      hand.append({f.index, f.t_s, handSeen ? Eigen::Vector3d(p_hand + Eigen::Vector3d(0.004 * g(rng), 0.004 * g(rng), 0.008 * g(rng)))
-                                            : Eigen::Vector3d::Zero(), handSeen});
+      hand.append({f.index, f.t_s,
+                   handSeen ? Eigen::Vector3d(p_hand + Eigen::Vector3d(0.004 * g(rng), 0.004 * g(rng), 0.008 * g(rng)))
+                            : Eigen::Vector3d::Zero(),
+                   handSeen});
       for (std::size_t k = 0; k < steps.size(); ++k) {
         const core::Pose3 X_camera_object = X_camera_world * f.X_world_objects[sceneIndex[k]];
         const Eigen::Vector3d p = X_camera_object.translation();
         const bool occluded = f.phase != "idle" && (p - p_hand).norm() < 0.1;
         Eigen::Vector3d detected = p + 0.002 * Eigen::Vector3d(g(rng), g(rng), g(rng));
-        if (u(rng) < 0.03) detected = X_camera_world * f.X_world_objects[sceneIndex[(k + 1) % steps.size()]].translation();
+        if (u(rng) < 0.03)
+          detected = X_camera_world * f.X_world_objects[sceneIndex[(k + 1) % steps.size()]].translation();
         const bool seen = u(rng) > (occluded ? 0.4 : 0.03);
         objects[k].positions.append({f.index, f.t_s, seen ? detected : Eigen::Vector3d::Zero(), seen});
         objects[k].yaw_rad.push_back(core::yawOf(X_camera_object.linear()));
@@ -77,7 +80,8 @@ TEST(SegmenterOnSynthTimeline, DefaultDemoGraspAndReleaseNearTheTimelineEvents) 
       ASSERT_EQ(e.objectId, seg.objects[k].name);
       const int dg = seg.objects[k].graspFrame - e.graspFrame, dr = seg.objects[k].releaseFrame - e.releaseFrame;
       std::cout << "synth seed " << seed << " " << e.objectId << ": grasp " << seg.objects[k].graspFrame << " (truth "
-                << e.graspFrame << "), release " << seg.objects[k].releaseFrame << " (truth " << e.releaseFrame << ")\n";
+                << e.graspFrame << "), release " << seg.objects[k].releaseFrame << " (truth " << e.releaseFrame
+                << ")\n";
       worstGrasp = std::max(worstGrasp, std::abs(dg));
       worstRelease = std::max(worstRelease, std::abs(dr));
       EXPECT_GE(dg, -kGraspEarlyTol) << e.objectId;

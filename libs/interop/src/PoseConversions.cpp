@@ -1,10 +1,12 @@
-#include "srp/core/PoseConversions.h"
+#include "srp/interop/PoseConversions.h"
 
 #include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/poses/CPose3D.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
 
-namespace srp::core {
+namespace srp::interop {
+
+using srp::core::Pose3;
 
 vpHomogeneousMatrix toVisp(const Pose3& X) {
   vpHomogeneousMatrix M;
@@ -42,4 +44,4 @@ Pose3 fromMrpt(const mrpt::poses::CPose3D& pose) {
   return X;
 }
 
-}  // namespace srp::core
+}  // namespace srp::interop

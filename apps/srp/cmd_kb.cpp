@@ -120,11 +120,8 @@ void setupKb(CLI::App& cmd) {
       ->excludes(box);
   add->add_flag("--json", *json, "machine-readable output");
   add->footer(
-      "Examples:
-  srp kb add --kb my_parts.json --name cube --mesh cube.obj
-"
-      "  srp kb add toy --kb my_parts.json --shape box --size 0.12 0.08 0.06 --rgb 0.1 0.2 0.7
-"
+      "Examples:\n  srp kb add --kb my_parts.json --name cube --mesh cube.obj\n"
+      "  srp kb add toy --kb my_parts.json --shape box --size 0.12 0.08 0.06 --rgb 0.1 0.2 0.7\n"
       "  srp kb add toy --kb my_parts.json --from-demo demo.rawlog --at 410,260");
   add->callback([add, cataloguePath, entry, rgb, mass, shape, size, json, units, demo, at, frame]() {
     srp::app::requireOneOf(*add, "--kb", "--catalogue");

@@ -265,8 +265,18 @@ PlacementCandidates placeInDirection(const PlacementContext& ctx, const Placemen
   return out;
 }
 
-/// The after-placement check allows the footprints 1 mm into each other along the line.
-constexpr double kBetweenSlack_m = 1e-3 - 1e-5;
+/// The after-placement check allows the footprints 1 mm into each other along the line;
+/// candidates stay this much inside each limit of the check.
+constexpr double kBetweenSlack_m = 1e-3;
+constexpr double kInsideCheck_m = 1e-5;
+
+/// 0, +-step, +-2 step, ... and +-limit itself (a band narrower than the step is still tried).
+std::vector<double> symmetricSamples(double limit, double step) {
+  std::vector<double> out{0.0};
+  for (double v = step; v < limit - 1e-9; v += step) out.insert(out.end(), {v, -v});
+  if (limit > 1e-9) out.insert(out.end(), {limit, -limit});
+  return out;
+}
 
 PlacementCandidates placeBetween(const PlacementContext& ctx, const PlacementTarget& t, std::size_t limit) {
   PlacementCandidates out;
@@ -279,18 +289,22 @@ PlacementCandidates placeBetween(const PlacementContext& ctx, const PlacementTar
   const double length = (b - a).norm();
   const Eigen::Vector2d u = (b - a) / std::max(length, 1e-9), perp(-u.y(), u.x());
   const double sA = support(A, u), sB = support(B, u), room = length - sA - sB;
-  const double lateralLimit = std::max(support(A, perp), support(B, perp));
+  // The whole band the after-placement check allows beside the line: turned landmarks are
+  // narrower off the line than their projections onto it, so a part offset sideways can
+  // keep its clearances where one on the line cannot.
+  const double lateralLimit = std::max(support(A, perp), support(B, perp)) + o.relationTolerance_m - kInsideCheck_m;
   // The part's narrower side along A-B first: it needs the least room there.
   const double narrow = std::atan2(u.y(), u.x()) + (part.size_m.x() <= part.size_m.y() ? 0.0 : M_PI / 2);
   auto attempt = [&](const CellObject* in, double yaw) {
     // Along the line, as far as the footprints may still be told apart along it (the
-    // check's 1 mm); the clearances are kept by rest(), also by a part offset sideways.
-    const double slack = (room - 2 * support(part.size_m, yaw, u)) / 2 + kBetweenSlack_m;
+    // check's 1 mm); the clearances to A, B and the rest are kept by rest() with the
+    // footprints as they lie (turned), not their projections onto the line.
+    const double slack = (room - 2 * support(part.size_m, yaw, u)) / 2 + kBetweenSlack_m - kInsideCheck_m;
     if (slack < 0.0) return;
     const Eigen::Vector2d p0 = a + (sA + room / 2) * u;
-    std::vector<Eigen::Vector2d> grid{p0};
-    for (double along = -slack; along <= slack + 1e-9; along += o.gridStep_m / 2)
-      for (double lateral = -lateralLimit; lateral <= lateralLimit + 1e-9; lateral += o.gridStep_m / 2)
+    std::vector<Eigen::Vector2d> grid;
+    for (const double along : symmetricSamples(slack, o.gridStep_m / 2))
+      for (const double lateral : symmetricSamples(lateralLimit, o.gridStep_m / 2))
         grid.push_back(p0 + along * u + lateral * perp);
     sortByDistance(grid, p0);
     for (const auto& p : grid) {

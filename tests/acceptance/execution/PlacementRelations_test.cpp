@@ -264,3 +264,52 @@ TEST(PlacementRelations, RandomScenesWithTwoInstancesPerClass) {
   // rate (libs/execution/README.md).
   runRandomPlacements(std::string(SRP_SIM_DIR) + "/scenes/two_cuboids_two_stars.json", true, kMinSuccessRate);
 }
+
+// "between" two turned landmarks: their projections onto the line between them leave
+// 30.5 mm, less than the cuboid's narrower side (30 mm) and the 2 mm clearance on each
+// side, so no place on the line keeps its clearances; beside the line (within the band
+// the after-placement check allows) the turned footprints are narrower and the cuboid,
+// turned from its starting yaw to put its narrower side along the line, fits. The
+// independent check must find a place, and the planner must place it there with the
+// relation holding and 2 mm kept from the landmarks.
+TEST(PlacementRelations, BetweenTurnedLandmarksOnlyBesideTheLine) {
+  constexpr double kLength_m = 0.091;  // centre to centre, along world x
+  // Each landmark's corner nearest the other lies a few mm off the line, on opposite sides.
+  constexpr double kYawA_rad = -20.0 * M_PI / 180.0, kYawB_rad = -40.0 * M_PI / 180.0;
+  CellDescription cell = CellDescription::loadScene();
+  const double z = 0.0;
+  for (auto& o : cell.objects) {
+    if (o.name == "parallelogram") o.X_world_object = upright(-0.10, -0.05, z, kYawA_rad);
+    if (o.name == "octagon") o.X_world_object = upright(-0.10 + kLength_m, -0.05, z, kYawB_rad);
+    if (o.name == "cuboid") o.X_world_object = upright(0.10, -0.10, z, 0.0);  // its long side along the line
+  }
+  ExecutionStep step;
+  step.object = {"cuboid", {}};
+  step.target.push_back({"between", {"parallelogram", {}}, ObjectReference{"octagon", {}}, ""});
+
+  // On the line: the landmarks' projections leave less than the narrower side plus 2 mm each side.
+  const auto A = acceptance::Footprint::of(*cell.find("parallelogram")), B = acceptance::Footprint::of(*cell.find("octagon"));
+  const Eigen::Vector2d u = (B.centre - A.centre).normalized();
+  const double room = kLength_m - A.extent(u) - B.extent(u);
+  ASSERT_LT(room, 0.030 + 2 * acceptance::kMinGap_m) << "the scene must leave no place on the line";
+  const auto rel = relationOf(cell, step);
+  ASSERT_TRUE(rel);
+  ASSERT_TRUE(acceptance::anyPlacement(cell, *cell.find("cuboid"), *rel))
+      << "the independent check must find a place beside the line";
+
+  const RobotModel model = RobotModel::defaultUr5();
+  const JointVector home = TaskExecutor::defaultHome(model, cell.X_world_base, defaultHomeTcp(cell));
+  TaskExecutor ex(model, cell, home, std::make_shared<MinimumJerkPathGenerator>());
+  ExecutionPlan plan;
+  plan.steps.push_back(step);
+  const StepReport r = ex.run(plan).steps.at(0);
+  ASSERT_EQ(r.status, StepStatus::Done) << r.reason;
+  EXPECT_TRUE(r.relationsHold) << (r.relationChecks.empty() ? r.reason : r.relationChecks[0].detail);
+  // The placed cuboid, measured by the independent check's own geometry.
+  const CellDescription after = ex.perceive();
+  const auto placed = acceptance::Footprint::of(*after.find("cuboid"));
+  const auto relAfter = relationOf(after, step);
+  EXPECT_TRUE(acceptance::relationHolds(*relAfter, placed));
+  EXPECT_TRUE(acceptance::restsFree(after, *after.find("cuboid"), *relAfter, placed))
+      << "the cuboid keeps 2 mm from the landmarks, the other parts and the walls";
+}

@@ -1,5 +1,8 @@
 #include "srp/motion/Segmenter.h"
 
+#include <cstdio>
+#include <cstdlib>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -767,16 +770,19 @@ class ObjectPass {
   }
 
   /// Placement cues, grasp: not before the last sample in [from, to) at which
-  /// the part is seen at its initial place, unless the hand is out of the
-  /// start area there (farther than startAreaLeave from the initial position
-  /// than at the grasp): a part is not grasped by a hand that is not at it, so
-  /// what is seen there is not this part (a look-alike beside it) and the
+  /// the part is seen at its initial place, unless the hand has been at the
+  /// part's final place in between (within handReach of it and nearer to it
+  /// than to the start): the part has been carried there, so what is still
+  /// seen at the start is not this part (a look-alike beside it) and the
   /// hand's grasp stands.
   int partStillAtStart(int grasp, int from, int to) const {
     const int seen = lastSeenAtStart(from, to);
     if (seen <= grasp) return grasp;
-    const double atGrasp_m = (smoothedHand(grasp) - seg_.p_initial_m).norm();
-    return (smoothedHand(seen) - seg_.p_initial_m).norm() <= atGrasp_m + c_.startAreaLeave_m ? seen : grasp;
+    for (int i = grasp + 1; i <= seen; ++i) {
+      const double toFinal_m = (smoothedHand(i) - seg_.p_final_m).norm();
+      if (toFinal_m <= c_.handReach_m && toFinal_m < (smoothedHand(i) - seg_.p_initial_m).norm()) return grasp;
+    }
+    return seen;
   }
 
   /// Step 6: where the hand is closest to the object's initial position in

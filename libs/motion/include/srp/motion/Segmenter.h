@@ -48,8 +48,8 @@
 /// where it comes closest to the final place: a hover just above the place,
 /// with the part still in the hand, is part of the move. The part itself
 /// bounds both: the grasp is not before the last sample at which it is seen at
-/// its initial place (while the hand is still in the start area: a look-alike
-/// seen there after the hand has left does not delay it), the release not after the first from which it is seen
+/// its initial place (unless the hand has been at the final place in between:
+/// then what is seen at the start is a look-alike), the release not after the first from which it is seen
 /// at its final place for good (within placeTolerance_m: a hand that stays on
 /// the part, or presses it down, does not delay the release).
 /// EventEstimator::ThesisPublished is the thesis' published code.

@@ -85,7 +85,10 @@ std::vector<cv::Point3f> CalibrationPattern::objectPoints() const {
 }
 
 std::optional<PatternObservation> CalibrationPattern::detect(const cv::Mat& grey8) const {
-  CV_Assert(grey8.type() == CV_8UC1);
+  // Not CV_Assert: its __FILE__ would put the build's source path into the installed binary.
+  if (grey8.type() != CV_8UC1)
+    throw core::InvalidInputError("CalibrationPattern::detect needs an 8-bit single-channel image (CV_8UC1), got type " +
+                                  std::to_string(grey8.type()) + "; convert with cv::cvtColor first");
   PatternObservation obs;
   const cv::Size size(cols_, rows_);
   switch (kind_) {

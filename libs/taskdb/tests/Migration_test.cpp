@@ -7,6 +7,7 @@
 
 #include <filesystem>
 
+#include "MigrationFixture.h"
 #include "TestDb.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
@@ -18,26 +19,12 @@
 using namespace srp::taskdb;
 
 namespace {
-const std::string kFixture = std::string(SRP_SOURCE_DIR) + "/libs/taskdb/tests/data/schema_v1.db";
-const std::string kFixtureSource = std::string(SRP_SOURCE_DIR) + "/libs/taskdb/tests/data/schema_v1_source.json";
+using test::kFixture;
+using test::expectEveryRowOfTheFixture;
 
 int userVersion(const std::string& path) {
   SQLite::Database raw(path, SQLite::OPEN_READONLY);
   return raw.execAndGet("PRAGMA user_version").getInt();
-}
-
-// Every row of the fixture's source task model is read back from a migrated file.
-void expectEveryRowOfTheFixture(const TaskModel& read) {
-  const TaskModel expected = taskModelFromJson(srp::core::readJsonFile(kFixtureSource), kFixtureSource);
-  EXPECT_EQ(read.products, expected.products);
-  EXPECT_EQ(read.sourceLocations, expected.sourceLocations);
-  EXPECT_EQ(read.targetLocations, expected.targetLocations);
-  EXPECT_EQ(read.targetObjectIds, expected.targetObjectIds);
-  EXPECT_EQ(read.groundedProducts, expected.groundedProducts);
-  EXPECT_EQ(read.productPoses, expected.productPoses);
-  EXPECT_EQ(read.handPositions, expected.handPositions);
-  ASSERT_EQ(read.skills.size(), 1u);
-  EXPECT_EQ(read.skills, expected.skills);
 }
 }  // namespace
 
@@ -110,7 +97,7 @@ TEST(Migration, ReopeningAMigratedFileKeepsItAsItIs) {
 // (tests/data/schema_v2.db) opens with every row, its task model has no scene,
 // and the migrated file then stores a model with one.
 TEST(Migration, SchemaTwoFileOpensWithEveryRowAndThenStoresAPerceivedScene) {
-  const std::string fixture = std::string(SRP_SOURCE_DIR) + "/libs/taskdb/tests/data/schema_v2.db";
+  const std::string& fixture = test::kFixtureV2;
   ASSERT_EQ(userVersion(fixture), 2) << "the fixture must stay a schema-2 file";
   test::TempDbPath path("migrate_v2");
   std::filesystem::copy_file(fixture, path.str());

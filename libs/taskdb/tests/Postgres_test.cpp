@@ -169,7 +169,9 @@ TEST_F(Postgres, AnOlderSchemaIsMigratedOnceWithEveryRow) {
 
 // srp db import --from: SQLite -> PostgreSQL -> SQLite keeps every row of
 // every table (the bundled Appendix C task model, a bulk model with skills, a
-// model with a perceived scene).
+// model with a perceived scene). The bulk model's 3300 poses and 1100 hand
+// rows reach the server as multi-row INSERTs of 1000, 1000, 1000 and 300
+// rows (and 1000 + 100): every batch size and boundary is in the comparison.
 TEST_F(Postgres, ImportRoundTripKeepsEveryRow) {
   test::TempDbPath original("roundtrip_original"), back("roundtrip_back");
   {
@@ -178,7 +180,7 @@ TEST_F(Postgres, ImportRoundTripKeepsEveryRow) {
     store.write(taskModelFromJson(srp::core::readJsonFile(std::string(SRP_DATASETS_DIR) +
                                                           "/examples/appendix_c_instruction1.json"),
                                   "appendix_c_instruction1.json"));
-    TaskModel bulk = test::bulkModel("bulk", 300, 3);
+    TaskModel bulk = test::bulkModel("bulk", 1100, 3);
     bulk.info.intrinsics = srp::core::CameraIntrinsics{607.178, 607.234, 321.391, 241.918, 640, 480};
     bulk.info.X_base_camera = srp::core::makePoseYPR({0.1, -0.5, 0.9}, 0.3, 0.0, M_PI);
     bulk.skills = {{1, srp::core::SkillType::Reach, 0, 95, {{"weights", {0.1, 1.0 / 3.0, -2.718281828459045e-7}}}},

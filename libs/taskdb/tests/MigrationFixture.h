@@ -29,4 +29,27 @@ inline void expectEveryRowOfTheFixture(const TaskModel& read) {
   EXPECT_EQ(read.skills, expected.skills);
 }
 
+/// A model a migrated database must take: two instances of class 3 (red and
+/// blue cuboid), each with its pose at TimeId 1 and a Grasp; a product grounded
+/// to the red one, the plan's one step.
+inline TaskModel twoCuboidsModel() {
+  TaskModel two;
+  two.info.name = "two cuboids";
+  two.groundedProducts = {{3, "cuboid", {}, {}, std::string("red"), "cuboid_red"},
+                          {3, "cuboid", {}, {}, std::string("blue"), "cuboid_blue"}};
+  ProductPoseRow red, blue;
+  red.classId = blue.classId = 3;
+  red.timeId = blue.timeId = 1;
+  red.instanceId = "cuboid_red";
+  blue.instanceId = "cuboid_blue";
+  red.p_m = {0.1, 0.0, 0.5};
+  blue.p_m = {-0.1, 0.0, 0.5};
+  two.productPoses = {red, blue};
+  two.skills = {{3, srp::core::SkillType::Grasp, 1, 1, nlohmann::json::object(), "cuboid_red"},
+                {3, srp::core::SkillType::Grasp, 1, 1, nlohmann::json::object(), "cuboid_blue"}};
+  two.products = {{0, "cuboid", {}, {}, std::string("red"), {}, {}, 3, "cuboid_red"}};
+  two.targetObjectIds = {0};
+  return two;
+}
+
 }  // namespace srp::taskdb::test

@@ -49,22 +49,8 @@ TEST(Migration, SchemaOneFileOpensWithEveryRowAndGainsInstanceIds) {
   for (const auto& g : read.groundedProducts) EXPECT_EQ(g.instanceId, "");
 
   // The migrated file now holds two instances of one class, with their own poses and skills.
-  TaskModel two;
-  two.info.name = "two cuboids";
-  two.groundedProducts = {{3, "cuboid", {}, {}, std::string("red"), "cuboid_red"},
-                          {3, "cuboid", {}, {}, std::string("blue"), "cuboid_blue"}};
-  ProductPoseRow red, blue;
-  red.classId = blue.classId = 3;
-  red.timeId = blue.timeId = 1;
-  red.instanceId = "cuboid_red";
-  blue.instanceId = "cuboid_blue";
-  red.p_m = {0.1, 0.0, 0.5};
-  blue.p_m = {-0.1, 0.0, 0.5};
-  two.productPoses = {red, blue};
-  two.skills = {{3, srp::core::SkillType::Grasp, 1, 1, nlohmann::json::object(), "cuboid_red"},
-                {3, srp::core::SkillType::Grasp, 1, 1, nlohmann::json::object(), "cuboid_blue"}};
-  two.products = {{0, "cuboid", {}, {}, std::string("red"), {}, {}, 3, "cuboid_red"}};
-  two.targetObjectIds = {0};
+  const TaskModel two = test::twoCuboidsModel();
+  const ProductPoseRow blue = two.productPoses[1];
   const int id = TaskModelStore(db).write(two);
   const TaskModel back = TaskModelStore(db).read(id);
   EXPECT_EQ(back.groundedProducts.size(), 2u);

@@ -142,18 +142,7 @@ TEST_F(Postgres, AnOlderSchemaIsMigratedOnceWithEveryRow) {
     test::expectEveryRowOfTheFixture(read);
     EXPECT_FALSE(read.scene.has_value());
 
-    TaskModel two;
-    two.info.name = "two cuboids";
-    two.groundedProducts = {{3, "cuboid", {}, {}, std::string("red"), "cuboid_red"},
-                            {3, "cuboid", {}, {}, std::string("blue"), "cuboid_blue"}};
-    ProductPoseRow red, blue;
-    red.classId = blue.classId = 3;
-    red.timeId = blue.timeId = 1;
-    red.instanceId = "cuboid_red";
-    blue.instanceId = "cuboid_blue";
-    two.productPoses = {red, blue};
-    two.products = {{0, "cuboid", {}, {}, std::string("red"), {}, {}, 3, "cuboid_red"}};
-    two.targetObjectIds = {0};
+    TaskModel two = test::twoCuboidsModel();
     two.scene = PerceivedScene{};
     two.scene->catalogue = "catalogue.json";
     two.scene->objects.push_back({"cuboid_red", 3, "cuboid", srp::core::Pose3::Identity(), std::nullopt, std::nullopt});

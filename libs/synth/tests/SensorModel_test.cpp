@@ -10,7 +10,6 @@
 #include "srp/synth/SensorModel.h"
 
 using srp::synth::SensorModel;
-using srp::synth::SensorModel::Options;
 
 namespace {
 

@@ -63,7 +63,7 @@ void BM_DmpImitateAndRollout_Reference(benchmark::State& state) {
 BENCHMARK(BM_DmpImitateAndRollout_Reference)->Unit(benchmark::kMicrosecond);
 
 void BM_Segment60sDemo4Objects(benchmark::State& state) {
-  srp::motion::SyntheticPickPlaceConfig c;
+  srp::motion::SyntheticPickPlaceGenerator::Options c;
   c.reachDuration_s = 4.0;  // stretched so the 4 pick & place steps fill 60 s
   c.moveDuration_s = 5.0;
   c.idleBetween_s = 4.5;

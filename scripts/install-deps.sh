@@ -49,7 +49,7 @@ TEST_PACKAGES=(
   visp-images-data
   # tests: exported trajectories are read back the way `ros2 topic pub` reads them (PyYAML)
   python3 python3-yaml
-  # scripts/check-format.sh: the changed lines follow .clang-format
+  # scripts/check-format.sh (CTest style.format): the files of scripts/format-checked.txt follow .clang-format
   clang-format
   # scripts/check-structure.py: function lengths
   universal-ctags

@@ -43,7 +43,7 @@ void runMotion(const MotionOptions& o) {
   taskdb::TaskModelStore store(db);
   int id = o.id;
   if (o.syntheticDemo) {
-    const auto demo = motion::SyntheticPickPlaceGenerator(motion::SyntheticPickPlaceConfig{}).generate();
+    const auto demo = motion::SyntheticPickPlaceGenerator().generate();
     id = store.write(programming::taskModelFromTracks(demo, "synthetic-demo", demo.instruction()));
     if (!app::quietFlag()) std::cerr << "srp motion: stored a synthetic 4-object demo as task model " << id << "\n";
   } else if (id <= 0) {

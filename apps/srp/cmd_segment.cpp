@@ -30,7 +30,7 @@ struct SegmentOptions {
 
 void writeExample(const SegmentOptions& o) {
   if (o.noise == "real") {
-    srp::motion::RealTrackNoise::Config c;
+    srp::motion::RealTrackNoise::Options c;
     c.seed = o.seed;
     const auto r = srp::motion::RealTrackNoise(c).apply(srp::synth::cleanLabelledDemo(o.seed));
     srp::motion::TrajectoryTable{r.noisy.hand, r.noisy.objects}.writeCsv(o.writeExample);
@@ -45,7 +45,7 @@ void writeExample(const SegmentOptions& o) {
     std::cout << "\n";
     return;
   }
-  srp::motion::SyntheticPickPlaceConfig c;
+  srp::motion::SyntheticPickPlaceGenerator::Options c;
   c.seed = o.seed;
   const auto demo = srp::motion::SyntheticPickPlaceGenerator(c).generate();
   srp::motion::TrajectoryTable{demo.hand, demo.objects}.writeCsv(o.writeExample);
@@ -67,7 +67,7 @@ void runSegment(const SegmentOptions& o) {
   if (o.trajectories.empty()) throw srp::core::InvalidInputError("give --trajectories <csv> (or --write-example <csv>)");
   if (o.order.empty()) throw srp::core::InvalidInputError("give --order with the objects in plan order, e.g. --order cuboid,star");
   const auto table = srp::motion::TrajectoryTable::readCsv(o.trajectories, o.fps);
-  srp::motion::Segmenter::Config config;
+  srp::motion::Segmenter::Options config;
   using Events = srp::motion::Segmenter::EventEstimator;
   config.events = o.events == "thesis" ? Events::ThesisPublished : o.events == "fig6.10" ? Events::Thesis : Events::HandDwellBoundary;
   config.thesisSeed = o.thesisSeed;

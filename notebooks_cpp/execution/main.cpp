@@ -82,7 +82,7 @@ int run(int argc, char** argv) {
   // Step 1: learn the skills. The demonstration's hand and object
   // trajectories (camera frame) are segmented per object in plan order and
   // each Reach and Move segment is learned as a DMP.
-  const auto demo = srp::motion::SyntheticPickPlaceGenerator(srp::motion::SyntheticPickPlaceConfig{}).generate();
+  const auto demo = srp::motion::SyntheticPickPlaceGenerator().generate();
   srp::taskdb::TaskModel learned = srp::programming::taskModelFromTracks(demo, "notebook-execution", demo.instruction());
   srp::programming::learnSkills(learned);
 
@@ -156,7 +156,7 @@ int run(int argc, char** argv) {
   tiles.push_back({states.back(), caption(states.back(), "end, all parts in the gray box")});
 
   // Step 6: render them off-screen (MRPT, EGL) and tile them 4 x 2 with captions.
-  ex::CellRendererOptions view;
+  ex::CellRenderer::Options view;
   view.width_px = 480;
   view.height_px = 360;
   view.distance_m = 1.6;  // closer than the default 1.9 m: the parts show better, the arm still fits

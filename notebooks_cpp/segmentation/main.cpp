@@ -117,7 +117,7 @@ int run(int argc, char** argv) {
 
   // Step 4: segment, with the default estimator and with the thesis' one.
   const auto segmentation = Segmenter().segment(hand, {cuboid}, {"cuboid"});
-  Segmenter::Config thesisConfig;
+  Segmenter::Options thesisConfig;
   thesisConfig.events = Segmenter::EventEstimator::Thesis;
   const auto thesisSegmentation = Segmenter(thesisConfig).segment(hand, {cuboid}, {"cuboid"});
   const auto& object = segmentation.objects.at(0);

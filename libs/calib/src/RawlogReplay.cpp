@@ -126,6 +126,51 @@ cv::Mat colourMappedDepth(const cv::Mat& depth_m, double near_m, double far_m) {
   return colour;
 }
 
+/// Frame `s.frames` as PNGs in the export folder: depth in 16-bit steps of `exportScale_m` (counting the
+/// pixels beyond 16 bits in `s.depthClipped`), depth colour-mapped (its range from the first frame),
+/// and colour when the frame has it.
+void exportFrame(const rawlog::RgbdFrame& f, const ReplayOptions& options, double exportScale_m, bool colour,
+                 ReplaySummary& s) {
+  cv::Mat depth16(f.depth_m.size(), CV_16UC1);
+  const double inv = 1.0 / static_cast<double>(static_cast<float>(exportScale_m));
+  for (int r = 0; r < depth16.rows; ++r) {
+    const float* d = f.depth_m.ptr<float>(r);
+    uint16_t* o = depth16.ptr<uint16_t>(r);
+    for (int c = 0; c < depth16.cols; ++c) {
+      const double steps = std::round(static_cast<double>(d[c]) * inv);
+      const bool ok = std::isfinite(d[c]) && d[c] > 0.0f;
+      if (ok && steps > 65535.0) ++s.depthClipped;
+      o[c] = (ok && steps <= 65535.0) ? static_cast<uint16_t>(steps) : uint16_t(0);
+    }
+  }
+  const std::string depthPath = numbered(options.exportDir, "depth", s.frames);
+  if (!cv::imwrite(depthPath, depth16)) throw core::FileError(depthPath, "cannot write depth PNG");
+  if (s.frames == 0) std::tie(s.depthColourNear_m, s.depthColourFar_m) = depthColourRange(f.depth_m);
+  const std::string colourDepthPath = numbered(options.exportDir, "depth_color", s.frames);
+  if (!cv::imwrite(colourDepthPath, colourMappedDepth(f.depth_m, s.depthColourNear_m, s.depthColourFar_m)))
+    throw core::FileError(colourDepthPath, "cannot write the colour-mapped depth PNG");
+  if (colour) {
+    const std::string colourPath = numbered(options.exportDir, "color", s.frames);
+    if (!cv::imwrite(colourPath, f.colour_bgr8)) throw core::FileError(colourPath, "cannot write colour PNG");
+  }
+}
+
+/// cam.json in the export folder: the intrinsics and depth scale of the exported PNGs (ViSP's names).
+void writeExportCamera(const ReplaySummary& s, const ReplayOptions& options, double exportScale_m,
+                       const std::string& rawlogPath) {
+  const auto& K = s.intrinsics;
+  core::writeJsonFile((fs::path(options.exportDir) / "cam.json").string(),
+                      {{"w", K.width_px},
+                       {"h", K.height_px},
+                       {"px", K.fx_px},
+                       {"py", K.fy_px},
+                       {"u0", K.cx_px},
+                       {"v0", K.cy_px},
+                       {"depthScale", exportScale_m},
+                       {"model", "perspectiveProjWithoutDistortion"},
+                       {"source", rawlogPath}});
+}
+
 }  // namespace
 
 ReplaySummary replayRawlog(const std::string& path, const ReplayOptions& options) {
@@ -164,30 +209,7 @@ ReplaySummary replayRawlog(const std::string& path, const ReplayOptions& options
     s.hasColour = s.hasColour && colour;
     if (f.depthRegisteredOnRead) ++s.framesRegisteredOnRead;
 
-    if (!options.exportDir.empty()) {
-      cv::Mat depth16(f.depth_m.size(), CV_16UC1);
-      const double inv = 1.0 / static_cast<double>(static_cast<float>(exportScale_m));
-      for (int r = 0; r < depth16.rows; ++r) {
-        const float* d = f.depth_m.ptr<float>(r);
-        uint16_t* o = depth16.ptr<uint16_t>(r);
-        for (int c = 0; c < depth16.cols; ++c) {
-          const double steps = std::round(static_cast<double>(d[c]) * inv);
-          const bool ok = std::isfinite(d[c]) && d[c] > 0.0f;
-          if (ok && steps > 65535.0) ++s.depthClipped;
-          o[c] = (ok && steps <= 65535.0) ? static_cast<uint16_t>(steps) : uint16_t(0);
-        }
-      }
-      const std::string depthPath = numbered(options.exportDir, "depth", s.frames);
-      if (!cv::imwrite(depthPath, depth16)) throw core::FileError(depthPath, "cannot write depth PNG");
-      if (s.frames == 0) std::tie(s.depthColourNear_m, s.depthColourFar_m) = depthColourRange(f.depth_m);
-      const std::string colourDepthPath = numbered(options.exportDir, "depth_color", s.frames);
-      if (!cv::imwrite(colourDepthPath, colourMappedDepth(f.depth_m, s.depthColourNear_m, s.depthColourFar_m)))
-        throw core::FileError(colourDepthPath, "cannot write the colour-mapped depth PNG");
-      if (colour) {
-        const std::string colourPath = numbered(options.exportDir, "color", s.frames);
-        if (!cv::imwrite(colourPath, f.colour_bgr8)) throw core::FileError(colourPath, "cannot write colour PNG");
-      }
-    }
+    if (!options.exportDir.empty()) exportFrame(f, options, exportScale_m, colour, s);
     if (colour && (!options.videoPath.empty() || (options.exportOverlay && !options.exportDir.empty()))) {
       cv::Mat drawn = f.colour_bgr8.clone();
       if (options.overlay) options.overlay(drawn, f);
@@ -230,19 +252,7 @@ ReplaySummary replayRawlog(const std::string& path, const ReplayOptions& options
   s.duration_s = s.lastTime_s - s.firstTime_s;
   s.fps = (s.frames > 1 && s.duration_s > 0.0) ? (s.frames - 1) / s.duration_s : 0.0;
   s.validDepthFraction = validSum / s.frames;
-  if (!options.exportDir.empty()) {
-    const auto& K = s.intrinsics;
-    core::writeJsonFile((fs::path(options.exportDir) / "cam.json").string(),
-                        {{"w", K.width_px},
-                         {"h", K.height_px},
-                         {"px", K.fx_px},
-                         {"py", K.fy_px},
-                         {"u0", K.cx_px},
-                         {"v0", K.cy_px},
-                         {"depthScale", exportScale_m},
-                         {"model", "perspectiveProjWithoutDistortion"},
-                         {"source", path}});
-  }
+  if (!options.exportDir.empty()) writeExportCamera(s, options, exportScale_m, path);
   return s;
 }
 

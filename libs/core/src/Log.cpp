@@ -17,29 +17,20 @@
 namespace srp::core {
 namespace {
 
-constexpr const char* kLevelNames[] = {"trace", "debug", "info", "warning", "error", "off"};
+/// Each Log::Level (in its order) with its name in --log-level and its spdlog level.
+struct LevelEntry {
+  const char* name;
+  spdlog::level::level_enum spdlog;
+};
+constexpr LevelEntry kLevels[] = {{"trace", spdlog::level::trace}, {"debug", spdlog::level::debug},
+                                  {"info", spdlog::level::info},   {"warning", spdlog::level::warn},
+                                  {"error", spdlog::level::err},   {"off", spdlog::level::off}};
 
-spdlog::level::level_enum toSpdlog(Log::Level level) {
-  switch (level) {
-    case Log::Level::Trace:
-      return spdlog::level::trace;
-    case Log::Level::Debug:
-      return spdlog::level::debug;
-    case Log::Level::Info:
-      return spdlog::level::info;
-    case Log::Level::Warning:
-      return spdlog::level::warn;
-    case Log::Level::Error:
-      return spdlog::level::err;
-    case Log::Level::Off:
-      return spdlog::level::off;
-  }
-  return spdlog::level::info;
-}
+const LevelEntry& entryOf(Log::Level level) { return kLevels[static_cast<int>(level)]; }
 
 std::optional<Log::Level> parseLevel(const std::string& name) {
   for (int k = 0; k < 6; ++k)
-    if (name == kLevelNames[k]) return static_cast<Log::Level>(k);
+    if (name == kLevels[k].name) return static_cast<Log::Level>(k);
   if (name == "warn") return Log::Level::Warning;
   return std::nullopt;
 }
@@ -70,7 +61,7 @@ class Registry {
       }
       logger = slot;
     }
-    logger->log(toSpdlog(level), message);
+    logger->log(entryOf(level).spdlog, message);
     logger->flush();
   }
 
@@ -132,11 +123,11 @@ void Log::writef(std::string_view category, Level level, const char* format, ...
   write(category, level, text);
 }
 
-std::string Log::levelName(Level level) { return kLevelNames[static_cast<int>(level)]; }
+std::string Log::levelName(Level level) { return entryOf(level).name; }
 
 void Log::setLevels(const std::string& spec) {
   std::string levels;
-  for (const char* n : kLevelNames) levels += (levels.empty() ? "" : ", ") + std::string(n);
+  for (const auto& l : kLevels) levels += (levels.empty() ? "" : ", ") + std::string(l.name);
   std::string names;
   for (const auto& [c, what] : categories()) names += (names.empty() ? "" : ", ") + c;
   std::size_t start = 0;

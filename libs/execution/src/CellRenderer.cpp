@@ -69,7 +69,7 @@ mrpt::opengl::CSetOfTriangles::Ptr triangles(const srp::kb::TriangleMesh& mesh, 
 struct CellRenderer::Impl {
   RobotModel model;
   CellDescription cell;
-  CellRendererOptions options;
+  CellRenderer::Options options;
   SafetyChecker spheres;
   std::unique_ptr<mrpt::opengl::CFBORender> fbo;
   /// Link meshes in their link frames ([0] base .. [6] wrist 3), null when a link has none.
@@ -77,11 +77,11 @@ struct CellRenderer::Impl {
   std::vector<mrpt::opengl::CRenderizable::Ptr> gripper;  ///< in the tool0 frame
   std::map<std::string, mrpt::opengl::CSetOfTriangles::Ptr> partMeshes;  ///< in the object frame
   std::optional<mrpt::opengl::TRenderMatrices> lastCamera;
-  Impl(RobotModel m, CellDescription c, CellRendererOptions o)
+  Impl(RobotModel m, CellDescription c, CellRenderer::Options o)
       : model(m), cell(c), options(o), spheres(m, c.X_world_base, SafetyLimits{}, {}) {}
 };
 
-CellRenderer::CellRenderer(RobotModel model, CellDescription cell, CellRendererOptions options)
+CellRenderer::CellRenderer(RobotModel model, CellDescription cell, CellRenderer::Options options)
     : impl_(std::make_unique<Impl>(std::move(model), std::move(cell), options)) {
   Impl& m = *impl_;
   for (int i = 0; i < 7; ++i) {
@@ -112,7 +112,7 @@ CellRenderer::CellRenderer(RobotModel model, CellDescription cell, CellRendererO
 
 CellRenderer::~CellRenderer() = default;
 
-const CellRendererOptions& CellRenderer::options() const { return impl_->options; }
+const CellRenderer::Options& CellRenderer::options() const { return impl_->options; }
 
 void CellRenderer::renderPng(const CellSnapshot& snapshot, const std::string& path) {
   Impl& m = *impl_;

@@ -211,6 +211,29 @@ class BoxContact : public stk::Force::Custom::Implementation {
   mutable std::vector<stk::SpatialVec> V_GB_;
 };
 
+/// The contact geometry of a box part of size `s` (its frame at the bottom face's centre).
+/// Bottom face: an n x n grid (corners, edge points, centre), so a part stacked
+/// crosswise on a narrower one (no corner of either inside the other) still rests
+/// on the points of its bottom that lie over the lower part. Top face: the corners.
+/// The points lie contactInset_m inside the edges (see SimulationOptions).
+PartGeometry partGeometry(stk::MobilizedBodyIndex body, double mass_kg, const Eigen::Vector3d& s,
+                          const Eigen::Vector3d& com, const SimulationOptions& options) {
+  PartGeometry g;
+  g.body = body;
+  g.centre_B = toVec3(com);
+  g.mass_kg = mass_kg;
+  g.boundRadius = 0.5 * s.norm() + 0.01;
+  const int n = std::max(2, options.bottomContactGrid);
+  const double ex = std::max(0.0, s.x() - 2 * options.contactInset_m), ey = std::max(0.0, s.y() - 2 * options.contactInset_m);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      g.corners_B.emplace_back(ex * (double(i) / (n - 1) - 0.5), ey * (double(j) / (n - 1) - 0.5), 0.0);
+  g.bottomPoints = n * n;
+  for (double x : {-ex / 2, ex / 2})
+    for (double y : {-ey / 2, ey / 2}) g.corners_B.emplace_back(x, y, s.z());
+  return g;
+}
+
 }  // namespace
 
 struct CellSimulator::Impl {
@@ -413,24 +436,7 @@ CellSimulator::CellSimulator(const RobotModel& model, const CellDescription& cel
     const int index = static_cast<int>(m.partBodies.size());
     m.partBodies.push_back(free);
     m.partNames.push_back(o.name);
-    PartGeometry g;
-    g.body = free.getMobilizedBodyIndex();
-    g.centre_B = toVec3(com);
-    g.mass_kg = o.mass_kg;
-    g.boundRadius = 0.5 * s.norm() + 0.01;
-    // Bottom face: an n x n grid (corners, edge points, centre), so a part stacked
-    // crosswise on a narrower one (no corner of either inside the other) still rests
-    // on the points of its bottom that lie over the lower part. Top face: the corners.
-    // The points lie contactInset_m inside the edges (see SimulationOptions).
-    const int n = std::max(2, options.bottomContactGrid);
-    const double ex = std::max(0.0, s.x() - 2 * options.contactInset_m), ey = std::max(0.0, s.y() - 2 * options.contactInset_m);
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j)
-        g.corners_B.emplace_back(ex * (double(i) / (n - 1) - 0.5), ey * (double(j) / (n - 1) - 0.5), 0.0);
-    g.bottomPoints = n * n;
-    for (double x : {-ex / 2, ex / 2})
-      for (double y : {-ey / 2, ey / 2}) g.corners_B.emplace_back(x, y, s.z());
-    parts.push_back(g);
+    parts.push_back(partGeometry(free.getMobilizedBodyIndex(), o.mass_kg, s, com, options));
     ContactBox cb;
     cb.body = free.getMobilizedBodyIndex();
     cb.X_B_box = stk::Transform(toVec3(com));

@@ -47,21 +47,15 @@ namespace {
 /// What `srp execute --out` writes: a folder holding anything else is not replaced.
 const std::vector<std::string> kOutputFolderFiles = {"report.json", "report.txt", "joints.csv", "final_scene.json",
                                                      "frames"};
-}  // namespace
 
-ExecuteResult executeTask(const ExecuteRequest& request) {
-  ExecuteResult result;
-  if (!srp::taskdb::TaskDatabase::isServerUri(request.databasePath) && !std::filesystem::exists(request.databasePath))
-    throw srp::core::FileError(request.databasePath, "no such task database (create one with 'srp program' or 'srp db')");
-  auto db = srp::taskdb::TaskDatabase::open(request.databasePath, srp::taskdb::TaskDatabase::Mode::ReadOnly);
-  const srp::taskdb::TaskModelStore store(db);
-  const srp::taskdb::TaskModel model = store.read(request.taskModelId);
-
-  // The scene: the file given, else the task model's own demonstration, else the default.
+/// The scene to execute in: the task model's own demonstration when it stores one and no file is given,
+/// else the file given, else the default scene. `scenePath` says which; `report` where the scene and
+/// the robot base came from.
+srp::core::Scene executionScene(const ExecuteRequest& request, const srp::taskdb::TaskModel& model,
+                                const std::optional<srp::core::Pose3>& X_base_camera, std::string& scenePath,
+                                ExecutionReport& report) {
   const bool ownScene = request.scenePath.empty() && model.scene.has_value();
-  const std::optional<srp::core::Pose3> X_base_camera =
-      request.X_base_camera ? request.X_base_camera : model.info.X_base_camera;
-  std::string scenePath = request.scenePath;
+  scenePath = request.scenePath;
   srp::core::Scene scene;
   if (ownScene) {
     const RobotPlacement placement = RobotPlacement::of(
@@ -78,8 +72,8 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
     std::snprintf(what, sizeof what, "the task model's own demonstration (perceived: table %.2f x %.2f m, %zu objects, %zu "
                   "classes seen without a CAD file)", scene.tableSize_m.x(), scene.tableSize_m.y(), scene.objects.size(),
                   scene.observedClasses.size());
-    result.report.scene = what;
-    result.report.robotBase = placement.description;
+    report.scene = what;
+    report.robotBase = placement.description;
   } else {
     if (scenePath.empty()) {
       scenePath = core::defaultScenePath();
@@ -89,14 +83,15 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
     }
     scene = srp::core::Scene::load(scenePath);
   }
-  const srp::core::ObjectCatalogue catalogue = srp::kb::loadCatalogue(scene.cataloguePath);
-  const CellDescription cell = CellDescription::fromScene(scene, catalogue);
-  // Demonstration offsets: the camera as calibrated (or stored with the task model), else the scene's.
-  const srp::core::Pose3 X_world_camera =
-      ownScene ? scene.X_world_camera
-               : X_base_camera ? srp::core::Pose3(scene.X_world_base * *X_base_camera) : scene.X_world_camera;
+  return scene;
+}
+
+/// The plan: the one given, else the instruction's (grounded in the cell first: an ambiguous or
+/// impossible noun phrase stops here), else the task model's own.
+ExecutionPlan executionPlan(const ExecuteRequest& request, const srp::taskdb::TaskModel& model,
+                            const CellDescription& cell, const srp::core::Pose3& X_world_camera) {
   if (request.planOverride) {
-    result.plan = *request.planOverride;
+    return *request.planOverride;
   } else if (!request.instruction.empty()) {
     const srp::language::InstructionParser parser;
     const srp::language::TaskPlan parsed =
@@ -104,18 +99,60 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
     if (parsed.steps.empty())
       throw srp::core::InvalidInputError("the instruction gives no pick & place step: " +
                                          (parsed.warnings.empty() ? std::string("(no reason)") : parsed.warnings.front()));
-    result.plan = planFromLanguage(parsed);
+    ExecutionPlan plan = planFromLanguage(parsed);
     // An ambiguous or impossible noun phrase stops here: nothing moved, nothing written.
-    const std::vector<std::string> problems = groundingProblems(result.plan, cell, request.options.placement.grounding);
+    const std::vector<std::string> problems = groundingProblems(plan, cell, request.options.placement.grounding);
     if (!problems.empty()) {
       std::string message = "the instruction cannot be grounded in the scene, nothing was executed: ";
       for (std::size_t i = 0; i < problems.size(); ++i) message += (i ? "; " : "") + problems[i];
       throw GroundingError(message, {});
     }
-    attachDemoOffsets(result.plan, model, X_world_camera);
+    attachDemoOffsets(plan, model, X_world_camera);
+    return plan;
   } else {
-    result.plan = planFromTaskModel(model, X_world_camera);
+    return planFromTaskModel(model, X_world_camera);
   }
+}
+
+/// The report (JSON and text), the joint log and the final scene into the output folder, which is
+/// then renamed into place; `result.writtenFiles` names them where they end up.
+void writeExecutionOutputs(const ExecuteRequest& request, const std::string& scenePath, const srp::core::Scene& scene,
+                           TaskExecutor& executor, srp::core::AtomicOutputFolder& output,
+                           const std::string& outputFolder, ExecuteResult& result) {
+  nlohmann::json j = result.report.toJson();
+  j["task_model_id"] = request.taskModelId;
+  j["scene"] = scenePath;
+  srp::core::writeJsonFile(outputFolder + "/report.json", j);
+  srp::core::writeFileAtomically(outputFolder + "/report.txt", result.report.toText());
+  executor.writeJointLogCsv(outputFolder + "/joints.csv");
+  srp::core::writeJsonFile(outputFolder + "/final_scene.json", sceneAfter(scene, executor.perceive()).toJson());
+  output.commit();
+  for (const char* f : {"/report.json", "/report.txt", "/joints.csv", "/final_scene.json"}) result.writtenFiles.push_back(request.outputFolder + f);
+}
+
+}  // namespace
+
+ExecuteResult executeTask(const ExecuteRequest& request) {
+  ExecuteResult result;
+  if (!srp::taskdb::TaskDatabase::isServerUri(request.databasePath) && !std::filesystem::exists(request.databasePath))
+    throw srp::core::FileError(request.databasePath, "no such task database (create one with 'srp program' or 'srp db')");
+  auto db = srp::taskdb::TaskDatabase::open(request.databasePath, srp::taskdb::TaskDatabase::Mode::ReadOnly);
+  const srp::taskdb::TaskModelStore store(db);
+  const srp::taskdb::TaskModel model = store.read(request.taskModelId);
+
+  // The scene: the file given, else the task model's own demonstration, else the default.
+  const bool ownScene = request.scenePath.empty() && model.scene.has_value();
+  const std::optional<srp::core::Pose3> X_base_camera =
+      request.X_base_camera ? request.X_base_camera : model.info.X_base_camera;
+  std::string scenePath;
+  const srp::core::Scene scene = executionScene(request, model, X_base_camera, scenePath, result.report);
+  const srp::core::ObjectCatalogue catalogue = srp::kb::loadCatalogue(scene.cataloguePath);
+  const CellDescription cell = CellDescription::fromScene(scene, catalogue);
+  // Demonstration offsets: the camera as calibrated (or stored with the task model), else the scene's.
+  const srp::core::Pose3 X_world_camera =
+      ownScene ? scene.X_world_camera
+               : X_base_camera ? srp::core::Pose3(scene.X_world_base * *X_base_camera) : scene.X_world_camera;
+  result.plan = executionPlan(request, model, cell, X_world_camera);
   if (result.plan.steps.empty())
     throw srp::core::InvalidInputError("task model " + std::to_string(request.taskModelId) +
                                        " has no target objects to execute");
@@ -146,7 +183,7 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
     if (request.framePeriod > 0) {
       framesFolder = outputFolder + "/frames";
       std::filesystem::create_directories(framesFolder);
-      CellRendererOptions view;
+      CellRenderer::Options view;
       view.drawSafetySpheres = request.drawSafetySpheres;
       renderer = std::make_unique<CellRenderer>(robot, cell, view);
       executor.simulator().setSnapshotCallback([&](const CellSnapshot& s) {
@@ -178,17 +215,7 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
   result.executed.instruction = request.instruction.empty() ? model.info.instruction : request.instruction;
   result.executed.scene = scenePath;
 
-  if (output) {
-    nlohmann::json j = result.report.toJson();
-    j["task_model_id"] = request.taskModelId;
-    j["scene"] = scenePath;
-    srp::core::writeJsonFile(outputFolder + "/report.json", j);
-    srp::core::writeFileAtomically(outputFolder + "/report.txt", result.report.toText());
-    executor.writeJointLogCsv(outputFolder + "/joints.csv");
-    srp::core::writeJsonFile(outputFolder + "/final_scene.json", sceneAfter(scene, executor.perceive()).toJson());
-    output->commit();
-    for (const char* f : {"/report.json", "/report.txt", "/joints.csv", "/final_scene.json"}) result.writtenFiles.push_back(request.outputFolder + f);
-  }
+  if (output) writeExecutionOutputs(request, scenePath, scene, executor, *output, outputFolder, result);
   return result;
 }
 

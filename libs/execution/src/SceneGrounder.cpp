@@ -113,6 +113,62 @@ constexpr const char* kKnownRelations =
     "in, into, inside, from, out of, on, on top of, off, under, left of, right of, in front of, behind, next to, "
     "beside, near, closest to, farthest from";
 
+/// Keeps the objects of `current` whose `score` is within `tol` of the largest (or smallest) one.
+void keepExtreme(std::vector<const CellObject*>& current, const std::function<double(const CellObject&)>& score,
+                 bool largest, double tol) {
+  double best = largest ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
+  for (const auto* o : current) best = largest ? std::max(best, score(*o)) : std::min(best, score(*o));
+  std::vector<const CellObject*> kept;
+  for (const auto* o : current)
+    if (std::abs(score(*o) - best) <= tol) kept.push_back(o);
+  current = kept;
+}
+
+/// 4b. The phrase's superlative ("leftmost", "biggest", ...): keeps the objects of `current` at the
+/// extreme (within `tol`; 10 % of the largest volume for sizes, seen from `view`).
+void keepSuperlative(std::vector<const CellObject*>& current, const std::string& sup, const std::string& phrase,
+                     const srp::core::ViewFrame& view, double tol) {
+  auto top = [](const CellObject& o) { return o.X_world_object.translation().z() + o.size_m.z(); };
+  auto volume = [](const CellObject& o) { return o.size_m.prod(); };
+  auto right = [&](const CellObject& o) { return view.rightOf(o.X_world_object.translation()); };
+  auto front = [&](const CellObject& o) { return view.frontOf(o.X_world_object.translation()); };
+  if (sup == "leftmost") keepExtreme(current, right, false, tol);
+  else if (sup == "rightmost") keepExtreme(current, right, true, tol);
+  else if (sup == "frontmost" || sup == "closest") keepExtreme(current, front, true, tol);
+  else if (sup == "backmost" || sup == "farthest") keepExtreme(current, front, false, tol);
+  else if (sup == "highest") keepExtreme(current, top, true, tol);
+  else if (sup == "lowest") keepExtreme(current, top, false, tol);
+  else if (sup == "biggest" || sup == "smallest") {
+    double largest = 0.0;
+    for (const auto* o : current) largest = std::max(largest, volume(*o));
+    keepExtreme(current, volume, sup == "biggest", 0.1 * largest);
+  } else {
+    throw GroundingError("unknown superlative '" + sup + "' in " + phrase +
+                             " (known: leftmost, rightmost, frontmost, backmost, closest, farthest, biggest, "
+                             "smallest, highest, lowest)",
+                         idsOf(current));
+  }
+}
+
+/// 5. The phrase's ordinal, counted left to right in `view` (objects within `tol` of the one counted
+/// tie): keeps those of `current`; else says why none fits.
+std::string keepOrdinal(std::vector<const CellObject*>& current, const ObjectReference& ref, const std::string& phrase,
+                        const srp::core::ViewFrame& view, double tol) {
+  std::vector<const CellObject*> ordered = current;
+  auto right = [&](const CellObject* o) { return view.rightOf(o->X_world_object.translation()); };
+  std::stable_sort(ordered.begin(), ordered.end(), [&](const auto* a, const auto* b) { return right(a) < right(b); });
+  const int n = static_cast<int>(ordered.size());
+  const int index = *ref.ordinal == -1 ? n - 1 : *ref.ordinal - 1;
+  if (index < 0 || index >= n)
+    return phrase + ": only " + countWord(ordered.size()) + " " + (ordered.size() == 1 ? ref.name : plural(ref.name)) +
+           " fit (" + listInstances(ordered) + "), counted left to right";
+  std::vector<const CellObject*> kept;
+  for (const auto* o : ordered)
+    if (std::abs(right(o) - right(ordered[static_cast<std::size_t>(index)])) <= tol) kept.push_back(o);
+  current = kept;
+  return "";
+}
+
 }  // namespace
 
 SceneGrounder::SceneGrounder(const CellDescription& scene, GroundingOptions options)
@@ -230,14 +286,6 @@ SceneGrounder::Selection SceneGrounder::select(const ObjectReference& ref, const
     current = kept;
   }
   // 4. superlatives: keep everything within the tolerance of the extreme.
-  auto keepExtreme = [&](const std::function<double(const CellObject&)>& score, bool largest, double tol) {
-    double best = largest ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
-    for (const auto* o : current) best = largest ? std::max(best, score(*o)) : std::min(best, score(*o));
-    std::vector<const CellObject*> kept;
-    for (const auto* o : current)
-      if (std::abs(score(*o) - best) <= tol) kept.push_back(o);
-    current = kept;
-  };
   for (const auto& [parsed, landmarks] : rankings) {
     auto distance = [&, lms = landmarks](const CellObject& o) {
       double d = std::numeric_limits<double>::infinity();
@@ -245,49 +293,13 @@ SceneGrounder::Selection SceneGrounder::select(const ObjectReference& ref, const
         if (l != &o) d = std::min(d, (centre(o) - centre(*l)).norm());
       return d;
     };
-    keepExtreme(distance, parsed.kind == RelationKind::Farthest, options_.tieTolerance_m);
+    keepExtreme(current, distance, parsed.kind == RelationKind::Farthest, options_.tieTolerance_m);
   }
-  const std::string& sup = ref.superlative;
-  if (!sup.empty()) {
-    auto top = [](const CellObject& o) { return o.X_world_object.translation().z() + o.size_m.z(); };
-    auto volume = [](const CellObject& o) { return o.size_m.prod(); };
-    auto right = [&](const CellObject& o) { return view_.rightOf(o.X_world_object.translation()); };
-    auto front = [&](const CellObject& o) { return view_.frontOf(o.X_world_object.translation()); };
-    const double tol = options_.tieTolerance_m;
-    if (sup == "leftmost") keepExtreme(right, false, tol);
-    else if (sup == "rightmost") keepExtreme(right, true, tol);
-    else if (sup == "frontmost" || sup == "closest") keepExtreme(front, true, tol);
-    else if (sup == "backmost" || sup == "farthest") keepExtreme(front, false, tol);
-    else if (sup == "highest") keepExtreme(top, true, tol);
-    else if (sup == "lowest") keepExtreme(top, false, tol);
-    else if (sup == "biggest" || sup == "smallest") {
-      double largest = 0.0;
-      for (const auto* o : current) largest = std::max(largest, volume(*o));
-      keepExtreme(volume, sup == "biggest", 0.1 * largest);
-    } else {
-      throw GroundingError("unknown superlative '" + sup + "' in " + phrase +
-                               " (known: leftmost, rightmost, frontmost, backmost, closest, farthest, biggest, "
-                               "smallest, highest, lowest)",
-                           idsOf(current));
-    }
-  }
+  if (!ref.superlative.empty()) keepSuperlative(current, ref.superlative, phrase, view_, options_.tieTolerance_m);
   // 5. ordinal: left to right in the view frame.
   if (ref.ordinal) {
-    std::vector<const CellObject*> ordered = current;
-    auto right = [&](const CellObject* o) { return view_.rightOf(o->X_world_object.translation()); };
-    std::stable_sort(ordered.begin(), ordered.end(), [&](const auto* a, const auto* b) { return right(a) < right(b); });
-    const int n = static_cast<int>(ordered.size());
-    const int index = *ref.ordinal == -1 ? n - 1 : *ref.ordinal - 1;
-    if (index < 0 || index >= n) {
-      out.whyNone = phrase + ": only " + countWord(ordered.size()) + " " +
-                    (ordered.size() == 1 ? ref.name : plural(ref.name)) + " fit (" + listInstances(ordered) +
-                    "), counted left to right";
-      return out;
-    }
-    std::vector<const CellObject*> kept;
-    for (const auto* o : ordered)
-      if (std::abs(right(o) - right(ordered[static_cast<std::size_t>(index)])) <= options_.tieTolerance_m) kept.push_back(o);
-    current = kept;
+    out.whyNone = keepOrdinal(current, ref, phrase, view_, options_.tieTolerance_m);
+    if (!out.whyNone.empty()) return out;
   }
   out.objects = current;
   return out;

@@ -47,7 +47,7 @@ double changedFraction(const mrpt::img::CImage& a, const mrpt::img::CImage& b) {
 // image (the arm) and leaves the rest (table, boxes, parts) as it was.
 TEST(CellRenderer, DrawsTheArmWhereTheJointsPutIt) {
   const auto cell = CellDescription::loadScene();
-  CellRendererOptions options;
+  CellRenderer::Options options;
   options.width_px = 320;
   options.height_px = 240;
   CellRenderer renderer(RobotModel::defaultUr5(), cell, options);
@@ -105,7 +105,7 @@ Eigen::Vector3d comOf(const RobotModel& model, const CellDescription& cell, cons
 TEST(CellRenderer, DrawsTheUr5MeshesWhereTheUrdfKinematicsPutThem) {
   const auto cell = CellDescription::loadScene();
   const RobotModel model = RobotModel::defaultUr5();
-  CellRendererOptions options;
+  CellRenderer::Options options;
   options.width_px = 480;
   options.height_px = 360;
   options.distance_m = 2.2;
@@ -118,7 +118,7 @@ TEST(CellRenderer, DrawsTheUr5MeshesWhereTheUrdfKinematicsPutThem) {
   const auto away = renderColour(renderer, q_away, "cell_renderer_mesh_away.png");
   const auto home = renderColour(renderer, q_home, "cell_renderer_mesh_home.png");
   {  // the optional overlay draws the safety spheres over the meshes
-    CellRendererOptions overlay = options;
+    CellRenderer::Options overlay = options;
     overlay.drawSafetySpheres = true;
     CellRenderer withSpheres(model, cell, overlay);
     const auto spheres = renderColour(withSpheres, q_home, "cell_renderer_mesh_spheres.png");

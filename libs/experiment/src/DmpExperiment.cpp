@@ -147,23 +147,13 @@ void writeDmpFigure(const std::string& path, const std::string& title, const Seg
 
 std::string mm(double m) { return formatNumber(1e3 * m, 2); }
 
-}  // namespace
-
-ExperimentResult runDmpExperiment(const ExperimentOptions& options)
+/// Reach and Move segments of every moved object in `count` demos: the smoothed hand between
+/// the segmentation's events, as SkillLearner learns them.
+std::vector<Segment> demoSegments(const ExperimentOptions& options, int count, const std::string& name)
 {
-  const WallClock clock;
-  ExperimentResult result;
-  result.name = "dmp";
-  const auto dir = experimentDirOf(options, result.name);
-  const int count = demoCountOf(options);
-  const motion::AdaptationShift shift;
-  const auto vs = variants();
-
-  // Reach and Move segments of every moved object: the smoothed hand between
-  // the segmentation's events, as SkillLearner learns them.
   std::vector<Segment> segments;
   for (int d = 0; d < count; ++d) {
-    const AnalysedDemo demo = analyseDemo(options, d, result.name);
+    const AnalysedDemo demo = analyseDemo(options, d, name);
     const auto& in = demo.inputs;
     const motion::LearnedSkills learned = motion::learnSkills(in);
     const auto& seg = learned.segmentation;
@@ -188,6 +178,66 @@ ExperimentResult runDmpExperiment(const ExperimentOptions& options)
       make("move", s.graspIndex, s.releaseIndex);
     }
   }
+  return segments;
+}
+
+/// The table of one skill ("reach" or "move"): each variant's reproduction and adaptation errors over
+/// the segments of that skill; `metrics` receives them per variant.
+ResultTable skillTable(const std::string& skill, const std::vector<Segment>& segments, const std::vector<Variant>& vs,
+                       const std::vector<std::vector<Outcome>>& outcomes, nlohmann::json& metrics)
+{
+  ResultTable table;
+  table.title = "Section 8.4: " + skill + " DMPs (" +
+                std::to_string(std::count_if(segments.begin(), segments.end(),
+                                             [&](const Segment& s) { return s.skill == skill; })) +
+                " demo segments, N = 20 basis functions)";
+  table.columns = {"formulation", "thesis", "reproduction max error median / worst [mm]", "reproduction RMS median [mm]",
+                   "adapted: goal error median / worst [mm]", "adapted: shape deviation median [mm]", "λ median"};
+  for (size_t v = 0; v < vs.size(); ++v) {
+    std::vector<double> repMax, repRms, goal, shape, lambda;
+    for (size_t k = 0; k < segments.size(); ++k) {
+      if (segments[k].skill != skill) continue;
+      const Outcome& o = outcomes[v][k];
+      repMax.push_back(o.reproductionMax_m);
+      repRms.push_back(o.reproductionRms_m);
+      goal.push_back(o.adaptedGoal_m);
+      shape.push_back(o.adaptedShape_m);
+      lambda.push_back(o.lambda);
+    }
+    std::string thesis = "—";
+    if (v == 0 && skill == "reach") thesis = "fig. 8.6 (no number)";
+    if (v == 1) thesis = skill == "reach" ? "fig. 8.7 (no number)" : "fig. 8.8 (no number)";
+    table.rows.push_back({vs[v].name, thesis, mm(medianOf(repMax)) + " / " + mm(worst(repMax)), mm(medianOf(repRms)),
+                          mm(medianOf(goal)) + " / " + mm(worst(goal)), mm(medianOf(shape)),
+                          v == 4 ? formatNumber(medianOf(lambda) * 1e6, 2) + "e-6" : formatNumber(medianOf(lambda), 1)});
+    metrics[vs[v].name] = {{"segments", repMax.size()},
+                           {"reproduction_max_error_m", {{"median", medianOf(repMax)}, {"worst", worst(repMax)}}},
+                           {"reproduction_rms_error_m", {{"median", medianOf(repRms)}}},
+                           {"adapted_goal_error_m", {{"median", medianOf(goal)}, {"worst", worst(goal)}}},
+                           {"adapted_shape_deviation_m", {{"median", medianOf(shape)}}},
+                           {"lambda_median", medianOf(lambda)}};
+  }
+  table.note = "Thesis section 8.4 shows these DMPs in figs. 8.6-8.8 without numbers. Thesis formulation = "
+               "dfki-ric movement_primitives as the thesis used it (start at rest, forcing term unscaled), "
+               "reproduced by libs/motion's Reference mode. Adaptation: start +(5, -3, 2) cm, goal +(-4, 6, -1) cm, "
+               "same duration; shape deviation = distance to the demo shifted by the time-blend of the two shifts.";
+  return table;
+}
+
+}  // namespace
+
+ExperimentResult runDmpExperiment(const ExperimentOptions& options)
+{
+  const WallClock clock;
+  ExperimentResult result;
+  result.name = "dmp";
+  const auto dir = experimentDirOf(options, result.name);
+  const int count = demoCountOf(options);
+  const motion::AdaptationShift shift;
+  const auto vs = variants();
+
+  // Reach and Move segments of every moved object (as SkillLearner learns them).
+  const std::vector<Segment> segments = demoSegments(options, count, result.name);
   if (segments.empty())
     throw core::InvalidInputError("dmp: the demos gave no Reach/Move segment (no object was found moving)");
   reportProgress(options, "dmp: learning " + std::to_string(segments.size() * vs.size()) + " DMPs", 0.95);
@@ -197,44 +247,8 @@ ExperimentResult runDmpExperiment(const ExperimentOptions& options)
   for (size_t v = 0; v < vs.size(); ++v)
     for (const auto& s : segments) outcomes[v].push_back(evaluate(s, vs[v].config, shift));
 
-  for (const std::string skill : {"reach", "move"}) {
-    ResultTable table;
-    table.title = "Section 8.4: " + skill + " DMPs (" +
-                  std::to_string(std::count_if(segments.begin(), segments.end(),
-                                               [&](const Segment& s) { return s.skill == skill; })) +
-                  " demo segments, N = 20 basis functions)";
-    table.columns = {"formulation", "thesis", "reproduction max error median / worst [mm]", "reproduction RMS median [mm]",
-                     "adapted: goal error median / worst [mm]", "adapted: shape deviation median [mm]", "λ median"};
-    for (size_t v = 0; v < vs.size(); ++v) {
-      std::vector<double> repMax, repRms, goal, shape, lambda;
-      for (size_t k = 0; k < segments.size(); ++k) {
-        if (segments[k].skill != skill) continue;
-        const Outcome& o = outcomes[v][k];
-        repMax.push_back(o.reproductionMax_m);
-        repRms.push_back(o.reproductionRms_m);
-        goal.push_back(o.adaptedGoal_m);
-        shape.push_back(o.adaptedShape_m);
-        lambda.push_back(o.lambda);
-      }
-      std::string thesis = "—";
-      if (v == 0 && skill == "reach") thesis = "fig. 8.6 (no number)";
-      if (v == 1) thesis = skill == "reach" ? "fig. 8.7 (no number)" : "fig. 8.8 (no number)";
-      table.rows.push_back({vs[v].name, thesis, mm(medianOf(repMax)) + " / " + mm(worst(repMax)), mm(medianOf(repRms)),
-                            mm(medianOf(goal)) + " / " + mm(worst(goal)), mm(medianOf(shape)),
-                            v == 4 ? formatNumber(medianOf(lambda) * 1e6, 2) + "e-6" : formatNumber(medianOf(lambda), 1)});
-      result.metrics[skill][vs[v].name] = {{"segments", repMax.size()},
-                                           {"reproduction_max_error_m", {{"median", medianOf(repMax)}, {"worst", worst(repMax)}}},
-                                           {"reproduction_rms_error_m", {{"median", medianOf(repRms)}}},
-                                           {"adapted_goal_error_m", {{"median", medianOf(goal)}, {"worst", worst(goal)}}},
-                                           {"adapted_shape_deviation_m", {{"median", medianOf(shape)}}},
-                                           {"lambda_median", medianOf(lambda)}};
-    }
-    table.note = "Thesis section 8.4 shows these DMPs in figs. 8.6-8.8 without numbers. Thesis formulation = "
-                 "dfki-ric movement_primitives as the thesis used it (start at rest, forcing term unscaled), "
-                 "reproduced by libs/motion's Reference mode. Adaptation: start +(5, -3, 2) cm, goal +(-4, 6, -1) cm, "
-                 "same duration; shape deviation = distance to the demo shifted by the time-blend of the two shifts.";
-    result.tables.push_back(table);
-  }
+  for (const std::string skill : {"reach", "move"})
+    result.tables.push_back(skillTable(skill, segments, vs, outcomes, result.metrics[skill]));
 
   // Per segment, the thesis formulation with lambda = 0.1 against ours (GCV).
   ResultTable perSegment;

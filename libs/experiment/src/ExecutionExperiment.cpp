@@ -4,6 +4,7 @@
 // seeded scenes (thesis section 8.5.2).
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "DemoAnalysis.h"
 #include "srp/core/Error.h"
@@ -112,6 +113,98 @@ execution::CellDescription withPartsMoved(execution::CellDescription cell, int s
   return cell;
 }
 
+/// Appendix A's instructions (the first alone when `quick`).
+std::vector<std::string> appendixInstructions(const std::string& appendixPath, bool quick)
+{
+  std::vector<std::string> appendix;
+  const nlohmann::json appendixJson = core::readJsonFile(appendixPath);
+  for (const auto& item : core::requireField(appendixJson, "instructions", appendixPath))
+    appendix.push_back(item.at("instruction").get<std::string>());
+  if (quick) appendix.resize(1);
+  return appendix;
+}
+
+/// The table's cases: each Appendix A instruction, the subset and its reversal, and (unless `quick`)
+/// the adaptations.
+std::vector<CaseTally> executionCases(const std::vector<std::string>& appendix, bool quick)
+{
+  std::vector<CaseTally> cases;
+  for (size_t k = 0; k < appendix.size(); ++k)
+    cases.push_back(makeCase("Appendix A instruction " + std::to_string(k + 1), appendix[k], "done (Gazebo, demo scene)"));
+  cases.push_back(makeCase("subset", kSubset, "done (Gazebo)"));
+  cases.push_back(makeCase("reversal (after the subset)", kReversal, "—"));
+  if (!quick) {
+    cases.push_back(makeCase("parts moved (places swapped, turned)", appendix[0], "—"));
+    cases.push_back(makeCase("new order", kNewOrder, "—"));
+    cases.push_back(makeCase("missing part (octagon removed): 3 done + octagon skipped", appendix[0], "—"));
+  }
+  return cases;
+}
+
+/// The case whose name starts with `prefix`.
+CaseTally& findCase(std::vector<CaseTally>& cases, const std::string& prefix)
+{
+  for (auto& c : cases)
+    if (c.name.rfind(prefix, 0) == 0) return c;
+  throw core::Error("execution experiment: no case " + prefix);
+}
+
+/// Every case once on one seeded scene (`s`: the scene's index, which turns the moved parts).
+void runScene(const Cell& cell, const std::vector<language::PlanStep>& known, const std::vector<std::string>& appendix,
+              const execution::CellDescription& sceneCell, const std::string& sceneName, int s, bool quick,
+              std::vector<CaseTally>& cases, const std::function<void(const std::string&)>& progress, int& runsDone)
+{
+  for (size_t k = 0; k < appendix.size(); ++k) {
+    progress(sceneName + ", instruction " + std::to_string(k + 1));
+    const auto r = cell.executor(sceneCell)->run(cell.plan(appendix[k], known));
+    tally(cases[k], r, r.allSucceeded() && r.steps.size() == 4, sceneName);
+    ++runsDone;
+  }
+  {
+    progress(sceneName + ", subset and reversal");
+    auto ex = cell.executor(sceneCell);
+    const auto subsetPlan = cell.plan(kSubset, known);
+    const auto r1 = ex->run(subsetPlan);
+    tally(findCase(cases, "subset"), r1, r1.allSucceeded(), sceneName);
+    // The reversal knows the subset's move, as `srp execute` knows the stored plan.
+    const auto r2 = ex->run(cell.plan(kReversal, cell.parser.parse(kSubset).steps));
+    bool back = r2.allSucceeded();
+    for (const auto& st : r2.steps) back = back && st.insideContainer;
+    tally(findCase(cases, "reversal"), r2, back && r1.allSucceeded(), sceneName);
+    runsDone += 2;
+  }
+  if (quick) return;
+  {
+    progress(sceneName + ", parts moved");
+    const auto moved = withPartsMoved(sceneCell, 1 + s % 3, 0.3 + 0.2 * s);
+    const auto r = cell.executor(moved)->run(cell.plan(appendix[0], known));
+    tally(findCase(cases, "parts moved"), r, r.allSucceeded() && r.steps.size() == 4, sceneName);
+    ++runsDone;
+  }
+  {
+    progress(sceneName + ", new order");
+    const auto r = cell.executor(sceneCell)->run(cell.plan(kNewOrder, known));
+    bool order = r.steps.size() == 4;
+    const std::vector<std::string> expected{"octagon", "parallelogram", "star", "cuboid"};
+    for (size_t i = 0; order && i < 4; ++i) order = r.steps[i].object == expected[i];
+    tally(findCase(cases, "new order"), r, r.allSucceeded() && order, sceneName);
+    ++runsDone;
+  }
+  {
+    progress(sceneName + ", missing part");
+    auto missing = sceneCell;
+    missing.objects.erase(std::remove_if(missing.objects.begin(), missing.objects.end(),
+                                         [](const execution::CellObject& o) { return o.name == "octagon"; }),
+                          missing.objects.end());
+    const auto r = cell.executor(missing)->run(cell.plan(appendix[0], known));
+    bool ok = r.steps.size() == 4;
+    for (size_t i = 0; ok && i < 3; ++i) ok = r.steps[i].status == execution::StepStatus::Done && r.steps[i].relationsHold;
+    ok = ok && r.steps[3].status == execution::StepStatus::Skipped;
+    tally(findCase(cases, "missing part"), r, ok, sceneName);
+    ++runsDone;
+  }
+}
+
 }  // namespace
 
 ExperimentResult runExecutionExperiment(const ExperimentOptions& options)
@@ -141,86 +234,19 @@ ExperimentResult runExecutionExperiment(const ExperimentOptions& options)
       execution::DmpPathGenerator::fromTaskModel(cell.model, cell.X_world_camera));
   const auto known = language::planStepsFromTaskModel(cell.model);
 
-  std::vector<std::string> appendix;
-  const nlohmann::json appendixJson = core::readJsonFile(appendixPath.string());
-  for (const auto& item : core::requireField(appendixJson, "instructions", appendixPath.string()))
-    appendix.push_back(item.at("instruction").get<std::string>());
-  if (options.quick) appendix.resize(1);
+  const std::vector<std::string> appendix = appendixInstructions(appendixPath.string(), options.quick);
 
-  std::vector<CaseTally> cases;
-  for (size_t k = 0; k < appendix.size(); ++k)
-    cases.push_back(makeCase("Appendix A instruction " + std::to_string(k + 1), appendix[k], "done (Gazebo, demo scene)"));
-  cases.push_back(makeCase("subset", kSubset, "done (Gazebo)"));
-  cases.push_back(makeCase("reversal (after the subset)", kReversal, "—"));
-  if (!options.quick) {
-    cases.push_back(makeCase("parts moved (places swapped, turned)", appendix[0], "—"));
-    cases.push_back(makeCase("new order", kNewOrder, "—"));
-    cases.push_back(makeCase("missing part (octagon removed): 3 done + octagon skipped", appendix[0], "—"));
-  }
-  const auto find = [&](const std::string& prefix) -> CaseTally& {
-    for (auto& c : cases)
-      if (c.name.rfind(prefix, 0) == 0) return c;
-    throw core::Error("execution experiment: no case " + prefix);
-  };
+  std::vector<CaseTally> cases = executionCases(appendix, options.quick);
 
   const int totalRuns = scenes * static_cast<int>(cases.size());
   int runsDone = 0;
-  const auto progress = [&](const std::string& what) {
+  const std::function<void(const std::string&)> progress = [&](const std::string& what) {
     reportProgress(options, "execution: " + what, 0.5 + 0.5 * runsDone / std::max(1, totalRuns));
   };
   for (int s = 0; s < scenes; ++s) {
     const std::uint32_t seed = options.firstSeed + static_cast<std::uint32_t>(s);
-    const auto sceneCell = execution::randomizeCell(base, "blue box", seed);
-    const std::string sceneName = "scene seed " + std::to_string(seed);
-    for (size_t k = 0; k < appendix.size(); ++k) {
-      progress(sceneName + ", instruction " + std::to_string(k + 1));
-      const auto r = cell.executor(sceneCell)->run(cell.plan(appendix[k], known));
-      tally(cases[k], r, r.allSucceeded() && r.steps.size() == 4, sceneName);
-      ++runsDone;
-    }
-    {
-      progress(sceneName + ", subset and reversal");
-      auto ex = cell.executor(sceneCell);
-      const auto subsetPlan = cell.plan(kSubset, known);
-      const auto r1 = ex->run(subsetPlan);
-      tally(find("subset"), r1, r1.allSucceeded(), sceneName);
-      // The reversal knows the subset's move, as `srp execute` knows the stored plan.
-      const auto r2 = ex->run(cell.plan(kReversal, cell.parser.parse(kSubset).steps));
-      bool back = r2.allSucceeded();
-      for (const auto& st : r2.steps) back = back && st.insideContainer;
-      tally(find("reversal"), r2, back && r1.allSucceeded(), sceneName);
-      runsDone += 2;
-    }
-    if (options.quick) continue;
-    {
-      progress(sceneName + ", parts moved");
-      const auto moved = withPartsMoved(sceneCell, 1 + s % 3, 0.3 + 0.2 * s);
-      const auto r = cell.executor(moved)->run(cell.plan(appendix[0], known));
-      tally(find("parts moved"), r, r.allSucceeded() && r.steps.size() == 4, sceneName);
-      ++runsDone;
-    }
-    {
-      progress(sceneName + ", new order");
-      const auto r = cell.executor(sceneCell)->run(cell.plan(kNewOrder, known));
-      bool order = r.steps.size() == 4;
-      const std::vector<std::string> expected{"octagon", "parallelogram", "star", "cuboid"};
-      for (size_t i = 0; order && i < 4; ++i) order = r.steps[i].object == expected[i];
-      tally(find("new order"), r, r.allSucceeded() && order, sceneName);
-      ++runsDone;
-    }
-    {
-      progress(sceneName + ", missing part");
-      auto missing = sceneCell;
-      missing.objects.erase(std::remove_if(missing.objects.begin(), missing.objects.end(),
-                                           [](const execution::CellObject& o) { return o.name == "octagon"; }),
-                            missing.objects.end());
-      const auto r = cell.executor(missing)->run(cell.plan(appendix[0], known));
-      bool ok = r.steps.size() == 4;
-      for (size_t i = 0; ok && i < 3; ++i) ok = r.steps[i].status == execution::StepStatus::Done && r.steps[i].relationsHold;
-      ok = ok && r.steps[3].status == execution::StepStatus::Skipped;
-      tally(find("missing part"), r, ok, sceneName);
-      ++runsDone;
-    }
+    runScene(cell, known, appendix, execution::randomizeCell(base, "blue box", seed), "scene seed " + std::to_string(seed),
+             s, options.quick, cases, progress, runsDone);
   }
 
   ResultTable table;

@@ -90,6 +90,89 @@ void errorCdf(plot::Axes& axes, std::vector<double> error_m, const std::string& 
   axes.line(x, y, label, colour);
 }
 
+/// The 3D palm error of both detectors against ground truth, over all demos.
+ResultTable palmErrorTable(const DetectorCounts& total)
+{
+  ResultTable error;
+  error.title = "Hand: 3D palm error against ground truth (camera frame)";
+  error.columns = {"Detector", "Frames with a 3D palm", "Median [mm]", "p95 [mm]", "Max [mm]",
+                   "False detections (hand-free frames)", "Thesis"};
+  error.note =
+      "Error = distance of the reported palm centre to the true one, over hand-visible frames with a 3D "
+      "point (depth holes filled as the module does: the last depth carried along the palm pixel's ray). "
+      "The thesis had no ground truth for the hand (only depth validity, section 8.3.3). Targets: "
+      "median <= 5 mm, p95 <= 15 mm for the marker and median <= 15 mm for the marker-free detector.";
+  auto errorRow = [&](const std::string& name, const std::vector<double>& e, int falseDetections) {
+    error.rows.push_back({name, std::to_string(e.size()), formatNumber(1e3 * detail::percentile(e, 0.5), 1),
+                          formatNumber(1e3 * detail::percentile(e, 0.95), 1), formatNumber(1e3 * detail::percentile(e, 1.0), 1),
+                          std::to_string(falseDetections) + " / " + std::to_string(total.handFreeFrames), "—"});
+  };
+  errorRow("Marker (AprilTag glove)", total.markerError_m, total.markerFalse);
+  errorRow("Marker-free (depth foreground + skin)", total.markerFreeError_m, total.markerFreeFalse);
+  return error;
+}
+
+/// Figure: per-demo detection rates beside the thesis, and the error CDFs (hand/hand_detection.png).
+std::filesystem::path handFigure(const ExperimentOptions& options, const detail::PerceptionStudySize& size,
+                                 std::size_t demoCount, const std::vector<double>& markerRates,
+                                 const std::vector<double>& markerFreeRates, const DetectorCounts& total)
+{
+  const std::filesystem::path dir = options.outDir / "hand";
+  std::filesystem::create_directories(dir);
+  plot::Figure figure(1200, 500, 1, 2);
+  figure.title = "Hand detection: " + std::to_string(size.demoCount) + " synthetic demo(s) x first " +
+                 std::to_string(size.framesPerDemo) + " frames, 640x480";
+  auto& bars = figure.axes(0, 0);
+  bars.title = "Hand-visible frames detected";
+  bars.xLabel = "demo";
+  bars.yLabel = "detected [%]";
+  bars.yLimits = std::make_pair(0.0, 130.0);  // room for the legend above the bars
+  bars.xLimits = std::make_pair(0.4, demoCount + 0.6);
+  for (std::size_t k = 0; k < demoCount; ++k) {
+    const double x = static_cast<double>(k + 1);
+    // Bars as thick vertical segments; the legend entry once per series.
+    bars.line({x - 0.15, x - 0.15}, {0.0, 100.0 * markerRates[k]}, k == 0 ? "ours: marker" : "", plot::Colour::tab(0), 18.0);
+    bars.line({x + 0.15, x + 0.15}, {0.0, 100.0 * markerFreeRates[k]}, k == 0 ? "ours: marker-free" : "",
+              plot::Colour::tab(1), 18.0);
+  }
+  std::vector<double> thesisX, thesisFaster, thesisMp;
+  for (std::size_t k = 0; k < demoCount && k < kThesisFasterRcnn.size(); ++k) {
+    thesisX.push_back(static_cast<double>(k + 1));
+    thesisFaster.push_back(100.0 * kThesisFasterRcnn[k]);
+    thesisMp.push_back(100.0 * kThesisMediaPipe[k]);
+  }
+  bars.scatter(thesisX, thesisFaster, "thesis: Faster-RCNN", plot::Colour::tab(2), plot::Marker::Triangle, 7.0);
+  bars.scatter(thesisX, thesisMp, "thesis: MediaPipe", plot::Colour::tab(3), plot::Marker::Cross, 7.0);
+  auto& cdf = figure.axes(0, 1);
+  cdf.title = "3D palm error, cumulative";
+  cdf.xLabel = "log10(error [mm])";
+  cdf.yLabel = "fraction of frames";
+  cdf.yLimits = std::make_pair(0.0, 1.02);
+  errorCdf(cdf, total.markerError_m, "marker", plot::Colour::tab(0));
+  errorCdf(cdf, total.markerFreeError_m, "marker-free", plot::Colour::tab(1));
+  cdf.verticalLine(std::log10(15.0), "15 mm", plot::Colour::gray());
+  const auto png = dir / "hand_detection.png";
+  figure.save(png.string());
+  return png;
+}
+
+/// One demo's counts, as the metrics' "demos" entry.
+nlohmann::json demoMetrics(const detail::PerceivedDemo& demo, const DetectorCounts& c)
+{
+  return {{"seed", demo.seed},
+          {"frames", demo.frames},
+          {"hand_frames", c.handFrames},
+          {"tag_frames", c.tagFrames},
+          {"marker_detected", c.markerInHand},
+          {"marker_rate", ratio(c.markerInHand, c.handFrames)},
+          {"marker_tag_rate", ratio(c.markerInTag, c.tagFrames)},
+          {"marker_free_detected", c.markerFreeInHand},
+          {"marker_free_rate", ratio(c.markerFreeInHand, c.handFrames)},
+          {"marker_false_detections", c.markerFalse},
+          {"marker_free_false_detections", c.markerFreeFalse},
+          {"perception_time_s", demo.perceptionTime_s}};
+}
+
 }  // namespace
 
 ExperimentResult runHandExperiment(const ExperimentOptions& options)
@@ -131,79 +214,18 @@ ExperimentResult runHandExperiment(const ExperimentOptions& options)
                               k < kThesisMediaPipe.size() ? formatPercent(kThesisMediaPipe[k], 2) : "—",
                               formatPercent(markerRates.back(), 2), formatPercent(markerFreeRates.back(), 2),
                               formatPercent(ratio(c.markerInTag, c.tagFrames), 2)});
-    perDemo.push_back({{"seed", demo.seed},
-                       {"frames", demo.frames},
-                       {"hand_frames", c.handFrames},
-                       {"tag_frames", c.tagFrames},
-                       {"marker_detected", c.markerInHand},
-                       {"marker_rate", ratio(c.markerInHand, c.handFrames)},
-                       {"marker_tag_rate", ratio(c.markerInTag, c.tagFrames)},
-                       {"marker_free_detected", c.markerFreeInHand},
-                       {"marker_free_rate", ratio(c.markerFreeInHand, c.handFrames)},
-                       {"marker_false_detections", c.markerFalse},
-                       {"marker_free_false_detections", c.markerFreeFalse},
-                       {"perception_time_s", demo.perceptionTime_s}});
+    perDemo.push_back(demoMetrics(demo, c));
   }
   detection.rows.push_back({"All", std::to_string(total.handFrames), "91.67–100 % (range)", "8.86–93.99 % (range)",
                             formatPercent(ratio(total.markerInHand, total.handFrames), 2),
                             formatPercent(ratio(total.markerFreeInHand, total.handFrames), 2),
                             formatPercent(ratio(total.markerInTag, total.tagFrames), 2)});
 
-  ResultTable error;
-  error.title = "Hand: 3D palm error against ground truth (camera frame)";
-  error.columns = {"Detector", "Frames with a 3D palm", "Median [mm]", "p95 [mm]", "Max [mm]",
-                   "False detections (hand-free frames)", "Thesis"};
-  error.note =
-      "Error = distance of the reported palm centre to the true one, over hand-visible frames with a 3D "
-      "point (depth holes filled as the module does: the last depth carried along the palm pixel's ray). "
-      "The thesis had no ground truth for the hand (only depth validity, section 8.3.3). Targets: "
-      "median <= 5 mm, p95 <= 15 mm for the marker and median <= 15 mm for the marker-free detector.";
-  auto errorRow = [&](const std::string& name, const std::vector<double>& e, int falseDetections) {
-    error.rows.push_back({name, std::to_string(e.size()), formatNumber(1e3 * detail::percentile(e, 0.5), 1),
-                          formatNumber(1e3 * detail::percentile(e, 0.95), 1), formatNumber(1e3 * detail::percentile(e, 1.0), 1),
-                          std::to_string(falseDetections) + " / " + std::to_string(total.handFreeFrames), "—"});
-  };
-  errorRow("Marker (AprilTag glove)", total.markerError_m, total.markerFalse);
-  errorRow("Marker-free (depth foreground + skin)", total.markerFreeError_m, total.markerFreeFalse);
+  const ResultTable error = palmErrorTable(total);
   result.tables = {detection, error};
 
   // Figure: per-demo detection rates beside the thesis, and the error CDFs.
-  const std::filesystem::path dir = options.outDir / "hand";
-  std::filesystem::create_directories(dir);
-  plot::Figure figure(1200, 500, 1, 2);
-  figure.title = "Hand detection: " + std::to_string(size.demoCount) + " synthetic demo(s) x first " +
-                 std::to_string(size.framesPerDemo) + " frames, 640x480";
-  auto& bars = figure.axes(0, 0);
-  bars.title = "Hand-visible frames detected";
-  bars.xLabel = "demo";
-  bars.yLabel = "detected [%]";
-  bars.yLimits = std::make_pair(0.0, 130.0);  // room for the legend above the bars
-  bars.xLimits = std::make_pair(0.4, demos.size() + 0.6);
-  for (std::size_t k = 0; k < demos.size(); ++k) {
-    const double x = static_cast<double>(k + 1);
-    // Bars as thick vertical segments; the legend entry once per series.
-    bars.line({x - 0.15, x - 0.15}, {0.0, 100.0 * markerRates[k]}, k == 0 ? "ours: marker" : "", plot::Colour::tab(0), 18.0);
-    bars.line({x + 0.15, x + 0.15}, {0.0, 100.0 * markerFreeRates[k]}, k == 0 ? "ours: marker-free" : "",
-              plot::Colour::tab(1), 18.0);
-  }
-  std::vector<double> thesisX, thesisFaster, thesisMp;
-  for (std::size_t k = 0; k < demos.size() && k < kThesisFasterRcnn.size(); ++k) {
-    thesisX.push_back(static_cast<double>(k + 1));
-    thesisFaster.push_back(100.0 * kThesisFasterRcnn[k]);
-    thesisMp.push_back(100.0 * kThesisMediaPipe[k]);
-  }
-  bars.scatter(thesisX, thesisFaster, "thesis: Faster-RCNN", plot::Colour::tab(2), plot::Marker::Triangle, 7.0);
-  bars.scatter(thesisX, thesisMp, "thesis: MediaPipe", plot::Colour::tab(3), plot::Marker::Cross, 7.0);
-  auto& cdf = figure.axes(0, 1);
-  cdf.title = "3D palm error, cumulative";
-  cdf.xLabel = "log10(error [mm])";
-  cdf.yLabel = "fraction of frames";
-  cdf.yLimits = std::make_pair(0.0, 1.02);
-  errorCdf(cdf, total.markerError_m, "marker", plot::Colour::tab(0));
-  errorCdf(cdf, total.markerFreeError_m, "marker-free", plot::Colour::tab(1));
-  cdf.verticalLine(std::log10(15.0), "15 mm", plot::Colour::gray());
-  const auto png = dir / "hand_detection.png";
-  figure.save(png.string());
+  const auto png = handFigure(options, size, demos.size(), markerRates, markerFreeRates, total);
   result.figures.push_back(png);
 
   const double markerRate = ratio(total.markerInHand, total.handFrames);

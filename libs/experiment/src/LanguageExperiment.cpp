@@ -98,6 +98,76 @@ std::vector<std::pair<std::string, std::pair<int, int>>> corpusRanges(
   return ranges;
 }
 
+/// Table 5.7 beside the pooled cross-validation of the shipped configuration (`cv`: cv_scores.json);
+/// `beaten` counts the types where ours is above SpERT; metrics["cv"] receives ours.
+ResultTable crossValidationTable(const nlohmann::json& cv, const nlohmann::json& cvBaseline, int& beaten,
+                                 nlohmann::json& metrics)
+{
+  ResultTable cvTable;
+  cvTable.title = "Table 5.7: entities and relations, pooled cross-validation of train+val (" +
+                  std::to_string(cv.at("folds").get<int>()) + " folds x " + std::to_string(cv.at("seeds").get<int>()) +
+                  " seeds), F1 %";
+  cvTable.columns = {"type", "SpERT F1 (val)", "ours F1 (CV mean)", "ours F1 std"};
+  for (const auto& [type, thesisName] : kTypes) {
+    if (!cvBaseline.contains(type)) continue;
+    const double mean = 100.0 * cvBaseline.at(type).at("f1_mean").get<double>();
+    const double spert = kTable57.at(type).f1;
+    beaten += mean > spert;
+    cvTable.rows.push_back({thesisName + " (" + type + ")", percent(spert), percent(mean),
+                            percent(100.0 * cvBaseline.at(type).at("f1_std").get<double>())});
+    metrics["cv"][type] = {{"f1_mean", mean / 100.0}, {"f1_std", cvBaseline.at(type).at("f1_std")}};
+  }
+  cvTable.note =
+      "SpERT: thesis table 5.7 (fine-tuned BERT, validation split). Ours: the shipped configuration cross-validated "
+      "on the 1165 pooled sentences (datasets/language/model/cv_scores.json, written by 'srp train-language --cv'); "
+      "SpERT scoring (exact span + type; relation = type + both entities).";
+  return cvTable;
+}
+
+/// Section 8.2: the plans the parser gives for Appendix A's test instructions against the expected ones;
+/// `instructionsRight` counts the plans right; metrics["appendix_a"] receives each.
+ResultTable appendixPlansTable(const std::string& modelPath, const std::string& appendixPath, int& instructionsRight,
+                               nlohmann::json& metrics)
+{
+  const language::InstructionParser parser(modelPath);
+  const nlohmann::json appendix = core::readJsonFile(appendixPath);
+  ResultTable plans;
+  plans.title = "Section 8.2: plans of the Appendix A test instructions (steps with object / source / target right)";
+  plans.columns = {"instruction", "steps expected", "steps found", "objects", "sources", "targets", "thesis", "ours"};
+  int index = 0;
+  for (const auto& item : core::requireField(appendix, "instructions", appendixPath)) {
+    ++index;
+    const auto plan = parser.parse(item.at("instruction").get<std::string>());
+    // The expected steps are in the plan's own JSON step format.
+    const auto expected = language::taskPlanFromJson({{"steps", item.at("expected_steps")}}).steps;
+    int objects = 0, sources = 0, targets = 0;
+    for (size_t s = 0; s < expected.size() && s < plan.steps.size(); ++s) {
+      objects += plan.steps[s].object == expected[s].object;
+      sources += plan.steps[s].source == expected[s].source;
+      targets += plan.steps[s].target == expected[s].target;
+    }
+    const int n = static_cast<int>(expected.size());
+    const bool right = static_cast<int>(plan.steps.size()) == n && objects == n && sources == n && targets == n;
+    instructionsRight += right;
+    const auto frac = [n](int k) { return std::to_string(k) + "/" + std::to_string(n); };
+    plans.rows.push_back({std::to_string(index), std::to_string(n), std::to_string(plan.steps.size()), frac(objects),
+                          frac(sources), frac(targets), "right", right ? "right" : "wrong"});
+    metrics["appendix_a"].push_back({{"instruction", index},
+                                            {"steps_expected", n},
+                                            {"steps_found", plan.steps.size()},
+                                            {"objects_right", objects},
+                                            {"sources_right", sources},
+                                            {"targets_right", targets},
+                                            {"plan_right", right},
+                                            {"plan", language::toJson(plan)}});
+  }
+  plans.note =
+      "Thesis section 8.2: \"the syntactic dependency parser achieves complete accuracy\" on these instructions (its "
+      "table 8.1 scores SpERT's entities on them against an annotation that was not published, so it is not "
+      "reproduced here). Expected plans: datasets/language/appendix_a.json.";
+  return plans;
+}
+
 }  // namespace
 
 ExperimentResult runLanguageExperiment(const ExperimentOptions& options)
@@ -130,26 +200,8 @@ ExperimentResult runLanguageExperiment(const ExperimentOptions& options)
   // to set beside SpERT's validation row is the pooled cross-validation (libs/language/README.md, Protocol).
   const nlohmann::json cv = core::readJsonFile(cvPath.string());
   const nlohmann::json& cvBaseline = core::requireField(cv.at("variants"), "baseline", cvPath.string());
-  ResultTable cvTable;
-  cvTable.title = "Table 5.7: entities and relations, pooled cross-validation of train+val (" +
-                  std::to_string(cv.at("folds").get<int>()) + " folds x " + std::to_string(cv.at("seeds").get<int>()) +
-                  " seeds), F1 %";
-  cvTable.columns = {"type", "SpERT F1 (val)", "ours F1 (CV mean)", "ours F1 std"};
   int beaten = 0;
-  for (const auto& [type, thesisName] : kTypes) {
-    if (!cvBaseline.contains(type)) continue;
-    const double mean = 100.0 * cvBaseline.at(type).at("f1_mean").get<double>();
-    const double spert = kTable57.at(type).f1;
-    beaten += mean > spert;
-    cvTable.rows.push_back({thesisName + " (" + type + ")", percent(spert), percent(mean),
-                            percent(100.0 * cvBaseline.at(type).at("f1_std").get<double>())});
-    result.metrics["cv"][type] = {{"f1_mean", mean / 100.0}, {"f1_std", cvBaseline.at(type).at("f1_std")}};
-  }
-  cvTable.note =
-      "SpERT: thesis table 5.7 (fine-tuned BERT, validation split). Ours: the shipped configuration cross-validated "
-      "on the 1165 pooled sentences (datasets/language/model/cv_scores.json, written by 'srp train-language --cv'); "
-      "SpERT scoring (exact span + type; relation = type + both entities).";
-  result.tables.push_back(cvTable);
+  result.tables.push_back(crossValidationTable(cv, cvBaseline, beaten, result.metrics));
   result.tables.push_back(scoreTable(
       "Training-set check: the shipped model on val.json (" + std::to_string(gold.size()) +
           " sentences, part of its training data; not a validation figure), %",
@@ -183,43 +235,8 @@ ExperimentResult runLanguageExperiment(const ExperimentOptions& options)
   reportProgress(options, "language: Appendix A plans", 0.8);
 
   // Section 8.2: the syntactic stage on the five test instructions of Appendix A.
-  const language::InstructionParser parser(modelPath.string());
-  const nlohmann::json appendix = core::readJsonFile(appendixPath.string());
-  ResultTable plans;
-  plans.title = "Section 8.2: plans of the Appendix A test instructions (steps with object / source / target right)";
-  plans.columns = {"instruction", "steps expected", "steps found", "objects", "sources", "targets", "thesis", "ours"};
-  int instructionsRight = 0, index = 0;
-  for (const auto& item : core::requireField(appendix, "instructions", appendixPath.string())) {
-    ++index;
-    const auto plan = parser.parse(item.at("instruction").get<std::string>());
-    // The expected steps are in the plan's own JSON step format.
-    const auto expected = language::taskPlanFromJson({{"steps", item.at("expected_steps")}}).steps;
-    int objects = 0, sources = 0, targets = 0;
-    for (size_t s = 0; s < expected.size() && s < plan.steps.size(); ++s) {
-      objects += plan.steps[s].object == expected[s].object;
-      sources += plan.steps[s].source == expected[s].source;
-      targets += plan.steps[s].target == expected[s].target;
-    }
-    const int n = static_cast<int>(expected.size());
-    const bool right = static_cast<int>(plan.steps.size()) == n && objects == n && sources == n && targets == n;
-    instructionsRight += right;
-    const auto frac = [n](int k) { return std::to_string(k) + "/" + std::to_string(n); };
-    plans.rows.push_back({std::to_string(index), std::to_string(n), std::to_string(plan.steps.size()), frac(objects),
-                          frac(sources), frac(targets), "right", right ? "right" : "wrong"});
-    result.metrics["appendix_a"].push_back({{"instruction", index},
-                                            {"steps_expected", n},
-                                            {"steps_found", plan.steps.size()},
-                                            {"objects_right", objects},
-                                            {"sources_right", sources},
-                                            {"targets_right", targets},
-                                            {"plan_right", right},
-                                            {"plan", language::toJson(plan)}});
-  }
-  plans.note =
-      "Thesis section 8.2: \"the syntactic dependency parser achieves complete accuracy\" on these instructions (its "
-      "table 8.1 scores SpERT's entities on them against an annotation that was not published, so it is not "
-      "reproduced here). Expected plans: datasets/language/appendix_a.json.";
-  result.tables.push_back(plans);
+  int instructionsRight = 0;
+  result.tables.push_back(appendixPlansTable(modelPath.string(), appendixPath.string(), instructionsRight, result.metrics));
   result.metrics["appendix_a_right"] = instructionsRight;
 
   const auto f1 = [&](const char* type) { return 100.0 * cvBaseline.at(type).at("f1_mean").get<double>(); };

@@ -108,6 +108,64 @@ void writeSegmentationFigure(const std::string& path, const AnalysedDemo& demo, 
   fig.save(path);
 }
 
+/// Each ground-truth pick & place of demo `d` (0-based) with the events both estimators found.
+std::vector<EventError> eventErrors(int d, const AnalysedDemo& demo, const motion::Segmentation& segOurs,
+                                    const motion::Segmentation& segThesis)
+{
+  std::vector<EventError> errors;
+  for (const auto& e : demo.groundTruth.events) {
+    EventError err;
+    err.demo = d + 1;
+    err.seed = demo.groundTruth.seed;
+    err.object = classOf(demo.groundTruth, e.objectId);
+    err.graspTruth = e.graspFrame;
+    err.releaseTruth = e.releaseFrame;
+    if (const auto* o = findObject(segOurs, err.object)) {
+      err.found = true;
+      err.graspOurs = o->graspFrame;
+      err.releaseOurs = o->releaseFrame;
+    }
+    if (const auto* o = findObject(segThesis, err.object)) {
+      err.foundThesis = true;
+      err.graspThesis = o->graspFrame;
+      err.releaseThesis = o->releaseFrame;
+    }
+    errors.push_back(err);
+  }
+  return errors;
+}
+
+/// Both estimators' grasp and release errors summed up; metrics["summary"] receives them.
+ResultTable summaryTable(std::size_t events, const std::vector<int>& gOurs, const std::vector<int>& rOurs,
+                         const std::vector<int>& gThesis, const std::vector<int>& rThesis, int missedOurs,
+                         int missedThesis, nlohmann::json& metrics)
+{
+  ResultTable summary;
+  summary.title = "Section 8.3.4: segmentation summary over " + std::to_string(events) + " pick & places";
+  summary.columns = {"estimator", "event", "thesis", "found", "within ±3 frames", "median |error| [frames]",
+                     "worst |error| [frames]"};
+  const auto addRow = [&](const std::string& estimator, const std::string& event, const std::vector<int>& errs,
+                          int missed) {
+    const ErrorStats s = statsOf(errs);
+    summary.rows.push_back({estimator, event, "all found (by inspection)",
+                            std::to_string(s.count) + "/" + std::to_string(s.count + missed),
+                            std::to_string(s.within) + "/" + std::to_string(s.count + missed),
+                            formatNumber(s.medianAbs, 1), s.count ? std::to_string(s.worst) : "—"});
+    metrics["summary"][estimator][event] = {{"found", s.count},
+                                            {"missed", missed},
+                                            {"within_3_frames", s.within},
+                                            {"median_abs_frames", s.medianAbs},
+                                            {"worst_abs_frames", s.worst}};
+  };
+  addRow("ours (hand dwell)", "grasp", gOurs, missedOurs);
+  addRow("ours (hand dwell)", "release", rOurs, missedOurs);
+  addRow("thesis (fig. 6.10)", "grasp", gThesis, missedThesis);
+  addRow("thesis (fig. 6.10)", "release", rThesis, missedThesis);
+  summary.note = "Thesis section 8.3.4: grasp and release were found for every target object of the five videos, "
+                 "checked by looking at the frames; it gives no frame errors.";
+  return summary;
+}
+
 }  // namespace
 
 ExperimentResult runSegmentationExperiment(const ExperimentOptions& options)
@@ -117,7 +175,7 @@ ExperimentResult runSegmentationExperiment(const ExperimentOptions& options)
   result.name = "segmentation";
   const auto dir = experimentDirOf(options, result.name);
   const int count = demoCountOf(options);
-  motion::Segmenter::Config thesisConfig;
+  motion::Segmenter::Options thesisConfig;
   thesisConfig.events = motion::Segmenter::EventEstimator::Thesis;
   const motion::Segmenter ours, thesis(thesisConfig);
 
@@ -127,25 +185,7 @@ ExperimentResult runSegmentationExperiment(const ExperimentOptions& options)
     const auto& in = demo.inputs;
     const auto segOurs = ours.segment(in.hand, in.objects, in.planOrder);
     const auto segThesis = thesis.segment(in.hand, in.objects, in.planOrder);
-    for (const auto& e : demo.groundTruth.events) {
-      EventError err;
-      err.demo = d + 1;
-      err.seed = demo.groundTruth.seed;
-      err.object = classOf(demo.groundTruth, e.objectId);
-      err.graspTruth = e.graspFrame;
-      err.releaseTruth = e.releaseFrame;
-      if (const auto* o = findObject(segOurs, err.object)) {
-        err.found = true;
-        err.graspOurs = o->graspFrame;
-        err.releaseOurs = o->releaseFrame;
-      }
-      if (const auto* o = findObject(segThesis, err.object)) {
-        err.foundThesis = true;
-        err.graspThesis = o->graspFrame;
-        err.releaseThesis = o->releaseFrame;
-      }
-      errors.push_back(err);
-    }
+    for (const auto& err : eventErrors(d, demo, segOurs, segThesis)) errors.push_back(err);
     if (d == 0) {
       const auto png = dir / "fig8_5_segmentation.png";
       writeSegmentationFigure(png.string(), demo, segOurs);
@@ -197,28 +237,8 @@ ExperimentResult runSegmentationExperiment(const ExperimentOptions& options)
                    "(hand closest to the object; first sample of the mixture's final component), same perception.";
   result.tables.push_back(perObject);
 
-  ResultTable summary;
-  summary.title = "Section 8.3.4: segmentation summary over " + std::to_string(errors.size()) + " pick & places";
-  summary.columns = {"estimator", "event", "thesis", "found", "within ±3 frames", "median |error| [frames]",
-                     "worst |error| [frames]"};
-  const auto addRow = [&](const std::string& estimator, const std::string& event, const std::vector<int>& errs,
-                          int missed) {
-    const ErrorStats s = statsOf(errs);
-    summary.rows.push_back({estimator, event, "all found (by inspection)",
-                            std::to_string(s.count) + "/" + std::to_string(s.count + missed),
-                            std::to_string(s.within) + "/" + std::to_string(s.count + missed),
-                            formatNumber(s.medianAbs, 1), s.count ? std::to_string(s.worst) : "—"});
-    result.metrics["summary"][estimator][event] = {{"found", s.count},           {"missed", missed},
-                                                   {"within_3_frames", s.within}, {"median_abs_frames", s.medianAbs},
-                                                   {"worst_abs_frames", s.worst}};
-  };
-  addRow("ours (hand dwell)", "grasp", gOurs, missedOurs);
-  addRow("ours (hand dwell)", "release", rOurs, missedOurs);
-  addRow("thesis (fig. 6.10)", "grasp", gThesis, missedThesis);
-  addRow("thesis (fig. 6.10)", "release", rThesis, missedThesis);
-  summary.note = "Thesis section 8.3.4: grasp and release were found for every target object of the five videos, "
-                 "checked by looking at the frames; it gives no frame errors.";
-  result.tables.push_back(summary);
+  result.tables.push_back(
+      summaryTable(errors.size(), gOurs, rOurs, gThesis, rThesis, missedOurs, missedThesis, result.metrics));
 
   const ErrorStats g = statsOf(gOurs), r = statsOf(rOurs);
   result.summary = "Grasp/release of " + std::to_string(errors.size()) + " pick & places in " + std::to_string(count) +

@@ -68,11 +68,11 @@ double KalmanSmoother::estimateMeasurementStd(const core::PositionTrajectory& in
 
 core::PositionTrajectory KalmanSmoother::smooth(const core::PositionTrajectory& in) const {
   validate(in);
-  const bool carry = config_.missing == Missing::CarryForward;
+  const bool carry = options_.missing == Missing::CarryForward;
   const core::PositionTrajectory filled = carry ? carryForward(in) : in;
   const double sigmaM =
-      config_.measurementStd_m ? *config_.measurementStd_m : estimateMeasurementStd(in, config_.minMeasurementStd_m);
-  const double R = sigmaM * sigmaM, qa = config_.accelerationStd_mps2 * config_.accelerationStd_mps2;
+      options_.measurementStd_m ? *options_.measurementStd_m : estimateMeasurementStd(in, options_.minMeasurementStd_m);
+  const double R = sigmaM * sigmaM, qa = options_.accelerationStd_mps2 * options_.accelerationStd_mps2;
   const auto& s = filled.samples();
   const std::size_t n = s.size();
 
@@ -105,9 +105,9 @@ core::PositionTrajectory KalmanSmoother::smooth(const core::PositionTrajectory& 
     bool measured = carry || isDetected(s[k]);
     const double S = P(0, 0) + R;
     const Eigen::RowVector3d innovation = s[k].p_m.transpose() - x.row(0);
-    if (measured && config_.gateSigma && k > first) {
-      const double gate = std::max(*config_.gateSigma * std::sqrt(S), config_.gateMin_m);
-      if (innovation.norm() > gate && ++rejectedInARow < config_.gateReset) measured = false;
+    if (measured && options_.gateSigma && k > first) {
+      const double gate = std::max(*options_.gateSigma * std::sqrt(S), options_.gateMin_m);
+      if (innovation.norm() > gate && ++rejectedInARow < options_.gateReset) measured = false;
       else rejectedInARow = 0;
     }
     if (measured) {

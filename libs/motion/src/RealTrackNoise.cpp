@@ -110,7 +110,7 @@ int pauseEnd(const CleanDemo& d, int r) {
 }
 
 /// After each release's pause: the hand lingers, hovering over the part, and may nudge it.
-Block lingerBlock(const RealTrackNoise::Config& c, const CleanDemo& d, std::size_t k, int anchor, bool pauseKept,
+Block lingerBlock(const RealTrackNoise::Options& c, const CleanDemo& d, std::size_t k, int anchor, bool pauseKept,
                   Random& random) {
   auto& rng = random.rng;
   auto& uni = random.uni;
@@ -141,7 +141,7 @@ Block lingerBlock(const RealTrackNoise::Config& c, const CleanDemo& d, std::size
 /// from the release pose (sample s), holds there, then lowers the part to its
 /// place; the original samples between s and r are replaced. Sets `removed`.
 /// Returns a block of length 0 when the approach never gets that far away.
-Block hoverBlock(const RealTrackNoise::Config& c, const CleanDemo& d, std::size_t k, Random& random,
+Block hoverBlock(const RealTrackNoise::Options& c, const CleanDemo& d, std::size_t k, Random& random,
                  std::vector<bool>& removed) {
   const int g = d.demo.graspIndex[k], r = d.demo.releaseIndex[k];
   const Eigen::Vector3d p_release = at(d.demo.hand, r);
@@ -173,7 +173,7 @@ Block hoverBlock(const RealTrackNoise::Config& c, const CleanDemo& d, std::size_
 /// Step 1: where the choreography inserts (hover before the release, lingering
 /// after it) and removes samples (the pause after the release, when the hand
 /// leaves at once).
-std::vector<Block> planChoreography(const RealTrackNoise::Config& c, const CleanDemo& d, Random& random,
+std::vector<Block> planChoreography(const RealTrackNoise::Options& c, const CleanDemo& d, Random& random,
                                     Random& placement, std::vector<bool>& removed) {
   std::vector<Block> blocks;
   for (std::size_t k = 0; k < d.demo.planOrder.size(); ++k) {
@@ -198,7 +198,7 @@ std::vector<Block> planChoreography(const RealTrackNoise::Config& c, const Clean
 /// Step 2: the noise-free demo with the blocks inserted and the removed samples left out.
 class Choreographer {
  public:
-  Choreographer(const RealTrackNoise::Config& c, const CleanDemo& d, RealTrackNoise::Result& out)
+  Choreographer(const RealTrackNoise::Options& c, const CleanDemo& d, RealTrackNoise::Result& out)
       : c_(c), d_(d), out_(out), offset_(d.demo.objects.size(), Eigen::Vector3d::Zero()) {
     LabelledDemo& truth = out.truth;
     truth.planOrder = d.demo.planOrder;
@@ -304,7 +304,7 @@ class Choreographer {
     }
   }
 
-  const RealTrackNoise::Config& c_;
+  const RealTrackNoise::Options& c_;
   const CleanDemo& d_;
   RealTrackNoise::Result& out_;
   std::vector<Eigen::Vector3d> offset_;  ///< nudges so far, per object
@@ -312,7 +312,7 @@ class Choreographer {
 
 /// Step 3: the hand detector: Gaussian noise, jumps of 1-2 frames, missed
 /// frames carried forward.
-core::PositionTrajectory noisyHand(const RealTrackNoise::Config& c, const core::PositionTrajectory& truth, Random& random) {
+core::PositionTrajectory noisyHand(const RealTrackNoise::Options& c, const core::PositionTrajectory& truth, Random& random) {
   auto& rng = random.rng;
   auto& uni = random.uni;
   auto& gauss = random.gauss;
@@ -358,7 +358,7 @@ struct PlacementPlan {
 };
 
 /// Hidden spans around a plan part's grasp and placement, and its ghost.
-PlacementPlan planPlacement(const RealTrackNoise::Config& c, const CleanDemo& d, const RealTrackNoise::Result& r,
+PlacementPlan planPlacement(const RealTrackNoise::Options& c, const CleanDemo& d, const RealTrackNoise::Result& r,
                             std::size_t k, Random& random) {
   const LabelledDemo& truth = r.truth;
   const int m = static_cast<int>(truth.hand.size());
@@ -404,7 +404,7 @@ std::size_t nearestOtherPart(const CleanDemo& d, const LabelledDemo& truth, std:
 
 /// Step 4b: the placement behaviours on one part's detections: hidden spans
 /// (episodes of nothing / another part / the hand) and ghost episodes.
-void applyPlacement(const RealTrackNoise::Config& c, const CleanDemo& d, const PlacementPlan& p, std::size_t o,
+void applyPlacement(const RealTrackNoise::Options& c, const CleanDemo& d, const PlacementPlan& p, std::size_t o,
                     RealTrackNoise::Result& r, Random& random) {
   auto& rng = random.rng;
   auto& uni = random.uni;
@@ -451,7 +451,7 @@ void applyPlacement(const RealTrackNoise::Config& c, const CleanDemo& d, const P
 /// Step 4a: one part's detector: sub-mm scatter, outlier episodes (wrong
 /// depth, or on the hand while it is near), missed detections that keep the
 /// last pixel and read the depth there now.
-ObjectTrack noisyPart(const RealTrackNoise::Config& c, const LabelledDemo& truth, const std::vector<int>& carriedPlan,
+ObjectTrack noisyPart(const RealTrackNoise::Options& c, const LabelledDemo& truth, const std::vector<int>& carriedPlan,
                       std::size_t o, Random& random) {
   auto& rng = random.rng;
   auto& uni = random.uni;
@@ -561,7 +561,7 @@ void measurePlacement(const RealTrackNoise::Result& r, double frameRate_hz, Real
 }  // namespace
 
 RealTrackNoise::Result RealTrackNoise::apply(const LabelledDemo& clean) const {
-  const auto& c = config_;
+  const auto& c = options_;
   const CleanDemo d = checkedDemo(clean);
   Random random(c.seed);
   // The placement behaviours draw from their own generator: off, the model is the first recording's, draw for draw.

@@ -129,6 +129,33 @@ Eigen::Vector3d medianPosition(const core::PositionTrajectory& t, int from, int 
   return m;
 }
 
+/// The labels of a fitted mixture (`means`: one row per component) renumbered 0..2 by the median
+/// index of their samples, after merging the components whose means are closer than mergeDistance
+/// (EM splits a long rest, e.g. of an object put back where it was, into two).
+std::vector<int> renumberedLabels(const cv::Mat& means, cv::Mat labels, double mergeDistance_m) {
+  const int n = labels.rows;
+  std::vector<int> out(static_cast<std::size_t>(n), 0);
+  std::vector<int> parent(kComponents);
+  std::iota(parent.begin(), parent.end(), 0);
+  for (int a = 0; a < kComponents; ++a)
+    for (int b = a + 1; b < kComponents; ++b)
+      if (cv::norm(means.row(a), means.row(b)) < mergeDistance_m * 1e3) parent[static_cast<std::size_t>(b)] = parent[static_cast<std::size_t>(a)];
+  for (int i = 0; i < n; ++i) labels.at<int>(i) = parent[static_cast<std::size_t>(labels.at<int>(i))];
+  // Order the components by the median index of their samples.
+  std::vector<std::vector<int>> members(kComponents);
+  for (int i = 0; i < n; ++i) members[static_cast<std::size_t>(labels.at<int>(i))].push_back(i);
+  std::vector<std::pair<double, int>> order;
+  for (int c = 0; c < kComponents; ++c) {
+    const auto& m = members[static_cast<std::size_t>(c)];
+    order.emplace_back(m.empty() ? 1e18 : m[m.size() / 2], c);
+  }
+  std::sort(order.begin(), order.end());
+  std::vector<int> rank(kComponents);
+  for (int r = 0; r < kComponents; ++r) rank[static_cast<std::size_t>(order[static_cast<std::size_t>(r)].second)] = r;
+  for (int i = 0; i < n; ++i) out[static_cast<std::size_t>(i)] = rank[static_cast<std::size_t>(labels.at<int>(i))];
+  return out;
+}
+
 /// EM labels per sample, components renumbered by the median time of their samples.
 std::vector<int> mixtureLabels(const core::PositionTrajectory& t, const Eigen::Vector3d& p0,
                                const Eigen::Vector3d& p1, int maxIterations, double mergeDistance_m) {
@@ -208,28 +235,7 @@ std::vector<int> mixtureLabels(const core::PositionTrajectory& t, const Eigen::V
     }
     return out;
   }
-  // Components whose means are closer than mergeDistance are one place (EM
-  // splits a long rest, e.g. of an object put back where it was, into two).
-  const cv::Mat means = em->getMeans();
-  std::vector<int> parent(kComponents);
-  std::iota(parent.begin(), parent.end(), 0);
-  for (int a = 0; a < kComponents; ++a)
-    for (int b = a + 1; b < kComponents; ++b)
-      if (cv::norm(means.row(a), means.row(b)) < mergeDistance_m * 1e3) parent[static_cast<std::size_t>(b)] = parent[static_cast<std::size_t>(a)];
-  for (int i = 0; i < n; ++i) labels.at<int>(i) = parent[static_cast<std::size_t>(labels.at<int>(i))];
-  // Order the components by the median index of their samples.
-  std::vector<std::vector<int>> members(kComponents);
-  for (int i = 0; i < n; ++i) members[static_cast<std::size_t>(labels.at<int>(i))].push_back(i);
-  std::vector<std::pair<double, int>> order;
-  for (int c = 0; c < kComponents; ++c) {
-    const auto& m = members[static_cast<std::size_t>(c)];
-    order.emplace_back(m.empty() ? 1e18 : m[m.size() / 2], c);
-  }
-  std::sort(order.begin(), order.end());
-  std::vector<int> rank(kComponents);
-  for (int r = 0; r < kComponents; ++r) rank[static_cast<std::size_t>(order[static_cast<std::size_t>(r)].second)] = r;
-  for (int i = 0; i < n; ++i) out[static_cast<std::size_t>(i)] = rank[static_cast<std::size_t>(labels.at<int>(i))];
-  return out;
+  return renumberedLabels(em->getMeans(), labels, mergeDistance_m);
 }
 
 /// Boundary between the hand at rest and the hand moving off smoothly from
@@ -485,7 +491,7 @@ struct PreparedHand {
 class ObjectPass {
  public:
   /// `earlier`: the plan objects before this one, segmented.
-  ObjectPass(const Segmenter::Config& config, bool robust, const PreparedHand& hand, const ObjectTrack& track,
+  ObjectPass(const Segmenter::Options& config, bool robust, const PreparedHand& hand, const ObjectTrack& track,
              int start, const std::vector<ObjectSegmentation>& earlier)
       : c_(config),
         robust_(robust),
@@ -906,7 +912,7 @@ class ObjectPass {
     seg_.lowConfidence = seg_.graspLowConfidence || seg_.releaseLowConfidence;
   }
 
-  const Segmenter::Config& c_;
+  const Segmenter::Options& c_;
   const bool robust_, cues_;
   const PreparedHand& hand_;
   const core::PositionTrajectory& track_;
@@ -926,18 +932,18 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
   std::map<std::string, const ObjectTrack*> byName;
   for (const auto& o : objects) byName[o.name] = &o;
   validateInputs(hand, byName, planOrder);
-  if (config_.events == EventEstimator::ThesisPublished) return segmentThesisPublished(hand, objects, planOrder);
+  if (options_.events == EventEstimator::ThesisPublished) return segmentThesisPublished(hand, objects, planOrder);
 
   // Robust mode refines the default estimator; the thesis-like estimator keeps its published steps.
-  const bool robust = config_.robust && config_.events == EventEstimator::HandDwellBoundary;
+  const bool robust = options_.robust && options_.events == EventEstimator::HandDwellBoundary;
   // Step 1, the hand (robust: jumps and carried values dropped before anything uses it).
   PreparedHand prepared{hand, hand, {}, 0.0};
   if (robust) {
     double handSpread_m = 0.0;
-    prepared.events = dropHandOutliers(hand, config_.handOutlierSigmas, config_.handOutlierMin_m, handSpread_m);
-    prepared.restNoiseTol_m = std::min(config_.restNoiseFactor * handSpread_m, config_.restNoiseMax_m);
+    prepared.events = dropHandOutliers(hand, options_.handOutlierSigmas, options_.handOutlierMin_m, handSpread_m);
+    prepared.restNoiseTol_m = std::min(options_.restNoiseFactor * handSpread_m, options_.restNoiseMax_m);
   }
-  prepared.smoothed = KalmanSmoother(config_.handSmoother).smooth(prepared.events);
+  prepared.smoothed = KalmanSmoother(options_.handSmoother).smooth(prepared.events);
   Segmentation result;
   result.hand = prepared.smoothed;
   const int n = static_cast<int>(hand.size());
@@ -949,7 +955,7 @@ Segmentation Segmenter::segment(const core::PositionTrajectory& hand, const std:
   int start = 0;
   for (const auto& name : planOrder) {
     ObjectSegmentation seg =
-        ObjectPass(config_, robust, prepared, *byName.at(name), start, result.objects).run(result.warnings);
+        ObjectPass(options_, robust, prepared, *byName.at(name), start, result.objects).run(result.warnings);
     if (seg.moved) start = std::max(start, seg.releaseIndex);
     result.objects.push_back(std::move(seg));
   }

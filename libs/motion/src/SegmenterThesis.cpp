@@ -174,7 +174,7 @@ Segmentation Segmenter::segmentThesisPublished(const core::PositionTrajectory& h
     for (int i = 0; i < n; ++i)
       seg.smoothed.append({track.positions[static_cast<std::size_t>(i)].frame, track.positions[static_cast<std::size_t>(i)].t_s,
                            smooth[static_cast<std::size_t>(i)], true});
-    const std::vector<int> labels = gaussianMixtureLabels(smooth, config_.thesisSeed);
+    const std::vector<int> labels = gaussianMixtureLabels(smooth, options_.thesisSeed);
     // segmentation.py: np.where(labels == labels[-1])[0][0].
     int release = 0;
     while (labels[static_cast<std::size_t>(release)] != labels.back()) ++release;

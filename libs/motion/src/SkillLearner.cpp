@@ -68,7 +68,7 @@ std::vector<SkillSet> SkillLearner::learn(const Segmentation& seg, const std::ve
     SkillSet s;
     s.objectName = o.name;
     s.frame = hand.frame();
-    s.approachOffset_m = config_.approachOffset_m;
+    s.approachOffset_m = options_.approachOffset_m;
     s.reachStartIndex = std::min(std::max(previousRelease, seg.firstHandIndex), o.graspIndex);
     s.graspIndex = o.graspIndex;
     s.releaseIndex = o.releaseIndex;
@@ -84,18 +84,18 @@ std::vector<SkillSet> SkillLearner::learn(const Segmentation& seg, const std::ve
 
     const Eigen::Vector3d pg = hand[static_cast<std::size_t>(o.graspIndex)].p_m;
     const Eigen::Vector3d pr = hand[static_cast<std::size_t>(o.releaseIndex)].p_m;
-    s.graspApproachAxis = approachAxis(hand, o.graspIndex, config_.approachWindow, o.p_initial_m, config_.approachAxis);
-    s.releaseApproachAxis = approachAxis(hand, o.releaseIndex, config_.approachWindow, o.p_final_m, config_.approachAxis);
+    s.graspApproachAxis = approachAxis(hand, o.graspIndex, options_.approachWindow, o.p_initial_m, options_.approachAxis);
+    s.releaseApproachAxis = approachAxis(hand, o.releaseIndex, options_.approachWindow, o.p_final_m, options_.approachAxis);
     const double yawGrasp = medianYaw(yaw, o.graspIndex, 3), yawRelease = medianYaw(yaw, o.releaseIndex, 3);
     const Eigen::Quaterniond qg(Eigen::AngleAxisd(yawGrasp, Eigen::Vector3d::UnitZ()));
     const Eigen::Quaterniond qr(Eigen::AngleAxisd(yawRelease, Eigen::Vector3d::UnitZ()));
     s.X_frame_grasp = core::makePose(pg, qg);
-    s.X_frame_preGrasp = core::makePose(pg - config_.approachOffset_m * s.graspApproachAxis, qg);
+    s.X_frame_preGrasp = core::makePose(pg - options_.approachOffset_m * s.graspApproachAxis, qg);
     s.X_frame_release = core::makePose(pr, qr);
-    s.X_frame_preRelease = core::makePose(pr - config_.approachOffset_m * s.releaseApproachAxis, qr);
+    s.X_frame_preRelease = core::makePose(pr - options_.approachOffset_m * s.releaseApproachAxis, qr);
 
-    s.reach = learnSegment(hand, s.reachStartIndex, o.graspIndex, config_.dmp, "Reach of '" + o.name + "'");
-    s.move = learnSegment(hand, o.graspIndex, o.releaseIndex, config_.dmp, "Move of '" + o.name + "'");
+    s.reach = learnSegment(hand, s.reachStartIndex, o.graspIndex, options_.dmp, "Reach of '" + o.name + "'");
+    s.move = learnSegment(hand, o.graspIndex, o.releaseIndex, options_.dmp, "Move of '" + o.name + "'");
     if (!yaw.empty()) {
       const int count = o.releaseIndex - o.graspIndex + 1;
       Eigen::VectorXd t(count);
@@ -108,7 +108,7 @@ std::vector<SkillSet> SkillLearner::learn(const Segmentation& seg, const std::ve
         previous = a;
         q.emplace_back(Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()));
       }
-      s.moveOrientation = QuaternionDmp::imitate(t, q, config_.dmp);
+      s.moveOrientation = QuaternionDmp::imitate(t, q, options_.dmp);
     }
     previousRelease = o.releaseIndex;
     out.push_back(std::move(s));

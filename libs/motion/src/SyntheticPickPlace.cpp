@@ -10,16 +10,75 @@ namespace {
 
 double minJerk(double s) { return s * s * s * (10 - 15 * s + 6 * s * s); }
 
+/// Detector-like observations of the noise-free timeline (`hand`, `obj`, `yaw` per frame): the hand
+/// with dropouts and bursts of loss, each object with noise, dropouts (more under the hand) and
+/// flicker onto another object's place. Draws from `rng` in a fixed order (the demo's seed decides).
+void observe(const SyntheticPickPlaceGenerator::Options& c, const std::vector<Eigen::Vector3d>& hand,
+             const std::vector<bool>& handVisible, const std::vector<std::vector<Eigen::Vector3d>>& obj,
+             const std::vector<std::vector<double>>& yaw, std::mt19937& rng,
+             std::uniform_real_distribution<double>& uni, std::normal_distribution<double>& gauss,
+             SyntheticPickPlace& out) {
+  const double dt = 1.0 / c.frameRate_hz;
+  const std::size_t nMoved = c.movedObjects.size(), nAll = obj.size();
+  const int n = static_cast<int>(hand.size());
+  out.hand = core::PositionTrajectory("camera");
+  int burst = 0;
+  for (int k = 0; k < n; ++k) {
+    core::PositionSample s;
+    s.frame = k;
+    s.t_s = k * dt;
+    if (burst == 0 && uni(rng) < 0.01) burst = 2 + static_cast<int>(6 * uni(rng));  // hand lost for a moment
+    const bool detected = handVisible[static_cast<std::size_t>(k)] && burst == 0 && uni(rng) >= c.handDropoutRate;
+    if (burst > 0) --burst;
+    if (detected)
+      s.p_m = hand[static_cast<std::size_t>(k)] +
+              Eigen::Vector3d(c.handNoiseXY_m * gauss(rng), c.handNoiseXY_m * gauss(rng), c.handNoiseZ_m * gauss(rng));
+    else s.p_m.setZero(), s.valid = false;
+    out.hand.append(s);
+  }
+  for (std::size_t i = 0; i < nAll; ++i) {
+    ObjectTrack t;
+    t.name = i < nMoved ? c.movedObjects[i] : c.staticObjects[i - nMoved];
+    t.positions = core::PositionTrajectory("camera");
+    int flicker = 0;
+    Eigen::Vector3d decoy = Eigen::Vector3d::Zero();
+    for (int k = 0; k < n; ++k) {
+      const Eigen::Vector3d truth = obj[i][static_cast<std::size_t>(k)];
+      core::PositionSample s;
+      s.frame = k;
+      s.t_s = k * dt;
+      const bool occluded = handVisible[static_cast<std::size_t>(k)] &&
+                            (hand[static_cast<std::size_t>(k)] - truth).norm() < 0.06 + c.handAboveObject_m;
+      const double missRate = occluded ? c.occlusionDropoutRate : c.objectDropoutRate;
+      if (flicker == 0 && uni(rng) < c.flickerRate) {
+        flicker = 1 + static_cast<int>(3 * uni(rng));
+        const std::size_t other = (i + 1 + static_cast<std::size_t>(uni(rng) * (nAll - 1))) % nAll;
+        decoy = other != i ? obj[other][static_cast<std::size_t>(k)] : truth + Eigen::Vector3d(0.1, 0.0, 0.0);
+      }
+      if (flicker > 0) {
+        --flicker;
+        s.p_m = decoy + c.objectNoise_m * Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng));
+      } else if (uni(rng) < missRate) {
+        s.p_m.setZero(), s.valid = false;
+      } else {
+        s.p_m = truth + c.objectNoise_m * Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng));
+      }
+      t.positions.append(s);
+      t.yaw_rad.push_back(yaw[i][static_cast<std::size_t>(k)] + 0.02 * gauss(rng));
+    }
+    out.objects.push_back(std::move(t));
+  }
+}
+
 }  // namespace
 
 SyntheticPickPlace SyntheticPickPlaceGenerator::generate() const {
-  const auto& c = config_;
+  const auto& c = options_;
   core::require(!c.movedObjects.empty(), "synthetic demo: no object to move");
   core::require(c.frameRate_hz > 0, "synthetic demo: frame rate must be positive");
   std::mt19937 rng(c.seed);
   std::uniform_real_distribution<double> uni(0.0, 1.0);
   std::normal_distribution<double> gauss(0.0, 1.0);
-  const double dt = 1.0 / c.frameRate_hz;
   const auto frames = [&](double seconds) {
     return std::max(1, static_cast<int>(std::lround(seconds * c.frameRate_hz)));
   };
@@ -90,54 +149,7 @@ SyntheticPickPlace SyntheticPickPlaceGenerator::generate() const {
   }
 
   // Detector-like observations.
-  const int n = static_cast<int>(hand.size());
-  out.hand = core::PositionTrajectory("camera");
-  int burst = 0;
-  for (int k = 0; k < n; ++k) {
-    core::PositionSample s;
-    s.frame = k;
-    s.t_s = k * dt;
-    if (burst == 0 && uni(rng) < 0.01) burst = 2 + static_cast<int>(6 * uni(rng));  // hand lost for a moment
-    const bool detected = handVisible[static_cast<std::size_t>(k)] && burst == 0 && uni(rng) >= c.handDropoutRate;
-    if (burst > 0) --burst;
-    if (detected)
-      s.p_m = hand[static_cast<std::size_t>(k)] +
-              Eigen::Vector3d(c.handNoiseXY_m * gauss(rng), c.handNoiseXY_m * gauss(rng), c.handNoiseZ_m * gauss(rng));
-    else s.p_m.setZero(), s.valid = false;
-    out.hand.append(s);
-  }
-  for (std::size_t i = 0; i < nAll; ++i) {
-    ObjectTrack t;
-    t.name = i < nMoved ? c.movedObjects[i] : c.staticObjects[i - nMoved];
-    t.positions = core::PositionTrajectory("camera");
-    int flicker = 0;
-    Eigen::Vector3d decoy = Eigen::Vector3d::Zero();
-    for (int k = 0; k < n; ++k) {
-      const Eigen::Vector3d truth = obj[i][static_cast<std::size_t>(k)];
-      core::PositionSample s;
-      s.frame = k;
-      s.t_s = k * dt;
-      const bool occluded = handVisible[static_cast<std::size_t>(k)] &&
-                            (hand[static_cast<std::size_t>(k)] - truth).norm() < 0.06 + c.handAboveObject_m;
-      const double missRate = occluded ? c.occlusionDropoutRate : c.objectDropoutRate;
-      if (flicker == 0 && uni(rng) < c.flickerRate) {
-        flicker = 1 + static_cast<int>(3 * uni(rng));
-        const std::size_t other = (i + 1 + static_cast<std::size_t>(uni(rng) * (nAll - 1))) % nAll;
-        decoy = other != i ? obj[other][static_cast<std::size_t>(k)] : truth + Eigen::Vector3d(0.1, 0.0, 0.0);
-      }
-      if (flicker > 0) {
-        --flicker;
-        s.p_m = decoy + c.objectNoise_m * Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng));
-      } else if (uni(rng) < missRate) {
-        s.p_m.setZero(), s.valid = false;
-      } else {
-        s.p_m = truth + c.objectNoise_m * Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng));
-      }
-      t.positions.append(s);
-      t.yaw_rad.push_back(yaw[i][static_cast<std::size_t>(k)] + 0.02 * gauss(rng));
-    }
-    out.objects.push_back(std::move(t));
-  }
+  observe(c, hand, handVisible, obj, yaw, rng, uni, gauss, out);
   out.planOrder = c.movedObjects;
   return out;
 }

@@ -37,7 +37,7 @@ double rmsError(const core::PositionTrajectory& t) {
 TEST(KalmanSmoother, ReducesNoiseWellBelowTheMeasurementNoise) {
   constexpr double kNoise_m = 0.005;
   const auto raw = noisyCurve(kNoise_m, 0.0, 3);
-  KalmanSmoother::Config c;
+  KalmanSmoother::Options c;
   c.accelerationStd_mps2 = 1.0;  // the curve accelerates by < 1 m/s^2
   const auto smoothed = KalmanSmoother(c).smooth(raw);
   const double rms = rmsError(smoothed);
@@ -50,7 +50,7 @@ TEST(KalmanSmoother, BridgesDropoutsInBothMissingPolicies) {
   constexpr double kNoise_m = 0.004;
   const auto raw = noisyCurve(kNoise_m, 0.3, 5);
   for (auto policy : {KalmanSmoother::Missing::CarryForward, KalmanSmoother::Missing::Predict}) {
-    KalmanSmoother::Config c;
+    KalmanSmoother::Options c;
     c.missing = policy;
     const auto smoothed = KalmanSmoother(c).smooth(raw);
     ASSERT_EQ(smoothed.size(), raw.size());

@@ -18,7 +18,7 @@ constexpr int kFrameTol = 3;  // issue 6: grasp and release within +-3 frames of
 // estimator; the default (hand-dwell boundaries) is checked against
 // srp::synth's ground truth (grasp = end of the hold) in the programming tests.
 Segmenter thesisSegmenter() {
-  Segmenter::Config c;
+  Segmenter::Options c;
   c.events = Segmenter::EventEstimator::Thesis;
   return Segmenter(c);
 }
@@ -49,7 +49,7 @@ void expectWithinTolerance(const motion::SyntheticPickPlace& demo, const Segment
 TEST(Segmenter, FindsGraspAndReleaseOnNoisyDemosWithFlicker) {
   int worstGrasp = 0, worstRelease = 0;
   for (std::uint32_t seed = 1; seed <= 12; ++seed) {
-    motion::SyntheticPickPlaceConfig c;
+    motion::SyntheticPickPlaceGenerator::Options c;
     c.seed = seed;
     const auto demo = motion::SyntheticPickPlaceGenerator(c).generate();
     const auto seg = thesisSegmenter().segment(demo.hand, demo.objects, demo.planOrder);
@@ -63,7 +63,7 @@ TEST(Segmenter, FindsGraspAndReleaseOnNoisyDemosWithFlicker) {
 }
 
 TEST(Segmenter, ToleratesHeavyFlickerBetweenTwoPositions) {
-  motion::SyntheticPickPlaceConfig c;
+  motion::SyntheticPickPlaceGenerator::Options c;
   c.flickerRate = 0.08;
   c.objectDropoutRate = 0.10;
   for (std::uint32_t seed = 20; seed < 24; ++seed) {
@@ -75,7 +75,7 @@ TEST(Segmenter, ToleratesHeavyFlickerBetweenTwoPositions) {
 }
 
 TEST(Segmenter, ReportsAnObjectThatNeverMoves) {
-  motion::SyntheticPickPlaceConfig c;
+  motion::SyntheticPickPlaceGenerator::Options c;
   c.movedObjects = {"cuboid", "star"};
   c.staticObjects = {"octagon"};
   const auto demo = motion::SyntheticPickPlaceGenerator(c).generate();
@@ -95,7 +95,7 @@ TEST(Segmenter, ReportsAnObjectThatNeverMoves) {
 TEST(Segmenter, ObjectsPutBackWhereTheyWereAreSegmented) {
   // Source = target: the "before" and "after" mixture components are the same
   // place, so the components are not in temporal order.
-  motion::SyntheticPickPlaceConfig c;
+  motion::SyntheticPickPlaceGenerator::Options c;
   c.putBackWhereTaken = true;
   c.lift_m = 0.2;
   for (std::uint32_t seed = 30; seed < 34; ++seed) {
@@ -107,7 +107,7 @@ TEST(Segmenter, ObjectsPutBackWhereTheyWereAreSegmented) {
 }
 
 TEST(Segmenter, RejectsBadInput) {
-  const auto demo = motion::SyntheticPickPlaceGenerator(motion::SyntheticPickPlaceConfig{}).generate();
+  const auto demo = motion::SyntheticPickPlaceGenerator().generate();
   // A plan object without trajectory.
   EXPECT_THROW(Segmenter().segment(demo.hand, demo.objects, {"cuboid", "banana"}), core::InvalidInputError);
   // Empty and single-sample hand.

@@ -21,7 +21,7 @@ struct Learned {
   std::vector<SkillSet> skills;
 };
 
-Learned learnDemo(motion::SyntheticPickPlaceConfig c) {
+Learned learnDemo(motion::SyntheticPickPlaceGenerator::Options c) {
   Learned l;
   l.demo = motion::SyntheticPickPlaceGenerator(std::move(c)).generate();
   l.seg = Segmenter().segment(l.demo.hand, l.demo.objects, l.demo.planOrder);
@@ -30,7 +30,7 @@ Learned learnDemo(motion::SyntheticPickPlaceConfig c) {
 }
 
 TEST(SkillLearner, LearnsReachAndMoveWithPrePostPoses) {
-  const Learned l = learnDemo(motion::SyntheticPickPlaceConfig{});
+  const Learned l = learnDemo(motion::SyntheticPickPlaceGenerator::Options{});
   ASSERT_EQ(l.skills.size(), 4u);
   int previousRelease = -1;
   for (const auto& s : l.skills) {
@@ -66,7 +66,7 @@ TEST(SkillLearner, LearnsReachAndMoveWithPrePostPoses) {
 }
 
 TEST(SkillLearner, RecordsCarryDmpsThatRollOutIdentically) {
-  const Learned l = learnDemo(motion::SyntheticPickPlaceConfig{});
+  const Learned l = learnDemo(motion::SyntheticPickPlaceGenerator::Options{});
   const auto records = skillRecords(l.skills[1]);
   ASSERT_EQ(records.size(), 4u);
   EXPECT_EQ(records[0].skill, core::SkillType::Reach);
@@ -79,7 +79,7 @@ TEST(SkillLearner, RecordsCarryDmpsThatRollOutIdentically) {
 }
 
 TEST(SkillLearner, SkipsObjectsThatNeverMoved) {
-  motion::SyntheticPickPlaceConfig c;
+  motion::SyntheticPickPlaceGenerator::Options c;
   c.movedObjects = {"cuboid", "star"};
   c.staticObjects = {"octagon"};
   auto demo = motion::SyntheticPickPlaceGenerator(c).generate();

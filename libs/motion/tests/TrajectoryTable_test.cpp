@@ -16,7 +16,7 @@ std::string tempPath(const std::string& name) { return std::string(SRP_BINARY_DI
 void writeText(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
 TEST(TrajectoryTable, RoundTripsASyntheticDemoAndSegmentsTheSame) {
-  const auto demo = motion::SyntheticPickPlaceGenerator(motion::SyntheticPickPlaceConfig{}).generate();
+  const auto demo = motion::SyntheticPickPlaceGenerator().generate();
   TrajectoryTable table{demo.hand, demo.objects};
   const std::string path = tempPath("roundtrip.csv");
   table.writeCsv(path);

@@ -21,6 +21,42 @@ double colourAgreement(const Eigen::Vector3d& a, const Eigen::Vector3d& b, doubl
   return std::exp(-0.5 * std::pow(dChroma / chromaSigma, 2));
 }
 
+/// Depth fits every symmetric turn of a nearly symmetric part equally
+/// well; the colour outline tells which one puts the origin right. Also
+/// for a tracked part: one first found half hidden (a part just placed,
+/// the hand still over it) keeps a wrong turn otherwise. Returns the pose of
+/// the turn chosen (`bestPose` refitted from it, or `bestPose` itself).
+core::Pose3 silhouetteBranch(const ObjectPoseFitter& fitter, const core::Pose3& bestPose, const ObjectSegment& seg,
+                             const Plane& support, const cv::Mat& cloud, const CameraModel& camera,
+                             const SilhouetteBranchPicker& picker,
+                             const std::map<std::string, core::Pose3>& previous, double trackRadius_m) {
+  const auto branches = fitter.symmetricBranches(bestPose);
+  std::vector<double> iou;
+  const auto k = picker.pick(fitter.model().mesh, branches, seg.pixels, seg.colour_bgr8, camera, &iou);
+  if (core::Log::enabled("perception", core::Log::Level::Debug)) {
+    std::string line = fitter.model().name + " branches (IoU):";
+    char value[32];
+    for (double v : iou) line += (std::snprintf(value, sizeof value, " %.3f", v), value);
+    core::Log::write("perception", core::Log::Level::Debug,
+                     line + " -> " + std::to_string(k ? static_cast<int>(*k) : -1));
+  }
+  std::size_t chosen = k ? *k : 0;
+  const auto prev = previous.find(fitter.model().name);
+  if (!k && prev != previous.end() && core::translationDistance(prev->second, bestPose) < trackRadius_m) {
+    // Colour inconclusive (a partial view): the turn nearest the part's last pose (it has not moved).
+    double nearest = 1e9;
+    for (std::size_t b = 0; b < branches.size(); ++b) {
+      const double a = core::rotationAngleBetween(prev->second.linear(), branches[b].linear());
+      if (a < nearest) {
+        nearest = a;
+        chosen = b;
+      }
+    }
+  }
+  if (chosen == 0) return bestPose;
+  return fitter.fit(seg.points_camera_m, support, cloud, camera, &branches[chosen]).X_camera_object;
+}
+
 }  // namespace
 
 ObjectDetector::ObjectDetector(std::vector<ObjectModel> models) : ObjectDetector(std::move(models), Options{}) {}
@@ -313,41 +349,9 @@ std::optional<ObjectDetection> ObjectDetector::explain(const ObjectSegment& seg,
     }
   }
   if (!bestFitter || bestConfidence < options_.minConfidence) return std::nullopt;
-  if (options_.pickBranchBySilhouette && bestFitter->hasOffCentreSymmetry() && seg.hasColour) {
-    // Depth fits every symmetric turn of a nearly symmetric part equally
-    // well; the colour outline tells which one puts the origin right. Also
-    // for a tracked part: one first found half hidden (a part just placed,
-    // the hand still over it) keeps a wrong turn otherwise.
-    const auto branches = bestFitter->symmetricBranches(bestPose);
-    std::vector<double> iou;
-    const auto k = branchPicker_.pick(bestFitter->model().mesh, branches, seg.pixels, seg.colour_bgr8,
-                                      camera, &iou);
-    if (core::Log::enabled("perception", core::Log::Level::Debug)) {
-      std::string line = bestFitter->model().name + " branches (IoU):";
-      char value[32];
-      for (double v : iou) line += (std::snprintf(value, sizeof value, " %.3f", v), value);
-      core::Log::write("perception", core::Log::Level::Debug,
-                       line + " -> " + std::to_string(k ? static_cast<int>(*k) : -1));
-    }
-    std::size_t chosen = k ? *k : 0;
-    const auto prev = previous.find(bestFitter->model().name);
-    if (!k && prev != previous.end() &&
-        core::translationDistance(prev->second, bestPose) < options_.trackRadius_m) {
-      // Colour inconclusive (a partial view): the turn nearest the part's last pose (it has not moved).
-      double nearest = 1e9;
-      for (std::size_t b = 0; b < branches.size(); ++b) {
-        const double a = core::rotationAngleBetween(prev->second.linear(), branches[b].linear());
-        if (a < nearest) {
-          nearest = a;
-          chosen = b;
-        }
-      }
-    }
-    if (chosen != 0) {
-      const ObjectPoseFit refit = bestFitter->fit(seg.points_camera_m, support, cloud, camera, &branches[chosen]);
-      bestPose = refit.X_camera_object;
-    }
-  }
+  if (options_.pickBranchBySilhouette && bestFitter->hasOffCentreSymmetry() && seg.hasColour)
+    bestPose = silhouetteBranch(*bestFitter, bestPose, seg, support, cloud, camera, branchPicker_, previous,
+                                options_.trackRadius_m);
   if (options_.refineYawByEdges && bestFitter->model().kind == core::ObjectKind::Part) {
     const EdgeYawRefiner& refiner = refiners_[static_cast<std::size_t>(bestFitter - fitters_.data())];
     if (const auto X = refiner.refine(bestPose, seg.pixels, seg.colour_bgr8, camera, support)) bestPose = *X;

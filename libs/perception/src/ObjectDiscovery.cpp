@@ -185,6 +185,59 @@ cv::Mat candidatesOf(const TableView& view, const ObjectDiscovery::Options& o, c
   return candidate;
 }
 
+/// The sighting of one segment (`px`, pixels of the reduced frame `q`, points in the table frame) in
+/// frame `index`: its feet's hull and centre, heights, colour, distance to the palm; `points`
+/// receives its points.
+Sighting sightingOf(int index, const cv::Mat& q, const std::vector<cv::Point>& px, const cv::Mat& colour,
+                    const std::optional<Eigen::Vector3d>& palm, const ObjectDiscovery::Options& o,
+                    std::vector<Eigen::Vector3f>& points) {
+  std::vector<cv::Point2f> feet;
+  std::vector<double> heights;
+  feet.reserve(px.size());
+  Sighting sg;
+  sg.frame = index;
+  sg.pixels = static_cast<int>(px.size());
+  for (const auto& p : px) {
+    const cv::Vec3f& a = q.at<cv::Vec3f>(p);
+    feet.emplace_back(a[0], a[1]);
+    heights.push_back(a[2]);
+    points.emplace_back(a[0], a[1], a[2]);
+    sg.centre += Eigen::Vector2d(a[0], a[1]);
+    if (palm) sg.handDistance_m = std::min(sg.handDistance_m, (Eigen::Vector3d(a[0], a[1], a[2]) - *palm).norm());
+    if (!colour.empty()) {
+      const cv::Vec3b c = colour.at<cv::Vec3b>(p);
+      sg.meanBgr += Eigen::Vector3d(c[0], c[1], c[2]) / 255.0;
+    }
+  }
+  sg.centre /= static_cast<double>(px.size());
+  sg.meanBgr /= static_cast<double>(px.size());
+  cv::convexHull(feet, sg.hull);
+  sg.area_m2 = cv::contourArea(sg.hull);
+  sg.top_m = percentile(heights, 0.95);
+  sg.bottom_m = percentile(heights, 0.05);
+  if (!colour.empty()) sg.colours = colourShares(px, colour);
+  sg.nearHand = sg.handDistance_m < o.handRadius_m + 0.05;
+  return sg;
+}
+
+/// SRP_DISCOVERY_TRACE's picture of a frame before its segments are drawn: the colour at the reduced
+/// resolution, table points tinted green, the hand mask magenta.
+cv::Mat traceBackground(const cv::Mat& colour, const TableView& view, const cv::Mat& hand,
+                        const std::vector<cv::Point2f>& table, const ObjectDiscovery::Options& o) {
+  const cv::Mat &q = view.q, &valid = view.valid;
+  const int W = q.cols, H = q.rows;
+  cv::Mat trace = colour.clone();
+  for (int v = 0; v < H; ++v)
+    for (int u = 0; u < W; ++u) {
+      const cv::Vec3f& p = q.at<cv::Vec3f>(v, u);
+      if (valid.at<uchar>(v, u) && cv::pointPolygonTest(table, cv::Point2f(p[0], p[1]), false) >= 0 &&
+          std::abs(p[2]) < o.tableInlierTol_m)
+        trace.at<cv::Vec3b>(v, u) = trace.at<cv::Vec3b>(v, u) / 2 + cv::Vec3b(0, 60, 0);
+      if (hand.at<uchar>(v, u)) trace.at<cv::Vec3b>(v, u) = cv::Vec3b(255, 0, 255);
+    }
+  return trace;
+}
+
 }  // namespace
 
 struct ObjectDiscovery::Impl {
@@ -210,6 +263,7 @@ struct ObjectDiscovery::Impl {
   }
   double handDistanceNear(const Rest& r, int frame) const;
   std::vector<Eigen::Vector3f> fused(const Rest& r) const;
+  struct Finish;
 };
 
 std::optional<ObjectDiscovery::Measured> ObjectDiscovery::measureAt(const rawlog::RgbdFrame& frame,
@@ -394,47 +448,12 @@ void ObjectDiscovery::add(const rawlog::RgbdFrame& frame, const core::Pose3& X_c
   if (!frame.colour_bgr8.empty()) cv::resize(frame.colour_bgr8, colour, cv::Size(W, H), 0, 0, cv::INTER_NEAREST);
   cv::Mat trace;  // SRP_DISCOVERY_TRACE=<folder>: each frame's segments drawn (for tuning on a new recording)
   const char* traceDir = std::getenv("SRP_DISCOVERY_TRACE");
-  if (traceDir && !colour.empty()) {
-    trace = colour.clone();
-    for (int v = 0; v < H; ++v)
-      for (int u = 0; u < W; ++u) {
-        const cv::Vec3f& p = q.at<cv::Vec3f>(v, u);
-        if (valid.at<uchar>(v, u) && cv::pointPolygonTest(m.table, cv::Point2f(p[0], p[1]), false) >= 0 &&
-            std::abs(p[2]) < o.tableInlierTol_m)
-          trace.at<cv::Vec3b>(v, u) = trace.at<cv::Vec3b>(v, u) / 2 + cv::Vec3b(0, 60, 0);
-        if (hand.at<uchar>(v, u)) trace.at<cv::Vec3b>(v, u) = cv::Vec3b(255, 0, 255);
-      }
-  }
+  if (traceDir && !colour.empty()) trace = traceBackground(colour, view, hand, m.table, o);
   for (int l = 1; l < n; ++l) {
     const auto& px = pixels[static_cast<std::size_t>(l)];
     if (px.empty() || !m.onTableTop(q, px)) continue;  // off the table top, or part of something taller
-    std::vector<cv::Point2f> feet;
-    std::vector<double> heights;
     std::vector<Eigen::Vector3f> points;
-    feet.reserve(px.size());
-    Sighting sg;
-    sg.frame = index;
-    sg.pixels = static_cast<int>(px.size());
-    for (const auto& p : px) {
-      const cv::Vec3f& a = q.at<cv::Vec3f>(p);
-      feet.emplace_back(a[0], a[1]);
-      heights.push_back(a[2]);
-      points.emplace_back(a[0], a[1], a[2]);
-      sg.centre += Eigen::Vector2d(a[0], a[1]);
-      if (palm) sg.handDistance_m = std::min(sg.handDistance_m, (Eigen::Vector3d(a[0], a[1], a[2]) - *palm).norm());
-      if (!colour.empty()) {
-        const cv::Vec3b c = colour.at<cv::Vec3b>(p);
-        sg.meanBgr += Eigen::Vector3d(c[0], c[1], c[2]) / 255.0;
-      }
-    }
-    sg.centre /= static_cast<double>(px.size());
-    sg.meanBgr /= static_cast<double>(px.size());
-    cv::convexHull(feet, sg.hull);
-    sg.area_m2 = cv::contourArea(sg.hull);
-    sg.top_m = percentile(heights, 0.95);
-    sg.bottom_m = percentile(heights, 0.05);
-    if (!colour.empty()) sg.colours = colourShares(px, colour);
-    sg.nearHand = sg.handDistance_m < o.handRadius_m + 0.05;
+    const Sighting sg = sightingOf(index, q, px, colour, palm, o, points);
     m.sightings.push_back(sg);
     m.assign(static_cast<int>(m.sightings.size()) - 1, std::move(points));
     if (!trace.empty()) {
@@ -546,64 +565,108 @@ double ObjectDiscovery::Impl::handDistanceNear(const Rest& r, int frame) const {
   return best;
 }
 
-ObjectDiscovery::Result ObjectDiscovery::finish(const std::vector<ObjectTrajectory>& known, int firstFreeClassId) const {
-  const Impl& m = *impl_;
-  const Options& o = m.o;
-  const int N = static_cast<int>(m.frameNumber.size());
-  Result result;
-  if (m.objects.empty()) return result;
-  if (N == 0) throw core::InvalidInputError("object discovery: no frames");
-  if (m.table.size() < 3)
-    throw core::InvalidInputError("looking for the " + m.objects.front().name +
-                                  " in the demonstration: no table top was seen (no large plane under the scene)");
-  const int window = std::max(2, static_cast<int>(std::lround(o.windowShare * N)));
-  const auto atStart = [&](const Rest& r) { return r.first < window; };
-  const auto atEnd = [&](const Rest& r) { return r.last >= N - window; };
-  const auto sightingsOf = [&](const Rest& r) { return static_cast<int>(r.sightings.size()); };
-  // Standing on something: a rest's median bottom on the table, or (for a
-  // part let go in a container) no higher than the rim of a static rest
-  // whose footprint holds its centre. Segments in the air (an arm, a part
-  // being carried) are no rests.
-  const auto medianOf = [&](const Rest& r, auto field) {
-    std::vector<double> v;
-    for (int s : r.sightings) v.push_back(field(m.sightings[static_cast<std::size_t>(s)]));
-    return percentile(v, 0.5);
+/// finish()'s steps: the rests that stay (statics), the moves the hand made, and per unknown
+/// object its class and one pose sample per frame.
+struct ObjectDiscovery::Impl::Finish {
+  /// A rest left with the hand, a rest reached with it, alike.
+  struct Move {
+    int from, to;
+    double similarity;
   };
-  const auto bottomOf = [&](const Rest& r) { return medianOf(r, [](const Sighting& s) { return s.bottom_m; }); };
+  /// Per frame: the object's pose in the table frame (none: carry the last one), seen, confidence.
+  struct Poses {
+    std::vector<std::optional<core::Pose3>> X_table_object;
+    std::vector<bool> detected;
+    std::vector<double> confidence;
+  };
+
+  const Impl& m;
+  const Options& o;
+  const int N;
+  const int window;
   std::vector<int> statics;
+  std::vector<Move> moves;
+  std::map<std::string, Move> movedBy;  // unknown name -> its move
+
+  explicit Finish(const Impl& impl);
+  bool atStart(const Rest& r) const { return r.first < window; }
+  bool atEnd(const Rest& r) const { return r.last >= N - window; }
+  int sightingsOf(const Rest& r) const { return static_cast<int>(r.sightings.size()); }
+  double bottomOf(const Rest& r) const {
+    std::vector<double> v;
+    for (int s : r.sightings) v.push_back(m.sightings[static_cast<std::size_t>(s)].bottom_m);
+    return percentile(v, 0.5);
+  }
+  bool standing(const Rest& r) const;
+  std::string startScene() const;
+  std::string describeMove(const Move& mv) const;
+  bool colourOk(const Sighting& s, const std::optional<std::string>& word) const {
+    return !word || shareOf(s.colours, *word) >= o.minColourShare;
+  }
+  std::vector<bool> sightedIn(const Rest& r) const {
+    std::vector<bool> seen(static_cast<std::size_t>(N), false);
+    for (int s : r.sightings) seen[static_cast<std::size_t>(m.sightings[static_cast<std::size_t>(s)].frame)] = true;
+    return seen;
+  }
+  std::optional<Eigen::Vector2d> knownFinal(const std::vector<ObjectTrajectory>& known, const std::string& key,
+                                            bool final) const;
+  void findMoves();
+  void matchMovedObjects();
+  const Rest& movedObject(const UnknownObject& u, core::ObjectClass& cls, Poses& poses, Result& result) const;
+  const Rest& placeObject(const UnknownObject& u, const std::vector<ObjectTrajectory>& known, core::ObjectClass& cls,
+                          Poses& poses, ObjectTrajectory& traj, Result& result) const;
+  void colourAndSamples(const UnknownObject& u, const Rest& modelRest, const Poses& poses, core::ObjectClass& cls,
+                        ObjectTrajectory& traj) const;
+};
+
+// Standing on something: a rest's median bottom on the table, or (for a
+// part let go in a container) no higher than the rim of a static rest
+// whose footprint holds its centre. Segments in the air (an arm, a part
+// being carried) are no rests.
+ObjectDiscovery::Impl::Finish::Finish(const Impl& impl)
+    : m(impl),
+      o(impl.o),
+      N(static_cast<int>(impl.frameNumber.size())),
+      window(std::max(2, static_cast<int>(std::lround(impl.o.windowShare * N)))) {
   for (std::size_t r = 0; r < m.rests.size(); ++r)
     if (atStart(m.rests[r]) && atEnd(m.rests[r]) && sightingsOf(m.rests[r]) >= 2 &&
         bottomOf(m.rests[r]) <= o.maxStandingBottom_m)
       statics.push_back(static_cast<int>(r));
-  const auto standing = [&](const Rest& r) {
-    const double bottom = bottomOf(r);
-    if (bottom <= o.maxStandingBottom_m) return true;
-    const Sighting& a = m.sightings[static_cast<std::size_t>(r.anchor)];
-    for (int c : statics) {
-      const Sighting& sc = m.sightings[static_cast<std::size_t>(m.rests[static_cast<std::size_t>(c)].anchor)];
-      if (&sc != &a && polygonDistance(sc.hull, a.centre) >= 0 && bottom <= sc.top_m + o.maxStandingBottom_m) return true;
-    }
-    return false;
-  };
   if (m.debug)
     for (std::size_t r = 0; r < m.rests.size(); ++r)
       core::Log::writef(
           "discovery", core::Log::Level::Debug, "rest %zu: %s, %d sightings, bottom %.3f%s\n", r,
           m.describe(m.rests[r]).c_str(), sightingsOf(m.rests[r]), bottomOf(m.rests[r]),
           std::find(statics.begin(), statics.end(), static_cast<int>(r)) != statics.end() ? ", static" : "");
-  const auto startScene = [&]() {
-    std::string s;
-    for (const auto& r : m.rests)
-      if (atStart(r) && sightingsOf(r) >= 2 && standing(r)) s += (s.empty() ? "" : "; ") + m.describe(r);
-    return s.empty() ? std::string("nothing") : s;
-  };
+}
 
-  // Moved parts: a rest left with the hand, a rest reached with it, alike.
-  struct Move {
-    int from, to;
-    double similarity;
-  };
-  std::vector<Move> moves;
+bool ObjectDiscovery::Impl::Finish::standing(const Rest& r) const {
+  const double bottom = bottomOf(r);
+  if (bottom <= o.maxStandingBottom_m) return true;
+  const Sighting& a = m.sightings[static_cast<std::size_t>(r.anchor)];
+  for (int c : statics) {
+    const Sighting& sc = m.sightings[static_cast<std::size_t>(m.rests[static_cast<std::size_t>(c)].anchor)];
+    if (&sc != &a && polygonDistance(sc.hull, a.centre) >= 0 && bottom <= sc.top_m + o.maxStandingBottom_m) return true;
+  }
+  return false;
+}
+
+std::string ObjectDiscovery::Impl::Finish::startScene() const {
+  std::string s;
+  for (const auto& r : m.rests)
+    if (atStart(r) && sightingsOf(r) >= 2 && standing(r)) s += (s.empty() ? "" : "; ") + m.describe(r);
+  return s.empty() ? std::string("nothing") : s;
+}
+
+std::string ObjectDiscovery::Impl::Finish::describeMove(const Move& mv) const {
+  const Rest& A = m.rests[static_cast<std::size_t>(mv.from)];
+  const Rest& B = m.rests[static_cast<std::size_t>(mv.to)];
+  return m.describe(A) + ", to " + describePlace(m.sightings[static_cast<std::size_t>(B.anchor)].centre) + " (from frame " +
+         std::to_string(m.frameNumber[static_cast<std::size_t>(B.first)]) + ")";
+}
+
+// Moved parts: a rest left with the hand, a rest reached with it, alike.
+void ObjectDiscovery::Impl::Finish::findMoves() {
   for (std::size_t a = 0; a < m.rests.size(); ++a) {
     const Rest& A = m.rests[a];
     if (!atStart(A) || atEnd(A) || sightingsOf(A) < 2 || !standing(A) || m.handDistanceNear(A, A.last) > o.handNear_m)
@@ -627,20 +690,11 @@ ObjectDiscovery::Result ObjectDiscovery::finish(const std::vector<ObjectTrajecto
   std::sort(moves.begin(), moves.end(), [&](const Move& x, const Move& y) {
     return m.rests[static_cast<std::size_t>(x.from)].last < m.rests[static_cast<std::size_t>(y.from)].last;
   });
-  const auto describeMove = [&](const Move& mv) {
-    const Rest& A = m.rests[static_cast<std::size_t>(mv.from)];
-    const Rest& B = m.rests[static_cast<std::size_t>(mv.to)];
-    return m.describe(A) + ", to " + describePlace(m.sightings[static_cast<std::size_t>(B.anchor)].centre) + " (from frame " +
-           std::to_string(m.frameNumber[static_cast<std::size_t>(B.first)]) + ")";
-  };
+}
 
-  // Each unknown object found; the places after the moved parts.
-  std::map<std::string, Move> movedBy;  // unknown name -> its move
+// Each unknown object found; the places after the moved parts.
+void ObjectDiscovery::Impl::Finish::matchMovedObjects() {
   std::set<int> used;
-  int nextId = firstFreeClassId;
-  const auto colourOk = [&](const Sighting& s, const std::optional<std::string>& word) {
-    return !word || shareOf(s.colours, *word) >= o.minColourShare;
-  };
   for (const UnknownObject& u : m.objects) {
     if (u.role != UnknownObject::Role::Moved) continue;
     std::vector<Move> fit;
@@ -668,23 +722,232 @@ ObjectDiscovery::Result ObjectDiscovery::finish(const std::vector<ObjectTrajecto
     movedBy[u.name] = fit.front();
     used.insert(fit.front().from);
   }
+}
 
-  const auto knownFinal = [&](const std::string& key, bool final) -> std::optional<Eigen::Vector2d> {
-    for (const auto& t : known) {
-      if (t.key() != key) continue;
-      const ObjectPoseSample* pick = nullptr;
-      for (std::size_t i = 0; i < t.samples.size() && i < m.X_camera_table.size(); ++i)
-        if (t.samples[i].detected && (final || !pick)) pick = &t.samples[i];
-      if (!pick) return std::nullopt;
-      const std::size_t i = static_cast<std::size_t>(pick - t.samples.data());
-      const Eigen::Vector3d p = m.X_camera_table[i].inverse() * pick->X_camera_object.translation();
-      return Eigen::Vector2d(p.x(), p.y());
+std::optional<Eigen::Vector2d> ObjectDiscovery::Impl::Finish::knownFinal(const std::vector<ObjectTrajectory>& known,
+                                                                         const std::string& key, bool final) const {
+  for (const auto& t : known) {
+    if (t.key() != key) continue;
+    const ObjectPoseSample* pick = nullptr;
+    for (std::size_t i = 0; i < t.samples.size() && i < m.X_camera_table.size(); ++i)
+      if (t.samples[i].detected && (final || !pick)) pick = &t.samples[i];
+    if (!pick) return std::nullopt;
+    const std::size_t i = static_cast<std::size_t>(pick - t.samples.data());
+    const Eigen::Vector3d p = m.X_camera_table[i].inverse() * pick->X_camera_object.translation();
+    return Eigen::Vector2d(p.x(), p.y());
+  }
+  return std::nullopt;
+}
+
+const Rest& ObjectDiscovery::Impl::Finish::movedObject(const UnknownObject& u, core::ObjectClass& cls, Poses& poses,
+                                                        Result& result) const {
+  const Move& mv = movedBy.at(u.name);
+  const Rest& A = m.rests[static_cast<std::size_t>(mv.from)];
+  const Rest& B = m.rests[static_cast<std::size_t>(mv.to)];
+  const auto fp = footprintOf(m.fused(A));
+  if (!fp) throw core::InvalidInputError("the " + u.noun + " (" + m.describe(A) + ") shows too few points for a model");
+  cls.kind = core::ObjectKind::Part;
+  cls.shape = "hull";
+  cls.dimensions_m = fp->size_m;
+  cls.footprint_object = fp->hull_object;
+  double area2 = 0.0;
+  for (std::size_t i = 0; i < fp->hull_object.size(); ++i) {
+    const auto& a = fp->hull_object[i];
+    const auto& b = fp->hull_object[(i + 1) % fp->hull_object.size()];
+    area2 += a.x() * b.y() - b.x() * a.y();
+  }
+  cls.mass_kg = std::max(0.01, 0.5 * std::abs(area2) * fp->size_m.z() * o.partDensity_kg_m3);
+  // A's place: the model's; B's: the median of its sightings' footprint
+  // centres (not of their points, which lean towards the camera: the far
+  // side is not seen), its bottom below its top by the model's height.
+  std::vector<double> bx, by, btop;
+  for (int s : B.sightings) {
+    const Sighting& sb = m.sightings[static_cast<std::size_t>(s)];
+    const cv::Point2f c = cv::minAreaRect(sb.hull).center;
+    bx.push_back(c.x);
+    by.push_back(c.y);
+    btop.push_back(sb.top_m);
+  }
+  core::Pose3 atB = fp->X_table_object;
+  atB.translation() = Eigen::Vector3d(percentile(bx, 0.5), percentile(by, 0.5),
+                                      std::max(0.0, percentile(btop, 0.5) - fp->size_m.z()));
+  const auto seenA = sightedIn(A), seenB = sightedIn(B);
+  const Sighting& anchorA = m.sightings[static_cast<std::size_t>(A.anchor)];
+  for (int i = 0; i < N; ++i) {
+    const auto fi = static_cast<std::size_t>(i);
+    if (i <= A.last) {
+      poses.X_table_object[fi] = fp->X_table_object;
+      poses.detected[fi] = seenA[fi];
+      poses.confidence[fi] = seenA[fi] ? 1.0 : 0.0;
+    } else if (i >= B.first) {
+      poses.X_table_object[fi] = atB;
+      poses.detected[fi] = seenB[fi];
+      poses.confidence[fi] = seenB[fi] ? 1.0 : 0.0;
+    } else {
+      // Carried: the sighting nearest the palm, of no static rest, alike in colour.
+      const Sighting* best = nullptr;
+      for (const Sighting& s : m.sightings) {
+        if (s.frame != i || !m.palm[fi] || s.handDistance_m > o.handNear_m ||
+            std::find(statics.begin(), statics.end(), s.rest) != statics.end() ||
+            colourSimilarity(s.colours, anchorA.colours) < o.minColourSimilarity)
+          continue;
+        if (!best || s.handDistance_m < best->handDistance_m) best = &s;
+      }
+      if (best) {
+        core::Pose3 X = fp->X_table_object;
+        // In the air the part's bottom is in view (in its place or in a container it is not).
+        X.translation() = Eigen::Vector3d(best->centre.x(), best->centre.y(), std::max(0.0, best->bottom_m));
+        poses.X_table_object[fi] = X;
+        poses.detected[fi] = true;
+        poses.confidence[fi] = 0.5;
+      }
     }
-    return std::nullopt;
-  };
+  }
+  result.notes.push_back("the " + u.noun + ": " + describeMove(mv));
+  if (m.debug)
+    for (int i = 0; i < N; ++i) {
+      const auto fi = static_cast<std::size_t>(i);
+      const Eigen::Vector3d p = poses.X_table_object[fi] ? Eigen::Vector3d(poses.X_table_object[fi]->translation()) : Eigen::Vector3d::Zero();
+      const Eigen::Vector3d h = m.palm[fi] ? *m.palm[fi] : Eigen::Vector3d::Zero();
+      core::Log::writef("discovery", core::Log::Level::Debug,
+                        "%s frame %d: %s (%.3f %.3f %.3f) palm (%.3f %.3f %.3f)\n", u.name.c_str(),
+                        m.frameNumber[fi], poses.detected[fi] ? "seen" : "-   ", p.x(), p.y(), p.z(), h.x(), h.y(),
+                        h.z());
+    }
+  return A;
+}
 
-  for (std::size_t oi = 0; oi < m.objects.size(); ++oi) {
-    const UnknownObject& u = m.objects[oi];
+const Rest& ObjectDiscovery::Impl::Finish::placeObject(const UnknownObject& u, const std::vector<ObjectTrajectory>& known,
+                                                        core::ObjectClass& cls, Poses& poses, ObjectTrajectory& traj,
+                                                        Result& result) const {
+  // The place where a moved object was let go (or picked up).
+  const bool release = u.role == UnknownObject::Role::ReleasePlace;
+  std::optional<Eigen::Vector2d> at;
+  if (const auto it = movedBy.find(u.of); it != movedBy.end()) {
+    const Rest& r = m.rests[static_cast<std::size_t>(release ? it->second.to : it->second.from)];
+    std::vector<double> x, y;
+    for (int s : r.sightings) {
+      x.push_back(m.sightings[static_cast<std::size_t>(s)].centre.x());
+      y.push_back(m.sightings[static_cast<std::size_t>(s)].centre.y());
+    }
+    at = Eigen::Vector2d(percentile(x, 0.5), percentile(y, 0.5));
+  } else {
+    at = knownFinal(known, u.of, release);
+  }
+  if (!at)
+    throw core::InvalidInputError("the " + u.noun + " is where the " + u.of + " was " +
+                                  (release ? "let go" : "picked up") + ", but the " + u.of +
+                                  " was not seen there");
+  int best = -1;
+  double bestDistance = kInf;
+  for (int r : statics) {
+    const Sighting& a = m.sightings[static_cast<std::size_t>(m.rests[static_cast<std::size_t>(r)].anchor)];
+    const double d = -polygonDistance(a.hull, *at);  // negative inside
+    if (d <= o.placeRadius_m && (best < 0 || d < bestDistance)) {
+      best = r;
+      bestDistance = d;
+    }
+  }
+  if (best < 0) {
+    std::string list;
+    for (int r : statics) list += (list.empty() ? "" : "; ") + m.describe(m.rests[static_cast<std::size_t>(r)]);
+    throw core::InvalidInputError("looking for the " + u.noun + " in the demonstration: the " + u.of +
+                                  " was " + (release ? "let go" : "picked up") + " at " + describePlace(*at) +
+                                  " on the table, not in or on anything that stays there (seen throughout: " +
+                                  (list.empty() ? std::string("nothing") : list) + ")");
+  }
+  const Rest& P = m.rests[static_cast<std::size_t>(best)];
+  const Sighting& anchor = m.sightings[static_cast<std::size_t>(P.anchor)];
+  if (!colourOk(anchor, u.colour))
+    throw core::InvalidInputError("the " + u.of + " was " + (release ? "let go in or on " : "picked up from ") +
+                                  m.describe(P) + ", which is not " + *u.colour + " as the instruction's '" +
+                                  *u.colour + " " + u.noun + "'");
+  const std::vector<Eigen::Vector3f> points = m.fused(P);
+  const auto fp = footprintOf(points);
+  if (!fp) throw core::InvalidInputError("the " + u.noun + " (" + m.describe(P) + ") shows too few points for a model");
+  // Concave: the inner half of the footprint does not rise to the rim.
+  int inner = 0, innerHigh = 0;
+  const core::Pose3 X_object_table = fp->X_table_object.inverse();
+  for (const auto& p : points) {
+    const Eigen::Vector3d qo = X_object_table * p.cast<double>();
+    if (std::abs(qo.x()) > 0.25 * fp->size_m.x() || std::abs(qo.y()) > 0.25 * fp->size_m.y()) continue;
+    ++inner;
+    innerHigh += qo.z() > o.innerHighFraction * fp->size_m.z();
+  }
+  const double highShare = inner > 0 ? static_cast<double>(innerHigh) / inner : 0.0;
+  const bool container = highShare < o.maxInnerHighShare;
+  if (m.debug)
+    core::Log::writef("discovery", core::Log::Level::Debug, "%s: %d inner points, %.2f high -> %s\n",
+                      u.name.c_str(), inner, highShare, container ? "container" : "part");
+  cls.dimensions_m = fp->size_m;
+  if (container) {
+    cls.kind = core::ObjectKind::Container;
+    cls.shape = "open_box";
+    cls.wallThickness_m = o.containerWall_m;
+    cls.mass_kg = o.containerMass_kg;
+  } else {
+    cls.kind = core::ObjectKind::Part;
+    cls.shape = "hull";
+    cls.footprint_object = fp->hull_object;
+    cls.mass_kg = 0.5;
+  }
+  const auto seen = sightedIn(P);
+  for (int i = 0; i < N; ++i) {
+    poses.X_table_object[static_cast<std::size_t>(i)] = fp->X_table_object;
+    poses.detected[static_cast<std::size_t>(i)] = seen[static_cast<std::size_t>(i)];
+    poses.confidence[static_cast<std::size_t>(i)] = seen[static_cast<std::size_t>(i)] ? 1.0 : 0.0;
+  }
+  traj.isStatic = true;
+  result.notes.push_back("the " + u.noun + ": " + m.describe(P) + (container ? ", concave (a container)" : "") +
+                         ", where the " + u.of + " was " + (release ? "let go" : "picked up"));
+  return P;
+}
+
+void ObjectDiscovery::Impl::Finish::colourAndSamples(const UnknownObject& u, const Rest& modelRest, const Poses& poses,
+                                                     core::ObjectClass& cls, ObjectTrajectory& traj) const {
+  // Colour: the instruction's word when the pixels bear it out (a grey bin
+  // under warm light is mostly "brown" but grey in a third of its pixels,
+  // and the user called it grey), else the sightings' dominant word; rgb
+  // their mean (sRGB to linear).
+  const Sighting& anchor = m.sightings[static_cast<std::size_t>(modelRest.anchor)];
+  cls.colourName = u.colour && colourOk(anchor, u.colour) ? *u.colour
+                                                          : dominantColourWord(anchor.colours, o.minColourShare);
+  for (int c = 0; c < 3; ++c) {
+    const double srgb = anchor.meanBgr[2 - c];
+    cls.rgb[c] = linearOf(srgb);
+  }
+  cls.graspAxis_object = Eigen::Vector3d::UnitY();
+  // One sample per frame: a frame without a pose carries the last one (before the first: the first).
+  std::optional<core::Pose3> last;
+  for (const auto& X : poses.X_table_object)
+    if (X && !last) last = X;
+  for (int i = 0; i < N; ++i) {
+    const auto fi = static_cast<std::size_t>(i);
+    if (poses.X_table_object[fi]) last = poses.X_table_object[fi];
+    ObjectPoseSample s;
+    s.frame = m.frameNumber[fi];
+    s.t_s = m.time_s[fi];
+    s.X_camera_object = m.X_camera_table[fi] * *last;
+    s.detected = poses.detected[fi];
+    s.confidence = poses.confidence[fi];
+    traj.samples.push_back(s);
+  }
+}
+
+ObjectDiscovery::Result ObjectDiscovery::finish(const std::vector<ObjectTrajectory>& known, int firstFreeClassId) const {
+  const Impl& m = *impl_;
+  const int N = static_cast<int>(m.frameNumber.size());
+  Result result;
+  if (m.objects.empty()) return result;
+  if (N == 0) throw core::InvalidInputError("object discovery: no frames");
+  if (m.table.size() < 3)
+    throw core::InvalidInputError("looking for the " + m.objects.front().name +
+                                  " in the demonstration: no table top was seen (no large plane under the scene)");
+  Impl::Finish f(m);
+  f.findMoves();
+  f.matchMovedObjects();
+  int nextId = firstFreeClassId;
+  for (const UnknownObject& u : m.objects) {
     core::ObjectClass cls;
     cls.name = u.name;
     cls.noun = u.noun.empty() ? u.name : u.noun;
@@ -694,200 +957,12 @@ ObjectDiscovery::Result ObjectDiscovery::finish(const std::vector<ObjectTrajecto
     ObjectTrajectory traj;
     traj.className = u.name;
     traj.classId = cls.classId;
-    std::vector<std::optional<core::Pose3>> X_table_object(static_cast<std::size_t>(N));
-    std::vector<bool> detected(static_cast<std::size_t>(N), false);
-    std::vector<double> confidence(static_cast<std::size_t>(N), 0.0);
-    const auto sightedIn = [&](const Rest& r) {
-      std::vector<bool> seen(static_cast<std::size_t>(N), false);
-      for (int s : r.sightings) seen[static_cast<std::size_t>(m.sightings[static_cast<std::size_t>(s)].frame)] = true;
-      return seen;
-    };
-    const Rest* modelRest = nullptr;
-    if (u.role == UnknownObject::Role::Moved) {
-      const Move& mv = movedBy.at(u.name);
-      const Rest& A = m.rests[static_cast<std::size_t>(mv.from)];
-      const Rest& B = m.rests[static_cast<std::size_t>(mv.to)];
-      modelRest = &A;
-      const auto fp = footprintOf(m.fused(A));
-      if (!fp) throw core::InvalidInputError("the " + u.noun + " (" + m.describe(A) + ") shows too few points for a model");
-      cls.kind = core::ObjectKind::Part;
-      cls.shape = "hull";
-      cls.dimensions_m = fp->size_m;
-      cls.footprint_object = fp->hull_object;
-      double area2 = 0.0;
-      for (std::size_t i = 0; i < fp->hull_object.size(); ++i) {
-        const auto& a = fp->hull_object[i];
-        const auto& b = fp->hull_object[(i + 1) % fp->hull_object.size()];
-        area2 += a.x() * b.y() - b.x() * a.y();
-      }
-      cls.mass_kg = std::max(0.01, 0.5 * std::abs(area2) * fp->size_m.z() * o.partDensity_kg_m3);
-      // A's place: the model's; B's: the median of its sightings' footprint
-      // centres (not of their points, which lean towards the camera: the far
-      // side is not seen), its bottom below its top by the model's height.
-      std::vector<double> bx, by, btop;
-      for (int s : B.sightings) {
-        const Sighting& sb = m.sightings[static_cast<std::size_t>(s)];
-        const cv::Point2f c = cv::minAreaRect(sb.hull).center;
-        bx.push_back(c.x);
-        by.push_back(c.y);
-        btop.push_back(sb.top_m);
-      }
-      core::Pose3 atB = fp->X_table_object;
-      atB.translation() = Eigen::Vector3d(percentile(bx, 0.5), percentile(by, 0.5),
-                                          std::max(0.0, percentile(btop, 0.5) - fp->size_m.z()));
-      const auto seenA = sightedIn(A), seenB = sightedIn(B);
-      const Sighting& anchorA = m.sightings[static_cast<std::size_t>(A.anchor)];
-      for (int i = 0; i < N; ++i) {
-        const auto fi = static_cast<std::size_t>(i);
-        if (i <= A.last) {
-          X_table_object[fi] = fp->X_table_object;
-          detected[fi] = seenA[fi];
-          confidence[fi] = seenA[fi] ? 1.0 : 0.0;
-        } else if (i >= B.first) {
-          X_table_object[fi] = atB;
-          detected[fi] = seenB[fi];
-          confidence[fi] = seenB[fi] ? 1.0 : 0.0;
-        } else {
-          // Carried: the sighting nearest the palm, of no static rest, alike in colour.
-          const Sighting* best = nullptr;
-          for (const Sighting& s : m.sightings) {
-            if (s.frame != i || !m.palm[fi] || s.handDistance_m > o.handNear_m ||
-                std::find(statics.begin(), statics.end(), s.rest) != statics.end() ||
-                colourSimilarity(s.colours, anchorA.colours) < o.minColourSimilarity)
-              continue;
-            if (!best || s.handDistance_m < best->handDistance_m) best = &s;
-          }
-          if (best) {
-            core::Pose3 X = fp->X_table_object;
-            // In the air the part's bottom is in view (in its place or in a container it is not).
-            X.translation() = Eigen::Vector3d(best->centre.x(), best->centre.y(), std::max(0.0, best->bottom_m));
-            X_table_object[fi] = X;
-            detected[fi] = true;
-            confidence[fi] = 0.5;
-          }
-        }
-      }
-      result.notes.push_back("the " + u.noun + ": " + describeMove(mv));
-      if (m.debug)
-        for (int i = 0; i < N; ++i) {
-          const auto fi = static_cast<std::size_t>(i);
-          const Eigen::Vector3d p = X_table_object[fi] ? Eigen::Vector3d(X_table_object[fi]->translation()) : Eigen::Vector3d::Zero();
-          const Eigen::Vector3d h = m.palm[fi] ? *m.palm[fi] : Eigen::Vector3d::Zero();
-          core::Log::writef("discovery", core::Log::Level::Debug,
-                            "%s frame %d: %s (%.3f %.3f %.3f) palm (%.3f %.3f %.3f)\n", u.name.c_str(),
-                            m.frameNumber[fi], detected[fi] ? "seen" : "-   ", p.x(), p.y(), p.z(), h.x(), h.y(),
-                            h.z());
-        }
-    } else {
-      // The place where a moved object was let go (or picked up).
-      const bool release = u.role == UnknownObject::Role::ReleasePlace;
-      std::optional<Eigen::Vector2d> at;
-      if (const auto it = movedBy.find(u.of); it != movedBy.end()) {
-        const Rest& r = m.rests[static_cast<std::size_t>(release ? it->second.to : it->second.from)];
-        std::vector<double> x, y;
-        for (int s : r.sightings) {
-          x.push_back(m.sightings[static_cast<std::size_t>(s)].centre.x());
-          y.push_back(m.sightings[static_cast<std::size_t>(s)].centre.y());
-        }
-        at = Eigen::Vector2d(percentile(x, 0.5), percentile(y, 0.5));
-      } else {
-        at = knownFinal(u.of, release);
-      }
-      if (!at)
-        throw core::InvalidInputError("the " + u.noun + " is where the " + u.of + " was " +
-                                      (release ? "let go" : "picked up") + ", but the " + u.of +
-                                      " was not seen there");
-      int best = -1;
-      double bestDistance = kInf;
-      for (int r : statics) {
-        const Sighting& a = m.sightings[static_cast<std::size_t>(m.rests[static_cast<std::size_t>(r)].anchor)];
-        const double d = -polygonDistance(a.hull, *at);  // negative inside
-        if (d <= o.placeRadius_m && (best < 0 || d < bestDistance)) {
-          best = r;
-          bestDistance = d;
-        }
-      }
-      if (best < 0) {
-        std::string list;
-        for (int r : statics) list += (list.empty() ? "" : "; ") + m.describe(m.rests[static_cast<std::size_t>(r)]);
-        throw core::InvalidInputError("looking for the " + u.noun + " in the demonstration: the " + u.of +
-                                      " was " + (release ? "let go" : "picked up") + " at " + describePlace(*at) +
-                                      " on the table, not in or on anything that stays there (seen throughout: " +
-                                      (list.empty() ? std::string("nothing") : list) + ")");
-      }
-      const Rest& P = m.rests[static_cast<std::size_t>(best)];
-      modelRest = &P;
-      const Sighting& anchor = m.sightings[static_cast<std::size_t>(P.anchor)];
-      if (!colourOk(anchor, u.colour))
-        throw core::InvalidInputError("the " + u.of + " was " + (release ? "let go in or on " : "picked up from ") +
-                                      m.describe(P) + ", which is not " + *u.colour + " as the instruction's '" +
-                                      *u.colour + " " + u.noun + "'");
-      const std::vector<Eigen::Vector3f> points = m.fused(P);
-      const auto fp = footprintOf(points);
-      if (!fp) throw core::InvalidInputError("the " + u.noun + " (" + m.describe(P) + ") shows too few points for a model");
-      // Concave: the inner half of the footprint does not rise to the rim.
-      int inner = 0, innerHigh = 0;
-      const core::Pose3 X_object_table = fp->X_table_object.inverse();
-      for (const auto& p : points) {
-        const Eigen::Vector3d qo = X_object_table * p.cast<double>();
-        if (std::abs(qo.x()) > 0.25 * fp->size_m.x() || std::abs(qo.y()) > 0.25 * fp->size_m.y()) continue;
-        ++inner;
-        innerHigh += qo.z() > o.innerHighFraction * fp->size_m.z();
-      }
-      const double highShare = inner > 0 ? static_cast<double>(innerHigh) / inner : 0.0;
-      const bool container = highShare < o.maxInnerHighShare;
-      if (m.debug)
-        core::Log::writef("discovery", core::Log::Level::Debug, "%s: %d inner points, %.2f high -> %s\n",
-                          u.name.c_str(), inner, highShare, container ? "container" : "part");
-      cls.dimensions_m = fp->size_m;
-      if (container) {
-        cls.kind = core::ObjectKind::Container;
-        cls.shape = "open_box";
-        cls.wallThickness_m = o.containerWall_m;
-        cls.mass_kg = o.containerMass_kg;
-      } else {
-        cls.kind = core::ObjectKind::Part;
-        cls.shape = "hull";
-        cls.footprint_object = fp->hull_object;
-        cls.mass_kg = 0.5;
-      }
-      const auto seen = sightedIn(P);
-      for (int i = 0; i < N; ++i) {
-        X_table_object[static_cast<std::size_t>(i)] = fp->X_table_object;
-        detected[static_cast<std::size_t>(i)] = seen[static_cast<std::size_t>(i)];
-        confidence[static_cast<std::size_t>(i)] = seen[static_cast<std::size_t>(i)] ? 1.0 : 0.0;
-      }
-      traj.isStatic = true;
-      result.notes.push_back("the " + u.noun + ": " + m.describe(P) + (container ? ", concave (a container)" : "") +
-                             ", where the " + u.of + " was " + (release ? "let go" : "picked up"));
-    }
-    // Colour: the instruction's word when the pixels bear it out (a grey bin
-    // under warm light is mostly "brown" but grey in a third of its pixels,
-    // and the user called it grey), else the sightings' dominant word; rgb
-    // their mean (sRGB to linear).
-    const Sighting& anchor = m.sightings[static_cast<std::size_t>(modelRest->anchor)];
-    cls.colourName = u.colour && colourOk(anchor, u.colour) ? *u.colour
-                                                            : dominantColourWord(anchor.colours, o.minColourShare);
-    for (int c = 0; c < 3; ++c) {
-      const double srgb = anchor.meanBgr[2 - c];
-      cls.rgb[c] = linearOf(srgb);
-    }
-    cls.graspAxis_object = Eigen::Vector3d::UnitY();
-    // One sample per frame: a frame without a pose carries the last one (before the first: the first).
-    std::optional<core::Pose3> last;
-    for (const auto& X : X_table_object)
-      if (X && !last) last = X;
-    for (int i = 0; i < N; ++i) {
-      const auto fi = static_cast<std::size_t>(i);
-      if (X_table_object[fi]) last = X_table_object[fi];
-      ObjectPoseSample s;
-      s.frame = m.frameNumber[fi];
-      s.t_s = m.time_s[fi];
-      s.X_camera_object = m.X_camera_table[fi] * *last;
-      s.detected = detected[fi];
-      s.confidence = confidence[fi];
-      traj.samples.push_back(s);
-    }
+    Impl::Finish::Poses poses{std::vector<std::optional<core::Pose3>>(static_cast<std::size_t>(N)),
+                              std::vector<bool>(static_cast<std::size_t>(N), false),
+                              std::vector<double>(static_cast<std::size_t>(N), 0.0)};
+    const Rest& modelRest = u.role == UnknownObject::Role::Moved ? f.movedObject(u, cls, poses, result)
+                                                                 : f.placeObject(u, known, cls, poses, traj, result);
+    f.colourAndSamples(u, modelRest, poses, cls, traj);
     result.classes.push_back(cls);
     result.trajectories.push_back(traj);
   }

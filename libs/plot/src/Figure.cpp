@@ -129,8 +129,12 @@ void drawMarker(cv::Mat& img, cv::Point2d p, Marker m, double size, const cv::Sc
   }
 }
 
-void drawAxes(cv::Mat& img, const Axes& ax, cv::Rect cell) {
-  // Data range over finite values and reference lines.
+/// The axes' data range: over finite values, bands and reference lines, with a margin, unless limits are set.
+struct DataRange {
+  double x0, x1, y0, y1;
+};
+
+DataRange dataRange(const Axes& ax) {
   double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
   for (const auto& s : ax.series())
     for (std::size_t i = 0; i < s.x.size(); ++i)
@@ -151,6 +155,69 @@ void drawAxes(cv::Mat& img, const Axes& ax, cv::Rect cell) {
   x0 -= mx; x1 += mx; y0 -= my; y1 += my;
   if (ax.xLimits) std::tie(x0, x1) = *ax.xLimits;
   if (ax.yLimits) std::tie(y0, y1) = *ax.yLimits;
+  return {x0, x1, y0, y1};
+}
+
+/// The y label, turned a quarter left, beside the plot area.
+void drawYLabel(cv::Mat& img, const Axes& ax, const cv::Rect& cell, const cv::Rect& plot) {
+  int base = 0;
+  const cv::Size sz = cv::getTextSize(ax.yLabel, kFont, 0.45, 1, &base);
+  cv::Mat label(sz.height + base + 4, sz.width + 4, CV_8UC3, kWhite);
+  cv::putText(label, ax.yLabel, cv::Point(2, sz.height + 1), kFont, 0.45, kBlack, 1, cv::LINE_AA);
+  cv::Mat rotated;
+  cv::rotate(label, rotated, cv::ROTATE_90_COUNTERCLOCKWISE);
+  const int x = cell.x + 4, y = plot.y + plot.height / 2 - rotated.rows / 2;
+  if (y >= 0 && y + rotated.rows <= img.rows && x + rotated.cols <= img.cols)
+    rotated.copyTo(img(cv::Rect(x, y, rotated.cols, rotated.rows)));
+}
+
+/// The legend box in the plot's top right corner: one row per labelled series, then per labelled band.
+void drawLegend(cv::Mat& img, const Axes& ax, const cv::Rect& plot) {
+  int n = 0, wmax = 0;
+  for (const auto& s : ax.series())
+    if (!s.label.empty()) {
+      ++n;
+      int base = 0;
+      wmax = std::max(wmax, cv::getTextSize(s.label, kFont, 0.4, 1, &base).width);
+    }
+  for (const auto& b : ax.bands())
+    if (!b.label.empty()) {
+      ++n;
+      int base = 0;
+      wmax = std::max(wmax, cv::getTextSize(b.label, kFont, 0.4, 1, &base).width);
+    }
+  if (n > 0) {
+    const cv::Rect box(plot.x + plot.width - wmax - 45, plot.y + 6, wmax + 38, 18 * n + 6);
+    cv::rectangle(img, box, kWhite, cv::FILLED);
+    cv::rectangle(img, box, cv::Scalar(180, 180, 180), 1);
+    int row = 0;
+    for (const auto& s : ax.series()) {
+      if (s.label.empty()) continue;
+      const int y = box.y + 14 + 18 * row++;
+      const cv::Point2d a(box.x + 6, y - 4), b(box.x + 26, y - 4);
+      if (s.lineWidth_px > 0) {
+        if (s.dashed) dashedLine(img, a, b, bgr(s.colour), 2);
+        else cv::line(img, a, b, bgr(s.colour), 2, cv::LINE_AA);
+      }
+      drawMarker(img, (a + b) * 0.5, s.marker, std::min(4.0, s.markerSize_px), bgr(s.colour));
+      text(img, s.label, cv::Point(box.x + 32, y), 0.4, kBlack);
+    }
+    for (const auto& b : ax.bands()) {
+      if (b.label.empty()) continue;
+      const int y = box.y + 14 + 18 * row++;
+      const cv::Rect swatch(box.x + 8, y - 11, 16, 12);
+      cv::Mat area = img(swatch);
+      cv::addWeighted(area, 1.0 - b.opacity, cv::Mat(area.size(), area.type(), bgr(b.colour)), b.opacity, 0.0, area);
+      cv::rectangle(img, swatch, bgr(b.colour), 1);
+      text(img, b.label, cv::Point(box.x + 32, y), 0.4, kBlack);
+    }
+  }
+}
+
+void drawAxes(cv::Mat& img, const Axes& ax, cv::Rect cell) {
+  // Data range over finite values and reference lines.
+  const DataRange range = dataRange(ax);
+  double x0 = range.x0, x1 = range.x1, y0 = range.y0, y1 = range.y1;
 
   const int left = 70, right = 15, top = ax.title.empty() ? 15 : 35, bottom = 50;
   cv::Rect plot(cell.x + left, cell.y + top, cell.width - left - right, cell.height - top - bottom);
@@ -219,58 +286,8 @@ void drawAxes(cv::Mat& img, const Axes& ax, cv::Rect cell) {
   // Labels and legend.
   if (!ax.title.empty()) text(img, ax.title, cv::Point(plot.x + plot.width / 2, cell.y + 22), 0.55, kBlack, 1);
   if (!ax.xLabel.empty()) text(img, ax.xLabel, cv::Point(plot.x + plot.width / 2, plot.y + plot.height + 40), 0.45, kBlack, 1);
-  if (!ax.yLabel.empty()) {
-    int base = 0;
-    const cv::Size sz = cv::getTextSize(ax.yLabel, kFont, 0.45, 1, &base);
-    cv::Mat label(sz.height + base + 4, sz.width + 4, CV_8UC3, kWhite);
-    cv::putText(label, ax.yLabel, cv::Point(2, sz.height + 1), kFont, 0.45, kBlack, 1, cv::LINE_AA);
-    cv::Mat rotated;
-    cv::rotate(label, rotated, cv::ROTATE_90_COUNTERCLOCKWISE);
-    const int x = cell.x + 4, y = plot.y + plot.height / 2 - rotated.rows / 2;
-    if (y >= 0 && y + rotated.rows <= img.rows && x + rotated.cols <= img.cols)
-      rotated.copyTo(img(cv::Rect(x, y, rotated.cols, rotated.rows)));
-  }
-  if (ax.legend) {
-    int n = 0, wmax = 0;
-    for (const auto& s : ax.series())
-      if (!s.label.empty()) {
-        ++n;
-        int base = 0;
-        wmax = std::max(wmax, cv::getTextSize(s.label, kFont, 0.4, 1, &base).width);
-      }
-    for (const auto& b : ax.bands())
-      if (!b.label.empty()) {
-        ++n;
-        int base = 0;
-        wmax = std::max(wmax, cv::getTextSize(b.label, kFont, 0.4, 1, &base).width);
-      }
-    if (n > 0) {
-      const cv::Rect box(plot.x + plot.width - wmax - 45, plot.y + 6, wmax + 38, 18 * n + 6);
-      cv::rectangle(img, box, kWhite, cv::FILLED);
-      cv::rectangle(img, box, cv::Scalar(180, 180, 180), 1);
-      int row = 0;
-      for (const auto& s : ax.series()) {
-        if (s.label.empty()) continue;
-        const int y = box.y + 14 + 18 * row++;
-        const cv::Point2d a(box.x + 6, y - 4), b(box.x + 26, y - 4);
-        if (s.lineWidth_px > 0) {
-          if (s.dashed) dashedLine(img, a, b, bgr(s.colour), 2);
-          else cv::line(img, a, b, bgr(s.colour), 2, cv::LINE_AA);
-        }
-        drawMarker(img, (a + b) * 0.5, s.marker, std::min(4.0, s.markerSize_px), bgr(s.colour));
-        text(img, s.label, cv::Point(box.x + 32, y), 0.4, kBlack);
-      }
-      for (const auto& b : ax.bands()) {
-        if (b.label.empty()) continue;
-        const int y = box.y + 14 + 18 * row++;
-        const cv::Rect swatch(box.x + 8, y - 11, 16, 12);
-        cv::Mat area = img(swatch);
-        cv::addWeighted(area, 1.0 - b.opacity, cv::Mat(area.size(), area.type(), bgr(b.colour)), b.opacity, 0.0, area);
-        cv::rectangle(img, swatch, bgr(b.colour), 1);
-        text(img, b.label, cv::Point(box.x + 32, y), 0.4, kBlack);
-      }
-    }
-  }
+  if (!ax.yLabel.empty()) drawYLabel(img, ax, cell, plot);
+  if (ax.legend) drawLegend(img, ax, plot);
 }
 
 cv::Mat render(int width, int height, int rows, int cols, const std::string& title, const std::vector<Axes>& axes) {

@@ -3,53 +3,68 @@
 #include <nlohmann/json.hpp>
 
 namespace srp::programming {
+namespace {
+
+nlohmann::json toJson(const ObjectOutcome& o) {
+  return {{"name", o.name},
+          {"instance", o.instanceId},
+          {"class_id", o.classId},
+          {"moved", o.moved},
+          {"grasp_frame", o.graspFrame},
+          {"release_frame", o.releaseFrame},
+          {"detected_frames", o.detectedFrames},
+          {"reach_lambda", o.reachLambda},
+          {"move_lambda", o.moveLambda},
+          {"note", o.note}};
+}
+
+nlohmann::json toJson(const core::ObjectClass& c) {
+  nlohmann::json footprint = nlohmann::json::array();
+  for (const auto& p : c.footprint_object) footprint.push_back({p.x(), p.y()});
+  return {{"name", c.name},
+          {"class_id", c.classId},
+          {"kind", core::toString(c.kind)},
+          {"shape", c.shape},
+          {"color_name", c.colourName},
+          {"dimensions_m", {c.dimensions_m.x(), c.dimensions_m.y(), c.dimensions_m.z()}},
+          {"footprint_m", footprint}};
+}
+
+/// [toJson(x) for x in items] (an empty array for none).
+template <typename T>
+nlohmann::json arrayOf(const std::vector<T>& items) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const auto& x : items) a.push_back(toJson(x));
+  return a;
+}
+
+}  // namespace
 
 std::string toJsonText(const ProgramResult& r) {
-  nlohmann::json j;
-  j["task_model_id"] = r.taskModelId;
-  j["name"] = r.name;
-  j["version"] = r.version;
-  j["plan"] = r.planLines;
-  j["frames"] = r.frames;
-  j["hand_detected_frames"] = r.handDetectedFrames;
-  j["skills"] = r.skillCount;
-  j["objects"] = nlohmann::json::array();
-  for (const auto& o : r.objects)
-    j["objects"].push_back({{"name", o.name},
-                            {"instance", o.instanceId},
-                            {"class_id", o.classId},
-                            {"moved", o.moved},
-                            {"grasp_frame", o.graspFrame},
-                            {"release_frame", o.releaseFrame},
-                            {"detected_frames", o.detectedFrames},
-                            {"reach_lambda", o.reachLambda},
-                            {"move_lambda", o.moveLambda},
-                            {"note", o.note}});
-  j["timings_s"] = nlohmann::json::object();
-  for (const auto& t : r.timings) j["timings_s"][t.stage] = t.wall_s;
-  j["peak_memory_MB"] = r.peakResidentMemory_MB;
-  j["warnings"] = r.warnings;
-  j["problems"] = r.problems;
-  j["perceived_scene_stored"] = r.sceneStored;
+  // nlohmann::json keeps an object's keys sorted: the text does not depend on the order below.
+  nlohmann::json timings = nlohmann::json::object();
+  for (const auto& t : r.timings) timings[t.stage] = t.wall_s;
+  nlohmann::json j = {{"task_model_id", r.taskModelId},
+                      {"name", r.name},
+                      {"version", r.version},
+                      {"plan", r.planLines},
+                      {"frames", r.frames},
+                      {"hand_detected_frames", r.handDetectedFrames},
+                      {"skills", r.skillCount},
+                      {"objects", arrayOf(r.objects)},
+                      {"timings_s", timings},
+                      {"peak_memory_MB", r.peakResidentMemory_MB},
+                      {"warnings", r.warnings},
+                      {"problems", r.problems},
+                      {"perceived_scene_stored", r.sceneStored},
+                      {"hand_detector", r.handDetector},
+                      {"camera_moved", r.cameraMoved},
+                      {"report_files", r.reportFiles}};
   if (!r.robotBase.empty()) j["robot_base"] = r.robotBase;
-  j["hand_detector"] = r.handDetector;
-  j["camera_moved"] = r.cameraMoved;
   if (!r.observedClasses.empty()) {
-    j["observed_classes"] = nlohmann::json::array();
-    for (const auto& c : r.observedClasses) {
-      nlohmann::json footprint = nlohmann::json::array();
-      for (const auto& p : c.footprint_object) footprint.push_back({p.x(), p.y()});
-      j["observed_classes"].push_back({{"name", c.name},
-                                       {"class_id", c.classId},
-                                       {"kind", core::toString(c.kind)},
-                                       {"shape", c.shape},
-                                       {"color_name", c.colourName},
-                                       {"dimensions_m", {c.dimensions_m.x(), c.dimensions_m.y(), c.dimensions_m.z()}},
-                                       {"footprint_m", footprint}});
-    }
+    j["observed_classes"] = arrayOf(r.observedClasses);
     j["discovery"] = r.discoveryNotes;
   }
-  j["report_files"] = r.reportFiles;
   return j.dump(2);
 }
 

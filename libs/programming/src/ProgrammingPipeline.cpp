@@ -111,6 +111,108 @@ std::unique_ptr<core::AtomicOutputFolder> startReportFolder(const std::string& d
   }
 }
 
+/// What perception found, in the result: frames, the hand, the camera's motion, the discovered classes.
+void reportPerception(const perception::PerceptionResult& seen, ProgramResult& result) {
+  result.frames = seen.frames;
+  result.handDetectedFrames = seen.handDetected;
+  result.handDetector = seen.handMethod == perception::PerceptionOptions::HandMethod::MarkerFree ? "marker-free" : "marker";
+  result.cameraMoved = seen.cameraMoved;
+  result.cameraTravel_m = seen.cameraTravel_m;
+  result.cameraTurn_rad = seen.cameraTurn_rad;
+  result.observedClasses = seen.observedClasses;
+  result.discoveryNotes = seen.discoveryNotes;
+}
+
+/// What the segmentation and the learned skills say of each tracked object (ProgramResult::objects).
+std::vector<ObjectOutcome> objectOutcomes(const motion::Segmentation& segmentation, const perception::PerceptionResult& seen,
+                                          const std::vector<motion::SkillSet>& skills, const core::ObjectCatalogue& runKb) {
+  std::vector<ObjectOutcome> outcomes;
+  for (const auto& seg : segmentation.objects) {
+    ObjectOutcome out;
+    out.name = seg.name;
+    out.classId = runKb.find(seg.name) ? runKb.find(seg.name)->classId : -1;
+    out.moved = seg.moved;
+    out.graspFrame = seg.graspFrame;
+    out.releaseFrame = seg.releaseFrame;
+    out.note = seg.note;
+    for (const auto& t : seen.objects)
+      if (t.key() == seg.name) {  // seg.name: the perception key (class, or instance id)
+        out.detectedFrames = t.detectedFrames();
+        out.name = t.className;
+        out.instanceId = t.instanceId;
+        out.classId = t.classId;
+      }
+    for (const auto& s : skills)
+      if (s.objectName == seg.name) {
+        if (s.reach) out.reachLambda = s.reach->lambda();
+        if (s.move) out.moveLambda = s.move->lambda();
+      }
+    outcomes.push_back(out);
+  }
+  return outcomes;
+}
+
+/// The scene file of the demonstration (robot base placed, the perceived scene's objects) for
+/// `srp execute --scene`; none without a perceived scene. `robotBase` is told where the base went.
+std::optional<core::Scene> sceneFileOf(const taskdb::TaskModel& model, const ProgrammingOptions& o,
+                                       const perception::PerceptionResult& seen, std::string& robotBase) {
+  if (!model.scene) return std::nullopt;
+  const auto placement = execution::RobotPlacement::of(*model.scene, o.X_base_camera, o.extrinsicsSource);
+  robotBase = placement.description;
+  core::Scene base;
+  // The scene file is read back by `srp execute --scene`, which takes only safe names.
+  base.name = "demonstration " + o.name;
+  if (!core::isSafeName(base.name)) base.name = "demonstration";
+  base.intrinsics = seen.intrinsics;
+  base.fps = model.info.frameRate_hz;
+  return execution::demonstrationScene(*model.scene, placement, base);
+}
+
+/// 6. One transaction. The report is written inside it, before COMMIT: a
+/// report that cannot be written rolls the model back (all or nothing), and
+/// its folder is renamed into place last.
+void storeTaskModel(const taskdb::TaskModel& model, const ProgrammingOptions& o, ProgramResult& result, StageClock& clock,
+                    core::AtomicOutputFolder* report, const std::optional<core::Scene>& sceneFile,
+                    const perception::PerceptionResult& seen, const motion::Segmentation& segmentation,
+                    const std::vector<motion::SkillSet>& skills) {
+  const bool newDatabase = !taskdb::TaskDatabase::isServerUri(o.dbPath) && !std::filesystem::exists(o.dbPath);
+  bool reportCommitted = false;
+  try {
+    auto db = taskdb::TaskDatabase::open(o.dbPath);
+    taskdb::TaskModelStore store(db);
+    result.name = o.name;
+    result.taskModelId = store.write(
+        model, [&](std::size_t done, std::size_t total) {
+          if (o.progress) o.progress("store", done, total);
+        },
+        [&](int id, int version) {
+          result.taskModelId = id;
+          result.version = version;
+          clock.stop();
+          if (!report) return;
+          const std::string tmp = report->temporaryPath().string();
+          std::vector<std::string> files = result.reportFiles;
+          if (sceneFile) {
+            core::writeJsonFile(tmp + "/scene.json", sceneFile->toJson());
+            files.push_back(tmp + "/scene.json");
+          }
+          ProgramResult shown = result;
+          shown.reportFiles = files;
+          for (const auto& f : writeProgramReport(tmp, shown, seen, segmentation, skills)) files.push_back(f);
+          report->commit();
+          reportCommitted = true;
+          result.reportFiles.clear();
+          for (const auto& f : files)
+            result.reportFiles.push_back((report->target() / std::filesystem::path(f).filename()).string());
+        });
+  } catch (...) {
+    std::error_code ec;
+    if (reportCommitted) std::filesystem::remove_all(report->target(), ec);  // COMMIT failed after the rename
+    if (newDatabase) removeIfCreatedEmpty(o.dbPath);
+    throw;
+  }
+}
+
 double peakResidentMemory_MB() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
@@ -153,14 +255,7 @@ ProgramResult programTask(const ProgrammingOptions& o) {
   const core::ObjectCatalogue runKb = perception::withObservedClasses(kb, seen.observedClasses);
   // 3b. Each phrase -> the perceived instance it means (several of one class).
   grounded = groundInstances(grounded, seen, runKb, scene);
-  result.frames = seen.frames;
-  result.handDetectedFrames = seen.handDetected;
-  result.handDetector = seen.handMethod == perception::PerceptionOptions::HandMethod::MarkerFree ? "marker-free" : "marker";
-  result.cameraMoved = seen.cameraMoved;
-  result.cameraTravel_m = seen.cameraTravel_m;
-  result.cameraTurn_rad = seen.cameraTurn_rad;
-  result.observedClasses = seen.observedClasses;
-  result.discoveryNotes = seen.discoveryNotes;
+  reportPerception(seen, result);
 
   // 4. Motion: the perception result handed over in memory, segmented, DMPs learned.
   clock.start("motion");
@@ -185,40 +280,8 @@ ProgramResult programTask(const ProgrammingOptions& o) {
     result.warnings.push_back("no table plane was found in the demonstration: the task model stores no perceived "
                               "scene ('srp execute' then needs --scene)");
   for (const auto& w : segmentation.warnings) result.warnings.push_back(w);
-  for (const auto& seg : segmentation.objects) {
-    ObjectOutcome out;
-    out.name = seg.name;
-    out.classId = runKb.find(seg.name) ? runKb.find(seg.name)->classId : -1;
-    out.moved = seg.moved;
-    out.graspFrame = seg.graspFrame;
-    out.releaseFrame = seg.releaseFrame;
-    out.note = seg.note;
-    for (const auto& t : seen.objects)
-      if (t.key() == seg.name) {  // seg.name: the perception key (class, or instance id)
-        out.detectedFrames = t.detectedFrames();
-        out.name = t.className;
-        out.instanceId = t.instanceId;
-        out.classId = t.classId;
-      }
-    for (const auto& s : skills)
-      if (s.objectName == seg.name) {
-        if (s.reach) out.reachLambda = s.reach->lambda();
-        if (s.move) out.moveLambda = s.move->lambda();
-      }
-    result.objects.push_back(out);
-  }
-  std::optional<core::Scene> sceneFile;
-  if (model.scene) {
-    const auto placement = execution::RobotPlacement::of(*model.scene, o.X_base_camera, o.extrinsicsSource);
-    result.robotBase = placement.description;
-    core::Scene base;
-    // The scene file is read back by `srp execute --scene`, which takes only safe names.
-    base.name = "demonstration " + o.name;
-    if (!core::isSafeName(base.name)) base.name = "demonstration";
-    base.intrinsics = seen.intrinsics;
-    base.fps = model.info.frameRate_hz;
-    sceneFile = execution::demonstrationScene(*model.scene, placement, base);
-  }
+  result.objects = objectOutcomes(segmentation, seen, skills, runKb);
+  const std::optional<core::Scene> sceneFile = sceneFileOf(model, o, seen, result.robotBase);
   progress("motion", 1, 1);
   // What perception saw, drawn on the recording (read again): before the
   // database is locked for writing.
@@ -227,44 +290,9 @@ ProgramResult programTask(const ProgrammingOptions& o) {
     result.reportFiles = writeContactSheet(report->temporaryPath().string(), o, seen, runKb, segmentation, model.scene);
   }
 
-  // 6. One transaction. The report is written inside it, before COMMIT: a
-  // report that cannot be written rolls the model back (all or nothing), and
-  // its folder is renamed into place last.
+  // 6. One transaction (the report written inside it, before COMMIT).
   clock.start("store");
-  const bool newDatabase = !taskdb::TaskDatabase::isServerUri(o.dbPath) && !std::filesystem::exists(o.dbPath);
-  bool reportCommitted = false;
-  try {
-    auto db = taskdb::TaskDatabase::open(o.dbPath);
-    taskdb::TaskModelStore store(db);
-    result.name = o.name;
-    result.taskModelId = store.write(
-        model, [&](std::size_t done, std::size_t total) { progress("store", done, total); },
-        [&](int id, int version) {
-          result.taskModelId = id;
-          result.version = version;
-          clock.stop();
-          if (!report) return;
-          const std::string tmp = report->temporaryPath().string();
-          std::vector<std::string> files = result.reportFiles;
-          if (sceneFile) {
-            core::writeJsonFile(tmp + "/scene.json", sceneFile->toJson());
-            files.push_back(tmp + "/scene.json");
-          }
-          ProgramResult shown = result;
-          shown.reportFiles = files;
-          for (const auto& f : writeProgramReport(tmp, shown, seen, segmentation, skills)) files.push_back(f);
-          report->commit();
-          reportCommitted = true;
-          result.reportFiles.clear();
-          for (const auto& f : files)
-            result.reportFiles.push_back((report->target() / std::filesystem::path(f).filename()).string());
-        });
-  } catch (...) {
-    std::error_code ec;
-    if (reportCommitted) std::filesystem::remove_all(report->target(), ec);  // COMMIT failed after the rename
-    if (newDatabase) removeIfCreatedEmpty(o.dbPath);
-    throw;
-  }
+  storeTaskModel(model, o, result, clock, report.get(), sceneFile, seen, segmentation, skills);
   result.peakResidentMemory_MB = peakResidentMemory_MB();
   return result;
 }

@@ -28,7 +28,7 @@ constexpr double kExportAccelerationTol_radps2 = 0.01;
 /// Task model of a synthetic 4-object demo with its skills learned and mapped to
 /// Skills rows, as `srp motion` stores them.
 srp::taskdb::TaskModel learnedTaskModel() {
-  const auto demo = srp::motion::SyntheticPickPlaceGenerator(srp::motion::SyntheticPickPlaceConfig{}).generate();
+  const auto demo = srp::motion::SyntheticPickPlaceGenerator().generate();
   srp::taskdb::TaskModel model = srp::programming::taskModelFromTracks(demo, "synthetic", demo.instruction());
   srp::programming::learnSkills(model);
   return model;

@@ -24,7 +24,7 @@ void removeDb(const std::string& path) {
 }
 
 TEST(MotionRows, StoredDemoSegmentsLearnsAndStoresSkillsThatRollOutIdentically) {
-  const auto demo = motion::SyntheticPickPlaceGenerator(motion::SyntheticPickPlaceConfig{}).generate();
+  const auto demo = motion::SyntheticPickPlaceGenerator().generate();
   const std::string path = tempPath("mapping.db");
   removeDb(path);
   auto db = taskdb::TaskDatabase::open(path);
@@ -35,7 +35,7 @@ TEST(MotionRows, StoredDemoSegmentsLearnsAndStoresSkillsThatRollOutIdentically) 
   const MotionInputs in = motionInputsFromTaskModel(model);
   ASSERT_EQ(in.planOrder, demo.planOrder);
   ASSERT_EQ(in.hand.size(), demo.hand.size());
-  motion::Segmenter::Config thesis;  // the generator's truth is the thesis' grasp definition (mid-hold)
+  motion::Segmenter::Options thesis;  // the generator's truth is the thesis' grasp definition (mid-hold)
   thesis.events = motion::Segmenter::EventEstimator::Thesis;
   const motion::LearnedSkills learned = motion::learnSkills(in, motion::Segmenter(thesis));
   const auto& seg = learned.segmentation;
@@ -72,7 +72,7 @@ TEST(MotionRows, StoredDemoSegmentsLearnsAndStoresSkillsThatRollOutIdentically) 
 }
 
 TEST(MotionRows, PlanObjectWithoutPosesIsAnErrorAndNothingIsStored) {
-  const auto demo = motion::SyntheticPickPlaceGenerator(motion::SyntheticPickPlaceConfig{}).generate();
+  const auto demo = motion::SyntheticPickPlaceGenerator().generate();
   taskdb::TaskModel model = taskModelFromTracks(demo, "broken", demo.instruction());
   // The star has no ProductPose rows.
   std::vector<taskdb::ProductPoseRow> kept;
@@ -92,7 +92,7 @@ TEST(MotionRows, PlanObjectWithoutPosesIsAnErrorAndNothingIsStored) {
 TEST(MotionRows, SrpMotionCommandStoresSkillsAndWritesPlots) {
   const std::string srp = std::string(SRP_BINARY_DIR) + "/apps/srp";
   if (!std::filesystem::exists(srp)) FAIL() << srp << " missing: build the srp target (make build) before this test";
-  const auto demo = motion::SyntheticPickPlaceGenerator(motion::SyntheticPickPlaceConfig{}).generate();
+  const auto demo = motion::SyntheticPickPlaceGenerator().generate();
   const std::string path = tempPath("cmd.db"), outDir = tempPath("cmd_plots");
   removeDb(path);
   std::filesystem::remove_all(outDir);

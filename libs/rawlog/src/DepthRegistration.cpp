@@ -22,6 +22,127 @@ struct Projected {
   float u, v, z;  // colour pixel and depth along the colour axis; z = 0: none
 };
 
+/// The largest depth step between neighbouring pixels of one surface at depth `d` (focal length fMin).
+double jumpTolerance(double d, double fMin) { return d * (kMaxSlope * 1.5 / fMin + kRelativeNoise); }
+
+void keepNearest(float& cell, float z) {
+  if (cell <= 0.f || z < cell) cell = z;
+}
+
+/// A triangle between continuous neighbours into `mesh`, 1/Z interpolated (exact for planes).
+void rasteriseTriangle(cv::Mat& mesh, const Projected& a, const Projected& b, const Projected& c) {
+  const int Wc = mesh.cols, Hc = mesh.rows;
+  const int x0 = std::max(0, static_cast<int>(std::ceil(std::min({a.u, b.u, c.u}))));
+  const int x1 = std::min(Wc - 1, static_cast<int>(std::floor(std::max({a.u, b.u, c.u}))));
+  const int y0 = std::max(0, static_cast<int>(std::ceil(std::min({a.v, b.v, c.v}))));
+  const int y1 = std::min(Hc - 1, static_cast<int>(std::floor(std::max({a.v, b.v, c.v}))));
+  if (x1 < x0 || y1 < y0 || x1 - x0 > kMaxTriangleSpan_px || y1 - y0 > kMaxTriangleSpan_px) return;
+  const double area = (double(b.u) - a.u) * (double(c.v) - a.v) - (double(c.u) - a.u) * (double(b.v) - a.v);
+  if (std::abs(area) < 1e-9) return;
+  const double ia = 1.0 / a.z, ib = 1.0 / b.z, ic = 1.0 / c.z;
+  constexpr double kEdgeEps = -1e-7;  // shared edges belong to both triangles
+  for (int y = y0; y <= y1; ++y) {
+    float* row = mesh.ptr<float>(y);
+    for (int x = x0; x <= x1; ++x) {
+      const double wa = ((double(b.u) - x) * (double(c.v) - y) - (double(c.u) - x) * (double(b.v) - y)) / area;
+      const double wb = ((double(c.u) - x) * (double(a.v) - y) - (double(a.u) - x) * (double(c.v) - y)) / area;
+      const double wc = 1.0 - wa - wb;
+      if (wa < kEdgeEps || wb < kEdgeEps || wc < kEdgeEps) continue;
+      keepNearest(row[x], static_cast<float>(1.0 / (wa * ia + wb * ib + wc * ic)));
+    }
+  }
+}
+
+/// Inside a continuous surface the triangles of the four quads around a pixel tile its footprint
+/// already: true when pixel (r, c) of the W x H depth image is such an interior pixel.
+bool interiorPixel(const std::vector<Projected>& centres, int r, int c, int W, int H, double fMin) {
+  if (!(r > 0 && c > 0 && r + 1 < H && c + 1 < W)) return false;
+  const Projected& centre = centres[static_cast<std::size_t>(r) * W + c];
+  const float tol = static_cast<float>(0.45 * jumpTolerance(centre.z, fMin));
+  bool interior = true;
+  for (int dr = -1; dr <= 1 && interior; ++dr)
+    for (int dc = -1; dc <= 1 && interior; ++dc) {
+      const float z = centres[static_cast<std::size_t>(r + dr) * W + c + dc].z;
+      interior = z > 0.f && std::abs(z - centre.z) <= tol;
+    }
+  return interior;
+}
+
+/// The footprint of depth pixel (r, c) is tilted like its surface: the depth gradient (gu, gv) in colour
+/// pixels from one continuous neighbour across and one down (or up), and the range [zLo, zHi] of the
+/// depths it was estimated from (no extrapolation beyond them: edges of boxes).
+struct Tilt {
+  double gu = 0.0, gv = 0.0;
+  float zLo, zHi;
+};
+
+Tilt footprintTilt(const std::vector<Projected>& centres, int r, int c, int W, int H, double fMin) {
+  const Projected& centre = centres[static_cast<std::size_t>(r) * W + c];
+  Tilt tilt;
+  const auto neighbour = [&](int dc, int dr) -> const Projected* {
+    const int cc = c + dc, rr = r + dr;
+    if (cc < 0 || rr < 0 || cc >= W || rr >= H) return nullptr;
+    const Projected& p = centres[static_cast<std::size_t>(rr) * W + cc];
+    return p.z > 0.f && std::abs(p.z - centre.z) <= jumpTolerance(std::min(p.z, centre.z), fMin) ? &p : nullptr;
+  };
+  const Projected* a = neighbour(1, 0);
+  if (!a) a = neighbour(-1, 0);
+  const Projected* b = neighbour(0, 1);
+  if (!b) b = neighbour(0, -1);
+  if (a && b) {
+    const double du1 = a->u - centre.u, dv1 = a->v - centre.v, dz1 = a->z - centre.z;
+    const double du2 = b->u - centre.u, dv2 = b->v - centre.v, dz2 = b->z - centre.z;
+    const double det = du1 * dv2 - du2 * dv1;
+    if (std::abs(det) > 1e-6) {
+      tilt.gu = (dz1 * dv2 - dz2 * dv1) / det;
+      tilt.gv = (du1 * dz2 - du2 * dz1) / det;
+    }
+  }
+  tilt.zLo = std::min({centre.z, a ? a->z : centre.z, b ? b->z : centre.z});
+  tilt.zHi = std::max({centre.z, a ? a->z : centre.z, b ? b->z : centre.z});
+  return tilt;
+}
+
+/// Footprint splats into `splat`: every colour pixel centre inside the projected depth pixel (its
+/// corners through `project`), at borders, holes and jumps only (see interiorPixel).
+template <typename Project>
+void splatFootprints(cv::Mat& splat, const cv::Mat& depth_m, const std::vector<Projected>& centres,
+                     const std::vector<Eigen::Vector2f>& cornerRays, const Project& project, double fMin) {
+  const int W = depth_m.cols, H = depth_m.rows, Wc = splat.cols, Hc = splat.rows;
+  for (int r = 0; r < H; ++r) {
+    const float* d = depth_m.ptr<float>(r);
+    for (int c = 0; c < W; ++c) {
+      const Projected& centre = centres[static_cast<std::size_t>(r) * W + c];
+      if (centre.z <= 0.f) continue;
+      if (interiorPixel(centres, r, c, W, H, fMin)) continue;
+      float uMin = 1e9f, uMax = -1e9f, vMin = 1e9f, vMax = -1e9f;
+      bool ok = true;
+      for (const auto& [dc, dr] : {std::pair{0, 0}, {1, 0}, {0, 1}, {1, 1}}) {
+        Projected p;
+        if (!project(cornerRays[static_cast<std::size_t>(r + dr) * (W + 1) + c + dc], d[c], p)) {
+          ok = false;
+          break;
+        }
+        uMin = std::min(uMin, p.u), uMax = std::max(uMax, p.u), vMin = std::min(vMin, p.v), vMax = std::max(vMax, p.v);
+      }
+      if (!ok) continue;
+      int x0 = static_cast<int>(std::ceil(uMin)), x1 = static_cast<int>(std::ceil(uMax)) - 1;
+      int y0 = static_cast<int>(std::ceil(vMin)), y1 = static_cast<int>(std::ceil(vMax)) - 1;
+      if (x1 < x0) x0 = x1 = static_cast<int>(std::lround(centre.u));  // footprint below a colour pixel
+      if (y1 < y0) y0 = y1 = static_cast<int>(std::lround(centre.v));
+      x0 = std::max(x0, 0), y0 = std::max(y0, 0), x1 = std::min(x1, Wc - 1), y1 = std::min(y1, Hc - 1);
+      if (x1 - x0 > kMaxTriangleSpan_px || y1 - y0 > kMaxTriangleSpan_px) continue;
+      const Tilt tilt = footprintTilt(centres, r, c, W, H, fMin);
+      for (int y = y0; y <= y1; ++y) {
+        float* row = splat.ptr<float>(y);
+        for (int x = x0; x <= x1; ++x)
+          keepNearest(row[x], std::clamp(static_cast<float>(centre.z + tilt.gu * (x - centre.u) + tilt.gv * (y - centre.v)),
+                                         tilt.zLo, tilt.zHi));
+      }
+    }
+  }
+}
+
 }  // namespace
 
 DepthRegistration::DepthRegistration(const Camera& depthCamera, const Camera& colourCamera,
@@ -75,7 +196,7 @@ cv::Mat DepthRegistration::registerDepth(const cv::Mat& depth_m) const {
     return true;
   };
   const double fMin = std::min(Kd.fx_px, Kd.fy_px);
-  const auto jumpTol = [&](double d) { return d * (kMaxSlope * 1.5 / fMin + kRelativeNoise); };
+  const auto jumpTol = [&](double d) { return jumpTolerance(d, fMin); };
 
   std::vector<Projected> centres(static_cast<std::size_t>(W) * H, Projected{0.f, 0.f, 0.f});
   for (int r = 0; r < H; ++r) {
@@ -89,32 +210,7 @@ cv::Mat DepthRegistration::registerDepth(const cv::Mat& depth_m) const {
   }
 
   cv::Mat mesh(Hc, Wc, CV_32FC1, cv::Scalar(0)), splat(Hc, Wc, CV_32FC1, cv::Scalar(0));
-  const auto keepNearest = [](float& cell, float z) {
-    if (cell <= 0.f || z < cell) cell = z;
-  };
-
   // Triangles between continuous neighbours, 1/Z interpolated (exact for planes).
-  const auto rasterise = [&](const Projected& a, const Projected& b, const Projected& c) {
-    const int x0 = std::max(0, static_cast<int>(std::ceil(std::min({a.u, b.u, c.u}))));
-    const int x1 = std::min(Wc - 1, static_cast<int>(std::floor(std::max({a.u, b.u, c.u}))));
-    const int y0 = std::max(0, static_cast<int>(std::ceil(std::min({a.v, b.v, c.v}))));
-    const int y1 = std::min(Hc - 1, static_cast<int>(std::floor(std::max({a.v, b.v, c.v}))));
-    if (x1 < x0 || y1 < y0 || x1 - x0 > kMaxTriangleSpan_px || y1 - y0 > kMaxTriangleSpan_px) return;
-    const double area = (double(b.u) - a.u) * (double(c.v) - a.v) - (double(c.u) - a.u) * (double(b.v) - a.v);
-    if (std::abs(area) < 1e-9) return;
-    const double ia = 1.0 / a.z, ib = 1.0 / b.z, ic = 1.0 / c.z;
-    constexpr double kEdgeEps = -1e-7;  // shared edges belong to both triangles
-    for (int y = y0; y <= y1; ++y) {
-      float* row = mesh.ptr<float>(y);
-      for (int x = x0; x <= x1; ++x) {
-        const double wa = ((double(b.u) - x) * (double(c.v) - y) - (double(c.u) - x) * (double(b.v) - y)) / area;
-        const double wb = ((double(c.u) - x) * (double(a.v) - y) - (double(a.u) - x) * (double(c.v) - y)) / area;
-        const double wc = 1.0 - wa - wb;
-        if (wa < kEdgeEps || wb < kEdgeEps || wc < kEdgeEps) continue;
-        keepNearest(row[x], static_cast<float>(1.0 / (wa * ia + wb * ib + wc * ic)));
-      }
-    }
-  };
   const auto continuous = [&](int i, int j, int k) {
     const Projected &a = centres[i], &b = centres[j], &c = centres[k];
     if (a.z <= 0.f || b.z <= 0.f || c.z <= 0.f) return false;
@@ -124,77 +220,12 @@ cv::Mat DepthRegistration::registerDepth(const cv::Mat& depth_m) const {
   for (int r = 0; r + 1 < H; ++r)
     for (int c = 0; c + 1 < W; ++c) {
       const int i00 = r * W + c, i10 = i00 + 1, i01 = i00 + W, i11 = i01 + 1;
-      if (continuous(i00, i10, i01)) rasterise(centres[i00], centres[i10], centres[i01]);
-      if (continuous(i10, i11, i01)) rasterise(centres[i10], centres[i11], centres[i01]);
+      if (continuous(i00, i10, i01)) rasteriseTriangle(mesh, centres[i00], centres[i10], centres[i01]);
+      if (continuous(i10, i11, i01)) rasteriseTriangle(mesh, centres[i10], centres[i11], centres[i01]);
     }
 
   // Footprint splats: every colour pixel centre inside the projected depth pixel.
-  for (int r = 0; r < H; ++r) {
-    const float* d = depth_m.ptr<float>(r);
-    for (int c = 0; c < W; ++c) {
-      const Projected& centre = centres[static_cast<std::size_t>(r) * W + c];
-      if (centre.z <= 0.f) continue;
-      // Inside a continuous surface the triangles of the four quads around a
-      // pixel tile its footprint already: splat only at borders, holes and jumps.
-      if (r > 0 && c > 0 && r + 1 < H && c + 1 < W) {
-        const float tol = static_cast<float>(0.45 * jumpTol(centre.z));
-        bool interior = true;
-        for (int dr = -1; dr <= 1 && interior; ++dr)
-          for (int dc = -1; dc <= 1 && interior; ++dc) {
-            const float z = centres[static_cast<std::size_t>(r + dr) * W + c + dc].z;
-            interior = z > 0.f && std::abs(z - centre.z) <= tol;
-          }
-        if (interior) continue;
-      }
-      float uMin = 1e9f, uMax = -1e9f, vMin = 1e9f, vMax = -1e9f;
-      bool ok = true;
-      for (const auto& [dc, dr] : {std::pair{0, 0}, {1, 0}, {0, 1}, {1, 1}}) {
-        Projected p;
-        if (!project(cornerRays_[static_cast<std::size_t>(r + dr) * (W + 1) + c + dc], d[c], p)) {
-          ok = false;
-          break;
-        }
-        uMin = std::min(uMin, p.u), uMax = std::max(uMax, p.u), vMin = std::min(vMin, p.v), vMax = std::max(vMax, p.v);
-      }
-      if (!ok) continue;
-      int x0 = static_cast<int>(std::ceil(uMin)), x1 = static_cast<int>(std::ceil(uMax)) - 1;
-      int y0 = static_cast<int>(std::ceil(vMin)), y1 = static_cast<int>(std::ceil(vMax)) - 1;
-      if (x1 < x0) x0 = x1 = static_cast<int>(std::lround(centre.u));  // footprint below a colour pixel
-      if (y1 < y0) y0 = y1 = static_cast<int>(std::lround(centre.v));
-      x0 = std::max(x0, 0), y0 = std::max(y0, 0), x1 = std::min(x1, Wc - 1), y1 = std::min(y1, Hc - 1);
-      if (x1 - x0 > kMaxTriangleSpan_px || y1 - y0 > kMaxTriangleSpan_px) continue;
-      // The footprint is tilted like its surface: depth gradient in colour
-      // pixels from one continuous neighbour across and one down (or up).
-      double gu = 0.0, gv = 0.0;
-      const auto neighbour = [&](int dc, int dr) -> const Projected* {
-        const int cc = c + dc, rr = r + dr;
-        if (cc < 0 || rr < 0 || cc >= W || rr >= H) return nullptr;
-        const Projected& p = centres[static_cast<std::size_t>(rr) * W + cc];
-        return p.z > 0.f && std::abs(p.z - centre.z) <= jumpTol(std::min(p.z, centre.z)) ? &p : nullptr;
-      };
-      const Projected* a = neighbour(1, 0);
-      if (!a) a = neighbour(-1, 0);
-      const Projected* b = neighbour(0, 1);
-      if (!b) b = neighbour(0, -1);
-      if (a && b) {
-        const double du1 = a->u - centre.u, dv1 = a->v - centre.v, dz1 = a->z - centre.z;
-        const double du2 = b->u - centre.u, dv2 = b->v - centre.v, dz2 = b->z - centre.z;
-        const double det = du1 * dv2 - du2 * dv1;
-        if (std::abs(det) > 1e-6) {
-          gu = (dz1 * dv2 - dz2 * dv1) / det;
-          gv = (du1 * dz2 - du2 * dz1) / det;
-        }
-      }
-      // No extrapolation beyond the depths it was estimated from (edges of boxes).
-      const float zLo = std::min({centre.z, a ? a->z : centre.z, b ? b->z : centre.z});
-      const float zHi = std::max({centre.z, a ? a->z : centre.z, b ? b->z : centre.z});
-      for (int y = y0; y <= y1; ++y) {
-        float* row = splat.ptr<float>(y);
-        for (int x = x0; x <= x1; ++x)
-          keepNearest(row[x], std::clamp(static_cast<float>(centre.z + gu * (x - centre.u) + gv * (y - centre.v)), zLo, zHi));
-      }
-    }
-  }
+  splatFootprints(splat, depth_m, centres, cornerRays_, project, fMin);
 
   // Triangles win on their surface; a splat only where none reached or in front of it.
   for (int y = 0; y < Hc; ++y) {

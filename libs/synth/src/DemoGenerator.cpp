@@ -542,6 +542,116 @@ GroundTruthFrame groundTruthFrame(const DemoTimeline& timeline, const SceneBodie
   return g;
 }
 
+/// What the render thread hands the sensor thread.
+struct Rendered {
+  int k;
+  srp::rawlog::RgbdFrame frame;
+  std::vector<srp::core::Pose3> partPoses;
+  srp::rawlog::RgbdFrame depthCameraFrame;  // two-camera sensor only
+};
+
+/// The sensor stage of the frame pipeline (its own thread): per rendered frame the masks, ground truth
+/// and sensor realism, then the frame to the rawlog writer (or the two-camera folder).
+struct SensorStage {
+  const DemoTimeline& timeline;
+  const SceneBodies& bodies;
+  const HandModel& hand;
+  const SynthDemoOptions& options;
+  const Renderers& renderers;
+  const std::vector<int>& sheetFrames;
+  srp::rawlog::RawlogWriter* writer;  ///< null: the two-camera folder
+  const std::string& folder;
+  double depthUnit_m;
+  DemoGroundTruth& gt;
+  std::vector<std::pair<int, srp::rawlog::RgbdFrame>>& sheet;
+  SynthDemoResult& result;
+  SensorModel sensor;
+  SensorModel depthSensor;
+  double handValidSum = 0.0, objectValidSum = 0.0;
+  int handValidFrames = 0, objectValidFrames = 0;
+  cv::Mat previousColour{};  // the clean colour of the frame before (motion blur)
+
+  void process(Rendered& item) {
+    const auto& K = timeline.scene.intrinsics;
+    const srp::core::Pose3 X_camera_world = timeline.scene.X_world_camera.inverse();
+    const double dt = 1.0 / timeline.scene.fps;
+    const int k = item.k;
+    const FrameState& f = timeline.frames[k];
+    const FrameState& prev = timeline.frames[std::max(k - 1, 0)];
+    srp::rawlog::RgbdFrame& frame = item.frame;
+    const double cpu0 = threadCpuTime_s();
+    auto t0 = Clock::now();
+    frame.index = k;
+    frame.t_s = kRawlogEpoch_s + f.t_s;
+    const FrameMasks masks = frameMasks(timeline, bodies, hand, k, item.partPoses, K, X_camera_world, frame.depth_m);
+    // Tag visibility from the clean rendered depth (before the sensor model punches holes).
+    const srp::core::Pose3 X_camera_tag = X_camera_world * f.X_world_hand * hand.X_hand_tag();
+    const double tagVisible = tagVisibleFraction(X_camera_tag, hand.tagPlateHalfSize_m() - kTagRim_m, K, frame.depth_m);
+    const double handSpeed = (f.X_world_hand.translation() - prev.X_world_hand.translation()).norm() / dt;
+    const cv::Mat cleanColour = options.sensor.motionBlur ? frame.colour_bgr8.clone() : cv::Mat();
+    sensor.apply(frame, masks.hand, handSpeed, masks.part, masks.moving, masks.movingSpeed, previousColour);
+    previousColour = cleanColour;
+    if (options.depthCamera) {  // the depth camera's own image, degraded the same way
+      srp::rawlog::RgbdFrame& d = item.depthCameraFrame;
+      const FrameMasks dm = frameMasks(timeline, bodies, hand, k, item.partPoses, options.depthCamera->intrinsics,
+                                       renderers.X_world_depth.inverse(), d.depth_m);
+      depthSensor.apply(d, dm.hand, handSpeed, dm.part, dm.moving, dm.movingSpeed, cv::Mat());
+    }
+
+    GroundTruthFrame g = groundTruthFrame(timeline, bodies, hand, k, X_camera_tag, tagVisible, masks, frame);
+    if (g.handValidDepthFraction && g.handPixels > 200) {
+      handValidSum += *g.handValidDepthFraction;
+      ++handValidFrames;
+    }
+    if (g.objectsValidDepthFraction) {
+      objectValidSum += *g.objectsValidDepthFraction;
+      ++objectValidFrames;
+    }
+    gt.frames.push_back(std::move(g));
+    result.sensorTime_s += secondsSince(t0);
+    result.sensorCpuTime_s += threadCpuTime_s() - cpu0;
+
+    if (std::find(sheetFrames.begin(), sheetFrames.end(), k) != sheetFrames.end()) sheet.emplace_back(k, frame);
+    t0 = Clock::now();
+    if (writer) writer->write(std::move(frame));
+    else writeTwoCameraFolderFrame(folder, k, frame.colour_bgr8, item.depthCameraFrame.depth_m, depthUnit_m);
+    result.writeTime_s += secondsSince(t0);
+  }
+};
+
+/// The render stage (this thread: the EGL context lives here): frames 0..frameCount-1 rendered and
+/// handed to the sensor stage, until it stops taking them (it failed).
+void renderFrames(Renderers& renderers, const DemoTimeline& timeline, const HandModel& hand, bool depthCamera,
+                  int frameCount, FrameQueue<Rendered>& rendered, SynthDemoResult& result,
+                  const std::function<void(int, int)>& progress) {
+  for (int k = 0; k < frameCount; ++k) {
+    auto t0 = Clock::now();
+    auto partPoses = hand.partPoses(timeline.frames[k].grip);
+    srp::rawlog::RgbdFrame frame = renderColourFrame(renderers, timeline, k, partPoses);
+    srp::rawlog::RgbdFrame depthCameraFrame;
+    if (depthCamera) depthCameraFrame = renderDepthCameraFrame(renderers, timeline, k, partPoses);
+    result.renderTime_s += secondsSince(t0);
+    if (!rendered.push({k, std::move(frame), std::move(partPoses), std::move(depthCameraFrame)}))
+      break;  // the sensor thread failed
+    if (progress) progress(k, frameCount);
+  }
+}
+
+/// The rawlog writer at `rawlogPath`, or (two-camera sensor) no writer and the folder's header written.
+std::unique_ptr<srp::rawlog::RawlogWriter> openOutput(const SynthDemoOptions& options, const std::string& rawlogPath,
+                                                      const std::string& folder, const srp::core::CameraIntrinsics& K,
+                                                      double depthUnit_m) {
+  if (options.depthCamera) {
+    writeTwoCameraFolderHeader(folder, K, *options.depthCamera, depthUnit_m);
+    return nullptr;
+  }
+  const int encoderThreads = options.rawlogEncoderThreads >= 0
+                                 ? options.rawlogEncoderThreads
+                                 : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  return std::make_unique<srp::rawlog::RawlogWriter>(rawlogPath, depthUnit_m, options.rawlogCompressionLevel,
+                                                     encoderThreads);
+}
+
 }  // namespace
 
 std::string groundTruthPathFor(const std::string& rawlogPath) {
@@ -602,78 +712,15 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
   // With realism on, depth is already quantised to depthStep_m: storing it finer adds only size.
   const double depthUnit_m = options.sensor.enabled ? std::max(options.rawlogDepthUnit_m, options.sensor.depthStep_m)
                                                     : options.rawlogDepthUnit_m;
-  const int encoderThreads = options.rawlogEncoderThreads >= 0
-                                 ? options.rawlogEncoderThreads
-                                 : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  std::unique_ptr<srp::rawlog::RawlogWriter> writer;
-  if (depthCamera) {
-    writeTwoCameraFolderHeader(folder, K, *depthCamera, depthUnit_m);
-  } else {
-    writer = std::make_unique<srp::rawlog::RawlogWriter>(rawlogPath, depthUnit_m, options.rawlogCompressionLevel,
-                                                         encoderThreads);
-  }
+  const std::unique_ptr<srp::rawlog::RawlogWriter> writer = openOutput(options, rawlogPath, folder, K, depthUnit_m);
   const double cpuLoopStart_s = processCpuTime_s();
-  SensorModel sensor(options.sensor, options.demo.seed);
-  SensorModel depthSensor(options.sensor, options.demo.seed + 1);
-  const srp::core::Pose3 X_camera_world = world.X_world_camera.inverse();
-  double handValidSum = 0.0, objectValidSum = 0.0;
-  int handValidFrames = 0, objectValidFrames = 0;
-  const double dt = 1.0 / world.fps;
-
-  struct Rendered {
-    int k;
-    srp::rawlog::RgbdFrame frame;
-    std::vector<srp::core::Pose3> partPoses;
-    srp::rawlog::RgbdFrame depthCameraFrame;  // two-camera sensor only
-  };
+  SensorStage stage{timeline, bodies, hand, options, renderers, sheetFrames, writer.get(), folder, depthUnit_m, gt, sheet,
+                    result, SensorModel(options.sensor, options.demo.seed), SensorModel(options.sensor, options.demo.seed + 1)};
   FrameQueue<Rendered> rendered(3);
   std::exception_ptr sensorError;
   std::thread sensorThread([&] {
     try {
-      cv::Mat previousColour;
-      while (auto item = rendered.pop()) {
-        const int k = item->k;
-        const FrameState& f = timeline.frames[k];
-        const FrameState& prev = timeline.frames[std::max(k - 1, 0)];
-        srp::rawlog::RgbdFrame& frame = item->frame;
-        const double cpu0 = threadCpuTime_s();
-        auto t0 = Clock::now();
-        frame.index = k;
-        frame.t_s = kRawlogEpoch_s + f.t_s;
-        const FrameMasks masks = frameMasks(timeline, bodies, hand, k, item->partPoses, K, X_camera_world, frame.depth_m);
-        // Tag visibility from the clean rendered depth (before the sensor model punches holes).
-        const srp::core::Pose3 X_camera_tag = X_camera_world * f.X_world_hand * hand.X_hand_tag();
-        const double tagVisible = tagVisibleFraction(X_camera_tag, hand.tagPlateHalfSize_m() - kTagRim_m, K, frame.depth_m);
-        const double handSpeed = (f.X_world_hand.translation() - prev.X_world_hand.translation()).norm() / dt;
-        const cv::Mat cleanColour = options.sensor.motionBlur ? frame.colour_bgr8.clone() : cv::Mat();
-        sensor.apply(frame, masks.hand, handSpeed, masks.part, masks.moving, masks.movingSpeed, previousColour);
-        previousColour = cleanColour;
-        if (depthCamera) {  // the depth camera's own image, degraded the same way
-          srp::rawlog::RgbdFrame& d = item->depthCameraFrame;
-          const FrameMasks dm = frameMasks(timeline, bodies, hand, k, item->partPoses, depthCamera->intrinsics,
-                                           renderers.X_world_depth.inverse(), d.depth_m);
-          depthSensor.apply(d, dm.hand, handSpeed, dm.part, dm.moving, dm.movingSpeed, cv::Mat());
-        }
-
-        GroundTruthFrame g = groundTruthFrame(timeline, bodies, hand, k, X_camera_tag, tagVisible, masks, frame);
-        if (g.handValidDepthFraction && g.handPixels > 200) {
-          handValidSum += *g.handValidDepthFraction;
-          ++handValidFrames;
-        }
-        if (g.objectsValidDepthFraction) {
-          objectValidSum += *g.objectsValidDepthFraction;
-          ++objectValidFrames;
-        }
-        gt.frames.push_back(std::move(g));
-        result.sensorTime_s += secondsSince(t0);
-        result.sensorCpuTime_s += threadCpuTime_s() - cpu0;
-
-        if (std::find(sheetFrames.begin(), sheetFrames.end(), k) != sheetFrames.end()) sheet.emplace_back(k, frame);
-        t0 = Clock::now();
-        if (writer) writer->write(std::move(frame));
-        else writeTwoCameraFolderFrame(folder, k, frame.colour_bgr8, item->depthCameraFrame.depth_m, depthUnit_m);
-        result.writeTime_s += secondsSince(t0);
-      }
+      while (auto item = rendered.pop()) stage.process(*item);
     } catch (...) {
       sensorError = std::current_exception();
       rendered.stop();
@@ -681,17 +728,7 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
   });
 
   try {
-    for (int k = 0; k < frameCount; ++k) {
-      auto t0 = Clock::now();
-      auto partPoses = hand.partPoses(timeline.frames[k].grip);
-      srp::rawlog::RgbdFrame frame = renderColourFrame(renderers, timeline, k, partPoses);
-      srp::rawlog::RgbdFrame depthCameraFrame;
-      if (depthCamera) depthCameraFrame = renderDepthCameraFrame(renderers, timeline, k, partPoses);
-      result.renderTime_s += secondsSince(t0);
-      if (!rendered.push({k, std::move(frame), std::move(partPoses), std::move(depthCameraFrame)}))
-        break;  // the sensor thread failed
-      if (progress) progress(k, frameCount);
-    }
+    renderFrames(renderers, timeline, hand, depthCamera.has_value(), frameCount, rendered, result, progress);
   } catch (...) {
     rendered.finish();
     sensorThread.join();
@@ -714,8 +751,8 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
   gt.save(result.groundTruthPath);
   result.frameCount = frameCount;
   result.duration_s = frameCount / world.fps;
-  result.meanHandValidDepth = handValidFrames ? handValidSum / handValidFrames : -1.0;
-  result.meanObjectValidDepth = objectValidFrames ? objectValidSum / objectValidFrames : -1.0;
+  result.meanHandValidDepth = stage.handValidFrames ? stage.handValidSum / stage.handValidFrames : -1.0;
+  result.meanObjectValidDepth = stage.objectValidFrames ? stage.objectValidSum / stage.objectValidFrames : -1.0;
 
   // ---- Contact sheet: colour | depth per frame, two frames per row ----------------
   if (!options.contactSheetPath.empty() && !sheet.empty()) {

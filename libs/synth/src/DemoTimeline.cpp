@@ -189,18 +189,63 @@ Stance demonstratorStance(const srp::core::Scene& scene, const HandModel& hand) 
   return {rest, shoulder};
 }
 
+/// The heading from `from` to `target` in the table plane.
+double yawFrom(const Eigen::Vector3d& from, const Eigen::Vector3d& target) {
+  const Eigen::Vector3d d = target - from;
+  return std::atan2(d.y(), d.x());
+}
+
+/// The free spot for step `si` (object `oi`) in its target container, beside the reference when given:
+/// the one nearest the goal (moved by `spotJitter`) where the part, turned as the hand turns toward
+/// the spot from `shoulder` (plus `yawTurn`), overlaps no other part where the plan leaves it.
+Eigen::Vector3d freeSpot(const srp::core::Scene& scene, const srp::core::ObjectCatalogue& catalogue,
+                         const PickPlaceStep& s, std::size_t si, int oi,
+                         const std::vector<srp::core::Pose3>& finalPoses, const Eigen::Vector3d& shoulder,
+                         double yawObject, double yawGrasp, double yawTurn, const Eigen::Vector2d& spotJitter) {
+  const auto& cls = classOf(catalogue, scene.objects[oi]);
+  const auto& box = *scene.findObject(s.targetId);
+  const auto& boxClass = classOf(catalogue, box);
+  const double r = footprintRadius(cls);
+  const double hx = 0.5 * boxClass.dimensions_m.x() - boxClass.wallThickness_m - kWallMargin_m - r;
+  const double hy = 0.5 * boxClass.dimensions_m.y() - boxClass.wallThickness_m - kWallMargin_m - r;
+  Eigen::Vector3d goal_world = box.X_world_object * Eigen::Vector3d(-0.25 * boxClass.dimensions_m.x(), 0, 0);
+  if (!s.referenceId.empty()) goal_world = finalPoses[indexOf(scene, s.referenceId)].translation();
+  double bestScore = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d best_world = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  for (double x = -hx; x <= hx + 1e-9; x += 0.0025)
+    for (double y = -hy; y <= hy + 1e-9; y += 0.0025) {
+      const Eigen::Vector3d p_world = box.X_world_object * Eigen::Vector3d(x, y, boxClass.wallThickness_m);
+      const double yawEnd = yawObject + yawFrom(shoulder, p_world) + yawTurn - yawGrasp;
+      bool free = true;
+      for (std::size_t j = 0; j < scene.objects.size() && free; ++j) {
+        if (static_cast<int>(j) == oi || classOf(catalogue, scene.objects[j]).kind != srp::core::ObjectKind::Part) continue;
+        if (overlaps(footprintOf(cls, p_world, yawEnd),
+                     footprintOf(classOf(catalogue, scene.objects[j]), finalPoses[j].translation(),
+                                 srp::core::yawOf(finalPoses[j].linear())),
+                     kSpotGap_m))
+          free = false;
+      }
+      if (!free) continue;
+      const double score = ((p_world - goal_world).head<2>() + spotJitter).norm();
+      if (score < bestScore) {
+        bestScore = score;
+        best_world = p_world;
+      }
+    }
+  if (!std::isfinite(bestScore))
+    throw srp::core::InvalidInputError("plan step " + std::to_string(si + 1) + ": no free spot for the " +
+                                       s.objectId + " in the " + s.targetId);
+  return best_world;
+}
+
 // The demonstration as hand key-pose segments: idle at rest; per step reach,
 // grasp, move (carrying the object) to a free spot of the target container,
 // release, retract; back to rest; idle.
 std::vector<Segment> planSegments(const srp::core::Scene& scene, const srp::core::ObjectCatalogue& catalogue,
                                   const std::vector<PickPlaceStep>& steps, const DemoOptions& options,
                                   const Stance& stance, double speed, std::mt19937& rng, Uniform& unit) {
-  using srp::core::InvalidInputError;
   const Key& rest = stance.rest;
-  auto yawToward = [&](const Eigen::Vector3d& target) {
-    const Eigen::Vector3d d = target - stance.shoulder;
-    return std::atan2(d.y(), d.x());
-  };
+  auto yawToward = [&](const Eigen::Vector3d& target) { return yawFrom(stance.shoulder, target); };
   double wallTop_m = 0.0;
   for (const auto& o : scene.objects)
     if (classOf(catalogue, o).kind == srp::core::ObjectKind::Container)
@@ -238,41 +283,11 @@ std::vector<Segment> planSegments(const srp::core::Scene& scene, const srp::core
     preGrasp.p_world.z() = std::max(travelZ, grasp.p_world.z() + 0.05);
 
     // Free spot in the target container, beside the reference when given.
-    const auto& box = *scene.findObject(s.targetId);
-    const auto& boxClass = classOf(catalogue, box);
-    const double r = footprintRadius(cls);
-    const double hx = 0.5 * boxClass.dimensions_m.x() - boxClass.wallThickness_m - kWallMargin_m - r;
-    const double hy = 0.5 * boxClass.dimensions_m.y() - boxClass.wallThickness_m - kWallMargin_m - r;
-    Eigen::Vector3d goal_world = box.X_world_object * Eigen::Vector3d(-0.25 * boxClass.dimensions_m.x(), 0, 0);
-    if (!s.referenceId.empty()) goal_world = finalPoses[indexOf(scene, s.referenceId)].translation();
     const Eigen::Vector2d spotJitter = options.randomise ? Eigen::Vector2d(0.003 * unit(rng), 0.003 * unit(rng))
                                                          : Eigen::Vector2d::Zero();
-    double bestScore = std::numeric_limits<double>::infinity();
-    Eigen::Vector3d best_world = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
     const double yawTurn = options.randomise ? 0.2 * unit(rng) : 0.0;
-    for (double x = -hx; x <= hx + 1e-9; x += 0.0025)
-      for (double y = -hy; y <= hy + 1e-9; y += 0.0025) {
-        const Eigen::Vector3d p_world = box.X_world_object * Eigen::Vector3d(x, y, boxClass.wallThickness_m);
-        const double yawEnd = yawObject + yawToward(p_world) + yawTurn - yawGrasp;
-        bool free = true;
-        for (std::size_t j = 0; j < scene.objects.size() && free; ++j) {
-          if (static_cast<int>(j) == oi || classOf(catalogue, scene.objects[j]).kind != srp::core::ObjectKind::Part) continue;
-          if (overlaps(footprintOf(cls, p_world, yawEnd),
-                       footprintOf(classOf(catalogue, scene.objects[j]), finalPoses[j].translation(),
-                                   srp::core::yawOf(finalPoses[j].linear())),
-                       kSpotGap_m))
-            free = false;
-        }
-        if (!free) continue;
-        const double score = ((p_world - goal_world).head<2>() + spotJitter).norm();
-        if (score < bestScore) {
-          bestScore = score;
-          best_world = p_world;
-        }
-      }
-    if (!std::isfinite(bestScore))
-      throw InvalidInputError("plan step " + std::to_string(si + 1) + ": no free spot for the " + s.objectId +
-                              " in the " + s.targetId);
+    const Eigen::Vector3d best_world =
+        freeSpot(scene, catalogue, s, si, oi, finalPoses, stance.shoulder, yawObject, yawGrasp, yawTurn, spotJitter);
     const double yawPlace = yawToward(best_world) + yawTurn;
     Key place = palmAt(best_world, yawPlace);
     place.grip = 1.0;

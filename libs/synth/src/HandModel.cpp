@@ -72,7 +72,7 @@ std::vector<std::vector<bool>> tag36h11Cells(int id) {
 
 }  // namespace
 
-HandModel::HandModel(const HandModelOptions& options) : options_(options) {
+HandModel::HandModel(const HandModel::Options& options) : options_(options) {
   srp::core::require(options.tagSize_m > 0.0 && options.tagSize_m <= 0.06,
                      "HandModel: tagSize_m must be in (0, 0.06] m to fit on the back of the hand");
   tagCells_ = tag36h11Cells(options.tagId);

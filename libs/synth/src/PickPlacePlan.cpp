@@ -17,6 +17,39 @@ std::string optionalString(const nlohmann::json& j, const std::string& key) {
   return j.at(key).get<std::string>();
 }
 
+/// Grounds a noun phrase {"name", "color"} to a scene object id: the class the catalogue grounds it
+/// to, the instance of that colour when instances have colours, one not `moved` yet when
+/// `preferUnmoved`.
+std::string groundNounPhrase(const nlohmann::json& phrase, const std::string& where, bool preferUnmoved,
+                             const srp::core::Scene& scene, const srp::core::ObjectCatalogue& catalogue,
+                             const std::vector<std::string>& moved) {
+  using srp::core::InvalidInputError;
+  const auto& nameField = srp::core::requireField(phrase, "name", where);
+  if (!nameField.is_string()) throw InvalidInputError(where + ": field 'name' must be a string");
+  const std::string noun = nameField.get<std::string>();
+  const std::string colour = optionalString(phrase, "color");
+  const auto* cls = catalogue.ground(noun, colour);
+  if (!cls)
+    throw InvalidInputError(where + ": '" + (colour.empty() ? "" : colour + " ") + noun +
+                            "' is not in the knowledge base (datasets/kb/catalogue.json)");
+  // Several instances of the class: the colour picks among them (the scene's
+  // per-instance "color"), when any instance has it.
+  const bool byInstanceColour =
+      !colour.empty() && std::any_of(scene.objects.begin(), scene.objects.end(), [&](const srp::core::SceneObject& o) {
+        return o.className == cls->name && srp::core::instanceColour(o, *cls) == colour;
+      });
+  const srp::core::SceneObject* chosen = nullptr;
+  for (const auto& o : scene.objects) {
+    if (o.className != cls->name) continue;
+    if (byInstanceColour && srp::core::instanceColour(o, *cls) != colour) continue;
+    const bool isMoved = std::find(moved.begin(), moved.end(), o.id) != moved.end();
+    if (!chosen || (preferUnmoved && !isMoved && std::find(moved.begin(), moved.end(), chosen->id) != moved.end()))
+      chosen = &o;
+  }
+  if (!chosen) throw InvalidInputError(where + ": no '" + cls->name + "' in scene '" + scene.name + "'");
+  return chosen->id;
+}
+
 }  // namespace
 
 std::vector<PickPlaceStep> groundPlan(const nlohmann::json& plan, const srp::core::Scene& scene,
@@ -47,30 +80,7 @@ std::vector<PickPlaceStep> groundPlan(const nlohmann::json& plan, const srp::cor
   std::vector<std::string> moved;
   // Grounds a noun phrase {"name", "color"} to a scene object id.
   auto groundPhrase = [&](const nlohmann::json& phrase, const std::string& where, bool preferUnmoved) {
-    const auto& nameField = srp::core::requireField(phrase, "name", where);
-    if (!nameField.is_string()) throw InvalidInputError(where + ": field 'name' must be a string");
-    const std::string noun = nameField.get<std::string>();
-    const std::string colour = optionalString(phrase, "color");
-    const auto* cls = catalogue.ground(noun, colour);
-    if (!cls)
-      throw InvalidInputError(where + ": '" + (colour.empty() ? "" : colour + " ") + noun +
-                              "' is not in the knowledge base (datasets/kb/catalogue.json)");
-    // Several instances of the class: the colour picks among them (the scene's
-    // per-instance "color"), when any instance has it.
-    const bool byInstanceColour =
-        !colour.empty() && std::any_of(scene.objects.begin(), scene.objects.end(), [&](const srp::core::SceneObject& o) {
-          return o.className == cls->name && srp::core::instanceColour(o, *cls) == colour;
-        });
-    const srp::core::SceneObject* chosen = nullptr;
-    for (const auto& o : scene.objects) {
-      if (o.className != cls->name) continue;
-      if (byInstanceColour && srp::core::instanceColour(o, *cls) != colour) continue;
-      const bool isMoved = std::find(moved.begin(), moved.end(), o.id) != moved.end();
-      if (!chosen || (preferUnmoved && !isMoved && std::find(moved.begin(), moved.end(), chosen->id) != moved.end()))
-        chosen = &o;
-    }
-    if (!chosen) throw InvalidInputError(where + ": no '" + cls->name + "' in scene '" + scene.name + "'");
-    return chosen->id;
+    return groundNounPhrase(phrase, where, preferUnmoved, scene, catalogue, moved);
   };
   auto isContainer = [&](const std::string& id) {
     const auto* o = scene.findObject(id);

@@ -8,7 +8,7 @@
 
 namespace srp::synth {
 
-SensorModel::SensorModel(const SensorRealismOptions& options, std::uint32_t seed)
+SensorModel::SensorModel(const SensorModel::Options& options, std::uint32_t seed)
     : options_(options), rng_(static_cast<std::uint64_t>(seed) * 2654435761ull + 1ull) {}
 
 // Drawing fresh Gaussian numbers for every pixel costs more than rendering;

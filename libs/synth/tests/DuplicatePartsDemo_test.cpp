@@ -43,7 +43,7 @@ TEST(DuplicatePartsDemo, TwoColouredInstancesOnTheWayAndThePlanMovesTheNamedOne)
     ASSERT_EQ(steps.size(), 1u);
     EXPECT_EQ(steps[0].objectId, d.movedId);
     EXPECT_EQ(steps[0].targetId, "gray box");
-    EXPECT_NO_THROW(planDemonstration(d.scene, b.catalogue, steps, HandModel(HandModelOptions{}), DemoOptions{}))
+    EXPECT_NO_THROW(planDemonstration(d.scene, b.catalogue, steps, HandModel(HandModel::Options{}), DemoOptions{}))
         << "seed " << seed;
     // Deterministic in the seed.
     EXPECT_EQ(makeDuplicatePartsDemo(b.scene, b.catalogue, seed).scene.toJson(), d.scene.toJson());

@@ -67,7 +67,7 @@ TEST(HandModel, TagIsTag36h11Id0WithBlackBorderAndWhiteMargin) {
       EXPECT_TRUE(cells[8][i]);
     }
   }
-  srp::synth::HandModelOptions badId;
+  srp::synth::HandModel::Options badId;
   badId.tagId = -1;
   EXPECT_THROW(srp::synth::HandModel{badId}, srp::core::InvalidInputError);
 }

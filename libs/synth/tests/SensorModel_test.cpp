@@ -1,4 +1,4 @@
-// The documented sensor statistics (SensorRealismOptions, README "Sensor
+// The documented sensor statistics (SensorModel::Options, README "Sensor
 // realism"): depth noise σ(z), quantisation, dropout rates on edges, hand and
 // parts, colour noise; fresh noise every frame, reproducible from the seed.
 #include <gtest/gtest.h>
@@ -10,7 +10,6 @@
 #include "srp/synth/SensorModel.h"
 
 using srp::synth::SensorModel;
-using srp::synth::SensorRealismOptions;
 
 namespace {
 
@@ -60,7 +59,7 @@ Stats depthStats(const cv::Mat& noisy, double z_m, const cv::Mat& mask = cv::Mat
 
 // σ(z) = base + k z², then quantised: measured σ² = σ(z)² + step²/12.
 TEST(SensorModel, DepthNoiseGrowsWithDistanceAsDocumented) {
-  const SensorRealismOptions options;
+  const SensorModel::Options options;
   SensorModel sensor(options, 7);
   for (const double z : {0.5, 0.9, 1.4}) {
     // Between quantisation levels, so that rounding adds no bias.
@@ -79,7 +78,7 @@ TEST(SensorModel, DepthNoiseGrowsWithDistanceAsDocumented) {
 }
 
 TEST(SensorModel, DepthIsQuantisedToTheStep) {
-  const SensorRealismOptions options;
+  const SensorModel::Options options;
   SensorModel sensor(options, 3);
   auto f = flatFrame(0.8123);
   sensor.apply(f, cv::Mat(), 0.0, cv::Mat(), cv::Mat(), 0.0, cv::Mat());
@@ -96,7 +95,7 @@ TEST(SensorModel, DepthIsQuantisedToTheStep) {
 
 // Depth discontinuities lose about edgeDropProbability of their pixels.
 TEST(SensorModel, EdgesLoseDepthAtTheDocumentedRate) {
-  const SensorRealismOptions options;
+  const SensorModel::Options options;
   SensorModel sensor(options, 5);
   auto f = flatFrame(0.9);
   f.depth_m(cv::Rect(0, 0, kK.width_px / 2, kK.height_px)).setTo(0.7f);  // a 20 cm step at the middle column
@@ -110,7 +109,7 @@ TEST(SensorModel, EdgesLoseDepthAtTheDocumentedRate) {
 
 // Blob dropout: hand at rest ~handDropProbability, more when it moves; parts objectDropProbability.
 TEST(SensorModel, HandAndPartsLoseDepthAtTheDocumentedRates) {
-  const SensorRealismOptions options;
+  const SensorModel::Options options;
   cv::Mat hand(kK.height_px, kK.width_px, CV_8UC1, cv::Scalar(0)), part = hand.clone(), moving = hand.clone();
   hand(cv::Rect(0, 0, 320, 240)).setTo(255);
   part(cv::Rect(320, 0, 320, 240)).setTo(255);
@@ -141,7 +140,7 @@ TEST(SensorModel, HandAndPartsLoseDepthAtTheDocumentedRates) {
 
 // Colour noise: zero mean, σ = colourNoiseSigma levels per channel.
 TEST(SensorModel, ColourNoiseHasTheDocumentedSigma) {
-  const SensorRealismOptions options;
+  const SensorModel::Options options;
   SensorModel sensor(options, 13);
   const cv::Scalar clean(120, 130, 140);
   auto f = flatFrame(0.85, clean);
@@ -173,7 +172,7 @@ TEST(SensorModel, ColourNoiseHasTheDocumentedSigma) {
 
 // Fresh noise every frame (uncorrelated in time), the same sequence for the same seed.
 TEST(SensorModel, NoiseIsFreshPerFrameAndReproducible) {
-  const SensorRealismOptions options;
+  const SensorModel::Options options;
   SensorModel a(options, 21), b(options, 21), c(options, 22);
   auto a1 = flatFrame(0.9), a2 = flatFrame(0.9), b1 = flatFrame(0.9), c1 = flatFrame(0.9);
   a.apply(a1, cv::Mat(), 0.0, cv::Mat(), cv::Mat(), 0.0, cv::Mat());
@@ -194,7 +193,7 @@ TEST(SensorModel, NoiseIsFreshPerFrameAndReproducible) {
 // pixels of a 2x2 block read the same; with blocks of 1 px (the default)
 // neighbours are independent.
 TEST(SensorModel, DepthNoiseBlocksAreUniformOnFlatSurfaces) {
-  SensorRealismOptions options;
+  SensorModel::Options options;
   options.depthNoiseBlock_px = 2;
   SensorModel blocky(options, 31);
   auto f = flatFrame(0.85);

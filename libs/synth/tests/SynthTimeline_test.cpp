@@ -72,7 +72,7 @@ TEST(SegmenterOnSynthTimeline, DefaultDemoGraspAndReleaseNearTheTimelineEvents) 
         objects[k].yaw_rad.push_back(core::yawOf(X_camera_object.linear()));
       }
     }
-    Segmenter::Config thesis;
+    Segmenter::Options thesis;
     thesis.events = Segmenter::EventEstimator::Thesis;
     const auto seg = Segmenter(thesis).segment(hand, objects, plan);
     for (std::size_t k = 0; k < steps.size(); ++k) {

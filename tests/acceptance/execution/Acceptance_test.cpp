@@ -231,7 +231,7 @@ TEST(Acceptance, FiftySeededRandomScenes) {
 // The same 50 scenes with DMP paths: skills learned from a synthetic 4-object demo
 // (Segmenter + SkillLearner, Skills rows as `srp motion` stores them).
 TEST(Acceptance, FiftySeededRandomScenesWithLearnedDmps) {
-  const auto demo = srp::motion::SyntheticPickPlaceGenerator(srp::motion::SyntheticPickPlaceConfig{}).generate();
+  const auto demo = srp::motion::SyntheticPickPlaceGenerator().generate();
   srp::taskdb::TaskModel model = srp::programming::taskModelFromTracks(demo, "synthetic", demo.instruction());
   srp::programming::learnSkills(model);
   const srp::core::Scene scene = srp::core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");

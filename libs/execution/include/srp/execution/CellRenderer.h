@@ -15,6 +15,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "srp/execution/CellDescription.h"
 #include "srp/execution/CellSimulator.h"
@@ -22,23 +23,27 @@
 
 namespace srp::execution {
 
-struct CellRendererOptions {
-  int width_px = 640;
-  int height_px = 480;
-  double azimuth_deg = -60.0;   ///< orbit camera around the world z axis
-  double elevation_deg = 35.0;
-  double distance_m = 1.9;  ///< far enough for the whole UR5 above the default cell
-  Eigen::Vector3d lookAt_world_m = Eigen::Vector3d(0.0, -0.05, 0.22);
-  /// Draw the SafetyChecker's arm spheres (translucent blue) over the meshes.
-  bool drawSafetySpheres = false;
-};
-
+/// Off-screen pictures of the simulated cell (robot, parts, containers) from an orbit camera.
 class CellRenderer {
  public:
+  /// The picture's size and the orbit camera.
+  struct Options {
+    int width_px = 640;
+    int height_px = 480;
+    double azimuth_deg = -60.0;   ///< orbit camera around the world z axis
+    double elevation_deg = 35.0;
+    double distance_m = 1.9;  ///< far enough for the whole UR5 above the default cell
+    Eigen::Vector3d lookAt_world_m = Eigen::Vector3d(0.0, -0.05, 0.22);
+    /// Draw the SafetyChecker's arm spheres (translucent blue) over the meshes.
+    bool drawSafetySpheres = false;
+  };
+
   /// Loads the link meshes (RobotModel collision meshes; the UR5 has no separate
   /// visual meshes in srp) and the part meshes. Throws FileError naming a link mesh
   /// that cannot be read, srp::core::Error when no off-screen OpenGL context can be created.
-  CellRenderer(RobotModel model, CellDescription cell, CellRendererOptions options = {});
+  CellRenderer(RobotModel model, CellDescription cell, Options options);
+  CellRenderer(RobotModel model, CellDescription cell)
+      : CellRenderer(std::move(model), std::move(cell), Options{}) {}
   ~CellRenderer();
 
   /// Renders one snapshot into a PNG file; throws FileError when it cannot be written.
@@ -49,7 +54,7 @@ class CellRenderer {
   /// Throws InvalidInputError before the first render.
   std::optional<Eigen::Vector3d> project(const Eigen::Vector3d& p_world_m) const;
 
-  const CellRendererOptions& options() const;
+  const Options& options() const;
 
  private:
   struct Impl;

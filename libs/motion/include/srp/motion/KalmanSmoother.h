@@ -22,7 +22,7 @@ class KalmanSmoother {
     CarryForward,  ///< the thesis: a missing sample repeats the last valid one, then is filtered as a measurement
     Predict,       ///< a missing sample gets no measurement update (the smoother bridges the gap)
   };
-  struct Config {
+  struct Options {
     /// Measurement noise [m]; nullopt: estimated from the data (robust spread of second differences).
     std::optional<double> measurementStd_m;
     double minMeasurementStd_m = 1e-4;  ///< floor of the estimate
@@ -38,7 +38,7 @@ class KalmanSmoother {
   };
 
   KalmanSmoother() = default;
-  explicit KalmanSmoother(Config config) : config_(config) {}
+  explicit KalmanSmoother(Options options) : options_(options) {}
 
   /// Smoothed trajectory. Throws InvalidInputError when `in` is empty, has no
   /// valid sample, or a valid sample is non-finite. A sample at exactly
@@ -53,10 +53,10 @@ class KalmanSmoother {
   /// second differences / sqrt(6)), at least `floor_m`.
   static double estimateMeasurementStd(const core::PositionTrajectory& in, double floor_m);
 
-  const Config& config() const { return config_; }
+  const Options& options() const { return options_; }
 
  private:
-  Config config_;
+  Options options_;
 };
 
 }  // namespace srp::motion

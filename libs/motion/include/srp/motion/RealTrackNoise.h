@@ -26,7 +26,7 @@
 ///     hand covers that pixel. The hand: Gaussian noise, single-frame jumps of
 ///     up to 25 cm, missed frames carried forward; zeros only while it is out
 ///     of view (as the clean input).
-///  3. Placement behaviours of the second recording (Config::placement): the
+///  3. Placement behaviours of the second recording (Options::placement): the
 ///     part hidden under the hand around its grasp and its placement (its
 ///     column holds nothing, another part's position or the hand labelled as
 ///     the part), and ghosts: the previous plan part, already at its
@@ -50,7 +50,7 @@ struct LabelledDemo {
 
 class RealTrackNoise {
  public:
-  struct Config {
+  struct Options {
     // --- choreography -------------------------------------------------------
     /// "after a release the hand may stay near the target for 2-4 s": time
     /// from the release to the hand's departure, uniform in [min, max].
@@ -172,20 +172,20 @@ class RealTrackNoise {
   };
 
   RealTrackNoise() = default;
-  explicit RealTrackNoise(Config config) : config_(config) {}
+  explicit RealTrackNoise(Options options) : options_(options) {}
 
   /// Applies the model. Throws InvalidInputError when the demo has no plan
   /// object, event indices out of range or a plan object without a track.
-  /// With Config::placement off the result is the first recording's model alone.
+  /// With Options::placement off the result is the first recording's model alone.
   Result apply(const LabelledDemo& clean) const;
 
   /// Measures `r.noisy` against `r.truth`.
   static Statistics measure(const Result& r, double frameRate_hz = 30.0);
 
-  const Config& config() const { return config_; }
+  const Options& options() const { return options_; }
 
  private:
-  Config config_;
+  Options options_;
 };
 
 }  // namespace srp::motion

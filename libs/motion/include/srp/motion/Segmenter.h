@@ -36,12 +36,12 @@
 /// it needs only the hand, which the glove tag detects reliably, not the
 /// object, whose detection is unreliable while the hand covers it.
 ///
-/// Robust mode (Config::robust, default; real detector tracks): hand jumps and
+/// Robust mode (Options::robust, default; real detector tracks): hand jumps and
 /// carried values are dropped first, the object's rests are medians of its
 /// detections, the coarse release is a Bernoulli change point into the final
 /// rest (a nudge after the release stays inside it), and each object reports
 /// its outlier fraction, release margin and cue gap (confidence). With the
-/// placement cues (Config::placementCues, default) part detections on the hand
+/// placement cues (Options::placementCues, default) part detections on the hand
 /// and ghosts (the final place of a part released earlier, labelled as this
 /// one) are not evidence of the part, the grasp is searched until the hand has
 /// left the part's start area, and the release is the start of the hand's rest
@@ -126,16 +126,16 @@ struct Segmentation {
 /// The segmenter's hand smoother: KalmanSmoother's defaults (noise estimated
 /// from the data, missing samples predicted, no gate) with a process noise of
 /// 2 m/s^2.
-inline KalmanSmoother::Config handSmootherDefaults() {
-  KalmanSmoother::Config c;
+inline KalmanSmoother::Options handSmootherDefaults() {
+  KalmanSmoother::Options c;
   c.accelerationStd_mps2 = 2.0;
   return c;
 }
 
 /// The segmenter's object smoother: the hand's, with an outlier gate at 5
 /// sigma (gateMin_m, gateReset: KalmanSmoother's defaults) against detector flicker.
-inline KalmanSmoother::Config objectSmootherDefaults() {
-  KalmanSmoother::Config c = handSmootherDefaults();
+inline KalmanSmoother::Options objectSmootherDefaults() {
+  KalmanSmoother::Options c = handSmootherDefaults();
   c.gateSigma = 5.0;
   return c;
 }
@@ -156,10 +156,10 @@ class Segmenter {
     ThesisPublished,
   };
 
-  struct Config {
-    KalmanSmoother::Config handSmoother = handSmootherDefaults();
+  struct Options {
+    KalmanSmoother::Options handSmoother = handSmootherDefaults();
     /// Objects: gated against flicker; no measurement while occluded (the smoother bridges).
-    KalmanSmoother::Config objectSmoother = objectSmootherDefaults();
+    KalmanSmoother::Options objectSmoother = objectSmootherDefaults();
     int medianWindow = 9;              ///< samples; removes flicker of up to 4 samples
     double flickerGate_m = 0.04;       ///< a detection this far from its neighbours' median is dropped
     double handReach_m = 0.15;         ///< an object jumping this far from the hand is a false detection
@@ -204,7 +204,7 @@ class Segmenter {
   };
 
   Segmenter() = default;
-  explicit Segmenter(Config config) : config_(config) {}
+  explicit Segmenter(Options options) : options_(options) {}
 
   /// Segments the demo. Throws InvalidInputError (nothing is returned) when a
   /// plan object has no track, a trajectory is empty, has a single sample, a
@@ -212,12 +212,12 @@ class Segmenter {
   Segmentation segment(const core::PositionTrajectory& hand, const std::vector<ObjectTrack>& objects,
                        const std::vector<std::string>& planOrder) const;
 
-  const Config& config() const { return config_; }
+  const Options& options() const { return options_; }
 
  private:
   Segmentation segmentThesisPublished(const core::PositionTrajectory& hand, const std::vector<ObjectTrack>& objects,
                                       const std::vector<std::string>& planOrder) const;
-  Config config_;
+  Options options_;
 };
 
 }  // namespace srp::motion

@@ -16,7 +16,7 @@ namespace srp::motion {
 
 class SkillLearner {
  public:
-  struct Config {
+  struct Options {
     DmpConfig dmp{};                     ///< Default mode, lambda by GCV
     double approachOffset_m = 0.02;      ///< dp of the pre/post poses (thesis: 2 cm)
     /// Fixed approach axis in the demo frame (e.g. the table normal pointing
@@ -27,7 +27,7 @@ class SkillLearner {
   };
 
   SkillLearner() = default;
-  explicit SkillLearner(Config config) : config_(std::move(config)) {}
+  explicit SkillLearner(Options options) : options_(std::move(options)) {}
 
   /// One SkillSet per moved object, plan order (objects that never moved are
   /// skipped: they have no skills). `objects` gives the yaw per sample.
@@ -35,10 +35,10 @@ class SkillLearner {
   /// fewer than 3 samples (nothing is learned then).
   std::vector<SkillSet> learn(const Segmentation& segmentation, const std::vector<ObjectTrack>& objects) const;
 
-  const Config& config() const { return config_; }
+  const Options& options() const { return options_; }
 
  private:
-  Config config_;
+  Options options_;
 };
 
 }  // namespace srp::motion

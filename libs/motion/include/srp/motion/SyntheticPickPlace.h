@@ -22,25 +22,6 @@
 
 namespace srp::motion {
 
-struct SyntheticPickPlaceConfig {
-  std::vector<std::string> movedObjects = {"cuboid", "star", "parallelogram", "octagon"};  ///< in plan order
-  std::vector<std::string> staticObjects;                                                  ///< tracked but never moved
-  double frameRate_hz = 30.0;
-  double handAbsent_s = 1.0;                           ///< at the start and at the end
-  double reachDuration_s = 1.3, moveDuration_s = 1.6;  ///< +-25 % random per object
-  double idleBetween_s = 0.3;                          ///< hand lifts off 6 cm after each release
-  int graspHoldFrames = 4, releaseHoldFrames = 3;
-  double lift_m = 0.12;
-  bool putBackWhereTaken = false;  ///< each object is lifted and put back where it was
-  double handAboveObject_m = 0.04;
-  double handNoiseXY_m = 0.004, handNoiseZ_m = 0.008, objectNoise_m = 0.002;
-  double handDropoutRate = 0.10;  ///< per frame, on top of bursts
-  double objectDropoutRate = 0.03;
-  double occlusionDropoutRate = 0.4;  ///< object missing when the hand is within 6 cm (plus its height above it)
-  double flickerRate = 0.03;          ///< per frame: detection jumps to another object for 1-3 frames
-  std::uint32_t seed = 1;
-};
-
 /// The demo's tracks (hand: invalid samples have p = (0, 0, 0) as the CSV
 /// convention; objects; plan order = the moved objects) and the truth.
 struct SyntheticPickPlace : DemoTracks {
@@ -50,13 +31,35 @@ struct SyntheticPickPlace : DemoTracks {
   std::string instruction() const;
 };
 
+/// Seeded synthetic pick-and-place tracks (hand and objects with detector-like noise) and their truth.
 class SyntheticPickPlaceGenerator {
  public:
-  explicit SyntheticPickPlaceGenerator(SyntheticPickPlaceConfig config) : config_(std::move(config)) {}
+  /// The demo: objects, timing, noise of the tracks, seed.
+  struct Options {
+    std::vector<std::string> movedObjects = {"cuboid", "star", "parallelogram", "octagon"};  ///< in plan order
+    std::vector<std::string> staticObjects;                                                  ///< tracked but never moved
+    double frameRate_hz = 30.0;
+    double handAbsent_s = 1.0;                           ///< at the start and at the end
+    double reachDuration_s = 1.3, moveDuration_s = 1.6;  ///< +-25 % random per object
+    double idleBetween_s = 0.3;                          ///< hand lifts off 6 cm after each release
+    int graspHoldFrames = 4, releaseHoldFrames = 3;
+    double lift_m = 0.12;
+    bool putBackWhereTaken = false;  ///< each object is lifted and put back where it was
+    double handAboveObject_m = 0.04;
+    double handNoiseXY_m = 0.004, handNoiseZ_m = 0.008, objectNoise_m = 0.002;
+    double handDropoutRate = 0.10;  ///< per frame, on top of bursts
+    double objectDropoutRate = 0.03;
+    double occlusionDropoutRate = 0.4;  ///< object missing when the hand is within 6 cm (plus its height above it)
+    double flickerRate = 0.03;          ///< per frame: detection jumps to another object for 1-3 frames
+    std::uint32_t seed = 1;
+  };
+
+  SyntheticPickPlaceGenerator() : SyntheticPickPlaceGenerator(Options{}) {}
+  explicit SyntheticPickPlaceGenerator(Options options) : options_(std::move(options)) {}
   SyntheticPickPlace generate() const;
 
  private:
-  SyntheticPickPlaceConfig config_;
+  Options options_;
 };
 
 }  // namespace srp::motion

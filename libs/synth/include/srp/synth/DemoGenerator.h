@@ -29,8 +29,8 @@ struct SynthDepthCamera {
 
 struct SynthDemoOptions {
   DemoOptions demo;
-  SensorRealismOptions sensor;
-  HandModelOptions hand;
+  SensorModel::Options sensor;
+  HandModel::Options hand;
   int width_px = 0;   ///< 0: the scene camera's; otherwise the intrinsics are scaled
   int height_px = 0;
   double rawlogDepthUnit_m = 1e-4;   ///< depth step stored in the rawlog

@@ -22,13 +22,6 @@ struct HandPart {
   Eigen::AlignedBox3d bounds_part;  ///< for image masks
 };
 
-struct HandModelOptions {
-  int tagId = 0;               ///< tag36h11 id reserved for the demonstrator's hand
-  double tagSize_m = 0.05;     ///< side of the tag's black square (AprilTag convention)
-  Eigen::Vector3d skinRgb = Eigen::Vector3d(0.87, 0.64, 0.52);
-  Eigen::Vector3d sleeveRgb = Eigen::Vector3d(0.22, 0.27, 0.42);
-};
-
 /// A right hand, palm down, built from boxes: palm, four two-segment fingers,
 /// a two-segment thumb, wrist and sleeve, and the tag plate.
 ///
@@ -44,7 +37,16 @@ struct HandModelOptions {
 /// `grip` in [0, 1] flexes the fingers from relaxed (0) to closed (1).
 class HandModel {
  public:
-  explicit HandModel(const HandModelOptions& options = {});
+  /// The hand's tag and colours.
+  struct Options {
+    int tagId = 0;               ///< tag36h11 id reserved for the demonstrator's hand
+    double tagSize_m = 0.05;     ///< side of the tag's black square (AprilTag convention)
+    Eigen::Vector3d skinRgb = Eigen::Vector3d(0.87, 0.64, 0.52);
+    Eigen::Vector3d sleeveRgb = Eigen::Vector3d(0.22, 0.27, 0.42);
+  };
+
+  HandModel() : HandModel(Options{}) {}
+  explicit HandModel(const Options& options);
 
   const std::vector<HandPart>& parts() const { return parts_; }
   /// X_hand_part of every part (same order as parts()) for a grip in [0, 1].
@@ -54,7 +56,7 @@ class HandModel {
   std::array<Eigen::Vector3d, 4> tagCorners_tag() const;
   /// Half side of the tag plate (black square plus its one-cell white margin) [m].
   double tagPlateHalfSize_m() const { return 0.5 * options_.tagSize_m * static_cast<double>(tagCells_.size()) / (tagCells_.size() - 2.0); }
-  const HandModelOptions& options() const { return options_; }
+  const Options& options() const { return options_; }
   /// The tag's cells (including the white border) as read: row-major,
   /// true = black. 10 x 10 for tag36h11.
   const std::vector<std::vector<bool>>& tagCells() const { return tagCells_; }
@@ -63,7 +65,7 @@ class HandModel {
   static constexpr double kTagHeight_m = 0.0136;
 
  private:
-  HandModelOptions options_;
+  Options options_;
   std::vector<HandPart> parts_;
   std::vector<std::vector<bool>> tagCells_;
 };

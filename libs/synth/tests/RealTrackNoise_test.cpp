@@ -194,18 +194,18 @@ void printSummary(const std::string& label, const testing::EventErrors& e) {
             << ", 7-10: " << hist["7-10"] << ", 11-30: " << hist["11-30"] << ", >30: " << hist[">30"] << "\n";
 }
 
-bool isDefault(const Segmenter::Config& c) {
+bool isDefault(const Segmenter::Options& c) {
   return c.robust && c.placementCues && c.events == Segmenter::EventEstimator::HandDwellBoundary;
 }
 
-std::vector<std::pair<std::string, Segmenter::Config>> estimators() {
-  Segmenter::Config robust18;
+std::vector<std::pair<std::string, Segmenter::Options>> estimators() {
+  Segmenter::Options robust18;
   robust18.placementCues = false;
-  Segmenter::Config before;
+  Segmenter::Options before;
   before.robust = false;
-  Segmenter::Config thesis;
+  Segmenter::Options thesis;
   thesis.events = Segmenter::EventEstimator::ThesisPublished;
-  Segmenter::Config fig610;
+  Segmenter::Options fig610;
   fig610.events = Segmenter::EventEstimator::Thesis;
   return {{"default", {}}, {"default without the placement cues", robust18}, {"default, not robust", before},
           {"thesis published", thesis}, {"thesis fig 6.10 (old)", fig610}};

@@ -21,13 +21,13 @@ inline LabelledDemo cleanSynthDemo(std::uint32_t seed) { return synth::cleanLabe
 
 /// Which real recording's behaviours the noise model adds.
 enum class Recording {
-  First,  ///< outliers, hand jumps, lingering and nudges (RealTrackNoise::Config::placement off)
+  First,  ///< outliers, hand jumps, lingering and nudges (RealTrackNoise::Options::placement off)
   Both,   ///< also the second one's placement behaviours: hover, hidden parts, ghosts (the default)
 };
 
 /// The tracks a segmenter sees (plan objects first, then the others, like a perception CSV).
 inline RealTrackNoise::Result noisySynthDemo(std::uint32_t seed, Recording recording = Recording::Both) {
-  RealTrackNoise::Config c;
+  RealTrackNoise::Options c;
   c.seed = seed;
   c.placement = recording == Recording::Both;
   return RealTrackNoise(c).apply(cleanSynthDemo(seed));
@@ -73,7 +73,7 @@ inline std::vector<NoisyDemo> noisyDemos(const std::vector<std::uint32_t>& seeds
 }
 
 /// Grasp/release errors of `config` on `demos` (printed per event when `print`).
-inline EventErrors evaluateNoisy(const std::vector<NoisyDemo>& demos, const Segmenter::Config& config,
+inline EventErrors evaluateNoisy(const std::vector<NoisyDemo>& demos, const Segmenter::Options& config,
                                  const std::string& label, bool print) {
   EventErrors errors;
   for (const auto& [seed, r] : demos) {

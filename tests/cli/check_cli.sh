@@ -8,8 +8,10 @@
 # --exit N      the exit code the command must return (default 0)
 # --expect R    a Perl regex the combined stdout+stderr must match ('.' matches newlines)
 # --reject R    a Perl regex the output must not match
+# --skip N      an exit code that means "skipped" (CTest's SKIP_RETURN_CODE): passed on as is
 set -u
 exit_expected=0
+skip_code=
 expects=()
 rejects=()
 while [ $# -gt 0 ]; do
@@ -17,6 +19,7 @@ while [ $# -gt 0 ]; do
     --exit) exit_expected=$2; shift 2 ;;
     --expect) expects+=("$2"); shift 2 ;;
     --reject) rejects+=("$2"); shift 2 ;;
+    --skip) skip_code=$2; shift 2 ;;
     --) shift; break ;;
     *) echo "check_cli: unknown option '$1' (usage: check_cli.sh [--exit N] [--expect R]... -- cmd...)"; exit 2 ;;
   esac
@@ -28,6 +31,10 @@ trap 'rm -f "$out"' EXIT
 "$@" >"$out" 2>&1
 rc=$?
 cat "$out"
+if [ -n "$skip_code" ] && [ "$rc" -eq "$skip_code" ]; then
+  echo "check_cli: skipped (exit $rc)"
+  exit "$rc"
+fi
 failed=0
 if [ "$rc" -ne "$exit_expected" ]; then
   echo "check_cli: FAIL: exit code $rc, expected $exit_expected"

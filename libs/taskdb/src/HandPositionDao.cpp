@@ -27,19 +27,17 @@ void checkFinite(const HandPositionRow& r) {
 void HandPositionDao::add(int tm, const HandPositionRow& r) { addMany(tm, {r}); }
 
 void HandPositionDao::addMany(int tm, const std::vector<HandPositionRow>& rows) {
-  Statement st(db_,
-                       "INSERT INTO HandPositions (TimeId, TaskModelId, X, Y, Z, Detected) VALUES (?, ?, ?, ?, ?, ?)");
-  for (const auto& r : rows) {
-    checkFinite(r);
-    st.reset();
-    st.bind(1, r.timeId);
-    st.bind(2, tm);
-    st.bind(3, r.p_m.x());
-    st.bind(4, r.p_m.y());
-    st.bind(5, r.p_m.z());
-    st.bind(6, r.detected ? 1 : 0);
-    st.exec();
-  }
+  for (const auto& r : rows) checkFinite(r);
+  insertRows(db_, "HandPositions", "TimeId, TaskModelId, X, Y, Z, Detected", 6, rows.size(),
+             [&](Statement& st, int p, std::size_t i) {
+               const auto& r = rows[i];
+               st.bind(p, r.timeId);
+               st.bind(p + 1, tm);
+               st.bind(p + 2, r.p_m.x());
+               st.bind(p + 3, r.p_m.y());
+               st.bind(p + 4, r.p_m.z());
+               st.bind(p + 5, r.detected ? 1 : 0);
+             });
 }
 
 std::optional<HandPositionRow> HandPositionDao::get(int tm, int timeId) const {

@@ -199,12 +199,11 @@ bool PostgresStatement::step() {
   return row_ < static_cast<long>(result_->size());
 }
 
-// Creates the schema on first use or checks (and migrates) its version, in
+// Creates the schema on first use or checks and migrates its version, in
 // one transaction holding an advisory lock: programs connecting to a new
 // database at the same moment take turns.
 void prepareSchema(PostgresBackend& db, const std::string& shown, bool readOnly) {
   auto& tx = db.tx();
-  const int current = kSchemaVersion;
   if (!readOnly) {
     tx.exec("BEGIN");
     tx.exec("SELECT pg_advisory_xact_lock(" + std::to_string(kSchemaLockKey) + ")");
@@ -219,17 +218,23 @@ void prepareSchema(PostgresBackend& db, const std::string& shown, bool readOnly)
     if (!hasVersion) {
       if (readOnly)
         throw core::FileError(shown, "not yet a task database (create it with 'srp db init " + shown + "')");
-      tx.exec(postgresMigrations()[0]);
-      tx.exec("INSERT INTO SrpSchema (Version) VALUES (" + std::to_string(current) + ")");
+      tx.exec(createSchemaSql(Dialect::PostgreSQL, kSchemaVersion));
     } else {
       const int version = tx.exec("SELECT Version FROM SrpSchema")[0][0].as<int>();
       if (version > kSchemaVersion)
         throw core::FileError(shown, "task database has schema version " + std::to_string(version) +
                                          ", newer than this build of srp reads (" + std::to_string(kSchemaVersion) +
                                          "); use a newer srp");
-      if (version < kSchemaVersion)
+      if (version < 1)
         throw core::FileError(shown, "task database has schema version " + std::to_string(version) +
-                                         " and this build knows no migration of it on a server");
+                                         " in table SrpSchema, which srp never writes; the database is damaged");
+      if (version < kSchemaVersion && readOnly)
+        throw core::FileError(shown, "task database has schema version " + std::to_string(version) +
+                                         "; open it once read-write to migrate it to version " +
+                                         std::to_string(kSchemaVersion));
+      // Migrated in this transaction, under the advisory lock: a program
+      // opening it at the same moment waits, then finds the new version.
+      for (int v = version; v < kSchemaVersion; ++v) tx.exec(migrationSql(Dialect::PostgreSQL, v));
     }
     if (!readOnly) tx.exec("COMMIT");
   } catch (...) {

@@ -9,9 +9,9 @@ namespace {
 constexpr const char* kSelect =
     "SELECT ClassId, TimeId, X, Y, Z, QW, QX, QY, QZ, Reach, Grasp, Move, Release, Detected, Confidence, InstanceId, "
     "TaskModelId FROM ProductPose";
-constexpr const char* kInsert =
-    "INSERT INTO ProductPose (TaskModelId, ClassId, TimeId, X, Y, Z, QW, QX, QY, QZ, Reach, Grasp, Move, Release, "
-    "Detected, Confidence, InstanceId) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)";
+constexpr const char* kInsertColumns =
+    "TaskModelId, ClassId, TimeId, X, Y, Z, QW, QX, QY, QZ, Reach, Grasp, Move, Release, Detected, Confidence, "
+    "InstanceId";
 
 // Binds the value columns X..Confidence starting at `first`.
 void bindValues(Statement& st, int first, const ProductPoseRow& r) {
@@ -54,17 +54,15 @@ void checkFinite(const ProductPoseRow& r) {
 void ProductPoseDao::add(int tm, const ProductPoseRow& r) { addMany(tm, {r}); }
 
 void ProductPoseDao::addMany(int tm, const std::vector<ProductPoseRow>& rows) {
-  Statement st(db_, kInsert);
-  for (const auto& r : rows) {
-    checkFinite(r);
-    st.reset();
-    st.bind(1, tm);
-    st.bind(2, r.classId);
-    st.bind(3, r.timeId);
-    bindValues(st, 4, r);
-    st.bind(17, r.instanceId);
-    st.exec();
-  }
+  for (const auto& r : rows) checkFinite(r);
+  insertRows(db_, "ProductPose", kInsertColumns, 17, rows.size(), [&](Statement& st, int p, std::size_t i) {
+    const auto& r = rows[i];
+    st.bind(p, tm);
+    st.bind(p + 1, r.classId);
+    st.bind(p + 2, r.timeId);
+    bindValues(st, p + 3, r);
+    st.bind(p + 16, r.instanceId);
+  });
 }
 
 std::optional<ProductPoseRow> ProductPoseDao::get(int tm, int classId, int timeId, const std::string& instanceId) const {

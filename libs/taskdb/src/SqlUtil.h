@@ -2,6 +2,7 @@
 // The statement the DAOs use on either backend (mirrors the part of
 // SQLiteCpp's Statement they use), and binding/reading helpers (private to
 // taskdb).
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <cstdint>
@@ -155,6 +156,40 @@ inline nlohmann::json checkedJson(const Statement& st, int index, const RowRef& 
 
 /// Largest |coordinate| [m] a task model's positions may have.
 constexpr double kMaxCoordinate_m = 1000.0;
+
+/// Rows per INSERT statement on a server (17 columns x 1000 rows stays far
+/// below PostgreSQL's 65535 parameters of one statement).
+constexpr std::size_t kServerBatchRows = 1000;
+
+/// Inserts `count` rows into `table`: `columns` names the `columnCount`
+/// columns ("TimeId, X, Y"), bindRow(statement, first, i) binds row i's values
+/// at parameters first .. first + columnCount - 1. SQLite runs one prepared
+/// statement per row (no round trip to save); a server gets multi-row INSERTs
+/// of up to kServerBatchRows rows, one round trip each.
+template <typename BindRow>
+void insertRows(TaskDatabase& db, const std::string& table, const std::string& columns, int columnCount,
+                std::size_t count, BindRow&& bindRow) {
+  std::string tuple = "(";
+  for (int c = 0; c < columnCount; ++c) tuple += c ? ", ?" : "?";
+  tuple += ")";
+  const std::string head = "INSERT INTO " + table + " (" + columns + ") VALUES ";
+  const std::size_t batch = db.isPostgres() ? kServerBatchRows : 1;
+  std::string sql;
+  std::size_t sqlRows = 0;
+  std::unique_ptr<Statement> st;
+  for (std::size_t first = 0; first < count; first += batch) {
+    const std::size_t rows = std::min(batch, count - first);
+    if (!st || rows != sqlRows) {
+      sql = head;
+      for (std::size_t r = 0; r < rows; ++r) sql += (r ? ", " : "") + tuple;
+      st = std::make_unique<Statement>(db, sql);
+      sqlRows = rows;
+    }
+    st->reset();
+    for (std::size_t r = 0; r < rows; ++r) bindRow(*st, 1 + static_cast<int>(r) * columnCount, first + r);
+    st->exec();
+  }
+}
 
 /// Runs a write statement; throws InvalidInputError(missing) when it changed no row.
 inline void execExpectingRow(Statement& st, const std::string& missing) {

@@ -109,10 +109,13 @@ int checkContents(SQLite::Database& db, const std::string& path) {
   return version;
 }
 
+// A new file gets the current schema at once; an older one each migration in turn.
 void migrate(SQLite::Database& db, int from) {
-  const auto& steps = detail::migrations();
-  for (int v = from; v < static_cast<int>(steps.size()); ++v) db.exec(steps[static_cast<std::size_t>(v)]);
-  db.exec("PRAGMA user_version = " + std::to_string(steps.size()));
+  if (from == 0) {
+    db.exec(detail::createSchemaSql(detail::Dialect::SQLite, kSchemaVersion));
+    return;
+  }
+  for (int v = from; v < kSchemaVersion; ++v) db.exec(detail::migrationSql(detail::Dialect::SQLite, v));
 }
 
 // WAL lets readers run while one writer writes. The switch cannot run inside

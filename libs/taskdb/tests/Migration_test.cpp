@@ -7,6 +7,7 @@
 
 #include <filesystem>
 
+#include "MigrationFixture.h"
 #include "TestDb.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
@@ -18,26 +19,12 @@
 using namespace srp::taskdb;
 
 namespace {
-const std::string kFixture = std::string(SRP_SOURCE_DIR) + "/libs/taskdb/tests/data/schema_v1.db";
-const std::string kFixtureSource = std::string(SRP_SOURCE_DIR) + "/libs/taskdb/tests/data/schema_v1_source.json";
+using test::kFixture;
+using test::expectEveryRowOfTheFixture;
 
 int userVersion(const std::string& path) {
   SQLite::Database raw(path, SQLite::OPEN_READONLY);
   return raw.execAndGet("PRAGMA user_version").getInt();
-}
-
-// Every row of the fixture's source task model is read back from a migrated file.
-void expectEveryRowOfTheFixture(const TaskModel& read) {
-  const TaskModel expected = taskModelFromJson(srp::core::readJsonFile(kFixtureSource), kFixtureSource);
-  EXPECT_EQ(read.products, expected.products);
-  EXPECT_EQ(read.sourceLocations, expected.sourceLocations);
-  EXPECT_EQ(read.targetLocations, expected.targetLocations);
-  EXPECT_EQ(read.targetObjectIds, expected.targetObjectIds);
-  EXPECT_EQ(read.groundedProducts, expected.groundedProducts);
-  EXPECT_EQ(read.productPoses, expected.productPoses);
-  EXPECT_EQ(read.handPositions, expected.handPositions);
-  ASSERT_EQ(read.skills.size(), 1u);
-  EXPECT_EQ(read.skills, expected.skills);
 }
 }  // namespace
 
@@ -62,22 +49,8 @@ TEST(Migration, SchemaOneFileOpensWithEveryRowAndGainsInstanceIds) {
   for (const auto& g : read.groundedProducts) EXPECT_EQ(g.instanceId, "");
 
   // The migrated file now holds two instances of one class, with their own poses and skills.
-  TaskModel two;
-  two.info.name = "two cuboids";
-  two.groundedProducts = {{3, "cuboid", {}, {}, std::string("red"), "cuboid_red"},
-                          {3, "cuboid", {}, {}, std::string("blue"), "cuboid_blue"}};
-  ProductPoseRow red, blue;
-  red.classId = blue.classId = 3;
-  red.timeId = blue.timeId = 1;
-  red.instanceId = "cuboid_red";
-  blue.instanceId = "cuboid_blue";
-  red.p_m = {0.1, 0.0, 0.5};
-  blue.p_m = {-0.1, 0.0, 0.5};
-  two.productPoses = {red, blue};
-  two.skills = {{3, srp::core::SkillType::Grasp, 1, 1, nlohmann::json::object(), "cuboid_red"},
-                {3, srp::core::SkillType::Grasp, 1, 1, nlohmann::json::object(), "cuboid_blue"}};
-  two.products = {{0, "cuboid", {}, {}, std::string("red"), {}, {}, 3, "cuboid_red"}};
-  two.targetObjectIds = {0};
+  const TaskModel two = test::twoCuboidsModel();
+  const ProductPoseRow blue = two.productPoses[1];
   const int id = TaskModelStore(db).write(two);
   const TaskModel back = TaskModelStore(db).read(id);
   EXPECT_EQ(back.groundedProducts.size(), 2u);
@@ -110,7 +83,7 @@ TEST(Migration, ReopeningAMigratedFileKeepsItAsItIs) {
 // (tests/data/schema_v2.db) opens with every row, its task model has no scene,
 // and the migrated file then stores a model with one.
 TEST(Migration, SchemaTwoFileOpensWithEveryRowAndThenStoresAPerceivedScene) {
-  const std::string fixture = std::string(SRP_SOURCE_DIR) + "/libs/taskdb/tests/data/schema_v2.db";
+  const std::string& fixture = test::kFixtureV2;
   ASSERT_EQ(userVersion(fixture), 2) << "the fixture must stay a schema-2 file";
   test::TempDbPath path("migrate_v2");
   std::filesystem::copy_file(fixture, path.str());

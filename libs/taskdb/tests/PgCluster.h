@@ -1,8 +1,11 @@
 #pragma once
 // A throw-away PostgreSQL cluster for the tests: initdb + pg_ctl on a free
 // local port under a temporary folder, started once per test binary (on first
-// use) and stopped at exit. The server refuses to run as root, so under root
-// (CI) every server command runs as `nobody` through runuser.
+// use) and stopped at exit; or started by one program and used by others
+// (startShared / attach / stopShared through a state file: the command-line
+// tests start one cluster for the whole CTest run). The server refuses to run
+// as root, so under root (CI) every server command runs as `nobody` through
+// runuser.
 #include <arpa/inet.h>
 #include <fcntl.h>
 #include <netinet/in.h>
@@ -45,27 +48,103 @@ class PgCluster {
   std::string createDatabase(const std::string& hint) {
     std::string name = "t" + std::to_string(++databases_) + "_";
     for (const char c : hint) name += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::tolower(c)) : '_';
+    return createNamedDatabase(name, false);
+  }
+  /// Creates database `name` (letters, digits, '_'; dropped first when `fresh`,
+  /// kept when it exists otherwise) and returns its URI.
+  std::string createNamedDatabase(std::string name, bool fresh) {
+    for (auto& c : name) c = std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::tolower(c)) : '_';
     name = name.substr(0, 60);
     pqxx::connection c(adminUri());
     pqxx::nontransaction n(c);
-    n.exec("CREATE DATABASE " + c.quote_name(name));
+    if (fresh) n.exec("DROP DATABASE IF EXISTS " + c.quote_name(name) + " WITH (FORCE)");
+    if (n.exec_params("SELECT 1 FROM pg_database WHERE datname = $1", name).empty()) {
+      try {
+        n.exec("CREATE DATABASE " + c.quote_name(name));
+      } catch (const pqxx::sql_error& e) {
+        if (e.sqlstate() != "42P04") throw;  // created by a concurrent test: fine
+      }
+    }
     return uri(name);
   }
 
+  /// Starts a cluster that outlives this process; its folder and port go to
+  /// `stateFile` (a cluster left there by an earlier run is stopped first).
+  static PgCluster& startShared(const std::string& stateFile) {
+    stopShared(stateFile);
+    static PgCluster cluster(true);
+    if (cluster.running_) {
+      std::ofstream out(stateFile);
+      out << cluster.dir_ << "\n" << cluster.port_ << "\n";
+    } else if (cluster.noBinary()) {
+      std::ofstream(stateFile) << "no-binary\n";
+    }
+    return cluster;
+  }
+  /// The cluster startShared left in `stateFile`: available() false (and
+  /// problem() saying why) when there is none or the machine has no server.
+  static PgCluster& attach(const std::string& stateFile) {
+    static PgCluster cluster(stateFile);
+    return cluster;
+  }
+  /// Stops the cluster of `stateFile` and removes its folder; true if one ran.
+  static bool stopShared(const std::string& stateFile) {
+    std::ifstream in(stateFile);
+    std::string dir;
+    int port = 0;
+    if (!(in >> dir >> port)) {
+      std::error_code ec;
+      std::filesystem::remove(stateFile, ec);
+      return false;
+    }
+    PgCluster c(stateFile);
+    c.stop();
+    std::error_code ec;
+    std::filesystem::remove(stateFile, ec);
+    return true;
+  }
+
   ~PgCluster() {
+    if (shared_) return;
+    stop();
+  }
+
+ private:
+  PgCluster() : PgCluster(false) {}
+
+  // Attaches to a running shared cluster.
+  explicit PgCluster(const std::string& stateFile) : shared_(true) {
+    binDir_ = findBinDir();
+    if (binDir_.empty()) {
+      problem_ = kNoBinary;
+      return;
+    }
+    std::ifstream in(stateFile);
+    if (!(in >> dir_ >> port_)) {
+      problem_ = "no shared PostgreSQL cluster (" + stateFile + " missing: its CTest fixture did not start one)";
+      return;
+    }
+    if (::geteuid() == 0) asUser_ = {"runuser", "-u", "nobody", "--"};
+    running_ = true;
+  }
+
+  void stop() {
     if (running_) run({binDir_ + "/pg_ctl", "-D", dir_ + "/data", "-m", "immediate", "-w", "stop"});
+    running_ = false;
     if (!dir_.empty()) {
       std::error_code ec;
       std::filesystem::remove_all(dir_, ec);
     }
   }
 
- private:
-  PgCluster() {
+  static constexpr const char* kNoBinary =
+      "no PostgreSQL server binary (initdb, pg_ctl) under /usr/lib/postgresql/*/bin; install the "
+      "'postgresql' package (scripts/install-deps.sh) to run the PostgreSQL tests";
+
+  explicit PgCluster(bool shared) : shared_(shared) {
     binDir_ = findBinDir();
     if (binDir_.empty()) {
-      problem_ = "no PostgreSQL server binary (initdb, pg_ctl) under /usr/lib/postgresql/*/bin; install the "
-                 "'postgresql' package (scripts/install-deps.sh) to run the PostgreSQL tests";
+      problem_ = kNoBinary;
       return;
     }
     char tmpl[] = "/tmp/srp_pg_XXXXXX";
@@ -155,6 +234,7 @@ class PgCluster {
   std::vector<std::string> asUser_;
   int port_ = 0;
   bool running_ = false;
+  bool shared_ = false;
   std::atomic<int> databases_{0};
 };
 

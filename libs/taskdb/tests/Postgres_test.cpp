@@ -1,16 +1,19 @@
 // Server-only behaviour of the PostgreSQL backend: concurrent first use,
-// race-free versioning under concurrent writers, read-only connections,
-// credentials never shown.
+// migration of older schema versions, race-free versioning under concurrent
+// writers, read-only connections, credentials never shown.
 #include <gtest/gtest.h>
 
 #include <SQLiteCpp/SQLiteCpp.h>
 #include <sqlite3.h>
 
 #include <cstdio>
+#include <optional>
 #include <set>
 #include <thread>
 
+#include "MigrationFixture.h"
 #include "PgCluster.h"
+#include "Schema.h"
 #include "TestDb.h"
 #include "srp/core/Error.h"
 #include "srp/core/Json.h"
@@ -80,11 +83,84 @@ std::string dumpFile(const std::string& path) {
   return out;
 }
 
+// A server database at schema `version` (the tables that version had) holding
+// every row of the SQLite file `fixture` of that version.
+std::string serverDatabaseAtVersion(int version, const std::string& fixture, const std::string& name) {
+  const std::string uri = test::PgCluster::instance().createDatabase(name);
+  pqxx::connection c(uri);
+  pqxx::work w(c);
+  w.exec(detail::createSchemaSql(detail::Dialect::PostgreSQL, version));
+  SQLite::Database file(fixture, SQLite::OPEN_READONLY);
+  SQLite::Statement tables(file, "SELECT name FROM sqlite_master WHERE type = 'table' AND name NOT LIKE 'sqlite_%' "
+                                 "ORDER BY name != 'TaskModels', rowid");
+  while (tables.executeStep()) {
+    const std::string table = tables.getColumn(0).getString();
+    SQLite::Statement rows(file, "SELECT * FROM " + table);
+    while (rows.executeStep()) {
+      std::string columns, placeholders;
+      std::vector<std::optional<std::string>> texts;
+      for (int i = 0; i < rows.getColumnCount(); ++i) {
+        const SQLite::Column col = rows.getColumn(i);
+        columns += (i ? ", " : "") + std::string(col.getName());
+        placeholders += (i ? ", $" : "$") + std::to_string(i + 1);
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.17g", col.getDouble());
+        if (col.isNull()) texts.emplace_back();
+        else texts.emplace_back(col.getType() == SQLITE_FLOAT ? std::string(buf) : col.getString());
+      }
+      std::vector<const char*> values;
+      for (const auto& t : texts) values.push_back(t ? t->c_str() : nullptr);
+      w.exec_params("INSERT INTO " + table + " (" + columns + ") VALUES (" + placeholders + ")",
+                    pqxx::prepare::make_dynamic_params(values));
+    }
+  }
+  w.exec("SELECT setval(pg_get_serial_sequence('taskmodels', 'taskmodelid'), (SELECT MAX(TaskModelId) FROM TaskModels))");
+  w.commit();
+  return uri;
+}
+
 }  // namespace
+
+// A server database at schema 1 or 2 (what srp wrote before instance ids and
+// before the perceived scene) is migrated by the first program that opens it
+// read-write, in one transaction under the advisory lock: four programs
+// opening it at once all find the current version, every row is kept, and it
+// then stores two instances of one class with a perceived scene. Read-only
+// opening refuses it, saying how to migrate.
+TEST_F(Postgres, AnOlderSchemaIsMigratedOnceWithEveryRow) {
+  for (const auto& [version, fixture] : {std::pair<int, std::string>{1, test::kFixture}, {2, test::kFixtureV2}}) {
+    SCOPED_TRACE("schema " + std::to_string(version));
+    const std::string uri = serverDatabaseAtVersion(version, fixture, "migrate_v" + std::to_string(version));
+    EXPECT_THROW(TaskDatabase::open(uri, TaskDatabase::Mode::ReadOnly), srp::core::FileError);
+    const auto failed = onThreads(4, [&](int) {
+      auto db = TaskDatabase::open(uri);
+      if (db.schemaVersion() != kSchemaVersion) throw std::runtime_error("not migrated");
+    });
+    EXPECT_TRUE(failed.empty()) << failed.front();
+    auto db = TaskDatabase::open(uri);
+    const TaskModel read = TaskModelStore(db).read(1);
+    test::expectEveryRowOfTheFixture(read);
+    EXPECT_FALSE(read.scene.has_value());
+
+    TaskModel two = test::twoCuboidsModel();
+    two.scene = PerceivedScene{};
+    two.scene->catalogue = "catalogue.json";
+    two.scene->objects.push_back({"cuboid_red", 3, "cuboid", srp::core::Pose3::Identity(), std::nullopt, std::nullopt});
+    const int id = TaskModelStore(db).write(two);
+    EXPECT_EQ(id, 2);
+    const TaskModel back = TaskModelStore(db).read(id);
+    EXPECT_EQ(back.groundedProducts.size(), 2u);
+    EXPECT_EQ(back.productPoses.size(), 2u);
+    ASSERT_TRUE(back.scene.has_value());
+    EXPECT_EQ(back.scene->objects.size(), 1u);
+  }
+}
 
 // srp db import --from: SQLite -> PostgreSQL -> SQLite keeps every row of
 // every table (the bundled Appendix C task model, a bulk model with skills, a
-// model with a perceived scene).
+// model with a perceived scene). The bulk model's 3300 poses and 1100 hand
+// rows reach the server as multi-row INSERTs of 1000, 1000, 1000 and 300
+// rows (and 1000 + 100): every batch size and boundary is in the comparison.
 TEST_F(Postgres, ImportRoundTripKeepsEveryRow) {
   test::TempDbPath original("roundtrip_original"), back("roundtrip_back");
   {
@@ -93,7 +169,7 @@ TEST_F(Postgres, ImportRoundTripKeepsEveryRow) {
     store.write(taskModelFromJson(srp::core::readJsonFile(std::string(SRP_DATASETS_DIR) +
                                                           "/examples/appendix_c_instruction1.json"),
                                   "appendix_c_instruction1.json"));
-    TaskModel bulk = test::bulkModel("bulk", 300, 3);
+    TaskModel bulk = test::bulkModel("bulk", 1100, 3);
     bulk.info.intrinsics = srp::core::CameraIntrinsics{607.178, 607.234, 321.391, 241.918, 640, 480};
     bulk.info.X_base_camera = srp::core::makePoseYPR({0.1, -0.5, 0.9}, 0.3, 0.0, M_PI);
     bulk.skills = {{1, srp::core::SkillType::Reach, 0, 95, {{"weights", {0.1, 1.0 / 3.0, -2.718281828459045e-7}}}},

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <map>
 #include <memory>
 #include <optional>
@@ -346,8 +347,29 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
     if (m.options.movingCamera || m.options.detectCameraMotion)
       m.cameraMotion = std::make_unique<CameraMotionEstimator>(f.intrinsics, m.options.cameraMotion);
   }
+  // The camera's motion and the hand in this frame depend on the frame and
+  // their own past only: with a still camera they are found on a second
+  // thread while the tracker segments the frame (the same results, in about
+  // the time of the slower of the two).
+  std::optional<HandObservation> h;
+  const auto cameraAndHand = [&] {
+    if (m.cameraMotion) m.cameraMotion->add(f);
+    if (m.hand) h = m.hand->detect(f);
+  };
+  std::optional<ObjectTracker::FrameSegments> segmented;
+  if (m.tracker && !m.moving && m.support) {
+    auto side = std::async(std::launch::async, cameraAndHand);
+    try {
+      segmented = m.tracker->segment(f, m.options.fixedSupportPlane ? &*m.support : nullptr);
+    } catch (...) {
+      side.get();  // its error first, as a sequential run would throw it
+      throw;
+    }
+    side.get();
+  } else {
+    cameraAndHand();
+  }
   if (m.cameraMotion) {
-    m.cameraMotion->add(f);
     if (!m.moving && m.cameraMotion->moved()) {
       m.moving = true;  // from here on as with a moving camera
       m.result.cameraMovedAtFrame = f.index;
@@ -363,7 +385,6 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
   s.frame = f.index;
   s.t_s = f.t_s;
   s.valid = false;
-  const auto h = m.hand ? m.hand->detect(f) : std::nullopt;
   if (h) {
     // A palm depth farther from the last one than the hand can move since
     // (a hole in a blurred hand filled by the wall behind it) is a hole too.
@@ -406,6 +427,8 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
     m.support = movingPlane;
   }
   if (m.detector) {
+    const std::vector<Eigen::Vector2d> palm_px =
+        h ? std::vector<Eigen::Vector2d>{h->palm_px} : std::vector<Eigen::Vector2d>{};
     // Model-based tracking first: when every moving class is tracked, no detection is needed.
     const bool useMbt = useModelBasedTracking(m.options, m.moving);
     const std::map<std::string, ObjectDetection> tracked = useMbt ? m.trackParts(f) : std::map<std::string, ObjectDetection>{};
@@ -416,8 +439,8 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
     auto detections =
         m.moving
             ? (movingPlane && !allTracked ? m.detector->detect(f, &*movingPlane) : std::vector<ObjectDetection>{})
-            : m.tracker->update(f, m.options.fixedSupportPlane && m.support ? &*m.support : nullptr,
-                                h ? std::vector<Eigen::Vector2d>{h->palm_px} : std::vector<Eigen::Vector2d>{});
+            : segmented ? m.tracker->update(f, std::move(*segmented), palm_px)
+                        : m.tracker->update(f, m.options.fixedSupportPlane && m.support ? &*m.support : nullptr, palm_px);
     if (m.debug)
       core::Log::writef(
           "perception", core::Log::Level::Debug, "frame %d: %s in %.1f ms\n", f.index,

@@ -189,22 +189,36 @@ void ObjectTracker::remember(const std::vector<ObjectDetection>& out) {
   }
 }
 
-std::vector<ObjectDetection> ObjectTracker::update(const rawlog::RgbdFrame& frame, const Plane* support,
-                                                  const std::vector<Eigen::Vector2d>& hand_px) {
+ObjectTracker::FrameSegments ObjectTracker::segment(const rawlog::RgbdFrame& frame, const Plane* support) {
   if (frame.depth_m.empty())
     throw core::InvalidInputError("frame " + std::to_string(frame.index) + " has no depth image: objects need depth");
+  FrameSegments out;
+  std::swap(out.cloud, cloud_);  // the last frame's memory
+  depthToCloud(frame.depth_m, CameraModel(frame.intrinsics), out.cloud);
+  out.plane = support ? std::optional<Plane>(*support) : fitDominantPlane(out.cloud, detector_.options().plane);
+  if (out.plane) out.segments = detector_.segments(frame, out.cloud, *out.plane);
+  return out;
+}
+
+std::vector<ObjectDetection> ObjectTracker::update(const rawlog::RgbdFrame& frame, const Plane* support,
+                                                  const std::vector<Eigen::Vector2d>& hand_px) {
+  return update(frame, segment(frame, support), hand_px);
+}
+
+std::vector<ObjectDetection> ObjectTracker::update(const rawlog::RgbdFrame& frame, FrameSegments segmented,
+                                                  const std::vector<Eigen::Vector2d>& hand_px) {
   const int now = frame_++;
   stats_ = Stats{};
   const CameraModel camera(frame.intrinsics);
-  depthToCloud(frame.depth_m, camera, cloud_);
+  cloud_ = std::move(segmented.cloud);
   const cv::Mat& cloud = cloud_;
-  lastPlane_ = support ? std::optional<Plane>(*support) : fitDominantPlane(cloud, detector_.options().plane);
+  lastPlane_ = std::move(segmented.plane);
   if (!lastPlane_) {
     answers_.clear();
     return {};
   }
   const Plane& plane = *lastPlane_;
-  const std::vector<ObjectSegment> segs = detector_.segments(frame, cloud, plane);
+  const std::vector<ObjectSegment> segs = std::move(segmented.segments);
   stats_.segments = static_cast<int>(segs.size());
 
   FrameAnswers fa;

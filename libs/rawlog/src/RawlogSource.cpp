@@ -2,6 +2,7 @@
 
 #include <mrpt/rtti/CObject.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -12,6 +13,9 @@ namespace srp::rawlog::detail {
 namespace {
 constexpr std::size_t kInputChunk = 1 << 18;
 constexpr std::size_t kOutputChunk = 1 << 20;
+// Largest gzip member (compressed or decoded) decoded whole; a 1280x720 RGB-D
+// frame is ~5 MB decoded.
+constexpr std::size_t kMaxWholeMember = std::size_t(16) << 20;
 }  // namespace
 
 std::string printable(const std::string& text, std::size_t max) {
@@ -38,6 +42,8 @@ RawlogSource::RawlogSource(const std::string& path) : path_(path) {
     zInit_ = true;
     z_.next_in = in_.data();
     z_.avail_in = static_cast<uInt>(n);
+    whole_ = libdeflate_alloc_decompressor();
+    memberFresh_ = whole_ != nullptr;
   } else {
     buf_.assign(in_.begin(), in_.begin() + static_cast<std::ptrdiff_t>(n));
     len_ = n;
@@ -46,6 +52,7 @@ RawlogSource::RawlogSource(const std::string& path) : path_(path) {
 
 RawlogSource::~RawlogSource() {
   if (zInit_) inflateEnd(&z_);
+  if (whole_) libdeflate_free_decompressor(whole_);
   if (file_) std::fclose(file_);
 }
 
@@ -56,6 +63,7 @@ bool RawlogSource::readInput() {
   if (fileEnded_) return false;
   // Keep the unread input at the front.
   if (z_.avail_in > 0 && z_.next_in != in_.data()) std::memmove(in_.data(), z_.next_in, z_.avail_in);
+  z_.next_in = in_.data();  // also when nothing more comes: the input moved
   const std::size_t n = std::fread(in_.data() + z_.avail_in, 1, in_.size() - z_.avail_in, file_);
   if (n == 0) {
     fileEnded_ = true;
@@ -65,6 +73,47 @@ bool RawlogSource::readInput() {
   z_.next_in = in_.data();
   z_.avail_in += static_cast<uInt>(n);
   return true;
+}
+
+void RawlogSource::reserveInput(std::size_t bytes) {
+  if (in_.size() >= bytes) return;
+  if (z_.avail_in > 0 && z_.next_in != in_.data()) std::memmove(in_.data(), z_.next_in, z_.avail_in);
+  in_.resize(bytes);
+  z_.next_in = in_.data();
+}
+
+// The current member decoded in one call when it (compressed and decoded)
+// fits in kMaxWholeMember; false leaves the member to zlib's stream, from its
+// start (too large, or damaged: zlib then says how).
+bool RawlogSource::decodeWholeMember() {
+  memberFresh_ = false;
+  std::size_t wantIn = std::max(kInputChunk, 2 * lastMemberIn_);
+  std::size_t room = std::max(kOutputChunk, lastMemberOut_ + lastMemberOut_ / 4);
+  while (wantIn <= kMaxWholeMember && room <= kMaxWholeMember) {
+    reserveInput(wantIn);
+    while (z_.avail_in < wantIn && readInput()) {
+    }
+    if (buf_.size() < len_ + room) buf_.resize(len_ + room);
+    std::size_t used = 0, made = 0;
+    const libdeflate_result r =
+        libdeflate_gzip_decompress_ex(whole_, z_.next_in, z_.avail_in, buf_.data() + len_, room, &used, &made);
+    if (r == LIBDEFLATE_SUCCESS) {  // libdeflate checked the member's CRC32 and length
+      z_.next_in += used;
+      z_.avail_in -= static_cast<uInt>(used);
+      len_ += made;
+      lastMemberIn_ = used;
+      lastMemberOut_ = made;
+      memberEnded_ = true;
+      return true;
+    }
+    if (r == LIBDEFLATE_INSUFFICIENT_SPACE)
+      room *= 2;
+    else if (!fileEnded_ && z_.avail_in >= wantIn)
+      wantIn *= 2;  // the member may go on past the input read so far
+    else
+      break;
+  }
+  return false;
 }
 
 // Decodes one more chunk; returns false when nothing more can come.
@@ -108,7 +157,9 @@ bool RawlogSource::decodeMore(bool crossMembers) {
     inflateReset(&z_);
     memberStart_ = at;
     memberEnded_ = false;
+    memberFresh_ = whole_ != nullptr;
   }
+  if (memberFresh_ && decodeWholeMember()) return true;
   if (z_.avail_in == 0 && !readInput()) {
     error_ = "the file ends inside the gzip member starting at byte " + std::to_string(memberStart_) +
              " (truncated)";

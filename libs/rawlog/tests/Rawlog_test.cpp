@@ -144,6 +144,41 @@ TEST(Rawlog, ThreadedWriterKeepsOrderAndPixels) {
   std::filesystem::remove(path);
 }
 
+// 640x480 frames of noise: each gzip member (~1.2 MB) is larger than the
+// reader's first input chunk and output guess, so members are decoded
+// whole after more input and more room, up to the file's last byte.
+TEST(Rawlog, ReadsMembersLargerThanItsInputChunkToTheLastByte) {
+  const std::string path = tempPath("large.rawlog");
+  const srp::core::CameraIntrinsics K{525.0, 525.0, 319.5, 239.5, 640, 480};
+  auto frame = [&](int i) {
+    return srp::rawlog::testing::testFrame(i, K, 77 + i, [i](int r, int c) {
+      return 0.5f + 0.0001f * static_cast<float>((r * 7919 + c * 104729 + i * 31) % 5000);
+    });
+  };
+  constexpr int kFrames = 7;
+  {
+    RawlogWriter writer(path, kDepthUnit_m);
+    for (int i = 0; i < kFrames; ++i) writer.write(frame(i));
+  }
+  for (const int readAhead : {0, RawlogReader::kDefaultReadAheadFrames}) {
+    RawlogReader reader(path, readAhead);
+    int n = 0;
+    while (auto f = reader.next()) {
+      const RgbdFrame expected = frame(n);
+      EXPECT_EQ(cv::norm(f->colour_bgr8, expected.colour_bgr8, cv::NORM_INF), 0.0) << "frame " << n;
+      cv::Mat err;
+      cv::absdiff(f->depth_m, expected.depth_m, err);
+      double maxErr = 0.0;
+      cv::minMaxLoc(err, nullptr, &maxErr);
+      EXPECT_LT(maxErr, kDepthTol_m) << "frame " << n;
+      ++n;
+    }
+    EXPECT_FALSE(reader.damage()) << *reader.damage();
+    EXPECT_EQ(n, kFrames) << "read-ahead " << readAhead;
+  }
+  std::filesystem::remove(path);
+}
+
 // One gzip member per frame: the file is still one valid gzip stream for zlib
 // (MRPT's own gzip reader, as RawLogViewer uses it, reads every observation).
 TEST(Rawlog, MrptReadsTheConcatenatedGzipMembers) {

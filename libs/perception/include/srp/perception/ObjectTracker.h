@@ -85,6 +85,22 @@ class ObjectTracker {
   std::vector<ObjectDetection> update(const rawlog::RgbdFrame& frame, const Plane* support = nullptr,
                                       const std::vector<Eigen::Vector2d>& hand_px = {});
 
+  /// What update() computes from the frame alone, before any tracking state:
+  /// the point cloud, the support plane (`support` or fitted) and the
+  /// segments above it. A caller may compute it while the hand is looked for
+  /// in the same frame, then give it to update(); update(frame, support,
+  /// hand_px) is update(frame, segment(frame, support), hand_px).
+  struct FrameSegments {
+    cv::Mat cloud;
+    std::optional<Plane> plane;
+    std::vector<ObjectSegment> segments;
+  };
+  /// Throws InvalidInputError for a frame without depth. Changes no tracking
+  /// state (it reuses the last cloud's memory).
+  FrameSegments segment(const rawlog::RgbdFrame& frame, const Plane* support = nullptr);
+  std::vector<ObjectDetection> update(const rawlog::RgbdFrame& frame, FrameSegments segmented,
+                                      const std::vector<Eigen::Vector2d>& hand_px = {});
+
   /// The support plane of the last update, if one was found.
   const std::optional<Plane>& lastPlane() const { return lastPlane_; }
 

@@ -25,7 +25,8 @@ namespace srp::rawlog {
 ///
 /// Read-ahead: by default a background thread decompresses and converts the
 /// next few frames while the caller works on the current one (decoding a
-/// 640x480 frame costs 5-10 ms, about half of what perception spends on it).
+/// 640x480 frame costs 2-5 ms, a fifth to a third of what perception spends
+/// on it).
 /// Frames, counters and damage are reported exactly as a synchronous read
 /// would, in the same order; `readAheadFrames = 0` decodes in next() instead.
 class RawlogReader {

@@ -18,11 +18,12 @@ const CellObject* PlacementContext::containerOf(const CellObject& o) const {
 }
 
 bool PlacementContext::fitsInside(const CellObject& container, const Pose3& X) const {
-  const Eigen::Vector3d p = container.X_world_object.inverse() * X.translation();
-  const double centreToWalls = std::min(container.size_m.x() / 2 - container.wallThickness_m - std::abs(p.x()),
-                                        container.size_m.y() / 2 - container.wallThickness_m - std::abs(p.y()));
   return marginToInnerWalls(part_.size_m, X, container) >= options_.wallMargin_m - 1e-9 &&
-         centreToWalls >= options_.toolClearance_m - 1e-9;
+         distanceToWalls(container, X.translation().head<2>()) >= toolClearanceFrom(container, X) - 1e-9;
+}
+
+double PlacementContext::toolClearanceFrom(const CellObject& container, const Pose3& X) const {
+  return placement::toolClearanceFrom(options_, part_.size_m, X.translation().z(), container);
 }
 
 bool PlacementContext::fitsTable(const Pose3& X) const {
@@ -35,9 +36,7 @@ bool PlacementContext::fitsTable(const Pose3& X) const {
   for (const auto& o : scene_.objects) {
     if (o.kind != CellObjectKind::Container) continue;
     if (overlaps(mine, X, footprint(o.size_m, o.X_world_object, 0.0), o.X_world_object)) return false;
-    const Eigen::Vector3d q = o.X_world_object.inverse() * X.translation();
-    const double dx = std::max(std::abs(q.x()) - o.size_m.x() / 2, 0.0), dy = std::max(std::abs(q.y()) - o.size_m.y() / 2, 0.0);
-    if (std::hypot(dx, dy) < options_.toolClearance_m - 1e-9) return false;
+    if (distanceToWalls(o, X.translation().head<2>()) < toolClearanceFrom(o, X) - 1e-9) return false;
   }
   return true;
 }

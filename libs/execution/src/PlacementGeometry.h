@@ -12,6 +12,7 @@
 
 #include "srp/core/Pose.h"
 #include "srp/execution/CellDescription.h"
+#include "srp/execution/PlacementContext.h"
 
 namespace srp::execution::placement {
 
@@ -85,6 +86,38 @@ inline double marginToInnerWalls(const Eigen::Vector3d& size, const Pose3& X, co
   const double ex = c * size.x() / 2 + s * size.y() / 2, ey = s * size.x() / 2 + c * size.y() / 2;
   return std::min(container.size_m.x() / 2 - container.wallThickness_m - std::abs(X_c.translation().x()) - ex,
                   container.size_m.y() / 2 - container.wallThickness_m - std::abs(X_c.translation().y()) - ey);
+}
+
+/// The suction tool comes down vertically onto the placed part's top, its axis through
+/// the part's centre (TaskExecutor: grasped at the top's centre, a straight descent to
+/// the release), so it passes level with `container`'s walls unless the part's top lies at
+/// least `gap_m` above the walls' top. `bottom_z`: the placed part's bottom (world z); the
+/// container stands upright with its origin at its bottom.
+inline bool toolLevelWithWalls(const Eigen::Vector3d& partSize, double bottom_z, const CellObject& container,
+                               double gap_m) {
+  const double wallTop_z = container.X_world_object.translation().z() + container.size_m.z();
+  return bottom_z + partSize.z() < wallTop_z + gap_m;
+}
+
+/// The distance a part of `partSize` resting at `bottom_z` keeps between its centre and
+/// `container`'s walls (PlacementOptions::toolClearance_m): the tool's where it comes level
+/// with them, else 0.
+inline double toolClearanceFrom(const PlacementOptions& o, const Eigen::Vector3d& partSize, double bottom_z,
+                                const CellObject& container) {
+  return toolLevelWithWalls(partSize, bottom_z, container, o.minClearance_m) ? o.toolClearance_m : 0.0;
+}
+
+/// Horizontal distance of p_world from `container`'s nearest wall: its inner walls when p
+/// lies inside them, else its outer outline.
+inline double distanceToWalls(const CellObject& container, const Eigen::Vector2d& p_world) {
+  const Eigen::Vector3d p = container.X_world_object.inverse() * Eigen::Vector3d(p_world.x(), p_world.y(), 0.0);
+  const double innerX = container.size_m.x() / 2 - container.wallThickness_m;
+  const double innerY = container.size_m.y() / 2 - container.wallThickness_m;
+  if (std::abs(p.x()) <= innerX && std::abs(p.y()) <= innerY)
+    return std::min(innerX - std::abs(p.x()), innerY - std::abs(p.y()));
+  const double dx = std::max(std::abs(p.x()) - container.size_m.x() / 2, 0.0);
+  const double dy = std::max(std::abs(p.y()) - container.size_m.y() / 2, 0.0);
+  return std::hypot(dx, dy);  // 0 on or in the wall itself
 }
 
 /// "12.5 mm" for 0.0125.

@@ -158,15 +158,15 @@ class Refinement {
       const double wallMargin = rulesOf(i).wallMargin_m;
       if (const CellObject* box = now.find(s[i].placement.container)) {
         g.push_back(wallMargin - marginToInnerWalls(part.size_m, X, *box));
-        const Eigen::Vector3d p = box->X_world_object.inverse() * X.translation();
-        g.push_back(o_.toolClearance_m - std::min(box->size_m.x() / 2 - box->wallThickness_m - std::abs(p.x()),
-                                                  box->size_m.y() / 2 - box->wallThickness_m - std::abs(p.y())));
+        g.push_back(toolClearance(part, *box) - distanceToWalls(*box, X.translation().head<2>()));
         continue;
       }
       for (const auto& c : now.objects)
-        if (c.kind == CellObjectKind::Container)
+        if (c.kind == CellObjectKind::Container) {
           g.push_back(-separation(footprint(part.size_m, X, wallMargin), X, footprint(c.size_m, c.X_world_object, 0.0),
                                   c.X_world_object));
+          g.push_back(toolClearance(part, c) - distanceToWalls(c, X.translation().head<2>()));
+        }
       const Eigen::Vector2d p = X.translation().head<2>() - now.tableCentre_m;
       g.push_back(std::abs(p.x()) + support(part, Eigen::Vector2d::UnitX()) - now.tableHalfExtents_m.x());
       g.push_back(std::abs(p.y()) + support(part, Eigen::Vector2d::UnitY()) - now.tableHalfExtents_m.y());
@@ -175,6 +175,10 @@ class Refinement {
       g.push_back(o_.minReach_m - r);
       g.push_back(r - o_.maxReach_m);
     }
+  }
+
+  double toolClearance(const CellObject& part, const CellObject& container) const {
+    return toolClearanceFrom(o_, part.size_m, part.X_world_object.translation().z(), container);
   }
 
   double objective(const double* x) const {

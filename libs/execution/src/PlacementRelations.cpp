@@ -104,11 +104,13 @@ PlacementCandidates placeIn(const PlacementContext& ctx, const PlacementTarget& 
     return out;
   }
   const Eigen::Vector2d cc = centre(container);
+  const double tool = ctx.toolClearanceFrom(container, container.X_world_object * uprightPose(
+                                                           Eigen::Vector3d(0, 0, container.wallThickness_m), 0.0));
   for (const double turn : ctx.turns()) {
     // The centre's free half-extents (footprint inside the margins, centre clear for the tool).
     const double c = std::abs(std::cos(turn)), s = std::abs(std::sin(turn));
-    const double ix = std::min(wx - (c * part.size_m.x() + s * part.size_m.y()) / 2, innerX - o.toolClearance_m);
-    const double iy = std::min(wy - (s * part.size_m.x() + c * part.size_m.y()) / 2, innerY - o.toolClearance_m);
+    const double ix = std::min(wx - (c * part.size_m.x() + s * part.size_m.y()) / 2, innerX - tool);
+    const double iy = std::min(wy - (s * part.size_m.x() + c * part.size_m.y()) / 2, innerY - tool);
     if (ix < 0 || iy < 0) continue;
     const Eigen::Vector2d corner = preferredCorner(ctx, t, container, ix, iy);
     const Eigen::Vector2d preferred = t.cornerDirections.empty() ? t.demoPositionInContainer_m.value_or(corner) : corner;
@@ -158,6 +160,12 @@ PlacementCandidates placeOnTop(const PlacementContext& ctx, const PlacementTarge
     out.reason = "the " + lower.name + " is out of the arm's reach for stacking the " + part.name;
     return out;
   }
+  for (const auto& wall : ctx.scene().objects)
+    if (wall.kind == CellObjectKind::Container && distanceToWalls(wall, c) < ctx.toolClearanceFrom(wall, X) - 1e-9) {
+      out.reason = "the suction tool would not clear the " + wall.name + "'s wall (" + fmt(distanceToWalls(wall, c)) +
+                   " from the " + lower.name + "'s centre, " + fmt(ctx.options().toolClearance_m) + " needed)";
+      return out;
+    }
   out.poses.push_back({X, container ? container->name : "", lower.name, false});
   return out;
 }

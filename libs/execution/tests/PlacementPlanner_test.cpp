@@ -1,4 +1,5 @@
 #include "srp/execution/PlacementPlanner.h"
+#include "srp/execution/PlacementContext.h"
 
 #include <gtest/gtest.h>
 
@@ -264,6 +265,36 @@ TEST(PlacementPlanner, APlaceMustNotOverlapAContainerWall) {
   EXPECT_NEAR(p.X_world_object->translation().z(), 0.006, kGeomTol_m);
   EXPECT_GE(p.X_world_object->translation().x() - 0.025, 0.056 + planner.options().wallMargin_m - 1e-9);
   expectHolds(planner, c, "cuboid", s, p);
+}
+
+// The suction tool (a 20 mm cylinder on the part's centre, lowered onto its top) passes
+// beside a wall whose top is above the part's top: the centre keeps 20 + 2 mm from that
+// wall, on the table (outer outline) and inside the box (inner walls), even where the
+// footprint alone would keep its 2 mm; beside a tray lower than the part it need not.
+TEST(PlacementPlanner, ToolKeepsItsRadiusFromWallsItComesLevelWith) {
+  constexpr double kOuterWall_x = 0.16 - 0.11, kInnerWall_x = kOuterWall_x + 0.006;  // the gray box's left walls
+  constexpr double kTooNear_m = 0.020, kFarEnough_m = 0.023;  // centre from the wall; the part's half-width is 15 mm
+  CellDescription c = cell();
+  const PlacementOptions tight = PlacementOptions{}.tight();  // 2 mm to walls: the footprint alone would fit
+  ASSERT_NEAR(tight.toolClearance_m, 0.022, kGeomTol_m);
+  const CellObject& cuboid = get(c, "cuboid");  // 50 x 30 x 30 mm, turned: 15 mm towards the wall
+  const PlacementContext ctx(c, cuboid, tight);
+  const CellObject& box = get(c, "gray box");
+  EXPECT_FALSE(ctx.fitsTable(at(kOuterWall_x - kTooNear_m, 0.12, 0.0, M_PI / 2)));
+  EXPECT_TRUE(ctx.fitsTable(at(kOuterWall_x - kFarEnough_m, 0.12, 0.0, M_PI / 2)));
+  EXPECT_FALSE(ctx.fitsInside(box, at(kInnerWall_x + kTooNear_m, 0.12, 0.006, M_PI / 2)));
+  EXPECT_TRUE(ctx.fitsInside(box, at(kInnerWall_x + kFarEnough_m, 0.12, 0.006, M_PI / 2)));
+  EXPECT_NEAR(ctx.toolClearanceFrom(box, at(kOuterWall_x - kTooNear_m, 0.12, 0.0)), 0.022, kGeomTol_m);
+
+  // A tray 20 mm high: the 30 mm part's top is 10 mm above its walls, the tool stays above them.
+  CellDescription low = c;
+  for (auto& o : low.objects)
+    if (o.name == "gray box") o.size_m.z() = 0.020;
+  const PlacementContext lowCtx(low, get(low, "cuboid"), tight);
+  const CellObject& tray = get(low, "gray box");
+  EXPECT_NEAR(lowCtx.toolClearanceFrom(tray, at(kOuterWall_x - kTooNear_m, 0.12, 0.0)), 0.0, kGeomTol_m);
+  EXPECT_TRUE(lowCtx.fitsTable(at(kOuterWall_x - kTooNear_m, 0.12, 0.0, M_PI / 2)));
+  EXPECT_TRUE(lowCtx.fitsInside(tray, at(kInnerWall_x + kTooNear_m, 0.12, 0.006, M_PI / 2)));
 }
 
 TEST(PlacementPlanner, OutOfReachIsRefused) {

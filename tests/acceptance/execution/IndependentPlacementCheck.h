@@ -4,8 +4,8 @@
 // grid, 2 mm on the open table, every 5 degrees of yaw) in the region the relation allows,
 // with its own footprint geometry. A pose counts when the part rests on the table or
 // wholly inside a container's walls, keeps kMinGap_m from every other part at its height,
-// from the walls and the containers' outer walls, lies on the table and within the arm's
-// placing range, and the relation holds as PlacementPlanner::check() measures it after a
+// from the walls and the containers' outer walls, leaves the suction tool room beside the
+// walls (below), lies on the table and within the arm's placing range, and the relation holds as PlacementPlanner::check() measures it after a
 // placement (gaps > -1 mm, "next to" at most 30 mm, view directions within 45 degrees,
 // "between" within the landmarks' larger half-width + 5 mm of their line, corners in
 // their quadrant). When it finds no pose, the refusal is confirmed.
@@ -31,6 +31,13 @@ constexpr double kNeighbourMaxGap_m = 0.030;   // "next to": neighbourGap_m + ne
 constexpr double kLateralSlack_m = 0.005;      // "between": relationTolerance_m
 constexpr double kMinReach_m = 0.15, kMaxReach_m = 0.80;  // the arm's placing range (PlacementOptions)
 constexpr double kFineStep_m = 0.001, kTableStep_m = 0.002;
+/// The suction tool (sim/ur5/ur5.urdf, link suction_tool: a collision cylinder of radius
+/// 20 mm from tool0 down to the tool centre point) is lowered straight down onto the part's
+/// top, its axis through the part's centre (the executor grasps the top's centre and ends
+/// every placement with a vertical descent). Wherever the part's top lies below a container
+/// wall's top + kMinGap_m, the cylinder passes beside that wall, so the part's centre keeps
+/// kToolRadius_m + kMinGap_m from it (the safety checker's 2 mm to container walls).
+constexpr double kToolRadius_m = 0.020;
 constexpr double kYawStep_rad = 5.0 * M_PI / 180.0;
 
 /// A part's footprint: centre, yaw, half extents (world x, y).
@@ -73,6 +80,29 @@ inline double insideWalls(const Footprint& f, const CellObject& box) {
     worst = std::min(worst, b.half[k] - box.wallThickness_m - std::abs(off.dot(n)) - f.extent(n));
   }
   return worst;
+}
+
+/// Horizontal distance of point p from the container's nearest wall: its inner walls when
+/// `inside` (p within them), else its outer outline.
+inline double wallDistance(const CellObject& box, const Eigen::Vector2d& p, bool inside) {
+  const Footprint b = Footprint::of(box);
+  const Eigen::Vector2d off = p - b.centre;
+  const double u = std::abs(off.dot(b.axis(0))), v = std::abs(off.dot(b.axis(1)));
+  if (inside) return std::min(b.half.x() - box.wallThickness_m - u, b.half.y() - box.wallThickness_m - v);
+  return std::hypot(std::max(u - b.half.x(), 0.0), std::max(v - b.half.y(), 0.0));
+}
+
+/// Does the tool lowered onto `mover` resting at bottom height z keep its clearance from
+/// every container wall it comes level with? (kToolRadius_m above.)
+inline bool toolFits(const CellDescription& scene, const CellObject& mover, const Footprint& f, double z,
+                     const CellObject* floor) {
+  for (const auto& c : scene.objects) {
+    if (c.kind != CellObjectKind::Container) continue;
+    const double wallTop = c.X_world_object.translation().z() + c.size_m.z();
+    if (z + mover.size_m.z() >= wallTop + kMinGap_m) continue;  // the tool stays above these walls
+    if (wallDistance(c, f.centre, &c == floor) < kToolRadius_m + kMinGap_m) return false;
+  }
+  return true;
 }
 
 struct Relation {
@@ -134,6 +164,7 @@ inline bool restsFree(const CellDescription& scene, const CellObject& mover, con
       return false;
   }
   const double z = floor ? floor->X_world_object.translation().z() + floor->wallThickness_m : 0.0;
+  if (!toolFits(scene, mover, f, z, floor)) return false;
   for (const auto& o : scene.objects) {
     if (o.kind != CellObjectKind::Part || o.name == mover.name) continue;
     const double zo = o.X_world_object.translation().z();
@@ -155,7 +186,12 @@ inline std::optional<Footprint> anyPlacement(const CellDescription& scene, const
         return std::nullopt;
     const double reach = (a.centre - scene.X_world_base.translation().head<2>()).norm();
     if (reach < kMinReach_m || reach > kMaxReach_m) return std::nullopt;
-    return Footprint{a.centre, a.yaw, mover.size_m.head<2>() / 2};
+    const Footprint f{a.centre, a.yaw, mover.size_m.head<2>() / 2};
+    const CellObject* floor = nullptr;
+    for (const auto& c : scene.objects)
+      if (c.kind == CellObjectKind::Container && insideWalls(a, c) >= 0.0) floor = &c;
+    if (!toolFits(scene, mover, f, top, floor)) return std::nullopt;
+    return f;
   }
   // The region: the container (In, Corner) or a square around the landmark(s).
   const Footprint a = Footprint::of(*r.a);

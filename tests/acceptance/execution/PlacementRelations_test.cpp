@@ -12,7 +12,8 @@
 // (grounding asserted for every step).
 // A placement counts as correct when it is done with its relation holding, or when it was
 // refused (nothing moved) and the tests' own brute-force search (IndependentPlacementCheck.h)
-// finds no pose that satisfies the relation and keeps 2 mm from the other parts and the walls.
+// finds no pose that satisfies the relation, keeps 2 mm from the other parts and the walls and
+// leaves the suction tool room beside the walls.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -312,4 +313,31 @@ TEST(PlacementRelations, BetweenTurnedLandmarksOnlyBesideTheLine) {
   EXPECT_TRUE(acceptance::relationHolds(*relAfter, placed));
   EXPECT_TRUE(acceptance::restsFree(after, *after.find("cuboid"), *relAfter, placed))
       << "the cuboid keeps 2 mm from the landmarks, the other parts and the walls";
+}
+
+// The independent check's tool rule on known geometry (the default scene's gray box, 60 mm
+// walls, its left outer wall at x = 0.05 m, inner at 0.056 m): the cuboid turned so 15 mm of
+// it face the wall keeps 2 mm with its centre 20 mm from the wall, but the 20 mm tool on its
+// centre would not; at 23 mm it would. Beside and inside a 20 mm tray the tool stays above
+// the walls.
+TEST(PlacementRelations, IndependentCheckLeavesTheToolRoomBesideWalls) {
+  constexpr double kOuterWall_x = 0.05, kInnerWall_x = 0.056, kWall_y = 0.12;
+  constexpr double kTooNear_m = 0.020, kFarEnough_m = 0.023;
+  CellDescription cell = CellDescription::loadScene();
+  const CellObject& cuboid = *cell.find("cuboid");
+  ASSERT_NEAR(cuboid.size_m.y() / 2, 0.015, 1e-9);
+  acceptance::Relation anywhere;
+  anywhere.kind = acceptance::Relation::NextTo;  // restsFree reads the relation's container only for In and Corner
+  anywhere.a = cell.find("star");
+  const auto at = [&](double x) {
+    return acceptance::Footprint{Eigen::Vector2d(x, kWall_y), M_PI / 2, cuboid.size_m.head<2>() / 2};
+  };
+  EXPECT_FALSE(acceptance::restsFree(cell, cuboid, anywhere, at(kOuterWall_x - kTooNear_m)));
+  EXPECT_TRUE(acceptance::restsFree(cell, cuboid, anywhere, at(kOuterWall_x - kFarEnough_m)));
+  EXPECT_FALSE(acceptance::restsFree(cell, cuboid, anywhere, at(kInnerWall_x + kTooNear_m)));
+  EXPECT_TRUE(acceptance::restsFree(cell, cuboid, anywhere, at(kInnerWall_x + kFarEnough_m)));
+  for (auto& o : cell.objects)
+    if (o.name == "gray box") o.size_m.z() = 0.020;
+  EXPECT_TRUE(acceptance::restsFree(cell, cuboid, anywhere, at(kOuterWall_x - kTooNear_m)));
+  EXPECT_TRUE(acceptance::restsFree(cell, cuboid, anywhere, at(kInnerWall_x + kTooNear_m)));
 }

@@ -29,8 +29,14 @@ struct PlacementOptions {
   /// A tight place (tried only where no place keeps clearance_m and wallMargin_m) keeps at
   /// least this to the other parts and the walls.
   double minClearance_m = 0.002;
-  /// A placed part's centre keeps this from every container wall (inside and outside): the
-  /// suction tool (radius 20 mm) above it keeps the SafetyChecker's 2 mm from the walls.
+  /// A placed part's centre keeps this from every container wall (inner walls inside it,
+  /// the outer outline outside) that the suction tool comes level with. The tool (the URDF's
+  /// `suction_tool`: a cylinder of radius 20 mm, the suction cup, 12-18 mm, inside it) is
+  /// lowered vertically onto the part's top with its axis through the part's centre
+  /// (TaskExecutor's "lower" segment), so wherever the part's top lies less than
+  /// minClearance_m above a wall's top, the tool passes beside that wall and keeps the
+  /// SafetyChecker's 2 mm from it: 20 + 2 mm from the axis. Parts whose top lies higher
+  /// (stacked, or beside a low tray) need only their footprint's clearances.
   double toolClearance_m = 0.022;
   double gridStep_m = 0.005;          ///< candidate spacing (halved for tight places)
   double turnStep_rad = M_PI / 2;     ///< yaw choices of a part: its reference yaw turned by this step
@@ -63,11 +69,15 @@ class PlacementContext {
   /// The container whose inner walls hold the footprint centre of `o`, nullptr if none.
   const CellObject* containerOf(const CellObject& o) const;
   /// The part's whole footprint at X, plus wallMargin_m, inside `container`'s inner walls,
-  /// its centre toolClearance_m from them.
+  /// its centre toolClearanceFrom(container, X) from them.
   bool fitsInside(const CellObject& container, const srp::core::Pose3& X) const;
   /// On the table top and clear of every container's outer walls by wallMargin_m (the
-  /// centre by toolClearance_m).
+  /// centre by toolClearanceFrom(container, X)).
   bool fitsTable(const srp::core::Pose3& X) const;
+  /// How far the part's centre must keep from `container`'s walls with the part at X (its
+  /// bottom at X's height): toolClearance_m where the tool lowered onto it comes level with
+  /// the walls, else 0.
+  double toolClearanceFrom(const CellObject& container, const srp::core::Pose3& X) const;
   /// Horizontal distance of X from the robot base within [minReach_m, maxReach_m].
   bool inReach(const srp::core::Pose3& X) const;
   /// No other part within clearance_m of the part at X at X's height: parts stacked

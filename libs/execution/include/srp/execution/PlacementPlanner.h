@@ -36,7 +36,8 @@
 /// part's narrower side along A-B; other turns come after (PlacementRelations.h).
 /// Where no place keeps clearance_m and wallMargin_m, a tight place keeps minClearance_m
 /// (PlacementOptions::tight(): also a finer grid and more yaw choices). A placed part's
-/// centre keeps toolClearance_m from the container walls (the suction tool above it).
+/// centre keeps toolClearance_m from every container wall the suction tool, lowered onto
+/// the part's top, comes level with (PlacementOptions::toolClearance_m).
 /// An impossible placement gives the reason and no pose.
 ///
 /// Structure: PlacementTarget.h grounds the landmarks (resolveTarget), PlacementContext.h

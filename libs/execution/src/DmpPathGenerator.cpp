@@ -28,16 +28,37 @@ double sideStep(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen:
   return (d - d.dot(u) * u).norm();
 }
 
-// The largest side step of the demonstration itself: the learned DMP replayed with its
-// own start, goal and duration.
-double demonstratedSideStep_m(const srp::motion::Dmp& learned, double dt_s) {
+// How far p lies beyond the ends of the segment a -> b along its line (past b, or
+// behind a); 0 between them and when a == b.
+double overshoot(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d chord = b - a;
+  const double length = chord.norm();
+  if (length < 1e-9) return 0.0;
+  const double along = (p - a).dot(chord / length);
+  return std::max({0.0, along - length, -along});
+}
+
+/// The demonstration's own largest side step and overshoot [m]: the learned DMP
+/// replayed with its own start, goal and duration.
+struct DemonstratedExcursion {
+  double sideStep_m = 0.0;
+  double overshoot_m = 0.0;
+};
+
+DemonstratedExcursion demonstratedExcursion(const srp::motion::Dmp& learned, double dt_s) {
   const srp::motion::DmpRollout r = learned.rollout(dt_s);
   const Eigen::Vector3d a = learned.start(), b = learned.goal();
-  double step_m = 0.0;
-  for (long i = 0; i < r.t_s.size(); ++i)
-    step_m = std::max(step_m, sideStep(a, b, Eigen::Vector3d(r.y.row(i).transpose())));
-  return step_m;
+  DemonstratedExcursion e;
+  for (long i = 0; i < r.t_s.size(); ++i) {
+    const Eigen::Vector3d p = r.y.row(i).transpose();
+    e.sideStep_m = std::max(e.sideStep_m, sideStep(a, b, p));
+    e.overshoot_m = std::max(e.overshoot_m, overshoot(a, b, p));
+  }
+  return e;
 }
+
+// A smooth clamp of x >= 0 to below `limit`: x where x << limit, tangent to it at 0.
+double softClamp(double x, double limit) { return limit > 1e-9 ? limit * std::tanh(x / limit) : 0.0; }
 }  // namespace
 
 DmpPathGenerator::DmpPathGenerator(std::map<std::string, LearnedPathSkills> skillsByObject,
@@ -193,27 +214,45 @@ CartesianPath DmpPathGenerator::rollout(const srp::motion::Dmp& learned, const s
   // through start and goal; a path within the demo's largest one is kept as it is, a
   // larger one has its side steps shrunk by one factor (smooth; same ends, at rest;
   // the motion along the line, and so the timing, unchanged).
+  //
+  // Past the goal (or behind the start) along that line the same holds: the spatial
+  // scaling grows a hand that passed the part by 5 cm on a 10 cm demonstrated Reach
+  // into a tool that passes the pre-grasp by a quarter of a metre on the robot's
+  // 50 cm one, out of the arm's reach. A path that overshoots farther than the
+  // demonstrator did (in metres) has its overshoot smoothly clamped to the demo's
+  // (softClamp: nearly unchanged where small, tangent at the segment's ends; slower
+  // there, the same ends).
   const Eigen::Vector3d p_demo_start = X_demo_world * p_world_start, p_demo_goal = X_demo_world * p_world_goal;
   std::vector<Eigen::Vector3d> p_demo(static_cast<std::size_t>(n));
-  double step_m = 0.0;
+  double step_m = 0.0, overshoot_m = 0.0;
   for (long i = 0; i < n; ++i) {
     p_demo[i] = Eigen::Vector3d(r.y.row(i).transpose()) + correction(r.t_s(i) / T);
     step_m = std::max(step_m, sideStep(p_demo_start, p_demo_goal, p_demo[i]));
+    overshoot_m = std::max(overshoot_m, overshoot(p_demo_start, p_demo_goal, p_demo[i]));
   }
-  const double demoStep_m = demonstratedSideStep_m(learned, dt_s);
-  const double keep = step_m > demoStep_m ? demoStep_m / step_m : 1.0;
+  const DemonstratedExcursion demo = demonstratedExcursion(learned, dt_s);
+  const double keep = step_m > demo.sideStep_m ? demo.sideStep_m / step_m : 1.0;
+  const bool clampOvershoot = overshoot_m > demo.overshoot_m;
   const Eigen::Vector3d chord = p_demo_goal - p_demo_start;
-  const Eigen::Vector3d u = chord.norm() < 1e-9 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(chord.normalized());
+  const double length = chord.norm();
+  const Eigen::Vector3d u = length < 1e-9 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(chord / length);
   CartesianPath path;
   path.reserve(static_cast<std::size_t>(n));
   for (long i = 0; i < n; ++i) {
     CartesianPathSample s;
     s.t_s = r.t_s(i);
-    const Eigen::Vector3d d = p_demo[i] - p_demo_start, along = d.dot(u) * u;
+    const Eigen::Vector3d d = p_demo[i] - p_demo_start;
+    double along = d.dot(u);
+    const Eigen::Vector3d side = d - along * u;
+    if (clampOvershoot) {
+      if (along > length) along = length + softClamp(along - length, demo.overshoot_m);
+      if (along < 0.0) along = -softClamp(-along, demo.overshoot_m);
+    }
     s.X_world_tcp = srp::core::Pose3::Identity();
     s.X_world_tcp.linear() = q_start.slerp(minimumJerk(s.t_s / T), q_goal).toRotationMatrix();
     s.X_world_tcp.translation() =
-        X_world_demo_ * (keep < 1.0 ? Eigen::Vector3d(p_demo_start + along + keep * (d - along)) : p_demo[i]);
+        X_world_demo_ * (keep < 1.0 || clampOvershoot ? Eigen::Vector3d(p_demo_start + along * u + keep * side)
+                                                      : p_demo[i]);
     path.push_back(s);
   }
   // The rollout converges to the goal; the path contract is start and goal exactly.

@@ -202,6 +202,48 @@ TEST(DmpPathGenerator, ShortDemoRetargetedFarKeepsTheDemonstratorsDetour) {
   EXPECT_GE(lowest_m, 0.2 - kDemoDetour_m - kShapeTol_m) << "the re-targeted Reach dips through the table";
 }
 
+// A Reach demonstrated 10 cm long whose hand passes the part by 5 cm and comes back
+// to it (as a demonstrator's hand that starts near the part and hovers beyond it
+// does), re-targeted to the robot's 50 cm from its own start: the spatial scaling alone
+// passes the pre-grasp by 17 cm (HRT1 task3's Reach: 6 cm past the toy in the demo,
+// 29 cm past the pre-grasp re-targeted, out of the arm's reach). The overshoot stays within the demonstrator's own, and the path still
+// ends exactly on its goal.
+TEST(DmpPathGenerator, ShortDemoRetargetedFarKeepsTheDemonstratorsOvershoot) {
+  Pose3 X_world_camera = Pose3::Identity();
+  X_world_camera.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  X_world_camera.translation() = Eigen::Vector3d(0.0, 0.0, 0.85);
+  const int n = 201;
+  constexpr double kDemoLength_m = 0.10, kDemoOvershoot_m = 0.05;
+  Eigen::VectorXd t_s(n);
+  Eigen::MatrixXd p_camera_m(n, 3);
+  for (int i = 0; i < n; ++i) {
+    const double s = i / double(n - 1);
+    t_s(i) = 2.0 * s;
+    // Along camera x: 5 cm past the part by 60 % of the time, then back to it, still
+    // moving when the demonstration's Reach ends (the hand closes on the way back).
+    const double a = std::min(1.0, s / 0.6), mj = a * a * a * (10 - 15 * a + 6 * a * a);
+    const double x = (kDemoLength_m + kDemoOvershoot_m) * mj - kDemoOvershoot_m * std::max(0.0, (s - 0.6) / 0.4);
+    p_camera_m.row(i) << x, 0.0, 0.6;
+  }
+  std::map<std::string, LearnedPathSkills> skills;
+  srp::motion::DmpConfig spatial;  // as fromTaskModel executes a learned DMP
+  spatial.scaling = srp::motion::ForcingScaling::Spatial;
+  skills["toy"].reach = srp::motion::Dmp::imitate(t_s, p_camera_m, spatial);
+  const DmpPathGenerator gen(skills, X_world_camera, {}, 0.0);
+  const Pose3 a = toolDown({-0.25, 0.0, 0.25}), b = toolDown({0.25, 0.0, 0.25});
+  const CartesianPath path = gen.generate(SkillType::Reach, "toy", a, b, 0.01);
+  EXPECT_LT((path.front().X_world_tcp.translation() - a.translation()).norm(), kEndpointTol_m);
+  EXPECT_LT((path.back().X_world_tcp.translation() - b.translation()).norm(), kEndpointTol_m);
+  double past_m = 0.0, behind_m = 0.0;
+  for (const auto& s : path) {
+    past_m = std::max(past_m, s.X_world_tcp.translation().x() - b.translation().x());
+    behind_m = std::max(behind_m, a.translation().x() - s.X_world_tcp.translation().x());
+  }
+  EXPECT_GT(past_m, 0.5 * kDemoOvershoot_m) << "the demonstrator's overshoot is kept, not flattened";
+  EXPECT_LE(past_m, kDemoOvershoot_m + kShapeTol_m) << "the re-targeted Reach passes its goal farther than the demo";
+  EXPECT_LE(behind_m, kShapeTol_m);
+}
+
 TEST(DmpPathGenerator, WithoutLearnedSkillsTheAppendixCModelFallsBackToMinimumJerk) {
   const auto j = srp::core::readJsonFile(std::string(SRP_DATASETS_DIR) + "/examples/appendix_c_instruction1.json");
   const auto model = srp::taskdb::taskModelFromJson(j, "appendix C");

@@ -112,6 +112,19 @@ std::optional<double> medianDepthInDisc(const cv::Mat& depth_m, const cv::Mat& m
   return depths[depths.size() / 2];
 }
 
+/// The maximum of the distance transform inside `mask` (CV_8UC1); nullopt when empty.
+std::optional<Eigen::Vector2d> thickestPoint(const cv::Mat& mask) {
+  // The maximum of the distance transform inside the mask (on its bounding box, with a free margin).
+  const cv::Rect box = cv::boundingRect(mask);
+  if (box.area() == 0) return std::nullopt;
+  cv::Mat padded(box.height + 2, box.width + 2, CV_8UC1, cv::Scalar(0)), distance;
+  mask(box).copyTo(padded(cv::Rect(1, 1, box.width, box.height)));
+  cv::distanceTransform(padded, distance, cv::DIST_L2, cv::DIST_MASK_5);
+  cv::Point best;
+  cv::minMaxLoc(distance, nullptr, nullptr, nullptr, &best);
+  return Eigen::Vector2d(box.x + best.x - 1, box.y + best.y - 1);
+}
+
 }  // namespace
 
 MarkerFreeHandDetector::MarkerFreeHandDetector(const Options& options) : options_(options) {
@@ -536,6 +549,12 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
     if (trace)
       core::Log::writef("hand", core::Log::Level::Debug, "frame %d: arm %d px (border %d), skin on it below %d px\n",
                         frame.index, bestArea, bestTouches, options_.minHandPixels);
+    return std::nullopt;
+  }
+  if (!bestTouches && cv::countNonZero(hand.mask) < options_.minIslandSkinFraction * bestArea) {
+    // Foreground that reaches no border and is mostly not skin: a part about to be moved (the
+    // whole-recording background shows what stood there later), a shaded side of skin-like colour.
+    if (trace) std::fprintf(stderr, "frame %d: foreground away from the border, mostly not skin\n", frame.index);
     return std::nullopt;
   }
   lastMask_ = hand.mask;
@@ -984,10 +1003,16 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::cuffAnchor
       }
   }
   if (nCuff < options_.minCuffPixels) return std::nullopt;
-  // The palm a fixed length from the cuff along the arm (sleeve + hand) axis.
+  // The palm a fixed length from the cuff towards the hand's thickest point
+  // (cuffTowardsThickest; else along the arm's, sleeve + hand, axis).
   Anchor a;
   a.anchor_px = wrist / nCuff;
   a.dir = principalAxis(hand, sleeve, entry, options_.axisStride_px, options_.minElongation)->dir;
+  if (options_.cuffTowardsThickest) {
+    if (const auto thickest = thickestPoint(hand);
+        thickest && (*thickest - a.anchor_px).norm() > options_.openDiameter_px)
+      a.dir = (*thickest - a.anchor_px).normalized();
+  }
   a.length_m = options_.palmFromWrist_m;
   geometry_.haveWrist = true;
   geometry_.wrist_px = a.anchor_px;
@@ -1025,21 +1050,39 @@ MarkerFreeHandDetector::Anchor MarkerFreeHandDetector::fingertipAnchor(const cv:
 HandObservation MarkerFreeHandDetector::placePalm(const rawlog::RgbdFrame& frame, const Anchor& a,
                                                   const HandBlob& hand, const Eigen::Vector2d& handMean,
                                                   int armArea) {
-  // The palm is placed in metres: the anchor (far end, cuff line or
-  // fingertips) back-projected at the palm's depth, then a fixed length along
-  // the axis in that plane. (The cuff's own depth is no help: the median
-  // there is the sleeve's, centimetres above the wrist's skin.)
+  // The palm is placed in metres: from the anchor (far end, cuff line or
+  // fingertips) a fixed length along the axis, walked on the hand's depth
+  // profile (handTilt: a hand seen obliquely, as from the demonstrator's
+  // head, is foreshortened in the image), then at the palm's own depth. (The
+  // cuff's own depth is no help: the median there is the sleeve's,
+  // centimetres above the wrist's skin.)
   const auto& k = frame.intrinsics;
-  const Eigen::Vector2d dir_m = Eigen::Vector2d(a.dir.x() / k.fx_px, a.dir.y() / k.fy_px).normalized();
-  auto palmAt = [&](double z_m) {  // palm centre if it lies at depth z_m
-    return Eigen::Vector3d((a.anchor_px.x() - k.cx_px) * z_m / k.fx_px + a.length_m * dir_m.x(),
-                           (a.anchor_px.y() - k.cy_px) * z_m / k.fy_px + a.length_m * dir_m.y(), z_m);
+  auto backProject = [&](const Eigen::Vector2d& p, double z_m) {
+    return Eigen::Vector3d((p.x() - k.cx_px) * z_m / k.fx_px, (p.y() - k.cy_px) * z_m / k.fy_px, z_m);
   };
   auto project = [&](const Eigen::Vector3d& p) {
     return Eigen::Vector2d(k.fx_px * p.x() / p.z() + k.cx_px, k.fy_px * p.y() / p.z() + k.cy_px);
   };
-  // First at the hand's depth (for the palm disc), then at the palm's own.
-  Eigen::Vector2d palm = project(palmAt(hand.z_m + options_.palmDepth_m));
+  Eigen::Vector2d palm;
+  const std::optional<Eigen::Vector2d> tilt = options_.walkOnDepth ? handTilt(frame, a, hand) : std::nullopt;
+  if (tilt) {
+    // Depth z(s) = tilt(0) + tilt(1) s along the axis (s in pixels from the anchor): walk until the
+    // 3D distance from the anchor is the length.
+    const double sign = a.length_m < 0.0 ? -1.0 : 1.0, target = std::abs(a.length_m);
+    const Eigen::Vector3d p0 = backProject(a.anchor_px, (*tilt)(0));
+    const double maxS = options_.maxWalkFactor * target * hand.pxPerM;
+    double s = 0.0;
+    for (; s < maxS; s += 0.5) {
+      const double z = (*tilt)(0) + (*tilt)(1) * sign * s;
+      if (z <= 0.0 || (backProject(a.anchor_px + sign * s * a.dir, z) - p0).norm() >= target) break;
+    }
+    palm = a.anchor_px + sign * s * a.dir;
+  } else {
+    const Eigen::Vector2d dir_m = Eigen::Vector2d(a.dir.x() / k.fx_px, a.dir.y() / k.fy_px).normalized();
+    const Eigen::Vector3d p = backProject(a.anchor_px, hand.z_m + options_.palmDepth_m) +
+                              a.length_m * Eigen::Vector3d(dir_m.x(), dir_m.y(), 0.0);
+    palm = project(p);
+  }
   HandObservation h;
   h.confidence = std::min(1.0, armArea / options_.confidenceFullArea_px) *
                  (geometry_.haveWrist ? 1.0 : options_.noWristConfidence);
@@ -1049,13 +1092,21 @@ HandObservation MarkerFreeHandDetector::placePalm(const rawlog::RgbdFrame& frame
   // enter or leave): the last palm depth if it is a few frames old (the caller
   // carries it along the ray), else the whole hand's (biased by the fingers'
   // and the wrist's tilt, but the best there is).
-  if (!z && lastDepth_m_ > 0.0 && frameCount_ - lastDepthFrame_ <= options_.maxCarryFrames) {
-    palm = project(palmAt(lastDepth_m_ + options_.palmDepth_m));
-  } else {
+  if (z || lastDepth_m_ <= 0.0 || frameCount_ - lastDepthFrame_ > options_.maxCarryFrames) {
     if (!z) z = medianDepthInDisc(frame.depth_m, hand.mask, handMean, 1e4, options_.minDepthSamples);
     if (z) {
-      h.p_camera_palm_m = palmAt(*z + options_.palmDepth_m);
-      palm = project(h.p_camera_palm_m);
+      // The palm centre lies palmDepth_m under the visible back of the hand:
+      // along the back's normal where the palm disc's depths give one (a
+      // hand seen obliquely), else along the ray.
+      const std::optional<Eigen::Vector3d> n =
+          options_.palmAlongNormal ? surfaceNormal(frame, hand.mask, palm, options_.palmRadius_m * hand.pxPerM)
+                                   : std::nullopt;
+      if (n) {
+        h.p_camera_palm_m = backProject(palm, *z) - options_.palmDepth_m * *n;
+        palm = project(h.p_camera_palm_m);
+      } else {
+        h.p_camera_palm_m = backProject(palm, *z + options_.palmDepth_m);
+      }
       h.hasDepth = true;
       lastDepth_m_ = *z;
       lastDepthFrame_ = frameCount_;
@@ -1064,6 +1115,84 @@ HandObservation MarkerFreeHandDetector::placePalm(const rawlog::RgbdFrame& frame
   h.palm_px = palm;
   geometry_.palm_px = palm;
   return h;
+}
+
+std::optional<Eigen::Vector3d> MarkerFreeHandDetector::surfaceNormal(const rawlog::RgbdFrame& frame,
+                                                                     const cv::Mat& mask,
+                                                                     const Eigen::Vector2d& centre_px,
+                                                                     double radius_px) const {
+  // The smallest principal direction of the disc's 3D points, towards the camera.
+  const auto& k = frame.intrinsics;
+  const int r = static_cast<int>(std::ceil(radius_px));
+  const int cu = static_cast<int>(std::lround(centre_px.x())), cv_ = static_cast<int>(std::lround(centre_px.y()));
+  const int stride = options_.axisStride_px;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
+  int n = 0;
+  for (int v = std::max(0, cv_ - r); v <= std::min(mask.rows - 1, cv_ + r); v += stride) {
+    const uchar* m = mask.ptr<uchar>(v);
+    const float* z = frame.depth_m.ptr<float>(v);
+    for (int u = std::max(0, cu - r); u <= std::min(mask.cols - 1, cu + r); u += stride) {
+      if (!m[u] || z[u] <= 0.f || (Eigen::Vector2d(u, v) - centre_px).squaredNorm() > radius_px * radius_px) continue;
+      const Eigen::Vector3d p((u - k.cx_px) * z[u] / k.fx_px, (v - k.cy_px) * z[u] / k.fy_px, z[u]);
+      mean += p;
+      second += p * p.transpose();
+      ++n;
+    }
+  }
+  if (n < options_.minTiltSamples) return std::nullopt;
+  mean /= n;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(second / n - mean * mean.transpose());
+  // A disc, not a line or a blob: the two in-plane spreads clearly above the normal's.
+  if (eig.eigenvalues()(0) > options_.maxNormalFlatness * eig.eigenvalues()(1)) return std::nullopt;
+  Eigen::Vector3d normal = eig.eigenvectors().col(0).normalized();
+  if (normal.dot(mean) > 0.0) normal = -normal;
+  return normal;
+}
+
+std::optional<Eigen::Vector2d> MarkerFreeHandDetector::handTilt(const rawlog::RgbdFrame& frame, const Anchor& a,
+                                                                const HandBlob& hand) const {
+  // The hand's valid depths between the anchor and a little beyond the
+  // palm's length along the axis, as a line z = c0 + c1 s in the pixel
+  // distance s from the anchor (least squares, then once more without the
+  // samples farther than tiltInlier_m from the first line: the fingers
+  // curled round a part, a depth edge).
+  const double sign = a.length_m < 0.0 ? -1.0 : 1.0;
+  const double reach_px = (std::abs(a.length_m) + options_.palmRadius_m) * hand.pxPerM;
+  std::vector<Eigen::Vector2d> samples;  // (s, z)
+  const int stride = options_.axisStride_px;
+  for (int v = 0; v < hand.mask.rows; v += stride) {
+    const uchar* m = hand.mask.ptr<uchar>(v);
+    const float* z = frame.depth_m.ptr<float>(v);
+    for (int u = 0; u < hand.mask.cols; u += stride) {
+      if (!m[u] || z[u] <= 0.f) continue;
+      const double s = sign * (Eigen::Vector2d(u, v) - a.anchor_px).dot(a.dir);
+      if (s >= 0.0 && s <= reach_px) samples.emplace_back(s, z[u]);
+    }
+  }
+  auto fit = [&](const std::optional<Eigen::Vector2d>& first) -> std::optional<Eigen::Vector2d> {
+    Eigen::Matrix2d ata = Eigen::Matrix2d::Zero();
+    Eigen::Vector2d atb = Eigen::Vector2d::Zero();
+    int n = 0;
+    double sMin = 1e9, sMax = -1e9;
+    for (const auto& q : samples) {
+      if (first && std::abs((*first)(0) + (*first)(1) * q.x() - q.y()) > options_.tiltInlier_m) continue;
+      const Eigen::Vector2d r(1.0, q.x());
+      ata += r * r.transpose();
+      atb += r * q.y();
+      sMin = std::min(sMin, q.x());
+      sMax = std::max(sMax, q.x());
+      ++n;
+    }
+    // Enough samples spread over at least half the reach.
+    if (n < options_.minTiltSamples || sMax - sMin < 0.5 * reach_px) return std::nullopt;
+    return Eigen::Vector2d(ata.ldlt().solve(atb));
+  };
+  const auto first = fit(std::nullopt);
+  if (!first) return std::nullopt;
+  const auto line = fit(first);
+  if (!line || (*line)(0) <= 0.0) return std::nullopt;
+  return line;
 }
 
 }  // namespace srp::perception

@@ -517,14 +517,20 @@ void ObjectDiscovery::Impl::assign(int si, std::vector<Eigen::Vector3f>&& points
         std::abs(s.top_m - a.top_m) <= o.restTopTol_m)
       r.anchor = si;
   }
-  // The fused cloud: the largest sightings, those without the hand near preferred.
+  // The fused cloud: the largest sightings, those as high as the anchor and then those
+  // without the hand near preferred.
   if (static_cast<int>(points.size()) > o.pointsPerSighting) {
     std::vector<Eigen::Vector3f> sub;
     const double step = static_cast<double>(points.size()) / o.pointsPerSighting;
     for (int i = 0; i < o.pointsPerSighting; ++i) sub.push_back(points[static_cast<std::size_t>(i * step)]);
     points.swap(sub);
   }
+  const double anchorTop_m = sightings[static_cast<std::size_t>(r.anchor)].top_m;
+  const auto asHigh = [&](const Rest::Kept& k) {
+    return std::abs(sightings[static_cast<std::size_t>(k.sighting)].top_m - anchorTop_m) <= o.restTopTol_m;
+  };
   const auto worse = [&](const Rest::Kept& a, const Rest::Kept& b) {  // a is worse than b
+    if (asHigh(a) != asHigh(b)) return !asHigh(a);
     if (a.nearHand != b.nearHand) return a.nearHand;
     return sightings[static_cast<std::size_t>(a.sighting)].pixels < sightings[static_cast<std::size_t>(b.sighting)].pixels;
   };
@@ -538,10 +544,22 @@ void ObjectDiscovery::Impl::assign(int si, std::vector<Eigen::Vector3f>&& points
 }
 
 std::vector<Eigen::Vector3f> ObjectDiscovery::Impl::fused(const Rest& r) const {
-  std::vector<Eigen::Vector3f> out;
-  const bool anyFree = std::any_of(r.kept.begin(), r.kept.end(), [](const Rest::Kept& k) { return !k.nearHand; });
+  // Only sightings as high as the anchor (restTopTol_m, the anchor's own rule): a
+  // sighting that joins the place by its footprint but rises far above it is the part
+  // with the arm that reaches for it (a larger segment, so kept first), not the part.
+  const double anchorTop_m = sightings[static_cast<std::size_t>(r.anchor)].top_m;
+  const auto asHigh = [&](const Rest::Kept& k) {
+    return std::abs(sightings[static_cast<std::size_t>(k.sighting)].top_m - anchorTop_m) <= o.restTopTol_m;
+  };
+  std::vector<const Rest::Kept*> usable;
   for (const auto& k : r.kept)
-    if (!anyFree || !k.nearHand) out.insert(out.end(), k.points.begin(), k.points.end());
+    if (asHigh(k)) usable.push_back(&k);
+  if (usable.empty())
+    for (const auto& k : r.kept) usable.push_back(&k);
+  std::vector<Eigen::Vector3f> out;
+  const bool anyFree = std::any_of(usable.begin(), usable.end(), [](const Rest::Kept* k) { return !k->nearHand; });
+  for (const Rest::Kept* k : usable)
+    if (!anyFree || !k->nearHand) out.insert(out.end(), k->points.begin(), k->points.end());
   return out;
 }
 

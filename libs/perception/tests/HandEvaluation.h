@@ -8,13 +8,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <functional>
 #include <map>
-#include <optional>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
 #include <string>
-#include <ctime>
 #include <vector>
 
 #include "srp/perception/MarkerFreeHandDetector.h"
@@ -23,6 +25,55 @@
 #include "srp/synth/DemoGroundTruth.h"
 
 namespace srp::perception::testing {
+
+/// Overrides of detector options by name, SRP_HAND_OPTIONS="name=value,name=value" (development: selection runs).
+inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
+  MarkerFreeHandDetector::Options o;
+  const char* env = std::getenv("SRP_HAND_OPTIONS");
+  if (!env) return o;
+  std::map<std::string, double*> d{{"skinMaxMahalanobis", &o.skinMaxMahalanobis},
+                                   {"skinModeRadius", &o.skinModeRadius},
+                                   {"palmFromFarEnd_m", &o.palmFromFarEnd_m},
+                                   {"maxHandLength_m", &o.maxHandLength_m},
+                                   {"minForeground_m", &o.minForeground_m},
+                                   {"backgroundPercentile", &o.backgroundPercentile},
+                                   {"skinLumaModeRadius", &o.skinLumaModeRadius},
+                                   {"bareForearmFraction", &o.bareForearmFraction},
+                                   {"skinGrowMahalanobis", &o.skinGrowMahalanobis},
+                                   {"skinLumaFloorFraction", &o.skinLumaFloorFraction},
+                                   {"skinNoiseLuma", &o.skinNoiseLuma},
+                                   {"maxPalmSpeed_mps", &o.maxPalmSpeed_mps},
+                                   {"minSkinReach_m", &o.minSkinReach_m},
+                                   {"minBackgroundValidFraction", &o.minBackgroundValidFraction},
+                                   {"tiltInlier_m", &o.tiltInlier_m},
+                                   {"maxWalkFactor", &o.maxWalkFactor},
+                                   {"maxNormalFlatness", &o.maxNormalFlatness},
+                                   {"minIslandSkinFraction", &o.minIslandSkinFraction}};
+  std::map<std::string, int*> i{{"holeColourChange", &o.holeColourChange},
+                                {"backgroundFillDiameter_px", &o.backgroundFillDiameter_px},
+                                {"skinMinLuma", &o.skinMinLuma},
+                                {"maxDepthLag_px", &o.maxDepthLag_px},
+                                {"minLagColourChange", &o.minLagColourChange},
+                                {"geodesicStep_px", &o.geodesicStep_px},
+                                {"skinColourBlur_px", &o.skinColourBlur_px},
+                                {"minTiltSamples", &o.minTiltSamples}};
+  std::map<std::string, bool*> b{{"walkOnDepth", &o.walkOnDepth},
+                                 {"palmAlongNormal", &o.palmAlongNormal},
+                                 {"cuffTowardsThickest", &o.cuffTowardsThickest}};
+  std::stringstream ss(env);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos) throw std::invalid_argument("SRP_HAND_OPTIONS: '" + item + "' is not name=value");
+    const std::string name = item.substr(0, eq);
+    const double value = std::stod(item.substr(eq + 1));
+    if (d.count(name)) *d[name] = value;
+    else if (i.count(name)) *i[name] = static_cast<int>(value);
+    else if (b.count(name)) *b[name] = value != 0.0;
+    else throw std::invalid_argument("SRP_HAND_OPTIONS: no option '" + name + "' here (see optionsFromEnvironment)");
+  }
+  return o;
+}
 
 inline double percentile(std::vector<double> v, double p) {
   if (v.empty()) return std::nan("");
@@ -38,10 +89,43 @@ struct HandEvaluation {
   double detectCpu_s = 0.0;  ///< thread CPU time in detect() over the frames after the background ones
   int timedFrames = 0;
   std::vector<double> error_m;  ///< palm centre 3D error of every detection in a hand-in-view frame
+  /// Image error of the same detections [px, scaled to a 640-px wide image].
+  std::vector<double> error640_px;
+  int carried = 0;  ///< hand-in-view frames with a part in the hand
+  /// Of those, palms past the held part: beyond its origin (the centre of its bottom face) on the line from
+  /// the true palm, (palm - true palm) . u > |part - true palm|, u the unit vector towards the part (3D).
+  int farSide = 0;
+  double worstFarSide_m = -1.0;  ///< the largest (palm - true palm) . u - |part - true palm| [m]
   std::map<std::string, std::vector<double>> errorByPhase_m;
   std::map<std::string, std::pair<int, int>> detectedByPhase;  ///< phase -> (detected, in view)
 
   double rate() const { return static_cast<double>(error_m.size()) / std::max(1, handInView); }
+  /// Pools another evaluation's frames into this one.
+  void add(const HandEvaluation& o) {
+    frames += o.frames;
+    handInView += o.handInView;
+    handWithoutHand += o.handWithoutHand;
+    depthCarried += o.depthCarried;
+    detectCpu_s += o.detectCpu_s;
+    timedFrames += o.timedFrames;
+    error_m.insert(error_m.end(), o.error_m.begin(), o.error_m.end());
+    error640_px.insert(error640_px.end(), o.error640_px.begin(), o.error640_px.end());
+    for (const auto& [phase, e] : o.errorByPhase_m)
+      errorByPhase_m[phase].insert(errorByPhase_m[phase].end(), e.begin(), e.end());
+    for (const auto& [phase, n] : o.detectedByPhase) {
+      detectedByPhase[phase].first += n.first;
+      detectedByPhase[phase].second += n.second;
+    }
+    carried += o.carried;
+    farSide += o.farSide;
+    worstFarSide_m = std::max(worstFarSide_m, o.worstFarSide_m);
+  }
+  /// Share of the hand-in-view frames with a palm within `tol_px` (at 640-px width); a miss counts as outside.
+  double within640(double tol_px) const {
+    return static_cast<double>(
+               std::count_if(error640_px.begin(), error640_px.end(), [&](double e) { return e <= tol_px; })) /
+           std::max(1, handInView);
+  }
   double median_m() const { return percentile(error_m, 0.5); }
   double p95_m() const { return percentile(error_m, 0.95); }
 
@@ -52,6 +136,10 @@ struct HandEvaluation {
                 what.c_str(), frames, error_m.size(), handInView, 100.0 * rate(), depthCarried, 1e3 * median_m(),
                 1e3 * p95_m(), 1e3 * percentile(error_m, 1.0), handWithoutHand,
                 1e3 * detectCpu_s / std::max(1, timedFrames));
+    std::printf(
+        "[ figures  ]   within 40 px (640-px width) %.1f %%, image median %.1f px; palm past the held part in %d "
+        "of %d carry frames (closest %.0f mm)\n",
+        100.0 * within640(40.0), percentile(error640_px, 0.5), farSide, carried, 1e3 * worstFarSide_m);
     for (const auto& [phase, e] : errorByPhase_m)
       std::printf("[ figures  ]   %-8s detected %3d/%3d, median %5.1f mm, p95 %5.1f mm\n", phase.c_str(),
                   detectedByPhase.at(phase).first, detectedByPhase.at(phase).second, 1e3 * percentile(e, 0.5),
@@ -88,13 +176,20 @@ inline void drawHandGeometry(const rawlog::RgbdFrame& f, const MarkerFreeHandDet
 
 /// `onFrame(frame, detector, truth, p_camera_palm_m)` is called after every
 /// frame (drawing, collecting frames for a benchmark); nullopt = no palm.
+/// `previewFirst`: every frame is shown to preview() first, as `srp perceive` does
+/// (whole-recording background, learnt skin); else the first frames are the background.
 inline HandEvaluation evaluateMarkerFreeHand(
     const std::string& rawlogPath, const MarkerFreeHandDetector::Options& options = {},
     const std::function<void(const rawlog::RgbdFrame&, const MarkerFreeHandDetector&, const synth::GroundTruthFrame&,
-                             const std::optional<Eigen::Vector3d>&)>& onFrame = {}) {
+                             const std::optional<Eigen::Vector3d>&)>& onFrame = {},
+    bool previewFirst = false) {
   const auto gt = synth::DemoGroundTruth::load(synth::groundTruthPathFor(rawlogPath));
-  rawlog::RawlogReader reader(rawlogPath);
   MarkerFreeHandDetector detector(options);
+  if (previewFirst) {
+    rawlog::RawlogReader all(rawlogPath);
+    while (auto f = all.next()) detector.preview(*f);
+  }
+  rawlog::RawlogReader reader(rawlogPath);
   HandEvaluation ev;
   double lastZ_m = -1.0;
   while (auto f = reader.next()) {
@@ -106,8 +201,9 @@ inline HandEvaluation evaluateMarkerFreeHand(
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t0);
     const auto h = detector.detect(*f);
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t1);
-    if (static_cast<int>(i) >= options.backgroundFrames) ++ev.timedFrames;
-    if (static_cast<int>(i) >= options.backgroundFrames)
+    const bool timed = previewFirst || static_cast<int>(i) >= options.backgroundFrames;
+    if (timed) ++ev.timedFrames;
+    if (timed)
       ev.detectCpu_s += static_cast<double>(t1.tv_sec - t0.tv_sec) + 1e-9 * static_cast<double>(t1.tv_nsec - t0.tv_nsec);
     bool have = false;
     Eigen::Vector3d p_m = Eigen::Vector3d::Zero();
@@ -121,6 +217,10 @@ inline HandEvaluation evaluateMarkerFreeHand(
       ++ev.depthCarried;
       have = true;
     }
+    const auto& k = f->intrinsics;
+    auto project = [&](const Eigen::Vector3d& q) {
+      return Eigen::Vector2d(k.fx_px * q.x() / q.z() + k.cx_px, k.fy_px * q.y() / q.z() + k.cy_px);
+    };
     if (!truth.handInView) {
       ev.handWithoutHand += have;
     } else {
@@ -132,6 +232,18 @@ inline HandEvaluation evaluateMarkerFreeHand(
         const double e = (p_m - truth.p_camera_palm_m).norm();
         ev.error_m.push_back(e);
         ev.errorByPhase_m[truth.phase].push_back(e);
+        ev.error640_px.push_back((project(p_m) - project(truth.p_camera_palm_m)).norm() * 640.0 / k.width_px);
+      }
+      if (!truth.carriedObject.empty()) {
+        ++ev.carried;
+        if (have) {
+          // In 3D: past the part's origin (its bottom face's centre) on the line from the true palm.
+          const Eigen::Vector3d toPart =
+              gt.X_camera_object(truth.index, truth.carriedObject).translation() - truth.p_camera_palm_m;
+          const double beyond_m = (p_m - truth.p_camera_palm_m).dot(toPart.normalized()) - toPart.norm();
+          ev.worstFarSide_m = std::max(ev.worstFarSide_m, beyond_m);
+          ev.farSide += beyond_m > 0.0;
+        }
       }
     }
     if (onFrame) onFrame(*f, detector, truth, have ? std::optional<Eigen::Vector3d>(p_m) : std::nullopt);

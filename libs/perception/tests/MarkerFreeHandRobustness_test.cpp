@@ -19,6 +19,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "HandEvaluation.h"
 #include "Hrt1Palms.h"
 
 namespace srp::perception {
@@ -26,46 +27,6 @@ namespace {
 
 using testing::Hrt1Task;
 using testing::PalmScore;
-
-/// Overrides of detector options by name (development: selection runs).
-MarkerFreeHandDetector::Options optionsFromEnvironment() {
-  MarkerFreeHandDetector::Options o;
-  const char* env = std::getenv("SRP_HAND_OPTIONS");
-  if (!env) return o;
-  std::map<std::string, double*> d{{"skinMaxMahalanobis", &o.skinMaxMahalanobis},
-                                   {"skinModeRadius", &o.skinModeRadius},
-                                   {"palmFromFarEnd_m", &o.palmFromFarEnd_m},
-                                   {"maxHandLength_m", &o.maxHandLength_m},
-                                   {"minForeground_m", &o.minForeground_m},
-                                   {"backgroundPercentile", &o.backgroundPercentile},
-                                   {"skinLumaModeRadius", &o.skinLumaModeRadius},
-                                   {"bareForearmFraction", &o.bareForearmFraction},
-                                   {"skinGrowMahalanobis", &o.skinGrowMahalanobis},
-                                   {"skinLumaFloorFraction", &o.skinLumaFloorFraction},
-                                   {"skinNoiseLuma", &o.skinNoiseLuma},
-                                   {"maxPalmSpeed_mps", &o.maxPalmSpeed_mps},
-                                   {"minSkinReach_m", &o.minSkinReach_m},
-                                   {"minBackgroundValidFraction", &o.minBackgroundValidFraction}};
-  std::map<std::string, int*> i{{"holeColourChange", &o.holeColourChange},
-                                {"backgroundFillDiameter_px", &o.backgroundFillDiameter_px},
-                                {"skinMinLuma", &o.skinMinLuma},
-                                {"maxDepthLag_px", &o.maxDepthLag_px},
-                                {"minLagColourChange", &o.minLagColourChange},
-                                {"geodesicStep_px", &o.geodesicStep_px},
-                                {"skinColourBlur_px", &o.skinColourBlur_px}};
-  std::stringstream ss(env);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    const auto eq = item.find('=');
-    if (eq == std::string::npos) throw std::invalid_argument("SRP_HAND_OPTIONS: '" + item + "' is not name=value");
-    const std::string name = item.substr(0, eq);
-    const double value = std::stod(item.substr(eq + 1));
-    if (d.count(name)) *d[name] = value;
-    else if (i.count(name)) *i[name] = static_cast<int>(value);
-    else throw std::invalid_argument("SRP_HAND_OPTIONS: no option '" + name + "' here (see optionsFromEnvironment)");
-  }
-  return o;
-}
 
 /// task2 and task3, read once per process.
 const Hrt1Task& task(const std::string& name) {
@@ -157,7 +118,7 @@ TEST(MarkerFreeHandRobustness, Hrt1UnderPerturbations) {
   // from the hand, the torso farther; reached worst 86.3 px (warm white
   // balance, task3 frame 17: on the toy, less than a hand length away).
   constexpr double kMaxPalmError_px = 120.0;
-  const auto scores = table(optionsFromEnvironment());
+  const auto scores = table(testing::optionsFromEnvironment());
   int within = 0, labelled = 0;
   for (const auto& [key, s] : scores) {
     within += s.within;

@@ -176,10 +176,17 @@ struct Stance {
   Eigen::Vector3d shoulder;
 };
 
-Stance demonstratorStance(const srp::core::Scene& scene, const HandModel& hand) {
-  const Eigen::Vector3d cameraFoot(scene.X_world_camera.translation().x(), scene.X_world_camera.translation().y(), 0.0);
+Stance demonstratorStance(const srp::core::Scene& scene, const HandModel& hand, const DemoOptions& options) {
+  Eigen::Vector3d cameraFoot(scene.X_world_camera.translation().x(), scene.X_world_camera.translation().y(), 0.0);
   Eigen::Vector3d away = cameraFoot - Eigen::Vector3d(scene.X_world_base.translation().x(),
                                                       scene.X_world_base.translation().y(), 0.0);
+  if (options.demonstratorSide_world.norm() > 1e-9) {
+    // A given side: from the table point on the camera's optical axis (the
+    // camera's foot when the axis does not meet the table).
+    away = Eigen::Vector3d(options.demonstratorSide_world.x(), options.demonstratorSide_world.y(), 0.0);
+    const Eigen::Vector3d o = scene.X_world_camera.translation(), d = scene.X_world_camera.linear().col(2);
+    if (d.z() < -1e-6 && o.z() > 0.0) cameraFoot = o - (o.z() / d.z()) * d;
+  }
   if (away.norm() < 1e-6) away = Eigen::Vector3d::UnitY();
   away.normalize();
   const double restYaw = std::atan2(-away.y(), -away.x());
@@ -427,7 +434,7 @@ DemoTimeline planDemonstration(const srp::core::Scene& sceneIn, const srp::core:
   out.speedFactor = options.speedFactor;
   if (options.randomise) randomiseScene(out, catalogue, steps, rng, unit);
   const double speed = std::max(out.speedFactor, 0.1);
-  const Stance stance = demonstratorStance(out.scene, hand);
+  const Stance stance = demonstratorStance(out.scene, hand, options);
   const std::vector<Segment> segments = planSegments(out.scene, catalogue, steps, options, stance, speed, rng, unit);
   sampleFrames(out, segments, steps, options, rng, unit);
   return out;

@@ -171,6 +171,41 @@ class MarkerFreeHandDetector : public HandDetector {
     /// The last palm depth is carried along the palm's ray for at most this
     /// many frames (the caller does it, see DemoPerception) [frames].
     int maxCarryFrames = 3;
+    /// The palm's length from its anchor (palmFromWrist_m, palmFromFarEnd_m,
+    /// palmFromFingertips_m) is walked in 3D on the hand's depth profile (a
+    /// line fitted to the hand's depths along the axis), not in the image
+    /// plane at one depth: a hand seen obliquely (from the demonstrator's
+    /// head, from the side) is foreshortened. false: in the image plane.
+    bool walkOnDepth = true;
+    /// That profile: samples farther than this from the first line fit are
+    /// left out of the second (curled fingers, depth edges) [m].
+    double tiltInlier_m = 0.02;
+    /// That profile needs this many valid depth samples (every
+    /// axisStride_px-th pixel), spread over half the length at least [samples].
+    int minTiltSamples = 20;
+    /// The walk stops at this many times the length in the image plane (a
+    /// hand seen almost end-on) [ratio].
+    double maxWalkFactor = 2.0;
+    /// The palm centre lies palmDepth_m under the visible back of the hand
+    /// along the back's normal (the smallest principal direction of the palm
+    /// disc's 3D points), not along the camera's ray: a hand seen obliquely.
+    /// false: along the ray.
+    bool palmAlongNormal = true;
+    /// Cuff rule: the palm lies from the cuff towards the hand's thickest
+    /// point (the maximum of the distance transform of the hand's mask: the
+    /// palm, not a thumb or a finger), not along the principal axis of sleeve
+    /// and hand (which perspective turns when the forearm comes at the
+    /// camera). false: that axis.
+    bool cuffTowardsThickest = true;
+    /// That normal is used when the disc is flat: its smallest spread at most
+    /// this share of the next [ratio].
+    double maxNormalFlatness = 0.25;
+    /// Foreground that reaches no border (the forearm out of view or without
+    /// depth) is a hand only when at least this share of it is skin: a part
+    /// that is moved later is foreground against the whole-recording
+    /// background before it moves, and a shaded side of it may be of skin
+    /// colour [0..1].
+    double minIslandSkinFraction = 0.5;
 
     // ---- gates and strides (were literals; defaults keep the old output) ----
     /// A pixel within this many pixels of the edge of the depth's field of
@@ -358,6 +393,13 @@ class MarkerFreeHandDetector : public HandDetector {
   /// No cuff: back from the fingertips along the hand's axis.
   Anchor fingertipAnchor(const cv::Mat& hand, const Eigen::Vector2d& entry, const Eigen::Vector2d& handMean,
                          const Eigen::Vector2d& handDir, bool elongated) const;
+  /// The hand's depth along the anchor's axis as z = c0 + c1 s, s the pixel
+  /// distance from the anchor towards the palm [m, m/px]; nullopt when too few depths.
+  std::optional<Eigen::Vector2d> handTilt(const rawlog::RgbdFrame& frame, const Anchor& a, const HandBlob& hand) const;
+  /// The unit normal, towards the camera, of the 3D points of `mask` within
+  /// `radius_px` of `centre_px`; nullopt when too few or not flat.
+  std::optional<Eigen::Vector3d> surfaceNormal(const rawlog::RgbdFrame& frame, const cv::Mat& mask,
+                                               const Eigen::Vector2d& centre_px, double radius_px) const;
   /// Places the palm from the anchor at the palm's depth (step 7).
   HandObservation placePalm(const rawlog::RgbdFrame& frame, const Anchor& a, const HandBlob& hand,
                             const Eigen::Vector2d& handMean, int armArea);

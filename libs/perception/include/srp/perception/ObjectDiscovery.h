@@ -50,9 +50,11 @@ struct UnknownObject {
 /// and whether the hand is near. A segment like an earlier one (its centre
 /// within restRadius_m of the rest's, top within restTopTol_m, colours at
 /// least minColourSimilarity alike) is one more sighting of that *rest*, a
-/// place where something stands; a rest keeps the points of its first
-/// keptSightings sightings without the hand near (the fused point cloud its
-/// model is built from).
+/// place where something stands (or, by its footprint, something standing
+/// there with an arm reaching for it); a rest keeps the points of its
+/// keptSightings largest sightings, those as high as its anchor (within
+/// restTopTol_m: not the part joined by the arm) and without the hand near
+/// first (the fused point cloud its model is built from).
 ///
 /// At the end (finish):
 /// - static rests: seen both in the first and in the last

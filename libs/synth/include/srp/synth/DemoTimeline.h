@@ -28,6 +28,13 @@ struct DemoOptions {
   double idleStart_s = 1.5;       ///< no hand in view at the start
   double idleEnd_s = 1.5;         ///< no hand in view at the end
   double tremorAmplitude_m = 8e-4;  ///< physiological tremor (8-12 Hz) during motions
+  /// Where the demonstrator stands: the horizontal direction (world x, y)
+  /// from the table point the camera looks at towards them; the hand rests
+  /// out of view that way and the forearm points back to them. Zero: away
+  /// from the robot base through the camera's foot (a camera above the
+  /// demonstrator's side of the table). Set it for a camera beside the table
+  /// or at the demonstrator's head.
+  Eigen::Vector2d demonstratorSide_world = Eigen::Vector2d::Zero();
 };
 
 /// State of the demonstration at one frame. Poses in the world (table) frame.

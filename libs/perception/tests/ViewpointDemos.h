@@ -1,0 +1,92 @@
+#pragma once
+// Rendered demonstrations from the viewpoint families of srp::synth
+// (Viewpoint.h: egocentric, side, top-down) with the hand carrying parts of
+// several sizes, and the marker-free palm scored against their ground truth.
+// Shared by MarkerFreeHandViewpoints_test and bench/marker_free_hand_bench.
+//
+// Which family is for what: the detector's settings are chosen on the
+// egocentric family only; side and top-down are checked, never tuned on
+// (perception README, "The marker-free hand in other views").
+#include <Eigen/Core>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "HandEvaluation.h"
+#include "srp/core/Scene.h"
+#include "srp/kb/KnowledgeBase.h"
+#include "srp/synth/DemoGenerator.h"
+#include "srp/synth/Viewpoint.h"
+
+namespace srp::perception::testing {
+
+/// One rendered carry demonstration.
+struct ViewpointDemoSpec {
+  synth::ViewpointFamily family = synth::ViewpointFamily::Egocentric;
+  int variant = 0;           ///< Viewpoint.h's variants (azimuth, distance, side)
+  double partScale = 1.0;    ///< the carried parts' size, times the catalogue's
+  bool bareForearm = false;  ///< the sleeve in skin colour (a bare forearm) instead of the demonstrator's sleeve
+  int width_px = 640;        ///< 640x480 or smaller (same field of view)
+  int maxFrames = -1;        ///< -1: the whole demonstration
+  std::uint32_t seed = 1;
+  std::string name() const {
+    char s[120];
+    std::snprintf(s, sizeof s, "%s_v%d_x%.1f_%s_%dpx_s%u", synth::viewpointFamilyName(family).c_str(), variant,
+                  partScale, bareForearm ? "bare" : "sleeve", width_px, seed);
+    return s;
+  }
+};
+
+/// The plan: the cuboid, then the parallelogram, from the blue box into the gray box; parts
+/// scaled by more than 1.5 leave no room for the second in the box: the cuboid alone.
+inline nlohmann::json carryPlan(double partScale) {
+  auto phrase = [](const char* name, const char* colour) {
+    return nlohmann::json{{"name", name}, {"color", colour ? nlohmann::json(colour) : nlohmann::json(nullptr)}};
+  };
+  auto step = [&](const char* object) {
+    return nlohmann::json{
+        {"object", phrase(object, nullptr)},
+        {"source", nlohmann::json::array({{{"relation", "from"}, {"landmark", phrase("box", "blue")}}})},
+        {"target", nlohmann::json::array({{{"relation", "in"}, {"landmark", phrase("box", "gray")}}})}};
+  };
+  if (partScale > 1.5) return {{"steps", nlohmann::json::array({step("cuboid")})}};
+  return {{"steps", nlohmann::json::array({step("cuboid"), step("parallelogram")})}};
+}
+
+/// Renders `spec` into `folder` (kept when already there) and returns the rawlog's path.
+inline std::string renderViewpointDemo(const ViewpointDemoSpec& spec, const std::string& folder) {
+  std::filesystem::create_directories(folder);
+  const std::string rawlog = (std::filesystem::path(folder) / (spec.name() + ".rawlog")).string();
+  if (std::filesystem::exists(rawlog) && std::filesystem::exists(synth::groundTruthPathFor(rawlog))) return rawlog;
+  auto scene = core::Scene::load(std::string(SRP_SIM_DIR) + "/scenes/default.json");
+  auto classes = kb::loadCatalogue(scene.cataloguePath).classes();
+  for (auto& c : classes)
+    if (c.kind == core::ObjectKind::Part && spec.partScale != 1.0) {
+      c.dimensions_m *= spec.partScale;
+      c.meshPath.clear();  // generated from the shape at the new size
+    }
+  const core::ObjectCatalogue catalogue(classes);
+  // The camera looks at the middle of the two boxes.
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();
+  int boxes = 0;
+  for (const auto& o : scene.objects)
+    if (catalogue.at(o.className).kind == core::ObjectKind::Container) {
+      target += o.X_world_object.translation();
+      ++boxes;
+    }
+  if (boxes > 0) target /= boxes;
+  const synth::Viewpoint view = synth::makeViewpoint(spec.family, spec.variant, target);
+  scene.X_world_camera = view.X_world_camera;
+  synth::SynthDemoOptions o;
+  o.demo.seed = spec.seed;
+  o.demo.demonstratorSide_world = view.demonstratorSide_world;
+  if (spec.bareForearm) o.hand.sleeveRgb = o.hand.skinRgb;
+  o.width_px = spec.width_px;
+  o.height_px = spec.width_px * 3 / 4;
+  o.maxFrames = spec.maxFrames;
+  o.rawlogEncoderThreads = 1;
+  synth::generateSyntheticDemo(scene, catalogue, carryPlan(spec.partScale), o, rawlog);
+  return rawlog;
+}
+
+}  // namespace srp::perception::testing

@@ -1,0 +1,47 @@
+#pragma once
+/// \file Viewpoint.h
+/// \brief Camera placements for synthetic demonstrations beyond the scene's
+/// own camera: at the demonstrator's head (egocentric), beside the table, and
+/// straight above it, each with variants (azimuth, distance).
+
+#include <Eigen/Core>
+#include <string>
+
+#include "srp/core/Pose.h"
+
+namespace srp::synth {
+
+/// A family of camera placements. Frames: `world` = table (z up, metres),
+/// the camera's optical frame (x right, y down, z forward).
+enum class ViewpointFamily {
+  Egocentric,  ///< at the demonstrator's head, above and behind the hand: the arm enters from the bottom edge
+  Side,        ///< beside the table, looking across it: the arm enters from the left or right edge
+  TopDown,     ///< straight above the table, turned so that the arm enters from a side edge
+};
+
+/// Where the camera is and where the demonstrator stands (DemoOptions::demonstratorSide_world).
+struct Viewpoint {
+  srp::core::Pose3 X_world_camera = srp::core::Pose3::Identity();
+  Eigen::Vector2d demonstratorSide_world = Eigen::Vector2d::UnitY();
+};
+
+/// "egocentric", "side", "top-down"; throws InvalidInputError naming the text and the choices otherwise.
+ViewpointFamily viewpointFamilyFromName(const std::string& name);
+std::string viewpointFamilyName(ViewpointFamily family);
+
+/// Variant `variant` (>= 0; any integer, they cycle) of `family`, looking at
+/// `target_world` (a point on the table), with the demonstrator on the side
+/// `demonstratorSide_world` (unit, horizontal) of the table. Variants turn
+/// the camera about the vertical through the target by -20, 0, +20 deg and
+/// change its distance by -10, 0, +10 % (3 x 3 = 9 before they repeat); the
+/// side family's even variants stand on one side of the table, odd ones on
+/// the other.
+Viewpoint makeViewpoint(ViewpointFamily family, int variant, const Eigen::Vector3d& target_world,
+                        const Eigen::Vector2d& demonstratorSide_world = Eigen::Vector2d::UnitY());
+
+/// The optical frame of a camera at `eye_world` looking at `target_world`,
+/// its image's up towards `up_world` (as far as it is not along the view).
+srp::core::Pose3 lookAt(const Eigen::Vector3d& eye_world, const Eigen::Vector3d& target_world,
+                        const Eigen::Vector3d& up_world);
+
+}  // namespace srp::synth

@@ -1,0 +1,80 @@
+#include "srp/synth/Viewpoint.h"
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "srp/core/Angles.h"
+#include "srp/core/Error.h"
+
+namespace srp::synth {
+
+ViewpointFamily viewpointFamilyFromName(const std::string& name) {
+  if (name == "egocentric") return ViewpointFamily::Egocentric;
+  if (name == "side") return ViewpointFamily::Side;
+  if (name == "top-down") return ViewpointFamily::TopDown;
+  throw srp::core::InvalidInputError("viewpoint family '" + name + "' is unknown; use egocentric, side or top-down");
+}
+
+std::string viewpointFamilyName(ViewpointFamily family) {
+  switch (family) {
+    case ViewpointFamily::Egocentric:
+      return "egocentric";
+    case ViewpointFamily::Side:
+      return "side";
+    case ViewpointFamily::TopDown:
+      return "top-down";
+  }
+  return "?";
+}
+
+srp::core::Pose3 lookAt(const Eigen::Vector3d& eye_world, const Eigen::Vector3d& target_world,
+                        const Eigen::Vector3d& up_world) {
+  const Eigen::Vector3d z = (target_world - eye_world).normalized();
+  Eigen::Vector3d x = z.cross(up_world);
+  if (x.norm() < 1e-9) x = z.unitOrthogonal();
+  x.normalize();
+  const Eigen::Vector3d y = z.cross(x);
+  srp::core::Pose3 X = srp::core::Pose3::Identity();
+  X.linear().col(0) = x;
+  X.linear().col(1) = y;
+  X.linear().col(2) = z;
+  X.translation() = eye_world;
+  return X;
+}
+
+Viewpoint makeViewpoint(ViewpointFamily family, int variant, const Eigen::Vector3d& target_world,
+                        const Eigen::Vector2d& demonstratorSide_world) {
+  srp::core::require(demonstratorSide_world.norm() > 1e-9, "makeViewpoint: demonstratorSide_world must not be zero");
+  const int v = ((variant % 9) + 9) % 9;
+  const double turn_rad = (v % 3 - 1) * 20.0 * srp::core::kPi / 180.0;
+  const double distance = 1.0 + 0.1 * (v / 3 - 1);
+  const Eigen::Vector2d s2 = demonstratorSide_world.normalized();
+  const Eigen::Vector3d side(s2.x(), s2.y(), 0.0);
+  const Eigen::Vector3d across = Eigen::Vector3d::UnitZ().cross(side);  // horizontal, perpendicular to the side
+  const Eigen::AngleAxisd turn(turn_rad, Eigen::Vector3d::UnitZ());
+  Viewpoint out;
+  out.demonstratorSide_world = s2;
+  switch (family) {
+    case ViewpointFamily::Egocentric: {
+      // A standing person's eyes: ~0.85 m above the table, ~0.55 m back from the work.
+      const Eigen::Vector3d offset = turn * (0.55 * side) + Eigen::Vector3d(0, 0, 0.85);
+      out.X_world_camera =
+          lookAt(target_world + distance * offset, target_world - 0.05 * side, Eigen::Vector3d::UnitZ());
+      break;
+    }
+    case ViewpointFamily::Side: {
+      const double sign = v % 2 == 0 ? 1.0 : -1.0;  // the camera on either side of the table
+      const Eigen::Vector3d offset = turn * (0.8 * sign * across) + Eigen::Vector3d(0, 0, 0.45);
+      out.X_world_camera = lookAt(target_world + distance * offset, target_world, Eigen::Vector3d::UnitZ());
+      break;
+    }
+    case ViewpointFamily::TopDown: {
+      // Image up along `across` (turned): the demonstrator's side is a side edge.
+      out.X_world_camera = lookAt(target_world + Eigen::Vector3d(0, 0, distance * 0.95), target_world, turn * across);
+      break;
+    }
+  }
+  return out;
+}
+
+}  // namespace srp::synth

@@ -1,0 +1,111 @@
+// The marker-free palm on rendered demonstrations from three viewpoint
+// families (srp::synth Viewpoint.h), the hand carrying parts of three sizes,
+// with the demonstrator's sleeve and with a bare forearm, against the
+// render's ground truth (HandEvaluation.h), through the preview as `srp
+// perceive` runs the detector.
+//
+// The detector's settings are chosen on the egocentric family; side and
+// top-down are only checked (perception README). Each family's reached figures
+// are guarded (the issue's acceptance is not reached on the checked families).
+//
+// SRP_VIEW_DIR=<dir> keeps the renders there (default: rendered into the build folder and deleted once scored);
+// SRP_VIEW_FAMILY=egocentric|side|top-down runs one family;
+// SRP_HAND_DEBUG_DIR=<dir> draws every hand frame with the found geometry;
+// SRP_HAND_OPTIONS=name=value,... overrides detector options (HandEvaluation.h).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "ViewpointDemos.h"
+
+namespace srp::perception {
+namespace {
+
+using testing::ViewpointDemoSpec;
+
+/// Six demonstrations per family: variants 0-5 (azimuth -20/0/+20 deg, distance
+/// -10/0 %, sides), parts 1x, 1.5x and 2x the catalogue's, sleeve in 0-2, bare forearm in 3-5.
+std::vector<ViewpointDemoSpec> familySpecs(synth::ViewpointFamily family) {
+  std::vector<ViewpointDemoSpec> out;
+  constexpr double kScales[] = {1.0, 1.5, 2.0};
+  for (int v = 0; v < 6; ++v) {
+    ViewpointDemoSpec s;
+    s.family = family;
+    s.variant = v;
+    s.partScale = kScales[v % 3];
+    s.bareForearm = v >= 3;
+    s.seed = static_cast<std::uint32_t>(11 + v);
+    out.push_back(s);
+  }
+  return out;
+}
+
+testing::HandEvaluation evaluateFamily(synth::ViewpointFamily family) {
+  const char* dir = std::getenv("SRP_VIEW_DIR");
+  const std::string folder = dir ? dir : (std::filesystem::path(SRP_BINARY_DIR) / "viewpoint_demos").string();
+  const char* debug = std::getenv("SRP_HAND_DEBUG_DIR");
+  testing::HandEvaluation pooled;
+  for (const auto& spec : familySpecs(family)) {
+    const std::string rawlog = testing::renderViewpointDemo(spec, folder);
+    std::string debugDir;
+    if (debug) std::filesystem::create_directories(debugDir = std::string(debug) + "/" + spec.name());
+    const auto ev = testing::evaluateMarkerFreeHand(
+        rawlog, testing::optionsFromEnvironment(),
+        [&](const rawlog::RgbdFrame& f, const MarkerFreeHandDetector& d, const synth::GroundTruthFrame& truth,
+            const std::optional<Eigen::Vector3d>& p_m) {
+          if (debugDir.empty() || (!truth.handInView && !p_m)) return;
+          char name[96];
+          std::snprintf(name, sizeof name, "/hand_%04d_%s_%s%03.0fmm.png", truth.index, truth.phase.c_str(),
+                        !truth.handInView             ? "nohand_"
+                        : truth.carriedObject.empty() ? ""
+                                                      : "carry_",
+                        p_m ? 1e3 * (*p_m - truth.p_camera_palm_m).norm() : 999.0);
+          testing::drawHandGeometry(f, d, truth, debugDir + name);
+        },
+        true);
+    ev.print(spec.name());
+    pooled.add(ev);
+    if (!dir) {  // ~100 MB per render: kept only where SRP_VIEW_DIR asks for it
+      std::filesystem::remove(rawlog);
+      std::filesystem::remove(synth::groundTruthPathFor(rawlog));
+    }
+  }
+  pooled.print(synth::viewpointFamilyName(family) + ", pooled");
+  return pooled;
+}
+
+bool selected(synth::ViewpointFamily family) {
+  const char* only = std::getenv("SRP_VIEW_FAMILY");
+  return !only || synth::viewpointFamilyFromName(only) == family;
+}
+
+constexpr double kWithin_px = 40.0;  // issue 37: at 640-px width
+
+/// What a family must reach: issue 37 asks, on the checked families, for a palm median <= 15 mm,
+/// >= 95 % of the hand-in-view frames within kWithin_px and no palm past the held part. Not reached
+/// yet on either checked family (perception README); these bounds guard the reached figures.
+struct Reached {
+  double median_m, withinRate;
+  int maxFarSide;
+};
+
+void checkFamily(synth::ViewpointFamily family, const Reached& reached) {
+  if (!selected(family)) GTEST_SKIP() << "SRP_VIEW_FAMILY selects another family";
+  const auto ev = evaluateFamily(family);
+  ASSERT_GT(ev.handInView, 0);
+  EXPECT_LE(ev.median_m(), reached.median_m);
+  EXPECT_GE(ev.within640(kWithin_px), reached.withinRate);
+  EXPECT_LE(ev.farSide, reached.maxFarSide) << "palms past the held part";
+  EXPECT_EQ(ev.handWithoutHand, 0) << "a hand reported in frames without a hand";
+}
+
+// Reached: 94.4 %, 17.6 mm, 0 past the part (chosen on).
+TEST(ViewpointFamilies, EgocentricChosenOn) { checkFamily(synth::ViewpointFamily::Egocentric, {0.018, 0.94, 0}); }
+// Reached: 65.6 %, 38.4 mm, 29 of 653 carry frames past the part.
+TEST(ViewpointFamilies, SideChecked) { checkFamily(synth::ViewpointFamily::Side, {0.040, 0.65, 29}); }
+// Reached: 86.2 %, 5.7 mm, 0 past the part.
+TEST(ViewpointFamilies, TopDownChecked) { checkFamily(synth::ViewpointFamily::TopDown, {0.006, 0.86, 0}); }
+
+}  // namespace
+}  // namespace srp::perception

@@ -163,6 +163,40 @@ CartesianPath DmpPathGenerator::generate(srp::core::SkillType skill, const std::
   return rollout(*learned, object, X_world_start, X_world_goal, dt_s);
 }
 
+namespace {
+
+// The rollout ends near, not at, the goal and still moving (the forcing term is not
+// quite zero at t = T, and the re-targeted system lags). A quintic correction spread
+// over the path (zero, with zero velocity and acceleration, at the start) cancels the
+// remaining offset, the end velocity and the end acceleration, so the path ends
+// exactly at the goal and at rest: the next segment starts from rest, and a path
+// stopped abruptly demanded up to 87 rad/s^2 of a wrist on the demo task's steps.
+std::vector<Eigen::Vector3d> endCorrectedPositions(const srp::motion::DmpRollout& r, const Eigen::Vector3d& p_demo_goal) {
+  const long n = r.t_s.size();
+  const Eigen::Vector3d residual_demo = p_demo_goal - Eigen::Vector3d(r.y.row(n - 1).transpose());
+  const double T = r.t_s(n - 1);
+  // End velocity and acceleration from the positions themselves (backward differences),
+  // as the joint spline through the samples sees them.
+  Eigen::Vector3d v_end = Eigen::Vector3d::Zero(), a_end = Eigen::Vector3d::Zero();
+  if (n >= 3) {
+    const double h1 = r.t_s(n - 1) - r.t_s(n - 2), h2 = r.t_s(n - 2) - r.t_s(n - 3);
+    const Eigen::Vector3d v1 = (r.y.row(n - 1) - r.y.row(n - 2)).transpose() / h1;
+    const Eigen::Vector3d v2 = (r.y.row(n - 2) - r.y.row(n - 3)).transpose() / h2;
+    v_end = v1 + 0.5 * h1 * (v1 - v2) / (0.5 * (h1 + h2));
+    a_end = (v1 - v2) / (0.5 * (h1 + h2));
+  }
+  auto correction = [&](double tau) -> Eigen::Vector3d {
+    const double t3 = tau * tau * tau, t4 = t3 * tau, t5 = t4 * tau;
+    return minimumJerk(tau) * residual_demo + (-4 * t3 + 7 * t4 - 3 * t5) * (-v_end * T) +
+           (0.5 * t3 - t4 + 0.5 * t5) * (-a_end * T * T);
+  };
+  std::vector<Eigen::Vector3d> p_demo(static_cast<std::size_t>(n));
+  for (long i = 0; i < n; ++i) p_demo[i] = Eigen::Vector3d(r.y.row(i).transpose()) + correction(r.t_s(i) / T);
+  return p_demo;
+}
+
+}  // namespace
+
 CartesianPath DmpPathGenerator::rollout(const srp::motion::Dmp& learned, const std::string& object,
                                         const srp::core::Pose3& X_world_start, const srp::core::Pose3& X_world_goal,
                                         double dt_s) const {
@@ -183,30 +217,8 @@ CartesianPath DmpPathGenerator::rollout(const srp::motion::Dmp& learned, const s
   const long n = r.t_s.size();
   if (n < 2) throw srp::core::InvalidInputError("DmpPathGenerator: the " + object + " DMP rollout has < 2 samples");
 
-  // The rollout ends near, not at, the goal and still moving (the forcing term is not
-  // quite zero at t = T, and the re-targeted system lags). A quintic correction spread
-  // over the path (zero, with zero velocity and acceleration, at the start) cancels the
-  // remaining offset, the end velocity and the end acceleration, so the path ends
-  // exactly at the goal and at rest: the next segment starts from rest, and a path
-  // stopped abruptly demanded up to 87 rad/s^2 of a wrist on the demo task's steps.
-  const Eigen::Vector3d residual_demo = (X_demo_world * p_world_goal) - Eigen::Vector3d(r.y.row(n - 1).transpose());
   const Eigen::Quaterniond q_start(X_world_start.linear()), q_goal(X_world_goal.linear());
   const double T = r.t_s(n - 1);
-  // End velocity and acceleration from the positions themselves (backward differences),
-  // as the joint spline through the samples sees them.
-  Eigen::Vector3d v_end = Eigen::Vector3d::Zero(), a_end = Eigen::Vector3d::Zero();
-  if (n >= 3) {
-    const double h1 = r.t_s(n - 1) - r.t_s(n - 2), h2 = r.t_s(n - 2) - r.t_s(n - 3);
-    const Eigen::Vector3d v1 = (r.y.row(n - 1) - r.y.row(n - 2)).transpose() / h1;
-    const Eigen::Vector3d v2 = (r.y.row(n - 2) - r.y.row(n - 3)).transpose() / h2;
-    v_end = v1 + 0.5 * h1 * (v1 - v2) / (0.5 * (h1 + h2));
-    a_end = (v1 - v2) / (0.5 * (h1 + h2));
-  }
-  auto correction = [&](double tau) -> Eigen::Vector3d {
-    const double t3 = tau * tau * tau, t4 = t3 * tau, t5 = t4 * tau;
-    return minimumJerk(tau) * residual_demo + (-4 * t3 + 7 * t4 - 3 * t5) * (-v_end * T) +
-           (0.5 * t3 - t4 + 0.5 * t5) * (-a_end * T * T);
-  };
   // The side step is capped at the demonstrator's own, in metres: the spatial scaling
   // scales the demo's excursion with the new chord, and a short demonstrated chord (a
   // hand that hovers or dips before it grasps) re-targeted to a long one would grow
@@ -223,10 +235,9 @@ CartesianPath DmpPathGenerator::rollout(const srp::motion::Dmp& learned, const s
   // (softClamp: nearly unchanged where small, tangent at the segment's ends; slower
   // there, the same ends).
   const Eigen::Vector3d p_demo_start = X_demo_world * p_world_start, p_demo_goal = X_demo_world * p_world_goal;
-  std::vector<Eigen::Vector3d> p_demo(static_cast<std::size_t>(n));
+  const std::vector<Eigen::Vector3d> p_demo = endCorrectedPositions(r, p_demo_goal);
   double step_m = 0.0, overshoot_m = 0.0;
   for (long i = 0; i < n; ++i) {
-    p_demo[i] = Eigen::Vector3d(r.y.row(i).transpose()) + correction(r.t_s(i) / T);
     step_m = std::max(step_m, sideStep(p_demo_start, p_demo_goal, p_demo[i]));
     overshoot_m = std::max(overshoot_m, overshoot(p_demo_start, p_demo_goal, p_demo[i]));
   }

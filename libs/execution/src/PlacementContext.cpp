@@ -23,7 +23,7 @@ bool PlacementContext::fitsInside(const CellObject& container, const Pose3& X) c
 }
 
 double PlacementContext::toolClearanceFrom(const CellObject& container, const Pose3& X) const {
-  return placement::toolClearanceFrom(options_, part_.size_m, X.translation().z(), container);
+  return placement::toolClearanceFrom(options_.toolClearance_m, options_.minClearance_m, part_.size_m, X.translation().z(), container);
 }
 
 bool PlacementContext::fitsTable(const Pose3& X) const {

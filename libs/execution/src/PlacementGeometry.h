@@ -12,7 +12,6 @@
 
 #include "srp/core/Pose.h"
 #include "srp/execution/CellDescription.h"
-#include "srp/execution/PlacementContext.h"
 
 namespace srp::execution::placement {
 
@@ -100,11 +99,11 @@ inline bool toolLevelWithWalls(const Eigen::Vector3d& partSize, double bottom_z,
 }
 
 /// The distance a part of `partSize` resting at `bottom_z` keeps between its centre and
-/// `container`'s walls (PlacementOptions::toolClearance_m): the tool's where it comes level
-/// with them, else 0.
-inline double toolClearanceFrom(const PlacementOptions& o, const Eigen::Vector3d& partSize, double bottom_z,
-                                const CellObject& container) {
-  return toolLevelWithWalls(partSize, bottom_z, container, o.minClearance_m) ? o.toolClearance_m : 0.0;
+/// `container`'s walls: `toolClearance_m` (PlacementOptions::toolClearance_m) where the tool
+/// comes level with them (within `levelGap_m`, PlacementOptions::minClearance_m), else 0.
+inline double toolClearanceFrom(double toolClearance_m, double levelGap_m, const Eigen::Vector3d& partSize,
+                                double bottom_z, const CellObject& container) {
+  return toolLevelWithWalls(partSize, bottom_z, container, levelGap_m) ? toolClearance_m : 0.0;
 }
 
 /// Horizontal distance of p_world from `container`'s nearest wall: its inner walls when p

@@ -178,7 +178,7 @@ class Refinement {
   }
 
   double toolClearance(const CellObject& part, const CellObject& container) const {
-    return toolClearanceFrom(o_, part.size_m, part.X_world_object.translation().z(), container);
+    return toolClearanceFrom(o_.toolClearance_m, o_.minClearance_m, part.size_m, part.X_world_object.translation().z(), container);
   }
 
   double objective(const double* x) const {

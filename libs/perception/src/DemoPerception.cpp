@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <future>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -118,6 +119,20 @@ struct DemoPerceiver::Impl {
                     std::vector<ObjectDetection>& detections);
   bool visibleEnough(const rawlog::RgbdFrame& f, const ObjectPoseFitter& fitter, const core::Pose3& X_camera_object,
                      const std::string& key) const;
+  // The steps of DemoPerceiver::add, in order.
+  void startFrame(const rawlog::RgbdFrame& f, int i);
+  std::optional<ObjectTracker::FrameSegments> cameraAndHand(const rawlog::RgbdFrame& f, std::optional<HandObservation>& h);
+  void noteCameraMotion(const rawlog::RgbdFrame& f);
+  core::PositionSample handSample(const rawlog::RgbdFrame& f, const std::optional<HandObservation>& h);
+  void detectObjects(const rawlog::RgbdFrame& f, const std::optional<HandObservation>& h,
+                     std::optional<ObjectTracker::FrameSegments> segmented);
+  void addToDiscovery(const rawlog::RgbdFrame& f, const std::optional<HandObservation>& h, const core::PositionSample& s);
+  // The steps of DemoPerceiver::finish.
+  void throwIfNothingToPerceive() const;
+  std::vector<std::optional<ObjectDetection>> consolidatedRests(const PlanObject& p,
+                                                                const std::vector<std::optional<ObjectDetection>>& dets) const;
+  using CarryPose = std::function<core::Pose3(const core::Pose3&, std::size_t, std::size_t)>;
+  ObjectTrajectory trajectoryOf(const PlanObject& p, const CarryPose& carry) const;
 };
 
 /// The re-initialisation gate (PerceptionOptions::mbtMinDetectionVisibleFraction,
@@ -319,9 +334,9 @@ void DemoPerceiver::preview(const rawlog::RgbdFrame& f) {
   if (m.hand) m.hand->preview(f);
 }
 
-void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
-  Impl& m = *impl_;
-  const int i = framesAdded();
+/// The first frame's header, the hand chosen after the preview, the camera-motion watch.
+void DemoPerceiver::Impl::startFrame(const rawlog::RgbdFrame& f, int i) {
+  Impl& m = *this;
   if (!m.first) {
     checkFrame(f, f, i);
     rawlog::RgbdFrame header;
@@ -347,18 +362,23 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
     if (m.options.movingCamera || m.options.detectCameraMotion)
       m.cameraMotion = std::make_unique<CameraMotionEstimator>(f.intrinsics, m.options.cameraMotion);
   }
+}
+
+/// The camera's motion and the hand in frame f, with the tracker's segmentation of it when the camera is still.
+std::optional<ObjectTracker::FrameSegments> DemoPerceiver::Impl::cameraAndHand(const rawlog::RgbdFrame& f,
+                                                                              std::optional<HandObservation>& h) {
+  Impl& m = *this;
   // The camera's motion and the hand in this frame depend on the frame and
   // their own past only: with a still camera they are found on a second
   // thread while the tracker segments the frame (the same results, in about
   // the time of the slower of the two).
-  std::optional<HandObservation> h;
-  const auto cameraAndHand = [&] {
+  const auto watch = [&] {
     if (m.cameraMotion) m.cameraMotion->add(f);
     if (m.hand) h = m.hand->detect(f);
   };
   std::optional<ObjectTracker::FrameSegments> segmented;
   if (m.tracker && !m.moving && m.support) {
-    auto side = std::async(std::launch::async, cameraAndHand);
+    auto side = std::async(std::launch::async, watch);
     try {
       segmented = m.tracker->segment(f, m.options.fixedSupportPlane ? &*m.support : nullptr);
     } catch (...) {
@@ -367,8 +387,14 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
     }
     side.get();
   } else {
-    cameraAndHand();
+    watch();
   }
+  return segmented;
+}
+
+/// From the frame the camera is noticed moving on, perceived as with a moving camera.
+void DemoPerceiver::Impl::noteCameraMotion(const rawlog::RgbdFrame& f) {
+  Impl& m = *this;
   if (m.cameraMotion) {
     if (!m.moving && m.cameraMotion->moved()) {
       m.moving = true;  // from here on as with a moving camera
@@ -378,9 +404,11 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
                           "frame %d: the camera moved, perceived as moving from here on\n", f.index);
     }
   }
-  m.frameIndex.push_back(f.index);
-  m.frameTime_s.push_back(f.t_s);
+}
 
+/// The palm's sample of frame f (a depth hole or jump: the depth carried forward).
+core::PositionSample DemoPerceiver::Impl::handSample(const rawlog::RgbdFrame& f, const std::optional<HandObservation>& h) {
+  Impl& m = *this;
   core::PositionSample s;
   s.frame = f.index;
   s.t_s = f.t_s;
@@ -407,6 +435,13 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
     }
     if (s.valid) ++m.result.handDetected;
   }
+  return s;
+}
+
+/// The support plane and the objects of frame f, after the hand.
+void DemoPerceiver::Impl::detectObjects(const rawlog::RgbdFrame& f, const std::optional<HandObservation>& h,
+                                        std::optional<ObjectTracker::FrameSegments> segmented) {
+  Impl& m = *this;
   // Objects after the hand: the hand's segment (and a part it holds) explains no object.
   const auto detectStart = std::chrono::steady_clock::now();  // plane fit and detection: the fitter's cost
   std::optional<Plane> movingPlane;
@@ -461,6 +496,12 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
       if (!slot || d.confidence > slot->confidence) slot = d;
     }
   }
+}
+
+/// Frame f for the parts found without a CAD file.
+void DemoPerceiver::Impl::addToDiscovery(const rawlog::RgbdFrame& f, const std::optional<HandObservation>& h,
+                                         const core::PositionSample& s) {
+  Impl& m = *this;
   if (m.discovery && m.firstSupport) {
     // The table frame in this frame's camera: the first frame's plane, carried by the camera's motion.
     core::Pose3 X_camera_table = m.firstSupport->X_camera_plane();
@@ -470,14 +511,29 @@ void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
                      h && markerFree ? markerFree->lastMask() : cv::Mat());
   }
 
+}
+
+void DemoPerceiver::add(const rawlog::RgbdFrame& f) {
+  Impl& m = *impl_;
+  m.startFrame(f, framesAdded());
+  std::optional<HandObservation> h;
+  std::optional<ObjectTracker::FrameSegments> segmented = m.cameraAndHand(f, h);
+  m.noteCameraMotion(f);
+  m.frameIndex.push_back(f.index);
+  m.frameTime_s.push_back(f.t_s);
+  core::PositionSample s = m.handSample(f, h);
+  m.detectObjects(f, h, std::move(segmented));
+  m.addToDiscovery(f, h, s);
+
   // Timestamps must increase; folders without timestamps may repeat them.
   if (!m.result.hand.empty() && s.t_s <= m.result.hand.samples().back().t_s)
     s.t_s = m.result.hand.samples().back().t_s + 1e-6;
   m.result.hand.append(s);
 }
 
-PerceptionResult DemoPerceiver::finish() const {
-  const Impl& m = *impl_;
+/// Refuses a demo without frames, or one in which the hand was never seen, naming what to check.
+void DemoPerceiver::Impl::throwIfNothingToPerceive() const {
+  const Impl& m = *this;
   if (m.frameIndex.empty()) throw core::InvalidInputError("the demo has zero frames: nothing to perceive");
   if (m.result.handDetected == 0 && m.hand)
     throw core::InvalidInputError("the hand was never detected in the " + std::to_string(m.frameIndex.size()) +
@@ -490,6 +546,116 @@ PerceptionResult DemoPerceiver::finish() const {
                                                          : "no skin-coloured foreground at the end of an arm: ") +
                                              "is the demonstrator's hand in view and does the camera stay still?") +
                                   "); nothing written");
+}
+
+/// Rests of a moving part: runs of detections near their running median, given their median yaw.
+std::vector<std::optional<ObjectDetection>> DemoPerceiver::Impl::consolidatedRests(
+    const PlanObject& p, const std::vector<std::optional<ObjectDetection>>& dets) const {
+  const Impl& m = *this;
+  std::vector<std::optional<ObjectDetection>> rested = dets;
+  if (!p.isStatic && m.options.consolidateRests && !m.moving) {
+    const ObjectPoseFitter* fitter = m.detector->fitterFor(p.key());
+    const double symmetry_rad = fitter ? fitter->model().yawSymmetry_rad : 2 * M_PI;
+    const core::Pose3 X_plane_camera = m.support ? m.support->X_camera_plane().inverse() : core::Pose3::Identity();
+    auto yawInPlane = [&](const core::Pose3& X) { return core::yawOf((X_plane_camera * X).linear()); };
+    std::vector<std::size_t> rest;
+    auto close = [&]() {
+      if (rest.size() >= 3) {
+        std::vector<double> dyaw;
+        const double yaw0 = yawInPlane(dets[rest.front()]->X_camera_object);
+        for (std::size_t i : rest)
+          dyaw.push_back(std::remainder(yawInPlane(dets[i]->X_camera_object) - yaw0, symmetry_rad));
+        // The detection whose yaw is the median lends its orientation (tilt included).
+        std::vector<std::size_t> order(rest.size());
+        for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+        std::nth_element(order.begin(), order.begin() + static_cast<long>(order.size() / 2), order.end(),
+                         [&](std::size_t a, std::size_t b) { return dyaw[a] < dyaw[b]; });
+        const Eigen::Matrix3d R = dets[rest[order[order.size() / 2]]]->X_camera_object.linear();
+        // The orientation only: each detection keeps its position, which
+        // the motion module reads for the small moves of a grasp and a
+        // release (snapping them to the rest's median hid a whole pick
+        // from its segmentation on a 320x240 demo).
+        for (std::size_t i : rest) rested[i]->X_camera_object.linear() = R;
+      }
+      rest.clear();
+    };
+    Eigen::Vector3d anchor = Eigen::Vector3d::Zero();
+    std::vector<Eigen::Vector3d> members;
+    for (std::size_t i = 0; i < dets.size(); ++i) {
+      if (!dets[i]) continue;
+      const Eigen::Vector3d t = dets[i]->X_camera_object.translation();
+      if (!rest.empty() && (t - anchor).norm() > m.options.restRadius_m) {
+        close();
+        members.clear();
+      }
+      rest.push_back(i);
+      members.push_back(t);
+      // The anchor: the members' per-axis median (a stray detection does not drag it).
+      for (int a = 0; a < 3; ++a) {
+        std::vector<double> v;
+        for (const auto& x : members) v.push_back(x[a]);
+        std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+        anchor[a] = v[v.size() / 2];
+      }
+    }
+    close();
+  }
+  return rested;
+}
+
+/// Language-guided refinement: static objects fixed at their most confident
+/// detection; moving objects follow their detections, gaps carried from the
+/// nearest earlier detection (before the first: the first).
+ObjectTrajectory DemoPerceiver::Impl::trajectoryOf(const PlanObject& p, const CarryPose& carry) const {
+  const Impl& m = *this;
+  const auto& dets = m.perClass.at(p.key());  // (an empty plan: no detector, no catalogue objects)
+  const core::ObjectClass& cls = m.catalogue.at(p.className);
+  ObjectTrajectory traj;
+  traj.className = p.className;
+  traj.instanceId = p.instanceId;
+  traj.classId = cls.classId;
+  traj.isStatic = p.isStatic;
+  int bestFrame = -1, firstFrame = -1;
+  for (std::size_t i = 0; i < dets.size(); ++i)
+    if (dets[i]) {
+      if (firstFrame < 0) firstFrame = static_cast<int>(i);
+      if (bestFrame < 0 || dets[i]->confidence > dets[static_cast<std::size_t>(bestFrame)]->confidence)
+        bestFrame = static_cast<int>(i);
+    }
+  if (bestFrame < 0) return traj;  // never seen: empty trajectory
+  const std::vector<std::optional<ObjectDetection>> rested = consolidatedRests(p, dets);
+  // Reported in the class's object frame (its mesh's), not the model frame the detector fits in.
+  const ObjectPoseFitter* classFitter = m.detector->fitterFor(p.key());
+  const core::Pose3 X_model_mesh = classFitter ? classFitter->model().X_model_mesh : core::Pose3::Identity();
+  const ObjectDetection* carried = &*rested[static_cast<std::size_t>(firstFrame)];
+  std::size_t carriedFrom = static_cast<std::size_t>(firstFrame);
+  for (std::size_t i = 0; i < dets.size(); ++i) {
+    ObjectPoseSample s;
+    s.frame = m.frameIndex[i];
+    s.t_s = m.frameTime_s[i];
+    if (p.isStatic) {
+      const auto& best = *dets[static_cast<std::size_t>(bestFrame)];
+      s.X_camera_object = carry(best.X_camera_object, static_cast<std::size_t>(bestFrame), i);
+      s.detected = dets[i].has_value();
+      s.confidence = best.confidence;
+    } else {
+      if (rested[i]) {
+        carried = &*rested[i];
+        carriedFrom = i;
+      }
+      s.X_camera_object = carry(carried->X_camera_object, carriedFrom, i);
+      s.detected = dets[i].has_value();
+      s.confidence = dets[i] ? dets[i]->confidence : 0.0;
+    }
+    s.X_camera_object = s.X_camera_object * X_model_mesh;
+    traj.samples.push_back(s);
+  }
+  return traj;
+}
+
+PerceptionResult DemoPerceiver::finish() const {
+  const Impl& m = *impl_;
+  m.throwIfNothingToPerceive();
   PerceptionResult result = m.result;
   result.frames = static_cast<int>(m.frameIndex.size());
   result.handMethod = m.handUsed;
@@ -507,105 +673,7 @@ PerceptionResult DemoPerceiver::finish() const {
     return core::Pose3(result.X_camera0_camera[to].inverse() * result.X_camera0_camera[from] * X_cameraFrom_object);
   };
 
-  // Language-guided refinement: static objects fixed at their most confident
-  // detection; moving objects follow their detections, gaps carried from the
-  // nearest earlier detection (before the first: the first).
-  for (const auto& p : m.plan) {
-    const auto& dets = m.perClass.at(p.key());  // (an empty plan: no detector, no catalogue objects)
-    const core::ObjectClass& cls = m.catalogue.at(p.className);
-    ObjectTrajectory traj;
-    traj.className = p.className;
-    traj.instanceId = p.instanceId;
-    traj.classId = cls.classId;
-    traj.isStatic = p.isStatic;
-    int bestFrame = -1, firstFrame = -1;
-    for (std::size_t i = 0; i < dets.size(); ++i)
-      if (dets[i]) {
-        if (firstFrame < 0) firstFrame = static_cast<int>(i);
-        if (bestFrame < 0 || dets[i]->confidence > dets[static_cast<std::size_t>(bestFrame)]->confidence)
-          bestFrame = static_cast<int>(i);
-      }
-    if (bestFrame < 0) {
-      result.objects.push_back(traj);  // never seen: empty trajectory
-      continue;
-    }
-    // Rests of a moving part: runs of detections near their running median.
-    std::vector<std::optional<ObjectDetection>> rested = dets;
-    if (!p.isStatic && m.options.consolidateRests && !m.moving) {
-      const ObjectPoseFitter* fitter = m.detector->fitterFor(p.key());
-      const double symmetry_rad = fitter ? fitter->model().yawSymmetry_rad : 2 * M_PI;
-      const core::Pose3 X_plane_camera = m.support ? m.support->X_camera_plane().inverse() : core::Pose3::Identity();
-      auto yawInPlane = [&](const core::Pose3& X) { return core::yawOf((X_plane_camera * X).linear()); };
-      std::vector<std::size_t> rest;
-      auto close = [&]() {
-        if (rest.size() >= 3) {
-          std::vector<double> dyaw;
-          const double yaw0 = yawInPlane(dets[rest.front()]->X_camera_object);
-          for (std::size_t i : rest)
-            dyaw.push_back(std::remainder(yawInPlane(dets[i]->X_camera_object) - yaw0, symmetry_rad));
-          // The detection whose yaw is the median lends its orientation (tilt included).
-          std::vector<std::size_t> order(rest.size());
-          for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-          std::nth_element(order.begin(), order.begin() + static_cast<long>(order.size() / 2), order.end(),
-                           [&](std::size_t a, std::size_t b) { return dyaw[a] < dyaw[b]; });
-          const Eigen::Matrix3d R = dets[rest[order[order.size() / 2]]]->X_camera_object.linear();
-          // The orientation only: each detection keeps its position, which
-          // the motion module reads for the small moves of a grasp and a
-          // release (snapping them to the rest's median hid a whole pick
-          // from its segmentation on a 320x240 demo).
-          for (std::size_t i : rest) rested[i]->X_camera_object.linear() = R;
-        }
-        rest.clear();
-      };
-      Eigen::Vector3d anchor = Eigen::Vector3d::Zero();
-      std::vector<Eigen::Vector3d> members;
-      for (std::size_t i = 0; i < dets.size(); ++i) {
-        if (!dets[i]) continue;
-        const Eigen::Vector3d t = dets[i]->X_camera_object.translation();
-        if (!rest.empty() && (t - anchor).norm() > m.options.restRadius_m) {
-          close();
-          members.clear();
-        }
-        rest.push_back(i);
-        members.push_back(t);
-        // The anchor: the members' per-axis median (a stray detection does not drag it).
-        for (int a = 0; a < 3; ++a) {
-          std::vector<double> v;
-          for (const auto& x : members) v.push_back(x[a]);
-          std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-          anchor[a] = v[v.size() / 2];
-        }
-      }
-      close();
-    }
-    // Reported in the class's object frame (its mesh's), not the model frame the detector fits in.
-    const ObjectPoseFitter* classFitter = m.detector->fitterFor(p.key());
-    const core::Pose3 X_model_mesh = classFitter ? classFitter->model().X_model_mesh : core::Pose3::Identity();
-    const ObjectDetection* carried = &*rested[static_cast<std::size_t>(firstFrame)];
-    std::size_t carriedFrom = static_cast<std::size_t>(firstFrame);
-    for (std::size_t i = 0; i < dets.size(); ++i) {
-      ObjectPoseSample s;
-      s.frame = m.frameIndex[i];
-      s.t_s = m.frameTime_s[i];
-      if (p.isStatic) {
-        const auto& best = *dets[static_cast<std::size_t>(bestFrame)];
-        s.X_camera_object = carry(best.X_camera_object, static_cast<std::size_t>(bestFrame), i);
-        s.detected = dets[i].has_value();
-        s.confidence = best.confidence;
-      } else {
-        if (rested[i]) {
-          carried = &*rested[i];
-          carriedFrom = i;
-        }
-        s.X_camera_object = carry(carried->X_camera_object, carriedFrom, i);
-        s.detected = dets[i].has_value();
-        s.confidence = dets[i] ? dets[i]->confidence : 0.0;
-      }
-      s.X_camera_object = s.X_camera_object * X_model_mesh;
-      traj.samples.push_back(s);
-    }
-    result.objects.push_back(traj);
-  }
+  for (const auto& p : m.plan) result.objects.push_back(m.trajectoryOf(p, carry));
   if (m.discovery) {
     int freeId = 0;
     for (const auto& c : m.catalogue.classes()) freeId = std::max(freeId, c.classId + 1);

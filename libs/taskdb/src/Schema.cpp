@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "srp/taskdb/TaskDatabase.h"
+#include "srp/taskdb/SchemaVersion.h"
 
 namespace srp::taskdb::detail {
 
@@ -65,8 +65,9 @@ std::string fk(const std::string& columns, const std::string& target) {
 // which is what every version-1 row meant). Version 3: the scene the
 // demonstration was perceived in (PerceivedScenes, SceneObjects,
 // ObservedClasses; a version-2 task model has none).
-const std::vector<Table>& tables() {
-  static const std::vector<Table> t = {
+// The plan: the task model, its products and their source and target locations (thesis Appendix C).
+std::vector<Table> planTables() {
+  return {
       {"TaskModels",
        {{"TaskModelId", Type::Id},
         {"Name", Type::Text, "NOT NULL"},
@@ -115,6 +116,12 @@ const std::vector<Table>& tables() {
         {"TargetObjectId", Type::Integer, "NOT NULL"}},
        {{"PRIMARY KEY (TaskModelId, StepIndex)"},
         {fk("TaskModelId, TargetObjectId", "Products(TaskModelId, ObjectId)")}}},
+  };
+}
+
+// What the demonstration showed and what was learned from it: grounded products, their poses, the hand, the skills.
+std::vector<Table> trajectoryTables() {
+  return {
       {"GroundedProducts",
        {{"TaskModelId", Type::Integer, kTaskModelRef},
         {"ClassId", Type::Integer, "NOT NULL"},
@@ -173,6 +180,12 @@ const std::vector<Table>& tables() {
         {"PRIMARY KEY (TaskModelId, ClassId, InstanceId, Skill)", 2},
         {fk("TaskModelId, ClassId", "GroundedProducts(TaskModelId, ClassId)"), 1, 2},
         {fk("TaskModelId, ClassId, InstanceId", "GroundedProducts(TaskModelId, ClassId, InstanceId)"), 2}}},
+  };
+}
+
+// The scene the demonstration was perceived in (version 3).
+std::vector<Table> sceneTables() {
+  return {
       {"PerceivedScenes",
        {{"TaskModelId", Type::Integer, "PRIMARY KEY REFERENCES TaskModels(TaskModelId) ON DELETE CASCADE"},
         {"Catalogue", Type::Text, "NOT NULL"},
@@ -214,6 +227,14 @@ const std::vector<Table>& tables() {
        {{"PRIMARY KEY (TaskModelId, ClassId)"}, {"UNIQUE (TaskModelId, Name)"}},
        3},
   };
+}
+
+const std::vector<Table>& tables() {
+  static const std::vector<Table> t = [] {
+    std::vector<Table> all = planTables();
+    for (auto&& group : {trajectoryTables(), sceneTables()}) all.insert(all.end(), group.begin(), group.end());
+    return all;
+  }();
   return t;
 }
 

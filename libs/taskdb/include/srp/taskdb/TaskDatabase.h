@@ -6,6 +6,8 @@
 #include <memory>
 #include <string>
 
+#include "srp/taskdb/SchemaVersion.h"
+
 namespace SQLite {
 class Database;
 }
@@ -14,9 +16,6 @@ namespace srp::taskdb {
 namespace detail {
 class Backend;
 }
-
-/// The schema version this build reads and writes (`PRAGMA user_version`).
-inline constexpr int kSchemaVersion = 3;
 
 /// One connection to a task database.
 ///

@@ -2,6 +2,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "srp/core/ObjectClassJson.h"
+
 namespace srp::programming {
 namespace {
 
@@ -18,17 +20,8 @@ nlohmann::json toJson(const ObjectOutcome& o) {
           {"note", o.note}};
 }
 
-nlohmann::json toJson(const core::ObjectClass& c) {
-  nlohmann::json footprint = nlohmann::json::array();
-  for (const auto& p : c.footprint_object) footprint.push_back({p.x(), p.y()});
-  return {{"name", c.name},
-          {"class_id", c.classId},
-          {"kind", core::toString(c.kind)},
-          {"shape", c.shape},
-          {"color_name", c.colourName},
-          {"dimensions_m", {c.dimensions_m.x(), c.dimensions_m.y(), c.dimensions_m.z()}},
-          {"footprint_m", footprint}};
-}
+// A class seen without a CAD file, as the scene file and the task database write it.
+nlohmann::json toJson(const core::ObjectClass& c) { return core::objectClassToJson(c); }
 
 /// [toJson(x) for x in items] (an empty array for none).
 template <typename T>

@@ -237,19 +237,24 @@ cv::Mat MarkerFreeHandDetector::backgroundFromPreview() {
       std::nth_element(vals.begin(), vals.begin() + static_cast<long>(k), vals.end());
       background_mm.at<float>(v, u) = vals[k];
     }
+  // The depth's field of view: where any sample had a depth (a registered
+  // image's band that the depth camera does not see never has one).
+  view_ = depthFieldOfView(background_mm, options_.minFieldOfViewValid);
   if (options_.backgroundFillDiameter_px > 1 && cv::countNonZero(untrusted) > 0) {
     // The farthest trusted background nearby (a grey dilation of the trusted
     // pixels), when it lies behind the pixel's own quantile; with no trusted
-    // pixel nearby (a wide region of sparse depth, e.g. far away) the
-    // pixel's own quantile stays.
+    // pixel nearby (a wide region without depth most of the time: beyond the
+    // sensor's range, a dark or shiny wall) no background depth
+    // (farWithoutDepth: whatever has a depth there is in front of it) or the
+    // pixel's own quantile.
     cv::Mat trusted = background_mm.clone(), farthest;
     trusted.setTo(0.f, untrusted);
     cv::dilate(trusted, farthest, disc(options_.backgroundFillDiameter_px));
     cv::Mat filled = cv::max(background_mm, farthest);
+    if (options_.farWithoutDepth) filled.setTo(0.f, farthest <= 0.f);
     filled.copyTo(background_mm, untrusted);
   }
   background_mm.convertTo(backgroundDepth_m_, CV_32FC1, 1e-3);
-  view_ = depthFieldOfView(backgroundDepth_m_, options_.minFieldOfViewValid);
   if (!previewColourSum_.empty())
     previewColourSum_.convertTo(backgroundColour_, CV_8UC3, 1.0 / static_cast<double>(previewFrames_));
   return background_mm;
@@ -544,7 +549,7 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
 
   // ---- the hand: the arm's skin part
   HandBlob hand;
-  hand.mask = handMask(frame, arm);
+  hand.mask = handMask(frame, arm, &hand.skin);
   if (hand.mask.empty()) {
     if (trace)
       core::Log::writef("hand", core::Log::Level::Debug, "frame %d: arm %d px (border %d), skin on it below %d px\n",
@@ -681,6 +686,7 @@ cv::Mat MarkerFreeHandDetector::foregroundMask(const rawlog::RgbdFrame& frame) c
   // the hand is its skin-coloured part.
   const cv::Mat& depth = frame.depth_m;
   const bool hasColour = !frame.colour_bgr8.empty();
+  const bool farWithoutDepth = options_.farWithoutDepth;
   cv::Mat mask(depth.size(), CV_8UC1, cv::Scalar(0));
   for (int v = 0; v < depth.rows; ++v) {
     const float* z = depth.ptr<float>(v);
@@ -688,6 +694,7 @@ cv::Mat MarkerFreeHandDetector::foregroundMask(const rawlog::RgbdFrame& frame) c
     uchar* m = mask.ptr<uchar>(v);
     for (int u = 0; u < depth.cols; ++u) {
       if (z[u] > 0.f && bg[u] > 0.f) m[u] = (bg[u] - z[u] > options_.minForeground_m) ? 255 : 0;
+      else if (z[u] > 0.f && farWithoutDepth) m[u] = 255;  // a depth where the background has none
       else if (z[u] <= 0.f && hasColour && !backgroundColour_.empty()) {
         // A hole (moving hand): foreground when the colour changed.
         const cv::Vec3b a = frame.colour_bgr8.at<cv::Vec3b>(v, u), b = backgroundColour_.at<cv::Vec3b>(v, u);
@@ -705,7 +712,7 @@ cv::Mat MarkerFreeHandDetector::foregroundMask(const rawlog::RgbdFrame& frame) c
   return mask;
 }
 
-cv::Mat MarkerFreeHandDetector::handMask(const rawlog::RgbdFrame& frame, const cv::Mat& arm) const {
+cv::Mat MarkerFreeHandDetector::handMask(const rawlog::RgbdFrame& frame, const cv::Mat& arm, cv::Mat* skinOnly) const {
   // The recording's skin model for a bare forearm; the prior box for a glove
   // and sleeve (the cuff rule's lengths were measured with it).
   const cv::Mat skin = !frame.colour_bgr8.empty() ? skinMask(frame.colour_bgr8, bareForearms_)
@@ -770,6 +777,7 @@ cv::Mat MarkerFreeHandDetector::handMask(const rawlog::RgbdFrame& frame, const c
   }
   cv::morphologyEx(hand, hand, cv::MORPH_OPEN, disc(options_.openDiameter_px));
   if (cv::countNonZero(hand) < options_.minHandPixels) return cv::Mat();
+  if (skinOnly) *skinOnly = hand.clone();
   // Fill holes (a held object, a badge on the glove): the palm disc's depth
   // and the sleeve (the arm's non-skin part) must not include them.
   std::vector<std::vector<cv::Point>> contours;
@@ -893,12 +901,29 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::bareForear
   a.anchor_px = mean + tip * local;
   a.dir = local;
   a.length_m = -options_.palmFromFarEnd_m;
+  geometry_.farEnd_px = a.anchor_px;
+  if (options_.palmAtThickest_m > 0.0) {
+    // The palm is the hand's thickest part: the maximum of the distance
+    // transform of the component's skin (a held part is no skin, holes
+    // filled or not) within palmAtThickest_m of the far end along the
+    // hand's axis (the forearm, farther back, may be as thick).
+    cv::Mat near = hand.skin.empty() ? comp.clone() : cv::Mat(comp & hand.skin);
+    const double window_px = options_.palmAtThickest_m * compPxPerM;
+    for (int v = 0; v < near.rows; ++v) {
+      uchar* p = near.ptr<uchar>(v);
+      for (int u = 0; u < near.cols; ++u)
+        if (p[u] && (Eigen::Vector2d(u, v) - a.anchor_px).dot(local) < -window_px) p[u] = 0;
+    }
+    if (const auto thickest = thickestPoint(near)) {
+      a.anchor_px = *thickest;
+      a.length_m = 0.0;
+    }
+  }
   hand.mask = comp;
   hand.z_m = z_comp;
   hand.pxPerM = compPxPerM;
   lastMask_ = hand.mask;
   geometry_.bareForearm = true;
-  geometry_.farEnd_px = a.anchor_px;
   return a;
 }
 

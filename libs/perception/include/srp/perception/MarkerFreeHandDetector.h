@@ -109,6 +109,13 @@ class MarkerFreeHandDetector : public HandDetector {
     double minBackgroundValidFraction = 0.5;
     /// Window of that neighbour fill [px].
     int backgroundFillDiameter_px = 9;
+    /// Such a pixel with no trusted neighbour (a wide region without depth
+    /// most of the time: a wall beyond the sensor's range, seen from the side
+    /// or from the demonstrator's head) has no background depth, and
+    /// whatever has a depth there is foreground (the arm reaching in front
+    /// of it), instead of its own quantile (which is the arm's depth where
+    /// only the arm ever gave one). false: its own quantile.
+    bool farWithoutDepth = true;
     /// Foreground: closer than the background by this much [m].
     double minForeground_m = 0.02;
     /// Foreground in a depth hole: sum of |BGR| changes from the background
@@ -168,6 +175,13 @@ class MarkerFreeHandDetector : public HandDetector {
     /// axis [m] (half a palm plus the curled fingers of a hand grasping from
     /// above, 0.05 + 0.02 m).
     double palmFromFarEnd_m = 0.07;
+    /// Bare forearm: the palm centre is the hand's thickest point (the
+    /// maximum of the distance transform of its skin, a held part left out)
+    /// within this length of the far end along the hand's axis [m], not
+    /// palmFromFarEnd_m back from the far end (which depends on how far the
+    /// fingers are stretched, and seen from the side on where the fingers
+    /// end round a part). 0: palmFromFarEnd_m.
+    double palmAtThickest_m = 0.0;
     /// The last palm depth is carried along the palm's ray for at most this
     /// many frames (the caller does it, see DemoPerception) [frames].
     int maxCarryFrames = 3;
@@ -213,12 +227,15 @@ class MarkerFreeHandDetector : public HandDetector {
     /// view) [px].
     int borderMargin_px = 2;
     /// The depth's field of view in the (registered) image: the rows and
-    /// columns where at least this share of the background's pixels have a
-    /// depth [0..1]. A registered depth image has a band at its edges the
+    /// columns where at least this share of the pixels had a depth in some
+    /// frame [0..1]. A registered depth image has a band at its edges the
     /// depth camera does not see (HRT1's Fetch camera: ~20 px at the right
-    /// and the top); an arm entering there reaches that band's edge, not the
-    /// image's, and nothing is foreground inside the band.
-    double minFieldOfViewValid = 0.5;
+    /// and the top), where no frame has a depth; an arm entering there
+    /// reaches that band's edge, not the image's, and nothing is foreground
+    /// inside the band. Low: a wall beyond the sensor's range (seen from the
+    /// side) has a depth only where the arm passed in front of it, and is in
+    /// view (with farWithoutDepth).
+    double minFieldOfViewValid = 0.1;
     /// Bare forearm: the skin component taken for the forearm and hand is the
     /// one reaching farthest from where the body enters the view, along the
     /// geodesic inside the body's foreground, measured on a grid of this many
@@ -353,6 +370,7 @@ class MarkerFreeHandDetector : public HandDetector {
   /// The hand's pixels with their depth and pixel scale.
   struct HandBlob {
     cv::Mat mask;             ///< CV_8UC1
+    cv::Mat skin;             ///< its skin pixels before holes were filled (CV_8UC1)
     double z_m = 0.0;         ///< median depth of its valid pixels
     double pxPerM = 0.0;      ///< pixels per metre at z_m
   };
@@ -371,7 +389,8 @@ class MarkerFreeHandDetector : public HandDetector {
   /// Foreground by depth (and colour change in depth holes), opened.
   cv::Mat foregroundMask(const rawlog::RgbdFrame& frame) const;
   /// The hand: skin part of the arm, opened, holes filled; empty when too small.
-  cv::Mat handMask(const rawlog::RgbdFrame& frame, const cv::Mat& arm) const;
+  /// `skinOnly` (optional): the skin part before the holes are filled.
+  cv::Mat handMask(const rawlog::RgbdFrame& frame, const cv::Mat& arm, cv::Mat* skinOnly = nullptr) const;
   /// The non-skin part of the arm that reaches the border (empty mask: none).
   cv::Mat sleeveMask(const cv::Mat& arm, const cv::Mat& hand) const;
   /// Bare forearm: the largest skin component, when longer than a hand (or

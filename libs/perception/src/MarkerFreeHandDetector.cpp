@@ -549,7 +549,7 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
 
   // ---- the hand: the arm's skin part
   HandBlob hand;
-  hand.mask = handMask(frame, arm, &hand.skin);
+  hand.mask = handMask(frame, arm);
   if (hand.mask.empty()) {
     if (trace)
       core::Log::writef("hand", core::Log::Level::Debug, "frame %d: arm %d px (border %d), skin on it below %d px\n",
@@ -589,7 +589,12 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
 
   // ---- the palm's anchor: far end of a bare forearm, else the cuff, else the fingertips
   bool refused = false;
-  std::optional<Anchor> anchor = bareForearmAnchor(frame, arm, entry, hand, refused);
+  // A sleeve's cuff in view, in a recording without bare forearms: the wrist
+  // is seen, whatever lengthens the skin beyond a hand (a held part of a
+  // skin-like colour, its shaded faces).
+  std::optional<Anchor> anchor;
+  if (options_.cuffFirst && !bareForearms_) anchor = cuffAnchor(hand.mask, sleeve, entry);
+  if (!anchor) anchor = bareForearmAnchor(frame, arm, entry, hand, refused);
   if (refused) {
     if (trace)
       core::Log::writef("hand", core::Log::Level::Debug, "frame %d: skin only near the body's entry, no palm\n",
@@ -712,7 +717,7 @@ cv::Mat MarkerFreeHandDetector::foregroundMask(const rawlog::RgbdFrame& frame) c
   return mask;
 }
 
-cv::Mat MarkerFreeHandDetector::handMask(const rawlog::RgbdFrame& frame, const cv::Mat& arm, cv::Mat* skinOnly) const {
+cv::Mat MarkerFreeHandDetector::handMask(const rawlog::RgbdFrame& frame, const cv::Mat& arm) const {
   // The recording's skin model for a bare forearm; the prior box for a glove
   // and sleeve (the cuff rule's lengths were measured with it).
   const cv::Mat skin = !frame.colour_bgr8.empty() ? skinMask(frame.colour_bgr8, bareForearms_)
@@ -777,7 +782,6 @@ cv::Mat MarkerFreeHandDetector::handMask(const rawlog::RgbdFrame& frame, const c
   }
   cv::morphologyEx(hand, hand, cv::MORPH_OPEN, disc(options_.openDiameter_px));
   if (cv::countNonZero(hand) < options_.minHandPixels) return cv::Mat();
-  if (skinOnly) *skinOnly = hand.clone();
   // Fill holes (a held object, a badge on the glove): the palm disc's depth
   // and the sleeve (the arm's non-skin part) must not include them.
   std::vector<std::vector<cv::Point>> contours;
@@ -902,23 +906,6 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::bareForear
   a.dir = local;
   a.length_m = -options_.palmFromFarEnd_m;
   geometry_.farEnd_px = a.anchor_px;
-  if (options_.palmAtThickest_m > 0.0) {
-    // The palm is the hand's thickest part: the maximum of the distance
-    // transform of the component's skin (a held part is no skin, holes
-    // filled or not) within palmAtThickest_m of the far end along the
-    // hand's axis (the forearm, farther back, may be as thick).
-    cv::Mat near = hand.skin.empty() ? comp.clone() : cv::Mat(comp & hand.skin);
-    const double window_px = options_.palmAtThickest_m * compPxPerM;
-    for (int v = 0; v < near.rows; ++v) {
-      uchar* p = near.ptr<uchar>(v);
-      for (int u = 0; u < near.cols; ++u)
-        if (p[u] && (Eigen::Vector2d(u, v) - a.anchor_px).dot(local) < -window_px) p[u] = 0;
-    }
-    if (const auto thickest = thickestPoint(near)) {
-      a.anchor_px = *thickest;
-      a.length_m = 0.0;
-    }
-  }
   hand.mask = comp;
   hand.z_m = z_comp;
   hand.pxPerM = compPxPerM;

@@ -49,8 +49,7 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                    {"maxWalkFactor", &o.maxWalkFactor},
                                    {"maxNormalFlatness", &o.maxNormalFlatness},
                                    {"minIslandSkinFraction", &o.minIslandSkinFraction},
-                                   {"minFieldOfViewValid", &o.minFieldOfViewValid},
-                                   {"palmAtThickest_m", &o.palmAtThickest_m}};
+                                   {"minFieldOfViewValid", &o.minFieldOfViewValid}};
   std::map<std::string, int*> i{{"holeColourChange", &o.holeColourChange},
                                 {"backgroundFillDiameter_px", &o.backgroundFillDiameter_px},
                                 {"skinMinLuma", &o.skinMinLuma},
@@ -62,7 +61,8 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
   std::map<std::string, bool*> b{{"walkOnDepth", &o.walkOnDepth},
                                  {"palmAlongNormal", &o.palmAlongNormal},
                                  {"cuffTowardsThickest", &o.cuffTowardsThickest},
-                                 {"farWithoutDepth", &o.farWithoutDepth}};
+                                 {"farWithoutDepth", &o.farWithoutDepth},
+                                 {"cuffFirst", &o.cuffFirst}};
   std::stringstream ss(env);
   std::string item;
   while (std::getline(ss, item, ',')) {

@@ -244,6 +244,36 @@ TEST(MarkerFreeHandDetector, ArmInFrontOfAWallWithoutDepth) {
   EXPECT_EQ(fromTopEdge, 0) << "the scene should cut the arm at the wall's lower edge without the rule";
 }
 
+// A sleeved arm holding a part of a skin-like colour (a tan toy, a red part's
+// shaded face) that reaches 0.20 m beyond the fingers: the skin blob is longer
+// than a hand, which alone would make it a bare forearm whose far end is the
+// part's. The cuff in view places the palm (cuffFirst).
+TEST(MarkerFreeHandDetector, SkinColouredHeldPartDoesNotMoveThePalmPastTheCuff) {
+  const ArmPose arm{{320.0, 200.0}, 80.0 * M_PI / 180, 0.03};  // from the top border, fingers closed round the part
+  constexpr double kPartLength_m = 0.20, kPartHalfWidth_m = 0.03;
+  auto frameWithPart = [&](int index) {
+    auto f = drawnFrame(index, arm);
+    drawBox(f, arm, 0.045, 0.045 + kPartLength_m, kPartHalfWidth_m, 0.0, kSkinBgr, kHandTop_m + 0.02);
+    return f;
+  };
+  auto run = [&](const MarkerFreeHandDetector::Options& o) {
+    MarkerFreeHandDetector detector(o);
+    for (int i = 0; i < kBackgroundFrames; ++i) detector.detect(drawnFrame(i, std::nullopt));
+    const auto h = detector.detect(frameWithPart(kBackgroundFrames));
+    return h ? std::optional<Eigen::Vector2d>(h->palm_px) : std::nullopt;
+  };
+  const auto palm = run({});
+  ASSERT_TRUE(palm.has_value());
+  EXPECT_LT((*palm - arm.palm_px).norm(), kPalmPixelTol_px);
+  MarkerFreeHandDetector::Options off;
+  off.cuffFirst = false;
+  const auto farEnd = run(off);
+  ASSERT_TRUE(farEnd.has_value());
+  // Without the rule the palm lies palmFromFarEnd_m back from the part's far end: on the part.
+  constexpr double kOnThePart_px = 40.0;  // 5 cm at 0.75 m
+  EXPECT_GT((*farEnd - arm.palm_px).norm(), kOnThePart_px) << "the scene should move the palm without the rule";
+}
+
 TEST(MarkerFreeHandDetector, EnteringHandFromItsFingertips) {
   MarkerFreeHandDetector detector({});
   for (int i = 0; i < kBackgroundFrames; ++i) detector.detect(drawnFrame(i, std::nullopt));

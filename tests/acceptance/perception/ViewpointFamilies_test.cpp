@@ -105,8 +105,8 @@ void checkFamily(synth::ViewpointFamily family, const Reached& reached) {
 
 // Reached: 94.4 %, 17.6 mm, 0 past the part (chosen on).
 TEST(ViewpointFamilies, EgocentricChosenOn) { checkFamily(synth::ViewpointFamily::Egocentric, {0.018, 0.94, 0}); }
-// Reached: 71.7 %, 35.3 mm, 17 of 653 carry frames past the part (chosen on).
-TEST(ViewpointFamilies, SideChosenOn) { checkFamily(synth::ViewpointFamily::Side, {0.037, 0.71, 17}); }
+// Reached: 69.3 %, 35.4 mm, 0 of 653 carry frames past the part (chosen on).
+TEST(ViewpointFamilies, SideChosenOn) { checkFamily(synth::ViewpointFamily::Side, {0.037, 0.69, 0}); }
 // Reached: 86.2 %, 6.1 mm (6.07), 0 of 653 carry frames past the part.
 TEST(ViewpointFamilies, TopDownChecked) { checkFamily(synth::ViewpointFamily::TopDown, {0.0065, 0.86, 0}); }
 

@@ -175,13 +175,6 @@ class MarkerFreeHandDetector : public HandDetector {
     /// axis [m] (half a palm plus the curled fingers of a hand grasping from
     /// above, 0.05 + 0.02 m).
     double palmFromFarEnd_m = 0.07;
-    /// Bare forearm: the palm centre is the hand's thickest point (the
-    /// maximum of the distance transform of its skin, a held part left out)
-    /// within this length of the far end along the hand's axis [m], not
-    /// palmFromFarEnd_m back from the far end (which depends on how far the
-    /// fingers are stretched, and seen from the side on where the fingers
-    /// end round a part). 0: palmFromFarEnd_m.
-    double palmAtThickest_m = 0.0;
     /// The last palm depth is carried along the palm's ray for at most this
     /// many frames (the caller does it, see DemoPerception) [frames].
     int maxCarryFrames = 3;
@@ -211,6 +204,12 @@ class MarkerFreeHandDetector : public HandDetector {
     /// and hand (which perspective turns when the forearm comes at the
     /// camera). false: that axis.
     bool cuffTowardsThickest = true;
+    /// In a recording whose preview shows no bare forearm, a cuff in view
+    /// (step 5) places the palm before the bare-forearm rule is tried: a
+    /// skin blob longer than a hand next to a sleeve's cuff is the hand and
+    /// something of a skin-like colour it holds, whose far end is no hand's.
+    /// false: the bare-forearm rule first in every frame.
+    bool cuffFirst = true;
     /// That normal is used when the disc is flat: its smallest spread at most
     /// this share of the next [ratio].
     double maxNormalFlatness = 0.25;
@@ -370,7 +369,6 @@ class MarkerFreeHandDetector : public HandDetector {
   /// The hand's pixels with their depth and pixel scale.
   struct HandBlob {
     cv::Mat mask;             ///< CV_8UC1
-    cv::Mat skin;             ///< its skin pixels before holes were filled (CV_8UC1)
     double z_m = 0.0;         ///< median depth of its valid pixels
     double pxPerM = 0.0;      ///< pixels per metre at z_m
   };
@@ -389,8 +387,7 @@ class MarkerFreeHandDetector : public HandDetector {
   /// Foreground by depth (and colour change in depth holes), opened.
   cv::Mat foregroundMask(const rawlog::RgbdFrame& frame) const;
   /// The hand: skin part of the arm, opened, holes filled; empty when too small.
-  /// `skinOnly` (optional): the skin part before the holes are filled.
-  cv::Mat handMask(const rawlog::RgbdFrame& frame, const cv::Mat& arm, cv::Mat* skinOnly = nullptr) const;
+  cv::Mat handMask(const rawlog::RgbdFrame& frame, const cv::Mat& arm) const;
   /// The non-skin part of the arm that reaches the border (empty mask: none).
   cv::Mat sleeveMask(const cv::Mat& arm, const cv::Mat& hand) const;
   /// Bare forearm: the largest skin component, when longer than a hand (or

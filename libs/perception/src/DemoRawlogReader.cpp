@@ -1,5 +1,7 @@
 #include "srp/perception/DemoRawlogReader.h"
 
+#include <filesystem>
+#include <system_error>
 #include <utility>
 
 #include "srp/core/Error.h"
@@ -38,8 +40,12 @@ int DemoRawlogReader::preview(DemoPerceiver& perceiver, const std::function<void
   core::require(!previewDone_ && decoded_ == 0,
                 "DemoRawlogReader::preview: call it once, before the first next() (" + path_ + ")");
   previewDone_ = true;
+  // A file larger than the budget cannot fit once decoded (a frame decodes to
+  // more bytes than its gzip member holds): nothing is kept.
   const double budget = 1e6 * options_.keptFrames_MB;
-  bool keep = budget > 0.0;
+  std::error_code ec;
+  const auto fileBytes = std::filesystem::file_size(path_, ec);
+  bool keep = budget > 0.0 && !ec && static_cast<double>(fileBytes) <= budget;
   while (!perceiver.previewComplete()) {
     auto f = read();
     if (!f) {

@@ -175,8 +175,8 @@ TEST(DemoPerception, DemoRawlogReaderPreviewsEveryFrameAndDecodesItOnce) {
   EXPECT_THROW(DemoRawlogReader(tempPath("missing.rawlog")), core::FileError);
 }
 
-// Over its memory budget the reader keeps no previewed frame and reads the
-// file again: the perception pass gets the very same frames, bit for bit,
+// Over its memory budget (the file's size or the decoded frames') the reader
+// keeps no previewed frame and reads the file again: the perception pass gets the very same frames, bit for bit,
 // and perceiveRawlog's result does not depend on the budget.
 TEST(DemoPerception, DemoRawlogReaderOverItsBudgetReadsTwiceTheSameFrames) {
   const std::string rawlogPath = tempPath("budget.rawlog");
@@ -205,7 +205,10 @@ TEST(DemoPerception, DemoRawlogReaderOverItsBudgetReadsTwiceTheSameFrames) {
   EXPECT_FALSE(twice);
   EXPECT_EQ(decoded, 12);
   const double frame_MB = 1e-6 * static_cast<double>(kept.front().colour_bgr8.total() * 3 + kept.front().depth_m.total() * 4);
-  for (const double budget_MB : {0.0, 5.5 * frame_MB}) {  // never kept; over the budget at the 6th frame
+  const double file_MB = 1e-6 * static_cast<double>(fs::file_size(rawlogPath));
+  ASSERT_LT(file_MB, 5.5 * frame_MB) << "the file must fit the budget for the 6th frame to go over it";
+  // Never kept; a file larger than the budget; over the budget at the 6th frame.
+  for (const double budget_MB : {0.0, 0.5 * file_MB, 5.5 * frame_MB}) {
     const auto [reread, rereadResult] = passes(budget_MB, twice, decoded);
     EXPECT_TRUE(twice) << budget_MB << " MB";
     EXPECT_EQ(decoded, 24) << budget_MB << " MB";

@@ -22,9 +22,10 @@ namespace srp::perception {
 /// few for HandMethod::Auto when the glove's tag is seen), then next() for
 /// DemoPerceiver::add(). The frames the preview decoded are kept and next()
 /// hands them out first, then reads on: each frame is decoded once. When the
-/// previewed frames would take more than `Options::keptFrames_MB` (a 640x480
-/// frame takes 2.1 MB), none are kept and next() reads the file a second time
-/// from its start, so memory stays flat on long recordings.
+/// file is larger than `Options::keptFrames_MB`, or the previewed frames would
+/// take more (a 640x480 frame takes 2.1 MB decoded, 0.3-0.6 MB in the file),
+/// none are kept and next() reads the file a second time from its start:
+/// memory stays flat on long recordings and grows by at most the budget.
 ///
 /// ```cpp
 /// DemoPerceiver perceiver(catalogue, options);
@@ -45,7 +46,8 @@ class DemoRawlogReader {
     /// Replace every frame's intrinsics (a calibration given by the user).
     std::optional<core::CameraIntrinsics> intrinsics;
     /// Memory for the previewed frames kept for the perception pass [MB]
-    /// (decimal); 0: never kept, the file is read twice.
+    /// (decimal); 0: never kept, the file is read twice. 128 MB holds a
+    /// 640x480 recording of up to 59 frames (6 s at 10 Hz).
     double keptFrames_MB = 128.0;
   };
 

@@ -85,7 +85,8 @@ TEST(CarriedPart, SegmentSearchOnTwoThreadsGivesTheAnswersOfOne) {
       const auto &sa = a.objects[k].samples[i], &sb = b.objects[k].samples[i];
       EXPECT_EQ(sa.detected, sb.detected) << a.objects[k].className << " frame " << i;
       EXPECT_EQ(sa.confidence, sb.confidence) << a.objects[k].className << " frame " << i;
-      EXPECT_TRUE(sa.X_camera_object.matrix() == sb.X_camera_object.matrix()) << a.objects[k].className << " frame " << i;
+      EXPECT_TRUE(sa.X_camera_object.matrix() == sb.X_camera_object.matrix())
+          << a.objects[k].className << " frame " << i;
       detections += sa.detected;
     }
   }

@@ -204,7 +204,8 @@ TEST(DemoPerception, DemoRawlogReaderOverItsBudgetReadsTwiceTheSameFrames) {
   const auto [kept, keptResult] = passes(128.0, twice, decoded);
   EXPECT_FALSE(twice);
   EXPECT_EQ(decoded, 12);
-  const double frame_MB = 1e-6 * static_cast<double>(kept.front().colour_bgr8.total() * 3 + kept.front().depth_m.total() * 4);
+  const double frame_MB =
+      1e-6 * static_cast<double>(kept.front().colour_bgr8.total() * 3 + kept.front().depth_m.total() * 4);
   const double file_MB = 1e-6 * static_cast<double>(fs::file_size(rawlogPath));
   ASSERT_LT(file_MB, 5.5 * frame_MB) << "the file must fit the budget for the 6th frame to go over it";
   // Never kept; a file larger than the budget; over the budget at the 6th frame.

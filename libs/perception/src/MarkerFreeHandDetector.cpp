@@ -13,6 +13,9 @@
 #include <vector>
 
 #include "srp/core/Error.h"
+#include "srp/perception/CameraModel.h"
+#include "srp/perception/DepthCloud.h"
+#include "srp/perception/PlaneFit.h"
 
 namespace srp::perception {
 namespace {
@@ -149,6 +152,10 @@ MarkerFreeHandDetector::MarkerFreeHandDetector(const Options& options) : options
   core::require(options.maxPalmSpeed_mps >= 0.0 && options.minPalmTrack >= 1 && options.maxPalmRefusals >= 0,
                 "MarkerFreeHandDetector: maxPalmSpeed_mps must be >= 0 m/s (0: no motion prior), minPalmTrack >= 1 "
                 "and maxPalmRefusals >= 0");
+  core::require(options.stillArmMaxHeight_m > 0.0 && options.stillArmSkinFraction >= 0.0 &&
+                    options.stillArmSkinFraction <= 1.0 && options.stillArmBridge_m >= 0.0,
+                "MarkerFreeHandDetector: stillArmMaxHeight_m must be > 0 m, stillArmSkinFraction in [0, 1] and "
+                "stillArmBridge_m >= 0 m (stillArmFromPlane = false turns the rule off)");
   core::require(options.palmFromWrist_m > 0.0 && options.palmFromFingertips_m > 0.0 && options.palmRadius_m > 0.0,
                 "MarkerFreeHandDetector: palmFromWrist_m, palmFromFingertips_m and palmRadius_m must be > 0 m "
                 "(lengths of the demonstrator's hand)");
@@ -254,10 +261,77 @@ cv::Mat MarkerFreeHandDetector::backgroundFromPreview() {
     if (options_.farWithoutDepth) filled.setTo(0.f, farthest <= 0.f);
     filled.copyTo(background_mm, untrusted);
   }
+  if (options_.stillArmFromPlane) stillArmToPlane(background_mm);
   background_mm.convertTo(backgroundDepth_m_, CV_32FC1, 1e-3);
   if (!previewColourSum_.empty())
     previewColourSum_.convertTo(backgroundColour_, CV_8UC3, 1.0 / static_cast<double>(previewFrames_));
   return background_mm;
+}
+
+void MarkerFreeHandDetector::stillArmToPlane(cv::Mat& background_mm) const {
+  // Skin (the prior box) in how many of the colour samples, per pixel (half size).
+  cv::Mat skinCount;
+  int withColour = 0;
+  for (const auto& c : previewColour_) {
+    if (c.empty()) continue;
+    if (skinCount.empty()) skinCount = cv::Mat(c.size(), CV_16UC1, cv::Scalar(0));
+    if (c.size() != skinCount.size()) continue;
+    cv::add(skinCount, cv::Scalar(1), skinCount, skinMask(c, false));
+    ++withColour;
+  }
+  if (withColour == 0) return;
+  cv::Mat skinMostly = skinCount >= options_.stillArmSkinFraction * withColour;
+  cv::resize(skinMostly, skinMostly, background_mm.size(), 0, 0, cv::INTER_NEAREST);
+  cv::Mat background_m;
+  background_mm.convertTo(background_m, CV_32FC1, 1e-3);
+  const CameraModel cameraModel(previewIntrinsics_);
+  const auto plane = fitSupportPlane(depthToCloud(background_m, cameraModel));
+  if (!plane) return;
+  // The plane's depth along each pixel's ray, where the background stands
+  // above it within the arm's height band and is mostly skin.
+  const core::CameraIntrinsics& k = previewIntrinsics_;
+  cv::Mat planeDepth_mm(background_mm.size(), CV_32FC1, cv::Scalar(0));
+  cv::Mat candidate(background_mm.size(), CV_8UC1, cv::Scalar(0));
+  for (int v = 0; v < background_mm.rows; ++v)
+    for (int u = 0; u < background_mm.cols; ++u) {
+      const float z_mm = background_mm.at<float>(v, u);
+      if (z_mm <= 0.f || !skinMostly.at<uchar>(v, u)) continue;
+      const Eigen::Vector3d ray((u - k.cx_px) / k.fx_px, (v - k.cy_px) / k.fy_px, 1.0);
+      const double along = plane->n.dot(ray);
+      if (along >= 0.0) continue;  // the ray never meets the plane
+      const double height_m = 1e-3 * z_mm * along + plane->d;
+      if (height_m < options_.minForeground_m || height_m > options_.stillArmMaxHeight_m) continue;
+      planeDepth_mm.at<float>(v, u) = static_cast<float>(-1e3 * plane->d / along);
+      candidate.at<uchar>(v, u) = 255;
+    }
+  // Only the regions that reach the border of the view (an arm enters there),
+  // bridged over gaps up to stillArmBridge_m (an arm that moved a little is
+  // still in every sample only where it is wide: the hand, not the wrist).
+  if (cv::countNonZero(candidate) == 0) return;
+  const double z_m = 1e-3 * cv::mean(background_mm, candidate)[0];
+  const int bridge_px = static_cast<int>(std::lround(options_.stillArmBridge_m * k.fx_px / z_m));
+  cv::Mat bridged = candidate;
+  if (bridge_px > 1) cv::dilate(candidate, bridged, disc(bridge_px));
+  cv::Mat labels, stats, centroids;
+  const int n = cv::connectedComponentsWithStats(bridged, labels, stats, centroids, 8, CV_32S);
+  const int m = options_.borderMargin_px;
+  std::vector<uchar> keep(static_cast<std::size_t>(n), 0);
+  for (int l = 1; l < n; ++l) {
+    const int x = stats.at<int>(l, cv::CC_STAT_LEFT), y = stats.at<int>(l, cv::CC_STAT_TOP);
+    const int w = stats.at<int>(l, cv::CC_STAT_WIDTH), h = stats.at<int>(l, cv::CC_STAT_HEIGHT);
+    keep[static_cast<std::size_t>(l)] = x <= view_.x + m || y <= view_.y + m || x + w >= view_.x + view_.width - m ||
+                                        y + h >= view_.y + view_.height - m;
+  }
+  int replaced = 0;
+  for (int v = 0; v < background_mm.rows; ++v)
+    for (int u = 0; u < background_mm.cols; ++u)
+      if (const int l = labels.at<int>(v, u); l > 0 && keep[static_cast<std::size_t>(l)] && candidate.at<uchar>(v, u)) {
+        background_mm.at<float>(v, u) = planeDepth_mm.at<float>(v, u);
+        ++replaced;
+      }
+  if (core::Log::enabled("hand", core::Log::Level::Debug))
+    core::Log::writef("hand", core::Log::Level::Debug, "still arm: %d background pixels from the support plane\n",
+                      replaced);
 }
 
 void MarkerFreeHandDetector::decideBareForearms(const cv::Mat& bgHalf) {

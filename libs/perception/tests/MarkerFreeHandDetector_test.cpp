@@ -244,6 +244,83 @@ TEST(MarkerFreeHandDetector, ArmInFrontOfAWallWithoutDepth) {
   EXPECT_EQ(fromTopEdge, 0) << "the scene should cut the arm at the wall's lower edge without the rule";
 }
 
+// A bare forearm in every frame of the recording, nearly still (swept
+// kSweep_px over the clip, as a hand holding a part while the head-mounted
+// camera looks down at it), over a table of a skin-like colour, beside a
+// static box on the table: the whole-recording background's quantile is the
+// arm itself wherever the arm always is. A skin-coloured region standing
+// above the support plane that reaches the border is the arm, not the
+// background; the box, not skin-coloured, stays background.
+TEST(MarkerFreeHandDetector, StillBareForearmInEveryFrame) {
+  constexpr int kFrames = 30;
+  auto withArm = [](int index, const ArmPose& arm) {
+    auto f = drawnFrame(index, arm);
+    f.colour_bgr8.setTo(kSkinBgr, f.depth_m < kTable_m - 0.02);  // bare forearm
+    const cv::Rect box(460, 300, 80, 60);  // a green box on the table, 8 cm high
+    cv::rectangle(f.colour_bgr8, box, cv::Scalar(40, 120, 40), cv::FILLED);
+    cv::rectangle(f.depth_m, box, cv::Scalar(kTable_m - 0.08), cv::FILLED);
+    return f;
+  };
+  for (const double kSweep_px : {0.0, 30.0}) {
+    SCOPED_TRACE("swept " + std::to_string(kSweep_px) + " px");
+    std::vector<rawlog::RgbdFrame> frames;
+    for (int i = 0; i < kFrames; ++i) {
+      const double s = kSweep_px * std::sin(2.0 * M_PI * i / kFrames);
+      frames.push_back(withArm(i, ArmPose{{300.0 + s, 280.0 + 0.3 * s}, 80.0 * M_PI / 180, 0.08}));  // from the top
+    }
+    // The reference: the palm found against the hand-free scene (first-frames
+    // background), i.e. what the whole-recording background should give.
+    std::vector<Eigen::Vector2d> reference;
+    {
+      MarkerFreeHandDetector detector({});
+      for (int i = 0; i < kBackgroundFrames; ++i) {
+        auto f = withArm(i, ArmPose{{300.0, 280.0}, 0.0, 0.08});
+        f.depth_m = drawnFrame(i, std::nullopt).depth_m;
+        f.colour_bgr8 = drawnFrame(i, std::nullopt).colour_bgr8;
+        const cv::Rect box(460, 300, 80, 60);
+        cv::rectangle(f.colour_bgr8, box, cv::Scalar(40, 120, 40), cv::FILLED);
+        cv::rectangle(f.depth_m, box, cv::Scalar(kTable_m - 0.08), cv::FILLED);
+        detector.detect(f);
+      }
+      for (auto f : frames) {
+        f.index += kBackgroundFrames;
+        const auto h = detector.detect(f);
+        ASSERT_TRUE(h.has_value());
+        reference.push_back(h->palm_px);
+      }
+    }
+    auto run = [&](const MarkerFreeHandDetector::Options& o) {
+      MarkerFreeHandDetector detector(o);
+      for (const auto& f : frames) detector.preview(f);
+      int within = 0;
+      for (const auto& f : frames) {
+        const auto h = detector.detect(f);
+        if (h && (h->palm_px - reference[static_cast<std::size_t>(f.index)]).norm() < kPalmPixelTol_px) ++within;
+      }
+      return within;
+    };
+    constexpr double kMinShareWithin = 0.9;
+    const int within = run({});
+    EXPECT_GE(within, kMinShareWithin * kFrames) << within << " of " << kFrames << " palms within tolerance";
+    MarkerFreeHandDetector::Options off;
+    off.stillArmFromPlane = false;
+    const int withinOff = run(off);
+    std::printf("still bare forearm, swept %.0f px: %d of %d palms within %.0f px (%d without the plane rule)\n",
+                kSweep_px, within, kFrames, kPalmPixelTol_px, withinOff);
+    if (kSweep_px == 0.0) EXPECT_LT(withinOff, kMinShareWithin * kFrames) << "the scene should fail without the rule";
+  }
+  // The still arm's palm where the far-end rule puts it on the drawn hand.
+  const ArmPose arm{{300.0, 280.0}, 80.0 * M_PI / 180, 0.08};
+  MarkerFreeHandDetector detector({});
+  for (int i = 0; i < kFrames; ++i) detector.preview(withArm(i, arm));
+  const auto h = detector.detect(withArm(0, arm));
+  ASSERT_TRUE(h.has_value());
+  const Eigen::Vector2d farEndPalm_px =
+      arm.palm_px + camera().fx_px / kHandTop_m * (0.045 + arm.fingerLength_m - detector.options().palmFromFarEnd_m) *
+                        Eigen::Vector2d(std::cos(arm.angle_rad), std::sin(arm.angle_rad));
+  EXPECT_LT((h->palm_px - farEndPalm_px).norm(), kPalmPixelTol_px);
+}
+
 // A sleeved arm holding a part of a skin-like colour (a tan toy, a red part's
 // shaded face) that reaches 0.20 m beyond the fingers: the skin blob is longer
 // than a hand, which alone would make it a bare forearm whose far end is the

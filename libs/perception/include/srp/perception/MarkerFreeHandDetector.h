@@ -116,6 +116,26 @@ class MarkerFreeHandDetector : public HandDetector {
     /// of it), instead of its own quantile (which is the arm's depth where
     /// only the arm ever gave one). false: its own quantile.
     bool farWithoutDepth = true;
+    /// Whole-recording background: an arm that stays in view and nearly
+    /// still is its own quantile there. Where the background stands above the
+    /// support plane (RANSAC over the background's cloud) by between
+    /// minForeground_m and stillArmMaxHeight_m, is of skin colour (the prior
+    /// box) in at least stillArmSkinFraction of the samples, and that region
+    /// reaches the border of the view (where an arm enters), the background
+    /// is the plane instead. A part on the table of skin colour reaches no
+    /// border and stays background; a face far above the table is higher.
+    /// false: off.
+    bool stillArmFromPlane = true;
+    /// That height limit above the support plane [m] (a forearm resting on or
+    /// held over the table, not the demonstrator's face).
+    double stillArmMaxHeight_m = 0.35;
+    /// That share of the samples with colour [0..1].
+    double stillArmSkinFraction = 0.9;
+    /// Those regions are joined across gaps up to this wide before the
+    /// border test (an arm that moved a little over the recording is in every
+    /// sample only where it is wide, the hand and the forearm, not at the
+    /// wrist between them) [m].
+    double stillArmBridge_m = 0.08;
     /// Foreground: closer than the background by this much [m].
     double minForeground_m = 0.02;
     /// Foreground in a depth hole: sum of |BGR| changes from the background
@@ -378,6 +398,9 @@ class MarkerFreeHandDetector : public HandDetector {
   /// Whole-recording background depth [mm, CV_32FC1] from the preview samples
   /// (also sets backgroundDepth_m_ and backgroundColour_).
   cv::Mat backgroundFromPreview();
+  /// stillArmFromPlane: the support plane's depth where the background
+  /// `background_mm` [mm, CV_32FC1] is a still arm (in place).
+  void stillArmToPlane(cv::Mat& background_mm) const;
   /// Does the preview show a bare forearm (sets bareForearms_)?
   void decideBareForearms(const cv::Mat& backgroundHalf_mm);
   /// Pixels where an arm enters the view, inside the depth's field of view:

@@ -237,19 +237,24 @@ cv::Mat MarkerFreeHandDetector::backgroundFromPreview() {
       std::nth_element(vals.begin(), vals.begin() + static_cast<long>(k), vals.end());
       background_mm.at<float>(v, u) = vals[k];
     }
+  // The depth's field of view: where any sample had a depth (a registered
+  // image's band that the depth camera does not see never has one).
+  view_ = depthFieldOfView(background_mm, options_.minFieldOfViewValid);
   if (options_.backgroundFillDiameter_px > 1 && cv::countNonZero(untrusted) > 0) {
     // The farthest trusted background nearby (a grey dilation of the trusted
     // pixels), when it lies behind the pixel's own quantile; with no trusted
-    // pixel nearby (a wide region of sparse depth, e.g. far away) the
-    // pixel's own quantile stays.
+    // pixel nearby (a wide region without depth most of the time: beyond the
+    // sensor's range, a dark or shiny wall) no background depth
+    // (farWithoutDepth: whatever has a depth there is in front of it) or the
+    // pixel's own quantile.
     cv::Mat trusted = background_mm.clone(), farthest;
     trusted.setTo(0.f, untrusted);
     cv::dilate(trusted, farthest, disc(options_.backgroundFillDiameter_px));
     cv::Mat filled = cv::max(background_mm, farthest);
+    if (options_.farWithoutDepth) filled.setTo(0.f, farthest <= 0.f);
     filled.copyTo(background_mm, untrusted);
   }
   background_mm.convertTo(backgroundDepth_m_, CV_32FC1, 1e-3);
-  view_ = depthFieldOfView(backgroundDepth_m_, options_.minFieldOfViewValid);
   if (!previewColourSum_.empty())
     previewColourSum_.convertTo(backgroundColour_, CV_8UC3, 1.0 / static_cast<double>(previewFrames_));
   return background_mm;
@@ -584,7 +589,12 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
 
   // ---- the palm's anchor: far end of a bare forearm, else the cuff, else the fingertips
   bool refused = false;
-  std::optional<Anchor> anchor = bareForearmAnchor(frame, arm, entry, hand, refused);
+  // A sleeve's cuff in view, in a recording without bare forearms: the wrist
+  // is seen, whatever lengthens the skin beyond a hand (a held part of a
+  // skin-like colour, its shaded faces).
+  std::optional<Anchor> anchor;
+  if (options_.cuffFirst && !bareForearms_) anchor = cuffAnchor(hand.mask, sleeve, entry);
+  if (!anchor) anchor = bareForearmAnchor(frame, arm, entry, hand, refused);
   if (refused) {
     if (trace)
       core::Log::writef("hand", core::Log::Level::Debug, "frame %d: skin only near the body's entry, no palm\n",
@@ -681,6 +691,7 @@ cv::Mat MarkerFreeHandDetector::foregroundMask(const rawlog::RgbdFrame& frame) c
   // the hand is its skin-coloured part.
   const cv::Mat& depth = frame.depth_m;
   const bool hasColour = !frame.colour_bgr8.empty();
+  const bool farWithoutDepth = options_.farWithoutDepth;
   cv::Mat mask(depth.size(), CV_8UC1, cv::Scalar(0));
   for (int v = 0; v < depth.rows; ++v) {
     const float* z = depth.ptr<float>(v);
@@ -688,6 +699,7 @@ cv::Mat MarkerFreeHandDetector::foregroundMask(const rawlog::RgbdFrame& frame) c
     uchar* m = mask.ptr<uchar>(v);
     for (int u = 0; u < depth.cols; ++u) {
       if (z[u] > 0.f && bg[u] > 0.f) m[u] = (bg[u] - z[u] > options_.minForeground_m) ? 255 : 0;
+      else if (z[u] > 0.f && farWithoutDepth) m[u] = 255;  // a depth where the background has none
       else if (z[u] <= 0.f && hasColour && !backgroundColour_.empty()) {
         // A hole (moving hand): foreground when the colour changed.
         const cv::Vec3b a = frame.colour_bgr8.at<cv::Vec3b>(v, u), b = backgroundColour_.at<cv::Vec3b>(v, u);
@@ -893,12 +905,12 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::bareForear
   a.anchor_px = mean + tip * local;
   a.dir = local;
   a.length_m = -options_.palmFromFarEnd_m;
+  geometry_.farEnd_px = a.anchor_px;
   hand.mask = comp;
   hand.z_m = z_comp;
   hand.pxPerM = compPxPerM;
   lastMask_ = hand.mask;
   geometry_.bareForearm = true;
-  geometry_.farEnd_px = a.anchor_px;
   return a;
 }
 

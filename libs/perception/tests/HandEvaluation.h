@@ -48,7 +48,8 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                    {"tiltInlier_m", &o.tiltInlier_m},
                                    {"maxWalkFactor", &o.maxWalkFactor},
                                    {"maxNormalFlatness", &o.maxNormalFlatness},
-                                   {"minIslandSkinFraction", &o.minIslandSkinFraction}};
+                                   {"minIslandSkinFraction", &o.minIslandSkinFraction},
+                                   {"minFieldOfViewValid", &o.minFieldOfViewValid}};
   std::map<std::string, int*> i{{"holeColourChange", &o.holeColourChange},
                                 {"backgroundFillDiameter_px", &o.backgroundFillDiameter_px},
                                 {"skinMinLuma", &o.skinMinLuma},
@@ -59,7 +60,9 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                 {"minTiltSamples", &o.minTiltSamples}};
   std::map<std::string, bool*> b{{"walkOnDepth", &o.walkOnDepth},
                                  {"palmAlongNormal", &o.palmAlongNormal},
-                                 {"cuffTowardsThickest", &o.cuffTowardsThickest}};
+                                 {"cuffTowardsThickest", &o.cuffTowardsThickest},
+                                 {"farWithoutDepth", &o.farWithoutDepth},
+                                 {"cuffFirst", &o.cuffFirst}};
   std::stringstream ss(env);
   std::string item;
   while (std::getline(ss, item, ',')) {

@@ -186,6 +186,94 @@ TEST(MarkerFreeHandDetector, ArmAcrossAStaticObjectsDepthShadow) {
   EXPECT_EQ(run(off), 0) << "the scene should cut the hand off at the wrist without the fill";
 }
 
+// A wall beyond the depth sensor's range behind the arm (a side view: the
+// top of the image shows the far wall, never a depth there): the arm has a
+// depth where it passes in front of the wall, and nowhere else does. The arm
+// enters from the image's top edge (farWithoutDepth, minFieldOfViewValid);
+// with each such pixel's own quantile (the arm's depth) and a field of view
+// that starts below the wall, the arm was cut at the wall's lower edge and
+// entered "there".
+TEST(MarkerFreeHandDetector, ArmInFrontOfAWallWithoutDepth) {
+  constexpr int kWallRows = 280;  // rows 0..279: the wall, no depth but on the arm
+  constexpr int kFrames = 20, kArmFrom = 12;
+  const cv::Scalar kWallBgr(70, 70, 70);
+  std::vector<rawlog::RgbdFrame> frames;
+  std::vector<ArmPose> arms(kFrames, ArmPose{{0.0, 0.0}, 0.0, 0.0});
+  for (int i = 0; i < kFrames; ++i) {
+    arms[i] = ArmPose{{280.0 + 10.0 * (i - kArmFrom), 330.0}, 90.0 * M_PI / 180, 0.08};  // from the top border
+    auto f = drawnFrame(i, i >= kArmFrom ? std::optional<ArmPose>(arms[i]) : std::nullopt);
+    const cv::Mat armMask = f.depth_m < kTable_m - 0.02;
+    f.colour_bgr8.setTo(kSkinBgr, armMask);  // a bare forearm: the palm is placed from the arm's far end
+    cv::Mat wall(480, 640, CV_8UC1, cv::Scalar(0));
+    wall.rowRange(0, kWallRows).setTo(255);
+    wall &= ~armMask;
+    f.depth_m.setTo(0.0, wall);
+    f.colour_bgr8.setTo(kWallBgr, wall);
+    frames.push_back(f);
+  }
+  const MarkerFreeHandDetector::Options defaults;
+  constexpr double kFarEndTol_px = 8.0;  // 1 cm at 0.75 m
+  auto run = [&](const MarkerFreeHandDetector::Options& o, int& fromTopEdge) {
+    MarkerFreeHandDetector detector(o);
+    for (const auto& f : frames) detector.preview(f);
+    int within = 0;
+    fromTopEdge = 0;
+    for (const auto& f : frames) {
+      const auto h = detector.detect(f);
+      if (f.index < kArmFrom) {
+        EXPECT_FALSE(h.has_value()) << "frame " << f.index << ": no arm in view";
+        continue;
+      }
+      // Far-end rule: palmFromFarEnd_m back from the fingertips (0.045 + 0.08 m from the drawn palm centre).
+      const ArmPose& arm = arms[static_cast<std::size_t>(f.index)];
+      const Eigen::Vector2d farEndPalm_px =
+          arm.palm_px + camera().fx_px / kHandTop_m * (0.045 + arm.fingerLength_m - o.palmFromFarEnd_m) *
+                            Eigen::Vector2d(std::cos(arm.angle_rad), std::sin(arm.angle_rad));
+      if (h && (h->palm_px - farEndPalm_px).norm() < kFarEndTol_px) ++within;
+      if (h && detector.lastGeometry().entry_px.y() <= o.borderMargin_px) ++fromTopEdge;
+    }
+    return within;
+  };
+  int fromTopEdge = 0;
+  EXPECT_EQ(run(defaults, fromTopEdge), kFrames - kArmFrom);
+  EXPECT_EQ(fromTopEdge, kFrames - kArmFrom) << "the arm enters from the image's top edge";
+  MarkerFreeHandDetector::Options off;
+  off.farWithoutDepth = false;
+  off.minFieldOfViewValid = 0.5;
+  run(off, fromTopEdge);
+  EXPECT_EQ(fromTopEdge, 0) << "the scene should cut the arm at the wall's lower edge without the rule";
+}
+
+// A sleeved arm holding a part of a skin-like colour (a tan toy, a red part's
+// shaded face) that reaches 0.20 m beyond the fingers: the skin blob is longer
+// than a hand, which alone would make it a bare forearm whose far end is the
+// part's. The cuff in view places the palm (cuffFirst).
+TEST(MarkerFreeHandDetector, SkinColouredHeldPartDoesNotMoveThePalmPastTheCuff) {
+  const ArmPose arm{{320.0, 200.0}, 80.0 * M_PI / 180, 0.03};  // from the top border, fingers closed round the part
+  constexpr double kPartLength_m = 0.20, kPartHalfWidth_m = 0.03;
+  auto frameWithPart = [&](int index) {
+    auto f = drawnFrame(index, arm);
+    drawBox(f, arm, 0.045, 0.045 + kPartLength_m, kPartHalfWidth_m, 0.0, kSkinBgr, kHandTop_m + 0.02);
+    return f;
+  };
+  auto run = [&](const MarkerFreeHandDetector::Options& o) {
+    MarkerFreeHandDetector detector(o);
+    for (int i = 0; i < kBackgroundFrames; ++i) detector.detect(drawnFrame(i, std::nullopt));
+    const auto h = detector.detect(frameWithPart(kBackgroundFrames));
+    return h ? std::optional<Eigen::Vector2d>(h->palm_px) : std::nullopt;
+  };
+  const auto palm = run({});
+  ASSERT_TRUE(palm.has_value());
+  EXPECT_LT((*palm - arm.palm_px).norm(), kPalmPixelTol_px);
+  MarkerFreeHandDetector::Options off;
+  off.cuffFirst = false;
+  const auto farEnd = run(off);
+  ASSERT_TRUE(farEnd.has_value());
+  // Without the rule the palm lies palmFromFarEnd_m back from the part's far end: on the part.
+  constexpr double kOnThePart_px = 40.0;  // 5 cm at 0.75 m
+  EXPECT_GT((*farEnd - arm.palm_px).norm(), kOnThePart_px) << "the scene should move the palm without the rule";
+}
+
 TEST(MarkerFreeHandDetector, EnteringHandFromItsFingertips) {
   MarkerFreeHandDetector detector({});
   for (int i = 0; i < kBackgroundFrames; ++i) detector.detect(drawnFrame(i, std::nullopt));

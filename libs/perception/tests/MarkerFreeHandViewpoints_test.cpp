@@ -35,11 +35,11 @@ TEST(MarkerFreeHandViewpoints, NoPalmPastTheHeldPartEgocentric) {
   expectNoPalmPastTheHeldPart(synth::ViewpointFamily::Egocentric, 2.0, false);
   expectNoPalmPastTheHeldPart(synth::ViewpointFamily::Egocentric, 1.5, true);
 }
-// Side view: not reached (the palm lands past the part in 11 of 71 and 21 of 144 carry frames);
-// guarded at the reached counts until the side view's palm is placed right.
+// Side view: with the sleeve none; with a bare forearm not reached (the palm lands past the part in
+// 16 of 144 carry frames), guarded at the reached count until that palm is placed right.
 TEST(MarkerFreeHandViewpoints, PalmPastTheHeldPartSideGuarded) {
-  expectNoPalmPastTheHeldPart(synth::ViewpointFamily::Side, 2.0, false, 11);
-  expectNoPalmPastTheHeldPart(synth::ViewpointFamily::Side, 1.5, true, 21);
+  expectNoPalmPastTheHeldPart(synth::ViewpointFamily::Side, 2.0, false);
+  expectNoPalmPastTheHeldPart(synth::ViewpointFamily::Side, 1.5, true, 16);
 }
 TEST(MarkerFreeHandViewpoints, NoPalmPastTheHeldPartTopDown) {
   expectNoPalmPastTheHeldPart(synth::ViewpointFamily::TopDown, 2.0, false);

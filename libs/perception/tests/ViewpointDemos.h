@@ -5,7 +5,7 @@
 // Shared by MarkerFreeHandViewpoints_test and bench/marker_free_hand_bench.
 //
 // Which family is for what: the detector's settings are chosen on the
-// egocentric family only; side and top-down are checked, never tuned on
+// egocentric and side families; top-down is checked, never tuned on
 // (perception README, "The marker-free hand in other views").
 #include <Eigen/Core>
 #include <filesystem>

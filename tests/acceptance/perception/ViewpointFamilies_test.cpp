@@ -4,12 +4,13 @@
 // render's ground truth (HandEvaluation.h), through the preview as `srp
 // perceive` runs the detector.
 //
-// The detector's settings are chosen on the egocentric family; side and
-// top-down are only checked (perception README). Each family's reached figures
-// are guarded (the issue's acceptance is not reached on the checked families).
+// The detector's settings are chosen on the egocentric and side families
+// (their frames are looked at to find what fails); top-down is only checked,
+// never looked at frame by frame nor tuned on (perception README). Each
+// family's reached figures are guarded (the issue's acceptance is not reached).
 //
 // SRP_VIEW_DIR=<dir> keeps the renders there (default: rendered into the build folder and deleted once scored);
-// SRP_VIEW_FAMILY=egocentric|side|top-down runs one family;
+// SRP_VIEW_FAMILY=egocentric|side|top-down runs one family; SRP_VIEW_VARIANT=0..5 one of its demonstrations;
 // SRP_HAND_DEBUG_DIR=<dir> draws every hand frame with the found geometry;
 // SRP_HAND_OPTIONS=name=value,... overrides detector options (HandEvaluation.h).
 #include <gtest/gtest.h>
@@ -45,8 +46,10 @@ testing::HandEvaluation evaluateFamily(synth::ViewpointFamily family) {
   const char* dir = std::getenv("SRP_VIEW_DIR");
   const std::string folder = dir ? dir : (std::filesystem::path(SRP_BINARY_DIR) / "viewpoint_demos").string();
   const char* debug = std::getenv("SRP_HAND_DEBUG_DIR");
+  const char* variant = std::getenv("SRP_VIEW_VARIANT");
   testing::HandEvaluation pooled;
   for (const auto& spec : familySpecs(family)) {
+    if (variant && std::atoi(variant) != spec.variant) continue;
     const std::string rawlog = testing::renderViewpointDemo(spec, folder);
     std::string debugDir;
     if (debug) std::filesystem::create_directories(debugDir = std::string(debug) + "/" + spec.name());
@@ -84,7 +87,7 @@ constexpr double kWithin_px = 40.0;  // issue 37: at 640-px width
 
 /// What a family must reach: issue 37 asks, on the checked families, for a palm median <= 15 mm,
 /// >= 95 % of the hand-in-view frames within kWithin_px and no palm past the held part. Not reached
-/// yet on either checked family (perception README); these bounds guard the reached figures.
+/// yet (perception README); these bounds guard the reached figures.
 struct Reached {
   double median_m, withinRate;
   int maxFarSide;
@@ -100,10 +103,10 @@ void checkFamily(synth::ViewpointFamily family, const Reached& reached) {
   EXPECT_EQ(ev.handWithoutHand, 0) << "a hand reported in frames without a hand";
 }
 
-// Reached: 94.4 %, 17.6 mm, 0 past the part (chosen on).
+// Reached: 94.5 %, 17.6 mm, 0 past the part (chosen on).
 TEST(ViewpointFamilies, EgocentricChosenOn) { checkFamily(synth::ViewpointFamily::Egocentric, {0.018, 0.94, 0}); }
-// Reached: 65.6 %, 38.4 mm, 29 of 653 carry frames past the part.
-TEST(ViewpointFamilies, SideChecked) { checkFamily(synth::ViewpointFamily::Side, {0.040, 0.65, 29}); }
+// Reached: 69.3 %, 35.4 mm, 0 of 653 carry frames past the part (chosen on).
+TEST(ViewpointFamilies, SideChosenOn) { checkFamily(synth::ViewpointFamily::Side, {0.037, 0.69, 0}); }
 // Reached: 86.2 %, 6.1 mm (6.07), 0 of 653 carry frames past the part.
 TEST(ViewpointFamilies, TopDownChecked) { checkFamily(synth::ViewpointFamily::TopDown, {0.0065, 0.86, 0}); }
 

@@ -109,6 +109,13 @@ class MarkerFreeHandDetector : public HandDetector {
     double minBackgroundValidFraction = 0.5;
     /// Window of that neighbour fill [px].
     int backgroundFillDiameter_px = 9;
+    /// Such a pixel with no trusted neighbour (a wide region without depth
+    /// most of the time: a wall beyond the sensor's range, seen from the side
+    /// or from the demonstrator's head) has no background depth, and
+    /// whatever has a depth there is foreground (the arm reaching in front
+    /// of it), instead of its own quantile (which is the arm's depth where
+    /// only the arm ever gave one). false: its own quantile.
+    bool farWithoutDepth = true;
     /// Foreground: closer than the background by this much [m].
     double minForeground_m = 0.02;
     /// Foreground in a depth hole: sum of |BGR| changes from the background
@@ -197,6 +204,12 @@ class MarkerFreeHandDetector : public HandDetector {
     /// and hand (which perspective turns when the forearm comes at the
     /// camera). false: that axis.
     bool cuffTowardsThickest = true;
+    /// In a recording whose preview shows no bare forearm, a cuff in view
+    /// (step 5) places the palm before the bare-forearm rule is tried: a
+    /// skin blob longer than a hand next to a sleeve's cuff is the hand and
+    /// something of a skin-like colour it holds, whose far end is no hand's.
+    /// false: the bare-forearm rule first in every frame.
+    bool cuffFirst = true;
     /// That normal is used when the disc is flat: its smallest spread at most
     /// this share of the next [ratio].
     double maxNormalFlatness = 0.25;
@@ -213,12 +226,15 @@ class MarkerFreeHandDetector : public HandDetector {
     /// view) [px].
     int borderMargin_px = 2;
     /// The depth's field of view in the (registered) image: the rows and
-    /// columns where at least this share of the background's pixels have a
-    /// depth [0..1]. A registered depth image has a band at its edges the
+    /// columns where at least this share of the pixels had a depth in some
+    /// frame [0..1]. A registered depth image has a band at its edges the
     /// depth camera does not see (HRT1's Fetch camera: ~20 px at the right
-    /// and the top); an arm entering there reaches that band's edge, not the
-    /// image's, and nothing is foreground inside the band.
-    double minFieldOfViewValid = 0.5;
+    /// and the top), where no frame has a depth; an arm entering there
+    /// reaches that band's edge, not the image's, and nothing is foreground
+    /// inside the band. Low: a wall beyond the sensor's range (seen from the
+    /// side) has a depth only where the arm passed in front of it, and is in
+    /// view (with farWithoutDepth).
+    double minFieldOfViewValid = 0.1;
     /// Bare forearm: the skin component taken for the forearm and hand is the
     /// one reaching farthest from where the body enters the view, along the
     /// geodesic inside the body's foreground, measured on a grid of this many

@@ -98,8 +98,8 @@ DmpPathGenerator DmpPathGenerator::fromTaskModel(const srp::taskdb::TaskModel& m
       // replays the demo's excursion in metres along the demo's direction (a 0.3 m
       // detour for a 0.2 m move); the spatial scaling turns and scales it with the
       // new displacement, so the lift stays a lift (srp::motion::ForcingScaling).
-      if (dmp.config().mode == srp::motion::DmpConfig::Mode::Default &&
-          dmp.config().scaling != srp::motion::ForcingScaling::Spatial) {
+      if (dmp.options().mode == srp::motion::Dmp::Options::Mode::Default &&
+          dmp.options().scaling != srp::motion::ForcingScaling::Spatial) {
         nlohmann::json j = row.parameters.at("dmp");
         j["config"]["scaling"] = "spatial";
         dmp = srp::motion::Dmp::fromJson(j);

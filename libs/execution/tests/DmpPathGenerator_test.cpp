@@ -56,7 +56,7 @@ struct ArcDemo {
 TEST(DmpPathGenerator, ReplaysTheDemoInTheWorldAndRetargetsExactly) {
   const ArcDemo demo;
   std::map<std::string, LearnedPathSkills> skills;
-  skills["cuboid"].move = srp::motion::Dmp::imitate(demo.t_s, demo.p_camera_m, srp::motion::DmpConfig{});
+  skills["cuboid"].move = srp::motion::Dmp::imitate(demo.t_s, demo.p_camera_m, srp::motion::Dmp::Options{});
   const DmpPathGenerator gen(skills, demo.X_world_camera, {}, 0.0);  // the Move DMP end to end
   EXPECT_EQ(gen.name(), "dmp");
   EXPECT_EQ(gen.sourceFor(SkillType::Move, "cuboid"), "dmp");
@@ -139,7 +139,7 @@ TEST(DmpPathGenerator, AMoveAtTheCarryHeightCarriesTheTallestPartOverTheWall) {
 
   const ArcDemo demo;
   std::map<std::string, LearnedPathSkills> skills;
-  skills["toy"].move = srp::motion::Dmp::imitate(demo.t_s, demo.p_camera_m, srp::motion::DmpConfig{});
+  skills["toy"].move = srp::motion::Dmp::imitate(demo.t_s, demo.p_camera_m, srp::motion::Dmp::Options{});
   MinimumJerkOptions fallback;
   fallback.clearanceHeight_m = std::max(fallback.clearanceHeight_m, carry_m);
   const DmpPathGenerator gen(skills, demo.X_world_camera, fallback, DmpPathGenerator::kDefaultEndHeight_m, carry_m);
@@ -184,7 +184,7 @@ TEST(DmpPathGenerator, ShortDemoRetargetedFarKeepsTheDemonstratorsDetour) {
     p_camera_m.row(i) << -0.025 + 0.05 * m, 0.0, 0.6 + 0.04 * std::sin(M_PI * m);  // 5 cm along, dipping 4 cm
   }
   std::map<std::string, LearnedPathSkills> skills;
-  srp::motion::DmpConfig spatial;  // as fromTaskModel executes a learned DMP
+  srp::motion::Dmp::Options spatial;  // as fromTaskModel executes a learned DMP
   spatial.scaling = srp::motion::ForcingScaling::Spatial;
   skills["toy"].reach = srp::motion::Dmp::imitate(t_s, p_camera_m, spatial);
   const DmpPathGenerator gen(skills, X_world_camera, {}, 0.0);
@@ -226,7 +226,7 @@ TEST(DmpPathGenerator, ShortDemoRetargetedFarKeepsTheDemonstratorsOvershoot) {
     p_camera_m.row(i) << x, 0.0, 0.6;
   }
   std::map<std::string, LearnedPathSkills> skills;
-  srp::motion::DmpConfig spatial;  // as fromTaskModel executes a learned DMP
+  srp::motion::Dmp::Options spatial;  // as fromTaskModel executes a learned DMP
   spatial.scaling = srp::motion::ForcingScaling::Spatial;
   skills["toy"].reach = srp::motion::Dmp::imitate(t_s, p_camera_m, spatial);
   const DmpPathGenerator gen(skills, X_world_camera, {}, 0.0);

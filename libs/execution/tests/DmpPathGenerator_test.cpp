@@ -89,7 +89,8 @@ TEST(DmpPathGenerator, ReplaysTheDemoInTheWorldAndRetargetsExactly) {
   double top_m = 0.0;
   for (const auto& s : moved) top_m = std::max(top_m, s.X_world_tcp.translation().z());
   EXPECT_GT(top_m, 0.08 + 0.05) << "the re-targeted DMP keeps the demo's lift";
-  EXPECT_GE(moved.back().t_s, (b.translation() - a.translation()).norm() / MinimumJerkOptions{}.meanSpeed_mps - 0.011);
+  EXPECT_GE(moved.back().t_s,
+            (b.translation() - a.translation()).norm() / MinimumJerkPathGenerator::Options{}.meanSpeed_mps - 0.011);
 
   // No learned skill: the minimum-jerk fallback, sample for sample.
   const CartesianPath fallback = gen.generate(SkillType::Reach, "cuboid", a, b, 0.01);
@@ -140,7 +141,7 @@ TEST(DmpPathGenerator, AMoveAtTheCarryHeightCarriesTheTallestPartOverTheWall) {
   const ArcDemo demo;
   std::map<std::string, LearnedPathSkills> skills;
   skills["toy"].move = srp::motion::Dmp::imitate(demo.t_s, demo.p_camera_m, srp::motion::Dmp::Options{});
-  MinimumJerkOptions fallback;
+  MinimumJerkPathGenerator::Options fallback;
   fallback.clearanceHeight_m = std::max(fallback.clearanceHeight_m, carry_m);
   const DmpPathGenerator gen(skills, demo.X_world_camera, fallback, DmpPathGenerator::kDefaultEndHeight_m, carry_m);
   const Pose3 start = toolDown({-0.15, 0.05, kToyHeight_m}), goal = toolDown({0.3, 0.0, kFloor_m + kToyHeight_m});

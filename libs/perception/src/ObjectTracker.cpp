@@ -2,9 +2,11 @@
 #include "srp/core/Log.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <future>
 
 #include "srp/core/Error.h"
 #include "srp/perception/DepthCloud.h"
@@ -126,11 +128,28 @@ void ObjectTracker::explainPending(const std::vector<ObjectSegment>& segs, const
     if (!options_.staticClasses.count(name)) previous[name] = X;
   std::set<std::string> excluded = fa.assigned;
   for (const auto& [name, det] : fixed_) excluded.insert(name);
-  std::vector<std::pair<std::size_t, std::optional<ObjectDetection>>> found;
-  for (std::size_t i : pending) {
-    found.emplace_back(i, detector_.explain(segs[i], plane, cloud, camera, previous, excluded));
-    ++stats_.explained;
+  // Each segment's search depends on this frame and the last poses only: the
+  // searches run on searchThreads threads, each answer kept in its segment's
+  // slot (the same answers as one after the other).
+  std::vector<std::optional<ObjectDetection>> answers(pending.size());
+  std::atomic<std::size_t> nextSearch{0};
+  const auto search = [&] {
+    for (std::size_t k; (k = nextSearch++) < pending.size();)
+      answers[k] = detector_.explain(segs[pending[k]], plane, cloud, camera, previous, excluded);
+  };
+  std::vector<std::future<void>> others;
+  const std::size_t threads = std::min<std::size_t>(std::max(options_.searchThreads, 1), pending.size());
+  for (std::size_t t = 1; t < threads; ++t) others.push_back(std::async(std::launch::async, search));
+  try {
+    search();
+  } catch (...) {
+    for (auto& o : others) o.wait();
+    throw;
   }
+  for (auto& o : others) o.get();
+  std::vector<std::pair<std::size_t, std::optional<ObjectDetection>>> found;
+  for (std::size_t k = 0; k < pending.size(); ++k) found.emplace_back(pending[k], std::move(answers[k]));
+  stats_.explained += static_cast<int>(pending.size());
   std::stable_sort(found.begin(), found.end(), [](const auto& a, const auto& b) {
     return (a.second ? a.second->confidence : 0.0) > (b.second ? b.second->confidence : 0.0);
   });

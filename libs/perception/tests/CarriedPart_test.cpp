@@ -69,5 +69,29 @@ TEST(CarriedPart, FollowsTheHandOrIsNotDetectedAndNothingIsSwapped) {
   }
 }
 
+// The tracker searches a frame's segments on two threads: every object
+// sample is the one a single thread gives, bit for bit.
+TEST(CarriedPart, SegmentSearchOnTwoThreadsGivesTheAnswersOfOne) {
+  const ShortDemo& d = shortDemo();
+  PerceptionOptions one = testing::instruction1Options(d.gt), two = one;
+  one.tracking.searchThreads = 1;
+  two.tracking.searchThreads = 2;
+  const PerceptionResult a = perceiveRawlog(d.rawlog, d.catalogue, one), b = perceiveRawlog(d.rawlog, d.catalogue, two);
+  ASSERT_EQ(a.objects.size(), b.objects.size());
+  int detections = 0;
+  for (std::size_t k = 0; k < a.objects.size(); ++k) {
+    ASSERT_EQ(a.objects[k].samples.size(), b.objects[k].samples.size());
+    for (std::size_t i = 0; i < a.objects[k].samples.size(); ++i) {
+      const auto &sa = a.objects[k].samples[i], &sb = b.objects[k].samples[i];
+      EXPECT_EQ(sa.detected, sb.detected) << a.objects[k].className << " frame " << i;
+      EXPECT_EQ(sa.confidence, sb.confidence) << a.objects[k].className << " frame " << i;
+      EXPECT_TRUE(sa.X_camera_object.matrix() == sb.X_camera_object.matrix())
+          << a.objects[k].className << " frame " << i;
+      detections += sa.detected;
+    }
+  }
+  EXPECT_GT(detections, 100) << "the demo must show the parts";
+}
+
 }  // namespace
 }  // namespace srp::perception

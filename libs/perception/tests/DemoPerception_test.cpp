@@ -1,6 +1,7 @@
 #include "srp/perception/DemoPerception.h"
 #include "srp/kb/KnowledgeBase.h"
 #include "srp/perception/RawlogPerception.h"
+#include "srp/perception/DemoRawlogReader.h"
 
 #include <gtest/gtest.h>
 
@@ -120,9 +121,9 @@ TEST(DemoPerception, RawlogToHandTrajectoryAndCsv) {
   EXPECT_EQ(rows, 20);
 }
 
-// The marker-free path reads the rawlog twice (preview, then perception, so
-// memory stays flat): the result is that of the frames themselves, sample for
-// sample.
+// The marker-free path previews the whole rawlog, then perceives the frames
+// the preview decoded: the result is that of the frames themselves, sample
+// for sample.
 TEST(DemoPerception, RawlogPerceivedGivesTheResultOfItsFrames) {
   const std::string rawlogPath = tempPath("two_passes.rawlog");
   {
@@ -148,22 +149,81 @@ TEST(DemoPerception, RawlogPerceivedGivesTheResultOfItsFrames) {
   }
 }
 
-// The one preview pass of perceiveRawlog and `srp program`: every frame of
-// the file, in order, counted; a missing file is a FileError.
-TEST(DemoPerception, PreviewRawlogShowsEveryFrame) {
+// The one reader of perceiveRawlog and `srp program`: the preview pass shows
+// every frame of the file, in order, counted; the perception pass then gets
+// the same frames, each decoded once; a missing file is a FileError.
+TEST(DemoPerception, DemoRawlogReaderPreviewsEveryFrameAndDecodesItOnce) {
   const std::string rawlogPath = tempPath("preview.rawlog");
   {
     rawlog::RawlogWriter writer(rawlogPath);
     for (const auto& f : testing::handFrames(12, 6)) writer.write(f);
   }
   DemoPerceiver perceiver(catalogue(), markerFreeOptions());
+  DemoRawlogReader reader(rawlogPath);
   std::vector<int> progress;
-  EXPECT_EQ(previewRawlog(perceiver, rawlogPath, std::nullopt, [&](int n) { progress.push_back(n); }), 12);
+  EXPECT_EQ(reader.preview(perceiver, [&](int n) { progress.push_back(n); }), 12);
   ASSERT_EQ(progress.size(), 12u);
   for (std::size_t i = 0; i < progress.size(); ++i) EXPECT_EQ(progress[i], static_cast<int>(i) + 1);
   EXPECT_EQ(perceiver.framesAdded(), 0);  // previewed, not perceived
-  DemoPerceiver other(catalogue(), markerFreeOptions());
-  EXPECT_THROW(previewRawlog(other, tempPath("missing.rawlog")), core::FileError);
+  EXPECT_TRUE(reader.previewedWholeFile());
+  int frames = 0;
+  while (auto f = reader.next()) EXPECT_EQ(f->index, frames++);
+  EXPECT_EQ(frames, 12);
+  EXPECT_FALSE(reader.readsTwice());
+  EXPECT_EQ(reader.framesDecoded(), 12);
+  EXPECT_FALSE(reader.damage());
+  EXPECT_THROW(DemoRawlogReader(tempPath("missing.rawlog")), core::FileError);
+}
+
+// Over its memory budget (the file's size or the decoded frames') the reader
+// keeps no previewed frame and reads the file again: the perception pass gets the very same frames, bit for bit,
+// and perceiveRawlog's result does not depend on the budget.
+TEST(DemoPerception, DemoRawlogReaderOverItsBudgetReadsTwiceTheSameFrames) {
+  const std::string rawlogPath = tempPath("budget.rawlog");
+  {
+    rawlog::RawlogWriter writer(rawlogPath);
+    for (const auto& f : testing::handFrames(12, 6)) writer.write(f);
+  }
+  const auto passes = [&](double budget_MB, bool& readTwice, int& decoded) {
+    DemoPerceiver perceiver(catalogue(), markerFreeOptions());
+    DemoRawlogReader::Options o;
+    o.keptFrames_MB = budget_MB;
+    DemoRawlogReader reader(rawlogPath, o);
+    EXPECT_EQ(reader.preview(perceiver), 12);
+    std::vector<rawlog::RgbdFrame> frames;
+    while (auto f = reader.next()) {
+      perceiver.add(*f);
+      frames.push_back(std::move(*f));
+    }
+    readTwice = reader.readsTwice();
+    decoded = reader.framesDecoded();
+    return std::make_pair(frames, perceiver.finish());
+  };
+  bool twice = false;
+  int decoded = 0;
+  const auto [kept, keptResult] = passes(128.0, twice, decoded);
+  EXPECT_FALSE(twice);
+  EXPECT_EQ(decoded, 12);
+  const double frame_MB =
+      1e-6 * static_cast<double>(kept.front().colour_bgr8.total() * 3 + kept.front().depth_m.total() * 4);
+  const double file_MB = 1e-6 * static_cast<double>(fs::file_size(rawlogPath));
+  ASSERT_LT(file_MB, 5.5 * frame_MB) << "the file must fit the budget for the 6th frame to go over it";
+  // Never kept; a file larger than the budget; over the budget at the 6th frame.
+  for (const double budget_MB : {0.0, 0.5 * file_MB, 5.5 * frame_MB}) {
+    const auto [reread, rereadResult] = passes(budget_MB, twice, decoded);
+    EXPECT_TRUE(twice) << budget_MB << " MB";
+    EXPECT_EQ(decoded, 24) << budget_MB << " MB";
+    ASSERT_EQ(reread.size(), kept.size());
+    for (std::size_t i = 0; i < kept.size(); ++i) {
+      EXPECT_EQ(reread[i].index, kept[i].index);
+      EXPECT_EQ(cv::norm(reread[i].depth_m, kept[i].depth_m, cv::NORM_INF), 0.0) << "frame " << i;
+      EXPECT_EQ(cv::norm(reread[i].colour_bgr8, kept[i].colour_bgr8, cv::NORM_INF), 0.0) << "frame " << i;
+    }
+    ASSERT_EQ(rereadResult.hand.size(), keptResult.hand.size());
+    EXPECT_EQ(rereadResult.handDetected, keptResult.handDetected);
+    for (std::size_t i = 0; i < keptResult.hand.size(); ++i)
+      EXPECT_EQ(rereadResult.hand[i].p_m, keptResult.hand[i].p_m) << "frame " << i;  // bit for bit
+  }
 }
 
 // `srp perceive --csv` -> `srp segment --trajectories`: the same samples are

@@ -11,10 +11,9 @@
 #include "srp/execution/SceneGrounder.h"
 #include "srp/language/InstructionParser.h"
 #include "srp/language/PlanTables.h"
-#include "srp/perception/RawlogPerception.h"
+#include "srp/perception/DemoRawlogReader.h"
 #include "srp/programming/MotionRows.h"
 #include "srp/programming/PerceptionRows.h"
-#include "srp/rawlog/RawlogReader.h"
 
 namespace srp::programming {
 
@@ -196,14 +195,15 @@ perception::PerceptionResult perceive(const GroundedPlan& grounded, const core::
   }
 
   perception::DemoPerceiver perceiver(kb, popt);
-  if (perceiver.wantsPreview())  // the hand learns from (or is chosen in) the whole recording: a first read
-    perception::previewRawlog(perceiver, o.demoPath, o.intrinsics, [&](int previewed) {
-      if (o.progress) o.progress("environment preview", static_cast<std::size_t>(previewed), 0);
-    });
   {
-    rawlog::RawlogReader reader(o.demoPath);
+    perception::DemoRawlogReader::Options read;
+    read.intrinsics = o.intrinsics;
+    perception::DemoRawlogReader reader(o.demoPath, read);
+    if (perceiver.wantsPreview())  // the hand learns from (or is chosen in) the whole recording: a first pass
+      reader.preview(perceiver, [&](int previewed) {
+        if (o.progress) o.progress("environment preview", static_cast<std::size_t>(previewed), 0);
+      });
     while (auto f = reader.next()) {
-      if (o.intrinsics) f->intrinsics = *o.intrinsics;
       perceiver.add(*f);
       if (o.progress) o.progress("environment", static_cast<std::size_t>(perceiver.framesAdded()), 0);
     }

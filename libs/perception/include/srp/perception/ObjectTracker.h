@@ -29,7 +29,8 @@ namespace srp::perception {
 ///    class is fixed at its most confident one): verified at the fixed pose
 ///    (no ICP), never searched again;
 /// 3. else explained by ObjectDetector::explain (tracking from the last pose of
-///    the moving classes, else the full search).
+///    the moving classes, else the full search); the frame's segments are
+///    searched on `Options::searchThreads` threads.
 /// Each class is given to at most one segment per frame, the most confident
 /// first (a part is never reported at another part's segment because it is
 /// missing from its own, e.g. while it is carried).
@@ -69,6 +70,9 @@ class ObjectTracker {
     double vacatedSeenThrough = 0.6;
     int vacatedMinEvidence = 30;
     int jumpConfirmFrames = 15;
+    /// Threads that search a frame's segments (step 3; 1: one after the
+    /// other). The answers do not depend on it.
+    int searchThreads = 2;
   };
 
   /// `detector` must outlive the tracker.

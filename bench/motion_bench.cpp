@@ -36,7 +36,7 @@ Segment hundredSamples() {
 void BM_DmpImitateAndRollout_Default(benchmark::State& state) {
   const Segment s = hundredSamples();
   for (auto _ : state) {
-    Dmp dmp = Dmp::imitate(s.t, s.Y, DmpConfig{});
+    Dmp dmp = Dmp::imitate(s.t, s.Y, Dmp::Options{});
     benchmark::DoNotOptimize(dmp.rollout().y.data());
   }
 }
@@ -44,7 +44,7 @@ BENCHMARK(BM_DmpImitateAndRollout_Default)->Unit(benchmark::kMicrosecond);
 
 void BM_DmpImitateAndRollout_DefaultFixedLambda(benchmark::State& state) {
   const Segment s = hundredSamples();
-  DmpConfig c;
+  Dmp::Options c;
   c.lambda = 1e-6;
   for (auto _ : state) {
     Dmp dmp = Dmp::imitate(s.t, s.Y, c);
@@ -56,7 +56,7 @@ BENCHMARK(BM_DmpImitateAndRollout_DefaultFixedLambda)->Unit(benchmark::kMicrosec
 void BM_DmpImitateAndRollout_Reference(benchmark::State& state) {
   const Segment s = hundredSamples();
   for (auto _ : state) {
-    Dmp dmp = Dmp::imitate(s.t, s.Y, DmpConfig::reference(0.1));
+    Dmp dmp = Dmp::imitate(s.t, s.Y, Dmp::Options::reference(0.1));
     benchmark::DoNotOptimize(dmp.rollout(1.0 / 30.0).y.data());
   }
 }

@@ -28,8 +28,8 @@ struct ExecuteOptions {
   bool json = false;
   std::string urscript;
   std::string trajectoryYaml;
-  srp::execution::UrScriptOptions ur;
-  srp::execution::RosTrajectoryOptions ros;
+  srp::execution::UrScriptExporter::Options ur;
+  srp::execution::RosTrajectoryExporter::Options ros;
   double velocityFraction = 1.0;
   double maxAcceleration_radps2 = srp::execution::SafetyLimits{}.maxAcceleration_radps2;
   bool safetySpheres = false;

@@ -18,6 +18,7 @@
 #include "srp/kb/KnowledgeBase.h"
 #include "srp/synth/DemoGenerator.h"
 #include "srp/synth/PickPlacePlan.h"
+#include "srp/synth/Viewpoint.h"
 
 namespace {
 
@@ -26,6 +27,7 @@ struct SynthDemoArgs {
   std::string planPath;
   std::string outPath = "demo.rawlog";
   std::string contactSheet, depthCamera;
+  std::string viewpoint;  ///< empty: the scene's camera
   long long seed = -1;
   int width = 0, height = 0, maxFrames = -1, colourNoiseBlock = -1, depthNoiseBlock = -1;
   double speed = 1.0;
@@ -80,10 +82,17 @@ void run(const SynthDemoArgs& a) {
   srp::core::checkOutputPaths(
       {{"-o", a.outPath}, {"ground truth", groundTruth}, {"--contact-sheet", a.contactSheet}},
       {{"--scene", a.scenePath}, {"--plan", a.planPath}, {"--depth-camera", a.depthCamera}}, a.overwrite);
-  const auto scene = srp::core::Scene::load(a.scenePath.empty() ? srp::core::defaultScenePath() : a.scenePath);
+  auto scene = srp::core::Scene::load(a.scenePath.empty() ? srp::core::defaultScenePath() : a.scenePath);
   const auto catalogue = srp::kb::loadCatalogue(scene.cataloguePath);
   const nlohmann::json plan = a.planPath.empty() ? srp::synth::defaultPlanJson() : srp::core::readJsonFile(a.planPath);
   srp::synth::SynthDemoOptions options;
+  if (!a.viewpoint.empty()) {
+    const auto [family, variant] = srp::synth::viewpointFromText(a.viewpoint);
+    const auto view =
+        srp::synth::makeViewpoint(family, variant, srp::synth::workCentre_world(scene, catalogue));
+    scene.X_world_camera = view.X_world_camera;
+    options.demo.demonstratorSide_world = view.demonstratorSide_world;
+  }
   options.demo.seed = static_cast<std::uint32_t>(a.seed >= 0 ? a.seed : scene.seed);
   options.demo.randomise = !a.noRandomise;
   options.demo.speedFactor = a.speed;
@@ -178,6 +187,10 @@ void setupSynthDemo(CLI::App& cmd) {
   cmd.add_option("--width", args->width, "image width (default: the scene camera's)")->check(CLI::Range(16, 16384));
   cmd.add_option("--height", args->height, "image height (default: the scene camera's)")->check(CLI::Range(16, 16384));
   cmd.add_option("--max-frames", args->maxFrames, "stop after this many frames")->check(CLI::PositiveNumber);
+  cmd.add_option("--viewpoint", args->viewpoint,
+                 "camera placement instead of the scene's: FAMILY or FAMILY:VARIANT, FAMILY one of egocentric (at "
+                 "the demonstrator's head), side, top-down, front (across the table), oblique (a far corner); "
+                 "variants turn the camera by -20/0/+20 deg and move it -10/0/+10 %");
   cmd.add_option("--contact-sheet", args->contactSheet, "write a PNG of a few frames (colour and depth)");
   cmd.add_option("--depth-camera", args->depthCamera,
                  "JSON of a depth camera of its own ({\"intrinsics\": {fx, fy, cx, cy, width, height}, "

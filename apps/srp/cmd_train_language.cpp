@@ -37,7 +37,7 @@ void setupTrainLanguage(CLI::App& app) {
   app.add_flag("--json", *json,
                "print the result as JSON: with --cv the summary --cv-json writes, else the model file, the corpus size "
                "and the training time");
-  auto options = std::make_shared<srp::language::LanguageTrainingOptions>();
+  auto options = std::make_shared<srp::language::LanguageModel::Options>();
   app.add_option("--entity-c", options->entityC, "entity tagger SVM C")->capture_default_str();
   app.add_option("--relation-c", options->relationC, "relation classifier SVM C")->capture_default_str();
   app.add_option("--min-feature-count", options->minFeatureCount, "drop rarer entity features")->capture_default_str();

@@ -57,7 +57,6 @@
 namespace {
 
 using srp::motion::Dmp;
-using srp::motion::DmpConfig;
 using srp::motion::DmpRollout;
 using srp::plot::Colour;
 using srp::plot::Marker;
@@ -99,7 +98,7 @@ double maxDistance(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
 struct Setting {
   std::string name;       // how lambda is set
   std::string fileLambda; // the reference files' suffix ("0.0", "0.1"), empty: none
-  DmpConfig config;
+  Dmp::Options config;
 };
 
 // What one setting gives for one segment.
@@ -118,12 +117,12 @@ int run(int argc, char** argv) {
   srp::notebook::Checks checks;
 
   // The three settings of the figure's rows. The thesis' code is dfki-ric
-  // movement_primitives with lambda 0 or 0.1; DmpConfig::reference(lambda)
-  // is that formulation. The default DmpConfig chooses lambda itself.
+  // movement_primitives with lambda 0 or 0.1; Dmp::Options::reference(lambda)
+  // is that formulation. The default Dmp::Options chooses lambda itself.
   const std::vector<Setting> settings = {
-      {"thesis", "0.0", DmpConfig::reference(0.0)},
-      {"thesis", "0.1", DmpConfig::reference(0.1)},
-      {"srp, by GCV", "", DmpConfig{}},
+      {"thesis", "0.0", Dmp::Options::reference(0.0)},
+      {"thesis", "0.1", Dmp::Options::reference(0.1)},
+      {"srp, by GCV", "", Dmp::Options{}},
   };
 
   for (const std::string skill : {"reach", "move"}) {

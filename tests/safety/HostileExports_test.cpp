@@ -163,7 +163,7 @@ TEST(HostileExports, NoStringAddsAUrScriptStatement) {
 TEST(HostileExports, EveryYamlIsOneDocumentWithTheCheckedData) {
   const ExecutedTask clean = smallTask();
   const srp::safety::ScratchFolder dir("yaml");
-  RosTrajectoryOptions options;
+  RosTrajectoryExporter::Options options;
   const RosTrajectoryExporter plain(options);
   const fs::path reference = dir.path / "reference.yaml";
   std::ofstream(reference) << plain.toYaml(clean);
@@ -173,7 +173,7 @@ TEST(HostileExports, EveryYamlIsOneDocumentWithTheCheckedData) {
   for (std::size_t i = 0; i < hostile.size(); ++i)
     for (int field = 0; field < 2; ++field) {
       ExecutedTask t = field == 0 ? withText(clean, hostile[i]) : clean;
-      RosTrajectoryOptions o;
+      RosTrajectoryExporter::Options o;
       if (field == 0) {
         o.topic = hostile[i];
       } else {
@@ -217,7 +217,7 @@ TEST(HostileExports, EveryYamlIsOneDocumentWithTheCheckedData) {
 TEST(HostileExports, ProgramNamesAreUrScriptIdentifiersOnly) {
   int refused = 0, accepted = 0;
   for (const std::string& s : srp::safety::hostileStrings(kHostileCases)) {
-    UrScriptOptions o;
+    UrScriptExporter::Options o;
     o.programName = s;
     try {
       UrScriptExporter e(o);
@@ -254,7 +254,7 @@ TEST(RosThinning, EveryPeriodIsCheckedOrRefused) {
   t.gripperEvents.back().t_s = 2.0;
   int written = 0, refused = 0, badOption = 0;
   for (double period : std::vector<double>{0.0, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 1e6, HUGE_VAL, std::nan(""), -1.0}) {
-    RosTrajectoryOptions o;
+    RosTrajectoryExporter::Options o;
     o.pointPeriod_s = period;
     try {
       const RosTrajectoryExporter e(o);
@@ -275,7 +275,7 @@ TEST(RosThinning, EveryPeriodIsCheckedOrRefused) {
   // Every 40th knot (0.4 s apart): the check itself refuses it.
   std::vector<JointTrajectorySample> naive;
   for (std::size_t k = 0; k < t.trajectory.samples().size(); k += 40) naive.push_back(t.trajectory.samples()[k]);
-  RosTrajectoryOptions o;
+  RosTrajectoryExporter::Options o;
   o.pointPeriod_s = 0.4;
   const auto why = RosTrajectoryExporter(o).checkThinned(t, JointTrajectory::fromSamples(naive));
   EXPECT_TRUE(why.has_value());

@@ -56,7 +56,7 @@ taskdb::TaskModel goodModel() {
     r.confidence = 0.9;
     m.productPoses.push_back(r);
   }
-  const motion::Dmp dmp = motion::Dmp::imitate(t, Y, motion::DmpConfig{});
+  const motion::Dmp dmp = motion::Dmp::imitate(t, Y, motion::Dmp::Options{});
   for (const auto skill : {core::SkillType::Reach, core::SkillType::Move}) {
     taskdb::SkillRow row;
     row.classId = 3;

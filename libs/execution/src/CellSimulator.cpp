@@ -125,8 +125,8 @@ class JointController : public stk::Force::Custom::Implementation {
 /// Penalty contact between part box corners and every other box.
 class BoxContact : public stk::Force::Custom::Implementation {
  public:
-  BoxContact(const stk::SimbodyMatterSubsystem& matter, std::vector<PartGeometry> parts,
-             std::vector<ContactBox> boxes, const SimulationOptions& o)
+  BoxContact(const stk::SimbodyMatterSubsystem& matter, std::vector<PartGeometry> parts, std::vector<ContactBox> boxes,
+             const CellSimulator::Options& o)
       : matter_(matter), parts_(std::move(parts)), boxes_(std::move(boxes)), o_(o) {}
 
   void calcForce(const stk::State& s, stk::Vector_<stk::SpatialVec>& bodyForces, stk::Vector_<stk::Vec3>&,
@@ -206,7 +206,7 @@ class BoxContact : public stk::Force::Custom::Implementation {
   const stk::SimbodyMatterSubsystem& matter_;
   std::vector<PartGeometry> parts_;
   std::vector<ContactBox> boxes_;
-  SimulationOptions o_;
+  CellSimulator::Options o_;
   mutable std::vector<stk::Transform> X_GB_;
   mutable std::vector<stk::SpatialVec> V_GB_;
 };
@@ -215,9 +215,9 @@ class BoxContact : public stk::Force::Custom::Implementation {
 /// Bottom face: an n x n grid (corners, edge points, centre), so a part stacked
 /// crosswise on a narrower one (no corner of either inside the other) still rests
 /// on the points of its bottom that lie over the lower part. Top face: the corners.
-/// The points lie contactInset_m inside the edges (see SimulationOptions).
+/// The points lie contactInset_m inside the edges (see CellSimulator::Options).
 PartGeometry partGeometry(stk::MobilizedBodyIndex body, double mass_kg, const Eigen::Vector3d& s,
-                          const Eigen::Vector3d& com, const SimulationOptions& options) {
+                          const Eigen::Vector3d& com, const CellSimulator::Options& options) {
   PartGeometry g;
   g.body = body;
   g.centre_B = toVec3(com);
@@ -239,7 +239,7 @@ PartGeometry partGeometry(stk::MobilizedBodyIndex body, double mass_kg, const Ei
 struct CellSimulator::Impl {
   RobotModel model;
   CellDescription cell;
-  SimulationOptions options;
+  CellSimulator::Options options;
   stk::MultibodySystem system;
   stk::SimbodyMatterSubsystem matter{system};
   stk::GeneralForceSubsystem forces{system};
@@ -266,7 +266,7 @@ struct CellSimulator::Impl {
   long stepsBefore = 0, stepsSoFar = 0;
   double nextLog_s = 0.0;
 
-  Impl(const RobotModel& m, const CellDescription& c, SimulationOptions o)
+  Impl(const RobotModel& m, const CellDescription& c, CellSimulator::Options o)
       : model(m), cell(c), options(o), monitor(m, c.X_world_base, SafetyLimits{}, {}) {}
 
   /// Parts at rest (and not held) are locked in place until grasped, like the
@@ -388,7 +388,7 @@ struct CellSimulator::Impl {
 };
 
 CellSimulator::CellSimulator(const RobotModel& model, const CellDescription& cell, const JointVector& q_initial,
-                             SimulationOptions options)
+                             Options options)
     : impl_(std::make_unique<Impl>(model, cell, options)) {
   Impl& m = *impl_;
   stk::Force::Gravity(m.forces, m.matter, -stk::ZAxis, 9.81);

@@ -62,7 +62,7 @@ double softClamp(double x, double limit) { return limit > 1e-9 ? limit * std::ta
 }  // namespace
 
 DmpPathGenerator::DmpPathGenerator(std::map<std::string, LearnedPathSkills> skillsByObject,
-                                   const srp::core::Pose3& X_world_demo, MinimumJerkOptions fallback,
+                                   const srp::core::Pose3& X_world_demo, MinimumJerkPathGenerator::Options fallback,
                                    double endHeight_m, std::optional<double> moveEndHeight_m)
     : skills_(std::move(skillsByObject)),
       X_world_demo_(X_world_demo),
@@ -71,8 +71,9 @@ DmpPathGenerator::DmpPathGenerator(std::map<std::string, LearnedPathSkills> skil
       moveEndHeight_m_(moveEndHeight_m.value_or(endHeight_m)) {}
 
 DmpPathGenerator DmpPathGenerator::fromTaskModel(const srp::taskdb::TaskModel& model,
-                                                 const srp::core::Pose3& X_world_camera, MinimumJerkOptions fallback,
-                                                 double endHeight_m, std::optional<double> moveEndHeight_m) {
+                                                 const srp::core::Pose3& X_world_camera,
+                                                 MinimumJerkPathGenerator::Options fallback, double endHeight_m,
+                                                 std::optional<double> moveEndHeight_m) {
   std::map<std::string, LearnedPathSkills> skills;
   for (const auto& row : model.skills) {
     if (row.skill != srp::core::SkillType::Reach && row.skill != srp::core::SkillType::Move) continue;
@@ -98,8 +99,8 @@ DmpPathGenerator DmpPathGenerator::fromTaskModel(const srp::taskdb::TaskModel& m
       // replays the demo's excursion in metres along the demo's direction (a 0.3 m
       // detour for a 0.2 m move); the spatial scaling turns and scales it with the
       // new displacement, so the lift stays a lift (srp::motion::ForcingScaling).
-      if (dmp.config().mode == srp::motion::DmpConfig::Mode::Default &&
-          dmp.config().scaling != srp::motion::ForcingScaling::Spatial) {
+      if (dmp.options().mode == srp::motion::Dmp::Options::Mode::Default &&
+          dmp.options().scaling != srp::motion::ForcingScaling::Spatial) {
         nlohmann::json j = row.parameters.at("dmp");
         j["config"]["scaling"] = "spatial";
         dmp = srp::motion::Dmp::fromJson(j);
@@ -203,7 +204,7 @@ CartesianPath DmpPathGenerator::rollout(const srp::motion::Dmp& learned, const s
 
   const Eigen::Vector3d p_world_start = X_world_start.translation(), p_world_goal = X_world_goal.translation();
   const srp::core::Pose3 X_demo_world = X_world_demo_.inverse();
-  const MinimumJerkOptions& o = fallback_.options();
+  const MinimumJerkPathGenerator::Options& o = fallback_.options();
   const double chord_m = (p_world_goal - p_world_start).norm();
   const double turn_rad = srp::core::rotationAngleBetween(X_world_start.linear(), X_world_goal.linear());
   const double duration_s = std::max({learned.demoDuration_s(), chord_m / o.meanSpeed_mps,

@@ -162,7 +162,7 @@ ExecuteResult executeTask(const ExecuteRequest& request) {
   // Learned Reach/Move DMPs where the task model has Skills rows, minimum-jerk otherwise;
   // a Move, learned or not, crosses high enough for the tallest part to clear the tallest wall.
   const double carry_m = cell.carryHeight_m();
-  MinimumJerkOptions fallback;
+  MinimumJerkPathGenerator::Options fallback;
   fallback.clearanceHeight_m = std::max(fallback.clearanceHeight_m, carry_m);
   auto generator = std::make_shared<DmpPathGenerator>(
       DmpPathGenerator::fromTaskModel(model, X_world_camera, fallback, DmpPathGenerator::kDefaultEndHeight_m,

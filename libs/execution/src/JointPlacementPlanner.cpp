@@ -16,8 +16,8 @@ namespace {
 using namespace placement;
 
 /// The step's part in `scene` (SceneGrounder, with the step's source locations), else nullptr and why.
-const CellObject* groundPart(const CellDescription& scene, const ExecutionStep& step, const GroundingOptions& options,
-                             std::string& reason) {
+const CellObject* groundPart(const CellDescription& scene, const ExecutionStep& step,
+                             const SceneGrounder::Options& options, std::string& reason) {
   try {
     return &SceneGrounder(scene, options).ground(step.object, step.source, CellObjectKind::Part);
   } catch (const GroundingError& e) {
@@ -197,10 +197,10 @@ void explainRefusals(const PlacementPlanner& planner, const CellDescription& sce
 
 }  // namespace
 
-JointPlacementPlanner::JointPlacementPlanner() : JointPlacementPlanner(PlacementOptions{}, Options{}) {}
-JointPlacementPlanner::JointPlacementPlanner(PlacementOptions placement)
+JointPlacementPlanner::JointPlacementPlanner() : JointPlacementPlanner(PlacementContext::Options{}, Options{}) {}
+JointPlacementPlanner::JointPlacementPlanner(PlacementContext::Options placement)
     : JointPlacementPlanner(std::move(placement), Options{}) {}
-JointPlacementPlanner::JointPlacementPlanner(PlacementOptions placement, Options options)
+JointPlacementPlanner::JointPlacementPlanner(PlacementContext::Options placement, Options options)
     : planner_(std::move(placement)), options_(options) {}
 
 std::vector<PlannedPlacement> JointPlacementPlanner::plan(const CellDescription& scene, const ExecutionPlan& plan) const {

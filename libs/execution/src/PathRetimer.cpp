@@ -70,7 +70,7 @@ double largestFeasible(double xMax, Pred pred) {
 
 }  // namespace
 
-PathRetimer::PathRetimer(const SafetyChecker& safety, RetimingOptions options) : safety_(safety), options_(options) {
+PathRetimer::PathRetimer(const SafetyChecker& safety, Options options) : safety_(safety), options_(options) {
   auto inUnit = [](double m) { return m > 0.0 && m <= 1.0; };
   if (!inUnit(options_.velocityMargin) || !inUnit(options_.accelerationMargin))
     throw srp::core::InvalidInputError("PathRetimer: the speed and acceleration margins must be within (0, 1] (got " +

@@ -8,7 +8,7 @@ namespace srp::execution {
 
 using namespace placement;
 
-PlacementContext::PlacementContext(const CellDescription& scene, const CellObject& part, const PlacementOptions& options)
+PlacementContext::PlacementContext(const CellDescription& scene, const CellObject& part, const Options& options)
     : scene_(scene), part_(part), options_(options), view_(scene.viewFrame(options.grounding.viewpoint)) {}
 
 const CellObject* PlacementContext::containerOf(const CellObject& o) const {
@@ -86,8 +86,8 @@ std::optional<Pose3> PlacementContext::rest(const Eigen::Vector2d& p, double yaw
   return std::nullopt;
 }
 
-PlacementOptions PlacementOptions::tight() const {
-  PlacementOptions o = *this;
+PlacementContext::Options PlacementContext::Options::tight() const {
+  PlacementContext::Options o = *this;
   o.clearance_m = o.wallMargin_m = minClearance_m;
   o.gridStep_m = gridStep_m / 2;
   o.turnStep_rad = tightTurnStep_rad;

@@ -99,8 +99,8 @@ inline bool toolLevelWithWalls(const Eigen::Vector3d& partSize, double bottom_z,
 }
 
 /// The distance a part of `partSize` resting at `bottom_z` keeps between its centre and
-/// `container`'s walls: `toolClearance_m` (PlacementOptions::toolClearance_m) where the tool
-/// comes level with them (within `levelGap_m`, PlacementOptions::minClearance_m), else 0.
+/// `container`'s walls: `toolClearance_m` (PlacementContext::Options::toolClearance_m) where the tool
+/// comes level with them (within `levelGap_m`, PlacementContext::Options::minClearance_m), else 0.
 inline double toolClearanceFrom(double toolClearance_m, double levelGap_m, const Eigen::Vector3d& partSize,
                                 double bottom_z, const CellObject& container) {
   return toolLevelWithWalls(partSize, bottom_z, container, levelGap_m) ? toolClearance_m : 0.0;

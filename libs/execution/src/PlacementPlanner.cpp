@@ -63,7 +63,7 @@ RelationCheck checkStack(const CellObject& part, const CellObject& lower, double
 /// between the footprints along the direction; a view direction also needs the offset
 /// within 45 degrees of it.
 RelationCheck checkBeside(const SpatialRelation& rel, const std::optional<Eigen::Vector2d>& viewDir,
-                          const CellObject& part, const CellObject& a, const PlacementOptions& o) {
+                          const CellObject& part, const CellObject& a, const PlacementContext::Options& o) {
   RelationCheck c;
   const Eigen::Vector2d off = centre(part) - centre(a);
   const Eigen::Vector2d dir = viewDir ? *viewDir : Eigen::Vector2d(off.normalized());
@@ -199,7 +199,7 @@ bool PlacementPlanner::stillAllowed(const CellDescription& scene, const CellObje
   if (!placement.X_world_object) return false;
   const Pose3& X = *placement.X_world_object;
   if (!holdsAt(scene, part, step, placement.landmarkIds, X)) return false;
-  const PlacementOptions rules = placement.tight ? options_.tight() : options_;
+  const PlacementContext::Options rules = placement.tight ? options_.tight() : options_;
   const PlacementContext ctx(scene, part, rules);
   if (!ctx.isFree(X)) return false;
   if (!placement.stackedOn.empty()) return true;

@@ -118,8 +118,8 @@ class Refinement {
     });
   }
 
-  /// The rules step i was planned with (tight: PlacementOptions::tight()).
-  PlacementOptions rulesOf(std::size_t i) const { return steps_[i].placement.tight ? o_.tight() : o_; }
+  /// The rules step i was planned with (tight: PlacementContext::Options::tight()).
+  PlacementContext::Options rulesOf(std::size_t i) const { return steps_[i].placement.tight ? o_.tight() : o_; }
 
   /// The pairs to keep apart and the relation slack to keep, from the discrete plan.
   void setUp() {
@@ -212,7 +212,7 @@ class Refinement {
       const CellDescription now = sceneAfter(i, s);
       const CellObject& part = *now.find(s[i].part);
       const Pose3& X = part.X_world_object;
-      const PlacementOptions rules = rulesOf(i);
+      const PlacementContext::Options rules = rulesOf(i);
       const PlacementContext ctx(now, part, rules);
       const CellObject* box = now.find(s[i].placement.container);
       if (!planner_.holdsAt(now, part, plan_.steps[i], s[i].placement.landmarkIds, X) ||
@@ -233,7 +233,7 @@ class Refinement {
   }
 
   const PlacementPlanner& planner_;
-  const PlacementOptions& o_;
+  const PlacementContext::Options& o_;
   const CellDescription& scene_;
   const ExecutionPlan& plan_;
   std::vector<PlannedPlacement> steps_;

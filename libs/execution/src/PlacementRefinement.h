@@ -11,7 +11,7 @@
 
 namespace srp::execution {
 
-/// When a planned step is tight (PlacementOptions::tight(): nearer parts or walls than
+/// When a planned step is tight (PlacementContext::Options::tight(): nearer parts or walls than
 /// clearance_m / wallMargin_m), moves
 /// the planned parts (x, y and yaw; the support kept) with NLopt's COBYLA to raise every
 /// gap below clearance_m (and a tight part's wall margin below wallMargin_m) towards it,

@@ -68,8 +68,8 @@ PlacementCandidates placementCandidates(const PlacementContext& ctx, const Place
                                         bool tight) {
   PlacementCandidates out = byKind(ctx, target, limit);
   if (!tight || out.poses.size() >= limit || target.kind == PlacementKind::OnTop) return out;
-  // Then the tight places (PlacementOptions::tight()) the full clearances did not allow.
-  const PlacementOptions rules = ctx.options().tight();
+  // Then the tight places (PlacementContext::Options::tight()) the full clearances did not allow.
+  const PlacementContext::Options rules = ctx.options().tight();
   const PlacementContext tightContext(ctx.scene(), ctx.part(), rules);
   const std::size_t full = out.poses.size();
   PlacementCandidates more = byKind(tightContext, target, limit == kAllCandidates ? limit : limit + full);
@@ -94,7 +94,7 @@ PlacementCandidates placeIn(const PlacementContext& ctx, const PlacementTarget& 
   Collector collect{out, limit};
   const CellObject& part = ctx.part();
   const CellObject& container = *ctx.scene().find(t.container);
-  const PlacementOptions& o = ctx.options();
+  const PlacementContext::Options& o = ctx.options();
   const double innerX = container.size_m.x() / 2 - container.wallThickness_m;
   const double innerY = container.size_m.y() / 2 - container.wallThickness_m;
   const double wx = innerX - o.wallMargin_m, wy = innerY - o.wallMargin_m;
@@ -176,7 +176,7 @@ PlacementCandidates placeNextTo(const PlacementContext& ctx, const PlacementTarg
   const CellObject& part = ctx.part();
   const CellObject& neighbour = *ctx.scene().find(t.landmark);
   const CellObject* container = containerOf(ctx, t);
-  const PlacementOptions& o = ctx.options();
+  const PlacementContext::Options& o = ctx.options();
   const Eigen::Vector2d c = centre(neighbour);
   const double yaw0 = yawOfPose(container ? container->X_world_object : neighbour.X_world_object);
   const double z = container ? container->X_world_object.translation().z() + container->wallThickness_m : 0.0;
@@ -239,7 +239,7 @@ PlacementCandidates placeInDirection(const PlacementContext& ctx, const Placemen
   const CellObject& part = ctx.part();
   const CellObject& landmark = *ctx.scene().find(t.landmark);
   const CellObject* container = containerOf(ctx, t);
-  const PlacementOptions& o = ctx.options();
+  const PlacementContext::Options& o = ctx.options();
   const Eigen::Vector2d c = centre(landmark), d = t.direction, perp(-d.y(), d.x());
   // Further out on the table: past a container in the way, as far as the 45-degree cone allows.
   constexpr double kInsideExtra_m = 0.12, kTableExtra_m = 0.30, kLateral_m = 0.08;
@@ -292,7 +292,7 @@ PlacementCandidates placeBetween(const PlacementContext& ctx, const PlacementTar
   const CellObject& part = ctx.part();
   const CellObject& A = *ctx.scene().find(t.landmark);
   const CellObject& B = *ctx.scene().find(t.secondLandmark);
-  const PlacementOptions& o = ctx.options();
+  const PlacementContext::Options& o = ctx.options();
   const Eigen::Vector2d a = centre(A), b = centre(B);
   const double length = (b - a).norm();
   const Eigen::Vector2d u = (b - a) / std::max(length, 1e-9), perp(-u.y(), u.x());

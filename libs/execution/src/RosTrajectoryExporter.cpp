@@ -54,7 +54,7 @@ std::string fmt3(double v) {
 
 }  // namespace
 
-RosTrajectoryExporter::RosTrajectoryExporter(RosTrajectoryOptions options) : options_(std::move(options)) {
+RosTrajectoryExporter::RosTrajectoryExporter(Options options) : options_(std::move(options)) {
   if (!(options_.pointPeriod_s >= 0.0) || !std::isfinite(options_.pointPeriod_s))
     throw srp::core::InvalidInputError("RosTrajectoryExporter: point period " + std::to_string(options_.pointPeriod_s) +
                                        " s must be a finite number >= 0 (0 = every knot)");

@@ -171,10 +171,8 @@ std::string keepOrdinal(std::vector<const CellObject*>& current, const ObjectRef
 
 }  // namespace
 
-SceneGrounder::SceneGrounder(const CellDescription& scene, GroundingOptions options)
-    : scene_(scene),
-      options_(options),
-      view_(scene.viewFrame(options.viewpoint)) {}
+SceneGrounder::SceneGrounder(const CellDescription& scene, Options options)
+    : scene_(scene), options_(options), view_(scene.viewFrame(options.viewpoint)) {}
 
 std::string SceneGrounder::describeInstance(const CellObject& o) {
   char buf[64];
@@ -327,7 +325,7 @@ const CellObject& SceneGrounder::ground(const ObjectReference& ref, const std::v
 }
 
 std::vector<std::string> groundingProblems(const ExecutionPlan& plan, const CellDescription& scene,
-                                           const GroundingOptions& options) {
+                                           const SceneGrounder::Options& options) {
   const SceneGrounder grounder(scene, options);
   std::vector<std::string> problems;
   std::vector<std::string> moved;  // instances earlier steps move (by name fit: they may be anywhere then)

@@ -47,7 +47,7 @@ Pose3 raised(Pose3 X, double dz_m) {
 }  // namespace
 
 TaskExecutor::TaskExecutor(const RobotModel& model, const CellDescription& scene, const JointVector& q_home,
-                           std::shared_ptr<const CartesianPathGenerator> generator, ExecutionOptions options)
+                           std::shared_ptr<const CartesianPathGenerator> generator, Options options)
     : model_(model),
       ik_(model),
       scene_(scene),
@@ -221,7 +221,7 @@ std::optional<std::string> TaskExecutor::planVariant(const CellDescription& scen
                                                      const Pose3& X_world_target, double turn_rad,
                                                      std::vector<Segment>& segments) const {
   const double h = part.size_m.z();
-  const MinimumJerkPathGenerator straight(MinimumJerkOptions{});
+  const MinimumJerkPathGenerator straight(MinimumJerkPathGenerator::Options{});
   const double dt = options_.sampleTime_s;
   const Pose3 X_base_world = scene.X_world_base.inverse();
   const Eigen::AngleAxisd turn(turn_rad, Eigen::Vector3d::UnitZ());
@@ -240,8 +240,8 @@ std::optional<std::string> TaskExecutor::planVariant(const CellDescription& scen
   } catch (const srp::core::Error& e) {
     return std::string("path generation: ") + e.what();
   }
-  const PathRetimer retimer(safety_, RetimingOptions{options_.velocityMargin, options_.accelerationMargin,
-                                                     options_.maxSlowDown});
+  const PathRetimer retimer(
+      safety_, PathRetimer::Options{options_.velocityMargin, options_.accelerationMargin, options_.maxSlowDown});
   JointVector q = sim_->jointPositions();
   for (auto& seg : segments) {
     const std::string what = seg.what + " of the " + part.name;

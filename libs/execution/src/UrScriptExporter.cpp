@@ -32,7 +32,7 @@ bool isIdentifier(const std::string& name) {
 
 }  // namespace
 
-UrScriptExporter::UrScriptExporter(UrScriptOptions options) : options_(std::move(options)) {
+UrScriptExporter::UrScriptExporter(Options options) : options_(std::move(options)) {
   const auto& o = options_;
   auto bad = [](const std::string& what) { throw srp::core::InvalidInputError("UrScriptExporter: " + what); };
   if (o.gripperDigitalOut < 0 || o.gripperDigitalOut > 1)

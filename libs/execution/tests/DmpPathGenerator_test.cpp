@@ -56,7 +56,7 @@ struct ArcDemo {
 TEST(DmpPathGenerator, ReplaysTheDemoInTheWorldAndRetargetsExactly) {
   const ArcDemo demo;
   std::map<std::string, LearnedPathSkills> skills;
-  skills["cuboid"].move = srp::motion::Dmp::imitate(demo.t_s, demo.p_camera_m, srp::motion::DmpConfig{});
+  skills["cuboid"].move = srp::motion::Dmp::imitate(demo.t_s, demo.p_camera_m, srp::motion::Dmp::Options{});
   const DmpPathGenerator gen(skills, demo.X_world_camera, {}, 0.0);  // the Move DMP end to end
   EXPECT_EQ(gen.name(), "dmp");
   EXPECT_EQ(gen.sourceFor(SkillType::Move, "cuboid"), "dmp");
@@ -89,7 +89,8 @@ TEST(DmpPathGenerator, ReplaysTheDemoInTheWorldAndRetargetsExactly) {
   double top_m = 0.0;
   for (const auto& s : moved) top_m = std::max(top_m, s.X_world_tcp.translation().z());
   EXPECT_GT(top_m, 0.08 + 0.05) << "the re-targeted DMP keeps the demo's lift";
-  EXPECT_GE(moved.back().t_s, (b.translation() - a.translation()).norm() / MinimumJerkOptions{}.meanSpeed_mps - 0.011);
+  EXPECT_GE(moved.back().t_s,
+            (b.translation() - a.translation()).norm() / MinimumJerkPathGenerator::Options{}.meanSpeed_mps - 0.011);
 
   // No learned skill: the minimum-jerk fallback, sample for sample.
   const CartesianPath fallback = gen.generate(SkillType::Reach, "cuboid", a, b, 0.01);
@@ -139,8 +140,8 @@ TEST(DmpPathGenerator, AMoveAtTheCarryHeightCarriesTheTallestPartOverTheWall) {
 
   const ArcDemo demo;
   std::map<std::string, LearnedPathSkills> skills;
-  skills["toy"].move = srp::motion::Dmp::imitate(demo.t_s, demo.p_camera_m, srp::motion::DmpConfig{});
-  MinimumJerkOptions fallback;
+  skills["toy"].move = srp::motion::Dmp::imitate(demo.t_s, demo.p_camera_m, srp::motion::Dmp::Options{});
+  MinimumJerkPathGenerator::Options fallback;
   fallback.clearanceHeight_m = std::max(fallback.clearanceHeight_m, carry_m);
   const DmpPathGenerator gen(skills, demo.X_world_camera, fallback, DmpPathGenerator::kDefaultEndHeight_m, carry_m);
   const Pose3 start = toolDown({-0.15, 0.05, kToyHeight_m}), goal = toolDown({0.3, 0.0, kFloor_m + kToyHeight_m});
@@ -184,7 +185,7 @@ TEST(DmpPathGenerator, ShortDemoRetargetedFarKeepsTheDemonstratorsDetour) {
     p_camera_m.row(i) << -0.025 + 0.05 * m, 0.0, 0.6 + 0.04 * std::sin(M_PI * m);  // 5 cm along, dipping 4 cm
   }
   std::map<std::string, LearnedPathSkills> skills;
-  srp::motion::DmpConfig spatial;  // as fromTaskModel executes a learned DMP
+  srp::motion::Dmp::Options spatial;  // as fromTaskModel executes a learned DMP
   spatial.scaling = srp::motion::ForcingScaling::Spatial;
   skills["toy"].reach = srp::motion::Dmp::imitate(t_s, p_camera_m, spatial);
   const DmpPathGenerator gen(skills, X_world_camera, {}, 0.0);
@@ -226,7 +227,7 @@ TEST(DmpPathGenerator, ShortDemoRetargetedFarKeepsTheDemonstratorsOvershoot) {
     p_camera_m.row(i) << x, 0.0, 0.6;
   }
   std::map<std::string, LearnedPathSkills> skills;
-  srp::motion::DmpConfig spatial;  // as fromTaskModel executes a learned DMP
+  srp::motion::Dmp::Options spatial;  // as fromTaskModel executes a learned DMP
   spatial.scaling = srp::motion::ForcingScaling::Spatial;
   skills["toy"].reach = srp::motion::Dmp::imitate(t_s, p_camera_m, spatial);
   const DmpPathGenerator gen(skills, X_world_camera, {}, 0.0);

@@ -64,7 +64,8 @@ void expectEveryRelationHolds(const JointPlacementPlanner& joint, const CellDesc
       EXPECT_TRUE(c.holds) << "step " << i + 1 << ": " << c.relation << " " << c.landmarks << ": " << c.detail;
     // And the rules: clear of the other parts by clearance_m (a tight place: minClearance_m).
     const CellObject& part = *now.find(planned[i].part);
-    PlacementOptions rules = planned[i].placement.tight ? joint.planner().options().tight() : joint.planner().options();
+    PlacementContext::Options rules =
+        planned[i].placement.tight ? joint.planner().options().tight() : joint.planner().options();
     rules.clearance_m -= kClearanceTol_m;
     EXPECT_TRUE(PlacementContext(now, part, rules).isFree(part.X_world_object)) << "step " << i + 1;
   }
@@ -112,7 +113,7 @@ TEST(JointPlacementPlanner, OneStepIsPlacedAsThePlacementPlannerPlacesIt) {
   const CellDescription cell = defaultCell();
   JointPlacementPlanner::Options discrete;
   discrete.refine = false;
-  const JointPlacementPlanner joint(PlacementOptions{}, discrete);
+  const JointPlacementPlanner joint(PlacementContext::Options{}, discrete);
   for (const auto& target : {std::vector<SpatialRelation>{inGrayBox()},
                              {rel("right of", "star")},
                              {rel("next to", "octagon"), inGrayBox()},
@@ -195,7 +196,7 @@ TEST(JointPlacementPlanner, RefinementWidensATightGap) {
   plan.steps.push_back(step("cuboid", {between("star", "octagon"), inGrayBox()}));
   JointPlacementPlanner::Options discrete;
   discrete.refine = false;
-  const JointPlacementPlanner unrefined(PlacementOptions{}, discrete);
+  const JointPlacementPlanner unrefined(PlacementContext::Options{}, discrete);
   const auto before = unrefined.plan(cell, plan);
   expectEveryRelationHolds(unrefined, cell, plan, before);
   ASSERT_TRUE(before[2].placement.tight) << "the construction must leave only a tight place on the grid";

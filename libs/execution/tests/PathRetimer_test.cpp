@@ -159,10 +159,10 @@ TEST(PathRetimer, APathNeedingMoreThanTheLargestSlowDownIsNotRetimedAndStaysRefu
 TEST(PathRetimer, BadOptionsAreRejectedWithTheFix) {
   const SafetyChecker safety = checker();
   try {
-    PathRetimer(safety, RetimingOptions{1.5, 0.95, 4.0});
+    PathRetimer(safety, PathRetimer::Options{1.5, 0.95, 4.0});
     FAIL() << "margin 1.5 accepted";
   } catch (const srp::core::InvalidInputError& e) {
     EXPECT_NE(std::string(e.what()).find("(0, 1]"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(PathRetimer(safety, RetimingOptions{0.95, 0.95, 0.5}), srp::core::InvalidInputError);
+  EXPECT_THROW(PathRetimer(safety, PathRetimer::Options{0.95, 0.95, 0.5}), srp::core::InvalidInputError);
 }

@@ -101,7 +101,7 @@ TEST(PlacementPlanner, DirectionsFollowTheCameraView) {
 TEST(PlacementPlanner, RobotViewTurnsWithTheRobot) {
   CellDescription c = cell();
   c.X_world_base = at(-0.5, 0.0, 0.0, 0.0);  // robot on the left edge, looking at the table centre along +x
-  PlacementOptions o;
+  PlacementContext::Options o;
   o.grounding.viewpoint = srp::core::Viewpoint::Robot;
   const PlacementPlanner planner(o);
   const ExecutionStep s = stepOf("cuboid", rel("left of", "star"));
@@ -275,7 +275,8 @@ TEST(PlacementPlanner, ToolKeepsItsRadiusFromWallsItComesLevelWith) {
   constexpr double kOuterWall_x = 0.16 - 0.11, kInnerWall_x = kOuterWall_x + 0.006;  // the gray box's left walls
   constexpr double kTooNear_m = 0.020, kFarEnough_m = 0.023;  // centre from the wall; the part's half-width is 15 mm
   CellDescription c = cell();
-  const PlacementOptions tight = PlacementOptions{}.tight();  // 2 mm to walls: the footprint alone would fit
+  const PlacementContext::Options tight =
+      PlacementContext::Options{}.tight();  // 2 mm to walls: the footprint alone would fit
   ASSERT_NEAR(tight.toolClearance_m, 0.022, kGeomTol_m);
   const CellObject& cuboid = get(c, "cuboid");  // 50 x 30 x 30 mm, turned: 15 mm towards the wall
   const PlacementContext ctx(c, cuboid, tight);

@@ -83,7 +83,7 @@ TEST(SceneGrounder, OrdinalsCountLeftToRightInTheDemonstratorsView) {
   far.X_world_base.linear() = Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   far.X_world_base.translation().y() = -cell.X_world_base.translation().y();
   ASSERT_GT(far.X_world_base.translation().y(), 0.1);
-  GroundingOptions robot;
+  SceneGrounder::Options robot;
   robot.viewpoint = srp::core::Viewpoint::Robot;
   EXPECT_EQ(SceneGrounder(far, robot).ground(withOrdinal(ref("cuboid"), 1)).name, "cuboid_red");
   EXPECT_EQ(SceneGrounder(far).ground(withOrdinal(ref("cuboid"), 1)).name, "cuboid_blue");

@@ -103,7 +103,7 @@ TEST(TaskExecutor, UnreachableTargetIsRefusedAndTheArmStaysPut) {
 // slow-down brings under the 5 rad/s^2 acceleration limit.)
 TEST(TaskExecutor, TooFastPathIsSlowedDownToTheJointSpeedLimits) {
   Cell c;
-  MinimumJerkOptions fast;
+  MinimumJerkPathGenerator::Options fast;
   fast.meanSpeed_mps = 0.75;
   fast.meanAngularSpeed_radps = 2.4;
   ExecutionPlan plan;
@@ -116,7 +116,7 @@ TEST(TaskExecutor, TooFastPathIsSlowedDownToTheJointSpeedLimits) {
   EXPECT_GT(done.steps[0].slowDown, 1.0);
   EXPECT_LT(done.steps[0].placementError_m, kPlacementTol_m);
 
-  ExecutionOptions noSlowDown;
+  TaskExecutor::Options noSlowDown;
   noSlowDown.maxSlowDown = 1.0;
   TaskExecutor strict(c.model, c.cell, c.home, std::make_shared<MinimumJerkPathGenerator>(fast), noSlowDown);
   const ExecutionReport refused = strict.run(plan);

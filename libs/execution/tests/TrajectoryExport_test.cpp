@@ -41,7 +41,7 @@ ExecutionPlan twoSteps() {
 }
 
 ExecutedTask simulate(const ExecutionPlan& plan, std::shared_ptr<const CartesianPathGenerator> generator,
-                      ExecutionOptions options = {}, std::vector<CellSnapshot>* log = nullptr) {
+                      TaskExecutor::Options options = {}, std::vector<CellSnapshot>* log = nullptr) {
   const RobotModel model = RobotModel::defaultUr5();
   const CellDescription cell = CellDescription::loadScene();
   srp::core::Pose3 home = srp::core::Pose3::Identity();
@@ -190,7 +190,7 @@ TEST(TrajectoryExport, CommandedTrajectoryIsTheTrackedReference) {
 TEST(TrajectoryExport, UrScriptReplaysTheCheckedTrajectory) {
   const ExecutedTask task = simulate(twoSteps(), std::make_shared<MinimumJerkPathGenerator>());
   ASSERT_EQ(task.report.done(), 2) << task.report.toText();
-  UrScriptOptions options;
+  UrScriptExporter::Options options;
   options.gripperDigitalOut = 1;
   options.gripperWait_s = 0.45;
   const std::string text = UrScriptExporter(options).toScript(task);
@@ -265,7 +265,7 @@ TEST(TrajectoryExport, RosYamlHoldsTheCheckedTrajectory) {
   // and stays within maxThinningDeviation_rad of the checked trajectory.
   int thinnedWritten = 0, thinnedRefused = 0;
   for (const double period : {0.02, 0.05, 0.1, 0.5}) {
-    RosTrajectoryOptions thin;
+    RosTrajectoryExporter::Options thin;
     thin.pointPeriod_s = period;
     try {
       const ParsedYaml few = readYaml(RosTrajectoryExporter(thin).toYaml(task));
@@ -290,11 +290,11 @@ TEST(TrajectoryExport, RosYamlHoldsTheCheckedTrajectory) {
 // A step refused by the safety check (a path too fast for the joints, no slow-down
 // allowed): nothing is exported, and the reason names the step and the check.
 TEST(TrajectoryExport, NothingIsWrittenAfterAFailedSafetyCheck) {
-  MinimumJerkOptions fast;
+  MinimumJerkPathGenerator::Options fast;
   fast.meanSpeed_mps = 0.75;
   fast.meanAngularSpeed_radps = 2.4;
   fast.minSegmentDuration_s = 0.1;
-  ExecutionOptions strict;
+  TaskExecutor::Options strict;
   strict.maxSlowDown = 1.0;
   const ExecutedTask task = simulate(twoSteps(), std::make_shared<MinimumJerkPathGenerator>(fast), strict);
   ASSERT_EQ(task.report.steps.at(0).status, StepStatus::Refused) << task.report.toText();
@@ -314,7 +314,7 @@ TEST(TrajectoryExport, NothingIsWrittenAfterAFailedSafetyCheck) {
 }
 
 TEST(TrajectoryExport, BadExporterOptionsAreRejectedWithTheFix) {
-  UrScriptOptions pin;
+  UrScriptExporter::Options pin;
   pin.gripperDigitalOut = 3;
   try {
     UrScriptExporter bad(pin);
@@ -322,10 +322,10 @@ TEST(TrajectoryExport, BadExporterOptionsAreRejectedWithTheFix) {
   } catch (const srp::core::InvalidInputError& e) {
     EXPECT_NE(std::string(e.what()).find("outputs 0 and 1"), std::string::npos) << e.what();
   }
-  UrScriptOptions lookahead;
+  UrScriptExporter::Options lookahead;
   lookahead.servoLookahead_s = 0.5;
   EXPECT_THROW(UrScriptExporter{lookahead}, srp::core::InvalidInputError);
-  RosTrajectoryOptions period;
+  RosTrajectoryExporter::Options period;
   period.pointPeriod_s = -1.0;
   EXPECT_THROW(RosTrajectoryExporter{period}, srp::core::InvalidInputError);
 }

@@ -23,16 +23,16 @@ namespace {
 struct Variant
 {
   std::string name;
-  motion::DmpConfig config;
+  motion::Dmp::Options config;
 };
 
 std::vector<Variant> variants()
 {
-  motion::DmpConfig zero, tenth, gcv;
+  motion::Dmp::Options zero, tenth, gcv;
   zero.lambda = 0.0;
   tenth.lambda = 0.1;
-  return {{"thesis formulation, λ = 0", motion::DmpConfig::reference(0.0)},
-          {"thesis formulation, λ = 0.1", motion::DmpConfig::reference(0.1)},
+  return {{"thesis formulation, λ = 0", motion::Dmp::Options::reference(0.0)},
+          {"thesis formulation, λ = 0.1", motion::Dmp::Options::reference(0.1)},
           {"ours, λ = 0", zero},
           {"ours, λ = 0.1", tenth},
           {"ours, λ automatic (GCV)", gcv}};
@@ -77,7 +77,7 @@ struct Outcome
   motion::DmpRollout reproduction, adaptation;
 };
 
-Outcome evaluate(const Segment& s, const motion::DmpConfig& config, const motion::AdaptationShift& shift)
+Outcome evaluate(const Segment& s, const motion::Dmp::Options& config, const motion::AdaptationShift& shift)
 {
   Outcome o;
   motion::Dmp dmp = motion::Dmp::imitate(s.t_s, s.Y, config);

@@ -745,7 +745,7 @@ Switches switchesFromJson(const nlohmann::json& j, const std::string& what) {
 }  // namespace
 
 LanguageModel LanguageModel::train(const std::vector<AnnotatedSentence>& corpus,
-                                   const LanguageTrainingOptions& options) {
+                                   const LanguageModel::Options& options) {
   core::require(!corpus.empty(), "language training corpus is empty; pass datasets/language/train.json");
   LanguageModel model;
   Impl& m = *model.impl_;
@@ -760,7 +760,7 @@ LanguageModel LanguageModel::train(const std::vector<AnnotatedSentence>& corpus,
     const auto count = static_cast<size_t>(options.syntheticRatio * static_cast<double>(corpus.size()) + 0.5);
     const auto synthetic = SyntheticCommandGrammar().generate(count, options.syntheticSeed);
     mixed.insert(mixed.end(), synthetic.begin(), synthetic.end());
-    LanguageTrainingOptions realOnly = options;
+    LanguageModel::Options realOnly = options;
     realOnly.syntheticRatio = 0.0;
     LanguageModel mixedModel = train(mixed, realOnly);
     mixedModel.impl_->indicatorConventions = m.indicatorConventions;

@@ -81,8 +81,8 @@ SpertScores evaluateModel(const LanguageModel& model, const std::vector<Annotate
   return scores;
 }
 
-CrossValidationResult crossValidate(const std::vector<AnnotatedSentence>& corpus,
-                                    const LanguageTrainingOptions& options, int folds, int threads) {
+CrossValidationResult crossValidate(const std::vector<AnnotatedSentence>& corpus, const LanguageModel::Options& options,
+                                    int folds, int threads) {
   core::require(folds >= 2 && folds <= static_cast<int>(corpus.size()),
                 "crossValidate: folds must be in [2, corpus size], got " + std::to_string(folds));
   CrossValidationResult result;
@@ -169,8 +169,7 @@ CvSummary cvF1Difference(const std::vector<SpertScores>& folds, const std::vecto
 }
 
 RepeatedCrossValidation repeatedCrossValidate(const std::vector<AnnotatedSentence>& corpus,
-                                              const LanguageTrainingOptions& options, int folds, int seeds,
-                                              int threads,
+                                              const LanguageModel::Options& options, int folds, int seeds, int threads,
                                               const std::vector<std::pair<std::string, DecodingRules>>& variants) {
   core::require(folds >= 2 && folds <= static_cast<int>(corpus.size()) && seeds >= 1,
                 "repeatedCrossValidate: need 2 <= folds <= corpus size and seeds >= 1, got folds " +

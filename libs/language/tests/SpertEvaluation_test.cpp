@@ -66,7 +66,7 @@ TEST(SpertEvaluation, RepeatedCrossValidationIsPairedAndDeterministic) {
   constexpr double kTol = 1e-12;
   auto corpus = readSpertCorpus(std::string(SRP_DATASETS_DIR) + "/language/train.json");
   corpus.resize(36);
-  LanguageTrainingOptions options;
+  LanguageModel::Options options;
   DecodingRules noSpans = options.rules;
   noSpans.spanLengths = false;
   const auto cv = repeatedCrossValidate(corpus, options, 3, 2, 2, {{"same", options.rules}, {"no_spans", noSpans}});

@@ -112,10 +112,82 @@ void endpointsFromJson(const nlohmann::json& block, Eigen::Index D, const std::s
 
 }  // namespace
 
-Dmp Dmp::imitate(const Eigen::VectorXd& t_s, const Eigen::MatrixXd& Y, const DmpConfig& config) {
+void Dmp::Options::validate() const {
+  using core::require;
+  require(basisCount >= 2, "Dmp::Options.basisCount must be >= 2 (got " + std::to_string(basisCount) + ")");
+  require(alpha_y > 0 && beta_y > 0 && std::isfinite(alpha_y) && std::isfinite(beta_y),
+          "Dmp::Options.alpha_y and beta_y must be positive and finite");
+  require(alpha_z > 0 && std::isfinite(alpha_z), "Dmp::Options.alpha_z must be positive");
+  require(overlap > 0 && overlap < 1, "Dmp::Options.overlap must be in (0, 1)");
+  if (lambda)
+    require(*lambda >= 0 && std::isfinite(*lambda), "Dmp::Options.lambda must be >= 0 and finite");
+  require(mode == Mode::Default || lambda.has_value(),
+          "Dmp::Options: Reference mode needs a lambda (the thesis used 0.1)");
+  require(mode == Mode::Default || scaling == ForcingScaling::None,
+          "Dmp::Options: Reference mode has no forcing scaling; use Mode::Default for scaling");
+  require(lambdaSearchMin > 0 && lambdaSearchMax > lambdaSearchMin,
+          "Dmp::Options: need 0 < lambdaSearchMin < lambdaSearchMax");
+  require(referenceDt_s > 0, "Dmp::Options.referenceDt_s must be positive");
+  require(maxStepFraction > 0 && maxStepFraction <= 1, "Dmp::Options.maxStepFraction must be in (0, 1]");
+}
+
+std::string toString(ForcingScaling s) {
+  switch (s) {
+    case ForcingScaling::None: return "none";
+    case ForcingScaling::PerDimension: return "per_dimension";
+    case ForcingScaling::Spatial: return "spatial";
+  }
+  return "none";
+}
+
+ForcingScaling forcingScalingFromString(const std::string& text) {
+  if (text == "none") return ForcingScaling::None;
+  if (text == "per_dimension") return ForcingScaling::PerDimension;
+  if (text == "spatial") return ForcingScaling::Spatial;
+  throw core::InvalidInputError("unknown forcing scaling '" + text +
+                                "'; use none, per_dimension or spatial");
+}
+
+void to_json(nlohmann::json& j, const Dmp::Options& c) {
+  j = nlohmann::json{{"mode", c.mode == Dmp::Options::Mode::Reference ? "reference" : "default"},
+                     {"basis_count", c.basisCount},
+                     {"alpha_y", c.alpha_y},
+                     {"beta_y", c.beta_y},
+                     {"alpha_z", c.alpha_z},
+                     {"overlap", c.overlap},
+                     {"scaling", toString(c.scaling)},
+                     {"lambda", c.lambda ? nlohmann::json(*c.lambda) : nlohmann::json(nullptr)},
+                     {"lambda_search_min", c.lambdaSearchMin},
+                     {"lambda_search_max", c.lambdaSearchMax},
+                     {"reference_dt_s", c.referenceDt_s},
+                     {"max_step_fraction", c.maxStepFraction}};
+}
+
+void from_json(const nlohmann::json& j, Dmp::Options& c) {
+  const std::string ctx = "DMP config";
+  const std::string mode = core::requireField(j, "mode", ctx).get<std::string>();
+  if (mode == "reference") c.mode = Dmp::Options::Mode::Reference;
+  else if (mode == "default") c.mode = Dmp::Options::Mode::Default;
+  else throw core::InvalidInputError(ctx + ": unknown mode '" + mode + "' (reference or default)");
+  c.basisCount = core::requireField(j, "basis_count", ctx).get<int>();
+  c.alpha_y = core::requireField(j, "alpha_y", ctx).get<double>();
+  c.beta_y = core::requireField(j, "beta_y", ctx).get<double>();
+  c.alpha_z = core::requireField(j, "alpha_z", ctx).get<double>();
+  c.overlap = core::requireField(j, "overlap", ctx).get<double>();
+  c.scaling = forcingScalingFromString(core::requireField(j, "scaling", ctx).get<std::string>());
+  const auto& lam = core::requireField(j, "lambda", ctx);
+  c.lambda = lam.is_null() ? std::nullopt : std::optional<double>(lam.get<double>());
+  c.lambdaSearchMin = core::requireField(j, "lambda_search_min", ctx).get<double>();
+  c.lambdaSearchMax = core::requireField(j, "lambda_search_max", ctx).get<double>();
+  c.referenceDt_s = core::requireField(j, "reference_dt_s", ctx).get<double>();
+  c.maxStepFraction = core::requireField(j, "max_step_fraction", ctx).get<double>();
+  c.validate();
+}
+
+Dmp Dmp::imitate(const Eigen::VectorXd& t_s, const Eigen::MatrixXd& Y, const Options& config) {
   config.validate();
   validateDemo(t_s, Y);
-  const bool reference = config.mode == DmpConfig::Mode::Reference;
+  const bool reference = config.mode == Options::Mode::Reference;
   const Eigen::Index N = Y.rows(), D = Y.cols();
   const double tau = t_s(N - 1) - t_s(0);
   const detail::ForcingBasis basis(config.basisCount, config.alpha_z, config.overlap);
@@ -207,7 +279,7 @@ void Dmp::configure(const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
   start_ = start;
   goal_ = goal;
   if (duration_s) duration_s_ = *duration_s;
-  if (config_.mode == DmpConfig::Mode::Reference) {
+  if (config_.mode == Options::Mode::Reference) {
     startVel_s_ = goalVel_s_ = Eigen::VectorXd::Zero(D);
     return;
   }
@@ -250,7 +322,7 @@ Eigen::MatrixXd Dmp::forcingScale() const {
 }
 
 DmpRollout Dmp::rollout() const {
-  return rollout(config_.mode == DmpConfig::Mode::Reference ? config_.referenceDt_s
+  return rollout(config_.mode == Options::Mode::Reference ? config_.referenceDt_s
                                                            : demoDt_s_ * duration_s_ / demoDuration_s_);
 }
 
@@ -267,7 +339,7 @@ DmpRollout Dmp::rollout(double dt_s) const {
   };
 
   DmpRollout out;
-  if (config_.mode == DmpConfig::Mode::Reference) {
+  if (config_.mode == Options::Mode::Reference) {
     // movement_primitives dmp_open_loop + dmp_step_rk4: grid np.arange(0, tau + dt, dt),
     // start at rest, forcing at [t, t + dt/2, t + dt] with t the *new* time.
     const auto n = static_cast<Eigen::Index>(std::ceil((tau + dt_s) / dt_s));
@@ -344,7 +416,7 @@ Dmp Dmp::fromJson(const nlohmann::json& j) {
   const std::string ctx = "DMP JSON";
   detail::requireClassAndVersion(j, "srp::motion::Dmp", 1, ctx);
   Dmp dmp;
-  dmp.config_ = requireField(j, "config", ctx).get<DmpConfig>();
+  dmp.config_ = requireField(j, "config", ctx).get<Options>();
   dmp.weights_ = matrixFromJson(requireField(j, "weights", ctx), ctx + " weights");
   require(dmp.weights_.cols() == dmp.config_.basisCount && dmp.weights_.rows() >= 1,
           ctx + ": weights must be D x basis_count");

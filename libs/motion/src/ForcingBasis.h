@@ -6,8 +6,6 @@
 #include <Eigen/Core>
 #include <cmath>
 
-#include "srp/motion/DmpConfig.h"
-
 namespace srp::motion::detail {
 
 class ForcingBasis {

@@ -32,9 +32,9 @@ Eigen::Vector4d toVec(const Eigen::Quaterniond& q) { return {q.w(), q.x(), q.y()
 }  // namespace
 
 QuaternionDmp QuaternionDmp::imitate(const Eigen::VectorXd& t_s, const std::vector<Eigen::Quaterniond>& qIn,
-                                     const DmpConfig& config) {
+                                     const Dmp::Options& config) {
   config.validate();
-  require(config.mode == DmpConfig::Mode::Default, "QuaternionDmp: only Default mode exists for orientations");
+  require(config.mode == Dmp::Options::Mode::Default, "QuaternionDmp: only Default mode exists for orientations");
   const auto N = static_cast<Eigen::Index>(qIn.size());
   require(t_s.size() == N, "QuaternionDmp demo: one time per orientation needed");
   require(N >= 3, "QuaternionDmp demo has " + std::to_string(N) + " samples; at least 3 are needed");
@@ -161,7 +161,7 @@ QuaternionDmp QuaternionDmp::fromJson(const nlohmann::json& j) {
   const std::string ctx = "QuaternionDmp JSON";
   detail::requireClassAndVersion(j, "srp::motion::QuaternionDmp", 1, ctx);
   QuaternionDmp dmp;
-  dmp.config_ = requireField(j, "config", ctx).get<DmpConfig>();
+  dmp.config_ = requireField(j, "config", ctx).get<Dmp::Options>();
   dmp.weights_ = detail::matrixFromJson(requireField(j, "weights", ctx), ctx + " weights");
   require(dmp.weights_.rows() == 3 && dmp.weights_.cols() == dmp.config_.basisCount, ctx + ": weights must be 3 x basis_count");
   dmp.lambda_ = requireField(j, "lambda", ctx).get<double>();

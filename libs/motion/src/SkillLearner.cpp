@@ -40,7 +40,7 @@ double medianYaw(const std::vector<double>& yaw, int index, int half) {
   return w[w.size() / 2];
 }
 
-Dmp learnSegment(const core::PositionTrajectory& hand, int from, int to, const DmpConfig& config,
+Dmp learnSegment(const core::PositionTrajectory& hand, int from, int to, const Dmp::Options& config,
                  const std::string& what) {
   const int count = to - from + 1;
   if (count < 3)

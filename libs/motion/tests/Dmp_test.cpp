@@ -46,7 +46,7 @@ double maxAbsDiff(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
 
 TEST(DmpReference, BasisMatchesLibrary) {
   const Demo d = loadDemo("cuboid_move");
-  const Dmp dmp = Dmp::imitate(d.t_s, d.Y, DmpConfig::reference(0.1));
+  const Dmp dmp = Dmp::imitate(d.t_s, d.Y, Dmp::Options::reference(0.1));
   const Eigen::MatrixXd basis = readCsv(referenceDir() + "basis_centers_widths.csv");
   ASSERT_EQ(basis.rows(), 20);
   for (int i = 0; i < 20; ++i) {
@@ -58,7 +58,7 @@ TEST(DmpReference, BasisMatchesLibrary) {
 TEST(DmpReference, ImitationTargetsMatchLibrary) {
   for (const auto& name : referenceDemos()) {
     const Demo d = loadDemo(name);
-    const Dmp dmp = Dmp::imitate(d.t_s, d.Y, DmpConfig::reference(0.0));
+    const Dmp dmp = Dmp::imitate(d.t_s, d.Y, Dmp::Options::reference(0.0));
     const Eigen::MatrixXd ref = readCsv(referenceDir() + name + "_imitation_targets.csv");
     const auto& tg = dmp.imitationTargets();
     const double fScale = ref.rightCols(3).cwiseAbs().maxCoeff();
@@ -77,7 +77,7 @@ TEST(DmpReference, WeightsAndRolloutsMatchLibrary) {
     const Eigen::MatrixXd sg = readCsv(referenceDir() + name + "_start_goal.csv");
     for (double lambda : {0.0, 0.1}) {
       const std::string tag = name + " lambda " + lambdaText(lambda);
-      Dmp dmp = Dmp::imitate(d.t_s, d.Y, DmpConfig::reference(lambda));
+      Dmp dmp = Dmp::imitate(d.t_s, d.Y, Dmp::Options::reference(lambda));
       const Eigen::MatrixXd w = readCsv(referenceDir() + name + "_lambda" + lambdaText(lambda) + "_weights.csv");
       const double wRel = maxAbsDiff(dmp.weights(), w) / w.cwiseAbs().maxCoeff();
       EXPECT_LE(wRel, kWeightRelTol) << tag;
@@ -112,7 +112,7 @@ TEST(DmpDefault, ReproducesRealSegments) {
   std::vector<double> maxErrors;
   for (const auto& name : referenceDemos()) {
     const Demo d = loadDemo(name);
-    const Dmp dmp = Dmp::imitate(d.t_s, d.Y, DmpConfig{});
+    const Dmp dmp = Dmp::imitate(d.t_s, d.Y, Dmp::Options{});
     const DmpRollout r = dmp.rollout();
     ASSERT_EQ(r.t_s.size(), d.Y.rows()) << name;
     EXPECT_LE(maxAbsDiff(r.t_s, d.t_s), 1e-12) << name;
@@ -134,7 +134,7 @@ TEST(DmpDefault, AdaptedRolloutsEndAtTheNewGoal) {
   for (const auto& name : referenceDemos()) {
     const Demo d = loadDemo(name);
     for (auto scaling : {ForcingScaling::None, ForcingScaling::PerDimension, ForcingScaling::Spatial}) {
-      DmpConfig config;
+      Dmp::Options config;
       config.scaling = scaling;
       Dmp dmp = Dmp::imitate(d.t_s, d.Y, config);
       const Eigen::VectorXd goal = d.Y.row(d.Y.rows() - 1).transpose() + goalShift;
@@ -157,7 +157,7 @@ TEST(DmpReference, AdaptedRolloutsEndNearTheNewGoal) {
   for (const auto& name : referenceDemos()) {
     const Demo d = loadDemo(name);
     const Eigen::MatrixXd sg = readCsv(referenceDir() + name + "_start_goal.csv");
-    Dmp dmp = Dmp::imitate(d.t_s, d.Y, DmpConfig::reference(0.1));
+    Dmp dmp = Dmp::imitate(d.t_s, d.Y, Dmp::Options::reference(0.1));
     dmp.configure(sg.row(2).transpose(), sg.row(3).transpose());
     const DmpRollout r = dmp.rollout();
     EXPECT_LE((r.y.row(r.y.rows() - 1) - sg.row(3)).norm(), kGoalTol_m) << name;
@@ -184,7 +184,7 @@ TEST(DmpDefault, StraightLineDemoGivesStraightLine) {
     Y.row(i) = (a + minJerk * (b - a)).transpose();
   }
   for (auto scaling : {ForcingScaling::Spatial, ForcingScaling::PerDimension}) {
-    DmpConfig config;
+    Dmp::Options config;
     config.scaling = scaling;
     Dmp dmp = Dmp::imitate(t, Y, config);
     DmpRollout r = dmp.rollout();
@@ -203,7 +203,7 @@ TEST(DmpDefault, StraightLineDemoGivesStraightLine) {
 
 TEST(DmpJson, RoundTripRollsOutIdentically) {
   const Demo d = loadDemo("star_move");
-  for (const DmpConfig& config : {DmpConfig::reference(0.1), DmpConfig{}}) {
+  for (const Dmp::Options& config : {Dmp::Options::reference(0.1), Dmp::Options{}}) {
     Dmp dmp = Dmp::imitate(d.t_s, d.Y, config);
     dmp.configure(d.Y.row(0).transpose() * 1.1, d.Y.row(20).transpose() * 0.9, 1.7);
     const std::string text = dmp.toJson().dump();
@@ -220,7 +220,7 @@ TEST(DmpJson, RoundTripRollsOutIdentically) {
 
 TEST(DmpJson, RejectsWrongClassAndNewerVersion) {
   const Demo d = loadDemo("star_move");
-  nlohmann::json j = Dmp::imitate(d.t_s, d.Y, DmpConfig{}).toJson();
+  nlohmann::json j = Dmp::imitate(d.t_s, d.Y, Dmp::Options{}).toJson();
   nlohmann::json wrongClass = j;
   wrongClass["class"] = "srp::motion::QuaternionDmp";
   EXPECT_THROW(Dmp::fromJson(wrongClass), core::InvalidInputError);
@@ -233,19 +233,19 @@ TEST(DmpJson, RejectsWrongClassAndNewerVersion) {
 }
 
 TEST(DmpInput, RejectsEmptySingleAndNonFiniteDemos) {
-  EXPECT_THROW(Dmp::imitate(Eigen::VectorXd(0), Eigen::MatrixXd(0, 3), DmpConfig{}), core::InvalidInputError);
-  EXPECT_THROW(Dmp::imitate(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Zero(1, 3), DmpConfig{}),
+  EXPECT_THROW(Dmp::imitate(Eigen::VectorXd(0), Eigen::MatrixXd(0, 3), Dmp::Options{}), core::InvalidInputError);
+  EXPECT_THROW(Dmp::imitate(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Zero(1, 3), Dmp::Options{}),
                core::InvalidInputError);
   Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(10, 0.0, 1.0);
   Eigen::MatrixXd Y = Eigen::MatrixXd::Random(10, 3);
   Y(4, 1) = std::nan("");
-  EXPECT_THROW(Dmp::imitate(t, Y, DmpConfig{}), core::InvalidInputError);
+  EXPECT_THROW(Dmp::imitate(t, Y, Dmp::Options{}), core::InvalidInputError);
   Y(4, 1) = std::numeric_limits<double>::infinity();
-  EXPECT_THROW(Dmp::imitate(t, Y, DmpConfig{}), core::InvalidInputError);
+  EXPECT_THROW(Dmp::imitate(t, Y, Dmp::Options{}), core::InvalidInputError);
   Y(4, 1) = 0.0;
   t(5) = t(4);
-  EXPECT_THROW(Dmp::imitate(t, Y, DmpConfig{}), core::InvalidInputError);
-  EXPECT_THROW(Dmp::imitate(Eigen::VectorXd::LinSpaced(10, 0, 1), Y, DmpConfig::reference(-1.0)),
+  EXPECT_THROW(Dmp::imitate(t, Y, Dmp::Options{}), core::InvalidInputError);
+  EXPECT_THROW(Dmp::imitate(Eigen::VectorXd::LinSpaced(10, 0, 1), Y, Dmp::Options::reference(-1.0)),
                core::InvalidInputError);
 }
 

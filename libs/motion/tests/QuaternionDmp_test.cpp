@@ -36,7 +36,7 @@ Demo makeDemo() {
 
 TEST(QuaternionDmp, ReproducesTheDemoAndConvergesToNewGoals) {
   const Demo d = makeDemo();
-  QuaternionDmp dmp = QuaternionDmp::imitate(d.t, d.q, DmpConfig{});
+  QuaternionDmp dmp = QuaternionDmp::imitate(d.t, d.q, Dmp::Options{});
   QuaternionDmpRollout r = dmp.rollout(1.0 / 30.0);
   ASSERT_EQ(r.q.size(), d.q.size());
   double worst = 0.0;
@@ -56,7 +56,7 @@ TEST(QuaternionDmp, ReproducesTheDemoAndConvergesToNewGoals) {
 
 TEST(QuaternionDmp, JsonRoundTripRollsOutIdentically) {
   const Demo d = makeDemo();
-  QuaternionDmp dmp = QuaternionDmp::imitate(d.t, d.q, DmpConfig{});
+  QuaternionDmp dmp = QuaternionDmp::imitate(d.t, d.q, Dmp::Options{});
   dmp.configure(Eigen::Quaterniond(Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitX())), d.q.back(), 1.5);
   const QuaternionDmp back = QuaternionDmp::fromJson(nlohmann::json::parse(dmp.toJson().dump()));
   const auto a = dmp.rollout(0.02), b = back.rollout(0.02);
@@ -69,11 +69,11 @@ TEST(QuaternionDmp, JsonRoundTripRollsOutIdentically) {
 
 TEST(QuaternionDmp, RejectsBadDemos) {
   const Demo d = makeDemo();
-  EXPECT_THROW(QuaternionDmp::imitate(d.t.head(2), {d.q[0], d.q[1]}, DmpConfig{}), core::InvalidInputError);
+  EXPECT_THROW(QuaternionDmp::imitate(d.t.head(2), {d.q[0], d.q[1]}, Dmp::Options{}), core::InvalidInputError);
   auto q = d.q;
   q[5].coeffs()(0) = std::nan("");
-  EXPECT_THROW(QuaternionDmp::imitate(d.t, q, DmpConfig{}), core::InvalidInputError);
-  EXPECT_THROW(QuaternionDmp::imitate(d.t, d.q, DmpConfig::reference(0.1)), core::InvalidInputError);
+  EXPECT_THROW(QuaternionDmp::imitate(d.t, q, Dmp::Options{}), core::InvalidInputError);
+  EXPECT_THROW(QuaternionDmp::imitate(d.t, d.q, Dmp::Options::reference(0.1)), core::InvalidInputError);
 }
 
 }  // namespace

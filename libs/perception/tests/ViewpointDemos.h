@@ -67,15 +67,8 @@ inline std::string renderViewpointDemo(const ViewpointDemoSpec& spec, const std:
     }
   const core::ObjectCatalogue catalogue(classes);
   // The camera looks at the middle of the two boxes.
-  Eigen::Vector3d target = Eigen::Vector3d::Zero();
-  int boxes = 0;
-  for (const auto& o : scene.objects)
-    if (catalogue.at(o.className).kind == core::ObjectKind::Container) {
-      target += o.X_world_object.translation();
-      ++boxes;
-    }
-  if (boxes > 0) target /= boxes;
-  const synth::Viewpoint view = synth::makeViewpoint(spec.family, spec.variant, target);
+  const synth::Viewpoint view =
+      synth::makeViewpoint(spec.family, spec.variant, synth::workCentre_world(scene, catalogue));
   scene.X_world_camera = view.X_world_camera;
   synth::SynthDemoOptions o;
   o.demo.seed = spec.seed;

@@ -74,10 +74,10 @@ TEST(DmpPathGenerator, LearnedSkillsFromATaskModelExecuteWithDmpPaths) {
   // every joint under the acceleration limit between its 8 ms servoj ticks (35.9 rad/s^2
   // before the limit, on the make-demo task).
   const ExecutedTask task =
-      ExecutedTask::fromSimulation(robot, ExecutionOptions{}.safety, executor.simulator(), report);
+      ExecutedTask::fromSimulation(robot, TaskExecutor::Options{}.safety, executor.simulator(), report);
   ASSERT_FALSE(task.whyNotExportable()) << *task.whyNotExportable();
   EXPECT_DOUBLE_EQ(task.maxAcceleration_radps2, SafetyLimits{}.maxAcceleration_radps2);
-  const UrScriptOptions urOptions;
+  const UrScriptExporter::Options urOptions;
   std::istringstream script(UrScriptExporter(urOptions).toScript(task));
   std::vector<JointVector> ticks;
   for (std::string line; std::getline(script, line);) {

@@ -12,7 +12,10 @@ ViewpointFamily viewpointFamilyFromName(const std::string& name) {
   if (name == "egocentric") return ViewpointFamily::Egocentric;
   if (name == "side") return ViewpointFamily::Side;
   if (name == "top-down") return ViewpointFamily::TopDown;
-  throw srp::core::InvalidInputError("viewpoint family '" + name + "' is unknown; use egocentric, side or top-down");
+  if (name == "front") return ViewpointFamily::Front;
+  if (name == "oblique") return ViewpointFamily::Oblique;
+  throw srp::core::InvalidInputError("viewpoint family '" + name +
+                                     "' is unknown; use egocentric, side, top-down, front or oblique");
 }
 
 std::string viewpointFamilyName(ViewpointFamily family) {
@@ -23,8 +26,40 @@ std::string viewpointFamilyName(ViewpointFamily family) {
       return "side";
     case ViewpointFamily::TopDown:
       return "top-down";
+    case ViewpointFamily::Front:
+      return "front";
+    case ViewpointFamily::Oblique:
+      return "oblique";
   }
   return "?";
+}
+
+Eigen::Vector3d workCentre_world(const srp::core::Scene& scene, const srp::core::ObjectCatalogue& catalogue) {
+  Eigen::Vector3d containers = Eigen::Vector3d::Zero(), all = Eigen::Vector3d::Zero();
+  int nContainers = 0;
+  for (const auto& o : scene.objects) {
+    const Eigen::Vector3d p = o.X_world_object.translation();
+    all += p;
+    if (catalogue.at(o.className).kind == srp::core::ObjectKind::Container) {
+      containers += p;
+      ++nContainers;
+    }
+  }
+  if (nContainers > 0) return containers / nContainers;
+  return scene.objects.empty() ? Eigen::Vector3d::Zero() : Eigen::Vector3d(all / static_cast<double>(scene.objects.size()));
+}
+
+std::pair<ViewpointFamily, int> viewpointFromText(const std::string& text) {
+  const auto colon = text.find(':');
+  const ViewpointFamily family = viewpointFamilyFromName(text.substr(0, colon));
+  if (colon == std::string::npos) return {family, 0};
+  const std::string number = text.substr(colon + 1);
+  const bool digits = !number.empty() && number.size() <= 3 &&
+                      number.find_first_not_of("0123456789") == std::string::npos;
+  if (!digits)
+    throw srp::core::InvalidInputError("viewpoint '" + text +
+                                       "': the variant after ':' must be a number 0-999 (e.g. side:1)");
+  return {family, std::stoi(number)};
 }
 
 srp::core::Pose3 lookAt(const Eigen::Vector3d& eye_world, const Eigen::Vector3d& target_world,
@@ -71,6 +106,19 @@ Viewpoint makeViewpoint(ViewpointFamily family, int variant, const Eigen::Vector
     case ViewpointFamily::TopDown: {
       // Image up along `across` (turned): the demonstrator's side is a side edge.
       out.X_world_camera = lookAt(target_world + Eigen::Vector3d(0, 0, distance * 0.95), target_world, turn * across);
+      break;
+    }
+    case ViewpointFamily::Front: {
+      // A camera standing where a robot's head would, across the table from the demonstrator.
+      const Eigen::Vector3d offset = turn * (-0.8 * side) + Eigen::Vector3d(0, 0, 0.5);
+      out.X_world_camera = lookAt(target_world + distance * offset, target_world, Eigen::Vector3d::UnitZ());
+      break;
+    }
+    case ViewpointFamily::Oblique: {
+      const double sign = v % 2 == 0 ? 1.0 : -1.0;  // either far corner of the table
+      const Eigen::Vector3d corner = (-side + sign * across).normalized();
+      const Eigen::Vector3d offset = turn * (0.7 * corner) + Eigen::Vector3d(0, 0, 0.75);
+      out.X_world_camera = lookAt(target_world + distance * offset, target_world, Eigen::Vector3d::UnitZ());
       break;
     }
   }

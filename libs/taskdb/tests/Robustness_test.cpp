@@ -28,22 +28,35 @@ using srp::core::FileError;
 namespace {
 
 /// Permission bits do not stop root, and CI runs as root: there the check runs in a child process that
-/// has become the unprivileged user nobody (uid/gid 65534), where they apply. Returns the check's
-/// failure message ("" = passed).
-std::string asOrdinaryUser(const std::function<std::string()>& check) {
-  if (geteuid() != 0) return check();
+/// has become the unprivileged user nobody (uid/gid 65534), where they apply. The check gets a folder of
+/// its own, writable by whoever runs it (the temporary folder may not be: TMPDIR can name a folder only
+/// root writes), removed afterwards. Returns the check's failure message ("" = passed).
+std::string asOrdinaryUser(const std::function<std::string(const std::filesystem::path& folder)>& check) {
+  constexpr uid_t kNobody = 65534;
+  const auto folder = std::filesystem::temp_directory_path() / ("srp_taskdb_user_" + std::to_string(getpid()));
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  struct Removed {
+    std::filesystem::path p;
+    ~Removed() {
+      std::error_code ignored;
+      std::filesystem::permissions(p, std::filesystem::perms::owner_all, ignored);
+      std::filesystem::remove_all(p, ignored);
+    }
+  } removed{folder};
+  if (geteuid() != 0) return check(folder);
+  if (chown(folder.c_str(), kNobody, kNobody) != 0) return "could not give the test folder to the user nobody";
   int fds[2];
   if (pipe(fds) != 0) return "pipe failed";
   const pid_t pid = fork();
   if (pid == 0) {
     close(fds[0]);
     std::string message;
-    constexpr uid_t kNobody = 65534;
     if (setgroups(0, nullptr) != 0 || setgid(kNobody) != 0 || setuid(kNobody) != 0) {
       message = "could not become the user nobody";
     } else {
       try {
-        message = check();
+        message = check(folder);
       } catch (const std::exception& e) {
         message = std::string("exception: ") + e.what();
       }
@@ -329,8 +342,8 @@ TEST(Robustness, ReadOnlyOpenWritesNothing) {
 }
 
 TEST(Robustness, ReadOnlyOpenWorksInAReadOnlyFolder) {
-  const std::string failure = asOrdinaryUser([] {
-    const auto dir = std::filesystem::temp_directory_path() / ("srp_taskdb_rofolder_" + std::to_string(getpid()));
+  const std::string failure = asOrdinaryUser([](const std::filesystem::path& folder) {
+    const auto dir = folder / "rofolder";
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     const std::string path = (dir / "task.db").string();
@@ -413,9 +426,8 @@ TEST(Robustness, LockContentionIsReportedAsALockNotAsCorruption) {
 }
 
 TEST(Robustness, NoPermissionIsReportedAsSuch) {
-  const std::string failure = asOrdinaryUser([] {
-    const std::string path =
-        (std::filesystem::temp_directory_path() / ("srp_taskdb_noperm_" + std::to_string(getpid()) + ".db")).string();
+  const std::string failure = asOrdinaryUser([](const std::filesystem::path& folder) {
+    const std::string path = (folder / "noperm.db").string();
     for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(path + suffix);
     { TaskDatabase::open(path); }
     std::filesystem::permissions(path, std::filesystem::perms::none);

@@ -23,13 +23,13 @@
 
 namespace srp::execution::acceptance {
 
-/// The least gap the cell keeps between parts and from walls (PlacementOptions::minClearance_m:
+/// The least gap the cell keeps between parts and from walls (PlacementContext::Options::minClearance_m:
 /// the SafetyChecker's 2 mm to container walls).
 constexpr double kMinGap_m = 0.002;
 constexpr double kCheckSlack_m = 0.001;        // the relation checks allow footprints 1 mm into each other
 constexpr double kNeighbourMaxGap_m = 0.030;   // "next to": neighbourGap_m + neighbourTolerance_m
 constexpr double kLateralSlack_m = 0.005;      // "between": relationTolerance_m
-constexpr double kMinReach_m = 0.15, kMaxReach_m = 0.80;  // the arm's placing range (PlacementOptions)
+constexpr double kMinReach_m = 0.15, kMaxReach_m = 0.80;  // the arm's placing range (PlacementContext::Options)
 constexpr double kFineStep_m = 0.001, kTableStep_m = 0.002;
 /// The suction tool (sim/ur5/ur5.urdf, link suction_tool: a collision cylinder of radius
 /// 20 mm from tool0 down to the tool centre point) is lowered straight down onto the part's

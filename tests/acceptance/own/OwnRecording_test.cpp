@@ -35,7 +35,7 @@ namespace {
 constexpr int kEventTol_frames = 2;
 constexpr double kInsideMargin_m = 0.0;  // the toy's centre strictly inside the bin's footprint
 // srp execute: the toy within 1 cm of its planned pose in the bin (the executor's own
-// "placed as planned" tolerance, ExecutionOptions::placementTolerance_m).
+// "placed as planned" tolerance, TaskExecutor::Options::placementTolerance_m).
 constexpr double kExecutedPlacementTol_m = 0.01;
 
 std::string hrt1Root() { return std::string(SRP_DATASETS_DIR) + "/real/hrt1-pick-place"; }

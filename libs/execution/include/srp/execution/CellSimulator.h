@@ -11,7 +11,7 @@
 /// - Parts are free rigid bodies (box-shaped, catalogue size and mass); the table
 ///   top and every container's floor and walls are fixed boxes. Contact is a
 ///   penalty model between each part's contact points (a grid on the bottom face, the
-///   top corners; see SimulationOptions::bottomContactGrid) and every other box (table,
+///   top corners; see CellSimulator::Options::bottomContactGrid) and every other box (table,
 ///   container floor/walls, other parts): a spring-damper normal force and a
 ///   regularised Coulomb friction force. A released part falls and rests where it lands.
 /// - Grasp is a Simbody Weld constraint between the tool and the part, created at
@@ -31,37 +31,6 @@
 #include "srp/execution/RobotModel.h"
 
 namespace srp::execution {
-
-struct SimulationOptions {
-  /// Simbody RK-Merson relative accuracy. 1e-2 let a part dropped on another part gain
-  /// energy in its stiff contact and bounce off (a cuboid released 3 mm above an octagon
-  /// hopped 5 mm and fell off); 1e-3 lets it settle. Cost: 50 random scenes took 103 s
-  /// of integration for 1732 s simulated (87 s for 2175 s at 1e-2, another load).
-  double integratorAccuracy = 1e-3;
-  double maxStep_s = 1e-2;             ///< integrator step cap
-  /// Per-corner contact spring and damper are scaled with the part's mass so every
-  /// part sinks g / omega^2 into its support (27 um at 600 rad/s) and rings alike.
-  double contactFrequency_radps = 600.0;
-  double contactDampingRatio = 0.7;
-  double frictionCoefficient = 0.6;
-  /// Contact points per side of a part's bottom face (2: the four corners only). With 3,
-  /// the edge midpoints and the centre too, so a part stacked across a narrower part
-  /// (no corner of either inside the other) is held; the points share the weight.
-  int bottomContactGrid = 3;
-  /// The contact points sit this far inside the part's footprint edges. On a part
-  /// stacked on one of the same footprint (two cuboids, two stars, a cuboid along a
-  /// star) points exactly on the edges lie on the lower box's side faces: a box point
-  /// takes the normal of its shallowest face, so they were pushed sideways or got no
-  /// force, the part rested on its centre point alone and tipped over. 2 mm is five
-  /// times the deepest impact penetration (a release 3 mm up: 0.24 m/s / 600 rad/s).
-  double contactInset_m = 0.002;
-  double frictionRate_1ps = 300.0;  ///< viscous slope of the regularised friction, per unit corner mass
-  double controllerBandwidth_radps = 25.0;  ///< closed-loop natural frequency of every joint
-  /// Lock parts that came to rest (checked between trajectories) until they are
-  /// grasped: same resting poses, several times faster (see CellSimulator.cpp).
-  bool sleepRestingParts = true;
-  double logPeriod_s = 0.02;              ///< period of the state log and the snapshot callback
-};
 
 /// Everything needed to draw or check the cell at one instant.
 struct CellSnapshot {
@@ -92,10 +61,42 @@ struct TrackingResult {
 
 class CellSimulator {
  public:
+  struct Options {
+    /// Simbody RK-Merson relative accuracy. 1e-2 let a part dropped on another part gain
+    /// energy in its stiff contact and bounce off (a cuboid released 3 mm above an octagon
+    /// hopped 5 mm and fell off); 1e-3 lets it settle. Cost: 50 random scenes took 103 s
+    /// of integration for 1732 s simulated (87 s for 2175 s at 1e-2, another load).
+    double integratorAccuracy = 1e-3;
+    double maxStep_s = 1e-2;  ///< integrator step cap
+    /// Per-corner contact spring and damper are scaled with the part's mass so every
+    /// part sinks g / omega^2 into its support (27 um at 600 rad/s) and rings alike.
+    double contactFrequency_radps = 600.0;
+    double contactDampingRatio = 0.7;
+    double frictionCoefficient = 0.6;
+    /// Contact points per side of a part's bottom face (2: the four corners only). With 3,
+    /// the edge midpoints and the centre too, so a part stacked across a narrower part
+    /// (no corner of either inside the other) is held; the points share the weight.
+    int bottomContactGrid = 3;
+    /// The contact points sit this far inside the part's footprint edges. On a part
+    /// stacked on one of the same footprint (two cuboids, two stars, a cuboid along a
+    /// star) points exactly on the edges lie on the lower box's side faces: a box point
+    /// takes the normal of its shallowest face, so they were pushed sideways or got no
+    /// force, the part rested on its centre point alone and tipped over. 2 mm is five
+    /// times the deepest impact penetration (a release 3 mm up: 0.24 m/s / 600 rad/s).
+    double contactInset_m = 0.002;
+    double frictionRate_1ps = 300.0;          ///< viscous slope of the regularised friction, per unit corner mass
+    double controllerBandwidth_radps = 25.0;  ///< closed-loop natural frequency of every joint
+    /// Lock parts that came to rest (checked between trajectories) until they are
+    /// grasped: same resting poses, several times faster (see CellSimulator.cpp).
+    bool sleepRestingParts = true;
+    double logPeriod_s = 0.02;  ///< period of the state log and the snapshot callback
+  };
+
   /// Builds the system; the arm starts at rest at q_initial, the parts at their
   /// scene poses. Throws InvalidInputError on a part with non-positive size or mass.
-  CellSimulator(const RobotModel& model, const CellDescription& cell, const JointVector& q_initial,
-                SimulationOptions options = {});
+  CellSimulator(const RobotModel& model, const CellDescription& cell, const JointVector& q_initial, Options options);
+  CellSimulator(const RobotModel& model, const CellDescription& cell, const JointVector& q_initial)
+      : CellSimulator(model, cell, q_initial, Options{}) {}
   ~CellSimulator();
   CellSimulator(const CellSimulator&) = delete;
   CellSimulator& operator=(const CellSimulator&) = delete;

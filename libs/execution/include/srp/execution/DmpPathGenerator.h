@@ -53,7 +53,7 @@ class DmpPathGenerator : public CartesianPathGenerator {
   /// to this tcp height (0: exactly between them). `moveEndHeight_m`: the same for
   /// Move, where the tool carries a part (default: `endHeight_m`).
   DmpPathGenerator(std::map<std::string, LearnedPathSkills> skillsByObject, const srp::core::Pose3& X_world_demo,
-                   MinimumJerkOptions fallback = {}, double endHeight_m = kDefaultEndHeight_m,
+                   MinimumJerkPathGenerator::Options fallback = {}, double endHeight_m = kDefaultEndHeight_m,
                    std::optional<double> moveEndHeight_m = std::nullopt);
 
   /// The Reach and Move rows of the task model's Skills table (parameters "dmp",
@@ -64,7 +64,8 @@ class DmpPathGenerator : public CartesianPathGenerator {
   /// segment longer than 600 s, or a frame other than "camera".
   /// `endHeight_m`, `moveEndHeight_m` as in the constructor.
   static DmpPathGenerator fromTaskModel(const srp::taskdb::TaskModel& model, const srp::core::Pose3& X_world_camera,
-                                        MinimumJerkOptions fallback = {}, double endHeight_m = kDefaultEndHeight_m,
+                                        MinimumJerkPathGenerator::Options fallback = {},
+                                        double endHeight_m = kDefaultEndHeight_m,
                                         std::optional<double> moveEndHeight_m = std::nullopt);
 
   CartesianPath generate(srp::core::SkillType skill, const std::string& object,

@@ -41,7 +41,7 @@ struct ExecuteRequest {
   std::string instruction;
   /// Replaces the stored plan directly (tests, tools).
   std::optional<ExecutionPlan> planOverride;
-  ExecutionOptions options;
+  TaskExecutor::Options options;
   std::function<void(const std::string&)> progress;  ///< one line per step, may be empty
 };
 

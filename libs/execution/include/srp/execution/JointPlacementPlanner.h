@@ -19,7 +19,7 @@
 ///    A candidate that failed rules out its neighbours nearer than `spread_m` at its level.
 /// 3. Margins first: a first search keeps clearance_m and wallMargin_m everywhere; only
 ///    when it cannot place every step, a second one also takes tight places (down to
-///    minClearance_m, PlacementOptions::tight()).
+///    minClearance_m, PlacementContext::Options::tight()).
 /// 4. Refinement: when the chosen plan has tight places, the planned parts are moved
 ///    continuously (x, y, yaw; NLopt, COBYLA) to raise the gaps below clearance_m and
 ///    wallMargin_m towards them, each part moving as little as possible, every relation
@@ -50,8 +50,8 @@ class JointPlacementPlanner {
   };
 
   JointPlacementPlanner();
-  explicit JointPlacementPlanner(PlacementOptions placement);
-  JointPlacementPlanner(PlacementOptions placement, Options options);
+  explicit JointPlacementPlanner(PlacementContext::Options placement);
+  JointPlacementPlanner(PlacementContext::Options placement, Options options);
 
   /// One PlannedPlacement per step of `plan`, planned in `scene` as it is before any step
   /// runs (the steps' parts are grounded there, a later step's in the scene the earlier

@@ -8,16 +8,17 @@
 
 namespace srp::execution {
 
-struct MinimumJerkOptions {
-  double clearanceHeight_m = 0.16;   ///< tcp height [m, world z] for crossing between places
-  double meanSpeed_mps = 0.25;       ///< mean tcp speed of a segment
-  double meanAngularSpeed_radps = 0.8;
-  double minSegmentDuration_s = 0.4;
-};
-
 class MinimumJerkPathGenerator : public CartesianPathGenerator {
  public:
-  explicit MinimumJerkPathGenerator(MinimumJerkOptions options = {}) : options_(options) {}
+  struct Options {
+    double clearanceHeight_m = 0.16;  ///< tcp height [m, world z] for crossing between places
+    double meanSpeed_mps = 0.25;      ///< mean tcp speed of a segment
+    double meanAngularSpeed_radps = 0.8;
+    double minSegmentDuration_s = 0.4;
+  };
+
+  MinimumJerkPathGenerator() : MinimumJerkPathGenerator(Options{}) {}
+  explicit MinimumJerkPathGenerator(Options options) : options_(options) {}
 
   /// Lift to max(clearance, start z, goal z), cross, lower; segments that would be
   /// shorter than 1 mm are dropped.
@@ -29,10 +30,10 @@ class MinimumJerkPathGenerator : public CartesianPathGenerator {
   CartesianPath straight(const srp::core::Pose3& X_world_start, const srp::core::Pose3& X_world_goal,
                          double dt_s) const;
 
-  const MinimumJerkOptions& options() const { return options_; }
+  const Options& options() const { return options_; }
 
  private:
-  MinimumJerkOptions options_;
+  Options options_;
 };
 
 /// Appends `next` to `path`, shifting its times (its first sample, equal to the last

@@ -35,15 +35,6 @@
 
 namespace srp::execution {
 
-struct RetimingOptions {
-  double velocityMargin = 0.95;      ///< the retimed path peaks at this fraction of the speed limit
-  double accelerationMargin = 0.95;  ///< and at this fraction of the acceleration limit
-  /// A path that slowed down as a whole by one factor would need more than this (an IK
-  /// branch jump, a singularity) is not retimed, and the safety check refuses it (the
-  /// same paths as before PathRetimer).
-  double maxSlowDown = 4.0;
-};
-
 /// The outcome of PathRetimer::retime.
 struct RetimedTrajectory {
   JointTrajectory trajectory;  ///< the input when it was within the limits or could not be retimed
@@ -64,10 +55,20 @@ struct RetimedTrajectory {
 
 class PathRetimer {
  public:
+  struct Options {
+    double velocityMargin = 0.95;      ///< the retimed path peaks at this fraction of the speed limit
+    double accelerationMargin = 0.95;  ///< and at this fraction of the acceleration limit
+    /// A path that slowed down as a whole by one factor would need more than this (an IK
+    /// branch jump, a singularity) is not retimed, and the safety check refuses it (the
+    /// same paths as before PathRetimer).
+    double maxSlowDown = 4.0;
+  };
+
   /// Limits are the checker's: URDF speeds x velocity fraction, maxAcceleration_radps2
   /// (`safety` is referenced, it must outlive the retimer). Throws InvalidInputError on
   /// margins outside (0, 1] or maxSlowDown < 1.
-  PathRetimer(const SafetyChecker& safety, RetimingOptions options = {});
+  PathRetimer(const SafetyChecker& safety, Options options);
+  explicit PathRetimer(const SafetyChecker& safety) : PathRetimer(safety, Options{}) {}
 
   /// The trajectory slowed where its speed or acceleration ratio (SafetyChecker's
   /// peakVelocityRatio / peakAccelerationRatio) would exceed the margins; unchanged when
@@ -92,7 +93,7 @@ class PathRetimer {
                               const std::vector<double>& xScale) const;
 
   const SafetyChecker& safety_;
-  RetimingOptions options_;
+  Options options_;
 };
 
 }  // namespace srp::execution

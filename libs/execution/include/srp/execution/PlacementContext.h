@@ -2,7 +2,7 @@
 /// \file PlacementContext.h
 /// \brief The scene one part is placed in and the rules every placed pose keeps: the
 /// other parts and the clearance to them, the containers' walls, the table top, the
-/// arm's reach (PlacementOptions). The relations (PlacementRelations.h) propose poses;
+/// arm's reach (PlacementContext::Options). The relations (PlacementRelations.h) propose poses;
 /// the context says whether a pose is allowed.
 ///
 /// Frames: world = table frame, z up, metres; a part's frame has its origin at the
@@ -20,49 +20,49 @@
 
 namespace srp::execution {
 
-/// The clearances, reach and search steps of placement (PlacementContext, PlacementPlanner,
-/// JointPlacementPlanner).
-struct PlacementOptions {
-  double neighbourGap_m = 0.015;  ///< gap between footprints of neighbours
-  double wallMargin_m = 0.008;    ///< free space between a placed part and a wall
-  double clearance_m = 0.008;     ///< minimum gap to any other part
-  /// A tight place (tried only where no place keeps clearance_m and wallMargin_m) keeps at
-  /// least this to the other parts and the walls.
-  double minClearance_m = 0.002;
-  /// A placed part's centre keeps this from every container wall (inner walls inside it,
-  /// the outer outline outside) that the suction tool comes level with. The tool (the URDF's
-  /// `suction_tool`: a cylinder of radius 20 mm, the suction cup, 12-18 mm, inside it) is
-  /// lowered vertically onto the part's top with its axis through the part's centre
-  /// (TaskExecutor's "lower" segment), so wherever the part's top lies less than
-  /// minClearance_m above a wall's top, the tool passes beside that wall and keeps the
-  /// SafetyChecker's 2 mm from it: 20 + 2 mm from the axis. Parts whose top lies higher
-  /// (stacked, or beside a low tray) need only their footprint's clearances.
-  double toolClearance_m = 0.022;
-  double gridStep_m = 0.005;          ///< candidate spacing (halved for tight places)
-  double turnStep_rad = M_PI / 2;     ///< yaw choices of a part: its reference yaw turned by this step
-  double tightTurnStep_rad = M_PI / 12;  ///< and for tight places
-  double minReach_m = 0.15;       ///< horizontal distance from the robot base, at least
-  double maxReach_m = 0.80;       ///< and at most (UR5: 0.85 m)
-  double neighbourTolerance_m = 0.015;  ///< extra gap allowed when checking "next to"
-  double relationTolerance_m = 0.005;  ///< slack of the after-placement relation checks
-  /// How landmarks are found (SceneGrounder) and the view (grounding.viewpoint) in
-  /// which left/right/front/behind/corners are read, for grounding and placement alike.
-  GroundingOptions grounding;
-
-  /// The rules of a tight place: clearance_m and wallMargin_m down to minClearance_m,
-  /// half the grid step, the turns of tightTurnStep_rad.
-  PlacementOptions tight() const;
-};
-
 class PlacementContext {
  public:
+  /// The clearances, reach and search steps of placement (PlacementContext, PlacementPlanner,
+  /// JointPlacementPlanner).
+  struct Options {
+    double neighbourGap_m = 0.015;  ///< gap between footprints of neighbours
+    double wallMargin_m = 0.008;    ///< free space between a placed part and a wall
+    double clearance_m = 0.008;     ///< minimum gap to any other part
+    /// A tight place (tried only where no place keeps clearance_m and wallMargin_m) keeps at
+    /// least this to the other parts and the walls.
+    double minClearance_m = 0.002;
+    /// A placed part's centre keeps this from every container wall (inner walls inside it,
+    /// the outer outline outside) that the suction tool comes level with. The tool (the URDF's
+    /// `suction_tool`: a cylinder of radius 20 mm, the suction cup, 12-18 mm, inside it) is
+    /// lowered vertically onto the part's top with its axis through the part's centre
+    /// (TaskExecutor's "lower" segment), so wherever the part's top lies less than
+    /// minClearance_m above a wall's top, the tool passes beside that wall and keeps the
+    /// SafetyChecker's 2 mm from it: 20 + 2 mm from the axis. Parts whose top lies higher
+    /// (stacked, or beside a low tray) need only their footprint's clearances.
+    double toolClearance_m = 0.022;
+    double gridStep_m = 0.005;             ///< candidate spacing (halved for tight places)
+    double turnStep_rad = M_PI / 2;        ///< yaw choices of a part: its reference yaw turned by this step
+    double tightTurnStep_rad = M_PI / 12;  ///< and for tight places
+    double minReach_m = 0.15;              ///< horizontal distance from the robot base, at least
+    double maxReach_m = 0.80;              ///< and at most (UR5: 0.85 m)
+    double neighbourTolerance_m = 0.015;   ///< extra gap allowed when checking "next to"
+    double relationTolerance_m = 0.005;    ///< slack of the after-placement relation checks
+    /// How landmarks are found (SceneGrounder) and the view (grounding.viewpoint) in
+    /// which left/right/front/behind/corners are read, for grounding and placement alike.
+    SceneGrounder::Options grounding;
+
+    /// The rules of a tight place: clearance_m and wallMargin_m down to minClearance_m,
+    /// half the grid step, the turns of tightTurnStep_rad.
+    Options tight() const;
+  };
+
   /// Keeps references: `scene`, `part` and `options` must outlive the context. `part`
   /// is the part being placed; it is no obstacle to itself.
-  PlacementContext(const CellDescription& scene, const CellObject& part, const PlacementOptions& options);
+  PlacementContext(const CellDescription& scene, const CellObject& part, const Options& options);
 
   const CellDescription& scene() const { return scene_; }
   const CellObject& part() const { return part_; }
-  const PlacementOptions& options() const { return options_; }
+  const Options& options() const { return options_; }
   /// Left/right/front/behind under options().grounding.viewpoint.
   const srp::core::ViewFrame& view() const { return view_; }
 
@@ -97,7 +97,7 @@ class PlacementContext {
  private:
   const CellDescription& scene_;
   const CellObject& part_;
-  const PlacementOptions& options_;
+  const Options& options_;
   srp::core::ViewFrame view_;
 };
 

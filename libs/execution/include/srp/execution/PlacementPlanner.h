@@ -35,9 +35,9 @@
 /// The yaw of a placed part is its container's, else its landmark's; "between" turns the
 /// part's narrower side along A-B; other turns come after (PlacementRelations.h).
 /// Where no place keeps clearance_m and wallMargin_m, a tight place keeps minClearance_m
-/// (PlacementOptions::tight(): also a finer grid and more yaw choices). A placed part's
+/// (PlacementContext::Options::tight(): also a finer grid and more yaw choices). A placed part's
 /// centre keeps toolClearance_m from every container wall the suction tool, lowered onto
-/// the part's top, comes level with (PlacementOptions::toolClearance_m).
+/// the part's top, comes level with (PlacementContext::Options::toolClearance_m).
 /// An impossible placement gives the reason and no pose.
 ///
 /// Structure: PlacementTarget.h grounds the landmarks (resolveTarget), PlacementContext.h
@@ -70,14 +70,14 @@ struct Placement {
   /// step.target order (second: B of "between A and B", else ""), for check().
   std::vector<std::pair<std::string, std::string>> landmarkIds;
   /// A tight place: nearer the other parts or the walls than clearance_m / wallMargin_m
-  /// (at least minClearance_m, PlacementOptions::tight()), a placement with less margin.
+  /// (at least minClearance_m, PlacementContext::Options::tight()), a placement with less margin.
   bool tight = false;
   std::string reason;     ///< why there is no placement
 };
 
 class PlacementPlanner {
  public:
-  explicit PlacementPlanner(PlacementOptions options = {}) : options_(options) {}
+  explicit PlacementPlanner(PlacementContext::Options options = {}) : options_(options) {}
 
   /// The view frame of `scene` under options().grounding.viewpoint (viewFrameOf).
   srp::core::ViewFrame viewFrame(const CellDescription& scene) const;
@@ -107,7 +107,7 @@ class PlacementPlanner {
 
   /// True when `placement` (planned earlier, e.g. by JointPlacementPlanner) is still
   /// allowed for `part` in `scene`: its relations check and it keeps the walls, the table
-  /// and the clearances (a tight place those of PlacementOptions::tight()).
+  /// and the clearances (a tight place those of PlacementContext::Options::tight()).
   bool stillAllowed(const CellDescription& scene, const CellObject& part, const ExecutionStep& step,
                     const Placement& placement) const;
 
@@ -119,10 +119,10 @@ class PlacementPlanner {
   std::vector<RelationCheck> check(const CellDescription& scene, const CellObject& part, const ExecutionStep& step,
                                    const std::vector<std::pair<std::string, std::string>>& landmarkIds = {}) const;
 
-  const PlacementOptions& options() const { return options_; }
+  const PlacementContext::Options& options() const { return options_; }
 
  private:
-  PlacementOptions options_;
+  PlacementContext::Options options_;
 };
 
 }  // namespace srp::execution

@@ -10,7 +10,7 @@
 ///   wall margin, nearest to the demonstrated position in the container, else to the
 ///   inner corner nearest to where the part comes from (a named corner: that corner,
 ///   only its quadrant); the part along the container's axes, then the other turns
-///   (PlacementOptions::turnStep_rad: 90 degrees).
+///   (PlacementContext::Options::turnStep_rad: 90 degrees).
 /// - OnTop: centred on the lower part, its yaw (one pose).
 /// - NextTo: beside the landmark with neighbourGap_m between the footprints, on the
 ///   demonstration's side first (else the side facing the container's centre), slid
@@ -27,7 +27,7 @@
 ///   first, the part's narrower side along the line (then the other turns), clearance_m
 ///   from both; in the landmarks' container, then on the table.
 /// placementCandidates() lists these, then (`tight`) those the rules of
-/// PlacementOptions::tight() add: minClearance_m to parts and walls, a finer grid, yaw
+/// PlacementContext::Options::tight() add: minClearance_m to parts and walls, a finer grid, yaw
 /// choices every 15 degrees.
 
 #include <cstddef>
@@ -46,7 +46,7 @@ struct PlacementCandidate {
   srp::core::Pose3 X_world_object = srp::core::Pose3::Identity();
   std::string container;  ///< the container it rests in ("" on the table or stacked)
   std::string stackedOn;  ///< OnTop: the lower part's id
-  /// Allowed only by the tight rules (PlacementOptions::tight()): less margin.
+  /// Allowed only by the tight rules (PlacementContext::Options::tight()): less margin.
   bool tight = false;
 };
 

@@ -29,21 +29,22 @@
 
 namespace srp::execution {
 
-struct RosTrajectoryOptions {
-  double pointPeriod_s = 0.0;  ///< 0: every knot; > 0: about one knot per period, where the checks allow
-  /// Largest difference [rad], any joint, any time, allowed between the spline
-  /// through the kept knots and the checked trajectory when pointPeriod_s > 0 (at
-  /// 0.9 m from the base, 5 mrad moves the tool by about 4.5 mm).
-  double maxThinningDeviation_rad = 0.005;
-  std::string frameId;          ///< header.frame_id (the controller ignores it)
-  std::string topic = "/scaled_joint_trajectory_controller/joint_trajectory";  ///< named in the comments only
-};
-
 class RosTrajectoryExporter {
  public:
+  struct Options {
+    double pointPeriod_s = 0.0;  ///< 0: every knot; > 0: about one knot per period, where the checks allow
+    /// Largest difference [rad], any joint, any time, allowed between the spline
+    /// through the kept knots and the checked trajectory when pointPeriod_s > 0 (at
+    /// 0.9 m from the base, 5 mrad moves the tool by about 4.5 mm).
+    double maxThinningDeviation_rad = 0.005;
+    std::string frameId;  ///< header.frame_id (the controller ignores it)
+    std::string topic = "/scaled_joint_trajectory_controller/joint_trajectory";  ///< named in the comments only
+  };
+
   /// Throws InvalidInputError on a negative or non-finite point period or a
   /// non-positive deviation bound.
-  explicit RosTrajectoryExporter(RosTrajectoryOptions options = {});
+  explicit RosTrajectoryExporter(Options options);
+  RosTrajectoryExporter() : RosTrajectoryExporter(Options{}) {}
 
   /// The YAML text; throws InvalidInputError when the task may not be exported
   /// (ExecutedTask::whyNotExportable) or the thinned trajectory fails checkThinned().
@@ -67,7 +68,7 @@ class RosTrajectoryExporter {
   std::optional<std::string> checkThinned(const ExecutedTask& task, const JointTrajectory& exported) const;
 
  private:
-  RosTrajectoryOptions options_;
+  Options options_;
 };
 
 }  // namespace srp::execution

@@ -27,7 +27,7 @@
 ///    - left of / right of / in front of / behind: the offset of the footprint centres
 ///      on the table points within 45 degrees of that direction of the view frame
 ///      (srp/core/ViewFrame.h: by default the demonstrator's view = the camera's image
-///      axes on the table; GroundingOptions::viewpoint = Robot for the robot's);
+///      axes on the table; SceneGrounder::Options::viewpoint = Robot for the robot's);
 ///    - next to / beside / near / adjacent to / close to / alongside / by: the gap
 ///      between the footprints is at most `nearGap_m`.
 ///    - closest to / nearest to / farthest from: a superlative, see 4.
@@ -54,15 +54,6 @@
 
 namespace srp::execution {
 
-struct GroundingOptions {
-  /// Frame of left/right/front/behind and of ordinals. Demonstrator: the scene
-  /// camera (CellDescription::X_world_camera; the robot's view when there is none).
-  srp::core::Viewpoint viewpoint = srp::core::Viewpoint::Demonstrator;
-  double tieTolerance_m = 0.01;  ///< instances closer than this along an ordering are level
-  double nearGap_m = 0.05;       ///< "next to"/"near": largest gap between footprints
-  double onTolerance_m = 0.01;   ///< "on": how far the bottom may sit below the landmark's top
-};
-
 /// A noun phrase fits no instance or several; `candidates` are the ids of the
 /// instances it could mean (empty when none fits).
 class GroundingError : public srp::core::InvalidInputError {
@@ -77,8 +68,18 @@ class GroundingError : public srp::core::InvalidInputError {
 
 class SceneGrounder {
  public:
+  struct Options {
+    /// Frame of left/right/front/behind and of ordinals. Demonstrator: the scene
+    /// camera (CellDescription::X_world_camera; the robot's view when there is none).
+    srp::core::Viewpoint viewpoint = srp::core::Viewpoint::Demonstrator;
+    double tieTolerance_m = 0.01;  ///< instances closer than this along an ordering are level
+    double nearGap_m = 0.05;       ///< "next to"/"near": largest gap between footprints
+    double onTolerance_m = 0.01;   ///< "on": how far the bottom may sit below the landmark's top
+  };
+
   /// Keeps a reference to `scene`: it must outlive the grounder.
-  explicit SceneGrounder(const CellDescription& scene, GroundingOptions options = {});
+  SceneGrounder(const CellDescription& scene, Options options);
+  explicit SceneGrounder(const CellDescription& scene) : SceneGrounder(scene, Options{}) {}
 
   const srp::core::ViewFrame& view() const { return view_; }
 
@@ -108,7 +109,7 @@ class SceneGrounder {
                    std::optional<CellObjectKind> kind) const;
 
   const CellDescription& scene_;
-  GroundingOptions options_;
+  Options options_;
   srp::core::ViewFrame view_;
 };
 
@@ -120,6 +121,6 @@ class SceneGrounder {
 /// name an instance an earlier step moves (same name) is left to the executor,
 /// which grounds it again in the scene as it is then.
 std::vector<std::string> groundingProblems(const ExecutionPlan& plan, const CellDescription& scene,
-                                           const GroundingOptions& options = {});
+                                           const SceneGrounder::Options& options = {});
 
 }  // namespace srp::execution

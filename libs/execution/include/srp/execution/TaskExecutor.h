@@ -19,6 +19,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "srp/execution/CartesianPathGenerator.h"
@@ -32,35 +33,38 @@
 
 namespace srp::execution {
 
-struct ExecutionOptions {
-  double approachOffset_m = 0.02;   ///< pre-/post-grasp and -release offset (thesis: 2 cm)
-  double releaseHeight_m = 0.003;   ///< part bottom above its support when released
-  double retreat_m = 0.06;          ///< tool lift after release
-  double sampleTime_s = 0.01;       ///< Cartesian path and joint trajectory sampling
-  double settle_s = 0.15;           ///< hold time after each segment
-  /// A path whose joint speeds or accelerations exceed the limits (a learned DMP is as
-  /// fast as the demonstrator, which near a wrist singularity can be too fast for the
-  /// arm) is followed more slowly where it is too fast (PathRetimer: the same knots,
-  /// later, only along the stretches where a limit binds), if slowing the whole segment
-  /// by one factor k = max(speed ratio / velocityMargin, sqrt(acceleration ratio /
-  /// accelerationMargin)) would need at most this k; beyond it (an IK branch jump, a
-  /// singularity) the step is refused.
-  double maxSlowDown = 4.0;
-  double velocityMargin = 0.95;     ///< a slowed path peaks at this fraction of the speed limit
-  double accelerationMargin = 0.95; ///< and at this fraction of the acceleration limit
-  double placementTolerance_m = 0.01;  ///< "within 1 cm of the planned pose"
-  double neighbourTolerance_m = 0.015; ///< extra gap allowed for "next to"
-  SafetyLimits safety;
-  PlacementOptions placement;
-  JointPlacementPlanner::Options jointPlacement;  ///< the search over all steps' placements
-  SimulationOptions simulation;
-};
-
 class TaskExecutor {
  public:
+  struct Options {
+    double approachOffset_m = 0.02;  ///< pre-/post-grasp and -release offset (thesis: 2 cm)
+    double releaseHeight_m = 0.003;  ///< part bottom above its support when released
+    double retreat_m = 0.06;         ///< tool lift after release
+    double sampleTime_s = 0.01;      ///< Cartesian path and joint trajectory sampling
+    double settle_s = 0.15;          ///< hold time after each segment
+    /// A path whose joint speeds or accelerations exceed the limits (a learned DMP is as
+    /// fast as the demonstrator, which near a wrist singularity can be too fast for the
+    /// arm) is followed more slowly where it is too fast (PathRetimer: the same knots,
+    /// later, only along the stretches where a limit binds), if slowing the whole segment
+    /// by one factor k = max(speed ratio / velocityMargin, sqrt(acceleration ratio /
+    /// accelerationMargin)) would need at most this k; beyond it (an IK branch jump, a
+    /// singularity) the step is refused.
+    double maxSlowDown = 4.0;
+    double velocityMargin = 0.95;         ///< a slowed path peaks at this fraction of the speed limit
+    double accelerationMargin = 0.95;     ///< and at this fraction of the acceleration limit
+    double placementTolerance_m = 0.01;   ///< "within 1 cm of the planned pose"
+    double neighbourTolerance_m = 0.015;  ///< extra gap allowed for "next to"
+    SafetyLimits safety;
+    PlacementContext::Options placement;
+    JointPlacementPlanner::Options jointPlacement;  ///< the search over all steps' placements
+    CellSimulator::Options simulation;
+  };
+
   /// The arm starts at rest at q_home. `generator` provides the Reach/Move paths.
   TaskExecutor(const RobotModel& model, const CellDescription& scene, const JointVector& q_home,
-               std::shared_ptr<const CartesianPathGenerator> generator, ExecutionOptions options = {});
+               std::shared_ptr<const CartesianPathGenerator> generator, Options options);
+  TaskExecutor(const RobotModel& model, const CellDescription& scene, const JointVector& q_home,
+               std::shared_ptr<const CartesianPathGenerator> generator)
+      : TaskExecutor(model, scene, q_home, std::move(generator), Options{}) {}
   ~TaskExecutor();
 
   /// Plans every step's placement together, then runs the plan step by step; never
@@ -74,7 +78,7 @@ class TaskExecutor {
 
   const CellSimulator& simulator() const { return *sim_; }
   CellSimulator& simulator() { return *sim_; }
-  /// Writes the simulated joint log (every SimulationOptions::logPeriod_s): time,
+  /// Writes the simulated joint log (every CellSimulator::Options::logPeriod_s): time,
   /// measured and reference joint positions. Throws FileError.
   void writeJointLogCsv(const std::string& path) const;
 
@@ -107,7 +111,7 @@ class TaskExecutor {
   UrInverseKinematics ik_;
   CellDescription scene_;
   std::shared_ptr<const CartesianPathGenerator> generator_;
-  ExecutionOptions options_;
+  Options options_;
   SafetyChecker safety_;
   PlacementPlanner placement_;
   JointPlacementPlanner jointPlacement_;

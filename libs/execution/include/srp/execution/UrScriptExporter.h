@@ -25,23 +25,24 @@
 
 namespace srp::execution {
 
-struct UrScriptOptions {
-  std::string programName = "srp_task";  ///< a URScript identifier (letter, then letters, digits, '_')
-  int gripperDigitalOut = 0;     ///< tool digital output (0 or 1): True = grasp (suction on), False = release
-  double gripperWait_s = 0.3;    ///< wait after switching the output (vacuum build-up / release)
-  double servoPeriod_s = 0.008;  ///< servoj t: 0.008 s = the CB3 / e-Series 125 Hz control loop
-  double servoLookahead_s = 0.1; ///< servoj lookahead_time, UR's range 0.03-0.2 s
-  double servoGain = 300.0;      ///< servoj gain, UR's range 100-2000
-  double preambleSpeed_radps = 0.3;        ///< movej v to the first configuration ("slowly")
-  double preambleAcceleration_radps2 = 0.5;
-  double stopDeceleration_radps2 = 2.0;    ///< stopj a before a gripper switch (the arm is already at rest)
-};
-
 class UrScriptExporter {
  public:
+  struct Options {
+    std::string programName = "srp_task";  ///< a URScript identifier (letter, then letters, digits, '_')
+    int gripperDigitalOut = 0;             ///< tool digital output (0 or 1): True = grasp (suction on), False = release
+    double gripperWait_s = 0.3;            ///< wait after switching the output (vacuum build-up / release)
+    double servoPeriod_s = 0.008;          ///< servoj t: 0.008 s = the CB3 / e-Series 125 Hz control loop
+    double servoLookahead_s = 0.1;         ///< servoj lookahead_time, UR's range 0.03-0.2 s
+    double servoGain = 300.0;              ///< servoj gain, UR's range 100-2000
+    double preambleSpeed_radps = 0.3;      ///< movej v to the first configuration ("slowly")
+    double preambleAcceleration_radps2 = 0.5;
+    double stopDeceleration_radps2 = 2.0;  ///< stopj a before a gripper switch (the arm is already at rest)
+  };
+
   /// Throws InvalidInputError naming a bad option (pin not 0/1, negative wait,
   /// servo parameters outside UR's documented ranges, non-positive preamble speed).
-  explicit UrScriptExporter(UrScriptOptions options = {});
+  explicit UrScriptExporter(Options options);
+  UrScriptExporter() : UrScriptExporter(Options{}) {}
 
   /// The program text. Throws InvalidInputError when the task may not be exported
   /// (ExecutedTask::whyNotExportable) or when a resampled tick would break a joint
@@ -52,10 +53,10 @@ class UrScriptExporter {
   /// FileError when it cannot be written, leaving a previous file as it was.
   void write(const ExecutedTask& task, const std::string& path) const;
 
-  const UrScriptOptions& options() const { return options_; }
+  const Options& options() const { return options_; }
 
  private:
-  UrScriptOptions options_;
+  Options options_;
 };
 
 }  // namespace srp::execution

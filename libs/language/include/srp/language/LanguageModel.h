@@ -65,23 +65,23 @@ struct FeatureGroups {
   static const std::vector<std::pair<std::string, bool FeatureGroups::*>>& all();
 };
 
-/// Training settings; the defaults are the ones selected by pooled cross-validation.
-struct LanguageTrainingOptions {
-  double entityC = 30.0;         ///< structural SVM C of the entity tagger
-  double entityEpsilon = 0.01;   ///< its stopping tolerance (risk gap)
-  double relationC = 1.0;        ///< linear SVM C of the relation classifier
-  int minFeatureCount = 2;       ///< entity features seen fewer times in training are dropped
-  int threads = 1;  ///< 1 keeps the loss sums in one order: bit-identical models everywhere
-  DecodingRules rules;           ///< stored in the model file
-  FeatureGroups features;        ///< stored in the model file
-  /// Synthetic commands (SyntheticCommandGrammar) added to the training corpus:
-  /// this many per real sentence (0 = none), generated with `syntheticSeed`.
-  double syntheticRatio = 0.0;
-  unsigned syntheticSeed = 1;
-};
-
 class LanguageModel {
  public:
+  /// Training settings; the defaults are the ones selected by pooled cross-validation.
+  struct Options {
+    double entityC = 30.0;        ///< structural SVM C of the entity tagger
+    double entityEpsilon = 0.01;  ///< its stopping tolerance (risk gap)
+    double relationC = 1.0;       ///< linear SVM C of the relation classifier
+    int minFeatureCount = 2;      ///< entity features seen fewer times in training are dropped
+    int threads = 1;              ///< 1 keeps the loss sums in one order: bit-identical models everywhere
+    DecodingRules rules;          ///< stored in the model file
+    FeatureGroups features;       ///< stored in the model file
+    /// Synthetic commands (SyntheticCommandGrammar) added to the training corpus:
+    /// this many per real sentence (0 = none), generated with `syntheticSeed`.
+    double syntheticRatio = 0.0;
+    unsigned syntheticSeed = 1;
+  };
+
   LanguageModel();
   ~LanguageModel();
   LanguageModel(LanguageModel&&) noexcept;
@@ -90,8 +90,8 @@ class LanguageModel {
   /// Trains both parts on SpERT sentences (entities and relations are used).
   /// Deterministic for a given corpus and options. Throws InvalidInputError on
   /// an empty corpus.
-  static LanguageModel train(const std::vector<AnnotatedSentence>& corpus,
-                             const LanguageTrainingOptions& options = {});
+  static LanguageModel train(const std::vector<AnnotatedSentence>& corpus, const Options& options);
+  static LanguageModel train(const std::vector<AnnotatedSentence>& corpus) { return train(corpus, Options{}); }
 
   /// Binary model file (dlib serialisation, format version checked).
   void save(const std::string& path) const;

@@ -50,8 +50,8 @@ struct CrossValidationResult {
 /// annotated by a model trained on the other folds with `options`. Folds run
 /// on `threads` threads (each training single-threaded), so the result is
 /// deterministic. Throws InvalidInputError when folds < 2 or > corpus size.
-CrossValidationResult crossValidate(const std::vector<AnnotatedSentence>& corpus,
-                                    const LanguageTrainingOptions& options, int folds, int threads = 1);
+CrossValidationResult crossValidate(const std::vector<AnnotatedSentence>& corpus, const LanguageModel::Options& options,
+                                    int folds, int threads = 1);
 
 /// The pooled protocol (README "Protocol"): repeated k-fold cross-validation.
 /// For each seed the corpus is shuffled (Fisher-Yates on std::mt19937_64(seed),
@@ -71,7 +71,7 @@ struct RepeatedCrossValidation {
 /// same trained models, each extra (name, rules) variant. Seeds are 1..seeds.
 /// Throws InvalidInputError when folds < 2, seeds < 1 or folds > corpus size.
 RepeatedCrossValidation repeatedCrossValidate(const std::vector<AnnotatedSentence>& corpus,
-                                              const LanguageTrainingOptions& options, int folds, int seeds,
+                                              const LanguageModel::Options& options, int folds, int seeds,
                                               int threads = 1,
                                               const std::vector<std::pair<std::string, DecodingRules>>& variants = {});
 

@@ -19,7 +19,7 @@
 #include <optional>
 #include <vector>
 
-#include "srp/motion/DmpConfig.h"
+#include "srp/motion/Dmp.h"
 
 namespace srp::motion {
 
@@ -35,7 +35,7 @@ class QuaternionDmp {
   /// mode formulation; a Reference-mode config is rejected: the reference
   /// library's DMP has no orientation part in the thesis' use).
   static QuaternionDmp imitate(const Eigen::VectorXd& t_s, const std::vector<Eigen::Quaterniond>& q,
-                               const DmpConfig& config);
+                               const Dmp::Options& config);
 
   /// New start and goal orientation, optional duration [s]; start/goal angular
   /// velocities are the demo's (pass zero vectors to start/stop at rest).
@@ -60,7 +60,7 @@ class QuaternionDmp {
 
  private:
   QuaternionDmp() = default;
-  DmpConfig config_;
+  Dmp::Options config_;
   Eigen::MatrixXd weights_;
   double lambda_ = 0.0;
   Eigen::Quaterniond demoStart_, demoGoal_, start_, goal_;

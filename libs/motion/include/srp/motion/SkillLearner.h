@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "srp/motion/DmpConfig.h"
+#include "srp/motion/Dmp.h"
 #include "srp/motion/Segmenter.h"
 #include "srp/motion/SkillSet.h"
 
@@ -17,7 +17,7 @@ namespace srp::motion {
 class SkillLearner {
  public:
   struct Options {
-    DmpConfig dmp{};                     ///< Default mode, lambda by GCV
+    Dmp::Options dmp{};                  ///< Default mode, lambda by GCV
     double approachOffset_m = 0.02;      ///< dp of the pre/post poses (thesis: 2 cm)
     /// Fixed approach axis in the demo frame (e.g. the table normal pointing
     /// into the table); nullopt: the direction the hand came from over its

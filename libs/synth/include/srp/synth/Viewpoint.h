@@ -1,13 +1,17 @@
 #pragma once
 /// \file Viewpoint.h
 /// \brief Camera placements for synthetic demonstrations beyond the scene's
-/// own camera: at the demonstrator's head (egocentric), beside the table, and
-/// straight above it, each with variants (azimuth, distance).
+/// own camera: at the demonstrator's head (egocentric), beside the table,
+/// straight above it, across the table facing the demonstrator, and at a
+/// corner of the table, each with variants (azimuth, distance).
 
 #include <Eigen/Core>
 #include <string>
+#include <utility>
 
+#include "srp/core/ObjectCatalogue.h"
 #include "srp/core/Pose.h"
+#include "srp/core/Scene.h"
 
 namespace srp::synth {
 
@@ -17,6 +21,9 @@ enum class ViewpointFamily {
   Egocentric,  ///< at the demonstrator's head, above and behind the hand: the arm enters from the bottom edge
   Side,        ///< beside the table, looking across it: the arm enters from the left or right edge
   TopDown,     ///< straight above the table, turned so that the arm enters from a side edge
+  Front,       ///< across the table, facing the demonstrator at chest height: the arm comes towards the camera
+               ///< from the top edge
+  Oblique,     ///< high at a corner of the table opposite the demonstrator: the arm enters from a top corner
 };
 
 /// Where the camera is and where the demonstrator stands (DemoOptions::demonstratorSide_world).
@@ -25,7 +32,7 @@ struct Viewpoint {
   Eigen::Vector2d demonstratorSide_world = Eigen::Vector2d::UnitY();
 };
 
-/// "egocentric", "side", "top-down"; throws InvalidInputError naming the text and the choices otherwise.
+/// "egocentric", "side", "top-down", "front", "oblique"; throws InvalidInputError naming the text and the choices otherwise.
 ViewpointFamily viewpointFamilyFromName(const std::string& name);
 std::string viewpointFamilyName(ViewpointFamily family);
 
@@ -34,10 +41,18 @@ std::string viewpointFamilyName(ViewpointFamily family);
 /// `demonstratorSide_world` (unit, horizontal) of the table. Variants turn
 /// the camera about the vertical through the target by -20, 0, +20 deg and
 /// change its distance by -10, 0, +10 % (3 x 3 = 9 before they repeat); the
-/// side family's even variants stand on one side of the table, odd ones on
-/// the other.
+/// side and oblique families' even variants stand on one side of the table,
+/// odd ones on the other.
 Viewpoint makeViewpoint(ViewpointFamily family, int variant, const Eigen::Vector3d& target_world,
                         const Eigen::Vector2d& demonstratorSide_world = Eigen::Vector2d::UnitY());
+
+/// The point the viewpoints look at in `scene`: the middle of its containers
+/// (of all its objects when it has no container), on the table [m, world].
+Eigen::Vector3d workCentre_world(const srp::core::Scene& scene, const srp::core::ObjectCatalogue& catalogue);
+
+/// "FAMILY" or "FAMILY:VARIANT" (e.g. "side:1") as a family and a variant
+/// (0 when not given); throws InvalidInputError naming the text otherwise.
+std::pair<ViewpointFamily, int> viewpointFromText(const std::string& text);
 
 /// The optical frame of a camera at `eye_world` looking at `target_world`,
 /// its image's up towards `up_world` (as far as it is not along the view).

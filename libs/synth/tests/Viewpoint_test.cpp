@@ -1,0 +1,107 @@
+// The viewpoint families against their geometry: every camera looks at the
+// target, from the side of the table its family says, level (no roll) unless
+// it looks straight down, at the distance its variant says.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include "srp/core/Error.h"
+#include "srp/synth/Viewpoint.h"
+
+namespace srp::synth {
+namespace {
+
+constexpr double kGeomTol = 1e-9;
+
+const ViewpointFamily kFamilies[] = {ViewpointFamily::Egocentric, ViewpointFamily::Side, ViewpointFamily::TopDown,
+                                     ViewpointFamily::Front, ViewpointFamily::Oblique};
+
+/// Distance [m] from `p` to the camera's optical axis.
+double offAxis_m(const core::Pose3& X_world_camera, const Eigen::Vector3d& p_world) {
+  const Eigen::Vector3d p_camera = X_world_camera.inverse() * p_world;
+  return p_camera.head<2>().norm();
+}
+
+TEST(Viewpoint, EveryFamilyLooksAtTheTargetFromAbove) {
+  const Eigen::Vector3d target(0.1, -0.05, 0.02);
+  for (const auto family : kFamilies)
+    for (int v = 0; v < 9; ++v) {
+      const auto view = makeViewpoint(family, v, target);
+      const auto& X = view.X_world_camera;
+      SCOPED_TRACE(viewpointFamilyName(family) + " variant " + std::to_string(v));
+      // The egocentric camera looks 5 cm past the target, away from the demonstrator (default side: +y).
+      const Eigen::Vector3d lookedAt =
+          family == ViewpointFamily::Egocentric ? Eigen::Vector3d(target - Eigen::Vector3d(0, 0.05, 0)) : target;
+      EXPECT_LT(offAxis_m(X, lookedAt), kGeomTol);
+      EXPECT_GT((X.inverse() * target).z(), 0.3) << "the target in front of the camera";
+      EXPECT_GT(X.translation().z() - target.z(), 0.4) << "the camera above the table";
+      EXPECT_NEAR(X.linear().determinant(), 1.0, kGeomTol);
+      if (family != ViewpointFamily::TopDown)
+        EXPECT_NEAR(X.linear().col(0).z(), 0.0, kGeomTol) << "image x level: no roll";
+    }
+}
+
+TEST(Viewpoint, FamiliesStandWhereTheySay) {
+  const Eigen::Vector3d target(0, 0, 0);
+  const Eigen::Vector2d side2(0.6, 0.8);  // the demonstrator's side of the table
+  const Eigen::Vector3d side(side2.x(), side2.y(), 0), across = Eigen::Vector3d::UnitZ().cross(side);
+  auto eye = [&](ViewpointFamily f, int v) { return makeViewpoint(f, v, target, side2).X_world_camera.translation(); };
+  // Variant 4: no turn, nominal distance; variant 1: no turn, 10 % nearer, and odd (the other side).
+  EXPECT_GT(eye(ViewpointFamily::Egocentric, 4).dot(side), 0.4) << "behind the hand, on the demonstrator's side";
+  EXPECT_LT(eye(ViewpointFamily::Front, 4).dot(side), -0.6) << "across the table from the demonstrator";
+  EXPECT_NEAR(eye(ViewpointFamily::Front, 4).dot(across), 0.0, kGeomTol);
+  EXPECT_NEAR(std::abs(eye(ViewpointFamily::Side, 4).dot(across)), 0.8, kGeomTol);
+  EXPECT_NEAR(eye(ViewpointFamily::Side, 4).dot(side), 0.0, kGeomTol);
+  for (const auto& [v, scale] : {std::pair{4, 1.0}, std::pair{1, 0.9}}) {
+    // either far corner: opposite the demonstrator and off to one side, equally
+    const Eigen::Vector3d e = eye(ViewpointFamily::Oblique, v) / scale;
+    EXPECT_NEAR(e.dot(side), -0.7 / std::sqrt(2.0), kGeomTol);
+    EXPECT_NEAR(std::abs(e.dot(across)), 0.7 / std::sqrt(2.0), kGeomTol);
+  }
+  EXPECT_LT(eye(ViewpointFamily::Oblique, 4).dot(across) * eye(ViewpointFamily::Oblique, 1).dot(across), 0.0);
+  const Eigen::Vector3d top = eye(ViewpointFamily::TopDown, 4);
+  EXPECT_NEAR(top.head<2>().norm(), 0.0, kGeomTol);
+  EXPECT_NEAR(top.z(), 0.95, kGeomTol);
+  // Distance variants 1 / 4 / 7: -10 %, 0, +10 % of the nominal offset.
+  for (const auto family : kFamilies) {
+    const double nominal = eye(family, 4).norm();
+    EXPECT_NEAR(eye(family, 1).norm(), 0.9 * nominal, 1e-6 * nominal) << viewpointFamilyName(family);
+    EXPECT_NEAR(eye(family, 7).norm(), 1.1 * nominal, 1e-6 * nominal) << viewpointFamilyName(family);
+  }
+}
+
+TEST(Viewpoint, NamesAndVariantsReadBack) {
+  for (const auto family : kFamilies) EXPECT_EQ(viewpointFamilyFromName(viewpointFamilyName(family)), family);
+  EXPECT_EQ(viewpointFromText("side:3"), std::make_pair(ViewpointFamily::Side, 3));
+  EXPECT_EQ(viewpointFromText("front"), std::make_pair(ViewpointFamily::Front, 0));
+  EXPECT_THROW(viewpointFromText("side:"), core::InvalidInputError);
+  EXPECT_THROW(viewpointFromText("side:-1"), core::InvalidInputError);
+  EXPECT_THROW(viewpointFromText("side:1x"), core::InvalidInputError);
+  EXPECT_THROW(viewpointFromText("underneath"), core::InvalidInputError);
+}
+
+TEST(Viewpoint, WorkCentreIsTheMiddleOfTheContainers) {
+  std::vector<core::ObjectClass> classes(2);
+  classes[0].name = "box";
+  classes[0].classId = 0;
+  classes[0].kind = core::ObjectKind::Container;
+  classes[1].name = "cube";
+  classes[1].classId = 1;
+  const core::ObjectCatalogue catalogue(classes);
+  core::Scene scene;
+  auto place = [&](const char* id, const char* cls, const Eigen::Vector3d& p) {
+    core::SceneObject o;
+    o.id = id;
+    o.className = cls;
+    o.X_world_object.translation() = p;
+    scene.objects.push_back(o);
+  };
+  place("cube", "cube", {1.0, 1.0, 0.0});
+  EXPECT_LT((workCentre_world(scene, catalogue) - Eigen::Vector3d(1, 1, 0)).norm(), kGeomTol) << "no container: the objects";
+  place("box_a", "box", {0.2, 0.0, 0.0});
+  place("box_b", "box", {0.0, 0.4, 0.0});
+  EXPECT_LT((workCentre_world(scene, catalogue) - Eigen::Vector3d(0.1, 0.2, 0)).norm(), kGeomTol);
+}
+
+}  // namespace
+}  // namespace srp::synth

@@ -289,6 +289,8 @@ TEST(MarkerFreeHandDetector, StillBareForearmInEveryFrame) {
         reference.push_back(h->palm_px);
       }
     }
+    MarkerFreeHandDetector::Options on;
+    on.stillArmFromPlane = true;
     auto run = [&](const MarkerFreeHandDetector::Options& o) {
       MarkerFreeHandDetector detector(o);
       for (const auto& f : frames) detector.preview(f);
@@ -300,7 +302,7 @@ TEST(MarkerFreeHandDetector, StillBareForearmInEveryFrame) {
       return within;
     };
     constexpr double kMinShareWithin = 0.9;
-    const int within = run({});
+    const int within = run(on);
     EXPECT_GE(within, kMinShareWithin * kFrames) << within << " of " << kFrames << " palms within tolerance";
     MarkerFreeHandDetector::Options off;
     off.stillArmFromPlane = false;
@@ -311,7 +313,9 @@ TEST(MarkerFreeHandDetector, StillBareForearmInEveryFrame) {
   }
   // The still arm's palm where the far-end rule puts it on the drawn hand.
   const ArmPose arm{{300.0, 280.0}, 80.0 * M_PI / 180, 0.08};
-  MarkerFreeHandDetector detector({});
+  MarkerFreeHandDetector::Options on;
+  on.stillArmFromPlane = true;
+  MarkerFreeHandDetector detector(on);
   for (int i = 0; i < kFrames; ++i) detector.preview(withArm(i, arm));
   const auto h = detector.detect(withArm(0, arm));
   ASSERT_TRUE(h.has_value());

@@ -124,8 +124,9 @@ class MarkerFreeHandDetector : public HandDetector {
     /// reaches the border of the view (where an arm enters), the background
     /// is the plane instead. A part on the table of skin colour reaches no
     /// border and stays background; a face far above the table is higher.
-    /// false: off.
-    bool stillArmFromPlane = true;
+    /// Off by default: on HRT1 task2 in warmer light it takes a still region
+    /// of skin-like colour for an arm (see the perception README).
+    bool stillArmFromPlane = false;
     /// That height limit above the support plane [m] (a forearm resting on or
     /// held over the table, not the demonstrator's face).
     double stillArmMaxHeight_m = 0.35;

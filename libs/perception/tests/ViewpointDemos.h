@@ -1,11 +1,11 @@
 #pragma once
 // Rendered demonstrations from the viewpoint families of srp::synth
-// (Viewpoint.h: egocentric, side, top-down) with the hand carrying parts of
+// (Viewpoint.h: egocentric, side, top-down, front, oblique) with the hand carrying parts of
 // several sizes, and the marker-free palm scored against their ground truth.
 // Shared by MarkerFreeHandViewpoints_test and bench/marker_free_hand_bench.
 //
 // Which family is for what: the detector's settings are chosen on the
-// egocentric and side families; top-down is checked, never tuned on
+// egocentric and side families; top-down, front and oblique are checked, never tuned on
 // (perception README, "The marker-free hand in other views").
 #include <Eigen/Core>
 #include <filesystem>

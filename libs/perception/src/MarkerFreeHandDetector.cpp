@@ -60,6 +60,48 @@ cv::Rect depthFieldOfView(const cv::Mat& depth, double minValid) {
   return {u0, v0, u1 - u0 + 1, v1 - v0 + 1};
 }
 
+/// How arm-like a set of 3D points is (the skin of a bare forearm with its
+/// hand, seen in one frame): its length along the principal direction
+/// (2nd to 98th percentile) and its width across it (the second principal
+/// direction, 5th to 95th percentile, over 0.9) in slices of `slice_m` along
+/// the length that hold at least `minSlicePoints` points.
+struct ArmShape {
+  double length_m = 0.0;
+  std::vector<double> widths_m;  ///< one per slice, along the length
+};
+
+ArmShape armShape(const std::vector<Eigen::Vector3d>& points, double slice_m, std::size_t minSlicePoints) {
+  ArmShape shape;
+  if (points.size() < 3 * minSlicePoints) return shape;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& p : points) mean += p;
+  mean /= static_cast<double>(points.size());
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (const auto& p : points) scatter += (p - mean) * (p - mean).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scatter);
+  const Eigen::Vector3d along = eig.eigenvectors().col(2), across = eig.eigenvectors().col(1);
+  std::vector<double> t;
+  t.reserve(points.size());
+  for (const auto& p : points) t.push_back(along.dot(p - mean));
+  auto quantile = [](std::vector<double> v, double q) {
+    const auto k = std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size())));
+    std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
+    return v[k];
+  };
+  const double t0 = quantile(t, 0.02), t1 = quantile(t, 0.98);
+  shape.length_m = t1 - t0;
+  const int slices = std::max(1, static_cast<int>(std::ceil(shape.length_m / slice_m)));
+  std::vector<std::vector<double>> side(static_cast<std::size_t>(slices));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (t[i] < t0 || t[i] > t1) continue;
+    const int j = std::min(slices - 1, static_cast<int>((t[i] - t0) / slice_m));
+    side[static_cast<std::size_t>(j)].push_back(across.dot(points[i] - mean));
+  }
+  for (const auto& s : side)
+    if (s.size() >= minSlicePoints) shape.widths_m.push_back((quantile(s, 0.95) - quantile(s, 0.05)) / 0.9);
+  return shape;
+}
+
 /// A disc-shaped structuring element of this diameter [px].
 cv::Mat disc(int diameter_px) { return cv::getStructuringElement(cv::MORPH_ELLIPSE, {diameter_px, diameter_px}); }
 
@@ -156,6 +198,13 @@ MarkerFreeHandDetector::MarkerFreeHandDetector(const Options& options) : options
                     options.stillArmSkinFraction <= 1.0 && options.stillArmBridge_m >= 0.0,
                 "MarkerFreeHandDetector: stillArmMaxHeight_m must be > 0 m, stillArmSkinFraction in [0, 1] and "
                 "stillArmBridge_m >= 0 m (stillArmFromPlane = false turns the rule off)");
+  core::require(options.stillArmShapeShare >= 0.0 && options.stillArmShapeShare <= 1.0 &&
+                    options.stillArmMinWidth_m >= 0.0 && options.stillArmMaxWidth_m > options.stillArmMinWidth_m &&
+                    options.stillArmWidthShare >= 0.0 && options.stillArmWidthShare <= 1.0 &&
+                    options.stillArmSlice_m > 0.0 && options.stillArmMinElongation >= 0.0,
+                "MarkerFreeHandDetector: stillArmShapeShare and stillArmWidthShare must be in [0, 1], "
+                "0 <= stillArmMinWidth_m < stillArmMaxWidth_m, stillArmSlice_m > 0 m and stillArmMinElongation >= 0 "
+                "(stillArmShapeShare = 0 turns the shape test off)");
   core::require(options.palmFromWrist_m > 0.0 && options.palmFromFingertips_m > 0.0 && options.palmRadius_m > 0.0,
                 "MarkerFreeHandDetector: palmFromWrist_m, palmFromFingertips_m and palmRadius_m must be > 0 m "
                 "(lengths of the demonstrator's hand)");
@@ -272,11 +321,14 @@ void MarkerFreeHandDetector::stillArmToPlane(cv::Mat& background_mm) const {
   // Skin (the prior box) in how many of the colour samples, per pixel (half size).
   cv::Mat skinCount;
   int withColour = 0;
-  for (const auto& c : previewColour_) {
+  std::vector<std::pair<std::size_t, cv::Mat>> sampleSkin;  // (sample, its skin mask at half size)
+  for (std::size_t i = 0; i < previewColour_.size(); ++i) {
+    const cv::Mat& c = previewColour_[i];
     if (c.empty()) continue;
     if (skinCount.empty()) skinCount = cv::Mat(c.size(), CV_16UC1, cv::Scalar(0));
     if (c.size() != skinCount.size()) continue;
-    cv::add(skinCount, cv::Scalar(1), skinCount, skinMask(c, false));
+    sampleSkin.emplace_back(i, skinMask(c, false));
+    cv::add(skinCount, cv::Scalar(1), skinCount, sampleSkin.back().second);
     ++withColour;
   }
   if (withColour == 0) return;
@@ -297,11 +349,11 @@ void MarkerFreeHandDetector::stillArmToPlane(cv::Mat& background_mm) const {
       const float z_mm = background_mm.at<float>(v, u);
       if (z_mm <= 0.f || !skinMostly.at<uchar>(v, u)) continue;
       const Eigen::Vector3d ray((u - k.cx_px) / k.fx_px, (v - k.cy_px) / k.fy_px, 1.0);
-      const double along = plane->n.dot(ray);
-      if (along >= 0.0) continue;  // the ray never meets the plane
-      const double height_m = 1e-3 * z_mm * along + plane->d;
+      const auto planeDepth_m = plane->rayScaleAtHeight(ray);
+      if (!planeDepth_m) continue;  // the ray never meets the plane
+      const double height_m = plane->height(1e-3 * z_mm * ray);
       if (height_m < options_.minForeground_m || height_m > options_.stillArmMaxHeight_m) continue;
-      planeDepth_mm.at<float>(v, u) = static_cast<float>(-1e3 * plane->d / along);
+      planeDepth_mm.at<float>(v, u) = static_cast<float>(1e3 * *planeDepth_m);
       candidate.at<uchar>(v, u) = 255;
     }
   // Only the regions that reach the border of the view (an arm enters there),
@@ -321,6 +373,94 @@ void MarkerFreeHandDetector::stillArmToPlane(cv::Mat& background_mm) const {
     const int w = stats.at<int>(l, cv::CC_STAT_WIDTH), h = stats.at<int>(l, cv::CC_STAT_HEIGHT);
     keep[static_cast<std::size_t>(l)] = x <= view_.x + m || y <= view_.y + m || x + w >= view_.x + view_.width - m ||
                                         y + h >= view_.y + view_.height - m;
+  }
+  // ... and only those shaped like an arm: in most samples, the skin standing
+  // in the height band that overlaps the region (the whole arm as that sample
+  // shows it, not only where it stayed) is elongated and as wide as a forearm
+  // over most of its length (in metres, from its own depth). The demonstrator's
+  // trousers, a box or a cloth of skin-like colour are wider or not elongated.
+  if (options_.stillArmShapeShare > 0.0 && std::find(keep.begin() + 1, keep.end(), 1) != keep.end()) {
+    const cv::Size half = skinCount.size();
+    const double sx = static_cast<double>(half.width) / background_mm.cols;
+    const double sy = static_cast<double>(half.height) / background_mm.rows;
+    // Each half-size pixel's ray and its full-size source pixel.
+    std::vector<Eigen::Vector3d> rays(static_cast<std::size_t>(half.area()));
+    for (int v = 0; v < half.height; ++v)
+      for (int u = 0; u < half.width; ++u)
+        rays[static_cast<std::size_t>(v * half.width + u)] =
+            Eigen::Vector3d(((u + 0.5) / sx - 0.5 - k.cx_px) / k.fx_px, ((v + 0.5) / sy - 0.5 - k.cy_px) / k.fy_px, 1.0);
+    auto source = [&](int u, int v) {
+      return cv::Point(std::min(background_mm.cols - 1, static_cast<int>(u / sx)),
+                       std::min(background_mm.rows - 1, static_cast<int>(v / sy)));
+    };
+    std::vector<int> armLike(static_cast<std::size_t>(n), 0);
+    std::vector<std::vector<double>> lengths(static_cast<std::size_t>(n)), widths(static_cast<std::size_t>(n));
+    const cv::Mat open = disc(options_.previewOpenDiameter_px);
+    for (const auto& [i, skin] : sampleSkin) {
+      const cv::Mat& depth_mm = previewDepth_mm_[i];
+      cv::Mat raised(half, CV_8UC1, cv::Scalar(0));
+      std::vector<Eigen::Vector3d> p(rays.size(), Eigen::Vector3d::Zero());
+      for (int v = 0; v < half.height; ++v)
+        for (int u = 0; u < half.width; ++u) {
+          if (!skin.at<uchar>(v, u)) continue;
+          const std::uint16_t z_mm = depth_mm.at<std::uint16_t>(source(u, v));
+          if (z_mm == 0) continue;
+          const std::size_t j = static_cast<std::size_t>(v * half.width + u);
+          p[j] = 1e-3 * z_mm * rays[j];
+          const double height_m = plane->height(p[j]);
+          if (height_m >= options_.minForeground_m && height_m <= options_.stillArmMaxHeight_m) raised.at<uchar>(v, u) = 255;
+        }
+      cv::morphologyEx(raised, raised, cv::MORPH_OPEN, open);
+      cv::Mat parts;
+      const int np = cv::connectedComponents(raised, parts, 8, CV_32S);
+      std::vector<int> regionOf(static_cast<std::size_t>(np), 0);  // the kept region a part overlaps
+      for (int v = 0; v < half.height; ++v)
+        for (int u = 0; u < half.width; ++u) {
+          const int q = parts.at<int>(v, u);
+          const cv::Point src = source(u, v);
+          const int l = labels.at<int>(src);
+          if (q > 0 && l > 0 && keep[static_cast<std::size_t>(l)] && candidate.at<uchar>(src)) regionOf[static_cast<std::size_t>(q)] = l;
+        }
+      std::vector<std::vector<Eigen::Vector3d>> points(static_cast<std::size_t>(n));
+      for (int v = 0; v < half.height; ++v)
+        for (int u = 0; u < half.width; ++u)
+          if (const int l = regionOf[static_cast<std::size_t>(parts.at<int>(v, u))]; l > 0)
+            points[static_cast<std::size_t>(l)].push_back(p[static_cast<std::size_t>(v * half.width + u)]);
+      for (int l = 1; l < n; ++l) {
+        if (!keep[static_cast<std::size_t>(l)]) continue;
+        const ArmShape shape = armShape(points[static_cast<std::size_t>(l)], options_.stillArmSlice_m, 5);
+        if (shape.widths_m.empty()) continue;
+        std::vector<double> w = shape.widths_m;
+        const auto within = std::count_if(w.begin(), w.end(), [&](double x) {
+          return x >= options_.stillArmMinWidth_m && x <= options_.stillArmMaxWidth_m;
+        });
+        std::nth_element(w.begin(), w.begin() + static_cast<long>(w.size() / 2), w.end());
+        const double medianWidth_m = w[w.size() / 2];
+        lengths[static_cast<std::size_t>(l)].push_back(shape.length_m);
+        widths[static_cast<std::size_t>(l)].push_back(medianWidth_m);
+        if (static_cast<double>(within) >= options_.stillArmWidthShare * static_cast<double>(w.size()) &&
+            shape.length_m >= options_.stillArmMinElongation * medianWidth_m)
+          ++armLike[static_cast<std::size_t>(l)];
+      }
+    }
+    for (int l = 1; l < n; ++l) {
+      if (!keep[static_cast<std::size_t>(l)]) continue;
+      const bool arm = armLike[static_cast<std::size_t>(l)] >= options_.stillArmShapeShare * withColour;
+      if (core::Log::enabled("hand", core::Log::Level::Debug)) {
+        auto median = [](std::vector<double> v) {
+          if (v.empty()) return 0.0;
+          std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+          return v[v.size() / 2];
+        };
+        core::Log::writef("hand", core::Log::Level::Debug,
+                          "still arm: region of %d px at the border: arm-shaped in %d of %d samples (median length "
+                          "%.3f m, width %.3f m): %s\n",
+                          stats.at<int>(l, cv::CC_STAT_AREA), armLike[static_cast<std::size_t>(l)], withColour,
+                          median(lengths[static_cast<std::size_t>(l)]), median(widths[static_cast<std::size_t>(l)]),
+                          arm ? "an arm" : "not an arm");
+      }
+      keep[static_cast<std::size_t>(l)] = arm;
+    }
   }
   int replaced = 0;
   for (int v = 0; v < background_mm.rows; ++v)

@@ -62,7 +62,8 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                  {"palmAlongNormal", &o.palmAlongNormal},
                                  {"cuffTowardsThickest", &o.cuffTowardsThickest},
                                  {"farWithoutDepth", &o.farWithoutDepth},
-                                 {"cuffFirst", &o.cuffFirst}};
+                                 {"cuffFirst", &o.cuffFirst},
+                                 {"stillArmFromPlane", &o.stillArmFromPlane}};
   std::stringstream ss(env);
   std::string item;
   while (std::getline(ss, item, ',')) {

@@ -120,13 +120,14 @@ class MarkerFreeHandDetector : public HandDetector {
     /// still is its own quantile there. Where the background stands above the
     /// support plane (RANSAC over the background's cloud) by between
     /// minForeground_m and stillArmMaxHeight_m, is of skin colour (the prior
-    /// box) in at least stillArmSkinFraction of the samples, and that region
-    /// reaches the border of the view (where an arm enters), the background
-    /// is the plane instead. A part on the table of skin colour reaches no
-    /// border and stays background; a face far above the table is higher.
-    /// Off by default: on HRT1 task2 in warmer light it takes a still region
-    /// of skin-like colour for an arm (see the perception README).
-    bool stillArmFromPlane = false;
+    /// box) in at least stillArmSkinFraction of the samples, that region
+    /// reaches the border of the view (where an arm enters), and it is shaped
+    /// like an arm (stillArmShapeShare), the background is the plane instead.
+    /// A part on the table of skin colour reaches no border and stays
+    /// background; a face far above the table is higher; the demonstrator's
+    /// trousers or a box of skin-like colour at the border are not shaped
+    /// like a forearm.
+    bool stillArmFromPlane = true;
     /// That height limit above the support plane [m] (a forearm resting on or
     /// held over the table, not the demonstrator's face).
     double stillArmMaxHeight_m = 0.35;
@@ -137,6 +138,23 @@ class MarkerFreeHandDetector : public HandDetector {
     /// sample only where it is wide, the hand and the forearm, not at the
     /// wrist between them) [m].
     double stillArmBridge_m = 0.08;
+    /// ... and such a region is an arm only when, in at least
+    /// stillArmShapeShare of the samples, the skin standing in that height
+    /// band that overlaps it (the arm as the sample shows it) is shaped like a
+    /// forearm with its hand: as wide as stillArmMinWidth_m to
+    /// stillArmMaxWidth_m (from its depth) in at least stillArmWidthShare of
+    /// its slices of stillArmSlice_m along its length, and at least
+    /// stillArmMinElongation times longer than its median width. 0: any
+    /// region at the border.
+    double stillArmShapeShare = 0.5;
+    /// A forearm's width, wrist to elbow (and a hand's, without the thumb) [m].
+    double stillArmMinWidth_m = 0.05, stillArmMaxWidth_m = 0.14;
+    /// That share of the slices [0..1].
+    double stillArmWidthShare = 0.6;
+    /// Slices across the arm's length [m].
+    double stillArmSlice_m = 0.02;
+    /// Length over median width [ratio].
+    double stillArmMinElongation = 2.0;
     /// Foreground: closer than the background by this much [m].
     double minForeground_m = 0.02;
     /// Foreground in a depth hole: sum of |BGR| changes from the background

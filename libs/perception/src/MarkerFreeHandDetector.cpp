@@ -362,8 +362,9 @@ void MarkerFreeHandDetector::stillArmToPlane(cv::Mat& background_mm) const {
   if (cv::countNonZero(candidate) == 0) return;
   const double z_m = 1e-3 * cv::mean(background_mm, candidate)[0];
   const int bridge_px = static_cast<int>(std::lround(options_.stillArmBridge_m * k.fx_px / z_m));
-  cv::Mat bridged = candidate;
+  cv::Mat bridged;  // a new buffer: dilating into a shallow copy would grow `candidate` itself
   if (bridge_px > 1) cv::dilate(candidate, bridged, disc(bridge_px));
+  else bridged = candidate;
   cv::Mat labels, stats, centroids;
   const int n = cv::connectedComponentsWithStats(bridged, labels, stats, centroids, 8, CV_32S);
   const int m = options_.borderMargin_px;

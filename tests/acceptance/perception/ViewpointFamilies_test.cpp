@@ -13,7 +13,10 @@
 // SRP_VIEW_DIR=<dir> keeps the renders there (default: rendered into the build folder and deleted once scored);
 // SRP_VIEW_FAMILY=egocentric|side|top-down|front|oblique runs one family; SRP_VIEW_VARIANT=0..5 one of its demonstrations;
 // SRP_HAND_DEBUG_DIR=<dir> draws every hand frame with the found geometry;
-// SRP_HAND_OPTIONS=name=value,... overrides detector options (HandEvaluation.h).
+// SRP_HAND_OPTIONS=name=value,... overrides detector options (HandEvaluation.h);
+// SRP_VIEW_PHASES=grasp,move,... previews and scores only the frames of these phases (idle, reach, grasp, move,
+// release, retract): e.g. grasp alone is a recording with the hand in view and nearly still in every frame (the
+// guarded figures then fail: they are for the whole demonstrations).
 #include <gtest/gtest.h>
 
 #include <cstdlib>

@@ -249,8 +249,9 @@ TEST(MarkerFreeHandDetector, ArmInFrontOfAWallWithoutDepth) {
 // camera looks down at it), over a table of a skin-like colour, beside a
 // static box on the table: the whole-recording background's quantile is the
 // arm itself wherever the arm always is. A skin-coloured region standing
-// above the support plane that reaches the border is the arm, not the
-// background; the box, not skin-coloured, stays background.
+// above the support plane that reaches the border and is shaped like a
+// forearm is the arm, not the background (with the defaults); the box, not
+// skin-coloured, stays background.
 TEST(MarkerFreeHandDetector, StillBareForearmInEveryFrame) {
   constexpr int kFrames = 30;
   auto withArm = [](int index, const std::optional<ArmPose>& arm) {

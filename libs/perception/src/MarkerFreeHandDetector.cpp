@@ -375,94 +375,9 @@ void MarkerFreeHandDetector::stillArmToPlane(cv::Mat& background_mm) const {
     keep[static_cast<std::size_t>(l)] = x <= view_.x + m || y <= view_.y + m || x + w >= view_.x + view_.width - m ||
                                         y + h >= view_.y + view_.height - m;
   }
-  // ... and only those shaped like an arm: in most samples, the skin standing
-  // in the height band that overlaps the region (the whole arm as that sample
-  // shows it, not only where it stayed) is elongated and as wide as a forearm
-  // over most of its length (in metres, from its own depth). The demonstrator's
-  // trousers, a box or a cloth of skin-like colour are wider or not elongated.
-  if (options_.stillArmShapeShare > 0.0 && std::find(keep.begin() + 1, keep.end(), 1) != keep.end()) {
-    const cv::Size half = skinCount.size();
-    const double sx = static_cast<double>(half.width) / background_mm.cols;
-    const double sy = static_cast<double>(half.height) / background_mm.rows;
-    // Each half-size pixel's ray and its full-size source pixel.
-    std::vector<Eigen::Vector3d> rays(static_cast<std::size_t>(half.area()));
-    for (int v = 0; v < half.height; ++v)
-      for (int u = 0; u < half.width; ++u)
-        rays[static_cast<std::size_t>(v * half.width + u)] =
-            Eigen::Vector3d(((u + 0.5) / sx - 0.5 - k.cx_px) / k.fx_px, ((v + 0.5) / sy - 0.5 - k.cy_px) / k.fy_px, 1.0);
-    auto source = [&](int u, int v) {
-      return cv::Point(std::min(background_mm.cols - 1, static_cast<int>(u / sx)),
-                       std::min(background_mm.rows - 1, static_cast<int>(v / sy)));
-    };
-    std::vector<int> armLike(static_cast<std::size_t>(n), 0);
-    std::vector<std::vector<double>> lengths(static_cast<std::size_t>(n)), widths(static_cast<std::size_t>(n));
-    const cv::Mat open = disc(options_.previewOpenDiameter_px);
-    for (const auto& [i, skin] : sampleSkin) {
-      const cv::Mat& depth_mm = previewDepth_mm_[i];
-      cv::Mat raised(half, CV_8UC1, cv::Scalar(0));
-      std::vector<Eigen::Vector3d> p(rays.size(), Eigen::Vector3d::Zero());
-      for (int v = 0; v < half.height; ++v)
-        for (int u = 0; u < half.width; ++u) {
-          if (!skin.at<uchar>(v, u)) continue;
-          const std::uint16_t z_mm = depth_mm.at<std::uint16_t>(source(u, v));
-          if (z_mm == 0) continue;
-          const std::size_t j = static_cast<std::size_t>(v * half.width + u);
-          p[j] = 1e-3 * z_mm * rays[j];
-          const double height_m = plane->height(p[j]);
-          if (height_m >= options_.minForeground_m && height_m <= options_.stillArmMaxHeight_m) raised.at<uchar>(v, u) = 255;
-        }
-      cv::morphologyEx(raised, raised, cv::MORPH_OPEN, open);
-      cv::Mat parts;
-      const int np = cv::connectedComponents(raised, parts, 8, CV_32S);
-      std::vector<int> regionOf(static_cast<std::size_t>(np), 0);  // the kept region a part overlaps
-      for (int v = 0; v < half.height; ++v)
-        for (int u = 0; u < half.width; ++u) {
-          const int q = parts.at<int>(v, u);
-          const cv::Point src = source(u, v);
-          const int l = labels.at<int>(src);
-          if (q > 0 && l > 0 && keep[static_cast<std::size_t>(l)] && candidate.at<uchar>(src)) regionOf[static_cast<std::size_t>(q)] = l;
-        }
-      std::vector<std::vector<Eigen::Vector3d>> points(static_cast<std::size_t>(n));
-      for (int v = 0; v < half.height; ++v)
-        for (int u = 0; u < half.width; ++u)
-          if (const int l = regionOf[static_cast<std::size_t>(parts.at<int>(v, u))]; l > 0)
-            points[static_cast<std::size_t>(l)].push_back(p[static_cast<std::size_t>(v * half.width + u)]);
-      for (int l = 1; l < n; ++l) {
-        if (!keep[static_cast<std::size_t>(l)]) continue;
-        const ArmShape shape = armShape(points[static_cast<std::size_t>(l)], options_.stillArmSlice_m, 5);
-        if (shape.widths_m.empty()) continue;
-        std::vector<double> w = shape.widths_m;
-        const auto within = std::count_if(w.begin(), w.end(), [&](double x) {
-          return x >= options_.stillArmMinWidth_m && x <= options_.stillArmMaxWidth_m;
-        });
-        std::nth_element(w.begin(), w.begin() + static_cast<long>(w.size() / 2), w.end());
-        const double medianWidth_m = w[w.size() / 2];
-        lengths[static_cast<std::size_t>(l)].push_back(shape.length_m);
-        widths[static_cast<std::size_t>(l)].push_back(medianWidth_m);
-        if (static_cast<double>(within) >= options_.stillArmWidthShare * static_cast<double>(w.size()) &&
-            shape.length_m >= options_.stillArmMinElongation * medianWidth_m)
-          ++armLike[static_cast<std::size_t>(l)];
-      }
-    }
-    for (int l = 1; l < n; ++l) {
-      if (!keep[static_cast<std::size_t>(l)]) continue;
-      const bool arm = armLike[static_cast<std::size_t>(l)] >= options_.stillArmShapeShare * withColour;
-      if (core::Log::enabled("hand", core::Log::Level::Debug)) {
-        auto median = [](std::vector<double> v) {
-          if (v.empty()) return 0.0;
-          std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-          return v[v.size() / 2];
-        };
-        core::Log::writef("hand", core::Log::Level::Debug,
-                          "still arm: region of %d px at the border: arm-shaped in %d of %d samples (median length "
-                          "%.3f m, width %.3f m): %s\n",
-                          stats.at<int>(l, cv::CC_STAT_AREA), armLike[static_cast<std::size_t>(l)], withColour,
-                          median(lengths[static_cast<std::size_t>(l)]), median(widths[static_cast<std::size_t>(l)]),
-                          arm ? "an arm" : "not an arm");
-      }
-      keep[static_cast<std::size_t>(l)] = arm;
-    }
-  }
+  // ... and only those shaped like an arm.
+  if (options_.stillArmShapeShare > 0.0 && std::find(keep.begin() + 1, keep.end(), 1) != keep.end())
+    keepArmShaped(*plane, sampleSkin, labels, stats, candidate, keep);
   int replaced = 0;
   for (int v = 0; v < background_mm.rows; ++v)
     for (int u = 0; u < background_mm.cols; ++u)
@@ -473,6 +388,101 @@ void MarkerFreeHandDetector::stillArmToPlane(cv::Mat& background_mm) const {
   if (core::Log::enabled("hand", core::Log::Level::Debug))
     core::Log::writef("hand", core::Log::Level::Debug, "still arm: %d background pixels from the support plane\n",
                       replaced);
+}
+
+void MarkerFreeHandDetector::keepArmShaped(const Plane& plane,
+                                           const std::vector<std::pair<std::size_t, cv::Mat>>& sampleSkin,
+                                           const cv::Mat& labels, const cv::Mat& stats, const cv::Mat& candidate,
+                                           std::vector<uchar>& keep) const {
+  // An arm: in most samples, the skin standing in the height band that
+  // overlaps the region (the whole arm as that sample shows it, not only where
+  // it stayed) is elongated and as wide as a forearm over most of its length
+  // (in metres, from its own depth). The demonstrator's trousers, a box or a
+  // cloth of skin-like colour are wider or not elongated.
+  const core::CameraIntrinsics& k = previewIntrinsics_;
+  const cv::Size half = sampleSkin.front().second.size();
+  const double sx = static_cast<double>(half.width) / labels.cols;
+  const double sy = static_cast<double>(half.height) / labels.rows;
+  // Each half-size pixel's ray and its full-size source pixel.
+  std::vector<Eigen::Vector3d> rays(static_cast<std::size_t>(half.area()));
+  for (int v = 0; v < half.height; ++v)
+    for (int u = 0; u < half.width; ++u)
+      rays[static_cast<std::size_t>(v * half.width + u)] =
+          Eigen::Vector3d(((u + 0.5) / sx - 0.5 - k.cx_px) / k.fx_px, ((v + 0.5) / sy - 0.5 - k.cy_px) / k.fy_px, 1.0);
+  auto source = [&](int u, int v) {
+    return cv::Point(std::min(labels.cols - 1, static_cast<int>(u / sx)),
+                     std::min(labels.rows - 1, static_cast<int>(v / sy)));
+  };
+  const int n = static_cast<int>(keep.size());
+  const int withColour = static_cast<int>(sampleSkin.size());
+  std::vector<int> armLike(static_cast<std::size_t>(n), 0);
+  std::vector<std::vector<double>> lengths(static_cast<std::size_t>(n)), widths(static_cast<std::size_t>(n));
+  const cv::Mat open = disc(options_.previewOpenDiameter_px);
+  for (const auto& [i, skin] : sampleSkin) {
+    const cv::Mat& depth_mm = previewDepth_mm_[i];
+    cv::Mat raised(half, CV_8UC1, cv::Scalar(0));
+    std::vector<Eigen::Vector3d> p(rays.size(), Eigen::Vector3d::Zero());
+    for (int v = 0; v < half.height; ++v)
+      for (int u = 0; u < half.width; ++u) {
+        if (!skin.at<uchar>(v, u)) continue;
+        const std::uint16_t z_mm = depth_mm.at<std::uint16_t>(source(u, v));
+        if (z_mm == 0) continue;
+        const std::size_t j = static_cast<std::size_t>(v * half.width + u);
+        p[j] = 1e-3 * z_mm * rays[j];
+        const double height_m = plane.height(p[j]);
+        if (height_m >= options_.minForeground_m && height_m <= options_.stillArmMaxHeight_m) raised.at<uchar>(v, u) = 255;
+      }
+    cv::morphologyEx(raised, raised, cv::MORPH_OPEN, open);
+    cv::Mat parts;
+    const int np = cv::connectedComponents(raised, parts, 8, CV_32S);
+    std::vector<int> regionOf(static_cast<std::size_t>(np), 0);  // the kept region a part overlaps
+    for (int v = 0; v < half.height; ++v)
+      for (int u = 0; u < half.width; ++u) {
+        const int q = parts.at<int>(v, u);
+        const cv::Point src = source(u, v);
+        const int l = labels.at<int>(src);
+        if (q > 0 && l > 0 && keep[static_cast<std::size_t>(l)] && candidate.at<uchar>(src)) regionOf[static_cast<std::size_t>(q)] = l;
+      }
+    std::vector<std::vector<Eigen::Vector3d>> points(static_cast<std::size_t>(n));
+    for (int v = 0; v < half.height; ++v)
+      for (int u = 0; u < half.width; ++u)
+        if (const int l = regionOf[static_cast<std::size_t>(parts.at<int>(v, u))]; l > 0)
+          points[static_cast<std::size_t>(l)].push_back(p[static_cast<std::size_t>(v * half.width + u)]);
+    for (int l = 1; l < n; ++l) {
+      if (!keep[static_cast<std::size_t>(l)]) continue;
+      const ArmShape shape = armShape(points[static_cast<std::size_t>(l)], options_.stillArmSlice_m, 5);
+      if (shape.widths_m.empty()) continue;
+      std::vector<double> w = shape.widths_m;
+      const auto within = std::count_if(w.begin(), w.end(), [&](double x) {
+        return x >= options_.stillArmMinWidth_m && x <= options_.stillArmMaxWidth_m;
+      });
+      std::nth_element(w.begin(), w.begin() + static_cast<long>(w.size() / 2), w.end());
+      const double medianWidth_m = w[w.size() / 2];
+      lengths[static_cast<std::size_t>(l)].push_back(shape.length_m);
+      widths[static_cast<std::size_t>(l)].push_back(medianWidth_m);
+      if (static_cast<double>(within) >= options_.stillArmWidthShare * static_cast<double>(w.size()) &&
+          shape.length_m >= options_.stillArmMinElongation * medianWidth_m)
+        ++armLike[static_cast<std::size_t>(l)];
+    }
+  }
+  for (int l = 1; l < n; ++l) {
+    if (!keep[static_cast<std::size_t>(l)]) continue;
+    const bool arm = armLike[static_cast<std::size_t>(l)] >= options_.stillArmShapeShare * withColour;
+    if (core::Log::enabled("hand", core::Log::Level::Debug)) {
+      auto median = [](std::vector<double> v) {
+        if (v.empty()) return 0.0;
+        std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+        return v[v.size() / 2];
+      };
+      core::Log::writef("hand", core::Log::Level::Debug,
+                        "still arm: region of %d px at the border: arm-shaped in %d of %d samples (median length "
+                        "%.3f m, width %.3f m): %s\n",
+                        stats.at<int>(l, cv::CC_STAT_AREA), armLike[static_cast<std::size_t>(l)], withColour,
+                        median(lengths[static_cast<std::size_t>(l)]), median(widths[static_cast<std::size_t>(l)]),
+                        arm ? "an arm" : "not an arm");
+    }
+    keep[static_cast<std::size_t>(l)] = arm;
+  }
 }
 
 void MarkerFreeHandDetector::decideBareForearms(const cv::Mat& bgHalf) {

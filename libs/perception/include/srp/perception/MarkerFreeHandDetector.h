@@ -7,11 +7,14 @@
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
+#include <utility>
 #include <vector>
 
 #include "srp/perception/HandDetector.h"
 
 namespace srp::perception {
+
+struct Plane;
 
 /// Marker-free hand detector (no tag is decoded or used as a feature: it works
 /// on a plain glove, a bare hand in a sleeve, or a bare forearm).
@@ -420,6 +423,13 @@ class MarkerFreeHandDetector : public HandDetector {
   /// stillArmFromPlane: the support plane's depth where the background
   /// `background_mm` [mm, CV_32FC1] is a still arm (in place).
   void stillArmToPlane(cv::Mat& background_mm) const;
+  /// stillArmShapeShare: clears `keep` (per label of `labels`, the bridged
+  /// regions, with their `stats`) for the regions that are not shaped like an
+  /// arm in enough of the samples (`sampleSkin`: sample index and its prior-box
+  /// skin mask at half size); `candidate`: the still skin pixels, `plane` the support.
+  void keepArmShaped(const Plane& plane, const std::vector<std::pair<std::size_t, cv::Mat>>& sampleSkin,
+                     const cv::Mat& labels, const cv::Mat& stats, const cv::Mat& candidate,
+                     std::vector<uchar>& keep) const;
   /// Does the preview show a bare forearm (sets bareForearms_)?
   void decideBareForearms(const cv::Mat& backgroundHalf_mm);
   /// Pixels where an arm enters the view, inside the depth's field of view:

@@ -667,7 +667,7 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   // is seen, whatever lengthens the skin beyond a hand (a held part of a
   // skin-like colour, its shaded faces).
   std::optional<Anchor> anchor;
-  if (options_.cuffFirst && !bareForearms_) anchor = cuffAnchor(hand.mask, sleeve, entry);
+  if (options_.cuffFirst && !bareForearms_) anchor = cuffAnchor(frame, hand.mask, sleeve, entry);
   if (!anchor) anchor = bareForearmAnchor(frame, arm, entry, hand, refused);
   if (refused) {
     if (trace)
@@ -675,7 +675,7 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
                         frame.index);
     return std::nullopt;
   }
-  if (!anchor) anchor = cuffAnchor(hand.mask, sleeve, entry);
+  if (!anchor) anchor = cuffAnchor(frame, hand.mask, sleeve, entry);
   if (!anchor) anchor = fingertipAnchor(hand.mask, entry, handMean, handAxis->dir, handAxis->elongated);
   geometry_.axis = anchor->dir;
   HandObservation h = placePalm(frame, *anchor, hand, handMean, bestArea);
@@ -1052,7 +1052,8 @@ int MarkerFreeHandDetector::farthestSkinComponent(const cv::Mat& region, const c
   return best;
 }
 
-std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::cuffAnchor(const cv::Mat& hand,
+std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::cuffAnchor(const rawlog::RgbdFrame& frame,
+                                                                                  const cv::Mat& hand,
                                                                                   const cv::Mat& sleeve,
                                                                                   const Eigen::Vector2d& entry) {
   // Wrist: the cuff line, skin pixels next to the sleeve. Not when the skin
@@ -1100,6 +1101,13 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::cuffAnchor
       a.dir = (*thickest - a.anchor_px).normalized();
   }
   a.length_m = options_.palmFromWrist_m;
+  if (options_.cuffAtSleeveEdge) {
+    // The sleeve's edge along the cuff line: its pixels next to the hand.
+    cv::Mat edge;
+    cv::dilate(hand, edge, disc(options_.openDiameter_px));
+    edge &= sleeve;
+    if (const auto z = medianDepthInDisc(frame.depth_m, edge, a.anchor_px, 1e4, options_.minDepthSamples)) a.depth_m = *z;
+  }
   geometry_.haveWrist = true;
   geometry_.wrist_px = a.anchor_px;
   return a;
@@ -1155,7 +1163,9 @@ HandObservation MarkerFreeHandDetector::placePalm(const rawlog::RgbdFrame& frame
     // Depth z(s) = tilt(0) + tilt(1) s along the axis (s in pixels from the anchor): walk until the
     // 3D distance from the anchor is the length.
     const double sign = a.length_m < 0.0 ? -1.0 : 1.0, target = std::abs(a.length_m);
-    const Eigen::Vector3d p0 = backProject(a.anchor_px, (*tilt)(0));
+    // From the sleeve's edge when it stands nearer than the hand there (it hides the wrist's start).
+    const double z0 = a.depth_m > 0.0 ? std::min(a.depth_m, (*tilt)(0)) : (*tilt)(0);
+    const Eigen::Vector3d p0 = backProject(a.anchor_px, z0);
     const double maxS = options_.maxWalkFactor * target * hand.pxPerM;
     double s = 0.0;
     for (; s < maxS; s += 0.5) {

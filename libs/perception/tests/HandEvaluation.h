@@ -62,7 +62,8 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                  {"palmAlongNormal", &o.palmAlongNormal},
                                  {"cuffTowardsThickest", &o.cuffTowardsThickest},
                                  {"farWithoutDepth", &o.farWithoutDepth},
-                                 {"cuffFirst", &o.cuffFirst}};
+                                 {"cuffFirst", &o.cuffFirst},
+                                 {"cuffAtSleeveEdge", &o.cuffAtSleeveEdge}};
   std::stringstream ss(env);
   std::string item;
   while (std::getline(ss, item, ',')) {

@@ -6,6 +6,7 @@
 // acceptance.perception.ViewpointFamilies.* (label slow).
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 
 #include "ViewpointDemos.h"
@@ -44,6 +45,48 @@ TEST(MarkerFreeHandViewpoints, PalmPastTheHeldPartSideGuarded) {
 TEST(MarkerFreeHandViewpoints, NoPalmPastTheHeldPartTopDown) {
   expectNoPalmPastTheHeldPart(synth::ViewpointFamily::TopDown, 2.0, false);
   expectNoPalmPastTheHeldPart(synth::ViewpointFamily::TopDown, 1.5, true);
+}
+
+/// The palm's error along the true hand's axis (towards the fingers) in the frames the cuff rule placed it [m].
+std::vector<double> cuffAlongAxisErrors(const std::string& rawlog, const MarkerFreeHandDetector::Options& options) {
+  const auto gt = synth::DemoGroundTruth::load(synth::groundTruthPathFor(rawlog));
+  std::vector<double> along_m;
+  testing::evaluateMarkerFreeHand(
+      rawlog, options,
+      [&](const rawlog::RgbdFrame&, const MarkerFreeHandDetector& d, const synth::GroundTruthFrame& truth,
+          const std::optional<Eigen::Vector3d>& p_m) {
+        if (!p_m || !truth.handInView || !d.lastGeometry().haveWrist) return;
+        const Eigen::Vector3d axis_camera =
+            gt.X_world_camera.linear().transpose() * truth.X_world_hand.linear().col(0);
+        along_m.push_back((*p_m - truth.p_camera_palm_m).dot(axis_camera));
+      },
+      true);
+  return along_m;
+}
+
+// From the demonstrator's head the sleeve, thicker than the wrist, hides the wrist's first centimetres:
+// the palm's length is measured from the sleeve's edge (cuffAtSleeveEdge), not from the first skin seen
+// (which puts the palm ~15 mm towards the fingers). A fresh render (seed 7, 320x240), not the scored ones.
+TEST(MarkerFreeHandViewpoints, CuffFromTheSleeveEdgeEgocentric) {
+  testing::ViewpointDemoSpec spec;
+  spec.family = synth::ViewpointFamily::Egocentric;
+  spec.variant = 1;
+  spec.width_px = 320;
+  spec.seed = 7;
+  const std::string rawlog =
+      testing::renderViewpointDemo(spec, (std::filesystem::path(SRP_BINARY_DIR) / "viewpoint_demos_small").string());
+  constexpr double kAlongAxisTol_m = 0.006;  // the hand model's cuff-to-palm length is known to a few mm
+  MarkerFreeHandDetector::Options o = testing::optionsFromEnvironment();
+  o.cuffAtSleeveEdge = true;
+  const auto along = cuffAlongAxisErrors(rawlog, o);
+  ASSERT_GT(along.size(), 100u) << "too few frames with the cuff in view";
+  std::printf("[ figures  ] along the hand's axis, cuff rule, from the sleeve's edge: median %+.1f mm (%zu frames)\n",
+              1e3 * testing::percentile(along, 0.5), along.size());
+  EXPECT_NEAR(testing::percentile(along, 0.5), 0.0, kAlongAxisTol_m);
+  o.cuffAtSleeveEdge = false;
+  const auto fromSkin = cuffAlongAxisErrors(rawlog, o);
+  std::printf("[ figures  ] the same from the first skin: median %+.1f mm\n", 1e3 * testing::percentile(fromSkin, 0.5));
+  EXPECT_GT(testing::percentile(fromSkin, 0.5), kAlongAxisTol_m) << "the hidden wrist no longer shifts the palm";
 }
 
 }  // namespace

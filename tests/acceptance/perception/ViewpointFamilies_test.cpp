@@ -13,11 +13,14 @@
 // SRP_VIEW_DIR=<dir> keeps the renders there (default: rendered into the build folder and deleted once scored);
 // SRP_VIEW_FAMILY=egocentric|side|top-down|front|oblique runs one family; SRP_VIEW_VARIANT=0..5 one of its demonstrations;
 // SRP_HAND_DEBUG_DIR=<dir> draws every hand frame with the found geometry;
-// SRP_HAND_OPTIONS=name=value,... overrides detector options (HandEvaluation.h).
+// SRP_HAND_OPTIONS=name=value,... overrides detector options (HandEvaluation.h);
+// SRP_HAND_CSV=<file> writes one row per hand-in-view frame (the palm's error in the camera frame, the
+// true hand's axis and normal, the rule that placed the palm) for decompositions of the error.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 
 #include "ViewpointDemos.h"
 
@@ -49,15 +52,39 @@ testing::HandEvaluation evaluateFamily(synth::ViewpointFamily family) {
   const char* debug = std::getenv("SRP_HAND_DEBUG_DIR");
   const char* variant = std::getenv("SRP_VIEW_VARIANT");
   testing::HandEvaluation pooled;
+  const char* csvPath = std::getenv("SRP_HAND_CSV");
+  std::ofstream csv;
+  if (csvPath) {
+    csv.open(csvPath);
+    csv << "demo,frame,phase,grip,carry,detected,rule,depth_carried,x,y,z,tx,ty,tz,ax,ay,az,nx,ny,nz\n";
+  }
   for (const auto& spec : familySpecs(family)) {
     if (variant && std::atoi(variant) != spec.variant) continue;
     const std::string rawlog = testing::renderViewpointDemo(spec, folder);
     std::string debugDir;
     if (debug) std::filesystem::create_directories(debugDir = std::string(debug) + "/" + spec.name());
+    double lastZ_m = -1.0;
+    const synth::DemoGroundTruth gt =
+        csvPath ? synth::DemoGroundTruth::load(synth::groundTruthPathFor(rawlog)) : synth::DemoGroundTruth{};
     const auto ev = testing::evaluateMarkerFreeHand(
         rawlog, testing::optionsFromEnvironment(),
         [&](const rawlog::RgbdFrame& f, const MarkerFreeHandDetector& d, const synth::GroundTruthFrame& truth,
             const std::optional<Eigen::Vector3d>& p_m) {
+          if (csvPath && truth.handInView) {
+            // The hand's axis (towards the fingers) and back normal in the camera frame.
+            const Eigen::Matrix3d R = gt.X_world_camera.linear().transpose() * truth.X_world_hand.linear();
+            const auto& g = d.lastGeometry();
+            // A depth carried from an earlier frame repeats that frame's depth exactly.
+            const bool carriedDepth = p_m && p_m->z() == lastZ_m;
+            const Eigen::Vector3d p = p_m.value_or(Eigen::Vector3d::Zero()), t = truth.p_camera_palm_m;
+            csv << spec.name() << ',' << truth.index << ',' << truth.phase << ',' << truth.grip << ','
+                << !truth.carriedObject.empty() << ',' << p_m.has_value() << ','
+                << (!p_m ? "none" : g.bareForearm ? "far_end" : g.haveWrist ? "cuff" : "fingertips") << ','
+                << carriedDepth << ',' << p.x() << ',' << p.y() << ',' << p.z() << ',' << t.x() << ',' << t.y() << ','
+                << t.z() << ',' << R(0, 0) << ',' << R(1, 0) << ',' << R(2, 0) << ',' << R(0, 2) << ',' << R(1, 2)
+                << ',' << R(2, 2) << '\n';
+          }
+          if (p_m) lastZ_m = p_m->z();
           if (debugDir.empty() || (!truth.handInView && !p_m)) return;
           char name[96];
           std::snprintf(name, sizeof name, "/hand_%04d_%s_%s%03.0fmm.png", truth.index, truth.phase.c_str(),

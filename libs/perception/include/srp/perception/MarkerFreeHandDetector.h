@@ -225,6 +225,14 @@ class MarkerFreeHandDetector : public HandDetector {
     /// and hand (which perspective turns when the forearm comes at the
     /// camera). false: that axis.
     bool cuffTowardsThickest = true;
+    /// Cuff rule: the palm's length is measured from the sleeve's edge at the
+    /// cuff (the depth of the sleeve's pixels along the cuff line) when the
+    /// sleeve is nearer the camera there than the wrist's skin: a sleeve
+    /// standing off the wrist hides the wrist's first centimetres from a
+    /// camera above and behind the hand (the demonstrator's head), and the
+    /// first skin seen lies that much towards the fingers. false: from the
+    /// first skin.
+    bool cuffAtSleeveEdge = true;
     /// In a recording whose preview shows no bare forearm, a cuff in view
     /// (step 5) places the palm before the bare-forearm rule is tried: a
     /// skin blob longer than a hand next to a sleeve's cuff is the hand and
@@ -386,6 +394,9 @@ class MarkerFreeHandDetector : public HandDetector {
     Eigen::Vector2d anchor_px = Eigen::Vector2d::Zero();
     Eigen::Vector2d dir = Eigen::Vector2d::UnitX();
     double length_m = 0.0;
+    /// Depth of the anchor when known apart from the hand's own (the sleeve's
+    /// edge at the cuff, cuffAtSleeveEdge) [m]; 0: the hand's depth profile there.
+    double depth_m = 0.0;
   };
   /// The hand's pixels with their depth and pixel scale.
   struct HandBlob {
@@ -429,7 +440,8 @@ class MarkerFreeHandDetector : public HandDetector {
   int farthestSkinComponent(const cv::Mat& region, const cv::Mat& labels, int n, const cv::Mat& stats,
                             int* reachCells = nullptr, int* bodyReachCells = nullptr) const;
   /// Glove and sleeve: the cuff line and the arm axis (nullopt: no cuff).
-  std::optional<Anchor> cuffAnchor(const cv::Mat& hand, const cv::Mat& sleeve, const Eigen::Vector2d& entry);
+  std::optional<Anchor> cuffAnchor(const rawlog::RgbdFrame& frame, const cv::Mat& hand, const cv::Mat& sleeve,
+                                   const Eigen::Vector2d& entry);
   /// No cuff: back from the fingertips along the hand's axis.
   Anchor fingertipAnchor(const cv::Mat& hand, const Eigen::Vector2d& entry, const Eigen::Vector2d& handMean,
                          const Eigen::Vector2d& handDir, bool elongated) const;

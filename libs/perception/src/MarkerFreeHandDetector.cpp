@@ -1197,12 +1197,16 @@ HandObservation MarkerFreeHandDetector::placePalm(const rawlog::RgbdFrame& frame
       const std::optional<Eigen::Vector3d> n =
           options_.palmAlongNormal ? surfaceNormal(frame, hand.mask, palm, options_.palmRadius_m * hand.pxPerM)
                                    : std::nullopt;
+      // A silhouette narrower than the palm (the hand seen on its edge): the centre lies deeper behind
+      // the surface along the ray than half the palm's thickness (silhouetteDepth).
+      const double extra_m = silhouetteDepth(hand.mask, palm, a.dir, frame.intrinsics.fx_px / *z) - options_.palmDepth_m;
       if (n) {
         h.p_camera_palm_m = backProject(palm, *z) - options_.palmDepth_m * *n;
         palm = project(h.p_camera_palm_m);
       } else {
         h.p_camera_palm_m = backProject(palm, *z + options_.palmDepth_m);
       }
+      if (extra_m > 0.0) h.p_camera_palm_m += extra_m * h.p_camera_palm_m.normalized();
       h.hasDepth = true;
       lastDepth_m_ = *z;
       lastDepthFrame_ = frameCount_;
@@ -1211,6 +1215,36 @@ HandObservation MarkerFreeHandDetector::placePalm(const rawlog::RgbdFrame& frame
   h.palm_px = palm;
   geometry_.palm_px = palm;
   return h;
+}
+
+double MarkerFreeHandDetector::silhouetteDepth(const cv::Mat& mask, const Eigen::Vector2d& palm_px,
+                                              const Eigen::Vector2d& dir, double pxPerM) const {
+  // The median over the axis (1-px bins) of the mask's width across it, within palmRadius_m of the palm.
+  if (options_.palmHalfWidth_m <= 0.0) return options_.palmDepth_m;
+  const double reach_px = options_.palmRadius_m * pxPerM;
+  const double span_px = reach_px + options_.palmHalfWidth_m * pxPerM * 2.0;
+  const int nBins = static_cast<int>(std::ceil(2.0 * reach_px)) + 1;
+  std::vector<int> width(static_cast<std::size_t>(nBins), 0);
+  const int r = static_cast<int>(std::ceil(span_px));
+  const int cu = static_cast<int>(std::lround(palm_px.x())), cv_ = static_cast<int>(std::lround(palm_px.y()));
+  for (int v = std::max(0, cv_ - r); v <= std::min(mask.rows - 1, cv_ + r); ++v) {
+    const uchar* m = mask.ptr<uchar>(v);
+    for (int u = std::max(0, cu - r); u <= std::min(mask.cols - 1, cu + r); ++u) {
+      if (!m[u]) continue;
+      const double s = (Eigen::Vector2d(u, v) - palm_px).dot(dir);
+      if (std::abs(s) <= reach_px) ++width[static_cast<std::size_t>(std::lround(s + reach_px))];
+    }
+  }
+  std::vector<int> covered;
+  for (int w : width)
+    if (w > 0) covered.push_back(w);
+  if (covered.empty()) return options_.palmDepth_m;
+  std::nth_element(covered.begin(), covered.begin() + covered.size() / 2, covered.end());
+  const double halfWidth_m = 0.5 * covered[covered.size() / 2] / pxPerM;
+  // An ellipse of half-axes A (width) and B (thickness) seen at angle phi from B: silhouette half-width
+  // h = sqrt(A^2 cos^2 phi + B^2 sin^2 phi), surface to centre along the central ray A B / h.
+  return std::clamp(options_.palmHalfWidth_m * options_.palmDepth_m / std::max(halfWidth_m, 1e-6),
+                    options_.palmDepth_m, std::max(options_.palmDepth_m, options_.palmHalfWidth_m));
 }
 
 std::optional<Eigen::Vector3d> MarkerFreeHandDetector::surfaceNormal(const rawlog::RgbdFrame& frame,

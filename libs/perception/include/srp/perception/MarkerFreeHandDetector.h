@@ -171,8 +171,20 @@ class MarkerFreeHandDetector : public HandDetector {
     /// Pixels the skin model needs before it replaces the prior box.
     int minSkinSamples = 500;
     int minPixels = 300;
-    /// Palm centre below the visible back of the hand along the ray [m].
+    /// Palm centre below the visible back of the hand along the ray [m]
+    /// (half the palm's thickness: srp::synth's glove 11.5 mm, its back 2 mm
+    /// higher).
     double palmDepth_m = 0.0125;
+    /// Half the palm's width across its axis (srp::synth's glove 42 mm; an
+    /// adult's hand breadth is 75-95 mm) [m]. The palm's cross-section is
+    /// taken for an ellipse of half-axes palmHalfWidth_m and palmDepth_m; seen
+    /// from a direction that narrows its silhouette to a half-width h (a hand
+    /// seen from the side, on its thumb or little-finger edge), the palm
+    /// centre lies palmHalfWidth_m palmDepth_m / h behind the surface along
+    /// the ray (palmDepth_m face-on, up to palmHalfWidth_m edge-on), not
+    /// palmDepth_m. h: the hand mask's median width across the axis within
+    /// palmRadius_m of the palm, at the palm's depth. 0: off.
+    double palmHalfWidth_m = 0.042;
     /// Palm centre from the wrist (cuff line) along the arm axis, in the
     /// plane of the hand [m].
     double palmFromWrist_m = 0.13;
@@ -452,6 +464,11 @@ class MarkerFreeHandDetector : public HandDetector {
   /// `radius_px` of `centre_px`; nullopt when too few or not flat.
   std::optional<Eigen::Vector3d> surfaceNormal(const rawlog::RgbdFrame& frame, const cv::Mat& mask,
                                                const Eigen::Vector2d& centre_px, double radius_px) const;
+  /// The palm centre's depth behind the hand's surface along the ray [m]:
+  /// palmDepth_m, more where the mask's width across `dir` near `palm_px` is
+  /// narrower than the palm (palmHalfWidth_m), at `pxPerM` pixels per metre.
+  double silhouetteDepth(const cv::Mat& mask, const Eigen::Vector2d& palm_px, const Eigen::Vector2d& dir,
+                         double pxPerM) const;
   /// Places the palm from the anchor at the palm's depth (step 7).
   HandObservation placePalm(const rawlog::RgbdFrame& frame, const Anchor& a, const HandBlob& hand,
                             const Eigen::Vector2d& handMean, int armArea);

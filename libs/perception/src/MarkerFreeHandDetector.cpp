@@ -1219,20 +1219,28 @@ HandObservation MarkerFreeHandDetector::placePalm(const rawlog::RgbdFrame& frame
 
 double MarkerFreeHandDetector::silhouetteDepth(const cv::Mat& mask, const Eigen::Vector2d& palm_px,
                                               const Eigen::Vector2d& dir, double pxPerM) const {
-  // The median over the axis (1-px bins) of the mask's width across it, within palmRadius_m of the palm.
+  // The median over the axis (1-px bins) of the mask's width across it, within palmRadius_m of the palm;
+  // none when the mask there reaches the edge of the view.
   if (options_.palmHalfWidth_m <= 0.0) return options_.palmDepth_m;
   const double reach_px = options_.palmRadius_m * pxPerM;
   const double span_px = reach_px + options_.palmHalfWidth_m * pxPerM * 2.0;
   const int nBins = static_cast<int>(std::ceil(2.0 * reach_px)) + 1;
   std::vector<int> width(static_cast<std::size_t>(nBins), 0);
   const int r = static_cast<int>(std::ceil(span_px));
+  const int margin = options_.borderMargin_px;
+  const cv::Rect view = view_.area() > 0 ? view_ : cv::Rect(0, 0, mask.cols, mask.rows);
+  const cv::Rect inner(view.x + margin, view.y + margin, view.width - 2 * margin, view.height - 2 * margin);
   const int cu = static_cast<int>(std::lround(palm_px.x())), cv_ = static_cast<int>(std::lround(palm_px.y()));
   for (int v = std::max(0, cv_ - r); v <= std::min(mask.rows - 1, cv_ + r); ++v) {
     const uchar* m = mask.ptr<uchar>(v);
     for (int u = std::max(0, cu - r); u <= std::min(mask.cols - 1, cu + r); ++u) {
       if (!m[u]) continue;
       const double s = (Eigen::Vector2d(u, v) - palm_px).dot(dir);
-      if (std::abs(s) <= reach_px) ++width[static_cast<std::size_t>(std::lround(s + reach_px))];
+      if (std::abs(s) > reach_px) continue;
+      // Cut by the edge of the view (the hand entering or leaving): its width there is no silhouette's.
+      if (u < inner.x || u >= inner.x + inner.width || v < inner.y || v >= inner.y + inner.height)
+        return options_.palmDepth_m;
+      ++width[static_cast<std::size_t>(std::lround(s + reach_px))];
     }
   }
   std::vector<int> covered;

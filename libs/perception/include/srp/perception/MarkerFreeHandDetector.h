@@ -183,7 +183,8 @@ class MarkerFreeHandDetector : public HandDetector {
     /// centre lies palmHalfWidth_m palmDepth_m / h behind the surface along
     /// the ray (palmDepth_m face-on, up to palmHalfWidth_m edge-on), not
     /// palmDepth_m. h: the hand mask's median width across the axis within
-    /// palmRadius_m of the palm, at the palm's depth. 0: off.
+    /// palmRadius_m of the palm, at the palm's depth; not measured where the
+    /// hand there reaches the edge of the view (cut, not narrow). 0: off.
     double palmHalfWidth_m = 0.042;
     /// Palm centre from the wrist (cuff line) along the arm axis, in the
     /// plane of the hand [m].

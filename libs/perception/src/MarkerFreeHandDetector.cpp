@@ -1162,10 +1162,16 @@ HandObservation MarkerFreeHandDetector::placePalm(const rawlog::RgbdFrame& frame
   if (tilt) {
     // Depth z(s) = tilt(0) + tilt(1) s along the axis (s in pixels from the anchor): walk until the
     // 3D distance from the anchor is the length.
-    const double sign = a.length_m < 0.0 ? -1.0 : 1.0, target = std::abs(a.length_m);
-    // From the sleeve's edge when it stands nearer than the hand there (it hides the wrist's start).
-    const double z0 = a.depth_m > 0.0 ? std::min(a.depth_m, (*tilt)(0)) : (*tilt)(0);
-    const Eigen::Vector3d p0 = backProject(a.anchor_px, z0);
+    const double sign = a.length_m < 0.0 ? -1.0 : 1.0;
+    double target = std::abs(a.length_m);
+    const Eigen::Vector3d p0 = backProject(a.anchor_px, (*tilt)(0));
+    if (a.depth_m > 0.0 && a.depth_m < (*tilt)(0)) {
+      // The sleeve's edge stands nearer than the hand there: it hides the wrist's start, by the gap
+      // between them along the hand's axis (in 3D, on the depth profile).
+      const Eigen::Vector3d axis_m =
+          (backProject(a.anchor_px + sign * a.dir, (*tilt)(0) + (*tilt)(1)) - p0).normalized();
+      target -= std::max(0.0, (p0 - backProject(a.anchor_px, a.depth_m)).dot(sign * axis_m));
+    }
     const double maxS = options_.maxWalkFactor * target * hand.pxPerM;
     double s = 0.0;
     for (; s < maxS; s += 0.5) {

@@ -239,12 +239,14 @@ class MarkerFreeHandDetector : public HandDetector {
     /// camera). false: that axis.
     bool cuffTowardsThickest = true;
     /// Cuff rule: the palm's length is measured from the sleeve's edge at the
-    /// cuff (the depth of the sleeve's pixels along the cuff line) when the
-    /// sleeve is nearer the camera there than the wrist's skin: a sleeve
+    /// cuff when the sleeve is nearer the camera there than the wrist's skin
+    /// (the depth of the sleeve's pixels along the cuff line): a sleeve
     /// standing off the wrist hides the wrist's first centimetres from a
     /// camera above and behind the hand (the demonstrator's head), and the
-    /// first skin seen lies that much towards the fingers. false: from the
-    /// first skin.
+    /// first skin seen lies that much towards the fingers. The hidden length
+    /// is the gap from the sleeve's edge to the first skin along the hand's
+    /// axis (in 3D, on its depth profile); it is taken off palmFromWrist_m.
+    /// false: from the first skin.
     bool cuffAtSleeveEdge = true;
     /// In a recording whose preview shows no bare forearm, a cuff in view
     /// (step 5) places the palm before the bare-forearm rule is tried: a

@@ -12,6 +12,8 @@
 //
 // SRP_VIEW_DIR=<dir> keeps the renders there (default: rendered into the build folder and deleted once scored);
 // SRP_VIEW_FAMILY=egocentric|side|top-down|front|oblique runs one family; SRP_VIEW_VARIANT=0..5 one of its demonstrations;
+// SRP_VIEW_WIDTH=px renders at another width (4:3; the figures stay at 640-px width: a check that the detector's
+// pixel options scale, as a 1920-px recording needs);
 // SRP_HAND_DEBUG_DIR=<dir> draws every hand frame with the found geometry;
 // SRP_HAND_OPTIONS=name=value,... overrides detector options (HandEvaluation.h);
 // SRP_HAND_CSV=<file> writes one row per hand-in-view frame (the palm's error in the camera frame, the
@@ -34,6 +36,7 @@ using testing::ViewpointDemoSpec;
 std::vector<ViewpointDemoSpec> familySpecs(synth::ViewpointFamily family) {
   std::vector<ViewpointDemoSpec> out;
   constexpr double kScales[] = {1.0, 1.5, 2.0};
+  const char* width = std::getenv("SRP_VIEW_WIDTH");
   for (int v = 0; v < 6; ++v) {
     ViewpointDemoSpec s;
     s.family = family;
@@ -41,6 +44,7 @@ std::vector<ViewpointDemoSpec> familySpecs(synth::ViewpointFamily family) {
     s.partScale = kScales[v % 3];
     s.bareForearm = v >= 3;
     s.seed = static_cast<std::uint32_t>(11 + v);
+    if (width) s.width_px = std::atoi(width);
     out.push_back(s);
   }
   return out;

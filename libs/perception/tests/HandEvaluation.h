@@ -51,7 +51,9 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                    {"maxNormalFlatness", &o.maxNormalFlatness},
                                    {"minIslandSkinFraction", &o.minIslandSkinFraction},
                                    {"minFieldOfViewValid", &o.minFieldOfViewValid},
-                                   {"stillArmShapeShare", &o.stillArmShapeShare}};
+                                   {"stillArmShapeShare", &o.stillArmShapeShare},
+                                   {"palmHalfWidth_m", &o.palmHalfWidth_m},
+                                   {"palmDepth_m", &o.palmDepth_m}};
   std::map<std::string, int*> i{{"holeColourChange", &o.holeColourChange},
                                 {"backgroundFillDiameter_px", &o.backgroundFillDiameter_px},
                                 {"skinMinLuma", &o.skinMinLuma},
@@ -65,7 +67,8 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                  {"cuffTowardsThickest", &o.cuffTowardsThickest},
                                  {"farWithoutDepth", &o.farWithoutDepth},
                                  {"cuffFirst", &o.cuffFirst},
-                                 {"stillArmFromPlane", &o.stillArmFromPlane}};
+                                 {"stillArmFromPlane", &o.stillArmFromPlane},
+                                 {"cuffAtSleeveEdge", &o.cuffAtSleeveEdge}};
   std::stringstream ss(env);
   std::string item;
   while (std::getline(ss, item, ',')) {

@@ -49,7 +49,9 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                    {"maxWalkFactor", &o.maxWalkFactor},
                                    {"maxNormalFlatness", &o.maxNormalFlatness},
                                    {"minIslandSkinFraction", &o.minIslandSkinFraction},
-                                   {"minFieldOfViewValid", &o.minFieldOfViewValid}};
+                                   {"minFieldOfViewValid", &o.minFieldOfViewValid},
+                                   {"palmHalfWidth_m", &o.palmHalfWidth_m},
+                                   {"palmDepth_m", &o.palmDepth_m}};
   std::map<std::string, int*> i{{"holeColourChange", &o.holeColourChange},
                                 {"backgroundFillDiameter_px", &o.backgroundFillDiameter_px},
                                 {"skinMinLuma", &o.skinMinLuma},
@@ -63,7 +65,8 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                  {"palmAlongNormal", &o.palmAlongNormal},
                                  {"cuffTowardsThickest", &o.cuffTowardsThickest},
                                  {"farWithoutDepth", &o.farWithoutDepth},
-                                 {"cuffFirst", &o.cuffFirst}};
+                                 {"cuffFirst", &o.cuffFirst},
+                                 {"cuffAtSleeveEdge", &o.cuffAtSleeveEdge}};
   std::stringstream ss(env);
   std::string item;
   while (std::getline(ss, item, ',')) {

@@ -540,7 +540,11 @@ void MarkerFreeHandDetector::decideBareForearms(const cv::Mat& bgHalf) {
                            .value_or(zMean);
       return Eigen::Vector3d((e.x() - k.cx_px) * z / k.fx_px, (e.y() - k.cy_px) * z / k.fy_px, z);
     };
-    if ((endPoint(sMax) - endPoint(sMin)).norm() > options_.maxHandLength_m) ++bare;
+    const double length_m = (endPoint(sMax) - endPoint(sMin)).norm();
+    if (length_m > options_.maxHandLength_m) ++bare;
+    if (core::Log::enabled("hand", core::Log::Level::Debug))
+      core::Log::writef("hand", core::Log::Level::Debug, "  preview sample %zu: skin %d px, %.0f px long, %.3f m\n", i,
+                        area, sMax - sMin, length_m);
   }
   bareForearms_ = withSkin > 0 && bare >= options_.bareForearmFraction * withSkin;
   if (core::Log::enabled("hand", core::Log::Level::Debug))
@@ -883,13 +887,18 @@ std::vector<cv::Point> MarkerFreeHandDetector::borderZone(const cv::Mat& depth_m
   // Runs of depth-less pixels from each side with a band; the zone takes the
   // pixels within m of a run (a (2m+1)-square dilation of the staircase the
   // runs form: per row the longest run of the rows within m, plus m).
-  auto mark = [&](bool alongRows, bool fromEnd) {
+  // A run counts up to the band's width plus maxBandParallax_px: farther in,
+  // the pixels lack depth for another reason (a wall beyond the sensor's
+  // range behind the arm, seen from the side), and the arm's edge there is
+  // not where it enters.
+  auto mark = [&](bool alongRows, bool fromEnd, int band) {
     const int n = alongRows ? H : W, len = alongRows ? W : H;
+    const int maxRun = options_.maxBandParallax_px >= 0 ? std::min(len, band + options_.maxBandParallax_px) : len;
     auto depthAt = [&](int i, int j) { return alongRows ? depth_m.ptr<float>(i)[j] : depth_m.ptr<float>(j)[i]; };
     std::vector<int> run(static_cast<std::size_t>(n), 0);
     for (int i = 0; i < n; ++i) {
       int k = 0;
-      while (k < len && depthAt(i, fromEnd ? len - 1 - k : k) <= 0.f) ++k;
+      while (k < maxRun && depthAt(i, fromEnd ? len - 1 - k : k) <= 0.f) ++k;
       run[static_cast<std::size_t>(i)] = k;
     }
     for (int i = 0; i < n; ++i) {
@@ -904,10 +913,10 @@ std::vector<cv::Point> MarkerFreeHandDetector::borderZone(const cv::Mat& depth_m
       }
     }
   };
-  if (view_.x > 0) mark(true, false);
-  if (view_.x + view_.width < W) mark(true, true);
-  if (view_.y > 0) mark(false, false);
-  if (view_.y + view_.height < H) mark(false, true);
+  if (view_.x > 0) mark(true, false, view_.x);
+  if (view_.x + view_.width < W) mark(true, true, W - view_.x - view_.width);
+  if (view_.y > 0) mark(false, false, view_.y);
+  if (view_.y + view_.height < H) mark(false, true, H - view_.y - view_.height);
   return points;
 }
 

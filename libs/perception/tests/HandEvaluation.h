@@ -61,7 +61,8 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                 {"minLagColourChange", &o.minLagColourChange},
                                 {"geodesicStep_px", &o.geodesicStep_px},
                                 {"skinColourBlur_px", &o.skinColourBlur_px},
-                                {"minTiltSamples", &o.minTiltSamples}};
+                                {"minTiltSamples", &o.minTiltSamples},
+                                {"maxBandParallax_px", &o.maxBandParallax_px}};
   std::map<std::string, bool*> b{{"walkOnDepth", &o.walkOnDepth},
                                  {"palmAlongNormal", &o.palmAlongNormal},
                                  {"cuffTowardsThickest", &o.cuffTowardsThickest},

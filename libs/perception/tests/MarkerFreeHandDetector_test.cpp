@@ -244,6 +244,51 @@ TEST(MarkerFreeHandDetector, ArmInFrontOfAWallWithoutDepth) {
   EXPECT_EQ(fromTopEdge, 0) << "the scene should cut the arm at the wall's lower edge without the rule";
 }
 
+// Seen from the side: a bare forearm enters from the right edge in front of a
+// wall beyond the depth sensor's range (no depth above the table, except a
+// cupboard within range at the left), below a band at the top where the depth
+// camera sees nothing. The depth-less run from the top edge reaches down to
+// the arm's upper edge along its whole length; only its first rows are the
+// band the arm may enter through (maxBandParallax_px): the arm enters at the
+// right edge and the palm lies at its far end.
+TEST(MarkerFreeHandDetector, ArmBelowADepthlessWallEntersFromTheSide) {
+  constexpr int kBandRows = 40, kWallBottom = 200, kCupboardCols = 100;  // cupboard: 15 % of the columns
+  constexpr int kFrames = 16;
+  const cv::Scalar kWallBgr(70, 70, 70);
+  const ArmPose arm{{250.0, 170.0}, M_PI, 0.08};  // pointing left, the forearm leaves at the right edge
+  auto frame = [&](int index, bool withArm) {
+    auto f = drawnFrame(index, withArm ? std::optional<ArmPose>(arm) : std::nullopt);
+    const cv::Mat armMask = f.depth_m < kTable_m - 0.02;
+    f.colour_bgr8.setTo(kSkinBgr, armMask);  // bare forearm
+    cv::Mat wall(480, 640, CV_8UC1, cv::Scalar(0));
+    wall.rowRange(0, kWallBottom).setTo(255);
+    wall &= ~armMask;
+    f.depth_m.setTo(0.0, wall);
+    f.colour_bgr8.setTo(kWallBgr, wall);
+    f.depth_m(cv::Rect(0, kBandRows, kCupboardCols, kWallBottom - kBandRows)).setTo(2.0);
+    f.depth_m.rowRange(0, kBandRows).setTo(0.0);
+    return f;
+  };
+  const Eigen::Vector2d farEndPalm_px =
+      arm.palm_px + camera().fx_px / kHandTop_m * (0.045 + arm.fingerLength_m - MarkerFreeHandDetector::Options{}.palmFromFarEnd_m) *
+                        Eigen::Vector2d(std::cos(arm.angle_rad), std::sin(arm.angle_rad));
+  constexpr double kFarEndTol_px = 8.0;  // 1 cm at 0.75 m
+  auto run = [&](const MarkerFreeHandDetector::Options& o) {
+    MarkerFreeHandDetector detector(o);
+    for (int i = 0; i < kBackgroundFrames; ++i) detector.detect(frame(i, false));
+    int within = 0;
+    for (int i = kBackgroundFrames; i < kFrames; ++i) {
+      const auto h = detector.detect(frame(i, true));
+      if (h && (h->palm_px - farEndPalm_px).norm() < kFarEndTol_px) ++within;
+    }
+    return within;
+  };
+  EXPECT_EQ(run({}), kFrames - kBackgroundFrames);
+  MarkerFreeHandDetector::Options off;
+  off.maxBandParallax_px = -1;
+  EXPECT_EQ(run(off), 0) << "the scene should take the arm's upper edge for where it enters without the rule";
+}
+
 // A bare forearm in every frame of the recording, nearly still (swept
 // kSweep_px over the clip, as a hand holding a part while the head-mounted
 // camera looks down at it), over a table of a skin-like colour, beside a

@@ -300,6 +300,17 @@ class MarkerFreeHandDetector : public HandDetector {
     /// side) has a depth only where the arm passed in front of it, and is in
     /// view (with farWithoutDepth).
     double minFieldOfViewValid = 0.1;
+    /// Where the depth's field of view ends inside the image, a run of
+    /// depth-less pixels from the image edge is that band (where an arm
+    /// enters) up to the band's width plus this [px]: the band's inner edge
+    /// moves with the depth (parallax between the two cameras: an arm 1 m
+    /// away ends 7 px farther out than the wall behind it on HRT1's camera)
+    /// and tilts with a rolled camera (HRT1 rolled by 5 degrees needs more
+    /// than 16 px);
+    /// farther in, pixels lack depth for another reason (a wall beyond the
+    /// sensor's range above an arm seen from the side) and the arm's edge
+    /// along them is not where it enters. < 0: no limit.
+    int maxBandParallax_px = 32;
     /// Bare forearm: the skin component taken for the forearm and hand is the
     /// one reaching farthest from where the body enters the view, along the
     /// geodesic inside the body's foreground, measured on a grid of this many

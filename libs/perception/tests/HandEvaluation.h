@@ -49,7 +49,8 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                    {"maxWalkFactor", &o.maxWalkFactor},
                                    {"maxNormalFlatness", &o.maxNormalFlatness},
                                    {"minIslandSkinFraction", &o.minIslandSkinFraction},
-                                   {"minFieldOfViewValid", &o.minFieldOfViewValid}};
+                                   {"minFieldOfViewValid", &o.minFieldOfViewValid},
+                                   {"movingBackgroundMargin", &o.movingBackgroundMargin}};
   std::map<std::string, int*> i{{"holeColourChange", &o.holeColourChange},
                                 {"backgroundFillDiameter_px", &o.backgroundFillDiameter_px},
                                 {"skinMinLuma", &o.skinMinLuma},
@@ -57,12 +58,15 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                 {"minLagColourChange", &o.minLagColourChange},
                                 {"geodesicStep_px", &o.geodesicStep_px},
                                 {"skinColourBlur_px", &o.skinColourBlur_px},
-                                {"minTiltSamples", &o.minTiltSamples}};
+                                {"minTiltSamples", &o.minTiltSamples},
+                                {"movingBackgroundSlack_px", &o.movingBackgroundSlack_px}};
   std::map<std::string, bool*> b{{"walkOnDepth", &o.walkOnDepth},
                                  {"palmAlongNormal", &o.palmAlongNormal},
                                  {"cuffTowardsThickest", &o.cuffTowardsThickest},
                                  {"farWithoutDepth", &o.farWithoutDepth},
-                                 {"cuffFirst", &o.cuffFirst}};
+                                 {"cuffFirst", &o.cuffFirst},
+                                 {"stillArmFromPlane", &o.stillArmFromPlane},
+                                 {"followCameraMotion", &o.followCameraMotion}};
   std::stringstream ss(env);
   std::string item;
   while (std::getline(ss, item, ',')) {

@@ -6,12 +6,16 @@
 /// the wrist at the cuff), not from any marker.
 
 #include <Eigen/Core>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "srp/core/Pose.h"
 #include "srp/perception/HandDetector.h"
 
 namespace srp::perception {
+
+class CameraMotionEstimator;
 
 /// Marker-free hand detector (no tag is decoded or used as a feature: it works
 /// on a plain glove, a bare hand in a sleeve, or a bare forearm).
@@ -25,6 +29,17 @@ namespace srp::perception {
 ///   colour;
 /// - first frames (no preview, a stream): the per-pixel median depth and mean
 ///   colour of the first `backgroundFrames` frames, which must show no hand.
+///
+/// A moving camera (a head-mounted one sways with the head; `followCameraMotion`):
+/// the preview estimates every frame's camera pose from its depth
+/// (CameraMotionEstimator: point-to-plane ICP against key frames). When the
+/// camera moved, each background sample is warped into the first frame's
+/// camera (its image widened by `movingBackgroundMargin` on every side, so
+/// that what the camera saw only later has a background too) before the
+/// per-pixel quantile, and each frame's background is that one warped into the
+/// frame's own camera (nearest surface per pixel, one-pixel gaps filled). A
+/// pixel where no background lands is no foreground (farWithoutDepth does not
+/// apply), and the still-arm rule is not used.
 ///
 /// Skin colour, adapted per recording: a Gaussian in (Cr, Cb) fitted to the
 /// foreground pixels inside a broad prior box (`skinPrior*`, luma >=
@@ -137,6 +152,19 @@ class MarkerFreeHandDetector : public HandDetector {
     /// sample only where it is wide, the hand and the forearm, not at the
     /// wrist between them) [m].
     double stillArmBridge_m = 0.08;
+    /// Whole-recording background under a moving camera (see the class
+    /// comment): the preview estimates each frame's camera pose and, when the
+    /// camera moved (CameraMotionEstimator::moved: more than 1 cm or 0.5 deg
+    /// from the first frame), the background follows the camera. false: the
+    /// per-pixel background of a still camera in every recording.
+    bool followCameraMotion = true;
+    /// That background's image is the first frame's widened by this share of
+    /// its width and height on each side [ratio].
+    double movingBackgroundMargin = 0.15;
+    /// That background, warped into a frame's camera, is the nearest within
+    /// this many pixels (the estimated camera pose's error; a surface seen at
+    /// a grazing angle changes its depth by centimetres per pixel) [px]. 0: off.
+    int movingBackgroundSlack_px = 3;
     /// Foreground: closer than the background by this much [m].
     double minForeground_m = 0.02;
     /// Foreground in a depth hole: sum of |BGR| changes from the background
@@ -397,13 +425,24 @@ class MarkerFreeHandDetector : public HandDetector {
   Options options_;
   void finishPreview();
   /// Whole-recording background depth [mm, CV_32FC1] from the preview samples
-  /// (also sets backgroundDepth_m_ and backgroundColour_).
-  cv::Mat backgroundFromPreview();
+  /// `samples_mm` (also sets backgroundDepth_m_ and backgroundColour_, and
+  /// view_ unless `moving`: the samples are warped into the first camera's
+  /// widened image, see followCameraMotion).
+  cv::Mat backgroundFromPreview(const std::vector<cv::Mat>& samples_mm, bool moving);
+  /// Moving camera: the background (canvasDepth_m_, canvasColour_) from the
+  /// preview samples warped into the first frame's camera.
+  void movingBackgroundFromPreview();
+  /// Moving camera: the background as the camera at X_camera0_camera sees it
+  /// [m, CV_32FC1; BGR].
+  void backgroundInView(const core::Pose3& X_camera0_camera, cv::Mat& depth_m, cv::Mat& colour_bgr8) const;
+  /// Moving camera: the camera pose of the previewed frame `index` (the last one used when it was not previewed).
+  core::Pose3 previewPose(int index);
   /// stillArmFromPlane: the support plane's depth where the background
   /// `background_mm` [mm, CV_32FC1] is a still arm (in place).
   void stillArmToPlane(cv::Mat& background_mm) const;
-  /// Does the preview show a bare forearm (sets bareForearms_)?
-  void decideBareForearms(const cv::Mat& backgroundHalf_mm);
+  /// Does the preview show a bare forearm (sets bareForearms_)? `backgroundHalf_mm`:
+  /// each sample's background at half size [mm].
+  void decideBareForearms(const std::vector<cv::Mat>& backgroundHalf_mm);
   /// Pixels where an arm enters the view, inside the depth's field of view:
   /// near the image edge, and near this frame's depth-less band where the
   /// field of view ends inside the image (row-major when there is no band).
@@ -462,6 +501,16 @@ class MarkerFreeHandDetector : public HandDetector {
   core::CameraIntrinsics previewIntrinsics_;
   bool bareForearms_ = false;  ///< the preview showed a bare forearm: the far end rule in every frame
   cv::Mat backgroundDepth_m_, backgroundColour_;
+  // Moving camera (followCameraMotion): every previewed frame's index and camera pose in the first
+  // frame's camera, each sample's pose, and the background in the first camera's widened image.
+  std::shared_ptr<CameraMotionEstimator> previewMotion_;
+  std::vector<int> previewFrameIndex_;
+  std::vector<core::Pose3> previewSamplePose_;
+  bool cameraMoves_ = false;
+  cv::Mat canvasDepth_m_, canvasColour_;
+  core::CameraIntrinsics canvasIntrinsics_;
+  core::Pose3 lastPose_ = core::Pose3::Identity();
+  std::size_t nextPose_ = 0;  ///< where previewPose looks first
   cv::Rect view_;  ///< the depth's field of view in the image (depthFieldOfView of the background)
   std::vector<cv::Point> zonePoints_;  ///< this frame's border zone (borderZone)
   cv::Mat lastMask_;

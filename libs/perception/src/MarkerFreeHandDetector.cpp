@@ -13,6 +13,7 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "srp/core/Angles.h"
 #include "srp/core/Error.h"
 #include "srp/perception/CameraModel.h"
 #include "srp/perception/CameraMotionEstimator.h"
@@ -204,6 +205,9 @@ MarkerFreeHandDetector::MarkerFreeHandDetector(const Options& options) : options
                     options.stillArmSkinFraction <= 1.0 && options.stillArmBridge_m >= 0.0,
                 "MarkerFreeHandDetector: stillArmMaxHeight_m must be > 0 m, stillArmSkinFraction in [0, 1] and "
                 "stillArmBridge_m >= 0 m (stillArmFromPlane = false turns the rule off)");
+  core::require(options.minCameraMotion_m >= 0.0 && options.minCameraTurn_deg >= 0.0,
+                "MarkerFreeHandDetector: minCameraMotion_m and minCameraTurn_deg must be >= 0 (followCameraMotion = "
+                "false keeps a still camera's background)");
   core::require(options.movingBackgroundMargin >= 0.0 && options.movingBackgroundMargin <= 1.0,
                 "MarkerFreeHandDetector: movingBackgroundMargin must be in [0, 1] (a share of the image's size on "
                 "each side)");
@@ -258,11 +262,12 @@ void MarkerFreeHandDetector::preview(const rawlog::RgbdFrame& frame) {
 }
 
 void MarkerFreeHandDetector::finishPreview() {
-  cameraMoves_ = previewMotion_ && previewMotion_->moved();
+  cameraMoves_ = previewMotion_ && (previewMotion_->maxTranslation_m() > options_.minCameraMotion_m ||
+                                    previewMotion_->maxRotation_rad() > options_.minCameraTurn_deg * core::kPi / 180.0);
   if (core::Log::enabled("hand", core::Log::Level::Debug) && previewMotion_)
     core::Log::writef("hand", core::Log::Level::Debug, "camera: %s (up to %.3f m, %.2f deg from the first frame)\n",
                       cameraMoves_ ? "moves" : "still", previewMotion_->maxTranslation_m(),
-                      previewMotion_->maxRotation_rad() * 180.0 / 3.14159265358979323846);
+                      previewMotion_->maxRotation_rad() * 180.0 / core::kPi);
   // Each sample's background at half size [mm]: one for all (a still camera), or each sample's own view.
   std::vector<cv::Mat> bgHalf(previewDepth_mm_.size());
   if (cameraMoves_) {

@@ -13,20 +13,26 @@
 namespace srp::perception {
 namespace {
 
-/// `maxPastFrames`: 0, except where the reached figure is guarded.
-void expectNoPalmPastTheHeldPart(synth::ViewpointFamily family, double partScale, bool bareForearm,
-                                 int maxPastFrames = 0) {
-  testing::ViewpointDemoSpec spec;
-  spec.family = family;
+/// The small render of `spec` (variant 1, 320x240, seed 7), scored as `srp perceive` runs the detector.
+testing::HandEvaluation scoreSmallRender(testing::ViewpointDemoSpec& spec) {
   spec.variant = 1;
-  spec.partScale = partScale;
-  spec.bareForearm = bareForearm;
   spec.width_px = 320;
   spec.seed = 7;
   const std::string rawlog =
       testing::renderViewpointDemo(spec, (std::filesystem::path(SRP_BINARY_DIR) / "viewpoint_demos_small").string());
   const auto ev = testing::evaluateMarkerFreeHand(rawlog, testing::optionsFromEnvironment(), {}, true);
   ev.print(spec.name());
+  return ev;
+}
+
+/// `maxPastFrames`: 0, except where the reached figure is guarded.
+void expectNoPalmPastTheHeldPart(synth::ViewpointFamily family, double partScale, bool bareForearm,
+                                 int maxPastFrames = 0) {
+  testing::ViewpointDemoSpec spec;
+  spec.family = family;
+  spec.partScale = partScale;
+  spec.bareForearm = bareForearm;
+  const auto ev = scoreSmallRender(spec);
   ASSERT_GT(ev.carried, 0) << "the render shows no carry";
   EXPECT_LE(ev.farSide, maxPastFrames) << "palms past the held part; closest " << ev.worstFarSide_m << " m";
 }
@@ -55,23 +61,19 @@ TEST(MarkerFreeHandViewpoints, SwayingHeadCameraHandHoldingThePart) {
   constexpr double kMaxWithinStill = 0.2;  // a still camera's background: 0.0 %
   testing::ViewpointDemoSpec spec;
   spec.family = synth::ViewpointFamily::Egocentric;
-  spec.variant = 1;
   spec.heldOnly = "cuboid";
   spec.bareForearm = true;
   spec.headSway = true;
-  spec.width_px = 320;
-  spec.seed = 7;
-  const std::string rawlog =
-      testing::renderViewpointDemo(spec, (std::filesystem::path(SRP_BINARY_DIR) / "viewpoint_demos_small").string());
-  const auto ev = testing::evaluateMarkerFreeHand(rawlog, testing::optionsFromEnvironment(), {}, true);
-  ev.print(spec.name());
+  const auto ev = scoreSmallRender(spec);
   ASSERT_GT(ev.carried, 0);
   EXPECT_EQ(ev.carried, ev.handInView) << "the hand holds the part in every frame";
   EXPECT_GE(ev.within640(kWithin_px), kMinWithin);
   EXPECT_EQ(ev.farSide, 0);
   auto still = testing::optionsFromEnvironment();
   still.followCameraMotion = false;
-  const auto evStill = testing::evaluateMarkerFreeHand(rawlog, still, {}, true);
+  const auto evStill = testing::evaluateMarkerFreeHand(
+      (std::filesystem::path(SRP_BINARY_DIR) / "viewpoint_demos_small" / (spec.name() + ".rawlog")).string(), still,
+      {}, true);
   evStill.print(spec.name() + ", background of a still camera");
   EXPECT_LE(evStill.within640(kWithin_px), kMaxWithinStill);
 }

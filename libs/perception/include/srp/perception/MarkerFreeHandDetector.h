@@ -33,7 +33,7 @@ class CameraMotionEstimator;
 /// A moving camera (a head-mounted one sways with the head; `followCameraMotion`):
 /// the preview estimates every frame's camera pose from its depth
 /// (CameraMotionEstimator: point-to-plane ICP against key frames). When the
-/// camera moved, each background sample is warped into the first frame's
+/// camera moved (minCameraMotion_m, minCameraTurn_deg), each background sample is warped into the first frame's
 /// camera (its image widened by `movingBackgroundMargin` on every side, so
 /// that what the camera saw only later has a background too) before the
 /// per-pixel quantile, and each frame's background is that one warped into the
@@ -154,10 +154,18 @@ class MarkerFreeHandDetector : public HandDetector {
     double stillArmBridge_m = 0.08;
     /// Whole-recording background under a moving camera (see the class
     /// comment): the preview estimates each frame's camera pose and, when the
-    /// camera moved (CameraMotionEstimator::moved: more than 1 cm or 0.5 deg
-    /// from the first frame), the background follows the camera. false: the
-    /// per-pixel background of a still camera in every recording.
+    /// camera moved farther than minCameraMotion_m or turned more than
+    /// minCameraTurn_deg from the first frame, the background follows the
+    /// camera. false: the per-pixel background of a still camera in every
+    /// recording.
     bool followCameraMotion = true;
+    /// Below these a still camera's background is kept: a camera moved by
+    /// less than minForeground_m, or turned by less than the angle that moves
+    /// a point 1 m away by that much, changes no depth by more than the
+    /// foreground threshold (and the pose's noise on a still camera, depth
+    /// noise of 3 mm at 1 m on HRT1, reaches 1 cm and 0.3 deg) [m, deg].
+    double minCameraMotion_m = 0.02;
+    double minCameraTurn_deg = 1.15;
     /// That background's image is the first frame's widened by this share of
     /// its width and height on each side [ratio].
     double movingBackgroundMargin = 0.15;

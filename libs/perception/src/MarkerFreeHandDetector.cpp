@@ -262,27 +262,47 @@ void MarkerFreeHandDetector::preview(const rawlog::RgbdFrame& frame) {
 }
 
 void MarkerFreeHandDetector::finishPreview() {
-  cameraMoves_ = previewMotion_ && (previewMotion_->maxTranslation_m() > options_.minCameraMotion_m ||
-                                    previewMotion_->maxRotation_rad() > options_.minCameraTurn_deg * core::kPi / 180.0);
-  if (core::Log::enabled("hand", core::Log::Level::Debug) && previewMotion_)
-    core::Log::writef("hand", core::Log::Level::Debug, "camera: %s (up to %.3f m, %.2f deg from the first frame)\n",
-                      cameraMoves_ ? "moves" : "still", previewMotion_->maxTranslation_m(),
-                      previewMotion_->maxRotation_rad() * 180.0 / core::kPi);
+  const bool turned = previewMotion_ && (previewMotion_->maxTranslation_m() > options_.minCameraMotion_m ||
+                                         previewMotion_->maxRotation_rad() > options_.minCameraTurn_deg * core::kPi / 180.0);
   // Each sample's background at half size [mm]: one for all (a still camera), or each sample's own view.
-  std::vector<cv::Mat> bgHalf(previewDepth_mm_.size());
-  if (cameraMoves_) {
+  const cv::Mat still_mm = backgroundFromPreview(previewDepth_mm_, false);
+  cv::Mat stillHalf;
+  cv::resize(still_mm, stillHalf, {}, 0.5, 0.5, cv::INTER_NEAREST);
+  std::vector<cv::Mat> bgHalf(previewDepth_mm_.size(), stillHalf);
+  if (turned) {
+    // The estimated motion is used when the samples agree with their warped background better than with
+    // the still one (ICP on a scene of little structure, a plane and a large arm, can report a motion
+    // that never was).
+    const cv::Rect stillView = view_;
     movingBackgroundFromPreview();
+    std::vector<cv::Mat> movingHalf(previewDepth_mm_.size());
+    double disagreeStill = 0.0, disagreeMoving = 0.0;
     for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
-      cv::Mat depth_m, colour;
+      cv::Mat depth_m, colour, z;
       backgroundInView(previewSamplePose_[i], depth_m, colour);
-      cv::resize(depth_m, bgHalf[i], {}, 0.5, 0.5, cv::INTER_NEAREST);
-      bgHalf[i] *= 1e3;
+      cv::resize(depth_m, movingHalf[i], {}, 0.5, 0.5, cv::INTER_NEAREST);
+      movingHalf[i] *= 1e3;
+      cv::resize(previewDepth_mm_[i], z, {}, 0.5, 0.5, cv::INTER_NEAREST);
+      z.convertTo(z, CV_32FC1);
+      auto disagreement = [&](const cv::Mat& bg) {
+        const cv::Mat both = (z > 0.f) & (bg > 0.f);
+        const cv::Mat off = both & (cv::abs(bg - z) > 1e3 * options_.minForeground_m);
+        return static_cast<double>(cv::countNonZero(off)) / std::max(1, cv::countNonZero(both));
+      };
+      disagreeStill += disagreement(stillHalf);
+      disagreeMoving += disagreement(movingHalf[i]);
     }
-  } else {
-    const cv::Mat background_mm = backgroundFromPreview(previewDepth_mm_, false);
-    cv::Mat half;
-    cv::resize(background_mm, half, {}, 0.5, 0.5, cv::INTER_NEAREST);
-    std::fill(bgHalf.begin(), bgHalf.end(), half);
+    cameraMoves_ = disagreeMoving < options_.maxMovingDisagreement * disagreeStill;
+    if (core::Log::enabled("hand", core::Log::Level::Debug))
+      core::Log::writef("hand", core::Log::Level::Debug,
+                        "camera: moved up to %.3f m, %.2f deg; samples off their background %.3f still, %.3f "
+                        "moving: %s\n",
+                        previewMotion_->maxTranslation_m(), previewMotion_->maxRotation_rad() * 180.0 / core::kPi,
+                        disagreeStill / static_cast<double>(previewDepth_mm_.size()),
+                        disagreeMoving / static_cast<double>(previewDepth_mm_.size()),
+                        cameraMoves_ ? "follows the camera" : "still");
+    if (cameraMoves_) bgHalf = movingHalf;
+    else view_ = stillView;
   }
   // Skin from every sample's foreground (half size: plenty of pixels).
   if (options_.useSkin) {

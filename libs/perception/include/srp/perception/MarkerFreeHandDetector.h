@@ -166,6 +166,12 @@ class MarkerFreeHandDetector : public HandDetector {
     /// noise of 3 mm at 1 m on HRT1, reaches 1 cm and 0.3 deg) [m, deg].
     double minCameraMotion_m = 0.02;
     double minCameraTurn_deg = 1.15;
+    /// ... and when the preview samples disagree (depth differs by more
+    /// than minForeground_m) with the background warped into their view in
+    /// less than this share of the pixels where they disagree with a still
+    /// camera's background (a motion that ICP reports on a scene of little
+    /// structure, a plane and a large arm, and never was) [ratio].
+    double maxMovingDisagreement = 0.5;
     /// That background's image is the first frame's widened by this share of
     /// its width and height on each side [ratio].
     double movingBackgroundMargin = 0.15;

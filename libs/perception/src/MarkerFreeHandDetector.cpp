@@ -858,7 +858,7 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   // is seen, whatever lengthens the skin beyond a hand (a held part of a
   // skin-like colour, its shaded faces).
   std::optional<Anchor> anchor;
-  if (options_.cuffFirst && !bareForearms_) anchor = cuffAnchor(hand.mask, sleeve, entry);
+  if (options_.cuffFirst && !bareForearms_) anchor = cuffAnchor(frame, hand.mask, sleeve, entry);
   if (!anchor) anchor = bareForearmAnchor(frame, arm, entry, hand, refused);
   if (refused) {
     if (trace)
@@ -866,7 +866,7 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
                         frame.index);
     return std::nullopt;
   }
-  if (!anchor) anchor = cuffAnchor(hand.mask, sleeve, entry);
+  if (!anchor) anchor = cuffAnchor(frame, hand.mask, sleeve, entry);
   if (!anchor) anchor = fingertipAnchor(hand.mask, entry, handMean, handAxis->dir, handAxis->elongated);
   geometry_.axis = anchor->dir;
   HandObservation h = placePalm(frame, *anchor, hand, handMean, bestArea);
@@ -1244,7 +1244,8 @@ int MarkerFreeHandDetector::farthestSkinComponent(const cv::Mat& region, const c
   return best;
 }
 
-std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::cuffAnchor(const cv::Mat& hand,
+std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::cuffAnchor(const rawlog::RgbdFrame& frame,
+                                                                                  const cv::Mat& hand,
                                                                                   const cv::Mat& sleeve,
                                                                                   const Eigen::Vector2d& entry) {
   // Wrist: the cuff line, skin pixels next to the sleeve. Not when the skin
@@ -1292,6 +1293,13 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::cuffAnchor
       a.dir = (*thickest - a.anchor_px).normalized();
   }
   a.length_m = options_.palmFromWrist_m;
+  if (options_.cuffAtSleeveEdge) {
+    // The sleeve's edge along the cuff line: its pixels next to the hand.
+    cv::Mat edge;
+    cv::dilate(hand, edge, disc(options_.openDiameter_px));
+    edge &= sleeve;
+    if (const auto z = medianDepthInDisc(frame.depth_m, edge, a.anchor_px, 1e4, options_.minDepthSamples)) a.depth_m = *z;
+  }
   geometry_.haveWrist = true;
   geometry_.wrist_px = a.anchor_px;
   return a;
@@ -1346,8 +1354,16 @@ HandObservation MarkerFreeHandDetector::placePalm(const rawlog::RgbdFrame& frame
   if (tilt) {
     // Depth z(s) = tilt(0) + tilt(1) s along the axis (s in pixels from the anchor): walk until the
     // 3D distance from the anchor is the length.
-    const double sign = a.length_m < 0.0 ? -1.0 : 1.0, target = std::abs(a.length_m);
+    const double sign = a.length_m < 0.0 ? -1.0 : 1.0;
+    double target = std::abs(a.length_m);
     const Eigen::Vector3d p0 = backProject(a.anchor_px, (*tilt)(0));
+    if (a.depth_m > 0.0 && a.depth_m < (*tilt)(0)) {
+      // The sleeve's edge stands nearer than the hand there: it hides the wrist's start, by the gap
+      // between them along the hand's axis (in 3D, on the depth profile).
+      const Eigen::Vector3d axis_m =
+          (backProject(a.anchor_px + sign * a.dir, (*tilt)(0) + (*tilt)(1)) - p0).normalized();
+      target -= std::max(0.0, (p0 - backProject(a.anchor_px, a.depth_m)).dot(sign * axis_m));
+    }
     const double maxS = options_.maxWalkFactor * target * hand.pxPerM;
     double s = 0.0;
     for (; s < maxS; s += 0.5) {
@@ -1379,12 +1395,16 @@ HandObservation MarkerFreeHandDetector::placePalm(const rawlog::RgbdFrame& frame
       const std::optional<Eigen::Vector3d> n =
           options_.palmAlongNormal ? surfaceNormal(frame, hand.mask, palm, options_.palmRadius_m * hand.pxPerM)
                                    : std::nullopt;
+      // A silhouette narrower than the palm (the hand seen on its edge): the centre lies deeper behind
+      // the surface along the ray than half the palm's thickness (silhouetteDepth).
+      const double extra_m = silhouetteDepth(hand.mask, palm, a.dir, frame.intrinsics.fx_px / *z) - options_.palmDepth_m;
       if (n) {
         h.p_camera_palm_m = backProject(palm, *z) - options_.palmDepth_m * *n;
         palm = project(h.p_camera_palm_m);
       } else {
         h.p_camera_palm_m = backProject(palm, *z + options_.palmDepth_m);
       }
+      if (extra_m > 0.0) h.p_camera_palm_m += extra_m * h.p_camera_palm_m.normalized();
       h.hasDepth = true;
       lastDepth_m_ = *z;
       lastDepthFrame_ = frameCount_;
@@ -1393,6 +1413,44 @@ HandObservation MarkerFreeHandDetector::placePalm(const rawlog::RgbdFrame& frame
   h.palm_px = palm;
   geometry_.palm_px = palm;
   return h;
+}
+
+double MarkerFreeHandDetector::silhouetteDepth(const cv::Mat& mask, const Eigen::Vector2d& palm_px,
+                                              const Eigen::Vector2d& dir, double pxPerM) const {
+  // The median over the axis (1-px bins) of the mask's width across it, within palmRadius_m of the palm;
+  // none when the mask there reaches the edge of the view.
+  if (options_.palmHalfWidth_m <= 0.0) return options_.palmDepth_m;
+  const double reach_px = options_.palmRadius_m * pxPerM;
+  const double span_px = reach_px + options_.palmHalfWidth_m * pxPerM * 2.0;
+  const int nBins = static_cast<int>(std::ceil(2.0 * reach_px)) + 1;
+  std::vector<int> width(static_cast<std::size_t>(nBins), 0);
+  const int r = static_cast<int>(std::ceil(span_px));
+  const int margin = options_.borderMargin_px;
+  const cv::Rect view = view_.area() > 0 ? view_ : cv::Rect(0, 0, mask.cols, mask.rows);
+  const cv::Rect inner(view.x + margin, view.y + margin, view.width - 2 * margin, view.height - 2 * margin);
+  const int cu = static_cast<int>(std::lround(palm_px.x())), cv_ = static_cast<int>(std::lround(palm_px.y()));
+  for (int v = std::max(0, cv_ - r); v <= std::min(mask.rows - 1, cv_ + r); ++v) {
+    const uchar* m = mask.ptr<uchar>(v);
+    for (int u = std::max(0, cu - r); u <= std::min(mask.cols - 1, cu + r); ++u) {
+      if (!m[u]) continue;
+      const double s = (Eigen::Vector2d(u, v) - palm_px).dot(dir);
+      if (std::abs(s) > reach_px) continue;
+      // Cut by the edge of the view (the hand entering or leaving): its width there is no silhouette's.
+      if (u < inner.x || u >= inner.x + inner.width || v < inner.y || v >= inner.y + inner.height)
+        return options_.palmDepth_m;
+      ++width[static_cast<std::size_t>(std::lround(s + reach_px))];
+    }
+  }
+  std::vector<int> covered;
+  for (int w : width)
+    if (w > 0) covered.push_back(w);
+  if (covered.empty()) return options_.palmDepth_m;
+  std::nth_element(covered.begin(), covered.begin() + covered.size() / 2, covered.end());
+  const double halfWidth_m = 0.5 * covered[covered.size() / 2] / pxPerM;
+  // An ellipse of half-axes A (width) and B (thickness) seen at angle phi from B: silhouette half-width
+  // h = sqrt(A^2 cos^2 phi + B^2 sin^2 phi), surface to centre along the central ray A B / h.
+  return std::clamp(options_.palmHalfWidth_m * options_.palmDepth_m / std::max(halfWidth_m, 1e-6),
+                    options_.palmDepth_m, std::max(options_.palmDepth_m, options_.palmHalfWidth_m));
 }
 
 std::optional<Eigen::Vector3d> MarkerFreeHandDetector::surfaceNormal(const rawlog::RgbdFrame& frame,

@@ -50,7 +50,9 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                    {"maxNormalFlatness", &o.maxNormalFlatness},
                                    {"minIslandSkinFraction", &o.minIslandSkinFraction},
                                    {"minFieldOfViewValid", &o.minFieldOfViewValid},
-                                   {"movingBackgroundMargin", &o.movingBackgroundMargin}};
+                                   {"movingBackgroundMargin", &o.movingBackgroundMargin},
+                                   {"palmHalfWidth_m", &o.palmHalfWidth_m},
+                                   {"palmDepth_m", &o.palmDepth_m}};
   std::map<std::string, int*> i{{"holeColourChange", &o.holeColourChange},
                                 {"backgroundFillDiameter_px", &o.backgroundFillDiameter_px},
                                 {"skinMinLuma", &o.skinMinLuma},
@@ -66,7 +68,8 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                  {"farWithoutDepth", &o.farWithoutDepth},
                                  {"cuffFirst", &o.cuffFirst},
                                  {"stillArmFromPlane", &o.stillArmFromPlane},
-                                 {"followCameraMotion", &o.followCameraMotion}};
+                                 {"followCameraMotion", &o.followCameraMotion},
+                                 {"cuffAtSleeveEdge", &o.cuffAtSleeveEdge}};
   std::stringstream ss(env);
   std::string item;
   while (std::getline(ss, item, ',')) {

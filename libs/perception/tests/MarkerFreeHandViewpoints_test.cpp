@@ -6,6 +6,7 @@
 // acceptance.perception.ViewpointFamilies.* (label slow).
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 
 #include "ViewpointDemos.h"
@@ -76,6 +77,78 @@ TEST(MarkerFreeHandViewpoints, SwayingHeadCameraHandHoldingThePart) {
       {}, true);
   evStill.print(spec.name() + ", background of a still camera");
   EXPECT_LE(evStill.within640(kWithin_px), kMaxWithinStill);
+}
+
+/// The palm's signed errors in the frames the cuff rule placed it [m]: along the true hand's axis (towards the
+/// fingers) and along the camera's ray through the true palm (positive: too far).
+struct CuffErrors {
+  std::vector<double> alongAxis_m, alongRay_m;
+};
+CuffErrors cuffErrors(const std::string& rawlog, const MarkerFreeHandDetector::Options& options) {
+  const auto gt = synth::DemoGroundTruth::load(synth::groundTruthPathFor(rawlog));
+  CuffErrors out;
+  testing::evaluateMarkerFreeHand(
+      rawlog, options,
+      [&](const rawlog::RgbdFrame&, const MarkerFreeHandDetector& d, const synth::GroundTruthFrame& truth,
+          const std::optional<Eigen::Vector3d>& p_m) {
+        if (!p_m || !truth.handInView || !d.lastGeometry().haveWrist) return;
+        const Eigen::Vector3d axis_camera =
+            gt.X_world_camera_at(truth.index).linear().transpose() * truth.X_world_hand.linear().col(0);
+        out.alongAxis_m.push_back((*p_m - truth.p_camera_palm_m).dot(axis_camera));
+        out.alongRay_m.push_back((*p_m - truth.p_camera_palm_m).dot(truth.p_camera_palm_m.normalized()));
+      },
+      true);
+  return out;
+}
+
+/// A fresh render (seed 7, 320x240, variant 1, the sleeve), not one of the scored demonstrations.
+std::string freshSleeveRender(synth::ViewpointFamily family) {
+  testing::ViewpointDemoSpec spec;
+  spec.family = family;
+  spec.variant = 1;
+  spec.width_px = 320;
+  spec.seed = 7;
+  return testing::renderViewpointDemo(spec, (std::filesystem::path(SRP_BINARY_DIR) / "viewpoint_demos_small").string());
+}
+
+// From the demonstrator's head the sleeve, thicker than the wrist, hides the wrist's first centimetres:
+// the palm's length is measured from the sleeve's edge (cuffAtSleeveEdge), not from the first skin seen
+// (which puts the palm ~15 mm towards the fingers). A fresh render (seed 7, 320x240), not the scored ones.
+TEST(MarkerFreeHandViewpoints, CuffFromTheSleeveEdgeEgocentric) {
+  const std::string rawlog = freshSleeveRender(synth::ViewpointFamily::Egocentric);
+  constexpr double kAlongAxisTol_m = 0.006;  // the hand model's cuff-to-palm length is known to a few mm
+  MarkerFreeHandDetector::Options o = testing::optionsFromEnvironment();
+  o.palmHalfWidth_m = 0.0;  // this rule alone (the silhouette's depth moves the palm along the ray)
+  o.cuffAtSleeveEdge = true;
+  const auto along = cuffErrors(rawlog, o).alongAxis_m;
+  ASSERT_GT(along.size(), 100u) << "too few frames with the cuff in view";
+  std::printf("[ figures  ] along the hand's axis, cuff rule, from the sleeve's edge: median %+.1f mm (%zu frames)\n",
+              1e3 * testing::percentile(along, 0.5), along.size());
+  EXPECT_NEAR(testing::percentile(along, 0.5), 0.0, kAlongAxisTol_m);
+  o.cuffAtSleeveEdge = false;
+  const auto fromSkin = cuffErrors(rawlog, o).alongAxis_m;
+  std::printf("[ figures  ] the same from the first skin: median %+.1f mm\n", 1e3 * testing::percentile(fromSkin, 0.5));
+  EXPECT_GT(testing::percentile(fromSkin, 0.5), kAlongAxisTol_m) << "the hidden wrist no longer shifts the palm";
+}
+
+// From the side the camera sees the hand's edge: its silhouette is narrower than the palm, and the palm
+// centre lies deeper behind the surface than half the palm's thickness (palmHalfWidth_m, an elliptic
+// cross-section of the hand model's width and thickness).
+TEST(MarkerFreeHandViewpoints, PalmDepthFromTheSilhouetteSide) {
+  const std::string rawlog = freshSleeveRender(synth::ViewpointFamily::Side);
+  // The glove's cross-section is a box with a thumb, deeper behind its edge than the ellipse says.
+  constexpr double kAlongRayTol_m = 0.020;
+  MarkerFreeHandDetector::Options o = testing::optionsFromEnvironment();
+  const auto ray = cuffErrors(rawlog, o).alongRay_m;
+  ASSERT_GT(ray.size(), 100u) << "too few frames with the cuff in view";
+  std::printf("[ figures  ] along the ray, cuff rule, side: median %+.1f mm (%zu frames)\n",
+              1e3 * testing::percentile(ray, 0.5), ray.size());
+  EXPECT_NEAR(testing::percentile(ray, 0.5), 0.0, kAlongRayTol_m);
+  o.palmHalfWidth_m = 0.0;
+  const auto underBack = cuffErrors(rawlog, o).alongRay_m;
+  std::printf("[ figures  ] the same at half the palm's thickness: median %+.1f mm\n",
+              1e3 * testing::percentile(underBack, 0.5));
+  EXPECT_LT(testing::percentile(underBack, 0.5), -kAlongRayTol_m) << "the palm's edge no longer hides its depth";
 }
 
 }  // namespace

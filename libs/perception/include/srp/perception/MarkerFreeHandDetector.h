@@ -213,8 +213,21 @@ class MarkerFreeHandDetector : public HandDetector {
     /// Pixels the skin model needs before it replaces the prior box.
     int minSkinSamples = 500;
     int minPixels = 300;
-    /// Palm centre below the visible back of the hand along the ray [m].
+    /// Palm centre below the visible back of the hand along the ray [m]
+    /// (half the palm's thickness: srp::synth's glove 11.5 mm, its back 2 mm
+    /// higher).
     double palmDepth_m = 0.0125;
+    /// Half the palm's width across its axis (srp::synth's glove 42 mm; an
+    /// adult's hand breadth is 75-95 mm) [m]. The palm's cross-section is
+    /// taken for an ellipse of half-axes palmHalfWidth_m and palmDepth_m; seen
+    /// from a direction that narrows its silhouette to a half-width h (a hand
+    /// seen from the side, on its thumb or little-finger edge), the palm
+    /// centre lies palmHalfWidth_m palmDepth_m / h behind the surface along
+    /// the ray (palmDepth_m face-on, up to palmHalfWidth_m edge-on), not
+    /// palmDepth_m. h: the hand mask's median width across the axis within
+    /// palmRadius_m of the palm, at the palm's depth; not measured where the
+    /// hand there reaches the edge of the view (cut, not narrow). 0: off.
+    double palmHalfWidth_m = 0.042;
     /// Palm centre from the wrist (cuff line) along the arm axis, in the
     /// plane of the hand [m].
     double palmFromWrist_m = 0.13;
@@ -267,6 +280,16 @@ class MarkerFreeHandDetector : public HandDetector {
     /// and hand (which perspective turns when the forearm comes at the
     /// camera). false: that axis.
     bool cuffTowardsThickest = true;
+    /// Cuff rule: the palm's length is measured from the sleeve's edge at the
+    /// cuff when the sleeve is nearer the camera there than the wrist's skin
+    /// (the depth of the sleeve's pixels along the cuff line): a sleeve
+    /// standing off the wrist hides the wrist's first centimetres from a
+    /// camera above and behind the hand (the demonstrator's head), and the
+    /// first skin seen lies that much towards the fingers. The hidden length
+    /// is the gap from the sleeve's edge to the first skin along the hand's
+    /// axis (in 3D, on its depth profile); it is taken off palmFromWrist_m.
+    /// false: from the first skin.
+    bool cuffAtSleeveEdge = true;
     /// In a recording whose preview shows no bare forearm, a cuff in view
     /// (step 5) places the palm before the bare-forearm rule is tried: a
     /// skin blob longer than a hand next to a sleeve's cuff is the hand and
@@ -428,6 +451,9 @@ class MarkerFreeHandDetector : public HandDetector {
     Eigen::Vector2d anchor_px = Eigen::Vector2d::Zero();
     Eigen::Vector2d dir = Eigen::Vector2d::UnitX();
     double length_m = 0.0;
+    /// Depth of the anchor when known apart from the hand's own (the sleeve's
+    /// edge at the cuff, cuffAtSleeveEdge) [m]; 0: the hand's depth profile there.
+    double depth_m = 0.0;
   };
   /// The hand's pixels with their depth and pixel scale.
   struct HandBlob {
@@ -482,7 +508,8 @@ class MarkerFreeHandDetector : public HandDetector {
   int farthestSkinComponent(const cv::Mat& region, const cv::Mat& labels, int n, const cv::Mat& stats,
                             int* reachCells = nullptr, int* bodyReachCells = nullptr) const;
   /// Glove and sleeve: the cuff line and the arm axis (nullopt: no cuff).
-  std::optional<Anchor> cuffAnchor(const cv::Mat& hand, const cv::Mat& sleeve, const Eigen::Vector2d& entry);
+  std::optional<Anchor> cuffAnchor(const rawlog::RgbdFrame& frame, const cv::Mat& hand, const cv::Mat& sleeve,
+                                   const Eigen::Vector2d& entry);
   /// No cuff: back from the fingertips along the hand's axis.
   Anchor fingertipAnchor(const cv::Mat& hand, const Eigen::Vector2d& entry, const Eigen::Vector2d& handMean,
                          const Eigen::Vector2d& handDir, bool elongated) const;
@@ -493,6 +520,11 @@ class MarkerFreeHandDetector : public HandDetector {
   /// `radius_px` of `centre_px`; nullopt when too few or not flat.
   std::optional<Eigen::Vector3d> surfaceNormal(const rawlog::RgbdFrame& frame, const cv::Mat& mask,
                                                const Eigen::Vector2d& centre_px, double radius_px) const;
+  /// The palm centre's depth behind the hand's surface along the ray [m]:
+  /// palmDepth_m, more where the mask's width across `dir` near `palm_px` is
+  /// narrower than the palm (palmHalfWidth_m), at `pxPerM` pixels per metre.
+  double silhouetteDepth(const cv::Mat& mask, const Eigen::Vector2d& palm_px, const Eigen::Vector2d& dir,
+                         double pxPerM) const;
   /// Places the palm from the anchor at the palm's depth (step 7).
   HandObservation placePalm(const rawlog::RgbdFrame& frame, const Anchor& a, const HandBlob& hand,
                             const Eigen::Vector2d& handMean, int armArea);

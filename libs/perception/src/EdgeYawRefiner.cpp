@@ -115,15 +115,19 @@ std::optional<OutlineView> outlineView(const core::Pose3& X_camera_object, const
   const core::Pose3 X_camera_plane = plane.X_camera_plane();
   const core::Pose3 X_plane_camera = X_camera_plane.inverse();
   const auto& k = camera.intrinsics();
-  auto onTop = [&](double u, double v) {
+  auto onTop = [&](double u, double v) -> std::optional<Eigen::Vector3d> {
     const Eigen::Vector3d ray((u - k.cx_px) / k.fx_px, (v - k.cy_px) / k.fy_px, 1.0);
-    const double s = (top_m - plane.d) / plane.n.dot(ray);
-    return Eigen::Vector3d(s * ray);
+    const auto s = plane.rayScaleAtHeight(ray, top_m);
+    if (!s) return std::nullopt;
+    return Eigen::Vector3d(*s * ray);
   };
   const Eigen::Vector2d centre_px = camera.cameraToPixel(X_camera_object * Eigen::Vector3d(0, 0, top_m));
-  const Eigen::Vector3d P0 = onTop(centre_px.x(), centre_px.y());
-  view.ex = X_plane_camera.linear() * (onTop(centre_px.x() + 1, centre_px.y()) - P0);
-  view.ey = X_plane_camera.linear() * (onTop(centre_px.x(), centre_px.y() + 1) - P0);
+  const auto P0 = onTop(centre_px.x(), centre_px.y());
+  const auto Px = onTop(centre_px.x() + 1, centre_px.y());
+  const auto Py = onTop(centre_px.x(), centre_px.y() + 1);
+  if (!P0 || !Px || !Py) return std::nullopt;  // the part's top seen edge-on or from below
+  view.ex = X_plane_camera.linear() * (*Px - *P0);
+  view.ey = X_plane_camera.linear() * (*Py - *P0);
   // The image-to-plane map is nearly affine over a part's few dozen pixels:
   // its Jacobian at the part's centre maps every tangent.
 

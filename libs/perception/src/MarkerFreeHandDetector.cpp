@@ -63,6 +63,48 @@ cv::Rect depthFieldOfView(const cv::Mat& depth, double minValid) {
   return {u0, v0, u1 - u0 + 1, v1 - v0 + 1};
 }
 
+/// How arm-like a set of 3D points is (the skin of a bare forearm with its
+/// hand, seen in one frame): its length along the principal direction
+/// (2nd to 98th percentile) and its width across it (the second principal
+/// direction, 5th to 95th percentile, over 0.9) in slices of `slice_m` along
+/// the length that hold at least `minSlicePoints` points.
+struct ArmShape {
+  double length_m = 0.0;
+  std::vector<double> widths_m;  ///< one per slice, along the length
+};
+
+ArmShape armShape(const std::vector<Eigen::Vector3d>& points, double slice_m, std::size_t minSlicePoints) {
+  ArmShape shape;
+  if (points.size() < 3 * minSlicePoints) return shape;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& p : points) mean += p;
+  mean /= static_cast<double>(points.size());
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (const auto& p : points) scatter += (p - mean) * (p - mean).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scatter);
+  const Eigen::Vector3d along = eig.eigenvectors().col(2), across = eig.eigenvectors().col(1);
+  std::vector<double> t;
+  t.reserve(points.size());
+  for (const auto& p : points) t.push_back(along.dot(p - mean));
+  auto quantile = [](std::vector<double> v, double q) {
+    const auto k = std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size())));
+    std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
+    return v[k];
+  };
+  const double t0 = quantile(t, 0.02), t1 = quantile(t, 0.98);
+  shape.length_m = t1 - t0;
+  const int slices = std::max(1, static_cast<int>(std::ceil(shape.length_m / slice_m)));
+  std::vector<std::vector<double>> side(static_cast<std::size_t>(slices));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (t[i] < t0 || t[i] > t1) continue;
+    const int j = std::min(slices - 1, static_cast<int>((t[i] - t0) / slice_m));
+    side[static_cast<std::size_t>(j)].push_back(across.dot(points[i] - mean));
+  }
+  for (const auto& s : side)
+    if (s.size() >= minSlicePoints) shape.widths_m.push_back((quantile(s, 0.95) - quantile(s, 0.05)) / 0.9);
+  return shape;
+}
+
 /// A disc-shaped structuring element of this diameter [px].
 cv::Mat disc(int diameter_px) { return cv::getStructuringElement(cv::MORPH_ELLIPSE, {diameter_px, diameter_px}); }
 
@@ -211,6 +253,13 @@ MarkerFreeHandDetector::MarkerFreeHandDetector(const Options& options) : options
   core::require(options.movingBackgroundMargin >= 0.0 && options.movingBackgroundMargin <= 1.0,
                 "MarkerFreeHandDetector: movingBackgroundMargin must be in [0, 1] (a share of the image's size on "
                 "each side)");
+  core::require(options.stillArmShapeShare >= 0.0 && options.stillArmShapeShare <= 1.0 &&
+                    options.stillArmMinWidth_m >= 0.0 && options.stillArmMaxWidth_m > options.stillArmMinWidth_m &&
+                    options.stillArmWidthShare >= 0.0 && options.stillArmWidthShare <= 1.0 &&
+                    options.stillArmSlice_m > 0.0 && options.stillArmMinElongation >= 0.0,
+                "MarkerFreeHandDetector: stillArmShapeShare and stillArmWidthShare must be in [0, 1], "
+                "0 <= stillArmMinWidth_m < stillArmMaxWidth_m, stillArmSlice_m > 0 m and stillArmMinElongation >= 0 "
+                "(stillArmShapeShare = 0 turns the shape test off)");
   core::require(options.palmFromWrist_m > 0.0 && options.palmFromFingertips_m > 0.0 && options.palmRadius_m > 0.0,
                 "MarkerFreeHandDetector: palmFromWrist_m, palmFromFingertips_m and palmRadius_m must be > 0 m "
                 "(lengths of the demonstrator's hand)");
@@ -262,8 +311,10 @@ void MarkerFreeHandDetector::preview(const rawlog::RgbdFrame& frame) {
 }
 
 void MarkerFreeHandDetector::finishPreview() {
-  const bool turned = previewMotion_ && (previewMotion_->maxTranslation_m() > options_.minCameraMotion_m ||
-                                         previewMotion_->maxRotation_rad() > options_.minCameraTurn_deg * core::kPi / 180.0);
+  // A head-mounted camera turns: a shift alone, on a scene that a large moving arm dominates, is ICP
+  // following the arm (drawn StillBareForearmInEveryFrame: 4 cm, 0.9 deg).
+  const bool turned = previewMotion_ && previewMotion_->maxTranslation_m() > options_.minCameraMotion_m &&
+                      previewMotion_->maxRotation_rad() > options_.minCameraTurn_deg * core::kPi / 180.0;
   // Each sample's background at half size [mm]: one for all (a still camera), or each sample's own view.
   const cv::Mat still_mm = backgroundFromPreview(previewDepth_mm_, false);
   cv::Mat stillHalf;
@@ -336,7 +387,7 @@ void MarkerFreeHandDetector::movingBackgroundFromPreview() {
   canvasIntrinsics_.cx_px = k.cx_px + mx;
   canvasIntrinsics_.cy_px = k.cy_px + my;
   // Each sample in the first frame's camera; the colour is the mean of the warped samples' colours.
-  std::vector<cv::Mat> warped_mm(previewDepth_mm_.size()), warpedColourHalf(previewDepth_mm_.size());
+  std::vector<cv::Mat> warped_mm(previewDepth_mm_.size());
   cv::Mat colourSum(canvasIntrinsics_.height_px, canvasIntrinsics_.width_px, CV_32FC3, cv::Scalar::all(0));
   cv::Mat colourCount(colourSum.size(), CV_32FC1, cv::Scalar(0));
   for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
@@ -346,26 +397,14 @@ void MarkerFreeHandDetector::movingBackgroundFromPreview() {
     warpDepth(depth_m, colour, k, previewSamplePose_[i], canvasIntrinsics_, warped_m, &warpedColour);
     warped_m.convertTo(warped_mm[i], CV_16UC1, 1e3);
     if (!warpedColour.empty()) {
-      cv::resize(warpedColour, warpedColourHalf[i], {}, 0.5, 0.5, cv::INTER_NEAREST);
       const cv::Mat landed = warped_m > 0.f;
       cv::accumulate(warpedColour, colourSum, landed);
       cv::add(colourCount, cv::Scalar(1), colourCount, landed);
     }
   }
-  cv::Mat canvas_mm = backgroundFromPreview(warped_mm, true);
+  const cv::Mat canvas_mm = backgroundFromPreview(warped_mm, true);
   // The view moves: the whole image is in view (a pixel without background is no foreground).
   view_ = cv::Rect(0, 0, k.width_px, k.height_px);
-  if (options_.stillArmFromPlane) {
-    // The still-arm rule on the widened image, with the warped samples' colours, the widened camera
-    // and the first frame's image in it.
-    std::swap(previewColour_, warpedColourHalf);
-    std::swap(previewIntrinsics_, canvasIntrinsics_);
-    view_ = cv::Rect(mx, my, k.width_px, k.height_px);
-    stillArmToPlane(canvas_mm);
-    view_ = cv::Rect(0, 0, k.width_px, k.height_px);
-    std::swap(previewIntrinsics_, canvasIntrinsics_);
-    std::swap(previewColour_, warpedColourHalf);
-  }
   canvas_mm.convertTo(canvasDepth_m_, CV_32FC1, 1e-3);
   cv::Mat count3;
   cv::merge(std::vector<cv::Mat>{colourCount, colourCount, colourCount}, count3);
@@ -449,28 +488,20 @@ cv::Mat MarkerFreeHandDetector::backgroundFromPreview(const std::vector<cv::Mat>
 
 void MarkerFreeHandDetector::stillArmToPlane(cv::Mat& background_mm) const {
   // Skin (the prior box) in how many of the colour samples, per pixel (half size).
-  // A moving camera's samples, warped into the first camera, see each pixel in some of them only
-  // (where a colour landed): the share is of those.
-  cv::Mat skinCount, seenCount;
+  cv::Mat skinCount;
   int withColour = 0;
-  for (const auto& c : previewColour_) {
+  std::vector<std::pair<std::size_t, cv::Mat>> sampleSkin;  // (sample, its skin mask at half size)
+  for (std::size_t i = 0; i < previewColour_.size(); ++i) {
+    const cv::Mat& c = previewColour_[i];
     if (c.empty()) continue;
-    if (skinCount.empty()) {
-      skinCount = cv::Mat(c.size(), CV_32FC1, cv::Scalar(0));
-      seenCount = skinCount.clone();
-    }
+    if (skinCount.empty()) skinCount = cv::Mat(c.size(), CV_16UC1, cv::Scalar(0));
     if (c.size() != skinCount.size()) continue;
-    cv::add(skinCount, cv::Scalar(1), skinCount, skinMask(c, false));
-    if (cameraMoves_) {
-      cv::Mat landed;
-      cv::transform(c, landed, cv::Matx13f(1.f, 1.f, 1.f));
-      cv::add(seenCount, cv::Scalar(1), seenCount, landed > 0.f);
-    }
+    sampleSkin.emplace_back(i, skinMask(c, false));
+    cv::add(skinCount, cv::Scalar(1), skinCount, sampleSkin.back().second);
     ++withColour;
   }
   if (withColour == 0) return;
-  if (!cameraMoves_) seenCount.setTo(static_cast<float>(withColour));
-  cv::Mat skinMostly = (skinCount >= options_.stillArmSkinFraction * seenCount) & (seenCount > 0.f);
+  cv::Mat skinMostly = skinCount >= options_.stillArmSkinFraction * withColour;
   cv::resize(skinMostly, skinMostly, background_mm.size(), 0, 0, cv::INTER_NEAREST);
   cv::Mat background_m;
   background_mm.convertTo(background_m, CV_32FC1, 1e-3);
@@ -487,11 +518,11 @@ void MarkerFreeHandDetector::stillArmToPlane(cv::Mat& background_mm) const {
       const float z_mm = background_mm.at<float>(v, u);
       if (z_mm <= 0.f || !skinMostly.at<uchar>(v, u)) continue;
       const Eigen::Vector3d ray((u - k.cx_px) / k.fx_px, (v - k.cy_px) / k.fy_px, 1.0);
-      const double along = plane->n.dot(ray);
-      if (along >= 0.0) continue;  // the ray never meets the plane
-      const double height_m = 1e-3 * z_mm * along + plane->d;
+      const auto planeDepth_m = plane->rayScaleAtHeight(ray);
+      if (!planeDepth_m) continue;  // the ray never meets the plane
+      const double height_m = plane->height(1e-3 * z_mm * ray);
       if (height_m < options_.minForeground_m || height_m > options_.stillArmMaxHeight_m) continue;
-      planeDepth_mm.at<float>(v, u) = static_cast<float>(-1e3 * plane->d / along);
+      planeDepth_mm.at<float>(v, u) = static_cast<float>(1e3 * *planeDepth_m);
       candidate.at<uchar>(v, u) = 255;
     }
   // Only the regions that reach the border of the view (an arm enters there),
@@ -500,8 +531,9 @@ void MarkerFreeHandDetector::stillArmToPlane(cv::Mat& background_mm) const {
   if (cv::countNonZero(candidate) == 0) return;
   const double z_m = 1e-3 * cv::mean(background_mm, candidate)[0];
   const int bridge_px = static_cast<int>(std::lround(options_.stillArmBridge_m * k.fx_px / z_m));
-  cv::Mat bridged = candidate;
+  cv::Mat bridged;  // a new buffer: dilating into a shallow copy would grow `candidate` itself
   if (bridge_px > 1) cv::dilate(candidate, bridged, disc(bridge_px));
+  else bridged = candidate;
   cv::Mat labels, stats, centroids;
   const int n = cv::connectedComponentsWithStats(bridged, labels, stats, centroids, 8, CV_32S);
   const int m = options_.borderMargin_px;
@@ -512,6 +544,9 @@ void MarkerFreeHandDetector::stillArmToPlane(cv::Mat& background_mm) const {
     keep[static_cast<std::size_t>(l)] = x <= view_.x + m || y <= view_.y + m || x + w >= view_.x + view_.width - m ||
                                         y + h >= view_.y + view_.height - m;
   }
+  // ... and only those shaped like an arm.
+  if (options_.stillArmShapeShare > 0.0 && std::find(keep.begin() + 1, keep.end(), 1) != keep.end())
+    keepArmShaped(*plane, sampleSkin, labels, stats, candidate, keep);
   int replaced = 0;
   for (int v = 0; v < background_mm.rows; ++v)
     for (int u = 0; u < background_mm.cols; ++u)
@@ -522,6 +557,101 @@ void MarkerFreeHandDetector::stillArmToPlane(cv::Mat& background_mm) const {
   if (core::Log::enabled("hand", core::Log::Level::Debug))
     core::Log::writef("hand", core::Log::Level::Debug, "still arm: %d background pixels from the support plane\n",
                       replaced);
+}
+
+void MarkerFreeHandDetector::keepArmShaped(const Plane& plane,
+                                           const std::vector<std::pair<std::size_t, cv::Mat>>& sampleSkin,
+                                           const cv::Mat& labels, const cv::Mat& stats, const cv::Mat& candidate,
+                                           std::vector<uchar>& keep) const {
+  // An arm: in most samples, the skin standing in the height band that
+  // overlaps the region (the whole arm as that sample shows it, not only where
+  // it stayed) is elongated and as wide as a forearm over most of its length
+  // (in metres, from its own depth). The demonstrator's trousers, a box or a
+  // cloth of skin-like colour are wider or not elongated.
+  const core::CameraIntrinsics& k = previewIntrinsics_;
+  const cv::Size half = sampleSkin.front().second.size();
+  const double sx = static_cast<double>(half.width) / labels.cols;
+  const double sy = static_cast<double>(half.height) / labels.rows;
+  // Each half-size pixel's ray and its full-size source pixel.
+  std::vector<Eigen::Vector3d> rays(static_cast<std::size_t>(half.area()));
+  for (int v = 0; v < half.height; ++v)
+    for (int u = 0; u < half.width; ++u)
+      rays[static_cast<std::size_t>(v * half.width + u)] =
+          Eigen::Vector3d(((u + 0.5) / sx - 0.5 - k.cx_px) / k.fx_px, ((v + 0.5) / sy - 0.5 - k.cy_px) / k.fy_px, 1.0);
+  auto source = [&](int u, int v) {
+    return cv::Point(std::min(labels.cols - 1, static_cast<int>(u / sx)),
+                     std::min(labels.rows - 1, static_cast<int>(v / sy)));
+  };
+  const int n = static_cast<int>(keep.size());
+  const int withColour = static_cast<int>(sampleSkin.size());
+  std::vector<int> armLike(static_cast<std::size_t>(n), 0);
+  std::vector<std::vector<double>> lengths(static_cast<std::size_t>(n)), widths(static_cast<std::size_t>(n));
+  const cv::Mat open = disc(options_.previewOpenDiameter_px);
+  for (const auto& [i, skin] : sampleSkin) {
+    const cv::Mat& depth_mm = previewDepth_mm_[i];
+    cv::Mat raised(half, CV_8UC1, cv::Scalar(0));
+    std::vector<Eigen::Vector3d> p(rays.size(), Eigen::Vector3d::Zero());
+    for (int v = 0; v < half.height; ++v)
+      for (int u = 0; u < half.width; ++u) {
+        if (!skin.at<uchar>(v, u)) continue;
+        const std::uint16_t z_mm = depth_mm.at<std::uint16_t>(source(u, v));
+        if (z_mm == 0) continue;
+        const std::size_t j = static_cast<std::size_t>(v * half.width + u);
+        p[j] = 1e-3 * z_mm * rays[j];
+        const double height_m = plane.height(p[j]);
+        if (height_m >= options_.minForeground_m && height_m <= options_.stillArmMaxHeight_m) raised.at<uchar>(v, u) = 255;
+      }
+    cv::morphologyEx(raised, raised, cv::MORPH_OPEN, open);
+    cv::Mat parts;
+    const int np = cv::connectedComponents(raised, parts, 8, CV_32S);
+    std::vector<int> regionOf(static_cast<std::size_t>(np), 0);  // the kept region a part overlaps
+    for (int v = 0; v < half.height; ++v)
+      for (int u = 0; u < half.width; ++u) {
+        const int q = parts.at<int>(v, u);
+        const cv::Point src = source(u, v);
+        const int l = labels.at<int>(src);
+        if (q > 0 && l > 0 && keep[static_cast<std::size_t>(l)] && candidate.at<uchar>(src)) regionOf[static_cast<std::size_t>(q)] = l;
+      }
+    std::vector<std::vector<Eigen::Vector3d>> points(static_cast<std::size_t>(n));
+    for (int v = 0; v < half.height; ++v)
+      for (int u = 0; u < half.width; ++u)
+        if (const int l = regionOf[static_cast<std::size_t>(parts.at<int>(v, u))]; l > 0)
+          points[static_cast<std::size_t>(l)].push_back(p[static_cast<std::size_t>(v * half.width + u)]);
+    for (int l = 1; l < n; ++l) {
+      if (!keep[static_cast<std::size_t>(l)]) continue;
+      const ArmShape shape = armShape(points[static_cast<std::size_t>(l)], options_.stillArmSlice_m, 5);
+      if (shape.widths_m.empty()) continue;
+      std::vector<double> w = shape.widths_m;
+      const auto within = std::count_if(w.begin(), w.end(), [&](double x) {
+        return x >= options_.stillArmMinWidth_m && x <= options_.stillArmMaxWidth_m;
+      });
+      std::nth_element(w.begin(), w.begin() + static_cast<long>(w.size() / 2), w.end());
+      const double medianWidth_m = w[w.size() / 2];
+      lengths[static_cast<std::size_t>(l)].push_back(shape.length_m);
+      widths[static_cast<std::size_t>(l)].push_back(medianWidth_m);
+      if (static_cast<double>(within) >= options_.stillArmWidthShare * static_cast<double>(w.size()) &&
+          shape.length_m >= options_.stillArmMinElongation * medianWidth_m)
+        ++armLike[static_cast<std::size_t>(l)];
+    }
+  }
+  for (int l = 1; l < n; ++l) {
+    if (!keep[static_cast<std::size_t>(l)]) continue;
+    const bool arm = armLike[static_cast<std::size_t>(l)] >= options_.stillArmShapeShare * withColour;
+    if (core::Log::enabled("hand", core::Log::Level::Debug)) {
+      auto median = [](std::vector<double> v) {
+        if (v.empty()) return 0.0;
+        std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+        return v[v.size() / 2];
+      };
+      core::Log::writef("hand", core::Log::Level::Debug,
+                        "still arm: region of %d px at the border: arm-shaped in %d of %d samples (median length "
+                        "%.3f m, width %.3f m): %s\n",
+                        stats.at<int>(l, cv::CC_STAT_AREA), armLike[static_cast<std::size_t>(l)], withColour,
+                        median(lengths[static_cast<std::size_t>(l)]), median(widths[static_cast<std::size_t>(l)]),
+                        arm ? "an arm" : "not an arm");
+    }
+    keep[static_cast<std::size_t>(l)] = arm;
+  }
 }
 
 void MarkerFreeHandDetector::decideBareForearms(const std::vector<cv::Mat>& bgHalf) {

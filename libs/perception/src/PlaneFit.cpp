@@ -21,6 +21,15 @@ core::Pose3 Plane::X_camera_plane() const {
   return X;
 }
 
+std::optional<double> Plane::rayScaleAtHeight(const Eigen::Vector3d& ray, double height_m) const {
+  // n . (s ray) + d = height_m.
+  const double along = n.dot(ray);
+  if (std::abs(along) < 1e-12) return std::nullopt;
+  const double s = (height_m - d) / along;
+  if (!(s > 0.0)) return std::nullopt;
+  return s;
+}
+
 namespace {
 
 /// The least-squares plane through the points within tol_m of `plane`: their mean and the normal of

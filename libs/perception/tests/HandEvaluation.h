@@ -14,6 +14,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -51,6 +52,7 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                    {"minIslandSkinFraction", &o.minIslandSkinFraction},
                                    {"minFieldOfViewValid", &o.minFieldOfViewValid},
                                    {"movingBackgroundMargin", &o.movingBackgroundMargin},
+                                   {"stillArmShapeShare", &o.stillArmShapeShare},
                                    {"palmHalfWidth_m", &o.palmHalfWidth_m},
                                    {"palmDepth_m", &o.palmDepth_m}};
   std::map<std::string, int*> i{{"holeColourChange", &o.holeColourChange},
@@ -195,9 +197,21 @@ inline HandEvaluation evaluateMarkerFreeHand(
     bool previewFirst = false) {
   const auto gt = synth::DemoGroundTruth::load(synth::groundTruthPathFor(rawlogPath));
   MarkerFreeHandDetector detector(options);
+  // SRP_VIEW_PHASES=grasp,move: only the frames of these phases are previewed
+  // and scored (a recording in which the hand is in view, nearly still or
+  // holding a part, in every frame).
+  std::set<std::string> phases;
+  if (const char* env = std::getenv("SRP_VIEW_PHASES")) {
+    std::stringstream names(env);
+    for (std::string name; std::getline(names, name, ',');) phases.insert(name);
+  }
+  auto inPhases = [&](std::size_t i) {
+    return phases.empty() || (i < gt.frames.size() && phases.count(gt.frames[i].phase) > 0);
+  };
   if (previewFirst) {
     rawlog::RawlogReader all(rawlogPath);
-    while (auto f = all.next()) detector.preview(*f);
+    std::size_t j = 0;
+    while (auto f = all.next()) if (inPhases(j++)) detector.preview(*f);
   }
   rawlog::RawlogReader reader(rawlogPath);
   HandEvaluation ev;
@@ -205,6 +219,7 @@ inline HandEvaluation evaluateMarkerFreeHand(
   while (auto f = reader.next()) {
     const auto i = static_cast<std::size_t>(reader.framesRead() - 1);
     if (i >= gt.frames.size()) break;
+    if (!inPhases(i)) continue;
     ++ev.frames;
     const auto& truth = gt.frames[i];
     timespec t0{}, t1{};

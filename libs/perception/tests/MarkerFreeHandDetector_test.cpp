@@ -249,8 +249,9 @@ TEST(MarkerFreeHandDetector, ArmInFrontOfAWallWithoutDepth) {
 // camera looks down at it), over a table of a skin-like colour, beside a
 // static box on the table: the whole-recording background's quantile is the
 // arm itself wherever the arm always is. A skin-coloured region standing
-// above the support plane that reaches the border is the arm, not the
-// background; the box, not skin-coloured, stays background.
+// above the support plane that reaches the border and is shaped like a
+// forearm is the arm, not the background (with the defaults); the box, not
+// skin-coloured, stays background.
 TEST(MarkerFreeHandDetector, StillBareForearmInEveryFrame) {
   constexpr int kFrames = 30;
   auto withArm = [](int index, const std::optional<ArmPose>& arm) {
@@ -281,8 +282,8 @@ TEST(MarkerFreeHandDetector, StillBareForearmInEveryFrame) {
         reference.push_back(h->palm_px);
       }
     }
-    MarkerFreeHandDetector::Options on;
-    on.stillArmFromPlane = true;
+    const MarkerFreeHandDetector::Options on;  // the defaults
+    ASSERT_TRUE(on.stillArmFromPlane);
     auto run = [&](const MarkerFreeHandDetector::Options& o) {
       MarkerFreeHandDetector detector(o);
       for (const auto& f : frames) detector.preview(f);
@@ -305,9 +306,7 @@ TEST(MarkerFreeHandDetector, StillBareForearmInEveryFrame) {
   }
   // The still arm's palm where the far-end rule puts it on the drawn hand.
   const ArmPose arm{{300.0, 280.0}, 80.0 * M_PI / 180, 0.08};
-  MarkerFreeHandDetector::Options on;
-  on.stillArmFromPlane = true;
-  MarkerFreeHandDetector detector(on);
+  MarkerFreeHandDetector detector({});
   for (int i = 0; i < kFrames; ++i) detector.preview(withArm(i, arm));
   const auto h = detector.detect(withArm(0, arm));
   ASSERT_TRUE(h.has_value());
@@ -315,6 +314,60 @@ TEST(MarkerFreeHandDetector, StillBareForearmInEveryFrame) {
       arm.palm_px + camera().fx_px / kHandTop_m * (0.045 + arm.fingerLength_m - detector.options().palmFromFarEnd_m) *
                         Eigen::Vector2d(std::cos(arm.angle_rad), std::sin(arm.angle_rad));
   EXPECT_LT((h->palm_px - farEndPalm_px).norm(), kPalmPixelTol_px);
+}
+
+// A still box of the arm's own skin colour, 20 x 25 cm and 8 cm high, on
+// the table in every frame, reaching the image's left border (a tan box, a
+// bread bin), while a bare forearm moves beside it: a still region of skin
+// colour above the table that reaches the border, but not shaped like an arm
+// (wider than a forearm, not elongated). It stays background; without the
+// shape test it is taken for a still arm, foreground in every frame, and the
+// palm lands on it.
+TEST(MarkerFreeHandDetector, StillSkinColouredBoxAtTheBorderIsNoArm) {
+  constexpr int kFrames = 30;
+  constexpr double kBoxTop_m = kTable_m - 0.08;
+  const cv::Rect box(0, 150, 156, 195);  // 0.20 x 0.25 m at its top's depth, from the left border
+  auto withArm = [&](int index, const std::optional<ArmPose>& arm) {
+    auto f = drawnFrame(index, arm);
+    f.colour_bgr8.setTo(kSkinBgr, f.depth_m < kTable_m - 0.02);  // bare forearm
+    cv::rectangle(f.colour_bgr8, box, kSkinBgr, cv::FILLED);
+    cv::rectangle(f.depth_m, box, cv::Scalar(kBoxTop_m), cv::FILLED);
+    return f;
+  };
+  // The arm enters from the top border and sweeps 200 px beside the box.
+  auto armAt = [](int i) { return ArmPose{{340.0 + 200.0 * i / (kFrames - 1), 280.0}, 80.0 * M_PI / 180, 0.08}; };
+  // The reference: the palm found against the hand-free scene (first-frames background).
+  std::vector<Eigen::Vector2d> reference;
+  {
+    MarkerFreeHandDetector detector({});
+    for (int i = 0; i < kBackgroundFrames; ++i) detector.detect(withArm(i, std::nullopt));
+    for (int i = 0; i < kFrames; ++i) {
+      const auto h = detector.detect(withArm(kBackgroundFrames + i, armAt(i)));
+      ASSERT_TRUE(h.has_value());
+      reference.push_back(h->palm_px);
+    }
+  }
+  auto run = [&](const MarkerFreeHandDetector::Options& o) {
+    MarkerFreeHandDetector detector(o);
+    for (int i = 0; i < kFrames; ++i) detector.preview(withArm(i, armAt(i)));
+    int within = 0;
+    for (int i = 0; i < kFrames; ++i) {
+      const auto h = detector.detect(withArm(i, armAt(i)));
+      if (h && (h->palm_px - reference[static_cast<std::size_t>(i)]).norm() < kPalmPixelTol_px) ++within;
+    }
+    return within;
+  };
+  constexpr double kMinShareWithin = 0.9;
+  const MarkerFreeHandDetector::Options defaults;
+  ASSERT_TRUE(defaults.stillArmFromPlane);
+  const int within = run(defaults);
+  EXPECT_GE(within, kMinShareWithin * kFrames) << within << " of " << kFrames << " palms within tolerance";
+  MarkerFreeHandDetector::Options anyRegion;
+  anyRegion.stillArmShapeShare = 0.0;  // any skin-coloured region at the border is a still arm
+  const int withinAnyRegion = run(anyRegion);
+  std::printf("still skin-coloured box at the border: %d of %d palms within %.0f px (%d without the shape test)\n",
+              within, kFrames, kPalmPixelTol_px, withinAnyRegion);
+  EXPECT_LT(withinAnyRegion, kMinShareWithin * kFrames) << "the scene should fail without the shape test";
 }
 
 // A sleeved arm holding a part of a skin-like colour (a tan toy, a red part's

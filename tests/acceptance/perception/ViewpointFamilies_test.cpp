@@ -21,6 +21,9 @@
 // pixel options scale, as a 1920-px recording needs);
 // SRP_HAND_DEBUG_DIR=<dir> draws every hand frame with the found geometry;
 // SRP_HAND_OPTIONS=name=value,... overrides detector options (HandEvaluation.h);
+// SRP_VIEW_PHASES=grasp,move,... previews and scores only the frames of these phases (idle, reach, grasp, move,
+// release, retract): e.g. grasp alone is a recording with the hand in view and nearly still in every frame (the
+// guarded figures then fail: they are for the whole demonstrations);
 // SRP_HAND_CSV=<file> writes one row per hand-in-view frame (the palm's error in the camera frame, the
 // true hand's axis and normal, the rule that placed the palm) for decompositions of the error.
 #include <gtest/gtest.h>

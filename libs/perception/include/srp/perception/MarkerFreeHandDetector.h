@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <memory>
 #include <opencv2/core.hpp>
+#include <utility>
 #include <vector>
 
 #include "srp/core/Pose.h"
@@ -16,6 +17,7 @@
 namespace srp::perception {
 
 class CameraMotionEstimator;
+struct Plane;
 
 /// Marker-free hand detector (no tag is decoded or used as a feature: it works
 /// on a plain glove, a bare hand in a sleeve, or a bare forearm).
@@ -135,13 +137,14 @@ class MarkerFreeHandDetector : public HandDetector {
     /// still is its own quantile there. Where the background stands above the
     /// support plane (RANSAC over the background's cloud) by between
     /// minForeground_m and stillArmMaxHeight_m, is of skin colour (the prior
-    /// box) in at least stillArmSkinFraction of the samples, and that region
-    /// reaches the border of the view (where an arm enters), the background
-    /// is the plane instead. A part on the table of skin colour reaches no
-    /// border and stays background; a face far above the table is higher.
-    /// Off by default: on HRT1 task2 in warmer light it takes a still region
-    /// of skin-like colour for an arm (see the perception README).
-    bool stillArmFromPlane = false;
+    /// box) in at least stillArmSkinFraction of the samples, that region
+    /// reaches the border of the view (where an arm enters), and it is shaped
+    /// like an arm (stillArmShapeShare), the background is the plane instead.
+    /// A part on the table of skin colour reaches no border and stays
+    /// background; a face far above the table is higher; the demonstrator's
+    /// trousers or a box of skin-like colour at the border are not shaped
+    /// like a forearm.
+    bool stillArmFromPlane = true;
     /// That height limit above the support plane [m] (a forearm resting on or
     /// held over the table, not the demonstrator's face).
     double stillArmMaxHeight_m = 0.35;
@@ -152,9 +155,26 @@ class MarkerFreeHandDetector : public HandDetector {
     /// sample only where it is wide, the hand and the forearm, not at the
     /// wrist between them) [m].
     double stillArmBridge_m = 0.08;
+    /// ... and such a region is an arm only when, in at least
+    /// stillArmShapeShare of the samples, the skin standing in that height
+    /// band that overlaps it (the arm as the sample shows it) is shaped like a
+    /// forearm with its hand: as wide as stillArmMinWidth_m to
+    /// stillArmMaxWidth_m (from its depth) in at least stillArmWidthShare of
+    /// its slices of stillArmSlice_m along its length, and at least
+    /// stillArmMinElongation times longer than its median width. 0: any
+    /// region at the border.
+    double stillArmShapeShare = 0.5;
+    /// A forearm's width, wrist to elbow (and a hand's, without the thumb) [m].
+    double stillArmMinWidth_m = 0.05, stillArmMaxWidth_m = 0.14;
+    /// That share of the slices [0..1].
+    double stillArmWidthShare = 0.6;
+    /// Slices across the arm's length [m].
+    double stillArmSlice_m = 0.02;
+    /// Length over median width [ratio].
+    double stillArmMinElongation = 2.0;
     /// Whole-recording background under a moving camera (see the class
     /// comment): the preview estimates each frame's camera pose and, when the
-    /// camera moved farther than minCameraMotion_m or turned more than
+    /// camera moved farther than minCameraMotion_m and turned more than
     /// minCameraTurn_deg from the first frame, the background follows the
     /// camera. false: the per-pixel background of a still camera in every
     /// recording.
@@ -480,6 +500,13 @@ class MarkerFreeHandDetector : public HandDetector {
   /// stillArmFromPlane: the support plane's depth where the background
   /// `background_mm` [mm, CV_32FC1] is a still arm (in place).
   void stillArmToPlane(cv::Mat& background_mm) const;
+  /// stillArmShapeShare: clears `keep` (per label of `labels`, the bridged
+  /// regions, with their `stats`) for the regions that are not shaped like an
+  /// arm in enough of the samples (`sampleSkin`: sample index and its prior-box
+  /// skin mask at half size); `candidate`: the still skin pixels, `plane` the support.
+  void keepArmShaped(const Plane& plane, const std::vector<std::pair<std::size_t, cv::Mat>>& sampleSkin,
+                     const cv::Mat& labels, const cv::Mat& stats, const cv::Mat& candidate,
+                     std::vector<uchar>& keep) const;
   /// Does the preview show a bare forearm (sets bareForearms_)? `backgroundHalf_mm`:
   /// each sample's background at half size [mm].
   void decideBareForearms(const std::vector<cv::Mat>& backgroundHalf_mm);

@@ -17,6 +17,12 @@ struct Plane {
   double d = 0.0;
   int inliers = 0;
   double height(const Eigen::Vector3d& p) const { return n.dot(p) + d; }
+  /// Where the camera ray through `ray` (a direction from the camera centre,
+  /// e.g. a pixel's normalised coordinates (x, y, 1)) meets the plane raised
+  /// by `height_m` along n: the scale s such that height(s * ray) ==
+  /// height_m (with ray.z() == 1, s is that point's depth [m]). nullopt when
+  /// the ray runs parallel to the plane or meets it behind the camera (s <= 0).
+  std::optional<double> rayScaleAtHeight(const Eigen::Vector3d& ray, double height_m = 0.0) const;
   /// A frame on the plane: origin = the foot of the camera's optical axis
   /// projected on the plane, z = n, x = the camera x axis projected on the plane.
   core::Pose3 X_camera_plane() const;

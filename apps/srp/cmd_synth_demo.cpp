@@ -32,6 +32,7 @@ struct SynthDemoArgs {
   int width = 0, height = 0, maxFrames = -1, colourNoiseBlock = -1, depthNoiseBlock = -1;
   double speed = 1.0;
   bool clean = false, noRandomise = false, motionBlur = false, json = false, overwrite = false;
+  bool headSway = false, carryOnly = false;
 };
 
 namespace fs = std::filesystem;
@@ -103,6 +104,8 @@ void run(const SynthDemoArgs& a) {
   options.width_px = a.width;
   options.height_px = a.height;
   options.maxFrames = a.maxFrames;
+  options.headSway.enabled = a.headSway;
+  options.carryOnly = a.carryOnly;
   std::optional<srp::core::AtomicOutputFile> contactSheet;
   if (!a.contactSheet.empty()) {
     contactSheet.emplace(a.contactSheet);
@@ -191,6 +194,13 @@ void setupSynthDemo(CLI::App& cmd) {
                  "camera placement instead of the scene's: FAMILY or FAMILY:VARIANT, FAMILY one of egocentric (at "
                  "the demonstrator's head), side, top-down, front (across the table), oblique (a far corner); "
                  "variants turn the camera by -20/0/+20 deg and move it -10/0/+10 %");
+  cmd.add_flag("--head-sway", args->headSway,
+               "a head-mounted camera: the camera sways smoothly about its pose (up to 3 deg of nod and turn, 1.5 "
+               "deg of roll, 2 cm along each axis, at 0.1-0.8 Hz, as a working person's head; drawn from --seed); "
+               "each frame's camera pose is in the ground truth");
+  cmd.add_flag("--carry-only", args->carryOnly,
+               "keep only the frames with a part in the hand, renumbered from 0: the clip starts with the hand "
+               "holding the part (one continuous carry with a one-step plan)");
   cmd.add_option("--contact-sheet", args->contactSheet, "write a PNG of a few frames (colour and depth)");
   cmd.add_option("--depth-camera", args->depthCamera,
                  "JSON of a depth camera of its own ({\"intrinsics\": {fx, fy, cx, cy, width, height}, "

@@ -7,13 +7,16 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <string>
 #include <tuple>
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "srp/core/Angles.h"
 #include "srp/core/Error.h"
 #include "srp/perception/CameraModel.h"
+#include "srp/perception/CameraMotionEstimator.h"
 #include "srp/perception/DepthCloud.h"
 #include "srp/perception/PlaneFit.h"
 
@@ -104,6 +107,52 @@ ArmShape armShape(const std::vector<Eigen::Vector3d>& points, double slice_m, st
 
 /// A disc-shaped structuring element of this diameter [px].
 cv::Mat disc(int diameter_px) { return cv::getStructuringElement(cv::MORPH_ELLIPSE, {diameter_px, diameter_px}); }
+
+/// Forward-warps the depth `src_m` [m, CV_32FC1] of a camera with intrinsics `Ks` (and its colour,
+/// CV_8UC3 of the same size, or empty) into a camera with intrinsics `Kd` at X_dst_src: per
+/// destination pixel the nearest point landing there; pixels where none landed (0) take the nearest
+/// of their 3x3 neighbours (the gaps a forward warp leaves), their colour the brightest.
+void warpDepth(const cv::Mat& src_m, const cv::Mat& srcColour, const core::CameraIntrinsics& Ks,
+               const core::Pose3& X_dst_src, const core::CameraIntrinsics& Kd, cv::Mat& dst_m, cv::Mat* dstColour) {
+  dst_m = cv::Mat(Kd.height_px, Kd.width_px, CV_32FC1, cv::Scalar(0));
+  const bool colour = dstColour && !srcColour.empty();
+  if (colour) *dstColour = cv::Mat(dst_m.size(), CV_8UC3, cv::Scalar::all(0));
+  const Eigen::Matrix3f R = X_dst_src.linear().cast<float>();
+  const Eigen::Vector3f t = X_dst_src.translation().cast<float>();
+  std::vector<float> xr(static_cast<std::size_t>(src_m.cols));
+  for (int u = 0; u < src_m.cols; ++u) xr[static_cast<std::size_t>(u)] = static_cast<float>((u - Ks.cx_px) / Ks.fx_px);
+  const float fx = static_cast<float>(Kd.fx_px), fy = static_cast<float>(Kd.fy_px);
+  const float cx = static_cast<float>(Kd.cx_px), cy = static_cast<float>(Kd.cy_px);
+  for (int v = 0; v < src_m.rows; ++v) {
+    const float yr = static_cast<float>((v - Ks.cy_px) / Ks.fy_px);
+    const float* z = src_m.ptr<float>(v);
+    // Per row: the image of the point (xr z, yr z, z) is (a z + t) with a = R (xr, yr, 1).
+    const Eigen::Vector3f b = R * Eigen::Vector3f(0.f, yr, 1.f);
+    for (int u = 0; u < src_m.cols; ++u) {
+      if (z[u] <= 0.f) continue;
+      const Eigen::Vector3f q = (b + R.col(0) * xr[static_cast<std::size_t>(u)]) * z[u] + t;
+      if (q.z() <= 0.f) continue;
+      const int ud = static_cast<int>(std::lround(fx * q.x() / q.z() + cx));
+      const int vd = static_cast<int>(std::lround(fy * q.y() / q.z() + cy));
+      if (ud < 0 || vd < 0 || ud >= dst_m.cols || vd >= dst_m.rows) continue;
+      float& d = dst_m.ptr<float>(vd)[ud];
+      if (d > 0.f && d <= q.z()) continue;
+      d = q.z();
+      if (colour) dstColour->ptr<cv::Vec3b>(vd)[ud] = srcColour.ptr<cv::Vec3b>(v)[u];
+    }
+  }
+  const cv::Mat gaps = dst_m <= 0.f;
+  cv::Mat far = dst_m.clone(), nearest;
+  far.setTo(std::numeric_limits<float>::max(), gaps);
+  cv::erode(far, nearest, cv::Mat());
+  nearest.setTo(0.f, nearest == std::numeric_limits<float>::max());
+  nearest.copyTo(dst_m, gaps);
+  if (colour) {
+    cv::Mat brightest;
+    cv::dilate(*dstColour, brightest, cv::Mat());
+    brightest.copyTo(*dstColour, gaps);
+  }
+}
 
 /// Principal direction of a blob, oriented from `entry` inwards; its pixel
 /// mean; and whether it is elongated (else the direction means little).
@@ -198,6 +247,12 @@ MarkerFreeHandDetector::MarkerFreeHandDetector(const Options& options) : options
                     options.stillArmSkinFraction <= 1.0 && options.stillArmBridge_m >= 0.0,
                 "MarkerFreeHandDetector: stillArmMaxHeight_m must be > 0 m, stillArmSkinFraction in [0, 1] and "
                 "stillArmBridge_m >= 0 m (stillArmFromPlane = false turns the rule off)");
+  core::require(options.minCameraMotion_m >= 0.0 && options.minCameraTurn_deg >= 0.0,
+                "MarkerFreeHandDetector: minCameraMotion_m and minCameraTurn_deg must be >= 0 (followCameraMotion = "
+                "false keeps a still camera's background)");
+  core::require(options.movingBackgroundMargin >= 0.0 && options.movingBackgroundMargin <= 1.0,
+                "MarkerFreeHandDetector: movingBackgroundMargin must be in [0, 1] (a share of the image's size on "
+                "each side)");
   core::require(options.stillArmShapeShare >= 0.0 && options.stillArmShapeShare <= 1.0 &&
                     options.stillArmMinWidth_m >= 0.0 && options.stillArmMaxWidth_m > options.stillArmMinWidth_m &&
                     options.stillArmWidthShare >= 0.0 && options.stillArmWidthShare <= 1.0 &&
@@ -221,6 +276,12 @@ void MarkerFreeHandDetector::preview(const rawlog::RgbdFrame& frame) {
       (!frame.colour_bgr8.empty() && frame.colour_bgr8.size() != frame.depth_m.size()))
     return;
   previewIntrinsics_ = frame.intrinsics;
+  core::Pose3 X_camera0_camera = core::Pose3::Identity();
+  if (options_.followCameraMotion) {
+    if (!previewMotion_) previewMotion_ = std::make_shared<CameraMotionEstimator>(frame.intrinsics);
+    X_camera0_camera = previewMotion_->add(frame);
+    previewFrameIndex_.push_back(frame.index);
+  }
   if (previewFrames_ % previewStride_ == 0) {
     cv::Mat mm;
     frame.depth_m.convertTo(mm, CV_16UC1, 1000.0);
@@ -228,14 +289,17 @@ void MarkerFreeHandDetector::preview(const rawlog::RgbdFrame& frame) {
     cv::Mat half;
     if (!frame.colour_bgr8.empty()) cv::resize(frame.colour_bgr8, half, {}, 0.5, 0.5, cv::INTER_AREA);
     previewColour_.push_back(half);
+    previewSamplePose_.push_back(X_camera0_camera);
     if (static_cast<int>(previewDepth_mm_.size()) > options_.maxBackgroundSamples) {
       // Keep every other sample: the samples stay evenly spread, at twice the stride.
       for (std::size_t i = 0; 2 * i < previewDepth_mm_.size(); ++i) {
         previewDepth_mm_[i] = previewDepth_mm_[2 * i];
         previewColour_[i] = previewColour_[2 * i];
+        previewSamplePose_[i] = previewSamplePose_[2 * i];
       }
       previewDepth_mm_.resize((previewDepth_mm_.size() + 1) / 2);
       previewColour_.resize(previewDepth_mm_.size());
+      previewSamplePose_.resize(previewDepth_mm_.size());
       previewStride_ *= 2;
     }
   }
@@ -247,18 +311,59 @@ void MarkerFreeHandDetector::preview(const rawlog::RgbdFrame& frame) {
 }
 
 void MarkerFreeHandDetector::finishPreview() {
-  const cv::Mat background_mm = backgroundFromPreview();
+  // A head-mounted camera turns: a shift alone, on a scene that a large moving arm dominates, is ICP
+  // following the arm (drawn StillBareForearmInEveryFrame: 4 cm, 0.9 deg).
+  const bool turned = previewMotion_ && previewMotion_->maxTranslation_m() > options_.minCameraMotion_m &&
+                      previewMotion_->maxRotation_rad() > options_.minCameraTurn_deg * core::kPi / 180.0;
+  // Each sample's background at half size [mm]: one for all (a still camera), or each sample's own view.
+  const cv::Mat still_mm = backgroundFromPreview(previewDepth_mm_, false);
+  cv::Mat stillHalf;
+  cv::resize(still_mm, stillHalf, {}, 0.5, 0.5, cv::INTER_NEAREST);
+  std::vector<cv::Mat> bgHalf(previewDepth_mm_.size(), stillHalf);
+  if (turned) {
+    // The estimated motion is used when the samples agree with their warped background better than with
+    // the still one (ICP on a scene of little structure, a plane and a large arm, can report a motion
+    // that never was).
+    const cv::Rect stillView = view_;
+    movingBackgroundFromPreview();
+    std::vector<cv::Mat> movingHalf(previewDepth_mm_.size());
+    double disagreeStill = 0.0, disagreeMoving = 0.0;
+    for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
+      cv::Mat depth_m, colour, z;
+      backgroundInView(previewSamplePose_[i], depth_m, colour);
+      cv::resize(depth_m, movingHalf[i], {}, 0.5, 0.5, cv::INTER_NEAREST);
+      movingHalf[i] *= 1e3;
+      cv::resize(previewDepth_mm_[i], z, {}, 0.5, 0.5, cv::INTER_NEAREST);
+      z.convertTo(z, CV_32FC1);
+      auto disagreement = [&](const cv::Mat& bg) {
+        const cv::Mat both = (z > 0.f) & (bg > 0.f);
+        const cv::Mat off = both & (cv::abs(bg - z) > 1e3 * options_.minForeground_m);
+        return static_cast<double>(cv::countNonZero(off)) / std::max(1, cv::countNonZero(both));
+      };
+      disagreeStill += disagreement(stillHalf);
+      disagreeMoving += disagreement(movingHalf[i]);
+    }
+    cameraMoves_ = disagreeMoving < options_.maxMovingDisagreement * disagreeStill;
+    if (core::Log::enabled("hand", core::Log::Level::Debug))
+      core::Log::writef("hand", core::Log::Level::Debug,
+                        "camera: moved up to %.3f m, %.2f deg; samples off their background %.3f still, %.3f "
+                        "moving: %s\n",
+                        previewMotion_->maxTranslation_m(), previewMotion_->maxRotation_rad() * 180.0 / core::kPi,
+                        disagreeStill / static_cast<double>(previewDepth_mm_.size()),
+                        disagreeMoving / static_cast<double>(previewDepth_mm_.size()),
+                        cameraMoves_ ? "follows the camera" : "still");
+    if (cameraMoves_) bgHalf = movingHalf;
+    else view_ = stillView;
+  }
   // Skin from every sample's foreground (half size: plenty of pixels).
   if (options_.useSkin) {
-    cv::Mat bgHalf;
-    cv::resize(background_mm, bgHalf, {}, 0.5, 0.5, cv::INTER_NEAREST);
     const cv::Mat open = disc(options_.previewOpenDiameter_px);
     for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
       if (previewColour_[i].empty()) continue;
       cv::Mat z;
       cv::resize(previewDepth_mm_[i], z, {}, 0.5, 0.5, cv::INTER_NEAREST);
       z.convertTo(z, CV_32FC1);
-      const cv::Mat fg = (z > 0) & (bgHalf - z > 1e3 * options_.minForeground_m);
+      const cv::Mat fg = (z > 0) & (bgHalf[i] - z > 1e3 * options_.minForeground_m);
       cv::Mat fgOpen;
       cv::morphologyEx(fg, fgOpen, cv::MORPH_OPEN, open);
       accumulateSkin(previewColour_[i], fgOpen, 1);
@@ -268,23 +373,86 @@ void MarkerFreeHandDetector::finishPreview() {
   }
   previewDepth_mm_.clear();
   previewColour_.clear();
+  previewSamplePose_.clear();
   previewColourSum_.release();
 }
 
-cv::Mat MarkerFreeHandDetector::backgroundFromPreview() {
-  const cv::Size size = previewDepth_mm_[0].size();
+void MarkerFreeHandDetector::movingBackgroundFromPreview() {
+  const core::CameraIntrinsics k = previewIntrinsics_;
+  const int mx = static_cast<int>(std::lround(options_.movingBackgroundMargin * k.width_px));
+  const int my = static_cast<int>(std::lround(options_.movingBackgroundMargin * k.height_px));
+  canvasIntrinsics_ = k;
+  canvasIntrinsics_.width_px = k.width_px + 2 * mx;
+  canvasIntrinsics_.height_px = k.height_px + 2 * my;
+  canvasIntrinsics_.cx_px = k.cx_px + mx;
+  canvasIntrinsics_.cy_px = k.cy_px + my;
+  // Each sample in the first frame's camera; the colour is the mean of the warped samples' colours.
+  std::vector<cv::Mat> warped_mm(previewDepth_mm_.size());
+  cv::Mat colourSum(canvasIntrinsics_.height_px, canvasIntrinsics_.width_px, CV_32FC3, cv::Scalar::all(0));
+  cv::Mat colourCount(colourSum.size(), CV_32FC1, cv::Scalar(0));
+  for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
+    cv::Mat depth_m, colour, warped_m, warpedColour;
+    previewDepth_mm_[i].convertTo(depth_m, CV_32FC1, 1e-3);
+    if (!previewColour_[i].empty()) cv::resize(previewColour_[i], colour, depth_m.size(), 0, 0, cv::INTER_NEAREST);
+    warpDepth(depth_m, colour, k, previewSamplePose_[i], canvasIntrinsics_, warped_m, &warpedColour);
+    warped_m.convertTo(warped_mm[i], CV_16UC1, 1e3);
+    if (!warpedColour.empty()) {
+      const cv::Mat landed = warped_m > 0.f;
+      cv::accumulate(warpedColour, colourSum, landed);
+      cv::add(colourCount, cv::Scalar(1), colourCount, landed);
+    }
+  }
+  const cv::Mat canvas_mm = backgroundFromPreview(warped_mm, true);
+  // The view moves: the whole image is in view (a pixel without background is no foreground).
+  view_ = cv::Rect(0, 0, k.width_px, k.height_px);
+  canvas_mm.convertTo(canvasDepth_m_, CV_32FC1, 1e-3);
+  cv::Mat count3;
+  cv::merge(std::vector<cv::Mat>{colourCount, colourCount, colourCount}, count3);
+  cv::Mat mean = colourSum / cv::max(count3, 1.f);
+  mean.convertTo(canvasColour_, CV_8UC3);
+}
+
+void MarkerFreeHandDetector::backgroundInView(const core::Pose3& X_camera0_camera, cv::Mat& depth_m,
+                                              cv::Mat& colour_bgr8) const {
+  warpDepth(canvasDepth_m_, canvasColour_, canvasIntrinsics_, X_camera0_camera.inverse(), previewIntrinsics_, depth_m,
+            &colour_bgr8);
+  if (options_.movingBackgroundSlack_px <= 0) return;
+  // The nearest background within the slack (the estimated pose's error): a surface seen at a grazing
+  // angle, whose depth changes fast across the image, is not foreground for a pixel's misregistration.
+  const cv::Mat none = depth_m <= 0.f;
+  depth_m.setTo(std::numeric_limits<float>::max(), none);
+  cv::erode(depth_m, depth_m, disc(2 * options_.movingBackgroundSlack_px + 1));
+  depth_m.setTo(0.f, depth_m == std::numeric_limits<float>::max());
+}
+
+core::Pose3 MarkerFreeHandDetector::previewPose(int index) {
+  const auto& poses = previewMotion_->poses();
+  std::size_t i = nextPose_;
+  if (i >= previewFrameIndex_.size() || previewFrameIndex_[i] != index)
+    i = static_cast<std::size_t>(std::find(previewFrameIndex_.begin(), previewFrameIndex_.end(), index) -
+                                 previewFrameIndex_.begin());
+  if (i < previewFrameIndex_.size() && i < poses.size()) {
+    lastPose_ = poses[i];
+    nextPose_ = i + 1;
+  }
+  return lastPose_;
+}
+
+cv::Mat MarkerFreeHandDetector::backgroundFromPreview(const std::vector<cv::Mat>& samples_mm, bool moving) {
+  const cv::Size size = samples_mm[0].size();
   cv::Mat background_mm(size, CV_32FC1, cv::Scalar(0));
   std::vector<std::uint16_t> vals;
   // A pixel with depth in few samples (the shadow band along a static
   // object's edge) has its quantile set by whatever covered it then (the
   // demonstrator's arm): its background comes from its neighbours instead.
-  const std::size_t minValid = static_cast<std::size_t>(
-      std::ceil(options_.minBackgroundValidFraction * static_cast<double>(previewDepth_mm_.size())));
+  // (A moving camera sees the widened image's margins in few samples: each pixel's own quantile.)
+  const std::size_t minValid = moving ? 0 : static_cast<std::size_t>(std::ceil(
+      options_.minBackgroundValidFraction * static_cast<double>(samples_mm.size())));
   cv::Mat untrusted(size, CV_8UC1, cv::Scalar(0));
   for (int v = 0; v < size.height; ++v)
     for (int u = 0; u < size.width; ++u) {
       vals.clear();
-      for (const auto& d : previewDepth_mm_)
+      for (const auto& d : samples_mm)
         if (const std::uint16_t z = d.at<std::uint16_t>(v, u); z > 0) vals.push_back(z);
       if (vals.empty()) continue;
       if (vals.size() < minValid) untrusted.at<uchar>(v, u) = 255;
@@ -295,7 +463,7 @@ cv::Mat MarkerFreeHandDetector::backgroundFromPreview() {
     }
   // The depth's field of view: where any sample had a depth (a registered
   // image's band that the depth camera does not see never has one).
-  view_ = depthFieldOfView(background_mm, options_.minFieldOfViewValid);
+  if (!moving) view_ = depthFieldOfView(background_mm, options_.minFieldOfViewValid);
   if (options_.backgroundFillDiameter_px > 1 && cv::countNonZero(untrusted) > 0) {
     // The farthest trusted background nearby (a grey dilation of the trusted
     // pixels), when it lies behind the pixel's own quantile; with no trusted
@@ -310,6 +478,7 @@ cv::Mat MarkerFreeHandDetector::backgroundFromPreview() {
     if (options_.farWithoutDepth) filled.setTo(0.f, farthest <= 0.f);
     filled.copyTo(background_mm, untrusted);
   }
+  if (moving) return background_mm;
   if (options_.stillArmFromPlane) stillArmToPlane(background_mm);
   background_mm.convertTo(backgroundDepth_m_, CV_32FC1, 1e-3);
   if (!previewColourSum_.empty())
@@ -485,7 +654,7 @@ void MarkerFreeHandDetector::keepArmShaped(const Plane& plane,
   }
 }
 
-void MarkerFreeHandDetector::decideBareForearms(const cv::Mat& bgHalf) {
+void MarkerFreeHandDetector::decideBareForearms(const std::vector<cv::Mat>& bgHalf) {
   // Does this demonstrator show a bare forearm? The largest skin-coloured
   // foreground component of each sample, longer than a hand in 3D.
   core::CameraIntrinsics k = previewIntrinsics_;
@@ -500,7 +669,7 @@ void MarkerFreeHandDetector::decideBareForearms(const cv::Mat& bgHalf) {
     cv::Mat z_m;
     cv::resize(previewDepth_mm_[i], z_m, {}, 0.5, 0.5, cv::INTER_NEAREST);
     z_m.convertTo(z_m, CV_32FC1, 1e-3);
-    cv::Mat m = (z_m > 0) & (bgHalf - 1e3f * z_m > 1e3 * options_.minForeground_m) & skinMask(previewColour_[i], true);
+    cv::Mat m = (z_m > 0) & (bgHalf[i] - 1e3f * z_m > 1e3 * options_.minForeground_m) & skinMask(previewColour_[i], true);
     cv::morphologyEx(m, m, cv::MORPH_OPEN, open);
     cv::Mat cl, cs, cc;
     const int nc = cv::connectedComponentsWithStats(m, cl, cs, cc, 8, CV_32S);
@@ -721,6 +890,7 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   geometry_ = Geometry{};
   ++frameCount_;
   if (!previewDepth_mm_.empty()) finishPreview();
+  if (cameraMoves_) backgroundInView(previewPose(frame.index), backgroundDepth_m_, backgroundColour_);
   if (!backgroundDepth_m_.empty() && backgroundDepth_m_.size() != frame.depth_m.size())
     throw core::InvalidInputError("MarkerFreeHandDetector: frame " + std::to_string(frame.index) + " is " +
                                   std::to_string(frame.depth_m.cols) + "x" + std::to_string(frame.depth_m.rows) +
@@ -925,7 +1095,7 @@ cv::Mat MarkerFreeHandDetector::foregroundMask(const rawlog::RgbdFrame& frame) c
   // the hand is its skin-coloured part.
   const cv::Mat& depth = frame.depth_m;
   const bool hasColour = !frame.colour_bgr8.empty();
-  const bool farWithoutDepth = options_.farWithoutDepth;
+  const bool farWithoutDepth = options_.farWithoutDepth && !cameraMoves_;  // moving: no background = not seen
   cv::Mat mask(depth.size(), CV_8UC1, cv::Scalar(0));
   for (int v = 0; v < depth.rows; ++v) {
     const float* z = depth.ptr<float>(v);
@@ -934,7 +1104,8 @@ cv::Mat MarkerFreeHandDetector::foregroundMask(const rawlog::RgbdFrame& frame) c
     for (int u = 0; u < depth.cols; ++u) {
       if (z[u] > 0.f && bg[u] > 0.f) m[u] = (bg[u] - z[u] > options_.minForeground_m) ? 255 : 0;
       else if (z[u] > 0.f && farWithoutDepth) m[u] = 255;  // a depth where the background has none
-      else if (z[u] <= 0.f && hasColour && !backgroundColour_.empty()) {
+      else if (z[u] <= 0.f && hasColour && !backgroundColour_.empty() && (bg[u] > 0.f || !cameraMoves_)) {
+        // (A moving camera's background has a colour only where it has a depth.)
         // A hole (moving hand): foreground when the colour changed.
         const cv::Vec3b a = frame.colour_bgr8.at<cv::Vec3b>(v, u), b = backgroundColour_.at<cv::Vec3b>(v, u);
         const int diff = std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]);

@@ -51,6 +51,7 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                    {"maxNormalFlatness", &o.maxNormalFlatness},
                                    {"minIslandSkinFraction", &o.minIslandSkinFraction},
                                    {"minFieldOfViewValid", &o.minFieldOfViewValid},
+                                   {"movingBackgroundMargin", &o.movingBackgroundMargin},
                                    {"stillArmShapeShare", &o.stillArmShapeShare},
                                    {"palmHalfWidth_m", &o.palmHalfWidth_m},
                                    {"palmDepth_m", &o.palmDepth_m}};
@@ -62,13 +63,15 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                 {"geodesicStep_px", &o.geodesicStep_px},
                                 {"skinColourBlur_px", &o.skinColourBlur_px},
                                 {"minTiltSamples", &o.minTiltSamples},
-                                {"maxBandParallax_px", &o.maxBandParallax_px}};
+                                {"maxBandParallax_px", &o.maxBandParallax_px},
+                                {"movingBackgroundSlack_px", &o.movingBackgroundSlack_px}};
   std::map<std::string, bool*> b{{"walkOnDepth", &o.walkOnDepth},
                                  {"palmAlongNormal", &o.palmAlongNormal},
                                  {"cuffTowardsThickest", &o.cuffTowardsThickest},
                                  {"farWithoutDepth", &o.farWithoutDepth},
                                  {"cuffFirst", &o.cuffFirst},
                                  {"stillArmFromPlane", &o.stillArmFromPlane},
+                                 {"followCameraMotion", &o.followCameraMotion},
                                  {"cuffAtSleeveEdge", &o.cuffAtSleeveEdge}};
   std::stringstream ss(env);
   std::string item;

@@ -29,10 +29,17 @@ struct ViewpointDemoSpec {
   int width_px = 640;        ///< 640x480 or smaller (same field of view)
   int maxFrames = -1;        ///< -1: the whole demonstration
   std::uint32_t seed = 1;
+  /// A head-mounted camera swaying about the viewpoint (synth::HeadSway, seeded by `seed`).
+  bool headSway = false;
+  /// Non-empty: a one-step plan carrying this part (cuboid, parallelogram) from the blue box into the
+  /// gray box, recorded from its grasp to its release only (synth's carryOnly: the hand holds the
+  /// part in every frame). Empty: carryPlan(partScale), the whole demonstration.
+  std::string heldOnly;
   std::string name() const {
-    char s[120];
-    std::snprintf(s, sizeof s, "%s_v%d_x%.1f_%s_%dpx_s%u", synth::viewpointFamilyName(family).c_str(), variant,
-                  partScale, bareForearm ? "bare" : "sleeve", width_px, seed);
+    char s[160];
+    std::snprintf(s, sizeof s, "%s_v%d_x%.1f_%s_%dpx_s%u%s%s%s", synth::viewpointFamilyName(family).c_str(), variant,
+                  partScale, bareForearm ? "bare" : "sleeve", width_px, seed, headSway ? "_sway" : "",
+                  heldOnly.empty() ? "" : "_held-", heldOnly.c_str());
     return s;
   }
 };
@@ -51,6 +58,14 @@ inline nlohmann::json carryPlan(double partScale) {
   };
   if (partScale > 1.5) return {{"steps", nlohmann::json::array({step("cuboid")})}};
   return {{"steps", nlohmann::json::array({step("cuboid"), step("parallelogram")})}};
+}
+
+/// One step: `part` from the blue box into the gray box.
+inline nlohmann::json heldPlan(const std::string& part) {
+  nlohmann::json plan = carryPlan(1.0);
+  plan["steps"][0]["object"]["name"] = part;
+  plan["steps"] = nlohmann::json::array({plan["steps"][0]});
+  return plan;
 }
 
 /// Renders `spec` into `folder` (kept when already there) and returns the rawlog's path.
@@ -78,7 +93,10 @@ inline std::string renderViewpointDemo(const ViewpointDemoSpec& spec, const std:
   o.height_px = spec.width_px * 3 / 4;
   o.maxFrames = spec.maxFrames;
   o.rawlogEncoderThreads = 1;
-  synth::generateSyntheticDemo(scene, catalogue, carryPlan(spec.partScale), o, rawlog);
+  o.headSway.enabled = spec.headSway;
+  o.carryOnly = !spec.heldOnly.empty();
+  synth::generateSyntheticDemo(scene, catalogue, spec.heldOnly.empty() ? carryPlan(spec.partScale) : heldPlan(spec.heldOnly),
+                               o, rawlog);
   return rawlog;
 }
 

@@ -22,6 +22,7 @@
 #include "srp/kb/KnowledgeBase.h"
 #include "srp/kb/ShapeMeshes.h"
 #include "srp/rawlog/RawlogWriter.h"
+#include "srp/synth/HeadSway.h"
 #include "srp/synth/SceneRenderer.h"
 
 namespace srp::synth {
@@ -356,7 +357,10 @@ SceneBodies loadSceneBodies(const srp::core::Scene& world, const srp::core::Obje
 struct Renderers {
   bool layered = true;
   Layer background, moving, depthLayer;
-  srp::core::Pose3 X_world_depth = srp::core::Pose3::Identity();
+  srp::core::Pose3 X_colour_depth = srp::core::Pose3::Identity();  ///< the depth camera in the colour camera
+  /// The colour camera in every timeline frame (its nominal pose, or swayed about it: HeadSway).
+  std::vector<srp::core::Pose3> X_world_camera;
+  srp::core::Pose3 X_world_depth(int k) const { return X_world_camera[static_cast<std::size_t>(k)] * X_colour_depth; }
   std::vector<int> backgroundState;  // per object: 0 hidden, 1 shown; with the poses below
   std::vector<srp::core::Pose3> backgroundPoses;
   srp::rawlog::RgbdFrame backgroundFrame;
@@ -366,15 +370,17 @@ Renderers setUpRenderers(const DemoTimeline& timeline, const SceneBodies& bodies
                          const SynthDemoOptions& options) {
   const srp::core::Scene& world = timeline.scene;
   Renderers r;
-  r.layered = options.layeredRendering;
+  // A swaying camera sees the resting bodies move every frame: nothing to cache.
+  r.layered = options.layeredRendering && !options.headSway.enabled;
   r.background = makeLayer(world.intrinsics, timeline, bodies.meshes, hand, true, !r.layered);
   if (r.layered) r.moving = makeLayer(world.intrinsics, timeline, bodies.meshes, hand, false, true);
   if (options.depthCamera) {
     options.depthCamera->intrinsics.validate("synth-demo depth camera");
     r.depthLayer = makeLayer(options.depthCamera->intrinsics, timeline, bodies.meshes, hand, true, true);
   }
-  r.X_world_depth = options.depthCamera ? srp::core::Pose3(world.X_world_camera * options.depthCamera->X_colour_depth)
-                                        : world.X_world_camera;
+  if (options.depthCamera) r.X_colour_depth = options.depthCamera->X_colour_depth;
+  const HeadSway sway(options.headSway, options.demo.seed);
+  for (const auto& f : timeline.frames) r.X_world_camera.push_back(world.X_world_camera * sway.X_nominal_camera(f.t_s));
   return r;
 }
 
@@ -395,13 +401,14 @@ srp::rawlog::RgbdFrame renderColourFrame(Renderers& r, const DemoTimeline& timel
   const auto& K = world.intrinsics;
   const FrameState& f = timeline.frames[k];
   const FrameState& prev = timeline.frames[std::max(k - 1, 0)];
+  const srp::core::Pose3& X_world_camera = r.X_world_camera[static_cast<std::size_t>(k)];
   srp::rawlog::RgbdFrame frame;
   if (!r.layered) {
     for (std::size_t i = 0; i < world.objects.size(); ++i)
       r.background.renderer->setBodyPose(r.background.objectBodies[i], f.X_world_objects[i]);
     for (std::size_t i = 0; i < r.background.handBodies.size(); ++i)
       r.background.renderer->setBodyPose(r.background.handBodies[i], f.X_world_hand * partPoses[i]);
-    return r.background.renderer->render(world.X_world_camera);
+    return r.background.renderer->render(X_world_camera);
   }
   // Objects in motion (carried, or moved since the last frame) go to the moving layer.
   std::vector<int> state(world.objects.size());
@@ -420,7 +427,7 @@ srp::rawlog::RgbdFrame renderColourFrame(Renderers& r, const DemoTimeline& timel
       r.background.renderer->setBodyVisible(r.background.objectBodies[i], state[i] == 1);
       r.background.renderer->setBodyPose(r.background.objectBodies[i], f.X_world_objects[i]);
     }
-    r.backgroundFrame = r.background.renderer->render(world.X_world_camera);
+    r.backgroundFrame = r.background.renderer->render(X_world_camera);
     r.backgroundState = state;
     r.backgroundPoses = f.X_world_objects;
   }
@@ -435,7 +442,7 @@ srp::rawlog::RgbdFrame renderColourFrame(Renderers& r, const DemoTimeline& timel
   }
   for (std::size_t i = 0; i < r.moving.handBodies.size(); ++i)
     r.moving.renderer->setBodyPose(r.moving.handBodies[i], f.X_world_hand * partPoses[i]);
-  const auto front = r.moving.renderer->render(world.X_world_camera);
+  const auto front = r.moving.renderer->render(X_world_camera);
   for (int row = 0; row < K.height_px; ++row) {
     const float* dFront = front.depth_m.ptr<float>(row);
     const cv::Vec3b* cFront = front.colour_bgr8.ptr<cv::Vec3b>(row);
@@ -458,7 +465,7 @@ srp::rawlog::RgbdFrame renderDepthCameraFrame(Renderers& r, const DemoTimeline& 
     r.depthLayer.renderer->setBodyPose(r.depthLayer.objectBodies[i], f.X_world_objects[i]);
   for (std::size_t i = 0; i < r.depthLayer.handBodies.size(); ++i)
     r.depthLayer.renderer->setBodyPose(r.depthLayer.handBodies[i], f.X_world_hand * partPoses[i]);
-  return r.depthLayer.renderer->render(r.X_world_depth);
+  return r.depthLayer.renderer->render(r.X_world_depth(k));
 }
 
 // Hand, resting-part and moving-part masks of one camera's rendered depth in
@@ -495,16 +502,21 @@ FrameMasks frameMasks(const DemoTimeline& timeline, const SceneBodies& bodies, c
 // The ground truth of frame k: phase, hand and tag (corners, visibility:
 // `tagVisible` from the clean depth), objects, hand occlusions, and the
 // share of valid depth on the hand and the parts in the degraded `frame`.
+// `index`, `t0_s`: the frame's index in the recording and the time of the recording's first frame
+// (a recording of some of the timeline's frames); `X_world_camera`: the camera in frame k, recorded in
+// the ground truth when `cameraMoves`.
 GroundTruthFrame groundTruthFrame(const DemoTimeline& timeline, const SceneBodies& bodies, const HandModel& hand,
-                                  int k, const srp::core::Pose3& X_camera_tag, double tagVisible,
+                                  int k, int index, double t0_s, const srp::core::Pose3& X_world_camera,
+                                  bool cameraMoves, const srp::core::Pose3& X_camera_tag, double tagVisible,
                                   const FrameMasks& masks, const srp::rawlog::RgbdFrame& frame) {
   const srp::core::Scene& world = timeline.scene;
   const auto& K = world.intrinsics;
   const FrameState& f = timeline.frames[k];
-  const srp::core::Pose3 X_camera_world = world.X_world_camera.inverse();
+  const srp::core::Pose3 X_camera_world = X_world_camera.inverse();
   GroundTruthFrame g;
-  g.index = k;
-  g.t_s = f.t_s;
+  g.index = index;
+  g.t_s = f.t_s - t0_s;
+  if (cameraMoves) g.X_world_camera = X_world_camera;
   g.phase = f.phase;
   g.step = f.step;
   g.grip = f.grip;
@@ -544,7 +556,8 @@ GroundTruthFrame groundTruthFrame(const DemoTimeline& timeline, const SceneBodie
 
 /// What the render thread hands the sensor thread.
 struct Rendered {
-  int k;
+  int k;      ///< timeline frame
+  int index;  ///< frame of the recording
   srp::rawlog::RgbdFrame frame;
   std::vector<srp::core::Pose3> partPoses;
   srp::rawlog::RgbdFrame depthCameraFrame;  // two-camera sensor only
@@ -562,6 +575,7 @@ struct SensorStage {
   srp::rawlog::RawlogWriter* writer;  ///< null: the two-camera folder
   const std::string& folder;
   double depthUnit_m;
+  double t0_s;  ///< the timeline time of the recording's first frame
   DemoGroundTruth& gt;
   std::vector<std::pair<int, srp::rawlog::RgbdFrame>>& sheet;
   SynthDemoResult& result;
@@ -573,16 +587,17 @@ struct SensorStage {
 
   void process(Rendered& item) {
     const auto& K = timeline.scene.intrinsics;
-    const srp::core::Pose3 X_camera_world = timeline.scene.X_world_camera.inverse();
-    const double dt = 1.0 / timeline.scene.fps;
     const int k = item.k;
+    const srp::core::Pose3& X_world_camera = renderers.X_world_camera[static_cast<std::size_t>(k)];
+    const srp::core::Pose3 X_camera_world = X_world_camera.inverse();
+    const double dt = 1.0 / timeline.scene.fps;
     const FrameState& f = timeline.frames[k];
     const FrameState& prev = timeline.frames[std::max(k - 1, 0)];
     srp::rawlog::RgbdFrame& frame = item.frame;
     const double cpu0 = threadCpuTime_s();
     auto t0 = Clock::now();
-    frame.index = k;
-    frame.t_s = kRawlogEpoch_s + f.t_s;
+    frame.index = item.index;
+    frame.t_s = kRawlogEpoch_s + (f.t_s - t0_s);
     const FrameMasks masks = frameMasks(timeline, bodies, hand, k, item.partPoses, K, X_camera_world, frame.depth_m);
     // Tag visibility from the clean rendered depth (before the sensor model punches holes).
     const srp::core::Pose3 X_camera_tag = X_camera_world * f.X_world_hand * hand.X_hand_tag();
@@ -594,11 +609,12 @@ struct SensorStage {
     if (options.depthCamera) {  // the depth camera's own image, degraded the same way
       srp::rawlog::RgbdFrame& d = item.depthCameraFrame;
       const FrameMasks dm = frameMasks(timeline, bodies, hand, k, item.partPoses, options.depthCamera->intrinsics,
-                                       renderers.X_world_depth.inverse(), d.depth_m);
+                                       renderers.X_world_depth(k).inverse(), d.depth_m);
       depthSensor.apply(d, dm.hand, handSpeed, dm.part, dm.moving, dm.movingSpeed, cv::Mat());
     }
 
-    GroundTruthFrame g = groundTruthFrame(timeline, bodies, hand, k, X_camera_tag, tagVisible, masks, frame);
+    GroundTruthFrame g = groundTruthFrame(timeline, bodies, hand, k, item.index, t0_s, X_world_camera,
+                                          options.headSway.enabled, X_camera_tag, tagVisible, masks, frame);
     if (g.handValidDepthFraction && g.handPixels > 200) {
       handValidSum += *g.handValidDepthFraction;
       ++handValidFrames;
@@ -611,29 +627,32 @@ struct SensorStage {
     result.sensorTime_s += secondsSince(t0);
     result.sensorCpuTime_s += threadCpuTime_s() - cpu0;
 
-    if (std::find(sheetFrames.begin(), sheetFrames.end(), k) != sheetFrames.end()) sheet.emplace_back(k, frame);
+    if (std::find(sheetFrames.begin(), sheetFrames.end(), item.index) != sheetFrames.end())
+      sheet.emplace_back(item.index, frame);
     t0 = Clock::now();
     if (writer) writer->write(std::move(frame));
-    else writeTwoCameraFolderFrame(folder, k, frame.colour_bgr8, item.depthCameraFrame.depth_m, depthUnit_m);
+    else writeTwoCameraFolderFrame(folder, item.index, frame.colour_bgr8, item.depthCameraFrame.depth_m, depthUnit_m);
     result.writeTime_s += secondsSince(t0);
   }
 };
 
-/// The render stage (this thread: the EGL context lives here): frames 0..frameCount-1 rendered and
-/// handed to the sensor stage, until it stops taking them (it failed).
+/// The render stage (this thread: the EGL context lives here): the timeline frames `recorded` rendered
+/// and handed to the sensor stage, until it stops taking them (it failed).
 void renderFrames(Renderers& renderers, const DemoTimeline& timeline, const HandModel& hand, bool depthCamera,
-                  int frameCount, FrameQueue<Rendered>& rendered, SynthDemoResult& result,
+                  const std::vector<int>& recorded, FrameQueue<Rendered>& rendered, SynthDemoResult& result,
                   const std::function<void(int, int)>& progress) {
-  for (int k = 0; k < frameCount; ++k) {
+  const int frameCount = static_cast<int>(recorded.size());
+  for (int n = 0; n < frameCount; ++n) {
+    const int k = recorded[static_cast<std::size_t>(n)];
     auto t0 = Clock::now();
     auto partPoses = hand.partPoses(timeline.frames[k].grip);
     srp::rawlog::RgbdFrame frame = renderColourFrame(renderers, timeline, k, partPoses);
     srp::rawlog::RgbdFrame depthCameraFrame;
     if (depthCamera) depthCameraFrame = renderDepthCameraFrame(renderers, timeline, k, partPoses);
     result.renderTime_s += secondsSince(t0);
-    if (!rendered.push({k, std::move(frame), std::move(partPoses), std::move(depthCameraFrame)}))
+    if (!rendered.push({k, n, std::move(frame), std::move(partPoses), std::move(depthCameraFrame)}))
       break;  // the sensor thread failed
-    if (progress) progress(k, frameCount);
+    if (progress) progress(n, frameCount);
   }
 }
 
@@ -650,6 +669,18 @@ std::unique_ptr<srp::rawlog::RawlogWriter> openOutput(const SynthDemoOptions& op
                                  : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   return std::make_unique<srp::rawlog::RawlogWriter>(rawlogPath, depthUnit_m, options.rawlogCompressionLevel,
                                                      encoderThreads);
+}
+
+/// The events' grasp and release frames as frames of a recording of the timeline frames `recorded`
+/// (increasing): the first recorded frame at or after the grasp, the last at or before the release.
+void remapEvents(DemoGroundTruth& gt, const std::vector<int>& recorded) {
+  const int last = static_cast<int>(recorded.size()) - 1;
+  for (auto& e : gt.events) {
+    e.graspFrame = std::min(last, static_cast<int>(std::lower_bound(recorded.begin(), recorded.end(), e.graspFrame) -
+                                                   recorded.begin()));
+    e.releaseFrame = std::max(0, static_cast<int>(std::upper_bound(recorded.begin(), recorded.end(), e.releaseFrame) -
+                                                  recorded.begin()) - 1);
+  }
 }
 
 }  // namespace
@@ -698,8 +729,18 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
   DemoGroundTruth gt = groundTruthHeader(timeline, catalogue, hand, plan, options,
                                          (options.depthCamera ? folderPath : std::filesystem::path(rawlogPath)).filename().string());
 
-  const int frameCount = options.maxFrames >= 0 ? std::min<int>(options.maxFrames, static_cast<int>(timeline.frames.size()))
-                                                : static_cast<int>(timeline.frames.size());
+  // The timeline frames recorded: all, or (carryOnly) those with a part in the hand; at most maxFrames.
+  std::vector<int> recorded;
+  for (int k = 0; k < static_cast<int>(timeline.frames.size()); ++k)
+    if (!options.carryOnly || timeline.frames[static_cast<std::size_t>(k)].carriedObject >= 0) recorded.push_back(k);
+  if (recorded.empty())
+    throw srp::core::InvalidInputError("synth-demo: the plan's demonstration carries no part, so keeping only the "
+                                       "frames with a part in the hand (carryOnly) leaves none; give a plan that "
+                                       "moves a part");
+  if (options.maxFrames >= 0 && options.maxFrames < static_cast<int>(recorded.size())) recorded.resize(options.maxFrames);
+  const int frameCount = static_cast<int>(recorded.size());
+  const double t0_s = options.carryOnly ? timeline.frames[static_cast<std::size_t>(recorded.front())].t_s : 0.0;
+  if (options.carryOnly) remapEvents(gt, recorded);
   const std::vector<int> sheetFrames = contactSheetFrames(options, frameCount);
   std::vector<std::pair<int, srp::rawlog::RgbdFrame>> sheet;
 
@@ -714,7 +755,7 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
                                                     : options.rawlogDepthUnit_m;
   const std::unique_ptr<srp::rawlog::RawlogWriter> writer = openOutput(options, rawlogPath, folder, K, depthUnit_m);
   const double cpuLoopStart_s = processCpuTime_s();
-  SensorStage stage{timeline, bodies, hand, options, renderers, sheetFrames, writer.get(), folder, depthUnit_m, gt, sheet,
+  SensorStage stage{timeline, bodies, hand, options, renderers, sheetFrames, writer.get(), folder, depthUnit_m, t0_s, gt, sheet,
                     result, SensorModel(options.sensor, options.demo.seed), SensorModel(options.sensor, options.demo.seed + 1)};
   FrameQueue<Rendered> rendered(3);
   std::exception_ptr sensorError;
@@ -728,7 +769,7 @@ SynthDemoResult generateSyntheticDemo(const srp::core::Scene& sceneIn, const srp
   });
 
   try {
-    renderFrames(renderers, timeline, hand, depthCamera.has_value(), frameCount, rendered, result, progress);
+    renderFrames(renderers, timeline, hand, depthCamera.has_value(), recorded, rendered, result, progress);
   } catch (...) {
     rendered.finish();
     sensorThread.join();

@@ -1,5 +1,6 @@
 #include "srp/synth/DemoGroundTruth.h"
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "srp/core/Error.h"
@@ -28,14 +29,24 @@ std::string str(const json& j, const std::string& key) {
 
 }  // namespace
 
-srp::core::Pose3 DemoGroundTruth::X_camera_object(int index, const std::string& id) const {
+srp::core::Pose3 DemoGroundTruth::X_world_camera_at(int index) const {
   if (index < 0 || index >= static_cast<int>(frames.size()))
     throw srp::core::InvalidInputError("ground truth: frame " + std::to_string(index) + " out of range (0.." +
                                        std::to_string(frames.size()) + ")");
+  const auto& own = frames[static_cast<std::size_t>(index)].X_world_camera;
+  return own ? *own : X_world_camera;
+}
+
+bool DemoGroundTruth::cameraMoves() const {
+  return std::any_of(frames.begin(), frames.end(), [](const GroundTruthFrame& f) { return f.X_world_camera.has_value(); });
+}
+
+srp::core::Pose3 DemoGroundTruth::X_camera_object(int index, const std::string& id) const {
+  const srp::core::Pose3 X_world_camera_k = X_world_camera_at(index);
   const auto it = frames[index].X_world_objects.find(id);
   if (it == frames[index].X_world_objects.end())
     throw srp::core::InvalidInputError("ground truth: no object '" + id + "'");
-  return X_world_camera.inverse() * it->second;
+  return X_world_camera_k.inverse() * it->second;
 }
 
 const GroundTruthEvent* DemoGroundTruth::eventFor(const std::string& objectId) const {
@@ -87,6 +98,7 @@ json DemoGroundTruth::toJson() const {
     jf["objects"] = json::object();
     for (const auto& [id, X] : f.X_world_objects) jf["objects"][id] = poseToJson(X);
     if (f.handOccludedObjects) jf["hand_occluded_objects"] = *f.handOccludedObjects;
+    if (f.X_world_camera) jf["X_world_camera"] = poseToJson(*f.X_world_camera);
     jf["valid_depth_fraction"] = {
         {"hand", f.handValidDepthFraction ? json(*f.handValidDepthFraction) : json(nullptr)},
         {"objects", f.objectsValidDepthFraction ? json(*f.objectsValidDepthFraction) : json(nullptr)}};
@@ -166,6 +178,7 @@ DemoGroundTruth DemoGroundTruth::fromJson(const json& j, const std::string& ctx)
       f.X_world_objects[id] = poseFromJson(X, fc + ".objects." + id);
     if (jf.contains("hand_occluded_objects"))
       f.handOccludedObjects = jf.at("hand_occluded_objects").get<std::set<std::string>>();
+    if (jf.contains("X_world_camera")) f.X_world_camera = poseFromJson(jf.at("X_world_camera"), fc + ".X_world_camera");
     if (jf.contains("valid_depth_fraction")) {
       const auto& v = jf.at("valid_depth_fraction");
       if (v.contains("hand") && v.at("hand").is_number()) f.handValidDepthFraction = v.at("hand").get<double>();

@@ -122,6 +122,54 @@ TEST(DemoGenerator, CleanDepthMatchesTheObjectPoses) {
   EXPECT_NEAR(d, p_top.z(), 2e-3);
 }
 
+// A swaying head camera and a carry-only clip: every frame holds a part, every frame's camera is in
+// the ground truth and the images are rendered from it (a resting part's top face seen at its true
+// depth where the per-frame camera projects it), and the camera really moves.
+TEST(DemoGenerator, HeadSwayCarryOnlyGroundTruthHasEachFramesCamera) {
+  Fixture f;
+  auto options = quickOptions();
+  options.sensor.enabled = false;
+  options.headSway.enabled = true;
+  options.carryOnly = true;
+  const std::string rawlog = tempPath("sway.rawlog");
+  const auto result = srp::synth::generateSyntheticDemo(f.scene, f.catalogue, oneStepPlan(), options, rawlog);
+  const auto frames = srp::rawlog::RawlogReader::readAll(rawlog);
+  const auto gt = srp::synth::DemoGroundTruth::load(result.groundTruthPath);
+  ASSERT_GT(frames.size(), 10u);
+  ASSERT_EQ(gt.frames.size(), frames.size());
+  EXPECT_TRUE(gt.cameraMoves());
+  ASSERT_EQ(gt.events.size(), 1u);
+  EXPECT_EQ(gt.events[0].graspFrame, 0);
+  EXPECT_NEAR(frames[0].t_s - frames[1].t_s, -1.0 / f.scene.fps, 1e-6);
+  constexpr double kDepthTol_m = 2e-3;
+  constexpr double kMinSway_px = 5.0;  // the camera moves: the nominal camera's projection is off by more
+  int seen = 0, seenNominal = 0;
+  double largestShift_px = 0.0;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const auto& g = gt.frames[i];
+    EXPECT_EQ(g.index, static_cast<int>(i));
+    EXPECT_FALSE(g.carriedObject.empty()) << "frame " << i;
+    ASSERT_TRUE(g.X_world_camera.has_value());
+    const Eigen::Vector3d p_world_top = g.X_world_objects.at("star") * Eigen::Vector3d(0, 0, 0.025);
+    const Eigen::Vector3d p_top = gt.X_camera_object(g.index, "star") * Eigen::Vector3d(0, 0, 0.025);
+    EXPECT_TRUE(p_top.isApprox(g.X_world_camera->inverse() * p_world_top, 1e-9));
+    const auto uv = gt.intrinsics.project(p_top);
+    const auto uvNominal = gt.intrinsics.project(gt.X_world_camera.inverse() * p_world_top);
+    ASSERT_TRUE(uv && uvNominal);
+    largestShift_px = std::max(largestShift_px, (*uv - *uvNominal).norm());
+    const float d = frames[i].depth_m.at<float>(std::lround(uv->y()), std::lround(uv->x()));
+    seen += std::abs(d - p_top.z()) < kDepthTol_m;  // the hand may hide it in some frames
+    const Eigen::Vector3d p_nominal = gt.X_world_camera.inverse() * p_world_top;
+    const float dNominal = frames[i].depth_m.at<float>(std::lround(uvNominal->y()), std::lround(uvNominal->x()));
+    seenNominal += std::abs(dNominal - p_nominal.z()) < kDepthTol_m;
+  }
+  std::cout << "[ figures  ] star's top at its true depth in " << seen << " of " << frames.size()
+            << " frames through each frame's camera, " << seenNominal << " through the nominal camera\n";
+  EXPECT_GE(seen, static_cast<int>(0.5 * frames.size()));
+  EXPECT_GT(seen, 2 * seenNominal);
+  EXPECT_GT(largestShift_px, kMinSway_px);
+}
+
 // Layered rendering (static background once, moving bodies per frame) gives
 // the same images as rendering everything every frame.
 TEST(DemoGenerator, LayeredRenderingMatchesFullRendering) {

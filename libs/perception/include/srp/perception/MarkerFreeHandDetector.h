@@ -6,14 +6,17 @@
 /// the wrist at the cuff), not from any marker.
 
 #include <Eigen/Core>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <utility>
 #include <vector>
 
+#include "srp/core/Pose.h"
 #include "srp/perception/HandDetector.h"
 
 namespace srp::perception {
 
+class CameraMotionEstimator;
 struct Plane;
 
 /// Marker-free hand detector (no tag is decoded or used as a feature: it works
@@ -28,6 +31,17 @@ struct Plane;
 ///   colour;
 /// - first frames (no preview, a stream): the per-pixel median depth and mean
 ///   colour of the first `backgroundFrames` frames, which must show no hand.
+///
+/// A moving camera (a head-mounted one sways with the head; `followCameraMotion`):
+/// the preview estimates every frame's camera pose from its depth
+/// (CameraMotionEstimator: point-to-plane ICP against key frames). When the
+/// camera moved (minCameraMotion_m, minCameraTurn_deg), each background sample is warped into the first frame's
+/// camera (its image widened by `movingBackgroundMargin` on every side, so
+/// that what the camera saw only later has a background too) before the
+/// per-pixel quantile, and each frame's background is that one warped into the
+/// frame's own camera (nearest surface per pixel, one-pixel gaps filled). A
+/// pixel where no background lands is no foreground (farWithoutDepth does not
+/// apply), and the still-arm rule is not used.
 ///
 /// Skin colour, adapted per recording: a Gaussian in (Cr, Cb) fitted to the
 /// foreground pixels inside a broad prior box (`skinPrior*`, luma >=
@@ -158,6 +172,33 @@ class MarkerFreeHandDetector : public HandDetector {
     double stillArmSlice_m = 0.02;
     /// Length over median width [ratio].
     double stillArmMinElongation = 2.0;
+    /// Whole-recording background under a moving camera (see the class
+    /// comment): the preview estimates each frame's camera pose and, when the
+    /// camera moved farther than minCameraMotion_m and turned more than
+    /// minCameraTurn_deg from the first frame, the background follows the
+    /// camera. false: the per-pixel background of a still camera in every
+    /// recording.
+    bool followCameraMotion = true;
+    /// Below these a still camera's background is kept: a camera moved by
+    /// less than minForeground_m, or turned by less than the angle that moves
+    /// a point 1 m away by that much, changes no depth by more than the
+    /// foreground threshold (and the pose's noise on a still camera, depth
+    /// noise of 3 mm at 1 m on HRT1, reaches 1 cm and 0.3 deg) [m, deg].
+    double minCameraMotion_m = 0.02;
+    double minCameraTurn_deg = 1.15;
+    /// ... and when the preview samples disagree (depth differs by more
+    /// than minForeground_m) with the background warped into their view in
+    /// less than this share of the pixels where they disagree with a still
+    /// camera's background (a motion that ICP reports on a scene of little
+    /// structure, a plane and a large arm, and never was) [ratio].
+    double maxMovingDisagreement = 0.5;
+    /// That background's image is the first frame's widened by this share of
+    /// its width and height on each side [ratio].
+    double movingBackgroundMargin = 0.15;
+    /// That background, warped into a frame's camera, is the nearest within
+    /// this many pixels (the estimated camera pose's error; a surface seen at
+    /// a grazing angle changes its depth by centimetres per pixel) [px]. 0: off.
+    int movingBackgroundSlack_px = 3;
     /// Foreground: closer than the background by this much [m].
     double minForeground_m = 0.02;
     /// Foreground in a depth hole: sum of |BGR| changes from the background
@@ -455,8 +496,18 @@ class MarkerFreeHandDetector : public HandDetector {
   Options options_;
   void finishPreview();
   /// Whole-recording background depth [mm, CV_32FC1] from the preview samples
-  /// (also sets backgroundDepth_m_ and backgroundColour_).
-  cv::Mat backgroundFromPreview();
+  /// `samples_mm` (also sets backgroundDepth_m_ and backgroundColour_, and
+  /// view_ unless `moving`: the samples are warped into the first camera's
+  /// widened image, see followCameraMotion).
+  cv::Mat backgroundFromPreview(const std::vector<cv::Mat>& samples_mm, bool moving);
+  /// Moving camera: the background (canvasDepth_m_, canvasColour_) from the
+  /// preview samples warped into the first frame's camera.
+  void movingBackgroundFromPreview();
+  /// Moving camera: the background as the camera at X_camera0_camera sees it
+  /// [m, CV_32FC1; BGR].
+  void backgroundInView(const core::Pose3& X_camera0_camera, cv::Mat& depth_m, cv::Mat& colour_bgr8) const;
+  /// Moving camera: the camera pose of the previewed frame `index` (the last one used when it was not previewed).
+  core::Pose3 previewPose(int index);
   /// stillArmFromPlane: the support plane's depth where the background
   /// `background_mm` [mm, CV_32FC1] is a still arm (in place).
   void stillArmToPlane(cv::Mat& background_mm) const;
@@ -467,8 +518,9 @@ class MarkerFreeHandDetector : public HandDetector {
   void keepArmShaped(const Plane& plane, const std::vector<std::pair<std::size_t, cv::Mat>>& sampleSkin,
                      const cv::Mat& labels, const cv::Mat& stats, const cv::Mat& candidate,
                      std::vector<uchar>& keep) const;
-  /// Does the preview show a bare forearm (sets bareForearms_)?
-  void decideBareForearms(const cv::Mat& backgroundHalf_mm);
+  /// Does the preview show a bare forearm (sets bareForearms_)? `backgroundHalf_mm`:
+  /// each sample's background at half size [mm].
+  void decideBareForearms(const std::vector<cv::Mat>& backgroundHalf_mm);
   /// Pixels where an arm enters the view, inside the depth's field of view:
   /// near the image edge, and near this frame's depth-less band where the
   /// field of view ends inside the image (row-major when there is no band).
@@ -533,6 +585,16 @@ class MarkerFreeHandDetector : public HandDetector {
   core::CameraIntrinsics previewIntrinsics_;
   bool bareForearms_ = false;  ///< the preview showed a bare forearm: the far end rule in every frame
   cv::Mat backgroundDepth_m_, backgroundColour_;
+  // Moving camera (followCameraMotion): every previewed frame's index and camera pose in the first
+  // frame's camera, each sample's pose, and the background in the first camera's widened image.
+  std::shared_ptr<CameraMotionEstimator> previewMotion_;
+  std::vector<int> previewFrameIndex_;
+  std::vector<core::Pose3> previewSamplePose_;
+  bool cameraMoves_ = false;
+  cv::Mat canvasDepth_m_, canvasColour_;
+  core::CameraIntrinsics canvasIntrinsics_;
+  core::Pose3 lastPose_ = core::Pose3::Identity();
+  std::size_t nextPose_ = 0;  ///< where previewPose looks first
   cv::Rect view_;  ///< the depth's field of view in the image (depthFieldOfView of the background)
   std::vector<cv::Point> zonePoints_;  ///< this frame's border zone (borderZone)
   cv::Mat lastMask_;

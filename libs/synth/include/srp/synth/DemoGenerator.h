@@ -15,6 +15,7 @@
 #include "srp/synth/DemoGroundTruth.h"
 #include "srp/synth/DemoTimeline.h"
 #include "srp/synth/HandModel.h"
+#include "srp/synth/HeadSway.h"
 #include "srp/synth/SensorModel.h"
 
 namespace srp::synth {
@@ -37,6 +38,14 @@ struct SynthDemoOptions {
   int rawlogCompressionLevel = 1;    ///< libdeflate level 0..12 (RawlogWriter)
   int rawlogEncoderThreads = -1;     ///< threads compressing frames; -1: one per core
   int maxFrames = -1;                ///< stop after this many frames (tests); -1: all
+  /// A head-mounted camera: the camera sways about the scene's camera pose (HeadSway.h, seeded by
+  /// demo.seed); every frame's camera pose goes into the ground truth (GroundTruthFrame::X_world_camera).
+  HeadSway::Options headSway;
+  /// Record only the timeline's frames with a part in the hand, renumbered from 0 (times from the
+  /// first of them; events' frames mapped onto them): a clip in which the hand holds a part from the
+  /// first frame on, as an egocentric recording cut from a longer one. With a plan of one step, one
+  /// continuous carry. Throws when the plan carries nothing.
+  bool carryOnly = false;
   /// Render the table and resting objects once and only the moving bodies per
   /// frame, composed by depth (same images, several times faster in software).
   bool layeredRendering = true;

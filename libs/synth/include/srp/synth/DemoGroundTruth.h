@@ -37,6 +37,9 @@ struct GroundTruthFrame {
   srp::core::Pose3 X_camera_tag = srp::core::Pose3::Identity();
   std::array<Eigen::Vector2d, 4> tagCorners_px{};  ///< TL, TR, BR, BL as the tag is read (may lie outside)
   std::string carriedObject;     ///< id of the object in the hand, empty when none
+  /// The camera in this frame when it moves (a head-mounted camera's sway); nullopt: the
+  /// recording's DemoGroundTruth::X_world_camera.
+  std::optional<srp::core::Pose3> X_world_camera;
   std::map<std::string, srp::core::Pose3> X_world_objects;  ///< every scene object, by id
   /// Ids of the objects the hand hides in part: some visible hand pixel lies
   /// inside the object's projected bounding box. nullopt in ground truth
@@ -81,6 +84,8 @@ struct DemoGroundTruth {
   double speedFactor = 1.0;
   std::string instruction;  ///< when the plan carried one
   srp::core::CameraIntrinsics intrinsics;
+  /// The camera; with a moving camera its nominal pose, and each frame's pose in its GroundTruthFrame
+  /// (use X_world_camera_at).
   srp::core::Pose3 X_world_camera = srp::core::Pose3::Identity();
   srp::core::Pose3 X_world_base = srp::core::Pose3::Identity();
   std::string tagFamily = "tag36h11";
@@ -93,7 +98,12 @@ struct DemoGroundTruth {
   std::vector<GroundTruthFrame> frames;
 
   srp::core::Pose3 X_base_camera() const { return X_world_base.inverse() * X_world_camera; }
-  /// Pose of object `id` in the camera frame at frame `index`; throws InvalidInputError naming it when absent.
+  /// The camera at frame `index`: the frame's own pose when the camera moves, else X_world_camera;
+  /// throws InvalidInputError when `index` is out of range.
+  srp::core::Pose3 X_world_camera_at(int index) const;
+  /// Whether any frame has a camera pose of its own (a moving camera).
+  bool cameraMoves() const;
+  /// Pose of object `id` in frame `index`'s camera frame; throws InvalidInputError naming it when absent.
   srp::core::Pose3 X_camera_object(int index, const std::string& id) const;
   const GroundTruthEvent* eventFor(const std::string& objectId) const;
 

@@ -139,6 +139,7 @@ TEST(MarkerFreeHandViewpoints, PalmDepthFromTheSilhouetteSide) {
   // The glove's cross-section is a box with a thumb, deeper behind its edge than the ellipse says.
   constexpr double kAlongRayTol_m = 0.020;
   MarkerFreeHandDetector::Options o = testing::optionsFromEnvironment();
+  o.palmHalfWidth_m = 0.042;  // srp::synth's glove; off by default (MarkerFreeHandDetector.h)
   const auto ray = cuffErrors(rawlog, o).alongRay_m;
   ASSERT_GT(ray.size(), 100u) << "too few frames with the cuff in view";
   std::printf("[ figures  ] along the ray, cuff rule, side: median %+.1f mm (%zu frames)\n",

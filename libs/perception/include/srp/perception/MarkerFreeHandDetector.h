@@ -246,8 +246,11 @@ class MarkerFreeHandDetector : public HandDetector {
     /// the ray (palmDepth_m face-on, up to palmHalfWidth_m edge-on), not
     /// palmDepth_m. h: the hand mask's median width across the axis within
     /// palmRadius_m of the palm, at the palm's depth; not measured where the
-    /// hand there reaches the edge of the view (cut, not narrow). 0: off.
-    double palmHalfWidth_m = 0.042;
+    /// hand there reaches the edge of the view (cut, not narrow). 0: off,
+    /// the default: a silhouette narrowed by something else (fingers curled
+    /// round a part, seen from the front) moves the palm too deep (srp::synth's
+    /// default view: median 3.6 -> 14.0 mm with 0.042).
+    double palmHalfWidth_m = 0.0;
     /// Palm centre from the wrist (cuff line) along the arm axis, in the
     /// plane of the hand [m].
     double palmFromWrist_m = 0.13;

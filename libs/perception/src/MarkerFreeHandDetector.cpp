@@ -63,6 +63,14 @@ cv::Rect depthFieldOfView(const cv::Mat& depth, double minValid) {
   return {u0, v0, u1 - u0 + 1, v1 - v0 + 1};
 }
 
+/// The element of rank floor(q n) of `v` (q = 0.5: the median, the upper one of an even count);
+/// `v` must not be empty.
+double quantile(std::vector<double> v, double q) {
+  const auto k = std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size())));
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
+  return v[k];
+}
+
 /// How arm-like a set of 3D points is (the skin of a bare forearm with its
 /// hand, seen in one frame): its length along the principal direction
 /// (2nd to 98th percentile) and its width across it (the second principal
@@ -86,11 +94,6 @@ ArmShape armShape(const std::vector<Eigen::Vector3d>& points, double slice_m, st
   std::vector<double> t;
   t.reserve(points.size());
   for (const auto& p : points) t.push_back(along.dot(p - mean));
-  auto quantile = [](std::vector<double> v, double q) {
-    const auto k = std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size())));
-    std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
-    return v[k];
-  };
   const double t0 = quantile(t, 0.02), t1 = quantile(t, 0.98);
   shape.length_m = t1 - t0;
   const int slices = std::max(1, static_cast<int>(std::ceil(shape.length_m / slice_m)));
@@ -621,12 +624,11 @@ void MarkerFreeHandDetector::keepArmShaped(const Plane& plane,
       if (!keep[static_cast<std::size_t>(l)]) continue;
       const ArmShape shape = armShape(points[static_cast<std::size_t>(l)], options_.stillArmSlice_m, 5);
       if (shape.widths_m.empty()) continue;
-      std::vector<double> w = shape.widths_m;
+      const std::vector<double>& w = shape.widths_m;
       const auto within = std::count_if(w.begin(), w.end(), [&](double x) {
         return x >= options_.stillArmMinWidth_m && x <= options_.stillArmMaxWidth_m;
       });
-      std::nth_element(w.begin(), w.begin() + static_cast<long>(w.size() / 2), w.end());
-      const double medianWidth_m = w[w.size() / 2];
+      const double medianWidth_m = quantile(w, 0.5);
       lengths[static_cast<std::size_t>(l)].push_back(shape.length_m);
       widths[static_cast<std::size_t>(l)].push_back(medianWidth_m);
       if (static_cast<double>(within) >= options_.stillArmWidthShare * static_cast<double>(w.size()) &&
@@ -638,11 +640,7 @@ void MarkerFreeHandDetector::keepArmShaped(const Plane& plane,
     if (!keep[static_cast<std::size_t>(l)]) continue;
     const bool arm = armLike[static_cast<std::size_t>(l)] >= options_.stillArmShapeShare * withColour;
     if (core::Log::enabled("hand", core::Log::Level::Debug)) {
-      auto median = [](std::vector<double> v) {
-        if (v.empty()) return 0.0;
-        std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-        return v[v.size() / 2];
-      };
+      auto median = [](const std::vector<double>& v) { return v.empty() ? 0.0 : quantile(v, 0.5); };
       core::Log::writef("hand", core::Log::Level::Debug,
                         "still arm: region of %d px at the border: arm-shaped in %d of %d samples (median length "
                         "%.3f m, width %.3f m): %s\n",

@@ -476,6 +476,9 @@ class MarkerFreeHandDetector : public HandDetector {
   const cv::Mat& lastMask() const { return lastMask_; }
   const Geometry& lastGeometry() const { return geometry_; }
   const SkinModel& skinModel() const { return skin_; }
+  /// True when the preview found the camera moving and each frame's background follows it (the
+  /// whole-recording background warped into the frame's camera); false before the first detect().
+  bool followsCamera() const { return cameraMoves_; }
 
  private:
   /// Palm anchor: the pixel the palm is measured from (far end, cuff line or
@@ -522,8 +525,9 @@ class MarkerFreeHandDetector : public HandDetector {
                      const cv::Mat& labels, const cv::Mat& stats, const cv::Mat& candidate,
                      std::vector<uchar>& keep) const;
   /// Does the preview show a bare forearm (sets bareForearms_)? `backgroundHalf_mm`:
-  /// each sample's background at half size [mm].
-  void decideBareForearms(const std::vector<cv::Mat>& backgroundHalf_mm);
+  /// each sample's background at half size [mm]; `depthHalf_mm`: each sample's depth at half size
+  /// [mm, CV_32FC1].
+  void decideBareForearms(const std::vector<cv::Mat>& backgroundHalf_mm, const std::vector<cv::Mat>& depthHalf_mm);
   /// Pixels where an arm enters the view, inside the depth's field of view:
   /// near the image edge, and near this frame's depth-less band where the
   /// field of view ends inside the image (row-major when there is no band).

@@ -185,10 +185,12 @@ inline bool roundedIndex(float x, int n, int& i) {
 /// Forward-warps the depth `src_m` [m, CV_32FC1] of a camera with intrinsics `Ks` (and its colour,
 /// CV_8UC3 of the same size, or empty) into a camera with intrinsics `Kd` at X_dst_src: per
 /// destination pixel the nearest point landing there; pixels where none landed (0) take the nearest
-/// of their 3x3 neighbours (the gaps a forward warp leaves), their colour the brightest (per channel).
-/// `dst_m` and `*dstColour` are reused when they already have the destination's size and type.
+/// of their 3x3 neighbours (the gaps a forward warp leaves), their colour the brightest (per channel);
+/// pixels with none there either `noDepth` (colour 0). `dst_m` and `*dstColour` are reused when they
+/// already have the destination's size and type.
 void warpDepth(const cv::Mat& src_m, const cv::Mat& srcColour, const core::CameraIntrinsics& Ks,
-               const core::Pose3& X_dst_src, const core::CameraIntrinsics& Kd, cv::Mat& dst_m, cv::Mat* dstColour) {
+               const core::Pose3& X_dst_src, const core::CameraIntrinsics& Kd, cv::Mat& dst_m, cv::Mat* dstColour,
+               float noDepth = 0.f) {
   // Where no point lands yet: farther than any (the gaps' fill below is then a plain erosion).
   constexpr float kNone = std::numeric_limits<float>::max();
   dst_m.create(Kd.height_px, Kd.width_px, CV_32FC1);
@@ -228,7 +230,7 @@ void warpDepth(const cv::Mat& src_m, const cv::Mat& srcColour, const core::Camer
       if (colour) dstColour->ptr<cv::Vec3b>(vd)[ud] = c[u];
     }
   }
-  // The gaps (still at kNone): the nearest landed depth of the 3x3 neighbours (none: 0), and the
+  // The gaps (still at kNone): the nearest landed depth of the 3x3 neighbours (none: noDepth), and the
   // per-channel brightest colour of the neighbours (a gap's own colour is 0).
   cv::Mat nearest, brightest;
   cv::erode(dst_m, nearest, cv::Mat());
@@ -240,7 +242,7 @@ void warpDepth(const cv::Mat& src_m, const cv::Mat& srcColour, const core::Camer
     const cv::Vec3b* b = colour ? brightest.ptr<cv::Vec3b>(v) : nullptr;
     for (int u = 0; u < W; ++u) {
       if (d[u] < kNone) continue;
-      d[u] = n[u] < kNone ? n[u] : 0.f;
+      d[u] = n[u] < kNone ? n[u] : noDepth;
       if (colour) c[u] = b[u];
     }
   }
@@ -427,8 +429,8 @@ void MarkerFreeHandDetector::finishPreview() {
     std::vector<cv::Mat> movingHalf(previewDepth_mm_.size());
     double disagreeStill = 0.0, disagreeMoving = 0.0;
     for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
-      cv::Mat depth_m, colour;
-      backgroundInView(previewSamplePose_[i], depth_m, colour);
+      cv::Mat depth_m;
+      backgroundInView(previewSamplePose_[i], depth_m, nullptr);
       cv::resize(depth_m, movingHalf[i], {}, 0.5, 0.5, cv::INTER_NEAREST);
       movingHalf[i] *= 1e3;
       const cv::Mat& z = depthHalf_mm[i];
@@ -508,14 +510,14 @@ void MarkerFreeHandDetector::movingBackgroundFromPreview() {
 }
 
 void MarkerFreeHandDetector::backgroundInView(const core::Pose3& X_camera0_camera, cv::Mat& depth_m,
-                                              cv::Mat& colour_bgr8) const {
+                                              cv::Mat* colour_bgr8) const {
+  const bool slack = options_.movingBackgroundSlack_px > 0;
+  // Where no background lands: 0, or for the erosion below farther than any.
   warpDepth(canvasDepth_m_, canvasColour_, canvasIntrinsics_, X_camera0_camera.inverse(), previewIntrinsics_, depth_m,
-            &colour_bgr8);
-  if (options_.movingBackgroundSlack_px <= 0) return;
+            colour_bgr8, slack ? std::numeric_limits<float>::max() : 0.f);
+  if (!slack) return;
   // The nearest background within the slack (the estimated pose's error): a surface seen at a grazing
   // angle, whose depth changes fast across the image, is not foreground for a pixel's misregistration.
-  const cv::Mat none = depth_m <= 0.f;
-  depth_m.setTo(std::numeric_limits<float>::max(), none);
   cv::erode(depth_m, depth_m, disc(2 * options_.movingBackgroundSlack_px + 1));
   depth_m.setTo(0.f, depth_m == std::numeric_limits<float>::max());
 }
@@ -968,7 +970,7 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   geometry_ = Geometry{};
   ++frameCount_;
   if (!previewDepth_mm_.empty()) finishPreview();
-  if (cameraMoves_) backgroundInView(previewPose(frame.index), backgroundDepth_m_, backgroundColour_);
+  if (cameraMoves_) backgroundInView(previewPose(frame.index), backgroundDepth_m_, &backgroundColour_);
   if (!backgroundDepth_m_.empty() && backgroundDepth_m_.size() != frame.depth_m.size())
     throw core::InvalidInputError("MarkerFreeHandDetector: frame " + std::to_string(frame.index) + " is " +
                                   std::to_string(frame.depth_m.cols) + "x" + std::to_string(frame.depth_m.rows) +

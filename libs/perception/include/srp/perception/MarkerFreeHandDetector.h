@@ -510,8 +510,8 @@ class MarkerFreeHandDetector : public HandDetector {
   /// preview samples warped into the first frame's camera.
   void movingBackgroundFromPreview();
   /// Moving camera: the background as the camera at X_camera0_camera sees it
-  /// [m, CV_32FC1; BGR].
-  void backgroundInView(const core::Pose3& X_camera0_camera, cv::Mat& depth_m, cv::Mat& colour_bgr8) const;
+  /// [m, CV_32FC1; BGR, or no colour when `colour_bgr8` is null]; both reused when of that size.
+  void backgroundInView(const core::Pose3& X_camera0_camera, cv::Mat& depth_m, cv::Mat* colour_bgr8) const;
   /// Moving camera: the camera pose of the previewed frame `index` (the last one used when it was not previewed).
   core::Pose3 previewPose(int index);
   /// stillArmFromPlane: the support plane's depth where the background

@@ -111,49 +111,140 @@ ArmShape armShape(const std::vector<Eigen::Vector3d>& points, double slice_m, st
 /// A disc-shaped structuring element of this diameter [px].
 cv::Mat disc(int diameter_px) { return cv::getStructuringElement(cv::MORPH_ELLIPSE, {diameter_px, diameter_px}); }
 
+/// Per pixel, the quantile `q` of the samples' valid depths (CV_16UC1 [mm], 0 = none): the k-th
+/// smallest, k = min(n - 1, floor(q n)) of the n valid ones, into `quantile_mm` (CV_32FC1, left
+/// where none is valid); pixels with fewer than `minValid` valid samples are marked 255 in `few`
+/// (CV_8UC1). The k-th smallest valid depth is the (n - k)-th largest of all the samples' values
+/// (no depth = 0 ranks below every depth): for a high quantile each pixel keeps its few largest
+/// values, a sorting network of image-wide min/max over bands of rows that stay in the cache.
+void depthQuantiles(const std::vector<cv::Mat>& samples_mm, double q, std::size_t minValid, cv::Mat& quantile_mm,
+                    cv::Mat& few) {
+  const std::size_t S = samples_mm.size();
+  std::vector<int> rankFromTop(S + 1, 0);  // per count n of valid samples, n - k
+  int ranks = 0;
+  for (std::size_t n = 1; n <= S; ++n) {
+    const std::size_t k = std::min(n - 1, static_cast<std::size_t>(q * static_cast<double>(n)));
+    rankFromTop[n] = static_cast<int>(n - k);
+    ranks = std::max(ranks, rankFromTop[n]);
+  }
+  const int W = samples_mm[0].cols, H = samples_mm[0].rows;
+  if (ranks > 8) {  // a low quantile: per pixel
+    std::vector<std::uint16_t> vals;
+    for (int v = 0; v < H; ++v)
+      for (int u = 0; u < W; ++u) {
+        vals.clear();
+        for (const auto& d : samples_mm)
+          if (const std::uint16_t z = d.ptr<std::uint16_t>(v)[u]; z > 0) vals.push_back(z);
+        if (vals.empty()) continue;
+        if (vals.size() < minValid) few.ptr<uchar>(v)[u] = 255;
+        const auto k = static_cast<long>(vals.size()) - rankFromTop[vals.size()];
+        std::nth_element(vals.begin(), vals.begin() + k, vals.end());
+        quantile_mm.ptr<float>(v)[u] = vals[static_cast<std::size_t>(k)];
+      }
+    return;
+  }
+  const int band = std::max(1, 16384 / std::max(1, W));           // rows per band: a few 32 KB images
+  std::vector<cv::Mat> largest(static_cast<std::size_t>(ranks));  // per pixel, descending
+  cv::Mat x, valid, count, higher;
+  for (int r0 = 0; r0 < H; r0 += band) {
+    const cv::Range rows(r0, std::min(H, r0 + band));
+    for (auto& l : largest) l = cv::Mat::zeros(rows.size(), W, CV_16UC1);
+    count = cv::Mat::zeros(rows.size(), W, CV_16UC1);
+    for (const auto& d : samples_mm) {
+      d.rowRange(rows).copyTo(x);
+      cv::min(x, 1, valid);
+      cv::add(count, valid, count);
+      for (auto& l : largest) {  // insert x: each rank keeps the larger, passes the smaller on
+        cv::max(l, x, higher);
+        cv::min(l, x, x);
+        std::swap(l, higher);
+      }
+    }
+    for (int v = 0; v < rows.size(); ++v) {
+      const std::uint16_t* n = count.ptr<std::uint16_t>(v);
+      float* out = quantile_mm.ptr<float>(r0 + v);
+      uchar* f = few.ptr<uchar>(r0 + v);
+      for (int u = 0; u < W; ++u) {
+        if (n[u] == 0) continue;
+        if (n[u] < minValid) f[u] = 255;
+        out[u] = largest[static_cast<std::size_t>(rankFromTop[n[u]] - 1)].ptr<std::uint16_t>(v)[u];
+      }
+    }
+  }
+}
+
+/// std::lround(x) when it lies in [0, n) (then true), for the destination pixel of a warped point:
+/// the same integer as lround, without its library call.
+inline bool roundedIndex(float x, int n, int& i) {
+  if (!(x > -0.5f && x < static_cast<float>(n) - 0.5f)) return false;  // lround(x) outside [0, n), or NaN
+  const int t = static_cast<int>(x);                                   // towards zero; x - t is exact
+  i = t + (x - static_cast<float>(t) >= 0.5f ? 1 : 0);
+  return true;
+}
+
 /// Forward-warps the depth `src_m` [m, CV_32FC1] of a camera with intrinsics `Ks` (and its colour,
 /// CV_8UC3 of the same size, or empty) into a camera with intrinsics `Kd` at X_dst_src: per
 /// destination pixel the nearest point landing there; pixels where none landed (0) take the nearest
-/// of their 3x3 neighbours (the gaps a forward warp leaves), their colour the brightest.
+/// of their 3x3 neighbours (the gaps a forward warp leaves), their colour the brightest (per channel);
+/// pixels with none there either `noDepth` (colour 0). `dst_m` and `*dstColour` are reused when they
+/// already have the destination's size and type.
 void warpDepth(const cv::Mat& src_m, const cv::Mat& srcColour, const core::CameraIntrinsics& Ks,
-               const core::Pose3& X_dst_src, const core::CameraIntrinsics& Kd, cv::Mat& dst_m, cv::Mat* dstColour) {
-  dst_m = cv::Mat(Kd.height_px, Kd.width_px, CV_32FC1, cv::Scalar(0));
+               const core::Pose3& X_dst_src, const core::CameraIntrinsics& Kd, cv::Mat& dst_m, cv::Mat* dstColour,
+               float noDepth = 0.f) {
+  // Where no point lands yet: farther than any (the gaps' fill below is then a plain erosion).
+  constexpr float kNone = std::numeric_limits<float>::max();
+  dst_m.create(Kd.height_px, Kd.width_px, CV_32FC1);
+  dst_m.setTo(kNone);
   const bool colour = dstColour && !srcColour.empty();
-  if (colour) *dstColour = cv::Mat(dst_m.size(), CV_8UC3, cv::Scalar::all(0));
+  if (colour) {
+    dstColour->create(dst_m.size(), CV_8UC3);
+    dstColour->setTo(cv::Scalar::all(0));
+  }
   const Eigen::Matrix3f R = X_dst_src.linear().cast<float>();
   const Eigen::Vector3f t = X_dst_src.translation().cast<float>();
   std::vector<float> xr(static_cast<std::size_t>(src_m.cols));
   for (int u = 0; u < src_m.cols; ++u) xr[static_cast<std::size_t>(u)] = static_cast<float>((u - Ks.cx_px) / Ks.fx_px);
   const float fx = static_cast<float>(Kd.fx_px), fy = static_cast<float>(Kd.fy_px);
   const float cx = static_cast<float>(Kd.cx_px), cy = static_cast<float>(Kd.cy_px);
+  const float r0x = R(0, 0), r0y = R(1, 0), r0z = R(2, 0), tx = t.x(), ty = t.y(), tz = t.z();
+  const int W = dst_m.cols, H = dst_m.rows;
+  const Eigen::Map<const Eigen::ArrayXf> xa(xr.data(), src_m.cols);
+  Eigen::ArrayXf qz(src_m.cols), pu(src_m.cols), pv(src_m.cols);
   for (int v = 0; v < src_m.rows; ++v) {
     const float yr = static_cast<float>((v - Ks.cy_px) / Ks.fy_px);
     const float* z = src_m.ptr<float>(v);
-    // Per row: the image of the point (xr z, yr z, z) is (a z + t) with a = R (xr, yr, 1).
+    const cv::Vec3b* c = colour ? srcColour.ptr<cv::Vec3b>(v) : nullptr;
+    // Per row: the image of the point (xr z, yr z, z) is (a z + t) with a = R (xr, yr, 1); its
+    // pixel (pu, pv), the whole row at once (vectorised; a point without depth is skipped below).
     const Eigen::Vector3f b = R * Eigen::Vector3f(0.f, yr, 1.f);
+    const Eigen::Map<const Eigen::ArrayXf> za(z, src_m.cols);
+    qz = (b.z() + r0z * xa) * za + tz;
+    pu = fx * ((b.x() + r0x * xa) * za + tx) / qz + cx;
+    pv = fy * ((b.y() + r0y * xa) * za + ty) / qz + cy;
     for (int u = 0; u < src_m.cols; ++u) {
-      if (z[u] <= 0.f) continue;
-      const Eigen::Vector3f q = (b + R.col(0) * xr[static_cast<std::size_t>(u)]) * z[u] + t;
-      if (q.z() <= 0.f) continue;
-      const int ud = static_cast<int>(std::lround(fx * q.x() / q.z() + cx));
-      const int vd = static_cast<int>(std::lround(fy * q.y() / q.z() + cy));
-      if (ud < 0 || vd < 0 || ud >= dst_m.cols || vd >= dst_m.rows) continue;
+      int ud = 0, vd = 0;
+      if (z[u] <= 0.f || qz[u] <= 0.f || !roundedIndex(pu[u], W, ud) || !roundedIndex(pv[u], H, vd)) continue;
       float& d = dst_m.ptr<float>(vd)[ud];
-      if (d > 0.f && d <= q.z()) continue;
-      d = q.z();
-      if (colour) dstColour->ptr<cv::Vec3b>(vd)[ud] = srcColour.ptr<cv::Vec3b>(v)[u];
+      if (d <= qz[u]) continue;
+      d = qz[u];
+      if (colour) dstColour->ptr<cv::Vec3b>(vd)[ud] = c[u];
     }
   }
-  const cv::Mat gaps = dst_m <= 0.f;
-  cv::Mat far = dst_m.clone(), nearest;
-  far.setTo(std::numeric_limits<float>::max(), gaps);
-  cv::erode(far, nearest, cv::Mat());
-  nearest.setTo(0.f, nearest == std::numeric_limits<float>::max());
-  nearest.copyTo(dst_m, gaps);
-  if (colour) {
-    cv::Mat brightest;
-    cv::dilate(*dstColour, brightest, cv::Mat());
-    brightest.copyTo(*dstColour, gaps);
+  // The gaps (still at kNone): the nearest landed depth of the 3x3 neighbours (none: noDepth), and the
+  // per-channel brightest colour of the neighbours (a gap's own colour is 0).
+  cv::Mat nearest, brightest;
+  cv::erode(dst_m, nearest, cv::Mat());
+  if (colour) cv::dilate(*dstColour, brightest, cv::Mat());
+  for (int v = 0; v < H; ++v) {
+    float* d = dst_m.ptr<float>(v);
+    const float* n = nearest.ptr<float>(v);
+    cv::Vec3b* c = colour ? dstColour->ptr<cv::Vec3b>(v) : nullptr;
+    const cv::Vec3b* b = colour ? brightest.ptr<cv::Vec3b>(v) : nullptr;
+    for (int u = 0; u < W; ++u) {
+      if (d[u] < kNone) continue;
+      d[u] = n[u] < kNone ? n[u] : noDepth;
+      if (colour) c[u] = b[u];
+    }
   }
 }
 
@@ -323,6 +414,12 @@ void MarkerFreeHandDetector::finishPreview() {
   cv::Mat stillHalf;
   cv::resize(still_mm, stillHalf, {}, 0.5, 0.5, cv::INTER_NEAREST);
   std::vector<cv::Mat> bgHalf(previewDepth_mm_.size(), stillHalf);
+  // Each sample's own depth at half size [mm, CV_32FC1], for the comparisons below.
+  std::vector<cv::Mat> depthHalf_mm(previewDepth_mm_.size());
+  for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
+    cv::resize(previewDepth_mm_[i], depthHalf_mm[i], {}, 0.5, 0.5, cv::INTER_NEAREST);
+    depthHalf_mm[i].convertTo(depthHalf_mm[i], CV_32FC1);
+  }
   if (turned) {
     // The estimated motion is used when the samples agree with their warped background better than with
     // the still one (ICP on a scene of little structure, a plane and a large arm, can report a motion
@@ -332,12 +429,11 @@ void MarkerFreeHandDetector::finishPreview() {
     std::vector<cv::Mat> movingHalf(previewDepth_mm_.size());
     double disagreeStill = 0.0, disagreeMoving = 0.0;
     for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
-      cv::Mat depth_m, colour, z;
-      backgroundInView(previewSamplePose_[i], depth_m, colour);
+      cv::Mat depth_m;
+      backgroundInView(previewSamplePose_[i], depth_m, nullptr);
       cv::resize(depth_m, movingHalf[i], {}, 0.5, 0.5, cv::INTER_NEAREST);
       movingHalf[i] *= 1e3;
-      cv::resize(previewDepth_mm_[i], z, {}, 0.5, 0.5, cv::INTER_NEAREST);
-      z.convertTo(z, CV_32FC1);
+      const cv::Mat& z = depthHalf_mm[i];
       auto disagreement = [&](const cv::Mat& bg) {
         const cv::Mat both = (z > 0.f) & (bg > 0.f);
         const cv::Mat off = both & (cv::abs(bg - z) > 1e3 * options_.minForeground_m);
@@ -363,16 +459,14 @@ void MarkerFreeHandDetector::finishPreview() {
     const cv::Mat open = disc(options_.previewOpenDiameter_px);
     for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
       if (previewColour_[i].empty()) continue;
-      cv::Mat z;
-      cv::resize(previewDepth_mm_[i], z, {}, 0.5, 0.5, cv::INTER_NEAREST);
-      z.convertTo(z, CV_32FC1);
+      const cv::Mat& z = depthHalf_mm[i];
       const cv::Mat fg = (z > 0) & (bgHalf[i] - z > 1e3 * options_.minForeground_m);
       cv::Mat fgOpen;
       cv::morphologyEx(fg, fgOpen, cv::MORPH_OPEN, open);
       accumulateSkin(previewColour_[i], fgOpen, 1);
     }
     fitSkin();
-    if (skin_.learnt) decideBareForearms(bgHalf);
+    if (skin_.learnt) decideBareForearms(bgHalf, depthHalf_mm);
   }
   previewDepth_mm_.clear();
   previewColour_.clear();
@@ -416,14 +510,14 @@ void MarkerFreeHandDetector::movingBackgroundFromPreview() {
 }
 
 void MarkerFreeHandDetector::backgroundInView(const core::Pose3& X_camera0_camera, cv::Mat& depth_m,
-                                              cv::Mat& colour_bgr8) const {
+                                              cv::Mat* colour_bgr8) const {
+  const bool slack = options_.movingBackgroundSlack_px > 0;
+  // Where no background lands: 0, or for the erosion below farther than any.
   warpDepth(canvasDepth_m_, canvasColour_, canvasIntrinsics_, X_camera0_camera.inverse(), previewIntrinsics_, depth_m,
-            &colour_bgr8);
-  if (options_.movingBackgroundSlack_px <= 0) return;
+            colour_bgr8, slack ? std::numeric_limits<float>::max() : 0.f);
+  if (!slack) return;
   // The nearest background within the slack (the estimated pose's error): a surface seen at a grazing
   // angle, whose depth changes fast across the image, is not foreground for a pixel's misregistration.
-  const cv::Mat none = depth_m <= 0.f;
-  depth_m.setTo(std::numeric_limits<float>::max(), none);
   cv::erode(depth_m, depth_m, disc(2 * options_.movingBackgroundSlack_px + 1));
   depth_m.setTo(0.f, depth_m == std::numeric_limits<float>::max());
 }
@@ -444,7 +538,6 @@ core::Pose3 MarkerFreeHandDetector::previewPose(int index) {
 cv::Mat MarkerFreeHandDetector::backgroundFromPreview(const std::vector<cv::Mat>& samples_mm, bool moving) {
   const cv::Size size = samples_mm[0].size();
   cv::Mat background_mm(size, CV_32FC1, cv::Scalar(0));
-  std::vector<std::uint16_t> vals;
   // A pixel with depth in few samples (the shadow band along a static
   // object's edge) has its quantile set by whatever covered it then (the
   // demonstrator's arm): its background comes from its neighbours instead.
@@ -452,18 +545,7 @@ cv::Mat MarkerFreeHandDetector::backgroundFromPreview(const std::vector<cv::Mat>
   const std::size_t minValid = moving ? 0 : static_cast<std::size_t>(std::ceil(
       options_.minBackgroundValidFraction * static_cast<double>(samples_mm.size())));
   cv::Mat untrusted(size, CV_8UC1, cv::Scalar(0));
-  for (int v = 0; v < size.height; ++v)
-    for (int u = 0; u < size.width; ++u) {
-      vals.clear();
-      for (const auto& d : samples_mm)
-        if (const std::uint16_t z = d.at<std::uint16_t>(v, u); z > 0) vals.push_back(z);
-      if (vals.empty()) continue;
-      if (vals.size() < minValid) untrusted.at<uchar>(v, u) = 255;
-      const auto k = std::min(vals.size() - 1, static_cast<std::size_t>(options_.backgroundPercentile *
-                                                                           static_cast<double>(vals.size())));
-      std::nth_element(vals.begin(), vals.begin() + static_cast<long>(k), vals.end());
-      background_mm.at<float>(v, u) = vals[k];
-    }
+  depthQuantiles(samples_mm, options_.backgroundPercentile, minValid, background_mm, untrusted);
   // The depth's field of view: where any sample had a depth (a registered
   // image's band that the depth camera does not see never has one).
   if (!moving) view_ = depthFieldOfView(background_mm, options_.minFieldOfViewValid);
@@ -652,7 +734,8 @@ void MarkerFreeHandDetector::keepArmShaped(const Plane& plane,
   }
 }
 
-void MarkerFreeHandDetector::decideBareForearms(const std::vector<cv::Mat>& bgHalf) {
+void MarkerFreeHandDetector::decideBareForearms(const std::vector<cv::Mat>& bgHalf,
+                                                const std::vector<cv::Mat>& depthHalf_mm) {
   // Does this demonstrator show a bare forearm? The largest skin-coloured
   // foreground component of each sample, longer than a hand in 3D.
   core::CameraIntrinsics k = previewIntrinsics_;
@@ -665,8 +748,7 @@ void MarkerFreeHandDetector::decideBareForearms(const std::vector<cv::Mat>& bgHa
   for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
     if (previewColour_[i].empty()) continue;
     cv::Mat z_m;
-    cv::resize(previewDepth_mm_[i], z_m, {}, 0.5, 0.5, cv::INTER_NEAREST);
-    z_m.convertTo(z_m, CV_32FC1, 1e-3);
+    depthHalf_mm[i].convertTo(z_m, CV_32FC1, 1e-3);
     cv::Mat m = (z_m > 0) & (bgHalf[i] - 1e3f * z_m > 1e3 * options_.minForeground_m) & skinMask(previewColour_[i], true);
     cv::morphologyEx(m, m, cv::MORPH_OPEN, open);
     cv::Mat cl, cs, cc;
@@ -888,7 +970,7 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   geometry_ = Geometry{};
   ++frameCount_;
   if (!previewDepth_mm_.empty()) finishPreview();
-  if (cameraMoves_) backgroundInView(previewPose(frame.index), backgroundDepth_m_, backgroundColour_);
+  if (cameraMoves_) backgroundInView(previewPose(frame.index), backgroundDepth_m_, &backgroundColour_);
   if (!backgroundDepth_m_.empty() && backgroundDepth_m_.size() != frame.depth_m.size())
     throw core::InvalidInputError("MarkerFreeHandDetector: frame " + std::to_string(frame.index) + " is " +
                                   std::to_string(frame.depth_m.cols) + "x" + std::to_string(frame.depth_m.rows) +

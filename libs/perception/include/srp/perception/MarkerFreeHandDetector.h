@@ -476,6 +476,9 @@ class MarkerFreeHandDetector : public HandDetector {
   const cv::Mat& lastMask() const { return lastMask_; }
   const Geometry& lastGeometry() const { return geometry_; }
   const SkinModel& skinModel() const { return skin_; }
+  /// True when the preview found the camera moving and each frame's background follows it (the
+  /// whole-recording background warped into the frame's camera); false before the first detect().
+  bool followsCamera() const { return cameraMoves_; }
 
  private:
   /// Palm anchor: the pixel the palm is measured from (far end, cuff line or
@@ -507,8 +510,8 @@ class MarkerFreeHandDetector : public HandDetector {
   /// preview samples warped into the first frame's camera.
   void movingBackgroundFromPreview();
   /// Moving camera: the background as the camera at X_camera0_camera sees it
-  /// [m, CV_32FC1; BGR].
-  void backgroundInView(const core::Pose3& X_camera0_camera, cv::Mat& depth_m, cv::Mat& colour_bgr8) const;
+  /// [m, CV_32FC1; BGR, or no colour when `colour_bgr8` is null]; both reused when of that size.
+  void backgroundInView(const core::Pose3& X_camera0_camera, cv::Mat& depth_m, cv::Mat* colour_bgr8) const;
   /// Moving camera: the camera pose of the previewed frame `index` (the last one used when it was not previewed).
   core::Pose3 previewPose(int index);
   /// stillArmFromPlane: the support plane's depth where the background
@@ -522,8 +525,9 @@ class MarkerFreeHandDetector : public HandDetector {
                      const cv::Mat& labels, const cv::Mat& stats, const cv::Mat& candidate,
                      std::vector<uchar>& keep) const;
   /// Does the preview show a bare forearm (sets bareForearms_)? `backgroundHalf_mm`:
-  /// each sample's background at half size [mm].
-  void decideBareForearms(const std::vector<cv::Mat>& backgroundHalf_mm);
+  /// each sample's background at half size [mm]; `depthHalf_mm`: each sample's depth at half size
+  /// [mm, CV_32FC1].
+  void decideBareForearms(const std::vector<cv::Mat>& backgroundHalf_mm, const std::vector<cv::Mat>& depthHalf_mm);
   /// Pixels where an arm enters the view, inside the depth's field of view:
   /// near the image edge, and near this frame's depth-less band where the
   /// field of view ends inside the image (row-major when there is no band).

@@ -409,6 +409,22 @@ void MarkerFreeHandDetector::movingBackgroundFromPreview() {
   // The view moves: the whole image is in view (a pixel without background is no foreground).
   view_ = cv::Rect(0, 0, k.width_px, k.height_px);
   canvas_mm.convertTo(canvasDepth_m_, CV_32FC1, 1e-3);
+  if (options_.enterThroughStillArm) {
+    // The support plane in the first camera (half size: plenty of points).
+    cv::Mat half_m;
+    cv::resize(canvasDepth_m_, half_m, {}, 0.5, 0.5, cv::INTER_NEAREST);
+    core::CameraIntrinsics kh = canvasIntrinsics_;
+    kh.fx_px *= 0.5;
+    kh.fy_px *= 0.5;
+    kh.cx_px = (kh.cx_px + 0.5) * 0.5 - 0.5;
+    kh.cy_px = (kh.cy_px + 0.5) * 0.5 - 0.5;
+    kh.width_px = half_m.cols;
+    kh.height_px = half_m.rows;
+    if (const auto plane = fitSupportPlane(depthToCloud(half_m, CameraModel(kh)))) {
+      canvasPlaneNormal_ = plane->n;
+      canvasPlaneOffset_ = plane->d;
+    }
+  }
   cv::Mat count3;
   cv::merge(std::vector<cv::Mat>{colourCount, colourCount, colourCount}, count3);
   cv::Mat mean = colourSum / cv::max(count3, 1.f);
@@ -426,6 +442,48 @@ void MarkerFreeHandDetector::backgroundInView(const core::Pose3& X_camera0_camer
   depth_m.setTo(std::numeric_limits<float>::max(), none);
   cv::erode(depth_m, depth_m, disc(2 * options_.movingBackgroundSlack_px + 1));
   depth_m.setTo(0.f, depth_m == std::numeric_limits<float>::max());
+}
+
+cv::Mat MarkerFreeHandDetector::enteringBackground(const cv::Mat& background_m,
+                                                  const core::Pose3& X_camera0_camera) const {
+  if (canvasPlaneNormal_.squaredNorm() == 0.0) return {};
+  // The plane in this camera: height(p) = n0 . (R p + t) + d0.
+  const Eigen::Vector3d n = X_camera0_camera.linear().transpose() * canvasPlaneNormal_;
+  const double d = canvasPlaneNormal_.dot(X_camera0_camera.translation()) + canvasPlaneOffset_;
+  const core::CameraIntrinsics& k = previewIntrinsics_;
+  const double lo = options_.minForeground_m, hi = options_.stillArmMaxHeight_m;
+  cv::Mat open(background_m.size(), CV_8UC1, cv::Scalar(0));
+  for (int v = 0; v < background_m.rows; ++v) {
+    const float* z = background_m.ptr<float>(v);
+    uchar* o = open.ptr<uchar>(v);
+    const double ny = n.y() * (v - k.cy_px) / k.fy_px + n.z();
+    for (int u = 0; u < background_m.cols; ++u) {
+      if (z[u] <= 0.f) {
+        o[u] = 255;  // no background: as outside the view
+        continue;
+      }
+      const double h = z[u] * (n.x() * (u - k.cx_px) / k.fx_px + ny) + d;
+      o[u] = h >= lo && h <= hi ? 255 : 0;
+    }
+  }
+  // Only the regions that reach the image border (where the arm enters), grown by the border margin.
+  cv::Mat labels, stats, centroids;
+  const int nl = cv::connectedComponentsWithStats(open, labels, stats, centroids, 8, CV_32S);
+  const int m = options_.borderMargin_px, W = open.cols, H = open.rows;
+  std::vector<uchar> keep(static_cast<std::size_t>(nl), 0);
+  for (int l = 1; l < nl; ++l) {
+    const int x = stats.at<int>(l, cv::CC_STAT_LEFT), y = stats.at<int>(l, cv::CC_STAT_TOP);
+    keep[static_cast<std::size_t>(l)] = x <= m || y <= m || x + stats.at<int>(l, cv::CC_STAT_WIDTH) >= W - m ||
+                                        y + stats.at<int>(l, cv::CC_STAT_HEIGHT) >= H - m;
+  }
+  cv::Mat out(open.size(), CV_8UC1, cv::Scalar(0));
+  for (int v = 0; v < H; ++v) {
+    const int* l = labels.ptr<int>(v);
+    uchar* o = out.ptr<uchar>(v);
+    for (int u = 0; u < W; ++u) o[u] = keep[static_cast<std::size_t>(l[u])] && l[u] > 0 ? 255 : 0;
+  }
+  if (m > 0) cv::dilate(out, out, cv::getStructuringElement(cv::MORPH_RECT, {2 * m + 1, 2 * m + 1}));
+  return out;
 }
 
 core::Pose3 MarkerFreeHandDetector::previewPose(int index) {
@@ -888,7 +946,11 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   geometry_ = Geometry{};
   ++frameCount_;
   if (!previewDepth_mm_.empty()) finishPreview();
-  if (cameraMoves_) backgroundInView(previewPose(frame.index), backgroundDepth_m_, backgroundColour_);
+  if (cameraMoves_) {
+    const core::Pose3 X_camera0_camera = previewPose(frame.index);
+    backgroundInView(X_camera0_camera, backgroundDepth_m_, backgroundColour_);
+    if (options_.enterThroughStillArm) enteringBackground_ = enteringBackground(backgroundDepth_m_, X_camera0_camera);
+  }
   if (!backgroundDepth_m_.empty() && backgroundDepth_m_.size() != frame.depth_m.size())
     throw core::InvalidInputError("MarkerFreeHandDetector: frame " + std::to_string(frame.index) + " is " +
                                   std::to_string(frame.depth_m.cols) + "x" + std::to_string(frame.depth_m.rows) +
@@ -1081,6 +1143,13 @@ std::vector<cv::Point> MarkerFreeHandDetector::borderZone(const cv::Mat& depth_m
       }
     }
   };
+  // Under a moving camera, the background through which an arm in view in every frame enters.
+  if (!enteringBackground_.empty() && enteringBackground_.size() == depth_m.size())
+    for (int v = 0; v < H; ++v) {
+      const uchar* e = enteringBackground_.ptr<uchar>(v);
+      for (int u = 0; u < W; ++u)
+        if (e[u]) add(u, v);
+    }
   if (view_.x > 0) mark(true, false, view_.x);
   if (view_.x + view_.width < W) mark(true, true, W - view_.x - view_.width);
   if (view_.y > 0) mark(false, false, view_.y);

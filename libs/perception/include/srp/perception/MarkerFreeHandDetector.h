@@ -199,6 +199,16 @@ class MarkerFreeHandDetector : public HandDetector {
     /// this many pixels (the estimated camera pose's error; a surface seen at
     /// a grazing angle changes its depth by centimetres per pixel) [px]. 0: off.
     int movingBackgroundSlack_px = 3;
+    /// Under a moving camera: an arm in view in every frame, entering at the
+    /// same border (a hand held in front of a head-mounted camera), is in
+    /// most samples where it enters, and the background there is the arm
+    /// itself: the moving arm is foreground only farther in and reaches no
+    /// border. The arm then enters the view through the background that stands
+    /// above the support plane (fitted to the first camera's widened
+    /// background) by minForeground_m to stillArmMaxHeight_m, or that has no
+    /// background, where that region reaches the image border: borderZone
+    /// takes its pixels. false: the image border only.
+    bool enterThroughStillArm = true;
     /// Foreground: closer than the background by this much [m].
     double minForeground_m = 0.02;
     /// Foreground in a depth hole: sum of |BGR| changes from the background
@@ -509,6 +519,10 @@ class MarkerFreeHandDetector : public HandDetector {
   /// Moving camera: the background as the camera at X_camera0_camera sees it
   /// [m, CV_32FC1; BGR].
   void backgroundInView(const core::Pose3& X_camera0_camera, cv::Mat& depth_m, cv::Mat& colour_bgr8) const;
+  /// Moving camera, enterThroughStillArm: the pixels of the frame's background
+  /// `background_m` [m] seen from X_camera0_camera through which an arm may
+  /// enter (CV_8UC1; empty without a support plane).
+  cv::Mat enteringBackground(const cv::Mat& background_m, const core::Pose3& X_camera0_camera) const;
   /// Moving camera: the camera pose of the previewed frame `index` (the last one used when it was not previewed).
   core::Pose3 previewPose(int index);
   /// stillArmFromPlane: the support plane's depth where the background
@@ -595,6 +609,11 @@ class MarkerFreeHandDetector : public HandDetector {
   std::vector<core::Pose3> previewSamplePose_;
   bool cameraMoves_ = false;
   cv::Mat canvasDepth_m_, canvasColour_;
+  // The support plane in the first frame's camera, n . p + d = 0 (n zero: none found), and this
+  // frame's background through which the arm enters (enterThroughStillArm).
+  Eigen::Vector3d canvasPlaneNormal_ = Eigen::Vector3d::Zero();
+  double canvasPlaneOffset_ = 0.0;
+  cv::Mat enteringBackground_;
   core::CameraIntrinsics canvasIntrinsics_;
   core::Pose3 lastPose_ = core::Pose3::Identity();
   std::size_t nextPose_ = 0;  ///< where previewPose looks first

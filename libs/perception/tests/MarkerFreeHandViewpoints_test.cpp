@@ -58,7 +58,10 @@ TEST(MarkerFreeHandViewpoints, NoPalmPastTheHeldPartTopDown) {
 // background takes the swaying table for foreground and the palm lands far off.
 TEST(MarkerFreeHandViewpoints, SwayingHeadCameraHandHoldingThePart) {
   constexpr double kWithin_px = 40.0;  // at 640-px width
-  constexpr double kMinWithin = 0.8;   // reached: 83.3 % (60 of 72 frames)
+  constexpr double kMinWithin = 0.95;  // reached: 95.8 % (69 of 72 frames)
+  // The arm entering only through the image border (enterThroughStillArm off): 83.3 % (60 of 72): the
+  // forearm, in every frame, is the background in the bottom rows and reaches no border there.
+  constexpr double kMaxWithinBorderOnly = 0.9;
   constexpr double kMaxWithinStill = 0.2;  // a still camera's background: 0.0 %
   testing::ViewpointDemoSpec spec;
   spec.family = synth::ViewpointFamily::Egocentric;
@@ -70,6 +73,13 @@ TEST(MarkerFreeHandViewpoints, SwayingHeadCameraHandHoldingThePart) {
   EXPECT_EQ(ev.carried, ev.handInView) << "the hand holds the part in every frame";
   EXPECT_GE(ev.within640(kWithin_px), kMinWithin);
   EXPECT_EQ(ev.farSide, 0);
+  auto borderOnly = testing::optionsFromEnvironment();
+  borderOnly.enterThroughStillArm = false;
+  const auto evBorderOnly = testing::evaluateMarkerFreeHand(
+      (std::filesystem::path(SRP_BINARY_DIR) / "viewpoint_demos_small" / (spec.name() + ".rawlog")).string(),
+      borderOnly, {}, true);
+  evBorderOnly.print(spec.name() + ", the arm entering through the image border only");
+  EXPECT_LE(evBorderOnly.within640(kWithin_px), kMaxWithinBorderOnly);
   auto still = testing::optionsFromEnvironment();
   still.followCameraMotion = false;
   const auto evStill = testing::evaluateMarkerFreeHand(
@@ -77,6 +87,40 @@ TEST(MarkerFreeHandViewpoints, SwayingHeadCameraHandHoldingThePart) {
       {}, true);
   evStill.print(spec.name() + ", background of a still camera");
   EXPECT_LE(evStill.within640(kWithin_px), kMaxWithinStill);
+}
+
+// The held-out clip's kind of recording, small: a head-mounted SR300-like sensor (16:9 colour 768x432,
+// depth 256x192 from its own camera, registered by `srp import`), swaying, a bare forearm holding the
+// cuboid in every frame and entering at the bottom edge. The arm is in most of the background's samples
+// where it enters, so the background there is the arm: the arm enters through the background standing
+// above the table at the border (enterThroughStillArm). Variant 4's camera, the cuboid 1.5x, seed 7.
+TEST(MarkerFreeHandViewpoints, HeadCameraArmInEveryFrameEntersThroughItsStillBackground) {
+  constexpr double kWithin_px = 40.0;          // at 640-px width
+  constexpr double kMinWithin = 0.99;          // reached: 100 % (71 of 71 frames)
+  constexpr double kMaxWithinBorderOnly = 0.97;  // the image border only: 95.8 % (68 of 71), 1 palm past the part
+  testing::ViewpointDemoSpec spec;
+  spec.family = synth::ViewpointFamily::Egocentric;
+  spec.heldOnly = "cuboid";
+  spec.bareForearm = true;
+  spec.headSway = true;
+  spec.sr300 = true;
+  spec.width_px = 768;  // MRPT's renderer needs image widths that are multiples of 4
+  spec.variant = 4;
+  spec.partScale = 1.5;
+  spec.seed = 7;
+  const std::string rawlog =
+      testing::renderViewpointDemo(spec, (std::filesystem::path(SRP_BINARY_DIR) / "viewpoint_demos_small").string());
+  const auto ev = testing::evaluateMarkerFreeHand(rawlog, testing::optionsFromEnvironment(), {}, true);
+  ev.print(spec.name());
+  ASSERT_GT(ev.carried, 0);
+  EXPECT_EQ(ev.carried, ev.handInView) << "the hand holds the part in every frame";
+  EXPECT_GE(ev.within640(kWithin_px), kMinWithin);
+  EXPECT_EQ(ev.farSide, 0);
+  auto borderOnly = testing::optionsFromEnvironment();
+  borderOnly.enterThroughStillArm = false;
+  const auto evBorderOnly = testing::evaluateMarkerFreeHand(rawlog, borderOnly, {}, true);
+  evBorderOnly.print(spec.name() + ", the arm entering through the image border only");
+  EXPECT_LE(evBorderOnly.within640(kWithin_px), kMaxWithinBorderOnly);
 }
 
 /// The palm's signed errors in the frames the cuff rule placed it [m]: along the true hand's axis (towards the

@@ -41,7 +41,8 @@ struct ViewpointDemoSpec {
   /// own camera (fx 0.72 of its width: 69 x 55 deg), 25 mm beside the colour camera and turned by
   /// 0.3 deg (the datasheet's fields of view; the extrinsic is not a measured unit's), written as an
   /// image folder and registered by `srp import` (calib::importRecording): colour 1920x1080 with
-  /// 640x480 depth re-projected into it at width_px 1920, holes where the depth camera does not see.
+  /// 640x480 depth re-projected into it at width_px 1920, holes where the depth camera does not see
+  /// (width_px / 3 must be a multiple of 4 for MRPT's renderer).
   bool sr300 = false;
   std::string name() const {
     char s[160];

@@ -195,6 +195,14 @@ class MarkerFreeHandDetector : public HandDetector {
     /// That background's image is the first frame's widened by this share of
     /// its width and height on each side [ratio].
     double movingBackgroundMargin = 0.15;
+    /// That background's gaps narrower than this share of the image's width,
+    /// where no sample had a depth (a depth camera registered to a larger
+    /// colour image leaves a band of 2-3 of its pixels without depth along
+    /// every depth edge, the same in every sample: 6-9 px at 1920 px from a
+    /// 640-px depth), take the farthest depth and the brightest colour around
+    /// them; else the arm crossing such an edge (the table's near edge) is
+    /// cut there, for a pixel without background is not foreground. 0: off.
+    double movingBackgroundGap = 0.015;
     /// That background, warped into a frame's camera, is the nearest within
     /// this many pixels (the estimated camera pose's error; a surface seen at
     /// a grazing angle changes its depth by centimetres per pixel) [px]. 0: off.
@@ -521,8 +529,10 @@ class MarkerFreeHandDetector : public HandDetector {
   void backgroundInView(const core::Pose3& X_camera0_camera, cv::Mat& depth_m, cv::Mat& colour_bgr8) const;
   /// Moving camera, enterThroughStillArm: the pixels of the frame's background
   /// `background_m` [m] seen from X_camera0_camera through which an arm may
-  /// enter (CV_8UC1; empty without a support plane).
-  cv::Mat enteringBackground(const cv::Mat& background_m, const core::Pose3& X_camera0_camera) const;
+  /// enter (CV_8UC1; empty without a support plane). `planeDepth_m`: the
+  /// plane's depth [m] where that background stands above it (0 elsewhere).
+  cv::Mat enteringBackground(const cv::Mat& background_m, const core::Pose3& X_camera0_camera,
+                             cv::Mat* planeDepth_m = nullptr) const;
   /// Moving camera: the camera pose of the previewed frame `index` (the last one used when it was not previewed).
   core::Pose3 previewPose(int index);
   /// stillArmFromPlane: the support plane's depth where the background

@@ -39,9 +39,11 @@ struct Plane;
 /// camera (its image widened by `movingBackgroundMargin` on every side, so
 /// that what the camera saw only later has a background too) before the
 /// per-pixel quantile, and each frame's background is that one warped into the
-/// frame's own camera (nearest surface per pixel, one-pixel gaps filled). A
-/// pixel where no background lands is no foreground (farWithoutDepth does not
-/// apply), and the still-arm rule is not used.
+/// frame's own camera (nearest surface per pixel, gaps narrower than
+/// movingBackgroundGap filled from behind). A pixel where no background lands
+/// is no foreground (farWithoutDepth does not apply), and the still-arm rule is
+/// not used: an arm in view in every frame enters through the background that
+/// stands above the support plane at the border (enterThroughStillArm).
 ///
 /// Skin colour, adapted per recording: a Gaussian in (Cr, Cb) fitted to the
 /// foreground pixels inside a broad prior box (`skinPrior*`, luma >=

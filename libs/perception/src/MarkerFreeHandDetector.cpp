@@ -471,6 +471,25 @@ void MarkerFreeHandDetector::movingBackgroundFromPreview() {
       canvasPlaneOffset_ = plane->d;
     }
   }
+  if (options_.backgroundColourFromSurface && !previewColour_.empty()) {
+    // The colour of the samples that show the background's surface there (within minForeground_m of its
+    // depth), not of the arm or part that passed over it: a depth hole is foreground by its colour.
+    cv::Mat surfaceSum(colourSum.size(), CV_32FC3, cv::Scalar::all(0)), surfaceCount(colourSum.size(), CV_32FC1, cv::Scalar(0));
+    for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
+      if (previewColour_[i].empty()) continue;
+      cv::Mat depth_m, colour, warped_m, warpedColour;
+      previewDepth_mm_[i].convertTo(depth_m, CV_32FC1, 1e-3);
+      cv::resize(previewColour_[i], colour, depth_m.size(), 0, 0, cv::INTER_NEAREST);
+      warpDepth(depth_m, colour, k, previewSamplePose_[i], canvasIntrinsics_, warped_m, &warpedColour);
+      const cv::Mat onSurface =
+          (warped_m > 0.f) & (canvasDepth_m_ > 0.f) & (cv::abs(warped_m - canvasDepth_m_) <= options_.minForeground_m);
+      cv::accumulate(warpedColour, surfaceSum, onSurface);
+      cv::add(surfaceCount, cv::Scalar(1), surfaceCount, onSurface);
+    }
+    const cv::Mat seen = surfaceCount > 0.f;
+    surfaceSum.copyTo(colourSum, seen);
+    surfaceCount.copyTo(colourCount, seen);
+  }
   cv::Mat count3;
   cv::merge(std::vector<cv::Mat>{colourCount, colourCount, colourCount}, count3);
   cv::Mat mean = colourSum / cv::max(count3, 1.f);

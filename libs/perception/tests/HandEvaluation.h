@@ -74,6 +74,7 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                  {"stillArmFromPlane", &o.stillArmFromPlane},
                                  {"followCameraMotion", &o.followCameraMotion},
                                  {"enterThroughStillArm", &o.enterThroughStillArm},
+                                 {"backgroundColourFromSurface", &o.backgroundColourFromSurface},
                                  {"cuffAtSleeveEdge", &o.cuffAtSleeveEdge}};
   std::stringstream ss(env);
   std::string item;

@@ -123,6 +123,38 @@ TEST(MarkerFreeHandViewpoints, HeadCameraArmInEveryFrameEntersThroughItsStillBac
   EXPECT_LE(evBorderOnly.within640(kWithin_px), kMaxWithinBorderOnly);
 }
 
+// The same sensor with the demonstrator's sleeve (variant 2's camera, the cuboid 2x, seed 7): the depth
+// camera, 25 mm beside the colour camera, does not see a band of the table beside the arm, and a depth
+// hole is foreground by its colour. The moving camera's background colour is that of the samples showing
+// the table there (backgroundColourFromSurface), not the mean with the arm that passed over it: else the
+// band joins the hand (the table is of skin-like colour), the cuff is found on the band and the palm
+// falls short of the hand. (At this size the rule also costs frames within 40 px: 79.2 % against 90.3 %
+// with the mean colour; on the 1920x1080 family egocentric-held-sr300 it gains, perception README.)
+TEST(MarkerFreeHandViewpoints, HeadCameraDepthShadowBesideTheArmIsNoHand) {
+  constexpr double kMaxMedian_m = 0.035;            // reached: 29.5 mm
+  constexpr double kMinMedianMeanColour_m = 0.045;  // the mean colour of every sample: 52.5 mm
+  testing::ViewpointDemoSpec spec;
+  spec.family = synth::ViewpointFamily::Egocentric;
+  spec.heldOnly = "cuboid";
+  spec.headSway = true;
+  spec.sr300 = true;
+  spec.width_px = 768;
+  spec.variant = 2;
+  spec.partScale = 2.0;
+  spec.seed = 7;
+  const std::string rawlog =
+      testing::renderViewpointDemo(spec, (std::filesystem::path(SRP_BINARY_DIR) / "viewpoint_demos_small").string());
+  const auto ev = testing::evaluateMarkerFreeHand(rawlog, testing::optionsFromEnvironment(), {}, true);
+  ev.print(spec.name());
+  EXPECT_LE(ev.median_m(), kMaxMedian_m);
+  EXPECT_EQ(ev.farSide, 0);
+  auto meanColour = testing::optionsFromEnvironment();
+  meanColour.backgroundColourFromSurface = false;
+  const auto evMean = testing::evaluateMarkerFreeHand(rawlog, meanColour, {}, true);
+  evMean.print(spec.name() + ", the background's colour the mean of every sample");
+  EXPECT_GE(evMean.median_m(), kMinMedianMeanColour_m);
+}
+
 /// The palm's signed errors in the frames the cuff rule placed it [m]: along the true hand's axis (towards the
 /// fingers) and along the camera's ray through the true palm (positive: too far).
 struct CuffErrors {

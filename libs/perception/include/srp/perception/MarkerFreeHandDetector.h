@@ -197,6 +197,13 @@ class MarkerFreeHandDetector : public HandDetector {
     /// That background's image is the first frame's widened by this share of
     /// its width and height on each side [ratio].
     double movingBackgroundMargin = 0.15;
+    /// That background's colour is the mean of the samples whose warped depth
+    /// lies within minForeground_m of the background's there (the surface, not
+    /// the arm or the part that passed over it; where none does, of all that
+    /// landed there). A depth hole is foreground by its colour: the band
+    /// beside the arm that a depth camera beside the colour camera does not
+    /// see is then no foreground. false: the mean of all.
+    bool backgroundColourFromSurface = true;
     /// That background's gaps narrower than this share of the image's width,
     /// where no sample had a depth (a depth camera registered to a larger
     /// colour image leaves a band of 2-3 of its pixels without depth along

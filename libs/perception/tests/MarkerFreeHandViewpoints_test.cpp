@@ -14,16 +14,42 @@
 namespace srp::perception {
 namespace {
 
-/// The small render of `spec` (variant 1, 320x240, seed 7), scored as `srp perceive` runs the detector.
+/// The rawlog of `spec`, rendered once into the build folder.
+std::string smallRender(const testing::ViewpointDemoSpec& spec) {
+  return testing::renderViewpointDemo(spec, (std::filesystem::path(SRP_BINARY_DIR) / "viewpoint_demos_small").string());
+}
+
+/// `spec` rendered and scored as `srp perceive` runs the detector (`options`: the environment's).
+testing::HandEvaluation scoreRender(const testing::ViewpointDemoSpec& spec,
+                                    const MarkerFreeHandDetector::Options& options = testing::optionsFromEnvironment(),
+                                    const std::string& what = "") {
+  const auto ev = testing::evaluateMarkerFreeHand(smallRender(spec), options, {}, true);
+  ev.print(spec.name() + what);
+  return ev;
+}
+
+/// The small render of `spec` (variant 1, 320x240, seed 7), scored.
 testing::HandEvaluation scoreSmallRender(testing::ViewpointDemoSpec& spec) {
   spec.variant = 1;
   spec.width_px = 320;
   spec.seed = 7;
-  const std::string rawlog =
-      testing::renderViewpointDemo(spec, (std::filesystem::path(SRP_BINARY_DIR) / "viewpoint_demos_small").string());
-  const auto ev = testing::evaluateMarkerFreeHand(rawlog, testing::optionsFromEnvironment(), {}, true);
-  ev.print(spec.name());
-  return ev;
+  return scoreRender(spec);
+}
+
+/// An egocentric clip from a swaying head-mounted SR300-like sensor, 768x432 (its depth 256x192; MRPT's
+/// renderer needs image widths that are multiples of 4), seed 7, the cuboid held in every frame.
+testing::ViewpointDemoSpec headSr300Spec(int variant, double partScale, bool bareForearm) {
+  testing::ViewpointDemoSpec spec;
+  spec.family = synth::ViewpointFamily::Egocentric;
+  spec.heldOnly = "cuboid";
+  spec.bareForearm = bareForearm;
+  spec.headSway = true;
+  spec.sr300 = true;
+  spec.width_px = 768;
+  spec.variant = variant;
+  spec.partScale = partScale;
+  spec.seed = 7;
+  return spec;
 }
 
 /// `maxPastFrames`: 0, except where the reached figure is guarded.
@@ -53,6 +79,23 @@ TEST(MarkerFreeHandViewpoints, NoPalmPastTheHeldPartTopDown) {
   expectNoPalmPastTheHeldPart(synth::ViewpointFamily::TopDown, 1.5, true);
 }
 
+/// A clip of a hand holding the part in every frame under a moving camera (`spec`, rendered): within
+/// 40 px in at least `minWithin` of the frames, none past the part; at most `maxWithinBorderOnly` with
+/// the arm entering through the image border only (enterThroughStillArm off).
+void expectArmEntersThroughItsStillBackground(const testing::ViewpointDemoSpec& spec, double minWithin,
+                                              double maxWithinBorderOnly) {
+  constexpr double kWithin_px = 40.0;  // at 640-px width
+  const auto ev = scoreRender(spec);
+  ASSERT_GT(ev.carried, 0);
+  EXPECT_EQ(ev.carried, ev.handInView) << "the hand holds the part in every frame";
+  EXPECT_GE(ev.within640(kWithin_px), minWithin);
+  EXPECT_EQ(ev.farSide, 0);
+  auto borderOnly = testing::optionsFromEnvironment();
+  borderOnly.enterThroughStillArm = false;
+  const auto evBorderOnly = scoreRender(spec, borderOnly, ", the arm entering through the image border only");
+  EXPECT_LE(evBorderOnly.within640(kWithin_px), maxWithinBorderOnly);
+}
+
 // A head-mounted camera that sways (synth::HeadSway), the hand holding the part in every frame: the
 // whole-recording background follows the camera (followCameraMotion). A still camera's per-pixel
 // background takes the swaying table for foreground and the palm lands far off.
@@ -68,24 +111,13 @@ TEST(MarkerFreeHandViewpoints, SwayingHeadCameraHandHoldingThePart) {
   spec.heldOnly = "cuboid";
   spec.bareForearm = true;
   spec.headSway = true;
-  const auto ev = scoreSmallRender(spec);
-  ASSERT_GT(ev.carried, 0);
-  EXPECT_EQ(ev.carried, ev.handInView) << "the hand holds the part in every frame";
-  EXPECT_GE(ev.within640(kWithin_px), kMinWithin);
-  EXPECT_EQ(ev.farSide, 0);
-  auto borderOnly = testing::optionsFromEnvironment();
-  borderOnly.enterThroughStillArm = false;
-  const auto evBorderOnly = testing::evaluateMarkerFreeHand(
-      (std::filesystem::path(SRP_BINARY_DIR) / "viewpoint_demos_small" / (spec.name() + ".rawlog")).string(),
-      borderOnly, {}, true);
-  evBorderOnly.print(spec.name() + ", the arm entering through the image border only");
-  EXPECT_LE(evBorderOnly.within640(kWithin_px), kMaxWithinBorderOnly);
+  spec.variant = 1;  // scoreSmallRender's clip
+  spec.width_px = 320;
+  spec.seed = 7;
+  expectArmEntersThroughItsStillBackground(spec, kMinWithin, kMaxWithinBorderOnly);
   auto still = testing::optionsFromEnvironment();
   still.followCameraMotion = false;
-  const auto evStill = testing::evaluateMarkerFreeHand(
-      (std::filesystem::path(SRP_BINARY_DIR) / "viewpoint_demos_small" / (spec.name() + ".rawlog")).string(), still,
-      {}, true);
-  evStill.print(spec.name() + ", background of a still camera");
+  const auto evStill = scoreRender(spec, still, ", background of a still camera");
   EXPECT_LE(evStill.within640(kWithin_px), kMaxWithinStill);
 }
 
@@ -95,32 +127,10 @@ TEST(MarkerFreeHandViewpoints, SwayingHeadCameraHandHoldingThePart) {
 // where it enters, so the background there is the arm: the arm enters through the background standing
 // above the table at the border (enterThroughStillArm). Variant 4's camera, the cuboid 1.5x, seed 7.
 TEST(MarkerFreeHandViewpoints, HeadCameraArmInEveryFrameEntersThroughItsStillBackground) {
-  constexpr double kWithin_px = 40.0;          // at 640-px width
   constexpr double kMinWithin = 0.99;          // reached: 100 % (71 of 71 frames)
   constexpr double kMaxWithinBorderOnly = 0.97;  // the image border only: 95.8 % (68 of 71), 1 palm past the part
-  testing::ViewpointDemoSpec spec;
-  spec.family = synth::ViewpointFamily::Egocentric;
-  spec.heldOnly = "cuboid";
-  spec.bareForearm = true;
-  spec.headSway = true;
-  spec.sr300 = true;
-  spec.width_px = 768;  // MRPT's renderer needs image widths that are multiples of 4
-  spec.variant = 4;
-  spec.partScale = 1.5;
-  spec.seed = 7;
-  const std::string rawlog =
-      testing::renderViewpointDemo(spec, (std::filesystem::path(SRP_BINARY_DIR) / "viewpoint_demos_small").string());
-  const auto ev = testing::evaluateMarkerFreeHand(rawlog, testing::optionsFromEnvironment(), {}, true);
-  ev.print(spec.name());
-  ASSERT_GT(ev.carried, 0);
-  EXPECT_EQ(ev.carried, ev.handInView) << "the hand holds the part in every frame";
-  EXPECT_GE(ev.within640(kWithin_px), kMinWithin);
-  EXPECT_EQ(ev.farSide, 0);
-  auto borderOnly = testing::optionsFromEnvironment();
-  borderOnly.enterThroughStillArm = false;
-  const auto evBorderOnly = testing::evaluateMarkerFreeHand(rawlog, borderOnly, {}, true);
-  evBorderOnly.print(spec.name() + ", the arm entering through the image border only");
-  EXPECT_LE(evBorderOnly.within640(kWithin_px), kMaxWithinBorderOnly);
+  const auto spec = headSr300Spec(4, 1.5, true);
+  expectArmEntersThroughItsStillBackground(spec, kMinWithin, kMaxWithinBorderOnly);
 }
 
 // The same sensor with the demonstrator's sleeve (variant 2's camera, the cuboid 2x, seed 7): the depth
@@ -133,25 +143,13 @@ TEST(MarkerFreeHandViewpoints, HeadCameraArmInEveryFrameEntersThroughItsStillBac
 TEST(MarkerFreeHandViewpoints, HeadCameraDepthShadowBesideTheArmIsNoHand) {
   constexpr double kMaxMedian_m = 0.035;            // reached: 29.5 mm
   constexpr double kMinMedianMeanColour_m = 0.045;  // the mean colour of every sample: 52.5 mm
-  testing::ViewpointDemoSpec spec;
-  spec.family = synth::ViewpointFamily::Egocentric;
-  spec.heldOnly = "cuboid";
-  spec.headSway = true;
-  spec.sr300 = true;
-  spec.width_px = 768;
-  spec.variant = 2;
-  spec.partScale = 2.0;
-  spec.seed = 7;
-  const std::string rawlog =
-      testing::renderViewpointDemo(spec, (std::filesystem::path(SRP_BINARY_DIR) / "viewpoint_demos_small").string());
-  const auto ev = testing::evaluateMarkerFreeHand(rawlog, testing::optionsFromEnvironment(), {}, true);
-  ev.print(spec.name());
+  const auto spec = headSr300Spec(2, 2.0, false);
+  const auto ev = scoreRender(spec);
   EXPECT_LE(ev.median_m(), kMaxMedian_m);
   EXPECT_EQ(ev.farSide, 0);
   auto meanColour = testing::optionsFromEnvironment();
   meanColour.backgroundColourFromSurface = false;
-  const auto evMean = testing::evaluateMarkerFreeHand(rawlog, meanColour, {}, true);
-  evMean.print(spec.name() + ", the background's colour the mean of every sample");
+  const auto evMean = scoreRender(spec, meanColour, ", the background's colour the mean of every sample");
   EXPECT_GE(evMean.median_m(), kMinMedianMeanColour_m);
 }
 

@@ -248,6 +248,36 @@ void warpDepth(const cv::Mat& src_m, const cv::Mat& srcColour, const core::Camer
   }
 }
 
+/// Gaps of `depth_m` [m, CV_32FC1; 0: none] narrower than `gap_px` take the farthest depth and the
+/// brightest colour of `colour_bgr8` (same size, or empty) within gap_px / 2: the surface behind that a
+/// depth edge uncovers. Wider regions without depth keep none. Measured on images pooled so that the
+/// gap is at most 10 px wide there (the CPU of a 640-px image at any size).
+void fillNarrowGaps(cv::Mat& depth_m, cv::Mat& colour_bgr8, int gap_px) {
+  if (gap_px <= 1) return;
+  const cv::Mat none = depth_m <= 0.f;
+  if (cv::countNonZero(none) == 0) return;
+  const int f = (gap_px + 9) / 10;
+  const cv::Size small((depth_m.cols + f - 1) / f, (depth_m.rows + f - 1) / f);
+  cv::Mat noneSmall, depthSmall, colourSmall;
+  cv::resize(none, noneSmall, small, 0, 0, cv::INTER_AREA);  // a pooled pixel with any gap
+  noneSmall = noneSmall > 0;
+  cv::resize(depth_m, depthSmall, small, 0, 0, cv::INTER_NEAREST);
+  const cv::Mat d = disc(std::max(3, gap_px / f));
+  cv::Mat wide, farthest;
+  cv::morphologyEx(noneSmall, wide, cv::MORPH_OPEN, d);
+  cv::dilate(depthSmall, farthest, d);
+  cv::resize(wide, wide, depth_m.size(), 0, 0, cv::INTER_NEAREST);
+  cv::resize(farthest, farthest, depth_m.size(), 0, 0, cv::INTER_NEAREST);
+  const cv::Mat gaps = none & ~wide;
+  farthest.copyTo(depth_m, gaps);
+  if (colour_bgr8.empty()) return;
+  cv::Mat brightest;
+  cv::resize(colour_bgr8, colourSmall, small, 0, 0, cv::INTER_NEAREST);
+  cv::dilate(colourSmall, brightest, d);
+  cv::resize(brightest, brightest, depth_m.size(), 0, 0, cv::INTER_NEAREST);
+  brightest.copyTo(colour_bgr8, gaps);
+}
+
 /// Principal direction of a blob, oriented from `entry` inwards; its pixel
 /// mean; and whether it is elongated (else the direction means little).
 struct Axis {
@@ -451,8 +481,24 @@ void MarkerFreeHandDetector::finishPreview() {
                         disagreeStill / static_cast<double>(previewDepth_mm_.size()),
                         disagreeMoving / static_cast<double>(previewDepth_mm_.size()),
                         cameraMoves_ ? "follows the camera" : "still");
-    if (cameraMoves_) bgHalf = movingHalf;
-    else view_ = stillView;
+    if (cameraMoves_) {
+      bgHalf = movingHalf;
+      if (options_.enterThroughStillArm)
+        // For the skin model and the bare-forearm decision, the arm is foreground down to where it enters: the
+        // background that stands above the plane at the border is the plane's depth there.
+        for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
+          cv::Mat depth_m, colour, planeDepth_m;
+          backgroundInView(previewSamplePose_[i], depth_m, &colour);
+          fillNarrowGaps(depth_m, colour, static_cast<int>(std::lround(options_.movingBackgroundGap * depth_m.cols)));
+          const cv::Mat enter = enteringBackground(depth_m, previewSamplePose_[i], &planeDepth_m);
+          if (enter.empty()) break;
+          planeDepth_m.copyTo(depth_m, planeDepth_m > 0.f);
+          cv::resize(depth_m, bgHalf[i], {}, 0.5, 0.5, cv::INTER_NEAREST);
+          bgHalf[i] *= 1e3;
+        }
+    } else {
+      view_ = stillView;
+    }
   }
   // Skin from every sample's foreground (half size: plenty of pixels).
   if (options_.useSkin) {
@@ -503,6 +549,41 @@ void MarkerFreeHandDetector::movingBackgroundFromPreview() {
   // The view moves: the whole image is in view (a pixel without background is no foreground).
   view_ = cv::Rect(0, 0, k.width_px, k.height_px);
   canvas_mm.convertTo(canvasDepth_m_, CV_32FC1, 1e-3);
+  if (options_.enterThroughStillArm) {
+    // The support plane in the first camera (half size: plenty of points).
+    cv::Mat half_m;
+    cv::resize(canvasDepth_m_, half_m, {}, 0.5, 0.5, cv::INTER_NEAREST);
+    core::CameraIntrinsics kh = canvasIntrinsics_;
+    kh.fx_px *= 0.5;
+    kh.fy_px *= 0.5;
+    kh.cx_px = (kh.cx_px + 0.5) * 0.5 - 0.5;
+    kh.cy_px = (kh.cy_px + 0.5) * 0.5 - 0.5;
+    kh.width_px = half_m.cols;
+    kh.height_px = half_m.rows;
+    if (const auto plane = fitSupportPlane(depthToCloud(half_m, CameraModel(kh)))) {
+      canvasPlaneNormal_ = plane->n;
+      canvasPlaneOffset_ = plane->d;
+    }
+  }
+  if (options_.backgroundColourFromSurface && !previewColour_.empty()) {
+    // The colour of the samples that show the background's surface there (within minForeground_m of its
+    // depth), not of the arm or part that passed over it: a depth hole is foreground by its colour.
+    cv::Mat surfaceSum(colourSum.size(), CV_32FC3, cv::Scalar::all(0)), surfaceCount(colourSum.size(), CV_32FC1, cv::Scalar(0));
+    for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
+      if (previewColour_[i].empty()) continue;
+      cv::Mat depth_m, colour, warped_m, warpedColour;
+      previewDepth_mm_[i].convertTo(depth_m, CV_32FC1, 1e-3);
+      cv::resize(previewColour_[i], colour, depth_m.size(), 0, 0, cv::INTER_NEAREST);
+      warpDepth(depth_m, colour, k, previewSamplePose_[i], canvasIntrinsics_, warped_m, &warpedColour);
+      const cv::Mat onSurface =
+          (warped_m > 0.f) & (canvasDepth_m_ > 0.f) & (cv::abs(warped_m - canvasDepth_m_) <= options_.minForeground_m);
+      cv::accumulate(warpedColour, surfaceSum, onSurface);
+      cv::add(surfaceCount, cv::Scalar(1), surfaceCount, onSurface);
+    }
+    const cv::Mat seen = surfaceCount > 0.f;
+    surfaceSum.copyTo(colourSum, seen);
+    surfaceCount.copyTo(colourCount, seen);
+  }
   cv::Mat count3;
   cv::merge(std::vector<cv::Mat>{colourCount, colourCount, colourCount}, count3);
   cv::Mat mean = colourSum / cv::max(count3, 1.f);
@@ -520,6 +601,59 @@ void MarkerFreeHandDetector::backgroundInView(const core::Pose3& X_camera0_camer
   // angle, whose depth changes fast across the image, is not foreground for a pixel's misregistration.
   cv::erode(depth_m, depth_m, disc(2 * options_.movingBackgroundSlack_px + 1));
   depth_m.setTo(0.f, depth_m == std::numeric_limits<float>::max());
+}
+
+cv::Mat MarkerFreeHandDetector::enteringBackground(const cv::Mat& background_m, const core::Pose3& X_camera0_camera,
+                                                  cv::Mat* planeDepth_m) const {
+  if (canvasPlaneNormal_.squaredNorm() == 0.0) return {};
+  // The plane in this camera: height(p) = n0 . (R p + t) + d0.
+  const Eigen::Vector3d n = X_camera0_camera.linear().transpose() * canvasPlaneNormal_;
+  const double d = canvasPlaneNormal_.dot(X_camera0_camera.translation()) + canvasPlaneOffset_;
+  const core::CameraIntrinsics& k = previewIntrinsics_;
+  const double lo = options_.minForeground_m, hi = options_.stillArmMaxHeight_m;
+  cv::Mat open(background_m.size(), CV_8UC1, cv::Scalar(0));
+  for (int v = 0; v < background_m.rows; ++v) {
+    const float* z = background_m.ptr<float>(v);
+    uchar* o = open.ptr<uchar>(v);
+    const double ny = n.y() * (v - k.cy_px) / k.fy_px + n.z();
+    for (int u = 0; u < background_m.cols; ++u) {
+      if (z[u] <= 0.f) {
+        o[u] = 255;  // no background: as outside the view
+        continue;
+      }
+      const double h = z[u] * (n.x() * (u - k.cx_px) / k.fx_px + ny) + d;
+      o[u] = h >= lo && h <= hi ? 255 : 0;
+    }
+  }
+  // Only the regions that reach the image border (where the arm enters), grown by the border margin.
+  cv::Mat labels, stats, centroids;
+  const int nl = cv::connectedComponentsWithStats(open, labels, stats, centroids, 8, CV_32S);
+  const int m = options_.borderMargin_px, W = open.cols, H = open.rows;
+  std::vector<uchar> keep(static_cast<std::size_t>(nl), 0);
+  for (int l = 1; l < nl; ++l) {
+    const int x = stats.at<int>(l, cv::CC_STAT_LEFT), y = stats.at<int>(l, cv::CC_STAT_TOP);
+    keep[static_cast<std::size_t>(l)] = x <= m || y <= m || x + stats.at<int>(l, cv::CC_STAT_WIDTH) >= W - m ||
+                                        y + stats.at<int>(l, cv::CC_STAT_HEIGHT) >= H - m;
+  }
+  cv::Mat out(open.size(), CV_8UC1, cv::Scalar(0));
+  for (int v = 0; v < H; ++v) {
+    const int* l = labels.ptr<int>(v);
+    uchar* o = out.ptr<uchar>(v);
+    for (int u = 0; u < W; ++u) o[u] = keep[static_cast<std::size_t>(l[u])] && l[u] > 0 ? 255 : 0;
+  }
+  if (planeDepth_m) {
+    // The plane's depth where the background stands above it in those regions.
+    *planeDepth_m = cv::Mat(out.size(), CV_32FC1, cv::Scalar(0));
+    for (int v = 0; v < H; ++v)
+      for (int u = 0; u < W; ++u) {
+        const float z = background_m.at<float>(v, u);
+        if (!out.at<uchar>(v, u) || z <= 0.f) continue;
+        const double den = n.dot(Eigen::Vector3d((u - k.cx_px) / k.fx_px, (v - k.cy_px) / k.fy_px, 1.0));
+        if (den < 0.0) planeDepth_m->at<float>(v, u) = static_cast<float>(-d / den);
+      }
+  }
+  if (m > 0) cv::dilate(out, out, cv::getStructuringElement(cv::MORPH_RECT, {2 * m + 1, 2 * m + 1}));
+  return out;
 }
 
 core::Pose3 MarkerFreeHandDetector::previewPose(int index) {
@@ -970,7 +1104,13 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   geometry_ = Geometry{};
   ++frameCount_;
   if (!previewDepth_mm_.empty()) finishPreview();
-  if (cameraMoves_) backgroundInView(previewPose(frame.index), backgroundDepth_m_, &backgroundColour_);
+  if (cameraMoves_) {
+    const core::Pose3 X_camera0_camera = previewPose(frame.index);
+    backgroundInView(X_camera0_camera, backgroundDepth_m_, &backgroundColour_);
+    fillNarrowGaps(backgroundDepth_m_, backgroundColour_,
+                   static_cast<int>(std::lround(options_.movingBackgroundGap * frame.depth_m.cols)));
+    if (options_.enterThroughStillArm) enteringBackground_ = enteringBackground(backgroundDepth_m_, X_camera0_camera);
+  }
   if (!backgroundDepth_m_.empty() && backgroundDepth_m_.size() != frame.depth_m.size())
     throw core::InvalidInputError("MarkerFreeHandDetector: frame " + std::to_string(frame.index) + " is " +
                                   std::to_string(frame.depth_m.cols) + "x" + std::to_string(frame.depth_m.rows) +
@@ -1163,6 +1303,13 @@ std::vector<cv::Point> MarkerFreeHandDetector::borderZone(const cv::Mat& depth_m
       }
     }
   };
+  // Under a moving camera, the background through which an arm in view in every frame enters.
+  if (!enteringBackground_.empty() && enteringBackground_.size() == depth_m.size())
+    for (int v = 0; v < H; ++v) {
+      const uchar* e = enteringBackground_.ptr<uchar>(v);
+      for (int u = 0; u < W; ++u)
+        if (e[u]) add(u, v);
+    }
   if (view_.x > 0) mark(true, false, view_.x);
   if (view_.x + view_.width < W) mark(true, true, W - view_.x - view_.width);
   if (view_.y > 0) mark(false, false, view_.y);

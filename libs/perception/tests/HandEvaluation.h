@@ -38,6 +38,7 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                    {"maxHandLength_m", &o.maxHandLength_m},
                                    {"minForeground_m", &o.minForeground_m},
                                    {"backgroundPercentile", &o.backgroundPercentile},
+                                   {"movingBackgroundGap", &o.movingBackgroundGap},
                                    {"skinLumaModeRadius", &o.skinLumaModeRadius},
                                    {"bareForearmFraction", &o.bareForearmFraction},
                                    {"skinGrowMahalanobis", &o.skinGrowMahalanobis},
@@ -72,6 +73,8 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                  {"cuffFirst", &o.cuffFirst},
                                  {"stillArmFromPlane", &o.stillArmFromPlane},
                                  {"followCameraMotion", &o.followCameraMotion},
+                                 {"enterThroughStillArm", &o.enterThroughStillArm},
+                                 {"backgroundColourFromSurface", &o.backgroundColourFromSurface},
                                  {"cuffAtSleeveEdge", &o.cuffAtSleeveEdge}};
   std::stringstream ss(env);
   std::string item;

@@ -14,16 +14,42 @@
 namespace srp::perception {
 namespace {
 
-/// The small render of `spec` (variant 1, 320x240, seed 7), scored as `srp perceive` runs the detector.
+/// The rawlog of `spec`, rendered once into the build folder.
+std::string smallRender(const testing::ViewpointDemoSpec& spec) {
+  return testing::renderViewpointDemo(spec, (std::filesystem::path(SRP_BINARY_DIR) / "viewpoint_demos_small").string());
+}
+
+/// `spec` rendered and scored as `srp perceive` runs the detector (`options`: the environment's).
+testing::HandEvaluation scoreRender(const testing::ViewpointDemoSpec& spec,
+                                    const MarkerFreeHandDetector::Options& options = testing::optionsFromEnvironment(),
+                                    const std::string& what = "") {
+  const auto ev = testing::evaluateMarkerFreeHand(smallRender(spec), options, {}, true);
+  ev.print(spec.name() + what);
+  return ev;
+}
+
+/// The small render of `spec` (variant 1, 320x240, seed 7), scored.
 testing::HandEvaluation scoreSmallRender(testing::ViewpointDemoSpec& spec) {
   spec.variant = 1;
   spec.width_px = 320;
   spec.seed = 7;
-  const std::string rawlog =
-      testing::renderViewpointDemo(spec, (std::filesystem::path(SRP_BINARY_DIR) / "viewpoint_demos_small").string());
-  const auto ev = testing::evaluateMarkerFreeHand(rawlog, testing::optionsFromEnvironment(), {}, true);
-  ev.print(spec.name());
-  return ev;
+  return scoreRender(spec);
+}
+
+/// An egocentric clip from a swaying head-mounted SR300-like sensor, 768x432 (its depth 256x192; MRPT's
+/// renderer needs image widths that are multiples of 4), seed 7, the cuboid held in every frame.
+testing::ViewpointDemoSpec headSr300Spec(int variant, double partScale, bool bareForearm) {
+  testing::ViewpointDemoSpec spec;
+  spec.family = synth::ViewpointFamily::Egocentric;
+  spec.heldOnly = "cuboid";
+  spec.bareForearm = bareForearm;
+  spec.headSway = true;
+  spec.sr300 = true;
+  spec.width_px = 768;
+  spec.variant = variant;
+  spec.partScale = partScale;
+  spec.seed = 7;
+  return spec;
 }
 
 /// `maxPastFrames`: 0, except where the reached figure is guarded.
@@ -53,30 +79,78 @@ TEST(MarkerFreeHandViewpoints, NoPalmPastTheHeldPartTopDown) {
   expectNoPalmPastTheHeldPart(synth::ViewpointFamily::TopDown, 1.5, true);
 }
 
+/// A clip of a hand holding the part in every frame under a moving camera (`spec`, rendered): within
+/// 40 px in at least `minWithin` of the frames, none past the part; at most `maxWithinBorderOnly` with
+/// the arm entering through the image border only (enterThroughStillArm off).
+void expectArmEntersThroughItsStillBackground(const testing::ViewpointDemoSpec& spec, double minWithin,
+                                              double maxWithinBorderOnly) {
+  constexpr double kWithin_px = 40.0;  // at 640-px width
+  const auto ev = scoreRender(spec);
+  ASSERT_GT(ev.carried, 0);
+  EXPECT_EQ(ev.carried, ev.handInView) << "the hand holds the part in every frame";
+  EXPECT_GE(ev.within640(kWithin_px), minWithin);
+  EXPECT_EQ(ev.farSide, 0);
+  auto borderOnly = testing::optionsFromEnvironment();
+  borderOnly.enterThroughStillArm = false;
+  const auto evBorderOnly = scoreRender(spec, borderOnly, ", the arm entering through the image border only");
+  EXPECT_LE(evBorderOnly.within640(kWithin_px), maxWithinBorderOnly);
+}
+
 // A head-mounted camera that sways (synth::HeadSway), the hand holding the part in every frame: the
 // whole-recording background follows the camera (followCameraMotion). A still camera's per-pixel
 // background takes the swaying table for foreground and the palm lands far off.
 TEST(MarkerFreeHandViewpoints, SwayingHeadCameraHandHoldingThePart) {
   constexpr double kWithin_px = 40.0;  // at 640-px width
-  constexpr double kMinWithin = 0.8;   // reached: 83.3 % (60 of 72 frames)
+  constexpr double kMinWithin = 0.94;  // reached: 94.4 % (68 of 72 frames)
+  // The arm entering only through the image border (enterThroughStillArm off): 81.9 % (59 of 72): the
+  // forearm, in every frame, is the background in the bottom rows and reaches no border there.
+  constexpr double kMaxWithinBorderOnly = 0.9;
   constexpr double kMaxWithinStill = 0.2;  // a still camera's background: 0.0 %
   testing::ViewpointDemoSpec spec;
   spec.family = synth::ViewpointFamily::Egocentric;
   spec.heldOnly = "cuboid";
   spec.bareForearm = true;
   spec.headSway = true;
-  const auto ev = scoreSmallRender(spec);
-  ASSERT_GT(ev.carried, 0);
-  EXPECT_EQ(ev.carried, ev.handInView) << "the hand holds the part in every frame";
-  EXPECT_GE(ev.within640(kWithin_px), kMinWithin);
-  EXPECT_EQ(ev.farSide, 0);
+  spec.variant = 1;  // scoreSmallRender's clip
+  spec.width_px = 320;
+  spec.seed = 7;
+  expectArmEntersThroughItsStillBackground(spec, kMinWithin, kMaxWithinBorderOnly);
   auto still = testing::optionsFromEnvironment();
   still.followCameraMotion = false;
-  const auto evStill = testing::evaluateMarkerFreeHand(
-      (std::filesystem::path(SRP_BINARY_DIR) / "viewpoint_demos_small" / (spec.name() + ".rawlog")).string(), still,
-      {}, true);
-  evStill.print(spec.name() + ", background of a still camera");
+  const auto evStill = scoreRender(spec, still, ", background of a still camera");
   EXPECT_LE(evStill.within640(kWithin_px), kMaxWithinStill);
+}
+
+// The held-out clip's kind of recording, small: a head-mounted SR300-like sensor (16:9 colour 768x432,
+// depth 256x192 from its own camera, registered by `srp import`), swaying, a bare forearm holding the
+// cuboid in every frame and entering at the bottom edge. The arm is in most of the background's samples
+// where it enters, so the background there is the arm: the arm enters through the background standing
+// above the table at the border (enterThroughStillArm). Variant 4's camera, the cuboid 1.5x, seed 7.
+TEST(MarkerFreeHandViewpoints, HeadCameraArmInEveryFrameEntersThroughItsStillBackground) {
+  constexpr double kMinWithin = 0.99;          // reached: 100 % (71 of 71 frames)
+  constexpr double kMaxWithinBorderOnly = 0.97;  // the image border only: 94.4 % (67 of 71), 1 palm past the part
+  const auto spec = headSr300Spec(4, 1.5, true);
+  expectArmEntersThroughItsStillBackground(spec, kMinWithin, kMaxWithinBorderOnly);
+}
+
+// The same sensor with the demonstrator's sleeve (variant 2's camera, the cuboid 2x, seed 7): the depth
+// camera, 25 mm beside the colour camera, does not see a band of the table beside the arm, and a depth
+// hole is foreground by its colour. The moving camera's background colour is that of the samples showing
+// the table there (backgroundColourFromSurface), not the mean with the arm that passed over it: else the
+// band joins the hand (the table is of skin-like colour), the cuff is found on the band and the palm
+// falls short of the hand. (At this size the rule also costs frames within 40 px: 79.2 % against 90.3 %
+// with the mean colour; on the 1920x1080 family egocentric-held-sr300 it gains, perception README.)
+TEST(MarkerFreeHandViewpoints, HeadCameraDepthShadowBesideTheArmIsNoHand) {
+  constexpr double kMaxMedian_m = 0.035;            // reached: 29.5 mm
+  constexpr double kMinMedianMeanColour_m = 0.045;  // the mean colour of every sample: 52.5 mm
+  const auto spec = headSr300Spec(2, 2.0, false);
+  const auto ev = scoreRender(spec);
+  EXPECT_LE(ev.median_m(), kMaxMedian_m);
+  EXPECT_EQ(ev.farSide, 0);
+  auto meanColour = testing::optionsFromEnvironment();
+  meanColour.backgroundColourFromSurface = false;
+  const auto evMean = scoreRender(spec, meanColour, ", the background's colour the mean of every sample");
+  EXPECT_GE(evMean.median_m(), kMinMedianMeanColour_m);
 }
 
 /// The palm's signed errors in the frames the cuff rule placed it [m]: along the true hand's axis (towards the

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "HandEvaluation.h"
+#include "srp/calib/RgbdImporter.h"
 #include "srp/core/Scene.h"
 #include "srp/kb/KnowledgeBase.h"
 #include "srp/synth/DemoGenerator.h"
@@ -35,14 +36,39 @@ struct ViewpointDemoSpec {
   /// gray box, recorded from its grasp to its release only (synth's carryOnly: the hand holds the
   /// part in every frame). Empty: carryPlan(partScale), the whole demonstration.
   std::string heldOnly;
+  /// A head-mounted RGB-D sensor of the Intel RealSense SR300's kind instead of one registered camera:
+  /// 16:9 colour width_px wide (fx 0.74 width_px: 68 x 42 deg) and 4:3 depth a third as wide from its
+  /// own camera (fx 0.72 of its width: 69 x 55 deg), 25 mm beside the colour camera and turned by
+  /// 0.3 deg (the datasheet's fields of view; the extrinsic is not a measured unit's), written as an
+  /// image folder and registered by `srp import` (calib::importRecording): colour 1920x1080 with
+  /// 640x480 depth re-projected into it at width_px 1920, holes where the depth camera does not see
+  /// (width_px / 3 must be a multiple of 4 for MRPT's renderer).
+  bool sr300 = false;
   std::string name() const {
     char s[160];
-    std::snprintf(s, sizeof s, "%s_v%d_x%.1f_%s_%dpx_s%u%s%s%s", synth::viewpointFamilyName(family).c_str(), variant,
-                  partScale, bareForearm ? "bare" : "sleeve", width_px, seed, headSway ? "_sway" : "",
-                  heldOnly.empty() ? "" : "_held-", heldOnly.c_str());
+    std::snprintf(s, sizeof s, "%s_v%d_x%.1f_%s_%dpx_s%u%s%s%s%s", synth::viewpointFamilyName(family).c_str(),
+                  variant, partScale, bareForearm ? "bare" : "sleeve", width_px, seed, headSway ? "_sway" : "",
+                  heldOnly.empty() ? "" : "_held-", heldOnly.c_str(), sr300 ? "_sr300" : "");
     return s;
   }
 };
+
+/// ViewpointDemoSpec::sr300's colour camera at `width_px` (16:9) and its depth camera.
+inline core::CameraIntrinsics sr300Colour(int width_px) {
+  const double w = width_px, h = std::round(w * 9.0 / 16.0);
+  return {0.74 * w, 0.74 * w, w / 2 - 0.5, h / 2 - 0.5, width_px, static_cast<int>(h)};
+}
+inline synth::SynthDepthCamera sr300Depth(int colourWidth_px) {
+  const double w = std::round(colourWidth_px / 3.0), h = std::round(w * 3.0 / 4.0);
+  synth::SynthDepthCamera d;
+  d.intrinsics = {0.72 * w, 0.72 * w, w / 2 - 0.5 + 0.004 * w, h / 2 - 0.5 - 0.003 * h, static_cast<int>(w),
+                  static_cast<int>(h)};
+  d.X_colour_depth.translation() = Eigen::Vector3d(0.025, 0.0003, 0.0005);
+  d.X_colour_depth.linear() =
+      (Eigen::AngleAxisd(0.004, Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(-0.003, Eigen::Vector3d::UnitX()))
+          .toRotationMatrix();
+  return d;
+}
 
 /// The plan: the cuboid, then the parallelogram, from the blue box into the gray box; parts
 /// scaled by more than 1.5 leave no room for the second in the box: the cuboid alone.
@@ -89,14 +115,27 @@ inline std::string renderViewpointDemo(const ViewpointDemoSpec& spec, const std:
   o.demo.seed = spec.seed;
   o.demo.demonstratorSide_world = view.demonstratorSide_world;
   if (spec.bareForearm) o.hand.sleeveRgb = o.hand.skinRgb;
-  o.width_px = spec.width_px;
-  o.height_px = spec.width_px * 3 / 4;
+  if (spec.sr300) {
+    scene.intrinsics = sr300Colour(spec.width_px);
+    o.depthCamera = sr300Depth(spec.width_px);
+  } else {
+    o.width_px = spec.width_px;
+    o.height_px = spec.width_px * 3 / 4;
+  }
   o.maxFrames = spec.maxFrames;
   o.rawlogEncoderThreads = 1;
   o.headSway.enabled = spec.headSway;
   o.carryOnly = !spec.heldOnly.empty();
-  synth::generateSyntheticDemo(scene, catalogue, spec.heldOnly.empty() ? carryPlan(spec.partScale) : heldPlan(spec.heldOnly),
-                               o, rawlog);
+  const nlohmann::json plan = spec.heldOnly.empty() ? carryPlan(spec.partScale) : heldPlan(spec.heldOnly);
+  if (!spec.sr300) {
+    synth::generateSyntheticDemo(scene, catalogue, plan, o, rawlog);
+    return rawlog;
+  }
+  // An image folder as the sensor records it (its ground truth, name.gt.json, is the rawlog's), imported.
+  const std::string images = (std::filesystem::path(folder) / (spec.name() + ".images")).string();
+  synth::generateSyntheticDemo(scene, catalogue, plan, o, images);
+  calib::importRecording(images, rawlog);
+  std::filesystem::remove_all(images);
   return rawlog;
 }
 

@@ -39,9 +39,11 @@ struct Plane;
 /// camera (its image widened by `movingBackgroundMargin` on every side, so
 /// that what the camera saw only later has a background too) before the
 /// per-pixel quantile, and each frame's background is that one warped into the
-/// frame's own camera (nearest surface per pixel, one-pixel gaps filled). A
-/// pixel where no background lands is no foreground (farWithoutDepth does not
-/// apply), and the still-arm rule is not used.
+/// frame's own camera (nearest surface per pixel, gaps narrower than
+/// movingBackgroundGap filled from behind). A pixel where no background lands
+/// is no foreground (farWithoutDepth does not apply), and the still-arm rule is
+/// not used: an arm in view in every frame enters through the background that
+/// stands above the support plane at the border (enterThroughStillArm).
 ///
 /// Skin colour, adapted per recording: a Gaussian in (Cr, Cb) fitted to the
 /// foreground pixels inside a broad prior box (`skinPrior*`, luma >=
@@ -195,10 +197,35 @@ class MarkerFreeHandDetector : public HandDetector {
     /// That background's image is the first frame's widened by this share of
     /// its width and height on each side [ratio].
     double movingBackgroundMargin = 0.15;
+    /// That background's colour is the mean of the samples whose warped depth
+    /// lies within minForeground_m of the background's there (the surface, not
+    /// the arm or the part that passed over it; where none does, of all that
+    /// landed there). A depth hole is foreground by its colour: the band
+    /// beside the arm that a depth camera beside the colour camera does not
+    /// see is then no foreground. false: the mean of all.
+    bool backgroundColourFromSurface = true;
+    /// That background's gaps narrower than this share of the image's width,
+    /// where no sample had a depth (a depth camera registered to a larger
+    /// colour image leaves a band of 2-3 of its pixels without depth along
+    /// every depth edge, the same in every sample: 6-9 px at 1920 px from a
+    /// 640-px depth), take the farthest depth and the brightest colour around
+    /// them; else the arm crossing such an edge (the table's near edge) is
+    /// cut there, for a pixel without background is not foreground. 0: off.
+    double movingBackgroundGap = 0.015;
     /// That background, warped into a frame's camera, is the nearest within
     /// this many pixels (the estimated camera pose's error; a surface seen at
     /// a grazing angle changes its depth by centimetres per pixel) [px]. 0: off.
     int movingBackgroundSlack_px = 3;
+    /// Under a moving camera: an arm in view in every frame, entering at the
+    /// same border (a hand held in front of a head-mounted camera), is in
+    /// most samples where it enters, and the background there is the arm
+    /// itself: the moving arm is foreground only farther in and reaches no
+    /// border. The arm then enters the view through the background that stands
+    /// above the support plane (fitted to the first camera's widened
+    /// background) by minForeground_m to stillArmMaxHeight_m, or that has no
+    /// background, where that region reaches the image border: borderZone
+    /// takes its pixels. false: the image border only.
+    bool enterThroughStillArm = true;
     /// Foreground: closer than the background by this much [m].
     double minForeground_m = 0.02;
     /// Foreground in a depth hole: sum of |BGR| changes from the background
@@ -512,6 +539,12 @@ class MarkerFreeHandDetector : public HandDetector {
   /// Moving camera: the background as the camera at X_camera0_camera sees it
   /// [m, CV_32FC1; BGR, or no colour when `colour_bgr8` is null]; both reused when of that size.
   void backgroundInView(const core::Pose3& X_camera0_camera, cv::Mat& depth_m, cv::Mat* colour_bgr8) const;
+  /// Moving camera, enterThroughStillArm: the pixels of the frame's background
+  /// `background_m` [m] seen from X_camera0_camera through which an arm may
+  /// enter (CV_8UC1; empty without a support plane). `planeDepth_m`: the
+  /// plane's depth [m] where that background stands above it (0 elsewhere).
+  cv::Mat enteringBackground(const cv::Mat& background_m, const core::Pose3& X_camera0_camera,
+                             cv::Mat* planeDepth_m = nullptr) const;
   /// Moving camera: the camera pose of the previewed frame `index` (the last one used when it was not previewed).
   core::Pose3 previewPose(int index);
   /// stillArmFromPlane: the support plane's depth where the background
@@ -599,6 +632,11 @@ class MarkerFreeHandDetector : public HandDetector {
   std::vector<core::Pose3> previewSamplePose_;
   bool cameraMoves_ = false;
   cv::Mat canvasDepth_m_, canvasColour_;
+  // The support plane in the first frame's camera, n . p + d = 0 (n zero: none found), and this
+  // frame's background through which the arm enters (enterThroughStillArm).
+  Eigen::Vector3d canvasPlaneNormal_ = Eigen::Vector3d::Zero();
+  double canvasPlaneOffset_ = 0.0;
+  cv::Mat enteringBackground_;
   core::CameraIntrinsics canvasIntrinsics_;
   core::Pose3 lastPose_ = core::Pose3::Identity();
   std::size_t nextPose_ = 0;  ///< where previewPose looks first

@@ -457,12 +457,25 @@ void MarkerFreeHandDetector::finishPreview() {
     const cv::Rect stillView = view_;
     movingBackgroundFromPreview();
     std::vector<cv::Mat> movingHalf(previewDepth_mm_.size());
+    // For the skin model and the bare-forearm decision (enterThroughStillArm), the arm is foreground down to
+    // where it enters: the background that stands above the plane at the border is the plane's depth there.
+    // Made from the same warp (it is used only if the camera is found to move).
+    const bool entering = options_.enterThroughStillArm && canvasPlaneNormal_.squaredNorm() > 0.0;
+    std::vector<cv::Mat> enteringHalf(entering ? previewDepth_mm_.size() : 0);
     double disagreeStill = 0.0, disagreeMoving = 0.0;
     for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
       cv::Mat depth_m;
       backgroundInView(previewSamplePose_[i], depth_m, nullptr);
       cv::resize(depth_m, movingHalf[i], {}, 0.5, 0.5, cv::INTER_NEAREST);
       movingHalf[i] *= 1e3;
+      if (entering) {
+        cv::Mat noColour, planeDepth_m;
+        fillNarrowGaps(depth_m, noColour, static_cast<int>(std::lround(options_.movingBackgroundGap * depth_m.cols)));
+        enteringBackground(depth_m, previewSamplePose_[i], &planeDepth_m);
+        planeDepth_m.copyTo(depth_m, planeDepth_m > 0.f);
+        cv::resize(depth_m, enteringHalf[i], {}, 0.5, 0.5, cv::INTER_NEAREST);
+        enteringHalf[i] *= 1e3;
+      }
       const cv::Mat& z = depthHalf_mm[i];
       auto disagreement = [&](const cv::Mat& bg) {
         const cv::Mat both = (z > 0.f) & (bg > 0.f);
@@ -482,20 +495,7 @@ void MarkerFreeHandDetector::finishPreview() {
                         disagreeMoving / static_cast<double>(previewDepth_mm_.size()),
                         cameraMoves_ ? "follows the camera" : "still");
     if (cameraMoves_) {
-      bgHalf = movingHalf;
-      if (options_.enterThroughStillArm)
-        // For the skin model and the bare-forearm decision, the arm is foreground down to where it enters: the
-        // background that stands above the plane at the border is the plane's depth there.
-        for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
-          cv::Mat depth_m, colour, planeDepth_m;
-          backgroundInView(previewSamplePose_[i], depth_m, &colour);
-          fillNarrowGaps(depth_m, colour, static_cast<int>(std::lround(options_.movingBackgroundGap * depth_m.cols)));
-          const cv::Mat enter = enteringBackground(depth_m, previewSamplePose_[i], &planeDepth_m);
-          if (enter.empty()) break;
-          planeDepth_m.copyTo(depth_m, planeDepth_m > 0.f);
-          cv::resize(depth_m, bgHalf[i], {}, 0.5, 0.5, cv::INTER_NEAREST);
-          bgHalf[i] *= 1e3;
-        }
+      bgHalf = entering ? enteringHalf : movingHalf;
     } else {
       view_ = stillView;
     }

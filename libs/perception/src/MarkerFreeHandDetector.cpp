@@ -111,6 +111,21 @@ ArmShape armShape(const std::vector<Eigen::Vector3d>& points, double slice_m, st
 /// A disc-shaped structuring element of this diameter [px].
 cv::Mat disc(int diameter_px) { return cv::getStructuringElement(cv::MORPH_ELLIPSE, {diameter_px, diameter_px}); }
 
+/// Per label of a cv::connectedComponentsWithStats result `stats`, 1 when its
+/// bounding box comes within `margin_px` of the border of `view` (where an
+/// arm enters); label 0, the background, 0.
+std::vector<uchar> labelsAtBorder(const cv::Mat& stats, const cv::Rect& view, int margin_px) {
+  std::vector<uchar> atBorder(static_cast<std::size_t>(stats.rows), 0);
+  for (int l = 1; l < stats.rows; ++l) {
+    const int x = stats.at<int>(l, cv::CC_STAT_LEFT), y = stats.at<int>(l, cv::CC_STAT_TOP);
+    const int w = stats.at<int>(l, cv::CC_STAT_WIDTH), h = stats.at<int>(l, cv::CC_STAT_HEIGHT);
+    atBorder[static_cast<std::size_t>(l)] = x <= view.x + margin_px || y <= view.y + margin_px ||
+                                            x + w >= view.x + view.width - margin_px ||
+                                            y + h >= view.y + view.height - margin_px;
+  }
+  return atBorder;
+}
+
 /// Per pixel, the quantile `q` of the samples' valid depths (CV_16UC1 [mm], 0 = none): the k-th
 /// smallest, k = min(n - 1, floor(q n)) of the n valid ones, into `quantile_mm` (CV_32FC1, left
 /// where none is valid); pixels with fewer than `minValid` valid samples are marked 255 in `few`
@@ -460,7 +475,7 @@ void MarkerFreeHandDetector::finishPreview() {
     // For the skin model and the bare-forearm decision (enterThroughStillArm), the arm is foreground down to
     // where it enters: the background that stands above the plane at the border is the plane's depth there.
     // Made from the same warp (it is used only if the camera is found to move).
-    const bool entering = options_.enterThroughStillArm && canvasPlaneNormal_.squaredNorm() > 0.0;
+    const bool entering = options_.enterThroughStillArm && canvasPlane_.has_value();
     std::vector<cv::Mat> enteringHalf(entering ? previewDepth_mm_.size() : 0);
     double disagreeStill = 0.0, disagreeMoving = 0.0;
     for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
@@ -560,10 +575,7 @@ void MarkerFreeHandDetector::movingBackgroundFromPreview() {
     kh.cy_px = (kh.cy_px + 0.5) * 0.5 - 0.5;
     kh.width_px = half_m.cols;
     kh.height_px = half_m.rows;
-    if (const auto plane = fitSupportPlane(depthToCloud(half_m, CameraModel(kh)))) {
-      canvasPlaneNormal_ = plane->n;
-      canvasPlaneOffset_ = plane->d;
-    }
+    canvasPlane_ = fitSupportPlane(depthToCloud(half_m, CameraModel(kh)));
   }
   if (options_.backgroundColourFromSurface && !previewColour_.empty()) {
     // The colour of the samples that show the background's surface there (within minForeground_m of its
@@ -605,10 +617,10 @@ void MarkerFreeHandDetector::backgroundInView(const core::Pose3& X_camera0_camer
 
 cv::Mat MarkerFreeHandDetector::enteringBackground(const cv::Mat& background_m, const core::Pose3& X_camera0_camera,
                                                   cv::Mat* planeDepth_m) const {
-  if (canvasPlaneNormal_.squaredNorm() == 0.0) return {};
+  if (!canvasPlane_) return {};
   // The plane in this camera: height(p) = n0 . (R p + t) + d0.
-  const Eigen::Vector3d n = X_camera0_camera.linear().transpose() * canvasPlaneNormal_;
-  const double d = canvasPlaneNormal_.dot(X_camera0_camera.translation()) + canvasPlaneOffset_;
+  const Eigen::Vector3d n = X_camera0_camera.linear().transpose() * canvasPlane_->n;
+  const double d = canvasPlane_->n.dot(X_camera0_camera.translation()) + canvasPlane_->d;
   const core::CameraIntrinsics& k = previewIntrinsics_;
   const double lo = options_.minForeground_m, hi = options_.stillArmMaxHeight_m;
   cv::Mat open(background_m.size(), CV_8UC1, cv::Scalar(0));
@@ -627,14 +639,9 @@ cv::Mat MarkerFreeHandDetector::enteringBackground(const cv::Mat& background_m, 
   }
   // Only the regions that reach the image border (where the arm enters), grown by the border margin.
   cv::Mat labels, stats, centroids;
-  const int nl = cv::connectedComponentsWithStats(open, labels, stats, centroids, 8, CV_32S);
+  cv::connectedComponentsWithStats(open, labels, stats, centroids, 8, CV_32S);
   const int m = options_.borderMargin_px, W = open.cols, H = open.rows;
-  std::vector<uchar> keep(static_cast<std::size_t>(nl), 0);
-  for (int l = 1; l < nl; ++l) {
-    const int x = stats.at<int>(l, cv::CC_STAT_LEFT), y = stats.at<int>(l, cv::CC_STAT_TOP);
-    keep[static_cast<std::size_t>(l)] = x <= m || y <= m || x + stats.at<int>(l, cv::CC_STAT_WIDTH) >= W - m ||
-                                        y + stats.at<int>(l, cv::CC_STAT_HEIGHT) >= H - m;
-  }
+  const std::vector<uchar> keep = labelsAtBorder(stats, cv::Rect(0, 0, W, H), m);
   cv::Mat out(open.size(), CV_8UC1, cv::Scalar(0));
   for (int v = 0; v < H; ++v) {
     const int* l = labels.ptr<int>(v);
@@ -754,15 +761,8 @@ void MarkerFreeHandDetector::stillArmToPlane(cv::Mat& background_mm) const {
   if (bridge_px > 1) cv::dilate(candidate, bridged, disc(bridge_px));
   else bridged = candidate;
   cv::Mat labels, stats, centroids;
-  const int n = cv::connectedComponentsWithStats(bridged, labels, stats, centroids, 8, CV_32S);
-  const int m = options_.borderMargin_px;
-  std::vector<uchar> keep(static_cast<std::size_t>(n), 0);
-  for (int l = 1; l < n; ++l) {
-    const int x = stats.at<int>(l, cv::CC_STAT_LEFT), y = stats.at<int>(l, cv::CC_STAT_TOP);
-    const int w = stats.at<int>(l, cv::CC_STAT_WIDTH), h = stats.at<int>(l, cv::CC_STAT_HEIGHT);
-    keep[static_cast<std::size_t>(l)] = x <= view_.x + m || y <= view_.y + m || x + w >= view_.x + view_.width - m ||
-                                        y + h >= view_.y + view_.height - m;
-  }
+  cv::connectedComponentsWithStats(bridged, labels, stats, centroids, 8, CV_32S);
+  std::vector<uchar> keep = labelsAtBorder(stats, view_, options_.borderMargin_px);
   // ... and only those shaped like an arm.
   if (options_.stillArmShapeShare > 0.0 && std::find(keep.begin() + 1, keep.end(), 1) != keep.end())
     keepArmShaped(*plane, sampleSkin, labels, stats, candidate, keep);

@@ -8,16 +8,17 @@
 #include <Eigen/Core>
 #include <memory>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <utility>
 #include <vector>
 
 #include "srp/core/Pose.h"
 #include "srp/perception/HandDetector.h"
+#include "srp/perception/PlaneFit.h"
 
 namespace srp::perception {
 
 class CameraMotionEstimator;
-struct Plane;
 
 /// Marker-free hand detector (no tag is decoded or used as a feature: it works
 /// on a plain glove, a bare hand in a sleeve, or a bare forearm).
@@ -632,10 +633,9 @@ class MarkerFreeHandDetector : public HandDetector {
   std::vector<core::Pose3> previewSamplePose_;
   bool cameraMoves_ = false;
   cv::Mat canvasDepth_m_, canvasColour_;
-  // The support plane in the first frame's camera, n . p + d = 0 (n zero: none found), and this
-  // frame's background through which the arm enters (enterThroughStillArm).
-  Eigen::Vector3d canvasPlaneNormal_ = Eigen::Vector3d::Zero();
-  double canvasPlaneOffset_ = 0.0;
+  // The support plane in the first frame's camera (none found: nullopt), and this frame's background
+  // through which the arm enters (enterThroughStillArm).
+  std::optional<Plane> canvasPlane_;
   cv::Mat enteringBackground_;
   core::CameraIntrinsics canvasIntrinsics_;
   core::Pose3 lastPose_ = core::Pose3::Identity();

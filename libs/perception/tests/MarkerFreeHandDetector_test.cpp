@@ -111,7 +111,7 @@ TEST(MarkerFreeHandDetector, PalmFromTheCuffWhateverTheFingersDo) {
 // foreground nor skin; a glove's tag plate in srp::synth's default view): the silhouette across the palm is
 // the skin beside it, 17 mm wide on each side, which is no hand seen on its edge. The palm depth rule
 // (palmHalfWidth_m) measures only cross-sections through the palm's centre line, so the palm stays half the
-// palm's thickness under the back, not 18 mm deeper as the skin's 34-mm width across would put it.
+// palm's thickness under the back (counting the skin across the palm, thumb included: 8 mm off, 0/4 frames).
 TEST(MarkerFreeHandDetector, BadgeCutOutOfTheHandIsNoNarrowHand) {
   MarkerFreeHandDetector detector({});
   for (int i = 0; i < kBackgroundFrames; ++i) detector.detect(drawnFrame(i, std::nullopt));

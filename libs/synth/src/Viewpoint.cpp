@@ -14,8 +14,9 @@ ViewpointFamily viewpointFamilyFromName(const std::string& name) {
   if (name == "top-down") return ViewpointFamily::TopDown;
   if (name == "front") return ViewpointFamily::Front;
   if (name == "oblique") return ViewpointFamily::Oblique;
-  throw srp::core::InvalidInputError("viewpoint family '" + name +
-                                     "' is unknown; use egocentric, side, top-down, front or oblique");
+  if (name == "near-corner") return ViewpointFamily::NearCorner;
+  throw srp::core::InvalidInputError(
+      "viewpoint family '" + name + "' is unknown; use egocentric, side, top-down, front, oblique or near-corner");
 }
 
 std::string viewpointFamilyName(ViewpointFamily family) {
@@ -30,6 +31,8 @@ std::string viewpointFamilyName(ViewpointFamily family) {
       return "front";
     case ViewpointFamily::Oblique:
       return "oblique";
+    case ViewpointFamily::NearCorner:
+      return "near-corner";
   }
   return "?";
 }
@@ -118,6 +121,14 @@ Viewpoint makeViewpoint(ViewpointFamily family, int variant, const Eigen::Vector
       const double sign = v % 2 == 0 ? 1.0 : -1.0;  // either far corner of the table
       const Eigen::Vector3d corner = (-side + sign * across).normalized();
       const Eigen::Vector3d offset = turn * (0.7 * corner) + Eigen::Vector3d(0, 0, 0.75);
+      out.X_world_camera = lookAt(target_world + distance * offset, target_world, Eigen::Vector3d::UnitZ());
+      break;
+    }
+    case ViewpointFamily::NearCorner: {
+      const double sign = v % 2 == 0 ? 1.0 : -1.0;  // either corner on the demonstrator's side
+      constexpr double kOff_rad = 50.0 * srp::core::kPi / 180.0;
+      const Eigen::Vector3d corner = std::cos(kOff_rad) * side + sign * std::sin(kOff_rad) * across;
+      const Eigen::Vector3d offset = turn * (0.7 * corner) + Eigen::Vector3d(0, 0, 0.55);
       out.X_world_camera = lookAt(target_world + distance * offset, target_world, Eigen::Vector3d::UnitZ());
       break;
     }

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cmath>
 
+#include "srp/core/Angles.h"
 #include "srp/core/Error.h"
 #include "srp/synth/Viewpoint.h"
 
@@ -13,8 +15,8 @@ namespace {
 
 constexpr double kGeomTol = 1e-9;
 
-const ViewpointFamily kFamilies[] = {ViewpointFamily::Egocentric, ViewpointFamily::Side, ViewpointFamily::TopDown,
-                                     ViewpointFamily::Front, ViewpointFamily::Oblique};
+const ViewpointFamily kFamilies[] = {ViewpointFamily::Egocentric, ViewpointFamily::Side,       ViewpointFamily::TopDown,
+                                     ViewpointFamily::Front,      ViewpointFamily::Oblique,    ViewpointFamily::NearCorner};
 
 /// Distance [m] from `p` to the camera's optical axis.
 double offAxis_m(const core::Pose3& X_world_camera, const Eigen::Vector3d& p_world) {
@@ -59,6 +61,12 @@ TEST(Viewpoint, FamiliesStandWhereTheySay) {
     EXPECT_NEAR(std::abs(e.dot(across)), 0.7 / std::sqrt(2.0), kGeomTol);
   }
   EXPECT_LT(eye(ViewpointFamily::Oblique, 4).dot(across) * eye(ViewpointFamily::Oblique, 1).dot(across), 0.0);
+  // Near corner: on the demonstrator's side, 50 deg off their direction, either side.
+  const double off_rad = 50.0 * core::kPi / 180.0;
+  EXPECT_NEAR(eye(ViewpointFamily::NearCorner, 4).dot(side), 0.7 * std::cos(off_rad), kGeomTol);
+  EXPECT_NEAR(std::abs(eye(ViewpointFamily::NearCorner, 4).dot(across)), 0.7 * std::sin(off_rad), kGeomTol);
+  EXPECT_NEAR(eye(ViewpointFamily::NearCorner, 4).z(), 0.55, kGeomTol);
+  EXPECT_LT(eye(ViewpointFamily::NearCorner, 4).dot(across) * eye(ViewpointFamily::NearCorner, 1).dot(across), 0.0);
   const Eigen::Vector3d top = eye(ViewpointFamily::TopDown, 4);
   EXPECT_NEAR(top.head<2>().norm(), 0.0, kGeomTol);
   EXPECT_NEAR(top.z(), 0.95, kGeomTol);
@@ -74,6 +82,7 @@ TEST(Viewpoint, NamesAndVariantsReadBack) {
   for (const auto family : kFamilies) EXPECT_EQ(viewpointFamilyFromName(viewpointFamilyName(family)), family);
   EXPECT_EQ(viewpointFromText("side:3"), std::make_pair(ViewpointFamily::Side, 3));
   EXPECT_EQ(viewpointFromText("front"), std::make_pair(ViewpointFamily::Front, 0));
+  EXPECT_EQ(viewpointFromText("near-corner:5"), std::make_pair(ViewpointFamily::NearCorner, 5));
   EXPECT_THROW(viewpointFromText("side:"), core::InvalidInputError);
   EXPECT_THROW(viewpointFromText("side:-1"), core::InvalidInputError);
   EXPECT_THROW(viewpointFromText("side:1x"), core::InvalidInputError);

@@ -1,11 +1,11 @@
 #pragma once
 // Rendered demonstrations from the viewpoint families of srp::synth
-// (Viewpoint.h: egocentric, side, top-down, front, oblique, near-corner) with the hand
+// (Viewpoint.h: egocentric, side, top-down, front, oblique, near-corner, table-level) with the hand
 // carrying parts of several sizes, and the marker-free palm scored against their ground truth.
 // Shared by MarkerFreeHandViewpoints_test and bench/marker_free_hand_bench.
 //
 // Which family is for what: the detector's settings are chosen on the
-// egocentric and side families; top-down, front, oblique and near-corner are checked,
+// egocentric and side families; top-down, front, oblique, near-corner and table-level are checked,
 // never tuned on (perception README, "The marker-free hand in other views").
 #include <Eigen/Core>
 #include <filesystem>
@@ -65,8 +65,8 @@ struct FreshLight {
 };
 
 /// Six demonstrations of `family`: variants 0-5 (azimuth -20/0/+20 deg, distance -10/0 %, sides), parts
-/// 1x, 1.5x and 2x the catalogue's, sleeve in 0-2, bare forearm in 3-5, seeds 11-16. The family added
-/// as a fresh check (near-corner) is lit by FreshLight (ViewpointDemoSpec::otherLight).
+/// 1x, 1.5x and 2x the catalogue's, sleeve in 0-2, bare forearm in 3-5, seeds 11-16. The families added
+/// as fresh checks (near-corner, table-level) are lit by FreshLight (ViewpointDemoSpec::otherLight).
 inline std::vector<ViewpointDemoSpec> familySpecs(synth::ViewpointFamily family, int width_px = 640) {
   std::vector<ViewpointDemoSpec> out;
   constexpr double kScales[] = {1.0, 1.5, 2.0};
@@ -78,7 +78,7 @@ inline std::vector<ViewpointDemoSpec> familySpecs(synth::ViewpointFamily family,
     s.bareForearm = v >= 3;
     s.seed = static_cast<std::uint32_t>(11 + v);
     s.width_px = width_px;
-    s.otherLight = family == synth::ViewpointFamily::NearCorner;
+    s.otherLight = family == synth::ViewpointFamily::NearCorner || family == synth::ViewpointFamily::TableLevel;
     out.push_back(s);
   }
   return out;

@@ -224,5 +224,9 @@ TEST(ViewpointFamilyRenders, NearCornerSeesTheArmFromTheDemonstratorsSide) {
   expectFamilyRendersSanely(synth::ViewpointFamily::NearCorner);
 }
 
+TEST(ViewpointFamilyRenders, TableLevelSeesTheArmFromTheDemonstratorsSide) {
+  expectFamilyRendersSanely(synth::ViewpointFamily::TableLevel);
+}
+
 }  // namespace
 }  // namespace srp::perception

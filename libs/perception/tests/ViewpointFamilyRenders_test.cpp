@@ -180,10 +180,12 @@ RenderFigures checkRender(const testing::ViewpointDemoSpec& spec, const std::str
 void expectFamilyRendersSanely(synth::ViewpointFamily family) {
   const char* width = std::getenv("SRP_VIEW_WIDTH");
   const auto specs = testing::familySpecs(family, width ? std::atoi(width) : kWidth_px);
-  // Fresh renders (removed afterwards) unless SRP_VIEW_DIR keeps them.
+  // Fresh renders (removed afterwards; a folder per family: CTest may run the families at once) unless
+  // SRP_VIEW_DIR keeps them.
   const char* keep = std::getenv("SRP_VIEW_DIR");
-  const std::filesystem::path folder =
-      keep ? std::filesystem::path(keep) : std::filesystem::path(SRP_BINARY_DIR) / "viewpoint_family_renders";
+  const std::filesystem::path folder = keep ? std::filesystem::path(keep)
+                                            : std::filesystem::path(SRP_BINARY_DIR) / "viewpoint_family_renders" /
+                                                  synth::viewpointFamilyName(family);
   if (!keep) std::filesystem::remove_all(folder);
   for (const auto& spec : specs) {
     SCOPED_TRACE(spec.name());

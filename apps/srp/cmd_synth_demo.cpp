@@ -192,7 +192,8 @@ void setupSynthDemo(CLI::App& cmd) {
   cmd.add_option("--max-frames", args->maxFrames, "stop after this many frames")->check(CLI::PositiveNumber);
   cmd.add_option("--viewpoint", args->viewpoint,
                  "camera placement instead of the scene's: FAMILY or FAMILY:VARIANT, FAMILY one of egocentric (at "
-                 "the demonstrator's head), side, top-down, front (across the table), oblique (a far corner); "
+                 "the demonstrator's head), side, top-down, front (across the table), oblique (a far corner), "
+                 "near-corner (a corner on the demonstrator's side), table-level (beside the table, 0.2 m above it); "
                  "variants turn the camera by -20/0/+20 deg and move it -10/0/+10 %");
   cmd.add_flag("--head-sway", args->headSway,
                "a head-mounted camera: the camera sways smoothly about its pose (up to 3 deg of nod and turn, 1.5 "

@@ -247,12 +247,12 @@ struct Layer {
 
 Layer makeLayer(const core::CameraIntrinsics& intrinsics, const DemoTimeline& timeline,
                 const std::vector<srp::kb::TriangleMesh>& objectMeshes, const HandModel& hand, bool withTable,
-                bool withHand) {
+                bool withHand, const Eigen::Vector3d& lightRgb) {
   const srp::core::Scene& world = timeline.scene;
   Layer layer;
   layer.renderer = std::make_unique<SceneRenderer>(intrinsics);
   SceneRenderer& r = *layer.renderer;
-  r.setLighting(world.lighting);
+  r.setLighting(world.lighting, lightRgb);
   r.setBackground({0.3, 0.3, 0.32});
   if (withTable) {
     const int table = r.addBody(
@@ -372,11 +372,11 @@ Renderers setUpRenderers(const DemoTimeline& timeline, const SceneBodies& bodies
   Renderers r;
   // A swaying camera sees the resting bodies move every frame: nothing to cache.
   r.layered = options.layeredRendering && !options.headSway.enabled;
-  r.background = makeLayer(world.intrinsics, timeline, bodies.meshes, hand, true, !r.layered);
-  if (r.layered) r.moving = makeLayer(world.intrinsics, timeline, bodies.meshes, hand, false, true);
+  r.background = makeLayer(world.intrinsics, timeline, bodies.meshes, hand, true, !r.layered, options.lightRgb);
+  if (r.layered) r.moving = makeLayer(world.intrinsics, timeline, bodies.meshes, hand, false, true, options.lightRgb);
   if (options.depthCamera) {
     options.depthCamera->intrinsics.validate("synth-demo depth camera");
-    r.depthLayer = makeLayer(options.depthCamera->intrinsics, timeline, bodies.meshes, hand, true, true);
+    r.depthLayer = makeLayer(options.depthCamera->intrinsics, timeline, bodies.meshes, hand, true, true, options.lightRgb);
   }
   if (options.depthCamera) r.X_colour_depth = options.depthCamera->X_colour_depth;
   const HeadSway sway(options.headSway, options.demo.seed);

@@ -136,11 +136,14 @@ void SceneRenderer::setBodyVisible(int body, bool visible) { impl_->bodies.at(bo
 
 int SceneRenderer::bodyCount() const { return static_cast<int>(impl_->bodies.size()); }
 
-void SceneRenderer::setLighting(const srp::core::SceneLighting& lighting) {
+void SceneRenderer::setLighting(const srp::core::SceneLighting& lighting, const Eigen::Vector3d& rgb) {
   auto& light = impl_->scene.getViewport()->lightParameters();
-  const auto a = static_cast<float>(lighting.ambient), d = static_cast<float>(lighting.diffuse);
-  light.ambient = mrpt::img::TColorf(a, a, a, 1.f);
-  light.diffuse = mrpt::img::TColorf(d, d, d, 1.f);
+  auto scaled = [&](double intensity) {
+    return mrpt::img::TColorf(static_cast<float>(intensity * rgb.x()), static_cast<float>(intensity * rgb.y()),
+                              static_cast<float>(intensity * rgb.z()), 1.f);
+  };
+  light.ambient = scaled(lighting.ambient);
+  light.diffuse = scaled(lighting.diffuse);
   light.specular = mrpt::img::TColorf(0.f, 0.f, 0.f, 1.f);
   const Eigen::Vector3d dir = lighting.direction_world.normalized();
   light.direction = mrpt::math::TVector3Df(static_cast<float>(dir.x()), static_cast<float>(dir.y()),

@@ -14,8 +14,10 @@ ViewpointFamily viewpointFamilyFromName(const std::string& name) {
   if (name == "top-down") return ViewpointFamily::TopDown;
   if (name == "front") return ViewpointFamily::Front;
   if (name == "oblique") return ViewpointFamily::Oblique;
-  throw srp::core::InvalidInputError("viewpoint family '" + name +
-                                     "' is unknown; use egocentric, side, top-down, front or oblique");
+  if (name == "near-corner") return ViewpointFamily::NearCorner;
+  if (name == "table-level") return ViewpointFamily::TableLevel;
+  throw srp::core::InvalidInputError(
+      "viewpoint family '" + name + "' is unknown; use egocentric, side, top-down, front, oblique, near-corner or table-level");
 }
 
 std::string viewpointFamilyName(ViewpointFamily family) {
@@ -30,6 +32,10 @@ std::string viewpointFamilyName(ViewpointFamily family) {
       return "front";
     case ViewpointFamily::Oblique:
       return "oblique";
+    case ViewpointFamily::NearCorner:
+      return "near-corner";
+    case ViewpointFamily::TableLevel:
+      return "table-level";
   }
   return "?";
 }
@@ -118,6 +124,23 @@ Viewpoint makeViewpoint(ViewpointFamily family, int variant, const Eigen::Vector
       const double sign = v % 2 == 0 ? 1.0 : -1.0;  // either far corner of the table
       const Eigen::Vector3d corner = (-side + sign * across).normalized();
       const Eigen::Vector3d offset = turn * (0.7 * corner) + Eigen::Vector3d(0, 0, 0.75);
+      out.X_world_camera = lookAt(target_world + distance * offset, target_world, Eigen::Vector3d::UnitZ());
+      break;
+    }
+    case ViewpointFamily::NearCorner: {
+      const double sign = v % 2 == 0 ? 1.0 : -1.0;  // either corner on the demonstrator's side
+      constexpr double kOff_rad = 50.0 * srp::core::kPi / 180.0;
+      const Eigen::Vector3d corner = std::cos(kOff_rad) * side + sign * std::sin(kOff_rad) * across;
+      const Eigen::Vector3d offset = turn * (0.7 * corner) + Eigen::Vector3d(0, 0, 0.55);
+      out.X_world_camera = lookAt(target_world + distance * offset, target_world, Eigen::Vector3d::UnitZ());
+      break;
+    }
+    case ViewpointFamily::TableLevel: {
+      // Beside the table, the lens just above its top (a low tripod). The camera turns 0, 10 or 20 deg towards
+      // the demonstrator only: turned away from them it looks along their forearm, whose sleeve ends in view.
+      const double sign = v % 2 == 0 ? 1.0 : -1.0;
+      const Eigen::AngleAxisd towards(-sign * (v % 3) * 10.0 * srp::core::kPi / 180.0, Eigen::Vector3d::UnitZ());
+      const Eigen::Vector3d offset = towards * (0.85 * sign * across) + Eigen::Vector3d(0, 0, 0.2);
       out.X_world_camera = lookAt(target_world + distance * offset, target_world, Eigen::Vector3d::UnitZ());
       break;
     }

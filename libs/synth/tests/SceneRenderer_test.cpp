@@ -87,4 +87,31 @@ TEST(SceneRenderer, ColourFollowsTheBodyColourAndVisibility) {
   EXPECT_EQ(frame.depth_m.at<float>(60, 80), 0.f);
 }
 
+// The light's colour scales each channel of what it lights; white leaves the image as without it.
+TEST(SceneRenderer, LightColourScalesEachChannel) {
+  constexpr double kLevelTol = 2.0;  // 8-bit rounding
+  srp::core::CameraIntrinsics K{200, 200, 79.5, 59.5, 160, 120};
+  const srp::core::Pose3 X_world_camera = srp::core::makePose({0, 0, 1}, Eigen::Quaterniond(0, 1, 0, 0));
+  const srp::core::SceneLighting ambientOnly{0.8, 0.0, Eigen::Vector3d(0, 0, 1)};
+  auto centre = [&](const Eigen::Vector3d* rgb) {
+    srp::synth::SceneRenderer renderer(K);
+    if (rgb)
+      renderer.setLighting(ambientOnly, *rgb);
+    else
+      renderer.setLighting(ambientOnly);
+    renderer.addBody("plane", srp::kb::makeBoxMesh({-1, -1, 0}, {1, 1, 0.01}), {1.0, 1.0, 1.0});
+    const cv::Mat colour = renderer.render(X_world_camera).colour_bgr8;
+    return std::make_pair(colour.at<cv::Vec3b>(60, 80), colour);
+  };
+  const Eigen::Vector3d white = Eigen::Vector3d::Ones(), warm(1.0, 0.9, 0.78);
+  const auto [plain, plainImage] = centre(nullptr);
+  const auto [whiteLit, whiteImage] = centre(&white);
+  const auto [warmLit, warmImage] = centre(&warm);
+  EXPECT_EQ(cv::norm(plainImage, whiteImage, cv::NORM_INF), 0.0) << "white: the same image, byte for byte";
+  EXPECT_NEAR(plain[2], 0.8 * 255, kLevelTol);  // R
+  EXPECT_NEAR(warmLit[2], 0.8 * 255, kLevelTol);
+  EXPECT_NEAR(warmLit[1], 0.8 * 0.9 * 255, kLevelTol);  // G
+  EXPECT_NEAR(warmLit[0], 0.8 * 0.78 * 255, kLevelTol);  // B
+}
+
 }  // namespace

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cmath>
 
+#include "srp/core/Angles.h"
 #include "srp/core/Error.h"
 #include "srp/synth/Viewpoint.h"
 
@@ -13,8 +15,9 @@ namespace {
 
 constexpr double kGeomTol = 1e-9;
 
-const ViewpointFamily kFamilies[] = {ViewpointFamily::Egocentric, ViewpointFamily::Side, ViewpointFamily::TopDown,
-                                     ViewpointFamily::Front, ViewpointFamily::Oblique};
+const ViewpointFamily kFamilies[] = {ViewpointFamily::Egocentric, ViewpointFamily::Side,       ViewpointFamily::TopDown,
+                                     ViewpointFamily::Front,      ViewpointFamily::Oblique,    ViewpointFamily::NearCorner,
+                                     ViewpointFamily::TableLevel};
 
 /// Distance [m] from `p` to the camera's optical axis.
 double offAxis_m(const core::Pose3& X_world_camera, const Eigen::Vector3d& p_world) {
@@ -34,7 +37,9 @@ TEST(Viewpoint, EveryFamilyLooksAtTheTargetFromAbove) {
           family == ViewpointFamily::Egocentric ? Eigen::Vector3d(target - Eigen::Vector3d(0, 0.05, 0)) : target;
       EXPECT_LT(offAxis_m(X, lookedAt), kGeomTol);
       EXPECT_GT((X.inverse() * target).z(), 0.3) << "the target in front of the camera";
-      EXPECT_GT(X.translation().z() - target.z(), 0.4) << "the camera above the table";
+      // The table-level camera: its lens 0.2 m above the table (+-10 % with the distance).
+      EXPECT_GT(X.translation().z() - target.z(), family == ViewpointFamily::TableLevel ? 0.17 : 0.4)
+          << "the camera above the table";
       EXPECT_NEAR(X.linear().determinant(), 1.0, kGeomTol);
       if (family != ViewpointFamily::TopDown)
         EXPECT_NEAR(X.linear().col(0).z(), 0.0, kGeomTol) << "image x level: no roll";
@@ -59,6 +64,21 @@ TEST(Viewpoint, FamiliesStandWhereTheySay) {
     EXPECT_NEAR(std::abs(e.dot(across)), 0.7 / std::sqrt(2.0), kGeomTol);
   }
   EXPECT_LT(eye(ViewpointFamily::Oblique, 4).dot(across) * eye(ViewpointFamily::Oblique, 1).dot(across), 0.0);
+  // Near corner: on the demonstrator's side, 50 deg off their direction, either side.
+  const double off_rad = 50.0 * core::kPi / 180.0;
+  EXPECT_NEAR(eye(ViewpointFamily::NearCorner, 4).dot(side), 0.7 * std::cos(off_rad), kGeomTol);
+  EXPECT_NEAR(std::abs(eye(ViewpointFamily::NearCorner, 4).dot(across)), 0.7 * std::sin(off_rad), kGeomTol);
+  EXPECT_NEAR(eye(ViewpointFamily::NearCorner, 4).z(), 0.55, kGeomTol);
+  EXPECT_LT(eye(ViewpointFamily::NearCorner, 4).dot(across) * eye(ViewpointFamily::NearCorner, 1).dot(across), 0.0);
+  // Table level, variant 3: not turned, nominal distance, odd (variant 6: even, 10 % farther).
+  EXPECT_NEAR(std::abs(eye(ViewpointFamily::TableLevel, 3).dot(across)), 0.85, kGeomTol) << "beside the table";
+  EXPECT_NEAR(eye(ViewpointFamily::TableLevel, 3).dot(side), 0.0, kGeomTol);
+  EXPECT_NEAR(eye(ViewpointFamily::TableLevel, 3).z(), 0.2, kGeomTol) << "just above its top";
+  EXPECT_LT(eye(ViewpointFamily::TableLevel, 3).dot(across) * eye(ViewpointFamily::TableLevel, 6).dot(across), 0.0);
+  for (int v = 0; v < 9; ++v)  // turned 0, 10, 20 deg towards the demonstrator, never away from them
+    EXPECT_NEAR(eye(ViewpointFamily::TableLevel, v).dot(side) / eye(ViewpointFamily::TableLevel, v).head<2>().norm(),
+                std::sin((v % 3) * 10.0 * core::kPi / 180.0), 1e-9)
+        << "variant " << v;
   const Eigen::Vector3d top = eye(ViewpointFamily::TopDown, 4);
   EXPECT_NEAR(top.head<2>().norm(), 0.0, kGeomTol);
   EXPECT_NEAR(top.z(), 0.95, kGeomTol);
@@ -74,6 +94,8 @@ TEST(Viewpoint, NamesAndVariantsReadBack) {
   for (const auto family : kFamilies) EXPECT_EQ(viewpointFamilyFromName(viewpointFamilyName(family)), family);
   EXPECT_EQ(viewpointFromText("side:3"), std::make_pair(ViewpointFamily::Side, 3));
   EXPECT_EQ(viewpointFromText("front"), std::make_pair(ViewpointFamily::Front, 0));
+  EXPECT_EQ(viewpointFromText("near-corner:5"), std::make_pair(ViewpointFamily::NearCorner, 5));
+  EXPECT_EQ(viewpointFromText("table-level:2"), std::make_pair(ViewpointFamily::TableLevel, 2));
   EXPECT_THROW(viewpointFromText("side:"), core::InvalidInputError);
   EXPECT_THROW(viewpointFromText("side:-1"), core::InvalidInputError);
   EXPECT_THROW(viewpointFromText("side:1x"), core::InvalidInputError);

@@ -1,21 +1,24 @@
-// The marker-free palm on rendered demonstrations from five viewpoint
+// The marker-free palm on rendered demonstrations from seven viewpoint
 // families (srp::synth Viewpoint.h), the hand carrying parts of three sizes,
 // with the demonstrator's sleeve and with a bare forearm, against the
 // render's ground truth (HandEvaluation.h), through the preview as `srp
 // perceive` runs the detector.
 //
 // The detector's settings are chosen on the egocentric and side families
-// (their frames are looked at to find what fails); top-down, front and
-// oblique are only checked, never looked at frame by frame nor tuned on
+// (their frames are looked at to find what fails); top-down, front,
+// oblique, near-corner and table-level are only checked, never looked at frame by frame nor tuned on
 // (perception README). Each
-// family's reached figures are guarded (the issue's acceptance is not reached).
+// family's reached figures are guarded (the issue's acceptance is not reached). Near-corner
+// and table-level are lit by another lamp than the scene's (ViewpointDemos.h's FreshLight: warm, from the
+// robot's side at 40 deg); their renders' geometry is tested by ViewpointFamilyRenders.* (no detector).
 //
 // A sixth, development family, egocentric-held: an egocentric head-mounted camera that sways
 // (synth::HeadSway), the hand holding a part in every frame (the clip cut from grasp to release),
 // bare forearm and sleeve, parts of several sizes. Its seeds 41-46 are chosen on, 51-56 checked.
 //
 // SRP_VIEW_DIR=<dir> keeps the renders there (default: rendered into the build folder and deleted once scored);
-// SRP_VIEW_FAMILY=egocentric|side|top-down|front|oblique|egocentric-held|egocentric-held-sr300 runs one family; SRP_VIEW_VARIANT=0..5 one
+// SRP_VIEW_FAMILY=egocentric|side|top-down|front|oblique|near-corner|table-level|egocentric-held|egocentric-held-sr300
+// runs one family; SRP_VIEW_VARIANT=0..5 one
 // of its demonstrations;
 // SRP_VIEW_WIDTH=px renders at another width (4:3; the figures stay at 640-px width: a check that the detector's
 // pixel options scale, as a 1920-px recording needs);
@@ -39,23 +42,10 @@ namespace {
 
 using testing::ViewpointDemoSpec;
 
-/// Six demonstrations per family: variants 0-5 (azimuth -20/0/+20 deg, distance
-/// -10/0 %, sides), parts 1x, 1.5x and 2x the catalogue's, sleeve in 0-2, bare forearm in 3-5.
+/// Six demonstrations per family (ViewpointDemos.h's familySpecs), at SRP_VIEW_WIDTH when set.
 std::vector<ViewpointDemoSpec> familySpecs(synth::ViewpointFamily family) {
-  std::vector<ViewpointDemoSpec> out;
-  constexpr double kScales[] = {1.0, 1.5, 2.0};
   const char* width = std::getenv("SRP_VIEW_WIDTH");
-  for (int v = 0; v < 6; ++v) {
-    ViewpointDemoSpec s;
-    s.family = family;
-    s.variant = v;
-    s.partScale = kScales[v % 3];
-    s.bareForearm = v >= 3;
-    s.seed = static_cast<std::uint32_t>(11 + v);
-    if (width) s.width_px = std::atoi(width);
-    out.push_back(s);
-  }
-  return out;
+  return testing::familySpecs(family, width ? std::atoi(width) : 640);
 }
 
 /// The egocentric-held family: variants 0-5 of the egocentric viewpoint, head sway, the cuboid (even
@@ -163,6 +153,8 @@ struct Reached {
   double median_m, withinRate;
   int maxFarSide;
 };
+/// The issue's acceptance itself: the guard of a check family not scored yet.
+constexpr Reached kIssueAcceptance{0.015, 0.95, 0};
 
 void checkEvaluation(const testing::HandEvaluation& ev, const Reached& reached) {
   ASSERT_GT(ev.handInView, 0);
@@ -186,7 +178,7 @@ void checkHeldSway(std::uint32_t firstSeed, const Reached& reached, bool sr300 =
 
 // Reached: 94.5 %, 10.7 mm, 0 past the part (chosen on).
 TEST(ViewpointFamilies, EgocentricChosenOn) { checkFamily(synth::ViewpointFamily::Egocentric, {0.0115, 0.94, 0}); }
-// Reached: 74.7 %, 35.9 mm, 0 of 653 carry frames past the part (chosen on).
+// Reached: 74.7 %, 24.5 mm, 0 of 653 carry frames past the part (chosen on).
 TEST(ViewpointFamilies, SideChosenOn) { checkFamily(synth::ViewpointFamily::Side, {0.0255, 0.74, 0}); }
 // Reached: 86.2 %, 4.3 mm, 0 of 653 carry frames past the part.
 TEST(ViewpointFamilies, TopDownChecked) { checkFamily(synth::ViewpointFamily::TopDown, {0.0045, 0.86, 0}); }
@@ -195,6 +187,9 @@ TEST(ViewpointFamilies, TopDownChecked) { checkFamily(synth::ViewpointFamily::To
 TEST(ViewpointFamilies, FrontChecked) { checkFamily(synth::ViewpointFamily::Front, {0.041, 0.87, 2}); }
 // Reached: 81.1 %, 24.5 mm, 0 of 653 carry frames past the part.
 TEST(ViewpointFamilies, ObliqueChecked) { checkFamily(synth::ViewpointFamily::Oblique, {0.025, 0.81, 0}); }
+// Fresh check families, another light than the scene's; not scored yet: the guard is the acceptance.
+TEST(ViewpointFamilies, NearCornerChecked) { checkFamily(synth::ViewpointFamily::NearCorner, kIssueAcceptance); }
+TEST(ViewpointFamilies, TableLevelChecked) { checkFamily(synth::ViewpointFamily::TableLevel, kIssueAcceptance); }
 // Development family egocentric-held (head sway, the part held in every frame).
 // Reached on the seeds chosen on: 99.7 %, 10.1 mm, 0 of 394 carry frames past the part (the arm entering
 // through the image border only: 91.6 %, 10.3 mm; a still camera's background: 0.0 %, 425.8 mm, 135 past).

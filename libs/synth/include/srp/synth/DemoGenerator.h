@@ -32,6 +32,9 @@ struct SynthDemoOptions {
   DemoOptions demo;
   SensorModel::Options sensor;
   HandModel::Options hand;
+  /// The light's colour: the scene's ambient and diffuse intensities scaled per channel (linear RGB;
+  /// white (1, 1, 1) by default; e.g. (1, 0.9, 0.78) a warm lamp seen by a camera balanced for daylight).
+  Eigen::Vector3d lightRgb = Eigen::Vector3d::Ones();
   int width_px = 0;   ///< 0: the scene camera's; otherwise the intrinsics are scaled
   int height_px = 0;
   double rawlogDepthUnit_m = 1e-4;   ///< depth step stored in the rawlog

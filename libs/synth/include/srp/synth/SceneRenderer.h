@@ -54,8 +54,9 @@ class SceneRenderer {
   void setBodyVisible(int body, bool visible);
   int bodyCount() const;
 
-  /// Ambient and diffuse intensities in [0, 1], direction of the light's travel in world.
-  void setLighting(const srp::core::SceneLighting& lighting);
+  /// Ambient and diffuse intensities in [0, 1], direction of the light's travel in world; `rgb`
+  /// scales both per channel (the light's colour; white: (1, 1, 1)).
+  void setLighting(const srp::core::SceneLighting& lighting, const Eigen::Vector3d& rgb = Eigen::Vector3d::Ones());
   /// Colour where no surface is seen.
   void setBackground(const Eigen::Vector3d& rgb);
 

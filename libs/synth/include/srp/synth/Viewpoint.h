@@ -2,8 +2,9 @@
 /// \file Viewpoint.h
 /// \brief Camera placements for synthetic demonstrations beyond the scene's
 /// own camera: at the demonstrator's head (egocentric), beside the table,
-/// straight above it, across the table facing the demonstrator, and at a
-/// corner of the table, each with variants (azimuth, distance).
+/// straight above it, across the table facing the demonstrator, at a far
+/// corner of the table, at a corner on the demonstrator's side, and beside the
+/// table just above its top, each with variants (azimuth, distance).
 
 #include <Eigen/Core>
 #include <string>
@@ -24,6 +25,12 @@ enum class ViewpointFamily {
   Front,       ///< across the table, facing the demonstrator at chest height: the arm comes towards the camera
                ///< from the top edge
   Oblique,     ///< high at a corner of the table opposite the demonstrator: the arm enters from a top corner
+  NearCorner,  ///< at a corner of the table on the demonstrator's side, 50 deg off their direction, 0.55 m
+               ///< above: the arm enters from the left or right edge (the side towards the demonstrator),
+               ///< its back towards the camera
+  TableLevel,  ///< beside the table, 0.85 m out, the lens 0.2 m above its top: the table and the boxes seen at a
+               ///< grazing angle (their walls hide what lies inside), the arm entering from the left or right
+               ///< edge at the camera's height, the hand seen edge-on
 };
 
 /// Where the camera is and where the demonstrator stands (DemoOptions::demonstratorSide_world).
@@ -32,7 +39,8 @@ struct Viewpoint {
   Eigen::Vector2d demonstratorSide_world = Eigen::Vector2d::UnitY();
 };
 
-/// "egocentric", "side", "top-down", "front", "oblique"; throws InvalidInputError naming the text and the choices otherwise.
+/// "egocentric", "side", "top-down", "front", "oblique", "near-corner", "table-level"; throws
+/// InvalidInputError naming the text and the choices otherwise.
 ViewpointFamily viewpointFamilyFromName(const std::string& name);
 std::string viewpointFamilyName(ViewpointFamily family);
 
@@ -41,8 +49,10 @@ std::string viewpointFamilyName(ViewpointFamily family);
 /// `demonstratorSide_world` (unit, horizontal) of the table. Variants turn
 /// the camera about the vertical through the target by -20, 0, +20 deg and
 /// change its distance by -10, 0, +10 % (3 x 3 = 9 before they repeat); the
-/// side and oblique families' even variants stand on one side of the table,
-/// odd ones on the other.
+/// side, oblique, near-corner and table-level families' even variants stand on
+/// one side of the table, odd ones on the other. The table-level camera turns
+/// by 0, 10 and 20 deg towards the demonstrator instead (turned away from them
+/// it would look along their forearm and see the sleeve's end).
 Viewpoint makeViewpoint(ViewpointFamily family, int variant, const Eigen::Vector3d& target_world,
                         const Eigen::Vector2d& demonstratorSide_world = Eigen::Vector2d::UnitY());
 

@@ -18,6 +18,7 @@
 #include "srp/perception/CameraModel.h"
 #include "srp/perception/CameraMotionEstimator.h"
 #include "srp/perception/DepthCloud.h"
+#include "srp/perception/MaskMorphology.h"
 #include "srp/perception/PlaneFit.h"
 
 namespace srp::perception {
@@ -249,18 +250,12 @@ void warpDepth(const cv::Mat& src_m, const cv::Mat& srcColour, const core::Camer
   // per-channel brightest colour of the neighbours (a gap's own colour is 0).
   cv::Mat nearest, brightest;
   cv::erode(dst_m, nearest, cv::Mat());
-  if (colour) cv::dilate(*dstColour, brightest, cv::Mat());
-  for (int v = 0; v < H; ++v) {
-    float* d = dst_m.ptr<float>(v);
-    const float* n = nearest.ptr<float>(v);
-    cv::Vec3b* c = colour ? dstColour->ptr<cv::Vec3b>(v) : nullptr;
-    const cv::Vec3b* b = colour ? brightest.ptr<cv::Vec3b>(v) : nullptr;
-    for (int u = 0; u < W; ++u) {
-      if (d[u] < kNone) continue;
-      d[u] = n[u] < kNone ? n[u] : noDepth;
-      if (colour) c[u] = b[u];
-    }
-  }
+  if (noDepth != kNone) nearest.setTo(noDepth, nearest == kNone);
+  const cv::Mat gaps = dst_m == kNone;
+  nearest.copyTo(dst_m, gaps);
+  if (!colour) return;
+  cv::dilate(*dstColour, brightest, cv::Mat());
+  brightest.copyTo(*dstColour, gaps);
 }
 
 /// Gaps of `depth_m` [m, CV_32FC1; 0: none] narrower than `gap_px` take the farthest depth and the
@@ -273,23 +268,32 @@ void fillNarrowGaps(cv::Mat& depth_m, cv::Mat& colour_bgr8, int gap_px) {
   if (cv::countNonZero(none) == 0) return;
   const int f = (gap_px + 9) / 10;
   const cv::Size small((depth_m.cols + f - 1) / f, (depth_m.rows + f - 1) / f);
-  cv::Mat noneSmall, depthSmall, colourSmall;
-  cv::resize(none, noneSmall, small, 0, 0, cv::INTER_AREA);  // a pooled pixel with any gap
-  noneSmall = noneSmall > 0;
-  cv::resize(depth_m, depthSmall, small, 0, 0, cv::INTER_NEAREST);
+  // At f = 1 the images themselves (a resize to the same size is a copy).
+  cv::Mat noneSmall = none, depthSmall = depth_m, colourSmall = colour_bgr8;
+  if (f > 1) {
+    cv::resize(none, noneSmall, small, 0, 0, cv::INTER_AREA);  // a pooled pixel with any gap
+    noneSmall = noneSmall > 0;
+    cv::resize(depth_m, depthSmall, small, 0, 0, cv::INTER_NEAREST);
+    if (!colour_bgr8.empty()) cv::resize(colour_bgr8, colourSmall, small, 0, 0, cv::INTER_NEAREST);
+  }
   const cv::Mat d = disc(std::max(3, gap_px / f));
-  cv::Mat wide, farthest;
+  cv::Mat wide, needed;
   cv::morphologyEx(noneSmall, wide, cv::MORPH_OPEN, d);
-  cv::dilate(depthSmall, farthest, d);
-  cv::resize(wide, wide, depth_m.size(), 0, 0, cv::INTER_NEAREST);
-  cv::resize(farthest, farthest, depth_m.size(), 0, 0, cv::INTER_NEAREST);
+  // The farthest depth and brightest colour are needed at the gaps only (a few hundred pixels): at
+  // f > 1, the pooled pixels that hold one (with a pixel's slack for the two resizes' rounding).
+  if (f > 1) cv::dilate(noneSmall, needed, cv::Mat());
+  else needed = noneSmall;
+  needed &= ~wide;
+  cv::Mat farthest = dilateWhere(depthSmall, d, needed);
+  if (f > 1) {
+    cv::resize(wide, wide, depth_m.size(), 0, 0, cv::INTER_NEAREST);
+    cv::resize(farthest, farthest, depth_m.size(), 0, 0, cv::INTER_NEAREST);
+  }
   const cv::Mat gaps = none & ~wide;
   farthest.copyTo(depth_m, gaps);
   if (colour_bgr8.empty()) return;
-  cv::Mat brightest;
-  cv::resize(colour_bgr8, colourSmall, small, 0, 0, cv::INTER_NEAREST);
-  cv::dilate(colourSmall, brightest, d);
-  cv::resize(brightest, brightest, depth_m.size(), 0, 0, cv::INTER_NEAREST);
+  cv::Mat brightest = dilateWhere(colourSmall, d, needed);
+  if (f > 1) cv::resize(brightest, brightest, depth_m.size(), 0, 0, cv::INTER_NEAREST);
   brightest.copyTo(colour_bgr8, gaps);
 }
 
@@ -624,30 +628,20 @@ cv::Mat MarkerFreeHandDetector::enteringBackground(const cv::Mat& background_m, 
   const core::CameraIntrinsics& k = previewIntrinsics_;
   const double lo = options_.minForeground_m, hi = options_.stillArmMaxHeight_m;
   cv::Mat open(background_m.size(), CV_8UC1, cv::Scalar(0));
+  std::vector<double> nx(static_cast<std::size_t>(background_m.cols));  // per column, n.x x / z
+  for (int u = 0; u < background_m.cols; ++u) nx[static_cast<std::size_t>(u)] = n.x() * (u - k.cx_px) / k.fx_px;
   for (int v = 0; v < background_m.rows; ++v) {
     const float* z = background_m.ptr<float>(v);
     uchar* o = open.ptr<uchar>(v);
     const double ny = n.y() * (v - k.cy_px) / k.fy_px + n.z();
     for (int u = 0; u < background_m.cols; ++u) {
-      if (z[u] <= 0.f) {
-        o[u] = 255;  // no background: as outside the view
-        continue;
-      }
-      const double h = z[u] * (n.x() * (u - k.cx_px) / k.fx_px + ny) + d;
-      o[u] = h >= lo && h <= hi ? 255 : 0;
+      const double h = z[u] * (nx[static_cast<std::size_t>(u)] + ny) + d;
+      o[u] = z[u] <= 0.f || (h >= lo && h <= hi) ? 255 : 0;  // no background: as outside the view
     }
   }
   // Only the regions that reach the image border (where the arm enters), grown by the border margin.
-  cv::Mat labels, stats, centroids;
-  cv::connectedComponentsWithStats(open, labels, stats, centroids, 8, CV_32S);
   const int m = options_.borderMargin_px, W = open.cols, H = open.rows;
-  const std::vector<uchar> keep = labelsAtBorder(stats, cv::Rect(0, 0, W, H), m);
-  cv::Mat out(open.size(), CV_8UC1, cv::Scalar(0));
-  for (int v = 0; v < H; ++v) {
-    const int* l = labels.ptr<int>(v);
-    uchar* o = out.ptr<uchar>(v);
-    for (int u = 0; u < W; ++u) o[u] = keep[static_cast<std::size_t>(l[u])] && l[u] > 0 ? 255 : 0;
-  }
+  cv::Mat out = regionsReachingBorder(open, m);
   if (planeDepth_m) {
     // The plane's depth where the background stands above it in those regions.
     *planeDepth_m = cv::Mat(out.size(), CV_32FC1, cv::Scalar(0));

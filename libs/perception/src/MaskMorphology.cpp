@@ -26,23 +26,19 @@ Px largest(const Px& a, const Px& b) {
 }
 
 template <typename Px>
-void dilateWhereAs(const cv::Mat& src, const std::vector<cv::Point>& offsets, const cv::Mat& where, cv::Mat& out) {
+void dilateWhereAs(const cv::Mat& src, const std::vector<cv::Point>& offsets, const std::vector<cv::Point>& at,
+                   cv::Mat& out) {
   Px lowest;
   if constexpr (std::is_arithmetic_v<Px>) lowest = std::numeric_limits<Px>::lowest();
   else lowest = Px::all(std::numeric_limits<typename Px::value_type>::lowest());
   const int W = src.cols, H = src.rows;
-  for (int v = 0; v < H; ++v) {
-    const uchar* w = where.ptr<uchar>(v);
-    Px* o = out.ptr<Px>(v);
-    for (int u = 0; u < W; ++u) {
-      if (!w[u]) continue;
-      Px m = lowest;
-      for (const auto& d : offsets) {
-        const int x = u + d.x, y = v + d.y;
-        if (x >= 0 && x < W && y >= 0 && y < H) m = largest(m, src.ptr<Px>(y)[x]);
-      }
-      o[u] = m;
+  for (const auto& p : at) {
+    Px m = lowest;
+    for (const auto& d : offsets) {
+      const int x = p.x + d.x, y = p.y + d.y;
+      if (x >= 0 && x < W && y >= 0 && y < H) m = largest(m, src.ptr<Px>(y)[x]);
     }
+    out.at<Px>(p) = m;
   }
 }
 
@@ -59,11 +55,13 @@ cv::Mat dilateWhere(const cv::Mat& src, const cv::Mat& element, const cv::Mat& w
     for (int c = 0; c < element.cols; ++c)
       if (element.at<uchar>(r, c)) offsets.emplace_back(c - anchor.x, r - anchor.y);
   cv::Mat out(src.size(), src.type(), cv::Scalar::all(0));
+  std::vector<cv::Point> at;
+  cv::findNonZero(where, at);
   switch (src.type()) {
-    case CV_32FC1: dilateWhereAs<float>(src, offsets, where, out); break;
-    case CV_16UC1: dilateWhereAs<std::uint16_t>(src, offsets, where, out); break;
-    case CV_8UC1: dilateWhereAs<uchar>(src, offsets, where, out); break;
-    case CV_8UC3: dilateWhereAs<cv::Vec3b>(src, offsets, where, out); break;
+    case CV_32FC1: dilateWhereAs<float>(src, offsets, at, out); break;
+    case CV_16UC1: dilateWhereAs<std::uint16_t>(src, offsets, at, out); break;
+    case CV_8UC1: dilateWhereAs<uchar>(src, offsets, at, out); break;
+    case CV_8UC3: dilateWhereAs<cv::Vec3b>(src, offsets, at, out); break;
     default:
       throw core::InvalidInputError("dilateWhere: image type " + std::to_string(src.type()) +
                                     " is none of CV_32FC1, CV_16UC1, CV_8UC1, CV_8UC3");

@@ -18,6 +18,8 @@
 #include "srp/perception/CameraModel.h"
 #include "srp/perception/CameraMotionEstimator.h"
 #include "srp/perception/DepthCloud.h"
+#include "srp/perception/LandingWindow.h"
+#include "srp/perception/MaskMorphology.h"
 #include "srp/perception/PlaneFit.h"
 
 namespace srp::perception {
@@ -202,10 +204,11 @@ inline bool roundedIndex(float x, int n, int& i) {
 /// destination pixel the nearest point landing there; pixels where none landed (0) take the nearest
 /// of their 3x3 neighbours (the gaps a forward warp leaves), their colour the brightest (per channel);
 /// pixels with none there either `noDepth` (colour 0). `dst_m` and `*dstColour` are reused when they
-/// already have the destination's size and type.
+/// already have the destination's size and type. Only the source pixels inside `window` (default: all)
+/// are warped: landingWindow's, which holds every pixel that can land.
 void warpDepth(const cv::Mat& src_m, const cv::Mat& srcColour, const core::CameraIntrinsics& Ks,
                const core::Pose3& X_dst_src, const core::CameraIntrinsics& Kd, cv::Mat& dst_m, cv::Mat* dstColour,
-               float noDepth = 0.f) {
+               float noDepth = 0.f, cv::Rect window = {}) {
   // Where no point lands yet: farther than any (the gaps' fill below is then a plain erosion).
   constexpr float kNone = std::numeric_limits<float>::max();
   dst_m.create(Kd.height_px, Kd.width_px, CV_32FC1);
@@ -223,20 +226,22 @@ void warpDepth(const cv::Mat& src_m, const cv::Mat& srcColour, const core::Camer
   const float cx = static_cast<float>(Kd.cx_px), cy = static_cast<float>(Kd.cy_px);
   const float r0x = R(0, 0), r0y = R(1, 0), r0z = R(2, 0), tx = t.x(), ty = t.y(), tz = t.z();
   const int W = dst_m.cols, H = dst_m.rows;
-  const Eigen::Map<const Eigen::ArrayXf> xa(xr.data(), src_m.cols);
-  Eigen::ArrayXf qz(src_m.cols), pu(src_m.cols), pv(src_m.cols);
-  for (int v = 0; v < src_m.rows; ++v) {
+  window = window.area() > 0 ? window & cv::Rect(0, 0, src_m.cols, src_m.rows) : cv::Rect(0, 0, src_m.cols, src_m.rows);
+  const int n = window.width;
+  const Eigen::Map<const Eigen::ArrayXf> xa(xr.data() + window.x, n);
+  Eigen::ArrayXf qz(n), pu(n), pv(n);
+  for (int v = window.y; v < window.y + window.height; ++v) {
     const float yr = static_cast<float>((v - Ks.cy_px) / Ks.fy_px);
-    const float* z = src_m.ptr<float>(v);
-    const cv::Vec3b* c = colour ? srcColour.ptr<cv::Vec3b>(v) : nullptr;
+    const float* z = src_m.ptr<float>(v) + window.x;
+    const cv::Vec3b* c = colour ? srcColour.ptr<cv::Vec3b>(v) + window.x : nullptr;
     // Per row: the image of the point (xr z, yr z, z) is (a z + t) with a = R (xr, yr, 1); its
     // pixel (pu, pv), the whole row at once (vectorised; a point without depth is skipped below).
     const Eigen::Vector3f b = R * Eigen::Vector3f(0.f, yr, 1.f);
-    const Eigen::Map<const Eigen::ArrayXf> za(z, src_m.cols);
+    const Eigen::Map<const Eigen::ArrayXf> za(z, n);
     qz = (b.z() + r0z * xa) * za + tz;
     pu = fx * ((b.x() + r0x * xa) * za + tx) / qz + cx;
     pv = fy * ((b.y() + r0y * xa) * za + ty) / qz + cy;
-    for (int u = 0; u < src_m.cols; ++u) {
+    for (int u = 0; u < n; ++u) {
       int ud = 0, vd = 0;
       if (z[u] <= 0.f || qz[u] <= 0.f || !roundedIndex(pu[u], W, ud) || !roundedIndex(pv[u], H, vd)) continue;
       float& d = dst_m.ptr<float>(vd)[ud];
@@ -249,18 +254,12 @@ void warpDepth(const cv::Mat& src_m, const cv::Mat& srcColour, const core::Camer
   // per-channel brightest colour of the neighbours (a gap's own colour is 0).
   cv::Mat nearest, brightest;
   cv::erode(dst_m, nearest, cv::Mat());
-  if (colour) cv::dilate(*dstColour, brightest, cv::Mat());
-  for (int v = 0; v < H; ++v) {
-    float* d = dst_m.ptr<float>(v);
-    const float* n = nearest.ptr<float>(v);
-    cv::Vec3b* c = colour ? dstColour->ptr<cv::Vec3b>(v) : nullptr;
-    const cv::Vec3b* b = colour ? brightest.ptr<cv::Vec3b>(v) : nullptr;
-    for (int u = 0; u < W; ++u) {
-      if (d[u] < kNone) continue;
-      d[u] = n[u] < kNone ? n[u] : noDepth;
-      if (colour) c[u] = b[u];
-    }
-  }
+  if (noDepth != kNone) nearest.setTo(noDepth, nearest == kNone);
+  const cv::Mat gaps = dst_m == kNone;
+  nearest.copyTo(dst_m, gaps);
+  if (!colour) return;
+  cv::dilate(*dstColour, brightest, cv::Mat());
+  brightest.copyTo(*dstColour, gaps);
 }
 
 /// Gaps of `depth_m` [m, CV_32FC1; 0: none] narrower than `gap_px` take the farthest depth and the
@@ -273,23 +272,32 @@ void fillNarrowGaps(cv::Mat& depth_m, cv::Mat& colour_bgr8, int gap_px) {
   if (cv::countNonZero(none) == 0) return;
   const int f = (gap_px + 9) / 10;
   const cv::Size small((depth_m.cols + f - 1) / f, (depth_m.rows + f - 1) / f);
-  cv::Mat noneSmall, depthSmall, colourSmall;
-  cv::resize(none, noneSmall, small, 0, 0, cv::INTER_AREA);  // a pooled pixel with any gap
-  noneSmall = noneSmall > 0;
-  cv::resize(depth_m, depthSmall, small, 0, 0, cv::INTER_NEAREST);
+  // At f = 1 the images themselves (a resize to the same size is a copy).
+  cv::Mat noneSmall = none, depthSmall = depth_m, colourSmall = colour_bgr8;
+  if (f > 1) {
+    cv::resize(none, noneSmall, small, 0, 0, cv::INTER_AREA);  // a pooled pixel with any gap
+    noneSmall = noneSmall > 0;
+    cv::resize(depth_m, depthSmall, small, 0, 0, cv::INTER_NEAREST);
+    if (!colour_bgr8.empty()) cv::resize(colour_bgr8, colourSmall, small, 0, 0, cv::INTER_NEAREST);
+  }
   const cv::Mat d = disc(std::max(3, gap_px / f));
-  cv::Mat wide, farthest;
+  cv::Mat wide, needed;
   cv::morphologyEx(noneSmall, wide, cv::MORPH_OPEN, d);
-  cv::dilate(depthSmall, farthest, d);
-  cv::resize(wide, wide, depth_m.size(), 0, 0, cv::INTER_NEAREST);
-  cv::resize(farthest, farthest, depth_m.size(), 0, 0, cv::INTER_NEAREST);
-  const cv::Mat gaps = none & ~wide;
+  // The farthest depth and brightest colour are needed at the gaps only (a few hundred pixels): at
+  // f > 1, the pooled pixels that hold one (with a pixel's slack for the two resizes' rounding).
+  if (f > 1) cv::dilate(noneSmall, needed, cv::Mat());
+  else needed = noneSmall;
+  needed &= ~wide;
+  cv::Mat farthest = dilateWhere(depthSmall, d, needed);
+  if (f > 1) {
+    cv::resize(wide, wide, depth_m.size(), 0, 0, cv::INTER_NEAREST);
+    cv::resize(farthest, farthest, depth_m.size(), 0, 0, cv::INTER_NEAREST);
+  }
+  const cv::Mat gaps = f > 1 ? none & ~wide : needed;
   farthest.copyTo(depth_m, gaps);
   if (colour_bgr8.empty()) return;
-  cv::Mat brightest;
-  cv::resize(colour_bgr8, colourSmall, small, 0, 0, cv::INTER_NEAREST);
-  cv::dilate(colourSmall, brightest, d);
-  cv::resize(brightest, brightest, depth_m.size(), 0, 0, cv::INTER_NEAREST);
+  cv::Mat brightest = dilateWhere(colourSmall, d, needed);
+  if (f > 1) cv::resize(brightest, brightest, depth_m.size(), 0, 0, cv::INTER_NEAREST);
   brightest.copyTo(colour_bgr8, gaps);
 }
 
@@ -569,6 +577,9 @@ void MarkerFreeHandDetector::movingBackgroundFromPreview() {
   // The view moves: the whole image is in view (a pixel without background is no foreground).
   view_ = cv::Rect(0, 0, k.width_px, k.height_px);
   canvas_mm.convertTo(canvasDepth_m_, CV_32FC1, 1e-3);
+  double least = 0.0, greatest = 0.0;  // of the valid depths, for landingWindow
+  cv::minMaxLoc(canvasDepth_m_, &least, &greatest, nullptr, nullptr, canvasDepth_m_ > 0.f);
+  canvasDepthRange_m_ = {static_cast<float>(least), static_cast<float>(greatest)};
   if (options_.enterThroughStillArm) {
     // The support plane in the first camera (half size: plenty of points).
     cv::Mat half_m;
@@ -611,8 +622,11 @@ void MarkerFreeHandDetector::backgroundInView(const core::Pose3& X_camera0_camer
                                               cv::Mat* colour_bgr8) const {
   const bool slack = options_.movingBackgroundSlack_px > 0;
   // Where no background lands: 0, or for the erosion below farther than any.
-  warpDepth(canvasDepth_m_, canvasColour_, canvasIntrinsics_, X_camera0_camera.inverse(), previewIntrinsics_, depth_m,
-            colour_bgr8, slack ? std::numeric_limits<float>::max() : 0.f);
+  const core::Pose3 X_camera_camera0 = X_camera0_camera.inverse();
+  warpDepth(canvasDepth_m_, canvasColour_, canvasIntrinsics_, X_camera_camera0, previewIntrinsics_, depth_m,
+            colour_bgr8, slack ? std::numeric_limits<float>::max() : 0.f,
+            landingWindow(canvasIntrinsics_, canvasDepthRange_m_.first, canvasDepthRange_m_.second, X_camera_camera0,
+                          previewIntrinsics_));
   if (!slack) return;
   // The nearest background within the slack (the estimated pose's error): a surface seen at a grazing
   // angle, whose depth changes fast across the image, is not foreground for a pixel's misregistration.
@@ -629,30 +643,20 @@ cv::Mat MarkerFreeHandDetector::enteringBackground(const cv::Mat& background_m, 
   const core::CameraIntrinsics& k = previewIntrinsics_;
   const double lo = options_.minForeground_m, hi = options_.stillArmMaxHeight_m;
   cv::Mat open(background_m.size(), CV_8UC1, cv::Scalar(0));
+  std::vector<double> nx(static_cast<std::size_t>(background_m.cols));  // per column, n.x x / z
+  for (int u = 0; u < background_m.cols; ++u) nx[static_cast<std::size_t>(u)] = n.x() * (u - k.cx_px) / k.fx_px;
   for (int v = 0; v < background_m.rows; ++v) {
     const float* z = background_m.ptr<float>(v);
     uchar* o = open.ptr<uchar>(v);
     const double ny = n.y() * (v - k.cy_px) / k.fy_px + n.z();
     for (int u = 0; u < background_m.cols; ++u) {
-      if (z[u] <= 0.f) {
-        o[u] = 255;  // no background: as outside the view
-        continue;
-      }
-      const double h = z[u] * (n.x() * (u - k.cx_px) / k.fx_px + ny) + d;
-      o[u] = h >= lo && h <= hi ? 255 : 0;
+      const double h = z[u] * (nx[static_cast<std::size_t>(u)] + ny) + d;
+      o[u] = z[u] <= 0.f || (h >= lo && h <= hi) ? 255 : 0;  // no background: as outside the view
     }
   }
   // Only the regions that reach the image border (where the arm enters), grown by the border margin.
-  cv::Mat labels, stats, centroids;
-  cv::connectedComponentsWithStats(open, labels, stats, centroids, 8, CV_32S);
   const int m = options_.borderMargin_px, W = open.cols, H = open.rows;
-  const std::vector<uchar> keep = labelsAtBorder(stats, cv::Rect(0, 0, W, H), m);
-  cv::Mat out(open.size(), CV_8UC1, cv::Scalar(0));
-  for (int v = 0; v < H; ++v) {
-    const int* l = labels.ptr<int>(v);
-    uchar* o = out.ptr<uchar>(v);
-    for (int u = 0; u < W; ++u) o[u] = keep[static_cast<std::size_t>(l[u])] && l[u] > 0 ? 255 : 0;
-  }
+  cv::Mat out = regionsReachingBorder(open, m);
   if (planeDepth_m) {
     // The plane's depth where the background stands above it in those regions.
     *planeDepth_m = cv::Mat(out.size(), CV_32FC1, cv::Scalar(0));

@@ -648,6 +648,7 @@ class MarkerFreeHandDetector : public HandDetector {
   std::optional<Plane> canvasPlane_;
   cv::Mat enteringBackground_;
   core::CameraIntrinsics canvasIntrinsics_;
+  std::pair<float, float> canvasDepthRange_m_{0.f, 0.f};  ///< least and greatest valid depth of canvasDepth_m_
   core::Pose3 lastPose_ = core::Pose3::Identity();
   std::size_t nextPose_ = 0;  ///< where previewPose looks first
   cv::Rect view_;  ///< the depth's field of view in the image (depthFieldOfView of the background)

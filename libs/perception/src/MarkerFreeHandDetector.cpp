@@ -410,6 +410,11 @@ MarkerFreeHandDetector::MarkerFreeHandDetector(const Options& options) : options
   core::require(options.palmFromWrist_m > 0.0 && options.palmFromFingertips_m > 0.0 && options.palmRadius_m > 0.0,
                 "MarkerFreeHandDetector: palmFromWrist_m, palmFromFingertips_m and palmRadius_m must be > 0 m "
                 "(lengths of the demonstrator's hand)");
+  core::require(options.palmHalfWidth_m >= 0.0 && options.palmDepth_m >= 0.0 && options.minPalmCrossSections >= 0.0 &&
+                    options.minPalmCrossSections <= 1.0,
+                "MarkerFreeHandDetector: palmHalfWidth_m and palmDepth_m must be >= 0 m (half the demonstrator's palm's "
+                "width and thickness; palmHalfWidth_m = 0 turns the silhouette's depth off) and minPalmCrossSections "
+                "in [0, 1]");
 }
 
 void MarkerFreeHandDetector::preview(const rawlog::RgbdFrame& frame) {
@@ -1767,7 +1772,8 @@ HandObservation MarkerFreeHandDetector::placePalm(const rawlog::RgbdFrame& frame
                                    : std::nullopt;
       // A silhouette narrower than the palm (the hand seen on its edge): the centre lies deeper behind
       // the surface along the ray than half the palm's thickness (silhouetteDepth).
-      const double extra_m = silhouetteDepth(hand.mask, palm, a.dir, frame.intrinsics.fx_px / *z) - options_.palmDepth_m;
+      const double extra_m =
+          silhouetteDepth(hand.mask, palm, a.dir, frame.intrinsics.fx_px / *z, frame.index) - options_.palmDepth_m;
       if (n) {
         h.p_camera_palm_m = backProject(palm, *z) - options_.palmDepth_m * *n;
         palm = project(h.p_camera_palm_m);
@@ -1786,41 +1792,61 @@ HandObservation MarkerFreeHandDetector::placePalm(const rawlog::RgbdFrame& frame
 }
 
 double MarkerFreeHandDetector::silhouetteDepth(const cv::Mat& mask, const Eigen::Vector2d& palm_px,
-                                              const Eigen::Vector2d& dir, double pxPerM) const {
-  // The median over the axis (1-px bins) of the mask's width across it, within palmRadius_m of the palm;
-  // none when the mask there reaches the edge of the view.
+                                              const Eigen::Vector2d& dir, double pxPerM, int frameIndex) const {
+  // Cross-sections across the axis (1-px steps along it) within palmRadius_m of the palm: the run of mask
+  // pixels through the palm's centre line, or, where the centre line lies beside the hand (a palm pixel off
+  // a silhouette seen on its edge), the nearest run on the one side that has any. A centre line off the mask
+  // with the hand on both sides of it (a tag or a badge cut out of the skin) is no cross-section: the skin
+  // beside such a hole is no whole palm. None when a run reaches the edge of the view (the hand entering or
+  // leaving: cut, not narrow).
   if (options_.palmHalfWidth_m <= 0.0) return options_.palmDepth_m;
   const double reach_px = options_.palmRadius_m * pxPerM;
-  const double span_px = reach_px + options_.palmHalfWidth_m * pxPerM * 2.0;
-  const int nBins = static_cast<int>(std::ceil(2.0 * reach_px)) + 1;
-  std::vector<int> width(static_cast<std::size_t>(nBins), 0);
-  const int r = static_cast<int>(std::ceil(span_px));
-  const int margin = options_.borderMargin_px;
+  const int span_px = static_cast<int>(std::ceil(options_.palmHalfWidth_m * pxPerM * 2.0));
   const cv::Rect view = view_.area() > 0 ? view_ : cv::Rect(0, 0, mask.cols, mask.rows);
+  const int margin = options_.borderMargin_px;
   const cv::Rect inner(view.x + margin, view.y + margin, view.width - 2 * margin, view.height - 2 * margin);
-  const int cu = static_cast<int>(std::lround(palm_px.x())), cv_ = static_cast<int>(std::lround(palm_px.y()));
-  for (int v = std::max(0, cv_ - r); v <= std::min(mask.rows - 1, cv_ + r); ++v) {
-    const uchar* m = mask.ptr<uchar>(v);
-    for (int u = std::max(0, cu - r); u <= std::min(mask.cols - 1, cu + r); ++u) {
-      if (!m[u]) continue;
-      const double s = (Eigen::Vector2d(u, v) - palm_px).dot(dir);
-      if (std::abs(s) > reach_px) continue;
-      // Cut by the edge of the view (the hand entering or leaving): its width there is no silhouette's.
-      if (u < inner.x || u >= inner.x + inner.width || v < inner.y || v >= inner.y + inner.height)
-        return options_.palmDepth_m;
-      ++width[static_cast<std::size_t>(std::lround(s + reach_px))];
+  const Eigen::Vector2d across(-dir.y(), dir.x());
+  std::vector<uchar> line(static_cast<std::size_t>(2 * span_px + 1)), cut(line.size());
+  std::vector<double> width_px;
+  for (double s = -reach_px; s <= reach_px; s += 1.0) {
+    const Eigen::Vector2d c = palm_px + s * dir;
+    for (int t = -span_px; t <= span_px; ++t) {
+      const Eigen::Vector2d q = c + t * across;
+      const int u = static_cast<int>(std::lround(q.x())), v = static_cast<int>(std::lround(q.y()));
+      const bool in = u >= 0 && v >= 0 && u < mask.cols && v < mask.rows && mask.at<uchar>(v, u);
+      line[static_cast<std::size_t>(t + span_px)] = in;
+      cut[static_cast<std::size_t>(t + span_px)] = in && !inner.contains(cv::Point(u, v));
     }
+    auto at = [&](int t) { return line[static_cast<std::size_t>(t + span_px)] != 0; };
+    int t0 = 0;
+    if (!at(0)) {
+      int left = 1, right = 1;
+      while (left <= span_px && !at(-left)) ++left;
+      while (right <= span_px && !at(right)) ++right;
+      const bool hasLeft = left <= span_px, hasRight = right <= span_px;
+      if (hasLeft == hasRight) continue;  // a hole in the hand, or no hand on this cross-section
+      t0 = hasLeft ? -left : right;
+    }
+    int lo = t0, hi = t0;
+    while (lo > -span_px && at(lo - 1)) --lo;
+    while (hi < span_px && at(hi + 1)) ++hi;
+    for (int t = lo; t <= hi; ++t)
+      if (cut[static_cast<std::size_t>(t + span_px)]) return options_.palmDepth_m;
+    width_px.push_back(hi - lo + 1.0);
   }
-  std::vector<int> covered;
-  for (int w : width)
-    if (w > 0) covered.push_back(w);
-  if (covered.empty()) return options_.palmDepth_m;
-  std::nth_element(covered.begin(), covered.begin() + covered.size() / 2, covered.end());
-  const double halfWidth_m = 0.5 * covered[covered.size() / 2] / pxPerM;
+  // Too few cross-sections (a tag or a badge over the palm): no silhouette of the palm.
+  if (width_px.empty() || static_cast<double>(width_px.size()) < options_.minPalmCrossSections * (2.0 * reach_px + 1.0))
+    return options_.palmDepth_m;
+  std::nth_element(width_px.begin(), width_px.begin() + width_px.size() / 2, width_px.end());
+  const double halfWidth_m = 0.5 * width_px[width_px.size() / 2] / pxPerM;
   // An ellipse of half-axes A (width) and B (thickness) seen at angle phi from B: silhouette half-width
   // h = sqrt(A^2 cos^2 phi + B^2 sin^2 phi), surface to centre along the central ray A B / h.
-  return std::clamp(options_.palmHalfWidth_m * options_.palmDepth_m / std::max(halfWidth_m, 1e-6),
-                    options_.palmDepth_m, std::max(options_.palmDepth_m, options_.palmHalfWidth_m));
+  const double depth_m = std::clamp(options_.palmHalfWidth_m * options_.palmDepth_m / std::max(halfWidth_m, 1e-6),
+                                    options_.palmDepth_m, std::max(options_.palmDepth_m, options_.palmHalfWidth_m));
+  if (core::Log::enabled("hand", core::Log::Level::Debug))
+    std::fprintf(stderr, "frame %d: palm silhouette half-width %.1f mm (%zu cross-sections): centre %.1f mm behind\n",
+                 frameIndex, 1e3 * halfWidth_m, width_px.size(), 1e3 * depth_m);
+  return depth_m;
 }
 
 std::optional<Eigen::Vector3d> MarkerFreeHandDetector::surfaceNormal(const rawlog::RgbdFrame& frame,

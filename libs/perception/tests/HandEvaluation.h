@@ -55,7 +55,8 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                    {"movingBackgroundMargin", &o.movingBackgroundMargin},
                                    {"stillArmShapeShare", &o.stillArmShapeShare},
                                    {"palmHalfWidth_m", &o.palmHalfWidth_m},
-                                   {"palmDepth_m", &o.palmDepth_m}};
+                                   {"palmDepth_m", &o.palmDepth_m},
+                                   {"minPalmCrossSections", &o.minPalmCrossSections}};
   std::map<std::string, int*> i{{"holeColourChange", &o.holeColourChange},
                                 {"backgroundFillDiameter_px", &o.backgroundFillDiameter_px},
                                 {"skinMinLuma", &o.skinMinLuma},

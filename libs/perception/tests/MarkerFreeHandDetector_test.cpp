@@ -107,6 +107,26 @@ TEST(MarkerFreeHandDetector, PalmFromTheCuffWhateverTheFingersDo) {
   EXPECT_FALSE(detector.detect(drawnFrame(30, std::nullopt)).has_value());
 }
 
+// A badge on the back of the hand that the hand's mask lacks (no depth there and the table's colour: neither
+// foreground nor skin; a glove's tag plate in srp::synth's default view): the silhouette across the palm is
+// the skin beside it, 17 mm wide on each side, which is no hand seen on its edge. The palm depth rule
+// (palmHalfWidth_m) measures only cross-sections through the palm's centre line, so the palm stays half the
+// palm's thickness under the back (counting the skin across the palm, thumb included: 8 mm off, 0/4 frames).
+TEST(MarkerFreeHandDetector, BadgeCutOutOfTheHandIsNoNarrowHand) {
+  MarkerFreeHandDetector detector({});
+  for (int i = 0; i < kBackgroundFrames; ++i) detector.detect(drawnFrame(i, std::nullopt));
+  for (int i = 0; i < 4; ++i) {
+    const ArmPose arm{{320.0 + 8 * i, 250.0}, (80.0 + 6.0 * i) * M_PI / 180, 0.08};
+    auto f = drawnFrame(kBackgroundFrames + i, arm);
+    drawBox(f, arm, -0.032, 0.032, 0.025, 0.0, kTableBgr, 0.0);  // 64 x 50 mm, over the palm centre
+    const auto h = detector.detect(f);
+    ASSERT_TRUE(h.has_value()) << "frame " << i;
+    ASSERT_TRUE(h->hasDepth) << "frame " << i;
+    EXPECT_LT((h->palm_px - arm.palm_px).norm(), kPalmPixelTol_px) << "frame " << i;
+    EXPECT_LT((h->p_camera_palm_m - palmPoint(arm)).norm(), kPalmTol_m) << "frame " << i;
+  }
+}
+
 TEST(MarkerFreeHandDetector, DepthHolesOnTheHand) {
   MarkerFreeHandDetector detector({});
   for (int i = 0; i < kBackgroundFrames; ++i) detector.detect(drawnFrame(i, std::nullopt));
@@ -480,6 +500,12 @@ TEST(MarkerFreeHandDetector, RejectsBadOptions) {
   o = {};
   o.backgroundFillDiameter_px = -1;
   EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
+  o = {};
+  o.palmHalfWidth_m = -0.04;
+  EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
+  o = {};
+  o.minPalmCrossSections = 2.0;
+  EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
 }
 
 // ---- a real demonstrator -------------------------------------------------
@@ -577,7 +603,7 @@ TEST(MarkerFreeHandDetector, PalmCentreOnARenderedDemo) {
     std::fprintf(csv, "frame,phase,grip,error_mm,have_wrist,along_err_mm,across_err_mm,z_err_mm,wrist_z_mm,x_mm,y_mm,z_mm,wrist_u\n");
   }
   const auto ev = testing::evaluateMarkerFreeHand(
-      demo, {},
+      demo, testing::optionsFromEnvironment(),
       [&](const rawlog::RgbdFrame& f, const MarkerFreeHandDetector& d, const synth::GroundTruthFrame& truth,
           const std::optional<Eigen::Vector3d>& p_m) {
         if (debugDir.empty() || !p_m || !truth.handInView) return;

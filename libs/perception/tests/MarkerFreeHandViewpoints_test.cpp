@@ -207,13 +207,12 @@ TEST(MarkerFreeHandViewpoints, CuffFromTheSleeveEdgeEgocentric) {
 
 // From the side the camera sees the hand's edge: its silhouette is narrower than the palm, and the palm
 // centre lies deeper behind the surface than half the palm's thickness (palmHalfWidth_m, an elliptic
-// cross-section of the hand model's width and thickness).
+// cross-section of the hand model's width and thickness, srp::synth's glove's 42 mm by default).
 TEST(MarkerFreeHandViewpoints, PalmDepthFromTheSilhouetteSide) {
   const std::string rawlog = freshSleeveRender(synth::ViewpointFamily::Side);
   // The glove's cross-section is a box with a thumb, deeper behind its edge than the ellipse says.
   constexpr double kAlongRayTol_m = 0.020;
   MarkerFreeHandDetector::Options o = testing::optionsFromEnvironment();
-  o.palmHalfWidth_m = 0.042;  // srp::synth's glove; off by default (MarkerFreeHandDetector.h)
   const auto ray = cuffErrors(rawlog, o).alongRay_m;
   ASSERT_GT(ray.size(), 100u) << "too few frames with the cuff in view";
   std::printf("[ figures  ] along the ray, cuff rule, side: median %+.1f mm (%zu frames)\n",

@@ -92,7 +92,9 @@ class CameraMotionEstimator;
 ///    hand's centre line; it may lie outside the image;
 /// 7. depth: median of the valid depth on the hand within `palmRadius_m` of
 ///    the palm pixel, plus `palmDepth_m` (the palm centre lies inside the
-///    hand, below its visible back). None there (a hole, or the palm out of
+///    hand, below its visible back), more where the hand's silhouette there
+///    is narrower than the palm (`palmHalfWidth_m`: the hand seen on its
+///    edge, from the side). None there (a hole, or the palm out of
 ///    view): `hasDepth = false` when the last palm depth is at most
 ///    `maxCarryFrames` frames old (the caller carries it along the palm's ray,
 ///    see DemoPerception; `palm_px` is placed for that depth), else the whole
@@ -272,13 +274,20 @@ class MarkerFreeHandDetector : public HandDetector {
     /// seen from the side, on its thumb or little-finger edge), the palm
     /// centre lies palmHalfWidth_m palmDepth_m / h behind the surface along
     /// the ray (palmDepth_m face-on, up to palmHalfWidth_m edge-on), not
-    /// palmDepth_m. h: the hand mask's median width across the axis within
-    /// palmRadius_m of the palm, at the palm's depth; not measured where the
-    /// hand there reaches the edge of the view (cut, not narrow). 0: off,
-    /// the default: a silhouette narrowed by something else (fingers curled
-    /// round a part, seen from the front) moves the palm too deep (srp::synth's
-    /// default view: median 3.6 -> 14.0 mm with 0.042).
-    double palmHalfWidth_m = 0.0;
+    /// palmDepth_m. h: the median, over the cross-sections across the axis
+    /// within palmRadius_m of the palm, of the run of hand pixels through the
+    /// palm's centre line (where the centre line lies beside the hand, the
+    /// nearest run on its one side), at the palm's depth; a cross-section
+    /// whose centre line is off the hand with hand on both sides (a tag or a
+    /// badge cut out of the skin) is none: the skin beside it is no whole
+    /// palm. Not measured where a run reaches the edge of the view (cut, not
+    /// narrow). 0: off (palmDepth_m always).
+    double palmHalfWidth_m = 0.042;
+    /// That width is measured only when at least this share of the
+    /// cross-sections within palmRadius_m of the palm are such runs (else
+    /// palmDepth_m: a tag or a badge over the palm leaves one or two, whose
+    /// width is noise) [0..1].
+    double minPalmCrossSections = 0.5;
     /// Palm centre from the wrist (cuff line) along the arm axis, in the
     /// plane of the hand [m].
     double palmFromWrist_m = 0.13;
@@ -602,8 +611,9 @@ class MarkerFreeHandDetector : public HandDetector {
   /// The palm centre's depth behind the hand's surface along the ray [m]:
   /// palmDepth_m, more where the mask's width across `dir` near `palm_px` is
   /// narrower than the palm (palmHalfWidth_m), at `pxPerM` pixels per metre.
+  /// `frameIndex`: for the trace.
   double silhouetteDepth(const cv::Mat& mask, const Eigen::Vector2d& palm_px, const Eigen::Vector2d& dir,
-                         double pxPerM) const;
+                         double pxPerM, int frameIndex) const;
   /// Places the palm from the anchor at the palm's depth (step 7).
   HandObservation placePalm(const rawlog::RgbdFrame& frame, const Anchor& a, const HandBlob& hand,
                             const Eigen::Vector2d& handMean, int armArea);

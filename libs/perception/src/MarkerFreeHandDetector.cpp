@@ -519,7 +519,7 @@ void MarkerFreeHandDetector::finishPreview() {
                         cameraMoves_ ? "follows the camera" : "still");
     if (cameraMoves_) {
       bgHalf = entering ? enteringHalf : movingHalf;
-      bgColourHalf = movingColourHalf;
+      if (options_.holesInPreview) bgColourHalf = movingColourHalf;
     } else {
       view_ = stillView;
     }

@@ -472,6 +472,11 @@ void MarkerFreeHandDetector::finishPreview() {
   cv::Mat stillHalf;
   cv::resize(still_mm, stillHalf, {}, 0.5, 0.5, cv::INTER_NEAREST);
   std::vector<cv::Mat> bgHalf(previewDepth_mm_.size(), stillHalf);
+  // Each sample's background colour at half size (holesInPreview; empty: none).
+  cv::Mat stillColourHalf;
+  if (options_.holesInPreview && !backgroundColour_.empty())
+    cv::resize(backgroundColour_, stillColourHalf, {}, 0.5, 0.5, cv::INTER_AREA);
+  std::vector<cv::Mat> bgColourHalf(previewDepth_mm_.size(), stillColourHalf);
   // Each sample's own depth at half size [mm, CV_32FC1], for the comparisons below.
   std::vector<cv::Mat> depthHalf_mm(previewDepth_mm_.size());
   for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
@@ -485,6 +490,7 @@ void MarkerFreeHandDetector::finishPreview() {
     const cv::Rect stillView = view_;
     movingBackgroundFromPreview();
     std::vector<cv::Mat> movingHalf(previewDepth_mm_.size());
+    std::vector<cv::Mat> movingColourHalf(options_.holesInPreview ? previewDepth_mm_.size() : 0);
     // For the skin model and the bare-forearm decision (enterThroughStillArm), the arm is foreground down to
     // where it enters: the background that stands above the plane at the border is the plane's depth there.
     // Made from the same warp (it is used only if the camera is found to move).
@@ -492,10 +498,12 @@ void MarkerFreeHandDetector::finishPreview() {
     std::vector<cv::Mat> enteringHalf(entering ? previewDepth_mm_.size() : 0);
     double disagreeStill = 0.0, disagreeMoving = 0.0;
     for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
-      cv::Mat depth_m;
-      backgroundInView(previewSamplePose_[i], depth_m, nullptr);
+      cv::Mat depth_m, colour;
+      backgroundInView(previewSamplePose_[i], depth_m, options_.holesInPreview ? &colour : nullptr);
       cv::resize(depth_m, movingHalf[i], {}, 0.5, 0.5, cv::INTER_NEAREST);
       movingHalf[i] *= 1e3;
+      if (options_.holesInPreview && !colour.empty())
+        cv::resize(colour, movingColourHalf[i], {}, 0.5, 0.5, cv::INTER_NEAREST);
       if (entering) {
         cv::Mat noColour, planeDepth_m;
         fillNarrowGaps(depth_m, noColour, static_cast<int>(std::lround(options_.movingBackgroundGap * depth_m.cols)));
@@ -524,6 +532,7 @@ void MarkerFreeHandDetector::finishPreview() {
                         cameraMoves_ ? "follows the camera" : "still");
     if (cameraMoves_) {
       bgHalf = entering ? enteringHalf : movingHalf;
+      if (options_.holesInPreview) bgColourHalf = movingColourHalf;
     } else {
       view_ = stillView;
     }
@@ -531,16 +540,16 @@ void MarkerFreeHandDetector::finishPreview() {
   // Skin from every sample's foreground (half size: plenty of pixels).
   if (options_.useSkin) {
     const cv::Mat open = disc(options_.previewOpenDiameter_px);
+    std::vector<cv::Mat> fgHalf(previewDepth_mm_.size());
     for (std::size_t i = 0; i < previewDepth_mm_.size(); ++i) {
       if (previewColour_[i].empty()) continue;
-      const cv::Mat& z = depthHalf_mm[i];
-      const cv::Mat fg = (z > 0) & (bgHalf[i] - z > 1e3 * options_.minForeground_m);
+      fgHalf[i] = previewForeground(i, bgHalf[i], depthHalf_mm[i], bgColourHalf[i]);
       cv::Mat fgOpen;
-      cv::morphologyEx(fg, fgOpen, cv::MORPH_OPEN, open);
+      cv::morphologyEx(fgHalf[i], fgOpen, cv::MORPH_OPEN, open);
       accumulateSkin(previewColour_[i], fgOpen, 1);
     }
     fitSkin();
-    if (skin_.learnt) decideBareForearms(bgHalf, depthHalf_mm);
+    if (skin_.learnt) decideBareForearms(fgHalf, depthHalf_mm);
   }
   previewDepth_mm_.clear();
   previewColour_.clear();
@@ -877,7 +886,45 @@ void MarkerFreeHandDetector::keepArmShaped(const Plane& plane,
   }
 }
 
-void MarkerFreeHandDetector::decideBareForearms(const std::vector<cv::Mat>& bgHalf,
+cv::Mat MarkerFreeHandDetector::previewForeground(std::size_t i, const cv::Mat& backgroundHalf_mm,
+                                                  const cv::Mat& depthHalf_mm, const cv::Mat& backgroundColourHalf) const {
+  const cv::Mat& z = depthHalf_mm;
+  cv::Mat fg = (z > 0) & (backgroundHalf_mm - z > 1e3 * options_.minForeground_m);
+  const cv::Rect view(view_.x / 2, view_.y / 2, view_.width / 2, view_.height / 2);
+  if (options_.holesInPreview) {
+    // As foregroundMask sees each frame: a depth where a still camera's background has none (the arm in
+    // front of a wall beyond the sensor's range), a depth hole whose colour changed from the
+    // background's (a moving arm is more hole than depth on a ToF camera), inside the field of view.
+    if (options_.farWithoutDepth && !cameraMoves_) fg |= (z > 0) & (backgroundHalf_mm <= 0);
+    if (!backgroundColourHalf.empty() && backgroundColourHalf.size() == previewColour_[i].size()) {
+      cv::Mat change;
+      cv::absdiff(previewColour_[i], backgroundColourHalf, change);
+      cv::transform(change, change, cv::Matx13f(1.f, 1.f, 1.f));  // sum of |BGR| changes (saturates at 255)
+      cv::Mat hole = (z <= 0) & (change > options_.holeColourChange);
+      if (cameraMoves_) hole &= backgroundHalf_mm > 0;  // a moving camera's background has a colour only there
+      fg |= hole;
+    }
+    cv::Mat inView(fg.size(), CV_8UC1, cv::Scalar(0));
+    inView(view & cv::Rect({0, 0}, fg.size())).setTo(255);
+    fg &= inView;
+  }
+  if (!options_.skinFromArmOnly) return fg;
+  // The arm: the components (once opened) that reach the field of view's edge, where the arm enters; a
+  // part standing on the table or placed reaches none.
+  cv::Mat opened, labels, stats, centroids;
+  cv::morphologyEx(fg, opened, cv::MORPH_OPEN, disc(options_.previewOpenDiameter_px));
+  const int n = cv::connectedComponentsWithStats(opened, labels, stats, centroids, 8, CV_32S);
+  const std::vector<uchar> atBorder = labelsAtBorder(stats, view, options_.borderMargin_px / 2);
+  cv::Mat arm(fg.size(), CV_8UC1, cv::Scalar(0));
+  for (int v = 0; v < labels.rows; ++v) {
+    const int* l = labels.ptr<int>(v);
+    uchar* a = arm.ptr<uchar>(v);
+    for (int u = 0; u < labels.cols; ++u) a[u] = l[u] > 0 && l[u] < n && atBorder[static_cast<std::size_t>(l[u])] ? 255 : 0;
+  }
+  return fg & arm;
+}
+
+void MarkerFreeHandDetector::decideBareForearms(const std::vector<cv::Mat>& fgHalf,
                                                 const std::vector<cv::Mat>& depthHalf_mm) {
   // Does this demonstrator show a bare forearm? The largest skin-coloured
   // foreground component of each sample, longer than a hand in 3D.
@@ -892,7 +939,7 @@ void MarkerFreeHandDetector::decideBareForearms(const std::vector<cv::Mat>& bgHa
     if (previewColour_[i].empty()) continue;
     cv::Mat z_m;
     depthHalf_mm[i].convertTo(z_m, CV_32FC1, 1e-3);
-    cv::Mat m = (z_m > 0) & (bgHalf[i] - 1e3f * z_m > 1e3 * options_.minForeground_m) & skinMask(previewColour_[i], true);
+    cv::Mat m = fgHalf[i] & skinMask(previewColour_[i], true);
     cv::morphologyEx(m, m, cv::MORPH_OPEN, open);
     cv::Mat cl, cs, cc;
     const int nc = cv::connectedComponentsWithStats(m, cl, cs, cc, 8, CV_32S);
@@ -1216,20 +1263,20 @@ std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::Rgbd
   hand.pxPerM = frame.intrinsics.fx_px / hand.z_m;
 
   // ---- the palm's anchor: far end of a bare forearm, else the cuff, else the fingertips
-  bool refused = false;
+  bool refused = false, entering = false;
   // A sleeve's cuff in view, in a recording without bare forearms: the wrist
   // is seen, whatever lengthens the skin beyond a hand (a held part of a
   // skin-like colour, its shaded faces).
   std::optional<Anchor> anchor;
   if (options_.cuffFirst && !bareForearms_) anchor = cuffAnchor(frame, hand.mask, sleeve, entry);
-  if (!anchor) anchor = bareForearmAnchor(frame, arm, entry, hand, refused);
+  if (!anchor) anchor = bareForearmAnchor(frame, arm, entry, hand, refused, entering);
   if (refused) {
     if (trace)
       core::Log::writef("hand", core::Log::Level::Debug, "frame %d: skin only near the body's entry, no palm\n",
                         frame.index);
     return std::nullopt;
   }
-  if (!anchor) anchor = cuffAnchor(frame, hand.mask, sleeve, entry);
+  if (!anchor && !entering) anchor = cuffAnchor(frame, hand.mask, sleeve, entry);
   if (!anchor) anchor = fingertipAnchor(hand.mask, entry, handMean, handAxis->dir, handAxis->elongated);
   geometry_.axis = anchor->dir;
   HandObservation h = placePalm(frame, *anchor, hand, handMean, bestArea);
@@ -1449,7 +1496,8 @@ cv::Mat MarkerFreeHandDetector::sleeveMask(const cv::Mat& arm, const cv::Mat& ha
 }
 
 std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::bareForearmAnchor(
-    const rawlog::RgbdFrame& frame, const cv::Mat& arm, const Eigen::Vector2d& entry, HandBlob& hand, bool& refused) {
+    const rawlog::RgbdFrame& frame, const cv::Mat& arm, const Eigen::Vector2d& entry, HandBlob& hand, bool& refused,
+    bool& entering) {
   // Bare forearm: the skin component that reaches farthest from the body
   // (see farthestSkinComponent; the largest when the geodesic is off), when it
   // is longer than a hand (skin from the elbow or a short sleeve to the
@@ -1511,6 +1559,17 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::bareForear
   if (core::Log::enabled("hand", core::Log::Level::Debug))
     core::Log::writef("hand", core::Log::Level::Debug, "  3D length %.3f m\n", length3d_m);
   if (!(length3d_m > options_.maxHandLength_m || bareForearms_)) return std::nullopt;
+  if (length3d_m <= options_.maxHandLength_m && options_.handFirstAtTheBorder) {
+    // No longer than a hand and its skin on the border: the hand entering or leaving the view, fingers
+    // first or last, its forearm out of view; no far end of a forearm.
+    int onBorder = 0;
+    for (const auto& p : zonePoints_)
+      if (comp.at<uchar>(p)) ++onBorder;
+    if (onBorder >= options_.minCuffPixels) {
+      entering = true;
+      return std::nullopt;
+    }
+  }
   // The hand is the arm's far end over the workspace: skin that reaches no
   // farther than minSkinReach_m from where the body enters the view (along
   // the body) is the face, the neck or the shoulder, with the forearm's skin
@@ -1547,12 +1606,110 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::bareForear
   a.dir = local;
   a.length_m = -options_.palmFromFarEnd_m;
   geometry_.farEnd_px = a.anchor_px;
+  if (options_.farEndOpenHand) {
+    const double zEnd = endPoint(sMax).z();
+    const Eigen::Vector3d farEnd_m((a.anchor_px.x() - k.cx_px) * zEnd / k.fx_px,
+                                   (a.anchor_px.y() - k.cy_px) * zEnd / k.fy_px, zEnd);
+    if (openHandAtFarEnd(frame, arm, comp, farEnd_m, a.anchor_px, local)) a.length_m = -options_.palmFromFingertips_m;
+  }
   hand.mask = comp;
   hand.z_m = z_comp;
   hand.pxPerM = compPxPerM;
   lastMask_ = hand.mask;
   geometry_.bareForearm = true;
   return a;
+}
+
+bool MarkerFreeHandDetector::openHandAtFarEnd(const rawlog::RgbdFrame& frame, const cv::Mat& arm, const cv::Mat& comp,
+                                              const Eigen::Vector3d& farEnd_m, const Eigen::Vector2d& farEnd_px,
+                                              const Eigen::Vector2d& dir) const {
+  const auto& k = frame.intrinsics;
+  // A hand holding a part is closed round it: the arm's foreground that is not skin, joined to the
+  // hand, reaching past the skin's far end by more than palmRadius_m (the part; a few fingertip pixels
+  // the skin model missed reach less) makes the far end the curled fingers.
+  {
+    cv::Mat labels;
+    cv::connectedComponents(arm | comp, labels, 8, CV_32S);
+    std::vector<int> count;
+    for (int v = 0; v < comp.rows; ++v) {
+      const uchar* c = comp.ptr<uchar>(v);
+      const int* l = labels.ptr<int>(v);
+      for (int u = 0; u < comp.cols; ++u)
+        if (c[u]) {
+          if (static_cast<std::size_t>(l[u]) >= count.size()) count.resize(static_cast<std::size_t>(l[u]) + 1, 0);
+          ++count[static_cast<std::size_t>(l[u])];
+        }
+    }
+    const int body = static_cast<int>(std::max_element(count.begin(), count.end()) - count.begin());
+    double beyond_px = 0.0;
+    for (int v = 0; v < labels.rows; ++v) {
+      const int* l = labels.ptr<int>(v);
+      const uchar* c = comp.ptr<uchar>(v);
+      for (int u = 0; u < labels.cols; ++u)
+        if (l[u] == body && !c[u]) beyond_px = std::max(beyond_px, (Eigen::Vector2d(u, v) - farEnd_px).dot(dir));
+    }
+    const double beyond_m = beyond_px * farEnd_m.z() / k.fx_px;
+    if (beyond_m > options_.palmRadius_m) {
+      if (core::Log::enabled("hand", core::Log::Level::Debug))
+        core::Log::writef("hand", core::Log::Level::Debug,
+                          "frame %d: the arm reaches %.3f m past the skin's far end: a held part, closed hand\n",
+                          frame.index, beyond_m);
+      return false;
+    }
+  }
+  // Open or closed: the far end is the fingertips of an open hand (palmFromFingertips_m from the palm
+  // centre) or the curled fingers of a closed one (palmFromFarEnd_m). The palm is the hand's thickest
+  // part: the distance transform's maximum, in metres (each pixel at its own depth), among the skin
+  // within maxHandLength_m of the far end (in 3D: a hand pointing away from the camera is
+  // foreshortened). Lying past the middle of the two lengths (and within palmRadius_m of the open
+  // hand's palm centre), the hand may be open; farther back it is the forearm (the hand on its edge).
+  const cv::Rect box = cv::boundingRect(comp);
+  cv::Mat padded(box.height + 2, box.width + 2, CV_8UC1, cv::Scalar(0)), distance;
+  comp(box).copyTo(padded(cv::Rect(1, 1, box.width, box.height)));
+  cv::distanceTransform(padded, distance, cv::DIST_L2, cv::DIST_MASK_5);
+  auto backFromFarEnd_m = [&](int x, int y, float z) {
+    return (Eigen::Vector3d((x - k.cx_px) * z / k.fx_px, (y - k.cy_px) * z / k.fy_px, z) - farEnd_m).norm();
+  };
+  double thickest_m = 0.0, thickestBack_m = 0.0;
+  for (int v = 0; v < box.height; ++v) {
+    const float* d = distance.ptr<float>(v + 1) + 1;
+    const float* z = frame.depth_m.ptr<float>(box.y + v);
+    for (int u = 0; u < box.width; ++u) {
+      const int x = box.x + u, y = box.y + v;
+      if (d[u] <= 0.f || z[x] <= 0.f || d[u] * z[x] / k.fx_px <= thickest_m ||
+          (farEnd_px - Eigen::Vector2d(x, y)).dot(dir) < 0.0)
+        continue;
+      const double back_m = backFromFarEnd_m(x, y, z[x]);
+      if (back_m > options_.maxHandLength_m) continue;
+      thickest_m = d[u] * z[x] / k.fx_px;
+      thickestBack_m = back_m;
+    }
+  }
+  // An open hand's palm is wider than its wrist: behind it (2-3 palm radii farther from the far end,
+  // inside the view, not cut by its edge) the skin is narrower. A closed hand whose palm the held part
+  // hides at its sides is thickest at its wrist, with the forearm as thick behind it.
+  double behind_m = -1.0;
+  const int margin = options_.borderMargin_px;
+  const cv::Rect inner(view_.x + margin, view_.y + margin, view_.width - 2 * margin, view_.height - 2 * margin);
+  for (int v = 0; v < box.height; ++v) {
+    const float* d = distance.ptr<float>(v + 1) + 1;
+    const float* z = frame.depth_m.ptr<float>(box.y + v);
+    for (int u = 0; u < box.width; ++u) {
+      const int x = box.x + u, y = box.y + v;
+      if (d[u] <= 0.f || z[x] <= 0.f || !inner.contains(cv::Point(x, y))) continue;
+      const double back_m = backFromFarEnd_m(x, y, z[x]);
+      if (back_m >= thickestBack_m + 2.0 * options_.palmRadius_m && back_m <= thickestBack_m + 3.0 * options_.palmRadius_m)
+        behind_m = std::max(behind_m, static_cast<double>(d[u] * z[x] / k.fx_px));
+    }
+  }
+  const bool open = thickestBack_m > 0.5 * (options_.palmFromFarEnd_m + options_.palmFromFingertips_m) &&
+                    thickestBack_m <= options_.palmFromFingertips_m + options_.palmRadius_m && behind_m > 0.0 &&
+                    behind_m < options_.maxWristToPalm * thickest_m;
+  if (core::Log::enabled("hand", core::Log::Level::Debug))
+    core::Log::writef("hand", core::Log::Level::Debug,
+                      "frame %d: thickest %.3f m, %.3f m from the far end, %.3f m behind: %s\n", frame.index,
+                      thickest_m, thickestBack_m, behind_m, open ? "open hand" : "closed hand");
+  return open;
 }
 
 int MarkerFreeHandDetector::farthestSkinComponent(const cv::Mat& region, const cv::Mat& labels, int n,

@@ -56,7 +56,8 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                    {"stillArmShapeShare", &o.stillArmShapeShare},
                                    {"palmHalfWidth_m", &o.palmHalfWidth_m},
                                    {"palmDepth_m", &o.palmDepth_m},
-                                   {"minPalmCrossSections", &o.minPalmCrossSections}};
+                                   {"minPalmCrossSections", &o.minPalmCrossSections},
+                                   {"maxWristToPalm", &o.maxWristToPalm}};
   std::map<std::string, int*> i{{"holeColourChange", &o.holeColourChange},
                                 {"backgroundFillDiameter_px", &o.backgroundFillDiameter_px},
                                 {"skinMinLuma", &o.skinMinLuma},
@@ -76,7 +77,11 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                  {"followCameraMotion", &o.followCameraMotion},
                                  {"enterThroughStillArm", &o.enterThroughStillArm},
                                  {"backgroundColourFromSurface", &o.backgroundColourFromSurface},
-                                 {"cuffAtSleeveEdge", &o.cuffAtSleeveEdge}};
+                                 {"cuffAtSleeveEdge", &o.cuffAtSleeveEdge},
+                                 {"farEndOpenHand", &o.farEndOpenHand},
+                                 {"skinFromArmOnly", &o.skinFromArmOnly},
+                                 {"holesInPreview", &o.holesInPreview},
+                                 {"handFirstAtTheBorder", &o.handFirstAtTheBorder}};
   std::stringstream ss(env);
   std::string item;
   while (std::getline(ss, item, ',')) {

@@ -15,6 +15,7 @@
 #include <ctime>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -307,6 +308,66 @@ TEST(MarkerFreeHandDetector, ArmBelowADepthlessWallEntersFromTheSide) {
   MarkerFreeHandDetector::Options off;
   off.maxBandParallax_px = -1;
   EXPECT_EQ(run(off), 0) << "the scene should take the arm's upper edge for where it enters without the rule";
+}
+
+// A bare forearm reaching with an open hand (fingers 8 cm) and holding with a closed one (fingers
+// 3 cm, curled round a part): the skin's far end is the fingertips or the curled fingers. The palm, the
+// hand's thickest part (42 mm half-width against the wrist's 31 mm), lies past halfway between the
+// two lengths from the far end on the open hand (farEndOpenHand): its palm is placed
+// palmFromFingertips_m back, not palmFromFarEnd_m (on the fingers, 5.5 cm off).
+namespace openhand {
+constexpr double kTol_px = 8.0;  // 1 cm at 0.75 m: the drawn lengths are the detector's to a few mm
+constexpr double kOpen_m = 0.08, kClosed_m = 0.03;
+
+rawlog::RgbdFrame bareFrame(int index, const std::optional<ArmPose>& arm, bool holding) {
+  auto f = drawnFrame(index, arm);
+  f.colour_bgr8.setTo(kSkinBgr, f.depth_m < kTable_m - 0.02);  // bare forearm
+  // A blue part joined to the fingertips, standing 1 cm above the hand.
+  if (arm && holding) drawBox(f, *arm, 0.045 + arm->fingerLength_m, 0.20, 0.035, 0.0, {200, 60, 40}, kHandTop_m - 0.01);
+  return f;
+}
+
+/// Palms (of 6 frames) within kTol_px of `expected(arm)`.
+int palmsNear(bool rule, double fingerLength_m, bool holding,
+              const std::function<Eigen::Vector2d(const ArmPose&)>& expected) {
+  MarkerFreeHandDetector::Options o;
+  o.farEndOpenHand = rule;
+  MarkerFreeHandDetector detector(o);
+  for (int i = 0; i < kBackgroundFrames; ++i) detector.detect(bareFrame(i, std::nullopt, false));
+  int within = 0;
+  for (int i = 0; i < 6; ++i) {
+    const ArmPose arm{{300.0 + 8 * i, 230.0 + 4 * i}, (80.0 + 4.0 * i) * M_PI / 180, fingerLength_m};
+    const auto h = detector.detect(bareFrame(kBackgroundFrames + i, arm, holding));
+    if (h && detector.lastGeometry().bareForearm && (h->palm_px - expected(arm)).norm() < kTol_px) ++within;
+  }
+  return within;
+}
+
+Eigen::Vector2d truePalm(const ArmPose& a) { return a.palm_px; }
+}  // namespace openhand
+
+TEST(MarkerFreeHandDetector, OpenHandFromItsThickestPoint) {
+  using namespace openhand;
+  EXPECT_EQ(palmsNear(true, kOpen_m, false, truePalm), 6);
+  EXPECT_EQ(palmsNear(true, kClosed_m, false, truePalm), 6);
+  EXPECT_EQ(palmsNear(false, kOpen_m, false, truePalm), 0) << "the open hand's palm should land on its fingers without the rule";
+  EXPECT_EQ(palmsNear(false, kClosed_m, false, truePalm), 6);
+}
+
+// The same open hand's skin with a part joined past its fingertips (the arm's foreground goes on past
+// the skin's far end): a hand holding a part is closed round it, its far end the curled fingers, and the
+// palm is placed palmFromFarEnd_m back, as without farEndOpenHand (the drawn fingers are long: the palm
+// lands on them, where the rule's absence puts it).
+TEST(MarkerFreeHandDetector, HandJoinedToAPartPastItsFarEndIsClosed) {
+  using namespace openhand;
+  const MarkerFreeHandDetector::Options o;
+  auto closedReading = [&](const ArmPose& a) {
+    const double s = camera().fx_px / kHandTop_m;
+    const double along_m = 0.045 + a.fingerLength_m - o.palmFromFarEnd_m;
+    return Eigen::Vector2d(a.palm_px + along_m * s * Eigen::Vector2d(std::cos(a.angle_rad), std::sin(a.angle_rad)));
+  };
+  EXPECT_EQ(palmsNear(false, kOpen_m, true, closedReading), 6);
+  EXPECT_EQ(palmsNear(true, kOpen_m, true, closedReading), 6) << "a hand holding a part should read closed";
 }
 
 // A bare forearm in every frame of the recording, nearly still (swept

@@ -311,6 +311,43 @@ class MarkerFreeHandDetector : public HandDetector {
     /// axis [m] (half a palm plus the curled fingers of a hand grasping from
     /// above, 0.05 + 0.02 m).
     double palmFromFarEnd_m = 0.07;
+    /// Bare forearm: tell an open hand from a closed one. A hand joined to
+    /// foreground that is not skin reaching past the skin's far end by more
+    /// than palmRadius_m holds a part and is closed. Else by where the hand is
+    /// thickest (the distance transform's maximum in metres, each pixel at
+    /// its own depth, within maxHandLength_m of the far end in 3D): past the
+    /// middle of palmFromFarEnd_m and palmFromFingertips_m (and within
+    /// palmRadius_m beyond the latter), with the skin behind it narrower
+    /// (maxWristToPalm), the far end is an open hand's fingertips (reaching,
+    /// retracting) and the palm lies palmFromFingertips_m back from it; else
+    /// palmFromFarEnd_m. false (the default: on HRT1 task3 a real hand whose
+    /// thickest part lies 0.10 m from its far end reads open and its palm moves
+    /// 20 px off, perception README): palmFromFarEnd_m always.
+    bool farEndOpenHand = false;
+    /// farEndOpenHand: the hand is open only where the skin 2-3 palmRadius_m
+    /// behind its thickest point (the wrist, inside the view) is at most this
+    /// share of the palm's thickness (an adult's wrist 55-65 mm wide against
+    /// a palm breadth of 75-95 mm; srp::synth's glove 62 against 84) [ratio].
+    double maxWristToPalm = 0.85;
+    /// The skin model and the bare-forearm decision look only at each preview
+    /// sample's foreground that reaches the edge of the depth's field of view
+    /// (the arm, where it enters, and what it holds): a part standing on the
+    /// table before it is grasped or after it is placed is foreground against
+    /// the whole-recording background too, and its shaded face may be of skin
+    /// colour. false: all the samples' foreground.
+    bool skinFromArmOnly = false;
+    /// The preview's foreground includes depth holes whose colour changed
+    /// from the background's (holeColourChange) and, with farWithoutDepth, a
+    /// depth where a still camera's background has none, as each frame's
+    /// does: a moving arm on a ToF camera is more hole than depth, and
+    /// without them the preview sees it in fragments. false: by depth alone.
+    bool holesInPreview = false;
+    /// In a recording of bare forearms, skin no longer than a hand
+    /// (maxHandLength_m, in 3D) with at least minCuffPixels on the border is
+    /// the hand entering or leaving the view with its forearm out of view:
+    /// the palm lies back from its fingertips (palmFromFingertips_m), not
+    /// from a forearm's far end. false: the far end in every frame.
+    bool handFirstAtTheBorder = false;
     /// The last palm depth is carried along the palm's ray for at most this
     /// many frames (the caller does it, see DemoPerception) [frames].
     int maxCarryFrames = 3;
@@ -567,10 +604,16 @@ class MarkerFreeHandDetector : public HandDetector {
   void keepArmShaped(const Plane& plane, const std::vector<std::pair<std::size_t, cv::Mat>>& sampleSkin,
                      const cv::Mat& labels, const cv::Mat& stats, const cv::Mat& candidate,
                      std::vector<uchar>& keep) const;
-  /// Does the preview show a bare forearm (sets bareForearms_)? `backgroundHalf_mm`:
-  /// each sample's background at half size [mm]; `depthHalf_mm`: each sample's depth at half size
-  /// [mm, CV_32FC1].
-  void decideBareForearms(const std::vector<cv::Mat>& backgroundHalf_mm, const std::vector<cv::Mat>& depthHalf_mm);
+  /// Preview sample `i`'s foreground at half size (not opened) [CV_8UC1]: closer than its background
+  /// `backgroundHalf_mm` [mm] by depth `depthHalf_mm` [mm, CV_32FC1]; with holesInPreview also its
+  /// depth holes whose colour changed from `backgroundColourHalf` (and farWithoutDepth's depth
+  /// without a background), inside the field of view; with skinFromArmOnly only its components (once
+  /// opened) that reach the edge of the field of view (the arm).
+  cv::Mat previewForeground(std::size_t i, const cv::Mat& backgroundHalf_mm, const cv::Mat& depthHalf_mm,
+                            const cv::Mat& backgroundColourHalf) const;
+  /// Does the preview show a bare forearm (sets bareForearms_)? `foregroundHalf`: each sample's
+  /// previewForeground; `depthHalf_mm`: each sample's depth at half size [mm, CV_32FC1].
+  void decideBareForearms(const std::vector<cv::Mat>& foregroundHalf, const std::vector<cv::Mat>& depthHalf_mm);
   /// Pixels where an arm enters the view, inside the depth's field of view:
   /// near the image edge, and near this frame's depth-less band where the
   /// field of view ends inside the image (row-major when there is no band).
@@ -585,9 +628,18 @@ class MarkerFreeHandDetector : public HandDetector {
   /// the recording shows bare forearms), ends in the hand at its far end.
   /// Sets geometry_ and replaces `hand` by that component.
   /// `refused`: set when the skin found lies near where the body enters
-  /// (minSkinReach_m): the frame reports no palm.
+  /// (minSkinReach_m): the frame reports no palm. `entering`: set when, in a
+  /// recording of bare forearms, the skin is no longer than a hand and lies
+  /// on the border (handFirstAtTheBorder): the fingertip rule places the palm.
   std::optional<Anchor> bareForearmAnchor(const rawlog::RgbdFrame& frame, const cv::Mat& arm, const Eigen::Vector2d& entry,
-                                          HandBlob& hand, bool& refused);
+                                          HandBlob& hand, bool& refused, bool& entering);
+  /// farEndOpenHand: is the hand of skin component `comp` (CV_8UC1) with far end `farEnd_m` (camera
+  /// frame [m]) at `farEnd_px`, pointing along `dir`, open (holding nothing that `arm`, the arm's
+  /// foreground, shows past the far end; its thickest part past the middle of the two palm lengths,
+  /// narrower behind)?
+  bool openHandAtFarEnd(const rawlog::RgbdFrame& frame, const cv::Mat& arm, const cv::Mat& comp,
+                        const Eigen::Vector3d& farEnd_m,
+                        const Eigen::Vector2d& farEnd_px, const Eigen::Vector2d& dir) const;
   /// The label (of `labels`, n labels, their `stats`) of the skin component
   /// of at least minHandPixels that reaches farthest from the border zone
   /// along the geodesic inside `region`; -1 when the region meets no border.

@@ -110,6 +110,17 @@ ArmShape armShape(const std::vector<Eigen::Vector3d>& points, double slice_m, st
   return shape;
 }
 
+/// The point [m, camera frame] seen at pixel (u, v) [px] at depth z [m] (an undistorted pinhole; the
+/// detector's per-pixel loops call it, so no CameraModel, whose conversion goes through ViSP).
+inline Eigen::Vector3d pixelToCamera(const core::CameraIntrinsics& k, double u_px, double v_px, double z_m) {
+  return {(u_px - k.cx_px) * z_m / k.fx_px, (v_px - k.cy_px) * z_m / k.fy_px, z_m};
+}
+
+/// `view` shrunk by `margin_px` on every side: the pixels a region may hold without being cut by its edge.
+cv::Rect inset(const cv::Rect& view, int margin_px) {
+  return {view.x + margin_px, view.y + margin_px, view.width - 2 * margin_px, view.height - 2 * margin_px};
+}
+
 /// A disc-shaped structuring element of this diameter [px].
 cv::Mat disc(int diameter_px) { return cv::getStructuringElement(cv::MORPH_ELLIPSE, {diameter_px, diameter_px}); }
 
@@ -977,7 +988,7 @@ void MarkerFreeHandDetector::decideBareForearms(const std::vector<cv::Mat>& fgHa
       const double z = medianDepthInDisc(z_m, comp, e, options_.palmRadius_m * k.fx_px / zMean,
                                          options_.minPreviewDepthSamples)
                            .value_or(zMean);
-      return Eigen::Vector3d((e.x() - k.cx_px) * z / k.fx_px, (e.y() - k.cy_px) * z / k.fy_px, z);
+      return pixelToCamera(k, e.x(), e.y(), z);
     };
     const double length_m = (endPoint(sMax) - endPoint(sMin)).norm();
     if (length_m > options_.maxHandLength_m) ++bare;
@@ -1553,7 +1564,7 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::bareForear
     const Eigen::Vector2d e = ax->mean + sEnd * axis;
     const double z = medianDepthInDisc(frame.depth_m, comp, e, options_.palmRadius_m * compPxPerM, options_.minDepthSamples)
                          .value_or(z_comp);
-    return Eigen::Vector3d((e.x() - k.cx_px) * z / k.fx_px, (e.y() - k.cy_px) * z / k.fy_px, z);
+    return pixelToCamera(k, e.x(), e.y(), z);
   };
   const double length3d_m = (endPoint(sMax) - endPoint(sMin)).norm();
   if (core::Log::enabled("hand", core::Log::Level::Debug))
@@ -1608,8 +1619,7 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::bareForear
   geometry_.farEnd_px = a.anchor_px;
   if (options_.farEndOpenHand) {
     const double zEnd = endPoint(sMax).z();
-    const Eigen::Vector3d farEnd_m((a.anchor_px.x() - k.cx_px) * zEnd / k.fx_px,
-                                   (a.anchor_px.y() - k.cy_px) * zEnd / k.fy_px, zEnd);
+    const Eigen::Vector3d farEnd_m = pixelToCamera(k, a.anchor_px.x(), a.anchor_px.y(), zEnd);
     if (openHandAtFarEnd(frame, arm, comp, farEnd_m, a.anchor_px, local)) a.length_m = -options_.palmFromFingertips_m;
   }
   hand.mask = comp;
@@ -1668,7 +1678,7 @@ bool MarkerFreeHandDetector::openHandAtFarEnd(const rawlog::RgbdFrame& frame, co
   comp(box).copyTo(padded(cv::Rect(1, 1, box.width, box.height)));
   cv::distanceTransform(padded, distance, cv::DIST_L2, cv::DIST_MASK_5);
   auto backFromFarEnd_m = [&](int x, int y, float z) {
-    return (Eigen::Vector3d((x - k.cx_px) * z / k.fx_px, (y - k.cy_px) * z / k.fy_px, z) - farEnd_m).norm();
+    return (pixelToCamera(k, x, y, z) - farEnd_m).norm();
   };
   double thickest_m = 0.0, thickestBack_m = 0.0;
   for (int v = 0; v < box.height; ++v) {
@@ -1689,8 +1699,7 @@ bool MarkerFreeHandDetector::openHandAtFarEnd(const rawlog::RgbdFrame& frame, co
   // inside the view, not cut by its edge) the skin is narrower. A closed hand whose palm the held part
   // hides at its sides is thickest at its wrist, with the forearm as thick behind it.
   double behind_m = -1.0;
-  const int margin = options_.borderMargin_px;
-  const cv::Rect inner(view_.x + margin, view_.y + margin, view_.width - 2 * margin, view_.height - 2 * margin);
+  const cv::Rect inner = inset(view_, options_.borderMargin_px);
   for (int v = 0; v < box.height; ++v) {
     const float* d = distance.ptr<float>(v + 1) + 1;
     const float* z = frame.depth_m.ptr<float>(box.y + v);
@@ -1876,7 +1885,7 @@ HandObservation MarkerFreeHandDetector::placePalm(const rawlog::RgbdFrame& frame
   // centimetres above the wrist's skin.)
   const auto& k = frame.intrinsics;
   auto backProject = [&](const Eigen::Vector2d& p, double z_m) {
-    return Eigen::Vector3d((p.x() - k.cx_px) * z_m / k.fx_px, (p.y() - k.cy_px) * z_m / k.fy_px, z_m);
+    return pixelToCamera(k, p.x(), p.y(), z_m);
   };
   auto project = [&](const Eigen::Vector3d& p) {
     return Eigen::Vector2d(k.fx_px * p.x() / p.z() + k.cx_px, k.fy_px * p.y() / p.z() + k.cy_px);
@@ -1960,8 +1969,7 @@ double MarkerFreeHandDetector::silhouetteDepth(const cv::Mat& mask, const Eigen:
   const double reach_px = options_.palmRadius_m * pxPerM;
   const int span_px = static_cast<int>(std::ceil(options_.palmHalfWidth_m * pxPerM * 2.0));
   const cv::Rect view = view_.area() > 0 ? view_ : cv::Rect(0, 0, mask.cols, mask.rows);
-  const int margin = options_.borderMargin_px;
-  const cv::Rect inner(view.x + margin, view.y + margin, view.width - 2 * margin, view.height - 2 * margin);
+  const cv::Rect inner = inset(view, options_.borderMargin_px);
   const Eigen::Vector2d across(-dir.y(), dir.x());
   std::vector<uchar> line(static_cast<std::size_t>(2 * span_px + 1)), cut(line.size());
   std::vector<double> width_px;
@@ -2001,8 +2009,9 @@ double MarkerFreeHandDetector::silhouetteDepth(const cv::Mat& mask, const Eigen:
   const double depth_m = std::clamp(options_.palmHalfWidth_m * options_.palmDepth_m / std::max(halfWidth_m, 1e-6),
                                     options_.palmDepth_m, std::max(options_.palmDepth_m, options_.palmHalfWidth_m));
   if (core::Log::enabled("hand", core::Log::Level::Debug))
-    std::fprintf(stderr, "frame %d: palm silhouette half-width %.1f mm (%zu cross-sections): centre %.1f mm behind\n",
-                 frameIndex, 1e3 * halfWidth_m, width_px.size(), 1e3 * depth_m);
+    core::Log::writef("hand", core::Log::Level::Debug,
+                      "frame %d: palm silhouette half-width %.1f mm (%zu cross-sections): centre %.1f mm behind\n",
+                      frameIndex, 1e3 * halfWidth_m, width_px.size(), 1e3 * depth_m);
   return depth_m;
 }
 
@@ -2023,7 +2032,7 @@ std::optional<Eigen::Vector3d> MarkerFreeHandDetector::surfaceNormal(const rawlo
     const float* z = frame.depth_m.ptr<float>(v);
     for (int u = std::max(0, cu - r); u <= std::min(mask.cols - 1, cu + r); u += stride) {
       if (!m[u] || z[u] <= 0.f || (Eigen::Vector2d(u, v) - centre_px).squaredNorm() > radius_px * radius_px) continue;
-      const Eigen::Vector3d p((u - k.cx_px) * z[u] / k.fx_px, (v - k.cy_px) * z[u] / k.fy_px, z[u]);
+      const Eigen::Vector3d p = pixelToCamera(k, u, v, z[u]);
       mean += p;
       second += p * p.transpose();
       ++n;

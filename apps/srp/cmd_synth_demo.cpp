@@ -3,7 +3,9 @@
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <vector>
 
+#include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
 #include "CommandRegistry.h"
@@ -28,6 +30,8 @@ struct SynthDemoArgs {
   std::string outPath = "demo.rawlog";
   std::string contactSheet, depthCamera;
   std::string viewpoint;  ///< empty: the scene's camera
+  std::vector<double> lightRgb;        ///< empty: white
+  std::vector<double> lightDirection;  ///< empty: the scene's
   long long seed = -1;
   int width = 0, height = 0, maxFrames = -1, colourNoiseBlock = -1, depthNoiseBlock = -1;
   double speed = 1.0;
@@ -78,6 +82,18 @@ class StagedDemo {
   fs::path staged_;
 };
 
+/// --light-rgb and --light-direction over the scene's white light from its own direction.
+void applyLight(const SynthDemoArgs& a, srp::core::Scene& scene, srp::synth::SynthDemoOptions& options) {
+  if (!a.lightRgb.empty()) options.lightRgb = Eigen::Vector3d(a.lightRgb[0], a.lightRgb[1], a.lightRgb[2]);
+  if (a.lightDirection.empty()) return;
+  const Eigen::Vector3d d(a.lightDirection[0], a.lightDirection[1], a.lightDirection[2]);
+  srp::core::require(d.allFinite() && d.z() < 0.0,
+                     "--light-direction: the light must travel down onto the table (z < 0 in the table's frame, "
+                     "z up), e.g. -0.5,0.6,-0.65; got " +
+                         std::to_string(d.x()) + "," + std::to_string(d.y()) + "," + std::to_string(d.z()));
+  scene.lighting.direction_world = d;
+}
+
 void run(const SynthDemoArgs& a) {
   const std::string groundTruth = fs::path(a.outPath).lexically_normal().replace_extension(".gt.json").string();
   srp::core::checkOutputPaths(
@@ -94,6 +110,7 @@ void run(const SynthDemoArgs& a) {
     scene.X_world_camera = view.X_world_camera;
     options.demo.demonstratorSide_world = view.demonstratorSide_world;
   }
+  applyLight(a, scene, options);
   options.demo.seed = static_cast<std::uint32_t>(a.seed >= 0 ? a.seed : scene.seed);
   options.demo.randomise = !a.noRandomise;
   options.demo.speedFactor = a.speed;
@@ -195,6 +212,19 @@ void setupSynthDemo(CLI::App& cmd) {
                  "the demonstrator's head), side, top-down, front (across the table), oblique (a far corner), "
                  "near-corner (a corner on the demonstrator's side), table-level (beside the table, 0.2 m above it); "
                  "variants turn the camera by -20/0/+20 deg and move it -10/0/+10 %");
+  cmd.add_option("--light-rgb", args->lightRgb,
+                 "the light's colour R,G,B: the scene's ambient and diffuse light scaled per channel (linear, "
+                 "default 1,1,1; e.g. 1,0.9,0.78 a warm ~4000 K lamp seen by a camera balanced for daylight, as the "
+                 "near-corner and table-level check renders)")
+      ->expected(3)
+      ->delimiter(',')
+      ->check(CLI::Range(0.0, 2.0));
+  cmd.add_option("--light-direction", args->lightDirection,
+                 "the light's direction of travel X,Y,Z in the table's frame (z up; default: the scene's, nearly "
+                 "straight down; e.g. -0.5,0.6,-0.65 a lamp 40 deg above the table from the robot's side, as the "
+                 "near-corner and table-level check renders); the seed still varies it slightly")
+      ->expected(3)
+      ->delimiter(',');
   cmd.add_flag("--head-sway", args->headSway,
                "a head-mounted camera: the camera sways smoothly about its pose (up to 3 deg of nod and turn, 1.5 "
                "deg of roll, 2 cm along each axis, at 0.1-0.8 Hz, as a working person's head; drawn from --seed); "

@@ -210,7 +210,8 @@ void setupSynthDemo(CLI::App& cmd) {
   cmd.add_option("--viewpoint", args->viewpoint,
                  "camera placement instead of the scene's: FAMILY or FAMILY:VARIANT, FAMILY one of egocentric (at "
                  "the demonstrator's head), side, top-down, front (across the table), oblique (a far corner), "
-                 "near-corner (a corner on the demonstrator's side), table-level (beside the table, 0.2 m above it); "
+                 "near-corner (a corner on the demonstrator's side), table-level (beside the table, 0.2 m above it), "
+                 "facing (across the table, 0.36 m above it, 30-45 deg off the demonstrator's direction); "
                  "variants turn the camera by -20/0/+20 deg and move it -10/0/+10 %");
   cmd.add_option("--light-rgb", args->lightRgb,
                  "the light's colour R,G,B: the scene's ambient and diffuse light scaled per channel (linear, "

@@ -1,11 +1,11 @@
 #pragma once
 // Rendered demonstrations from the viewpoint families of srp::synth
-// (Viewpoint.h: egocentric, side, top-down, front, oblique, near-corner, table-level) with the hand
+// (Viewpoint.h: egocentric, side, top-down, front, oblique, near-corner, table-level, facing) with the hand
 // carrying parts of several sizes, and the marker-free palm scored against their ground truth.
 // Shared by MarkerFreeHandViewpoints_test and bench/marker_free_hand_bench.
 //
 // Which family is for what: the detector's settings are chosen on the
-// egocentric and side families; top-down, front, oblique, near-corner and table-level are checked,
+// egocentric, side and facing families; top-down, front, oblique, near-corner and table-level are checked,
 // never tuned on (perception README, "The marker-free hand in other views").
 #include <Eigen/Core>
 #include <filesystem>
@@ -44,30 +44,43 @@ struct ViewpointDemoSpec {
   /// 640x480 depth re-projected into it at width_px 1920, holes where the depth camera does not see
   /// (width_px / 3 must be a multiple of 4 for MRPT's renderer).
   bool sr300 = false;
-  /// Another light than the scene's (freshLight()): its direction of travel in the world (before the
-  /// seed's randomisation) and its colour (SynthDemoOptions::lightRgb).
-  bool otherLight = false;
+  /// The scene's own light, or another lamp (WarmLight, ColdLight): its direction of travel in the world
+  /// (before the seed's randomisation) and its colour (SynthDemoOptions::lightRgb).
+  enum class Light { Scene, Warm, Cold } light = Light::Scene;
   std::string name() const {
     char s[176];
     std::snprintf(s, sizeof s, "%s_v%d_x%.1f_%s_%dpx_s%u%s%s%s%s%s", synth::viewpointFamilyName(family).c_str(),
                   variant, partScale, bareForearm ? "bare" : "sleeve", width_px, seed, headSway ? "_sway" : "",
-                  heldOnly.empty() ? "" : "_held-", heldOnly.c_str(), sr300 ? "_sr300" : "", otherLight ? "_light" : "");
+                  heldOnly.empty() ? "" : "_held-", heldOnly.c_str(), sr300 ? "_sr300" : "",
+                  light == Light::Warm   ? "_light"
+                  : light == Light::Cold ? "_coldlight"
+                                         : "");
     return s;
   }
 };
 
-/// ViewpointDemoSpec::otherLight: a warm lamp (R 1.0, G 0.9, B 0.78 of the scene's white, as a camera
+/// ViewpointDemoSpec::Light::Warm: a warm lamp (R 1.0, G 0.9, B 0.78 of the scene's white, as a camera
 /// balanced for daylight sees a ~4000 K lamp) shining from the robot's side of the table (-y) and from
 /// +x, 40 deg above the table (the scene's light: from above, nearly straight down).
-struct FreshLight {
+struct WarmLight {
   Eigen::Vector3d direction_world = Eigen::Vector3d(-0.5, 0.6, -0.65);
   Eigen::Vector3d rgb = Eigen::Vector3d(1.0, 0.9, 0.78);
 };
 
+/// ViewpointDemoSpec::Light::Cold: a cold lamp (R 0.85, G 0.93, B 1.0 of the scene's white, as a camera
+/// balanced for a warm lamp sees daylight) shining from the demonstrator's side of the table (+y) and from
+/// -x, 35 deg above the table: the other side than WarmLight.
+struct ColdLight {
+  Eigen::Vector3d direction_world = Eigen::Vector3d(0.5, -0.6, -0.55);
+  Eigen::Vector3d rgb = Eigen::Vector3d(0.85, 0.93, 1.0);
+};
+
 /// Six demonstrations of `family`: variants 0-5 (azimuth -20/0/+20 deg, distance -10/0 %, sides), parts
-/// 1x, 1.5x and 2x the catalogue's, sleeve in 0-2, bare forearm in 3-5, seeds 11-16. The families added
-/// as fresh checks (near-corner, table-level) are lit by FreshLight (ViewpointDemoSpec::otherLight).
-inline std::vector<ViewpointDemoSpec> familySpecs(synth::ViewpointFamily family, int width_px = 640) {
+/// 1x, 1.5x and 2x the catalogue's, sleeve in 0-2, bare forearm in 3-5, seeds `firstSeed`..+5 (11-16 by
+/// default). The families added as fresh checks (near-corner, table-level) are lit by WarmLight, the
+/// development family facing by ColdLight (ViewpointDemoSpec::light).
+inline std::vector<ViewpointDemoSpec> familySpecs(synth::ViewpointFamily family, int width_px = 640,
+                                                  std::uint32_t firstSeed = 11) {
   std::vector<ViewpointDemoSpec> out;
   constexpr double kScales[] = {1.0, 1.5, 2.0};
   for (int v = 0; v < 6; ++v) {
@@ -76,9 +89,11 @@ inline std::vector<ViewpointDemoSpec> familySpecs(synth::ViewpointFamily family,
     s.variant = v;
     s.partScale = kScales[v % 3];
     s.bareForearm = v >= 3;
-    s.seed = static_cast<std::uint32_t>(11 + v);
+    s.seed = firstSeed + static_cast<std::uint32_t>(v);
     s.width_px = width_px;
-    s.otherLight = family == synth::ViewpointFamily::NearCorner || family == synth::ViewpointFamily::TableLevel;
+    if (family == synth::ViewpointFamily::NearCorner || family == synth::ViewpointFamily::TableLevel)
+      s.light = ViewpointDemoSpec::Light::Warm;
+    if (family == synth::ViewpointFamily::Facing) s.light = ViewpointDemoSpec::Light::Cold;
     out.push_back(s);
   }
   return out;
@@ -153,8 +168,12 @@ inline std::string renderViewpointDemo(const ViewpointDemoSpec& spec, const std:
     o.width_px = spec.width_px;
     o.height_px = spec.width_px * 3 / 4;
   }
-  if (spec.otherLight) {
-    const FreshLight light;
+  if (spec.light == ViewpointDemoSpec::Light::Warm) {
+    const WarmLight light;
+    scene.lighting.direction_world = light.direction_world;
+    o.lightRgb = light.rgb;
+  } else if (spec.light == ViewpointDemoSpec::Light::Cold) {
+    const ColdLight light;
     scene.lighting.direction_world = light.direction_world;
     o.lightRgb = light.rgb;
   }

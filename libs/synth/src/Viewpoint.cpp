@@ -16,8 +16,10 @@ ViewpointFamily viewpointFamilyFromName(const std::string& name) {
   if (name == "oblique") return ViewpointFamily::Oblique;
   if (name == "near-corner") return ViewpointFamily::NearCorner;
   if (name == "table-level") return ViewpointFamily::TableLevel;
-  throw srp::core::InvalidInputError(
-      "viewpoint family '" + name + "' is unknown; use egocentric, side, top-down, front, oblique, near-corner or table-level");
+  if (name == "facing") return ViewpointFamily::Facing;
+  throw srp::core::InvalidInputError("viewpoint family '" + name +
+                                     "' is unknown; use egocentric, side, top-down, front, oblique, near-corner, "
+                                     "table-level or facing");
 }
 
 std::string viewpointFamilyName(ViewpointFamily family) {
@@ -36,6 +38,8 @@ std::string viewpointFamilyName(ViewpointFamily family) {
       return "near-corner";
     case ViewpointFamily::TableLevel:
       return "table-level";
+    case ViewpointFamily::Facing:
+      return "facing";
   }
   return "?";
 }
@@ -141,6 +145,16 @@ Viewpoint makeViewpoint(ViewpointFamily family, int variant, const Eigen::Vector
       const double sign = v % 2 == 0 ? 1.0 : -1.0;
       const Eigen::AngleAxisd towards(-sign * (v % 3) * 10.0 * srp::core::kPi / 180.0, Eigen::Vector3d::UnitZ());
       const Eigen::Vector3d offset = towards * (0.85 * sign * across) + Eigen::Vector3d(0, 0, 0.2);
+      out.X_world_camera = lookAt(target_world + distance * offset, target_world, Eigen::Vector3d::UnitZ());
+      break;
+    }
+    case ViewpointFamily::Facing: {
+      // Across the table, lower than front and off the demonstrator's direction. The view 31 deg down keeps the
+      // image's top edge 9 deg below the horizon: the resting hand leaves the view a few decimetres beyond the
+      // work, not metres (DemoTimeline walks it away until it is out of view).
+      const double sign = v % 2 == 0 ? 1.0 : -1.0;
+      const Eigen::AngleAxisd off(sign * (30.0 + 7.5 * (v % 3)) * srp::core::kPi / 180.0, Eigen::Vector3d::UnitZ());
+      const Eigen::Vector3d offset = off * (-0.6 * side) + Eigen::Vector3d(0, 0, 0.36);
       out.X_world_camera = lookAt(target_world + distance * offset, target_world, Eigen::Vector3d::UnitZ());
       break;
     }

@@ -17,7 +17,7 @@ constexpr double kGeomTol = 1e-9;
 
 const ViewpointFamily kFamilies[] = {ViewpointFamily::Egocentric, ViewpointFamily::Side,       ViewpointFamily::TopDown,
                                      ViewpointFamily::Front,      ViewpointFamily::Oblique,    ViewpointFamily::NearCorner,
-                                     ViewpointFamily::TableLevel};
+                                     ViewpointFamily::TableLevel, ViewpointFamily::Facing};
 
 /// Distance [m] from `p` to the camera's optical axis.
 double offAxis_m(const core::Pose3& X_world_camera, const Eigen::Vector3d& p_world) {
@@ -37,8 +37,11 @@ TEST(Viewpoint, EveryFamilyLooksAtTheTargetFromAbove) {
           family == ViewpointFamily::Egocentric ? Eigen::Vector3d(target - Eigen::Vector3d(0, 0.05, 0)) : target;
       EXPECT_LT(offAxis_m(X, lookedAt), kGeomTol);
       EXPECT_GT((X.inverse() * target).z(), 0.3) << "the target in front of the camera";
-      // The table-level camera: its lens 0.2 m above the table (+-10 % with the distance).
-      EXPECT_GT(X.translation().z() - target.z(), family == ViewpointFamily::TableLevel ? 0.17 : 0.4)
+      // The table-level camera: its lens 0.2 m above the table; facing: 0.36 m (+-10 % with the distance).
+      const double minHeight_m = family == ViewpointFamily::TableLevel ? 0.17
+                                 : family == ViewpointFamily::Facing   ? 0.32
+                                                                       : 0.4;
+      EXPECT_GT(X.translation().z() - target.z(), minHeight_m)
           << "the camera above the table";
       EXPECT_NEAR(X.linear().determinant(), 1.0, kGeomTol);
       if (family != ViewpointFamily::TopDown)
@@ -75,6 +78,17 @@ TEST(Viewpoint, FamiliesStandWhereTheySay) {
   EXPECT_NEAR(eye(ViewpointFamily::TableLevel, 3).dot(side), 0.0, kGeomTol);
   EXPECT_NEAR(eye(ViewpointFamily::TableLevel, 3).z(), 0.2, kGeomTol) << "just above its top";
   EXPECT_LT(eye(ViewpointFamily::TableLevel, 3).dot(across) * eye(ViewpointFamily::TableLevel, 6).dot(across), 0.0);
+  // Facing: across the table, 0.6 m out and 0.36 m up (variants 3-5: nominal distance), 30/37.5/45 deg off the
+  // demonstrator's direction, on either side of it by parity.
+  for (int v = 0; v < 9; ++v) {
+    const double scale = 1.0 + 0.1 * (v / 3 - 1);
+    const Eigen::Vector3d e = eye(ViewpointFamily::Facing, v) / scale;
+    const double off_deg = 30.0 + 7.5 * (v % 3);
+    EXPECT_NEAR(e.dot(side), -0.6 * std::cos(off_deg * core::kPi / 180.0), kGeomTol) << "variant " << v;
+    EXPECT_NEAR(e.dot(across), (v % 2 == 0 ? -1.0 : 1.0) * 0.6 * std::sin(off_deg * core::kPi / 180.0), kGeomTol)
+        << "variant " << v;
+    EXPECT_NEAR(e.z(), 0.36, kGeomTol) << "variant " << v;
+  }
   for (int v = 0; v < 9; ++v)  // turned 0, 10, 20 deg towards the demonstrator, never away from them
     EXPECT_NEAR(eye(ViewpointFamily::TableLevel, v).dot(side) / eye(ViewpointFamily::TableLevel, v).head<2>().norm(),
                 std::sin((v % 3) * 10.0 * core::kPi / 180.0), 1e-9)
@@ -96,6 +110,8 @@ TEST(Viewpoint, NamesAndVariantsReadBack) {
   EXPECT_EQ(viewpointFromText("front"), std::make_pair(ViewpointFamily::Front, 0));
   EXPECT_EQ(viewpointFromText("near-corner:5"), std::make_pair(ViewpointFamily::NearCorner, 5));
   EXPECT_EQ(viewpointFromText("table-level:2"), std::make_pair(ViewpointFamily::TableLevel, 2));
+  EXPECT_EQ(viewpointFromText("facing:4"), std::make_pair(ViewpointFamily::Facing, 4));
+  EXPECT_EQ(viewpointFamilyName(ViewpointFamily::Facing), "facing");
   EXPECT_THROW(viewpointFromText("side:"), core::InvalidInputError);
   EXPECT_THROW(viewpointFromText("side:-1"), core::InvalidInputError);
   EXPECT_THROW(viewpointFromText("side:1x"), core::InvalidInputError);

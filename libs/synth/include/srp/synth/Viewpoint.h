@@ -2,9 +2,10 @@
 /// \file Viewpoint.h
 /// \brief Camera placements for synthetic demonstrations beyond the scene's
 /// own camera: at the demonstrator's head (egocentric), beside the table,
-/// straight above it, across the table facing the demonstrator, at a far
-/// corner of the table, at a corner on the demonstrator's side, and beside the
-/// table just above its top, each with variants (azimuth, distance).
+/// straight above it, across the table facing the demonstrator (at chest
+/// height, or lower and off their direction), at a far corner of the table, at
+/// a corner on the demonstrator's side, and beside the table just above its
+/// top, each with variants (azimuth, distance).
 
 #include <Eigen/Core>
 #include <string>
@@ -31,6 +32,9 @@ enum class ViewpointFamily {
   TableLevel,  ///< beside the table, 0.85 m out, the lens 0.2 m above its top: the table and the boxes seen at a
                ///< grazing angle (their walls hide what lies inside), the arm entering from the left or right
                ///< edge at the camera's height, the hand seen edge-on
+  Facing,      ///< across the table facing the demonstrator, lower than Front and off their direction: 0.6 m out,
+               ///< 30-45 deg off the demonstrator's direction, 0.36 m above the table (the view 31 deg down): the
+               ///< arm comes towards the camera from the top edge, the palm and the held part facing the lens
 };
 
 /// Where the camera is and where the demonstrator stands (DemoOptions::demonstratorSide_world).
@@ -39,7 +43,7 @@ struct Viewpoint {
   Eigen::Vector2d demonstratorSide_world = Eigen::Vector2d::UnitY();
 };
 
-/// "egocentric", "side", "top-down", "front", "oblique", "near-corner", "table-level"; throws
+/// "egocentric", "side", "top-down", "front", "oblique", "near-corner", "table-level", "facing"; throws
 /// InvalidInputError naming the text and the choices otherwise.
 ViewpointFamily viewpointFamilyFromName(const std::string& name);
 std::string viewpointFamilyName(ViewpointFamily family);
@@ -52,7 +56,9 @@ std::string viewpointFamilyName(ViewpointFamily family);
 /// side, oblique, near-corner and table-level families' even variants stand on
 /// one side of the table, odd ones on the other. The table-level camera turns
 /// by 0, 10 and 20 deg towards the demonstrator instead (turned away from them
-/// it would look along their forearm and see the sleeve's end).
+/// it would look along their forearm and see the sleeve's end). The facing
+/// camera stands 30, 37.5 or 45 deg off the demonstrator's direction instead
+/// (variant % 3), on either side of it by the variant's parity.
 Viewpoint makeViewpoint(ViewpointFamily family, int variant, const Eigen::Vector3d& target_world,
                         const Eigen::Vector2d& demonstratorSide_world = Eigen::Vector2d::UnitY());
 

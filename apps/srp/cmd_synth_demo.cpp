@@ -216,14 +216,15 @@ void setupSynthDemo(CLI::App& cmd) {
   cmd.add_option("--light-rgb", args->lightRgb,
                  "the light's colour R,G,B: the scene's ambient and diffuse light scaled per channel (linear, "
                  "default 1,1,1; e.g. 1,0.9,0.78 a warm ~4000 K lamp seen by a camera balanced for daylight, as the "
-                 "near-corner and table-level check renders)")
+                 "near-corner and table-level check renders; 0.85,0.93,1 a cold one, as the facing renders)")
       ->expected(3)
       ->delimiter(',')
       ->check(CLI::Range(0.0, 2.0));
   cmd.add_option("--light-direction", args->lightDirection,
                  "the light's direction of travel X,Y,Z in the table's frame (z up; default: the scene's, nearly "
                  "straight down; e.g. -0.5,0.6,-0.65 a lamp 40 deg above the table from the robot's side, as the "
-                 "near-corner and table-level check renders); the seed still varies it slightly")
+                 "near-corner and table-level check renders; 0.5,-0.6,-0.55 from the demonstrator's side, 35 deg up, "
+                 "as the facing renders); the seed still varies it slightly")
       ->expected(3)
       ->delimiter(',');
   cmd.add_flag("--head-sway", args->headSway,

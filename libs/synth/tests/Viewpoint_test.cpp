@@ -41,8 +41,7 @@ TEST(Viewpoint, EveryFamilyLooksAtTheTargetFromAbove) {
       const double minHeight_m = family == ViewpointFamily::TableLevel ? 0.17
                                  : family == ViewpointFamily::Facing   ? 0.32
                                                                        : 0.4;
-      EXPECT_GT(X.translation().z() - target.z(), minHeight_m)
-          << "the camera above the table";
+      EXPECT_GT(X.translation().z() - target.z(), minHeight_m) << "the camera above the table";
       EXPECT_NEAR(X.linear().determinant(), 1.0, kGeomTol);
       if (family != ViewpointFamily::TopDown)
         EXPECT_NEAR(X.linear().col(0).z(), 0.0, kGeomTol) << "image x level: no roll";

@@ -377,6 +377,42 @@ std::optional<Eigen::Vector2d> thickestPoint(const cv::Mat& mask) {
   return Eigen::Vector2d(box.x + best.x - 1, box.y + best.y - 1);
 }
 
+/// The breadth of `mask` (CV_8UC1) across `dir` [m], in slices `step_m` long back from `end_px` against `dir`
+/// (slice i: from i step_m to (i + 1) step_m from the end, in 3D on the depth line z = line(0) + line(1) s, s the
+/// pixel distance back from the end), `slices` of them: each slice's pixels of the mask over its length in
+/// pixels, at its depth. A slice past the mask's end is 0.
+std::vector<double> breadthFromEnd(const cv::Mat& mask, const core::CameraIntrinsics& k, const Eigen::Vector2d& end_px,
+                                   const Eigen::Vector2d& dir, const Eigen::Vector2d& line, double step_m, int slices) {
+  // Each whole pixel distance back from the end -> its slice, walking the 3D centre line on the depth line.
+  std::vector<int> sliceOf;
+  std::vector<double> length_px(static_cast<std::size_t>(slices), 0.0), depth_m(static_cast<std::size_t>(slices), 0.0);
+  const Eigen::Vector3d p0 = pixelToCamera(k, end_px.x(), end_px.y(), line(0));
+  for (int s = 0; s < mask.cols + mask.rows; ++s) {
+    const double z = line(0) + line(1) * (s + 0.5);
+    if (z <= 0.0) break;
+    const Eigen::Vector2d q = end_px - (s + 0.5) * dir;
+    const int i = static_cast<int>((pixelToCamera(k, q.x(), q.y(), z) - p0).norm() / step_m);
+    if (i >= slices) break;
+    sliceOf.push_back(i);
+    length_px[static_cast<std::size_t>(i)] += 1.0;
+    depth_m[static_cast<std::size_t>(i)] = z;
+  }
+  std::vector<double> count(static_cast<std::size_t>(slices), 0.0);
+  for (int v = 0; v < mask.rows; ++v) {
+    const uchar* m = mask.ptr<uchar>(v);
+    for (int u = 0; u < mask.cols; ++u) {
+      if (!m[u]) continue;
+      const double s = (end_px - Eigen::Vector2d(u, v)).dot(dir);
+      if (s < 0.0 || s >= static_cast<double>(sliceOf.size())) continue;
+      count[static_cast<std::size_t>(sliceOf[static_cast<std::size_t>(s)])] += 1.0;
+    }
+  }
+  std::vector<double> breadth_m(static_cast<std::size_t>(slices), 0.0);
+  for (std::size_t i = 0; i < breadth_m.size(); ++i)
+    if (length_px[i] > 0.0) breadth_m[i] = count[i] / length_px[i] * depth_m[i] / k.fx_px;
+  return breadth_m;
+}
+
 }  // namespace
 
 MarkerFreeHandDetector::MarkerFreeHandDetector(const Options& options) : options_(options) {
@@ -1711,13 +1747,39 @@ bool MarkerFreeHandDetector::openHandAtFarEnd(const rawlog::RgbdFrame& frame, co
         behind_m = std::max(behind_m, static_cast<double>(d[u] * z[x] / k.fx_px));
     }
   }
-  const bool open = thickestBack_m > 0.5 * (options_.palmFromFarEnd_m + options_.palmFromFingertips_m) &&
-                    thickestBack_m <= options_.palmFromFingertips_m + options_.palmRadius_m && behind_m > 0.0 &&
-                    behind_m < options_.maxWristToPalm * thickest_m;
-  if (core::Log::enabled("hand", core::Log::Level::Debug))
+  // The thickest point alone does not tell an open hand from a hand hanging from a flexed wrist (seen
+  // from the side, its fingers curled down towards the table): the distance transform is largest in
+  // the corner where the forearm meets the hanging hand, 10 cm from its far end, and grows steadily
+  // towards it as over an open hand's fingers. The hand's breadth across the axis does: an open hand is
+  // broadest at its palm (and thumb), past the middle of the two lengths from its fingertips, and
+  // narrower over its fingers; a closed hand is broadest within palmFromFarEnd_m of its far end (the
+  // knuckles, the curled fingers, the hanging hand's span across the forearm).
+  const double middle_m = 0.5 * (options_.palmFromFarEnd_m + options_.palmFromFingertips_m);
+  constexpr double kSlice_m = 0.01;  // a finger's width: the breadth's steps along the axis
+  const int slices = static_cast<int>(std::ceil((options_.palmFromFingertips_m + options_.palmRadius_m) / kSlice_m));
+  Anchor back;  // from the far end backwards, for the hand's depth profile
+  back.anchor_px = farEnd_px;
+  back.dir = dir;
+  back.length_m = -(options_.palmFromFingertips_m + options_.palmRadius_m);
+  HandBlob blob;
+  blob.mask = comp;
+  blob.z_m = farEnd_m.z();
+  blob.pxPerM = k.fx_px / farEnd_m.z();
+  const Eigen::Vector2d line = handTilt(frame, back, blob).value_or(Eigen::Vector2d(farEnd_m.z(), 0.0));
+  const std::vector<double> breadth_m = breadthFromEnd(comp, k, farEnd_px, dir, line, kSlice_m, slices);
+  const auto broadest = std::max_element(breadth_m.begin(), breadth_m.end()) - breadth_m.begin();
+  const double broadestBack_m = (static_cast<double>(broadest) + 0.5) * kSlice_m;
+  const bool open = thickestBack_m > middle_m && thickestBack_m <= options_.palmFromFingertips_m + options_.palmRadius_m &&
+                    behind_m > 0.0 && behind_m < options_.maxWristToPalm * thickest_m && broadestBack_m > middle_m;
+  if (core::Log::enabled("hand", core::Log::Level::Debug)) {
+    std::string row;
+    for (const double b : breadth_m) row += " " + std::to_string(std::lround(1e3 * b));
     core::Log::writef("hand", core::Log::Level::Debug,
-                      "frame %d: thickest %.3f m, %.3f m from the far end, %.3f m behind: %s\n", frame.index,
-                      thickest_m, thickestBack_m, behind_m, open ? "open hand" : "closed hand");
+                      "frame %d: thickest %.3f m, %.3f m from the far end, %.3f m behind; broadest %.3f m from the "
+                      "far end (breadth per cm [mm]:%s): %s\n",
+                      frame.index, thickest_m, thickestBack_m, behind_m, broadestBack_m, row.c_str(),
+                      open ? "open hand" : "closed hand");
+  }
   return open;
 }
 

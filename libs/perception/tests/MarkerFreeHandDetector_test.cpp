@@ -370,6 +370,49 @@ TEST(MarkerFreeHandDetector, HandJoinedToAPartPastItsFarEndIsClosed) {
   EXPECT_EQ(palmsNear(true, kOpen_m, true, closedReading), 6) << "a hand holding a part should read closed";
 }
 
+// A hand hanging from a flexed wrist, seen from the side (HRT1 task3's first frames: the hand above the
+// table before it reaches down): the forearm enters from the right, the hand (its palm seen on its edge
+// with the thumb, 7 cm across, 9 cm long, and the curled fingers) turns 55 degrees down from it. The
+// distance transform is largest where the hand joins the forearm, 10 cm from the far end, with the
+// forearm narrower behind it, as on an open hand; the breadth across the forearm's axis is largest within
+// palmFromFarEnd_m of the far end (the hanging hand's span): closed, the palm palmFromFarEnd_m back.
+TEST(MarkerFreeHandDetector, HandHangingFromAFlexedWristIsClosed) {
+  const MarkerFreeHandDetector::Options defaults;
+  MarkerFreeHandDetector::Options o;
+  o.farEndOpenHand = true;
+  auto frame = [&](int index, const std::optional<Eigen::Vector2d>& wrist_px) {
+    auto f = drawnFrame(index, std::nullopt);
+    if (!wrist_px) return f;
+    const ArmPose forearm{*wrist_px, M_PI, 0.0}, hand{*wrist_px, M_PI - 55.0 * M_PI / 180, 0.0};
+    drawBox(f, forearm, -0.60, 0.0, 0.022, 0.0, kSkinBgr, kHandTop_m);
+    drawBox(f, hand, -0.02, 0.09, 0.035, 0.0, kSkinBgr, kHandTop_m);   // palm on its edge, with the thumb
+    drawBox(f, hand, 0.09, 0.13, 0.02, -0.01, kSkinBgr, kHandTop_m);   // curled fingers
+    return f;
+  };
+  const double s_px = camera().fx_px / kHandTop_m;
+  auto run = [&](const MarkerFreeHandDetector::Options& opts, std::vector<double>& back_m) {
+    MarkerFreeHandDetector detector(opts);
+    for (int i = 0; i < kBackgroundFrames; ++i) detector.detect(frame(i, std::nullopt));
+    for (int i = 0; i < 6; ++i) {
+      const Eigen::Vector2d wrist_px(420.0 + 6 * i, 200.0 + 3 * i);
+      const auto h = detector.detect(frame(kBackgroundFrames + i, wrist_px));
+      ASSERT_TRUE(h.has_value()) << "frame " << i;
+      const auto& g = detector.lastGeometry();
+      ASSERT_TRUE(g.bareForearm) << "frame " << i;
+      back_m.push_back((g.farEnd_px - h->palm_px).norm() / s_px);
+    }
+  };
+  constexpr double kTol_m = 0.01;  // the drawn hand is flat: the walk is in the image plane to a few mm
+  std::vector<double> closed, withoutRule;
+  run(o, closed);
+  run(defaults, withoutRule);
+  for (std::size_t i = 0; i < closed.size(); ++i) {
+    std::printf("hanging hand, frame %zu: palm %.3f m from the far end (%.3f m without farEndOpenHand)\n", i,
+                closed[i], withoutRule[i]);
+    EXPECT_NEAR(closed[i], defaults.palmFromFarEnd_m, kTol_m) << "frame " << i << ": read as an open hand";
+  }
+}
+
 // A bare forearm in every frame of the recording, nearly still (swept
 // kSweep_px over the clip, as a hand holding a part while the head-mounted
 // camera looks down at it), over a table of a skin-like colour, beside a
@@ -576,7 +619,7 @@ TEST(MarkerFreeHandDetector, RejectsBadOptions) {
 // our own, by eye (palm_labels.json). The whole recording is previewed (the
 // whole-recording background and skin model), then every frame detected.
 // SRP_HAND_DEBUG_DIR=<dir> writes every frame with the found and the
-// labelled palm.
+// labelled palm; SRP_HAND_OPTIONS=name=value,... overrides detector options (HandEvaluation.h).
 
 /// `rate`: the share of labelled frames whose palm must lie within 40 px;
 /// `maxError_px`: no palm farther from the label (none on the torso).
@@ -584,7 +627,7 @@ void checkRealTask(const std::string& task, double rate, double maxError_px) {
   const auto t = testing::loadHrt1(task);
   testing::PalmTiming timing;
   const char* debugDir = std::getenv("SRP_HAND_DEBUG_DIR");
-  const auto errors = testing::palmErrors(t, {}, &timing, debugDir ? debugDir : "");
+  const auto errors = testing::palmErrors(t, testing::optionsFromEnvironment(), &timing, debugDir ? debugDir : "");
   std::printf("[ figures  ] %s: CPU preview %.1f ms/frame, first detect (background, skin model) %.0f ms, "
               "detect %.1f ms/frame over the other %zu frames\n",
               task.c_str(), timing.preview_ms_per_frame, timing.firstDetect_ms, timing.detect_ms_per_frame,

@@ -315,14 +315,17 @@ class MarkerFreeHandDetector : public HandDetector {
     /// foreground that is not skin reaching past the skin's far end by more
     /// than palmRadius_m holds a part and is closed. Else by where the hand is
     /// thickest (the distance transform's maximum in metres, each pixel at
-    /// its own depth, within maxHandLength_m of the far end in 3D): past the
-    /// middle of palmFromFarEnd_m and palmFromFingertips_m (and within
-    /// palmRadius_m beyond the latter), with the skin behind it narrower
+    /// its own depth, within maxHandLength_m of the far end in 3D) and where
+    /// it is broadest (its skin across the axis per centimetre along it, on
+    /// the hand's depth line): both past the middle of palmFromFarEnd_m and
+    /// palmFromFingertips_m (the thickest within palmRadius_m beyond the
+    /// latter), with the skin behind the thickest point narrower
     /// (maxWristToPalm), the far end is an open hand's fingertips (reaching,
     /// retracting) and the palm lies palmFromFingertips_m back from it; else
-    /// palmFromFarEnd_m. false (the default: on HRT1 task3 a real hand whose
-    /// thickest part lies 0.10 m from its far end reads open and its palm moves
-    /// 20 px off, perception README): palmFromFarEnd_m always.
+    /// palmFromFarEnd_m. The breadth keeps a hand hanging from a flexed wrist
+    /// (seen from the side, thickest where it joins the forearm, 0.10 m from
+    /// its far end, but broadest across its span 0.07 m from it) closed.
+    /// false: palmFromFarEnd_m always.
     bool farEndOpenHand = false;
     /// farEndOpenHand: the hand is open only where the skin 2-3 palmRadius_m
     /// behind its thickest point (the wrist, inside the view) is at most this

@@ -417,6 +417,8 @@ std::vector<double> breadthFromEnd(const cv::Mat& mask, const core::CameraIntrin
 
 MarkerFreeHandDetector::MarkerFreeHandDetector(const Options& options) : options_(options) {
   core::require(options.backgroundFrames >= 1, "MarkerFreeHandDetector: backgroundFrames must be >= 1");
+  core::require(options.minWorkingWidth_px == 0 || options.minWorkingWidth_px >= 64,
+                "MarkerFreeHandDetector: minWorkingWidth_px must be 0 (every frame at its own size) or >= 64 px");
   core::require(options.backgroundPercentile > 0.0 && options.backgroundPercentile <= 1.0 &&
                     options.maxBackgroundSamples >= 2,
                 "MarkerFreeHandDetector: backgroundPercentile must be in (0, 1] and maxBackgroundSamples >= 2");
@@ -464,10 +466,40 @@ MarkerFreeHandDetector::MarkerFreeHandDetector(const Options& options) : options
                 "in [0, 1]");
 }
 
-void MarkerFreeHandDetector::preview(const rawlog::RgbdFrame& frame) {
+const rawlog::RgbdFrame& MarkerFreeHandDetector::atWorkingSize(const rawlog::RgbdFrame& frame,
+                                                               rawlog::RgbdFrame& shrunk) {
+  if (shrink_ == 0) {
+    const int w = frame.depth_m.cols;
+    shrink_ = options_.minWorkingWidth_px > 0 ? std::max(1, w / options_.minWorkingWidth_px) : 1;
+  }
+  if (shrink_ == 1 || frame.depth_m.empty()) return frame;
+  const int f = shrink_, W = frame.depth_m.cols / f, H = frame.depth_m.rows / f;
+  shrunk.index = frame.index;
+  shrunk.t_s = frame.t_s;
+  shrunk.depthRegisteredOnRead = frame.depthRegisteredOnRead;
+  // Depth by each f x f block's middle pixel: no depth is made up between a hand and what lies behind it.
+  shrunk.depth_m.create(H, W, CV_32FC1);
+  for (int v = 0; v < H; ++v) {
+    const float* src = frame.depth_m.ptr<float>(v * f + f / 2);
+    float* dst = shrunk.depth_m.ptr<float>(v);
+    for (int u = 0; u < W; ++u) dst[u] = src[u * f + f / 2];
+  }
+  if (!frame.colour_bgr8.empty())
+    cv::resize(frame.colour_bgr8(cv::Rect(0, 0, W * f, H * f)), shrunk.colour_bgr8, {W, H}, 0, 0, cv::INTER_AREA);
+  else
+    shrunk.colour_bgr8.release();
+  // Pixel centres: u_full = f (u + 0.5) - 0.5.
+  const core::CameraIntrinsics& k = frame.intrinsics;
+  shrunk.intrinsics = {k.fx_px / f, k.fy_px / f, (k.cx_px + 0.5) / f - 0.5, (k.cy_px + 0.5) / f - 0.5, W, H};
+  return shrunk;
+}
+
+void MarkerFreeHandDetector::preview(const rawlog::RgbdFrame& fullFrame) {
   core::require(frameCount_ == 0,
-                "MarkerFreeHandDetector::preview: frame " + std::to_string(frame.index) +
+                "MarkerFreeHandDetector::preview: frame " + std::to_string(fullFrame.index) +
                     " previewed after detect(); preview the whole recording first");
+  rawlog::RgbdFrame shrunk;
+  const rawlog::RgbdFrame& frame = atWorkingSize(fullFrame, shrunk);
   // A frame without depth or of another size is left out here; detect()'s
   // caller reports it (DemoPerceiver::add checks every frame).
   if (frame.depth_m.empty() || frame.depth_m.type() != CV_32FC1 ||
@@ -1204,6 +1236,29 @@ cv::Mat MarkerFreeHandDetector::skinMask(const cv::Mat& colour_bgr8, bool learnt
 }
 
 std::optional<HandObservation> MarkerFreeHandDetector::detect(const rawlog::RgbdFrame& frame) {
+  rawlog::RgbdFrame shrunk;
+  const rawlog::RgbdFrame& working = atWorkingSize(frame, shrunk);
+  std::optional<HandObservation> h = detectAtWorkingSize(working);
+  if (shrink_ <= 1) return h;
+  const double f = shrink_;
+  auto full = [f](Eigen::Vector2d& p_px) { p_px = f * (p_px.array() + 0.5) - 0.5; };
+  full(geometry_.entry_px);
+  full(geometry_.wrist_px);
+  full(geometry_.farEnd_px);
+  full(geometry_.palm_px);
+  if (h) {
+    full(h->palm_px);
+    if (!lastMask_.empty()) {  // the working size's whole blocks: at most f - 1 columns/rows short of the frame
+      cv::Mat up;
+      cv::resize(lastMask_, up, {}, f, f, cv::INTER_NEAREST);
+      lastMaskFull_ = cv::Mat::zeros(frame.depth_m.size(), CV_8UC1);
+      up.copyTo(lastMaskFull_(cv::Rect(0, 0, up.cols, up.rows)));
+    }
+  }
+  return h;
+}
+
+std::optional<HandObservation> MarkerFreeHandDetector::detectAtWorkingSize(const rawlog::RgbdFrame& frame) {
   geometry_ = Geometry{};
   ++frameCount_;
   if (!previewDepth_mm_.empty()) finishPreview();

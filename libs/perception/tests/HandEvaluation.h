@@ -59,6 +59,7 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                    {"minPalmCrossSections", &o.minPalmCrossSections},
                                    {"maxWristToPalm", &o.maxWristToPalm}};
   std::map<std::string, int*> i{{"holeColourChange", &o.holeColourChange},
+                                {"minWorkingWidth_px", &o.minWorkingWidth_px},
                                 {"backgroundFillDiameter_px", &o.backgroundFillDiameter_px},
                                 {"skinMinLuma", &o.skinMinLuma},
                                 {"maxDepthLag_px", &o.maxDepthLag_px},

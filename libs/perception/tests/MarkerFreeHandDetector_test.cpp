@@ -108,6 +108,49 @@ TEST(MarkerFreeHandDetector, PalmFromTheCuffWhateverTheFingersDo) {
   EXPECT_FALSE(detector.detect(drawnFrame(30, std::nullopt)).has_value());
 }
 
+// minWorkingWidth_px: a frame three times as large as the drawn one (every pixel repeated 3 x 3, the
+// intrinsics with it) is worked on at the drawn frame's size (640 px, the largest third of 1920 px that is
+// at least 640 px wide), so the palm is the drawn frame's, mapped to
+// the large frame's pixels (u_large = 3 (u + 0.5) - 0.5), at the same 3D position; lastMask() is the
+// large frame's size and the drawn frame's mask enlarged.
+TEST(MarkerFreeHandDetector, LargeFramesAtTheWorkingWidth) {
+  auto enlarged = [](const rawlog::RgbdFrame& f) {
+    rawlog::RgbdFrame big = f;
+    cv::resize(f.colour_bgr8, big.colour_bgr8, {}, 3, 3, cv::INTER_NEAREST);
+    cv::resize(f.depth_m, big.depth_m, {}, 3, 3, cv::INTER_NEAREST);
+    const auto& k = f.intrinsics;
+    big.intrinsics = {3 * k.fx_px, 3 * k.fy_px, 3 * (k.cx_px + 0.5) - 0.5, 3 * (k.cy_px + 0.5) - 0.5,
+                      3 * k.width_px, 3 * k.height_px};
+    return big;
+  };
+  MarkerFreeHandDetector::Options o;
+  MarkerFreeHandDetector atOwnSize(o);  // 640 px: below twice minWorkingWidth_px, at its own size
+  o.minWorkingWidth_px = 640;
+  MarkerFreeHandDetector large(o);
+  for (int i = 0; i < kBackgroundFrames; ++i) {
+    EXPECT_FALSE(atOwnSize.detect(drawnFrame(i, std::nullopt)));
+    EXPECT_FALSE(large.detect(enlarged(drawnFrame(i, std::nullopt))));
+  }
+  for (int i = 0; i < 6; ++i) {
+    const ArmPose arm{{280.0 + 12 * i, 240.0 + 6 * i}, (65.0 + 6.0 * i) * M_PI / 180, 0.08 - 0.008 * i};
+    const auto small = atOwnSize.detect(drawnFrame(kBackgroundFrames + i, arm));
+    const auto h = large.detect(enlarged(drawnFrame(kBackgroundFrames + i, arm)));
+    ASSERT_TRUE(small && h) << "frame " << i;
+    const Eigen::Vector2d mapped = 3.0 * (small->palm_px.array() + 0.5) - 0.5;
+    EXPECT_LT((h->palm_px - mapped).norm(), 1e-9) << "frame " << i;
+    EXPECT_LT((h->p_camera_palm_m - small->p_camera_palm_m).norm(), 1e-12) << "frame " << i;
+    EXPECT_LT((h->palm_px - 3.0 * (arm.palm_px.array() + 0.5).matrix() + Eigen::Vector2d::Constant(0.5)).norm(),
+              3 * kPalmPixelTol_px)
+        << "frame " << i;
+    ASSERT_EQ(large.lastMask().size(), cv::Size(1920, 1440));
+    cv::Mat up;
+    cv::resize(atOwnSize.lastMask(), up, {}, 3, 3, cv::INTER_NEAREST);
+    EXPECT_EQ(cv::countNonZero(up != large.lastMask()), 0) << "frame " << i;
+    const Eigen::Vector2d entry = 3.0 * (atOwnSize.lastGeometry().entry_px.array() + 0.5) - 0.5;
+    EXPECT_LT((large.lastGeometry().entry_px - entry).norm(), 1e-9) << "frame " << i;
+  }
+}
+
 // A badge on the back of the hand that the hand's mask lacks (no depth there and the table's colour: neither
 // foreground nor skin; a glove's tag plate in srp::synth's default view): the silhouette across the palm is
 // the skin beside it, 17 mm wide on each side, which is no hand seen on its edge. The palm depth rule
@@ -594,6 +637,9 @@ TEST(MarkerFreeHandDetector, RejectsBadOptions) {
   EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
   o = {};
   o.maxPalmSpeed_mps = -1.0;
+  EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
+  o = {};
+  o.minWorkingWidth_px = 10;
   EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
   o = {};
   o.minSkinReach_m = -0.1;

@@ -220,9 +220,13 @@ TEST(ViewpointFamilies, EgocentricHeldSwayChecked) { checkHeldSway(kHeldCheckSee
 // Development family egocentric-held-sr300: the same clips (seeds 41-46, chosen on) recorded as the
 // held-out clip's sensor records them (ViewpointDemoSpec::sr300: colour 1920x1080, depth 640x480 from its
 // own camera, registered by `srp import`), scored at 640-px width.
-// Reached: 96.7 %, 10.1 mm, 0 of 393 carry frames past the part (without enterThroughStillArm,
-// movingBackgroundGap and backgroundColourFromSurface: 74.6 %, 25.3 mm, 0 past).
-TEST(ViewpointFamilies, EgocentricHeldSwaySr300ChosenOn) { checkHeldSway(kHeldChooseSeed, {0.0105, 0.96, 0}, true); }
+// Reached, worked on at 960x540 (minWorkingWidth_px): 99.2 %, 10.8 mm, 0 of 393 carry frames past the part
+// (at 1920x1080: 96.7 %, 10.0 mm, 0 past; without enterThroughStillArm, movingBackgroundGap and
+// backgroundColourFromSurface: 74.6 %, 25.3 mm, 0 past).
+TEST(ViewpointFamilies, EgocentricHeldSwaySr300ChosenOn) { checkHeldSway(kHeldChooseSeed, {0.011, 0.99, 0}, true); }
+// The same clips on the seeds checked (51-56), scored once. Reached: 89.9 %, 11.6 mm, 0 of 397 past the part
+// (at 1920x1080: 79.1 %, 11.0 mm, 34 past, all in v3).
+TEST(ViewpointFamilies, EgocentricHeldSwaySr300Checked) { checkHeldSway(kHeldCheckSeed, {0.012, 0.89, 0}, true); }
 
 }  // namespace
 }  // namespace srp::perception

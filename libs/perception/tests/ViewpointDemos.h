@@ -47,11 +47,16 @@ struct ViewpointDemoSpec {
   /// Another light than the scene's (freshLight()): its direction of travel in the world (before the
   /// seed's randomisation) and its colour (SynthDemoOptions::lightRgb).
   bool otherLight = false;
+  /// The hand dressed with sensor wires and tape (synth::HandModel::SensorWires, its default sizes and
+  /// colours: 2 mm dark wires along the back of the digits and the hand, 12 mm white tape patches on
+  /// the fingertips and the back of the hand, an 18 mm band of tape at the wrist).
+  bool sensorWires = false;
   std::string name() const {
-    char s[176];
-    std::snprintf(s, sizeof s, "%s_v%d_x%.1f_%s_%dpx_s%u%s%s%s%s%s", synth::viewpointFamilyName(family).c_str(),
+    char s[192];
+    std::snprintf(s, sizeof s, "%s_v%d_x%.1f_%s_%dpx_s%u%s%s%s%s%s%s", synth::viewpointFamilyName(family).c_str(),
                   variant, partScale, bareForearm ? "bare" : "sleeve", width_px, seed, headSway ? "_sway" : "",
-                  heldOnly.empty() ? "" : "_held-", heldOnly.c_str(), sr300 ? "_sr300" : "", otherLight ? "_light" : "");
+                  heldOnly.empty() ? "" : "_held-", heldOnly.c_str(), sr300 ? "_sr300" : "", otherLight ? "_light" : "",
+                  sensorWires ? "_wires" : "");
     return s;
   }
 };
@@ -146,6 +151,7 @@ inline std::string renderViewpointDemo(const ViewpointDemoSpec& spec, const std:
   o.demo.seed = spec.seed;
   o.demo.demonstratorSide_world = view.demonstratorSide_world;
   if (spec.bareForearm) o.hand.sleeveRgb = o.hand.skinRgb;
+  o.hand.sensorWires.enabled = spec.sensorWires;
   if (spec.sr300) {
     scene.intrinsics = sr300Colour(spec.width_px);
     o.depthCamera = sr300Depth(spec.width_px);

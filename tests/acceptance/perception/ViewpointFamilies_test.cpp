@@ -15,6 +15,8 @@
 // A sixth, development family, egocentric-held: an egocentric head-mounted camera that sways
 // (synth::HeadSway), the hand holding a part in every frame (the clip cut from grasp to release),
 // bare forearm and sleeve, parts of several sizes. Its seeds 41-46 are chosen on, 51-56 checked.
+// Its variants egocentric-held-wired and egocentric-held-sr300-wired dress the hand with sensor wires and
+// tape (ViewpointDemoSpec::sensorWires; seeds 41-46, chosen on).
 //
 // SRP_VIEW_DIR=<dir> keeps the renders there (default: rendered into the build folder and deleted once scored);
 // SRP_VIEW_FAMILY=egocentric|side|top-down|front|oblique|near-corner|table-level|egocentric-held|egocentric-held-sr300|
@@ -209,12 +211,15 @@ TEST(ViewpointFamilies, EgocentricHeldSwaySr300ChosenOn) { checkHeldSway(kHeldCh
 // Development variants egocentric-held-wired and egocentric-held-sr300-wired: the same clips (seeds 41-46,
 // chosen on) with the hand dressed as a glove-less sensor rig (ViewpointDemoSpec::sensorWires: 2 mm dark
 // wires along the back of the digits and the hand, 12 mm white tape on the fingertips and the back of
-// the hand, an 18 mm band of tape at the wrist).
-// Reached: PENDING.
-TEST(ViewpointFamilies, EgocentricHeldSwayWiredChosenOn) { checkHeldSway(kHeldChooseSeed, {1.0, 0.0, 1000}, false, true); }
-// Reached: PENDING.
+// the hand, an 18 mm band of tape at the wrist). The dressing breaks the default detector (the wires and the
+// band cut the skin into narrow pieces); skinGapClose_m=0.02 (off by default, not yet measured on every
+// development family and HRT1) closes them.
+// Reached: 72.1 %, 74.3 mm, 0 of 394 carry frames past the part (skinGapClose_m=0.02: 99.5 %, 11.2 mm, 0).
+TEST(ViewpointFamilies, EgocentricHeldSwayWiredChosenOn) { checkHeldSway(kHeldChooseSeed, {0.075, 0.72, 0}, false, true); }
+// Reached: 88.8 %, 67.9 mm, 0 of 393 carry frames past the part (skinGapClose_m=0.02: 97.7 %, 10.1 mm,
+// 1 past).
 TEST(ViewpointFamilies, EgocentricHeldSwaySr300WiredChosenOn) {
-  checkHeldSway(kHeldChooseSeed, {1.0, 0.0, 1000}, true, true);
+  checkHeldSway(kHeldChooseSeed, {0.0685, 0.88, 0}, true, true);
 }
 
 }  // namespace

@@ -36,7 +36,7 @@ struct SynthDemoArgs {
   int width = 0, height = 0, maxFrames = -1, colourNoiseBlock = -1, depthNoiseBlock = -1;
   double speed = 1.0;
   bool clean = false, noRandomise = false, motionBlur = false, json = false, overwrite = false;
-  bool headSway = false, carryOnly = false;
+  bool headSway = false, carryOnly = false, sensorWires = false;
 };
 
 namespace fs = std::filesystem;
@@ -123,6 +123,7 @@ void run(const SynthDemoArgs& a) {
   options.maxFrames = a.maxFrames;
   options.headSway.enabled = a.headSway;
   options.carryOnly = a.carryOnly;
+  options.hand.sensorWires.enabled = a.sensorWires;
   std::optional<srp::core::AtomicOutputFile> contactSheet;
   if (!a.contactSheet.empty()) {
     contactSheet.emplace(a.contactSheet);
@@ -234,6 +235,9 @@ void setupSynthDemo(CLI::App& cmd) {
   cmd.add_flag("--carry-only", args->carryOnly,
                "keep only the frames with a part in the hand, renumbered from 0: the clip starts with the hand "
                "holding the part (one continuous carry with a one-step plan)");
+  cmd.add_flag("--sensor-wires", args->sensorWires,
+               "dress the hand with a glove-less sensor rig: 2 mm dark wires along the back of the digits and the "
+               "hand, 12 mm white tape on the fingertips and the back of the hand, a band of tape at the wrist");
   cmd.add_option("--contact-sheet", args->contactSheet, "write a PNG of a few frames (colour and depth)");
   cmd.add_option("--depth-camera", args->depthCamera,
                  "JSON of a depth camera of its own ({\"intrinsics\": {fx, fy, cx, cy, width, height}, "

@@ -1570,6 +1570,7 @@ cv::Mat MarkerFreeHandDetector::handMask(const rawlog::RgbdFrame& frame, const c
         if (l[u] > 0 && onArm[l[u]] >= options_.minHandPixels) h[u] = allowed.at<uchar>(v, u) = 255;
     }
   }
+  if (options_.skinGapClose_m > 0.0) closeSkinGaps(frame, arm, hand);
   cv::morphologyEx(hand, hand, cv::MORPH_OPEN, disc(options_.openDiameter_px));
   if (cv::countNonZero(hand) < options_.minHandPixels) return cv::Mat();
   // Fill holes (a held object, a badge on the glove): the palm disc's depth
@@ -1579,6 +1580,25 @@ cv::Mat MarkerFreeHandDetector::handMask(const rawlog::RgbdFrame& frame, const c
   cv::drawContours(hand, contours, -1, cv::Scalar(255), cv::FILLED);
   hand &= allowed;
   return hand;
+}
+
+void MarkerFreeHandDetector::closeSkinGaps(const rawlog::RgbdFrame& frame, const cv::Mat& arm, cv::Mat& skin) const {
+  // The disc's diameter in pixels at the arm's median valid depth (every 4th pixel).
+  std::vector<float> z;
+  for (int v = 0; v < arm.rows; v += 4) {
+    const uchar* a = arm.ptr<uchar>(v);
+    const float* d = frame.depth_m.ptr<float>(v);
+    for (int u = 0; u < arm.cols; u += 4)
+      if (a[u] && d[u] > 0.f) z.push_back(d[u]);
+  }
+  if (z.empty()) return;
+  std::nth_element(z.begin(), z.begin() + static_cast<long>(z.size() / 2), z.end());
+  const int diameter_px =
+      static_cast<int>(std::lround(options_.skinGapClose_m * frame.intrinsics.fx_px / z[z.size() / 2]));
+  if (diameter_px < 2) return;
+  cv::Mat closed;
+  cv::morphologyEx(skin, closed, cv::MORPH_CLOSE, disc(diameter_px | 1));
+  skin = closed & arm;  // closed across a wire or a patch on the arm, not past the arm's outline
 }
 
 cv::Mat MarkerFreeHandDetector::sleeveMask(const cv::Mat& arm, const cv::Mat& hand) const {

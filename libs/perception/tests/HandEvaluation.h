@@ -57,7 +57,8 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                    {"palmHalfWidth_m", &o.palmHalfWidth_m},
                                    {"palmDepth_m", &o.palmDepth_m},
                                    {"minPalmCrossSections", &o.minPalmCrossSections},
-                                   {"maxWristToPalm", &o.maxWristToPalm}};
+                                   {"maxWristToPalm", &o.maxWristToPalm},
+                                   {"skinGapClose_m", &o.skinGapClose_m}};
   std::map<std::string, int*> i{{"holeColourChange", &o.holeColourChange},
                                 {"minWorkingWidth_px", &o.minWorkingWidth_px},
                                 {"backgroundFillDiameter_px", &o.backgroundFillDiameter_px},

@@ -4,11 +4,12 @@
 // and the robustness harness: label-preserving perturbations a new recording
 // of the same kind plausibly brings (light, white balance, compression, sensor
 // noise, depth noise and holes, the other intrinsics, a tilted camera, a
-// mirrored scene, half the frame rate). Shared by MarkerFreeHandDetector_test
+// mirrored scene, half the frame rate, sensor wires and tape on the hand). Shared by MarkerFreeHandDetector_test
 // and MarkerFreeHandRobustness_test.
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -294,6 +295,72 @@ inline void halfRate(Hrt1Task& t, int first) {
   t.frames = std::move(kept);
 }
 
+/// A glove-less hand-pose sensor rig drawn on the hand (label-preserving; depth untouched: wires this
+/// thin are below the depth camera's resolution and tape lies flat on the skin). One rig per recording
+/// (seeded by `seed`), placed about each frame's palm label in image axes: `wires` dark curves 2 px wide
+/// (2-3.5 mm at HRT1's ~1 m), quadratic curves from near the palm outwards over 45-75 px (the back of
+/// the hand and the fingers), and `patches` light squares of 5-9 px (8-15 mm) within 60 px of the
+/// palm. Drawn only on the labelled hand: pixels within `radius_px` of the palm label that are of skin
+/// colour (the detector's prior box) and whose depth lies within 0.1 m of the hand's (the median
+/// depth within 15 px of the label), so never on the table, the part or the background. Frames
+/// without a label (no hand in view) are left as they are.
+inline void wiresAndTape(Hrt1Task& t, std::uint64_t seed, int wires = 5, int patches = 6, double radius_px = 75.0) {
+  cv::RNG rng(seed);
+  struct Curve {
+    cv::Point2d p0, p1, p2;
+  };
+  std::vector<Curve> curves;
+  for (int i = 0; i < wires; ++i) {
+    const double a = rng.uniform(0.0, 2.0 * M_PI), len = rng.uniform(45.0, 75.0), bend = rng.uniform(-15.0, 15.0);
+    const cv::Point2d dir(std::cos(a), std::sin(a)), across(-dir.y, dir.x);
+    const cv::Point2d p0(rng.uniform(-10.0, 10.0), rng.uniform(-10.0, 10.0));
+    curves.push_back({p0, p0 + 0.5 * len * dir + bend * across, p0 + len * dir});
+  }
+  std::vector<cv::Rect2d> squares;
+  for (int i = 0; i < patches; ++i) {
+    const double side = rng.uniform(5.0, 9.0), r = rng.uniform(0.0, 60.0), a = rng.uniform(0.0, 2.0 * M_PI);
+    squares.emplace_back(r * std::cos(a) - 0.5 * side, r * std::sin(a) - 0.5 * side, side, side);
+  }
+  const MarkerFreeHandDetector::Options prior;
+  for (auto& f : t.frames) {
+    const auto it = t.label_px.find(f.index);
+    if (it == t.label_px.end()) continue;
+    const cv::Point2d c(it->second.x(), it->second.y());
+    // The hand's depth: the median valid depth within 15 px of the palm label.
+    std::vector<float> z;
+    for (int v = std::max(0, static_cast<int>(c.y) - 15); v <= std::min(f.depth_m.rows - 1, static_cast<int>(c.y) + 15); ++v)
+      for (int u = std::max(0, static_cast<int>(c.x) - 15); u <= std::min(f.depth_m.cols - 1, static_cast<int>(c.x) + 15); ++u)
+        if (f.depth_m.at<float>(v, u) > 0.f) z.push_back(f.depth_m.at<float>(v, u));
+    cv::Mat ycrcb, region;
+    cv::cvtColor(f.colour_bgr8, ycrcb, cv::COLOR_BGR2YCrCb);
+    cv::inRange(ycrcb, cv::Scalar(prior.skinMinLuma, prior.skinPriorCrMin, prior.skinPriorCbMin),
+                cv::Scalar(255, prior.skinPriorCrMax, prior.skinPriorCbMax), region);
+    cv::Mat disc(region.size(), CV_8UC1, cv::Scalar(0));
+    cv::circle(disc, c, static_cast<int>(radius_px), cv::Scalar(255), cv::FILLED);
+    region &= disc;
+    if (!z.empty()) {
+      std::nth_element(z.begin(), z.begin() + static_cast<long>(z.size() / 2), z.end());
+      const float zHand = z[z.size() / 2];
+      // A pixel without depth next to the hand may still be hand (its depth holes): kept.
+      region &= (f.depth_m <= 0.f) | ((f.depth_m > zHand - 0.1f) & (f.depth_m < zHand + 0.1f));
+    }
+    cv::Mat drawn = f.colour_bgr8.clone();
+    for (const auto& s : squares)
+      cv::rectangle(drawn, cv::Rect(cv::Point(cvRound(c.x + s.x), cvRound(c.y + s.y)), cv::Size(cvRound(s.width), cvRound(s.height))),
+                    cv::Scalar(222, 228, 230), cv::FILLED);
+    for (const auto& k : curves) {
+      std::vector<cv::Point> pts;
+      for (int j = 0; j <= 16; ++j) {
+        const double u = j / 16.0;
+        const cv::Point2d p = (1 - u) * (1 - u) * k.p0 + 2 * u * (1 - u) * k.p1 + u * u * k.p2;
+        pts.emplace_back(cvRound(c.x + p.x), cvRound(c.y + p.y));
+      }
+      cv::polylines(drawn, pts, false, cv::Scalar(28, 26, 26), 2);
+    }
+    drawn.copyTo(f.colour_bgr8, region);
+  }
+}
+
 /// The perturbation set (names as in the README's table).
 inline std::vector<Perturbation> hrt1Perturbations() {
   std::vector<Perturbation> p;
@@ -336,6 +403,8 @@ inline std::vector<Perturbation> hrt1Perturbations() {
   p.push_back({"mirrored", [](Hrt1Task& t) { mirror(t); }});
   p.push_back({"5 Hz (even frames)", [](Hrt1Task& t) { halfRate(t, 0); }});
   p.push_back({"5 Hz (odd frames)", [](Hrt1Task& t) { halfRate(t, 1); }});
+  // A sensor rig on the skin (the dressing of srp::synth's HandModel::SensorWires, drawn): a check, not a criterion.
+  p.push_back({"wires and tape (drawn)", [](Hrt1Task& t) { wiresAndTape(t, 4001); }});
   return p;
 }
 

@@ -47,14 +47,19 @@ struct ViewpointDemoSpec {
   /// The scene's own light, or another lamp (WarmLight, ColdLight): its direction of travel in the world
   /// (before the seed's randomisation) and its colour (SynthDemoOptions::lightRgb).
   enum class Light { Scene, Warm, Cold } light = Light::Scene;
+  /// The hand dressed with sensor wires and tape (synth::HandModel::SensorWires, its default sizes and
+  /// colours: 2 mm dark wires along the back of the digits and the hand, 12 mm white tape patches on
+  /// the fingertips and the back of the hand, an 18 mm band of tape at the wrist).
+  bool sensorWires = false;
   std::string name() const {
-    char s[176];
-    std::snprintf(s, sizeof s, "%s_v%d_x%.1f_%s_%dpx_s%u%s%s%s%s%s", synth::viewpointFamilyName(family).c_str(),
+    char s[192];
+    std::snprintf(s, sizeof s, "%s_v%d_x%.1f_%s_%dpx_s%u%s%s%s%s%s%s", synth::viewpointFamilyName(family).c_str(),
                   variant, partScale, bareForearm ? "bare" : "sleeve", width_px, seed, headSway ? "_sway" : "",
                   heldOnly.empty() ? "" : "_held-", heldOnly.c_str(), sr300 ? "_sr300" : "",
                   light == Light::Warm   ? "_light"
                   : light == Light::Cold ? "_coldlight"
-                                         : "");
+                                         : "",
+                  sensorWires ? "_wires" : "");
     return s;
   }
 };
@@ -161,6 +166,7 @@ inline std::string renderViewpointDemo(const ViewpointDemoSpec& spec, const std:
   o.demo.seed = spec.seed;
   o.demo.demonstratorSide_world = view.demonstratorSide_world;
   if (spec.bareForearm) o.hand.sleeveRgb = o.hand.skinRgb;
+  o.hand.sensorWires.enabled = spec.sensorWires;
   if (spec.sr300) {
     scene.intrinsics = sr300Colour(spec.width_px);
     o.depthCamera = sr300Depth(spec.width_px);

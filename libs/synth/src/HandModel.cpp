@@ -3,6 +3,7 @@
 #include <apriltag/apriltag.h>
 #include <apriltag/tag36h11.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 
@@ -22,7 +23,7 @@ constexpr std::array<FingerSpec, 4> kFingers = {{{0.030, 0.045, 0.034},    // in
                                                  {0.010, 0.050, 0.036},    // middle
                                                  {-0.010, 0.047, 0.034},   // ring
                                                  {-0.030, 0.038, 0.028}}};  // little
-constexpr double kPalmHalfLength_m = 0.045, kPalmHalfWidth_m = 0.042, kPalmHalfThickness_m = 0.0115;  // 2 mm below the tag plate (no depth fighting)
+constexpr double kPalmHalfLength_m = 0.045, kPalmHalfWidth_m = 0.042, kPalmHalfThickness_m = HandModel::kPalmBackHeight_m;  // 2 mm below the tag plate (no depth fighting)
 constexpr double kForearmPitch_rad = 15.0 * kDeg;  // forearm rises towards the elbow
 
 srp::core::Pose3 translation(double x, double y, double z) {
@@ -49,6 +50,44 @@ HandPart boxPart(const std::string& name, const Eigen::Vector3d& lo, const Eigen
   p.triangleRgb.assign(p.mesh_part.size(), rgb);
   p.bounds_part = p.mesh_part.bounds();
   return p;
+}
+
+// A block [0, |to - from|] x [-width/2, width/2] x [z0, z0 + height] along `from` -> `to` in the
+// part's xy plane, in one colour: a piece of wire or a patch of tape on a part's face.
+void addBlock(HandPart& part, const Eigen::Vector2d& from, const Eigen::Vector2d& to, double width, double z0,
+              double height, const Eigen::Vector3d& rgb) {
+  const Eigen::Vector2d d = to - from;
+  const double length = d.norm();
+  if (length <= 0.0) return;
+  const srp::kb::TriangleMesh block =
+      srp::kb::makeBoxMesh({0.0, -0.5 * width, z0}, {length, 0.5 * width, z0 + height})
+          .transformed(translation(from.x(), from.y(), 0.0) * rotZ(std::atan2(d.y(), d.x())));
+  part.mesh_part.append(block);
+  part.triangleRgb.insert(part.triangleRgb.end(), block.size(), rgb);
+}
+
+// A wire along a polyline on a face at height `back` of the part, in pieces of at most 4 mm; pieces
+// whose middle lies inside `hidden` (the tag plate's footprint) are left out (the wire runs under it).
+void addWire(HandPart& part, const std::vector<Eigen::Vector2d>& path, double back,
+             const HandModel::SensorWires& w, const Eigen::AlignedBox2d& hidden = Eigen::AlignedBox2d()) {
+  constexpr double kPiece_m = 0.004, kEmbed_m = 1e-4;  // sunk a little into the skin: no gap at an edge
+  for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+    const int n = std::max(1, static_cast<int>(std::ceil((path[i + 1] - path[i]).norm() / kPiece_m)));
+    for (int k = 0; k < n; ++k) {
+      const Eigen::Vector2d a = path[i] + (path[i + 1] - path[i]) * (static_cast<double>(k) / n);
+      const Eigen::Vector2d b = path[i] + (path[i + 1] - path[i]) * (static_cast<double>(k + 1) / n);
+      if (!hidden.isEmpty() && hidden.contains(0.5 * (a + b))) continue;
+      addBlock(part, a, b, w.wireDiameter_m, back - kEmbed_m, w.wireDiameter_m + kEmbed_m, w.wireRgb);
+    }
+  }
+}
+
+// A square tape patch centred at `centre` on a face at height `back`, at most `maxWidth` across x.
+void addTape(HandPart& part, const Eigen::Vector2d& centre, double back, double maxWidth,
+             const HandModel::SensorWires& w) {
+  const double half = 0.5 * w.tapeSize_m;
+  addBlock(part, centre - Eigen::Vector2d(half, 0.0), centre + Eigen::Vector2d(half, 0.0),
+           std::min(w.tapeSize_m, maxWidth), back - 1e-4, w.tapeThickness_m + 1e-4, w.tapeRgb);
 }
 
 std::vector<std::vector<bool>> tag36h11Cells(int id) {
@@ -111,6 +150,70 @@ HandModel::HandModel(const HandModel::Options& options) : options_(options) {
     }
   tag.bounds_part = tag.mesh_part.bounds();
   parts_.push_back(tag);
+  if (options.sensorWires.enabled) dressWithSensorWires();
+}
+
+void HandModel::dressWithSensorWires() {
+  const SensorWires& w = options_.sensorWires;
+  srp::core::require(w.wireDiameter_m > 0.0 && w.wireDiameter_m <= 0.004,
+                     "HandModel: sensorWires.wireDiameter_m must be in (0, 0.004] m");
+  srp::core::require(w.tapeSize_m > 0.0 && w.tapeSize_m <= 0.016,
+                     "HandModel: sensorWires.tapeSize_m must be in (0, 0.016] m to fit on a finger segment");
+  srp::core::require(w.tapeThickness_m > 0.0 && w.tapeThickness_m <= 0.003,
+                     "HandModel: sensorWires.tapeThickness_m must be in (0, 0.003] m");
+  srp::core::require(w.wristBandWidth_m >= 0.0 && w.wristBandWidth_m <= 0.05,
+                     "HandModel: sensorWires.wristBandWidth_m must be in [0, 0.05] m");
+  auto part = [&](const std::string& name) -> HandPart& {
+    for (auto& p : parts_)
+      if (p.name == name) return p;
+    throw srp::core::InvalidInputError("HandModel: no part '" + name + "'");
+  };
+  // One digit: a wire along the back of both segments (boxes from x = -start to the length, back
+  // face at half the thickness), the sensor's tape near the tip of the distal one.
+  struct Digit {
+    std::string name;
+    double proximalStart_m, proximal_m, proximalBack_m, distalStart_m, distal_m, distalBack_m, distalWidth_m;
+  };
+  std::vector<Digit> digits;
+  for (std::size_t i = 0; i < kFingers.size(); ++i)
+    digits.push_back({"finger" + std::to_string(i), 0.004, kFingers[i].proximal_m, 0.0075, 0.003,
+                      kFingers[i].distal_m, 0.007, 0.016});
+  digits.push_back({"thumb", 0.005, 0.042, 0.009, 0.003, 0.032, 0.008, 0.018});
+  for (const auto& d : digits) {
+    addWire(part(d.name + "_proximal"), {{-d.proximalStart_m, 0.0}, {d.proximal_m, 0.0}}, d.proximalBack_m, w);
+    HandPart& distal = part(d.name + "_distal");
+    const double tapeCentre_m = d.distal_m - 0.002 - 0.5 * w.tapeSize_m;  // its far edge 2 mm from the tip
+    addWire(distal, {{-d.distalStart_m, 0.0}, {tapeCentre_m - 0.5 * w.tapeSize_m, 0.0}}, d.distalBack_m, w);
+    addTape(distal, {tapeCentre_m, 0.0}, d.distalBack_m, d.distalWidth_m, w);
+  }
+  // The back of the hand: the five wires from the knuckles and the thumb's base converge on the
+  // wrist end of the palm; a sixth sensor between the plate and the ring and little knuckles, its
+  // wire down the little-finger edge. Pieces under the tag plate are left out.
+  HandPart& palm = part("palm");
+  const double plate = tagPlateHalfSize_m();
+  const Eigen::AlignedBox2d underPlate(Eigen::Vector2d(-plate, -plate), Eigen::Vector2d(plate, plate));
+  const double end = -kPalmHalfLength_m;
+  constexpr std::array<double, 4> kWristY_m = {0.009, 0.003, -0.003, -0.009};
+  for (std::size_t i = 0; i < kFingers.size(); ++i)
+    addWire(palm, {{kPalmHalfLength_m, kFingers[i].y_m}, {end, kWristY_m[i]}}, kPalmBackHeight_m, w, underPlate);
+  addWire(palm, {{0.0, kPalmHalfWidth_m - 0.002}, {end, 0.015}}, kPalmBackHeight_m, w, underPlate);
+  const Eigen::Vector2d sensor(0.5 * (plate + kPalmHalfLength_m), -0.020);
+  addTape(palm, sensor, kPalmBackHeight_m, w.tapeSize_m, w);
+  const double edgeY_m = -(kPalmHalfWidth_m - 0.004);
+  addWire(palm,
+          {sensor - Eigen::Vector2d(0.0, 0.5 * w.tapeSize_m), {sensor.x() - 0.004, edgeY_m}, {end + 0.006, edgeY_m},
+           {end, -0.015}},
+          kPalmBackHeight_m, w, underPlate);
+  // The band round the wrist right behind the palm (the wrist's box starts at x = -0.012 in its frame).
+  if (w.wristBandWidth_m > 0.0) {
+    HandPart& wrist = part("wrist");
+    const double t = w.tapeThickness_m;
+    const srp::kb::TriangleMesh band =
+        srp::kb::makeBoxMesh({-0.013 - w.wristBandWidth_m, -0.031 - t, -0.018 - t}, {-0.013, 0.031 + t, 0.018 + t});
+    wrist.mesh_part.append(band);
+    wrist.triangleRgb.insert(wrist.triangleRgb.end(), band.size(), w.tapeRgb);
+  }
+  for (auto& p : parts_) p.bounds_part = p.mesh_part.bounds();
 }
 
 std::vector<srp::core::Pose3> HandModel::partPoses(double grip) const {

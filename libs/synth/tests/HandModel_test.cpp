@@ -27,7 +27,7 @@ struct HandScene {
   srp::synth::HandModel hand;
   srp::synth::SceneRenderer renderer{scene.intrinsics};
   std::vector<int> bodies;
-  HandScene() {
+  explicit HandScene(const srp::synth::HandModel::Options& options = {}) : hand(options) {
     renderer.setLighting(scene.lighting);
     renderer.addBody("table", srp::kb::makeBoxMesh({-0.8, -0.6, -0.02}, {0.8, 0.6, 0.0}), {0.76, 0.7, 0.6});
     for (const auto& p : hand.parts()) bodies.push_back(renderer.addBody(p.name, p.mesh_part, p.triangleRgb));
@@ -163,6 +163,139 @@ TEST(HandModel, NoPartRisesOverTheTagPlateAtAnyGrip) {
       }
     }
   }
+}
+
+}  // namespace
+
+namespace {
+
+using srp::synth::HandModel;
+
+HandModel::Options wiredOptions() {
+  HandModel::Options o;
+  o.sensorWires.enabled = true;
+  return o;
+}
+
+bool sameRgb(const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return (a - b).cwiseAbs().maxCoeff() < 1e-12; }
+
+// The dressing only appends triangles to the parts' meshes, in the wire's or the tape's colour: the
+// clean hand's triangles come first, unchanged. Wires lie on both segments of every digit and on the
+// back of the hand; tape on every distal segment (the sensors), the back of the hand and round the
+// wrist. Off (whatever its sizes), the hand is the clean one, triangle for triangle.
+TEST(HandModel, SensorWiresAddWireAndTapeTrianglesInTheirColours) {
+  const HandModel clean, dressed(wiredOptions());
+  const auto& w = dressed.options().sensorWires;
+  ASSERT_EQ(clean.parts().size(), dressed.parts().size());
+  for (std::size_t i = 0; i < clean.parts().size(); ++i) {
+    const auto& c = clean.parts()[i];
+    const auto& d = dressed.parts()[i];
+    ASSERT_EQ(c.name, d.name);
+    ASSERT_EQ(d.mesh_part.size(), d.triangleRgb.size()) << d.name;
+    ASSERT_GE(d.mesh_part.size(), c.mesh_part.size()) << d.name;
+    for (std::size_t t = 0; t < c.mesh_part.size(); ++t) {
+      EXPECT_EQ(c.mesh_part.triangles()[t], d.mesh_part.triangles()[t]) << d.name << " triangle " << t;
+      EXPECT_TRUE(sameRgb(c.triangleRgb[t], d.triangleRgb[t])) << d.name << " triangle " << t;
+    }
+    int wire = 0, tape = 0;
+    for (std::size_t t = c.mesh_part.size(); t < d.mesh_part.size(); ++t) {
+      wire += sameRgb(d.triangleRgb[t], w.wireRgb);
+      tape += sameRgb(d.triangleRgb[t], w.tapeRgb);
+    }
+    EXPECT_EQ(wire + tape, static_cast<int>(d.mesh_part.size() - c.mesh_part.size())) << d.name << ": other colours";
+    const bool digit = d.name.find("finger") == 0 || d.name.find("thumb") == 0;
+    const bool distal = d.name.find("distal") != std::string::npos;
+    EXPECT_EQ(wire > 0, digit || d.name == "palm") << d.name << ": " << wire << " wire triangles";
+    EXPECT_EQ(tape > 0, distal || d.name == "palm" || d.name == "wrist") << d.name << ": " << tape << " tape triangles";
+    std::cout << "[measured] " << d.name << ": " << wire << " wire and " << tape << " tape triangles\n";
+  }
+  // Off, whatever the sizes: the clean hand.
+  HandModel::Options off;
+  off.sensorWires.wireDiameter_m = 0.003;
+  off.sensorWires.wristBandWidth_m = 0.03;
+  const HandModel offHand(off);
+  for (std::size_t i = 0; i < clean.parts().size(); ++i) {
+    EXPECT_EQ(offHand.parts()[i].mesh_part.triangles(), clean.parts()[i].mesh_part.triangles());
+    EXPECT_EQ(offHand.parts()[i].triangleRgb, clean.parts()[i].triangleRgb);
+  }
+  HandModel::Options bad = wiredOptions();
+  bad.sensorWires.tapeSize_m = 0.02;  // wider than a finger
+  EXPECT_THROW(HandModel{bad}, srp::core::InvalidInputError);
+}
+
+// Rendered (colour and depth) over the table as the demo camera sees the back of the hand: the top
+// of each wire piece on the back of the digits and the hand, where it is in view, is a dark pixel
+// at the wire's depth, with skin 4 mm to either side; the clean hand shows skin there. Each sensor's
+// tape on a fingertip is a light, neutral pixel. (3 mm wires: 2-3 px in the default camera.)
+TEST(HandModel, RenderedSensorWiresLieWhereTheModelPutsThem) {
+  constexpr int kWireMaxGrey = 60, kSkinMinGrey = 90, kTapeMinGrey = 170, kTapeMaxRedMinusBlue = 25;
+  constexpr double kWireDepthTol_m = 0.002;  // the renderer's depth against the wire's top
+  constexpr double kMinDarkShare = 0.9;      // of the wire pieces in view (an edge pixel may be mixed)
+  HandModel::Options o = wiredOptions();
+  o.sensorWires.wireDiameter_m = 0.003;
+  HandScene dressed(o), clean;
+  const srp::core::Pose3 X_world_hand = srp::core::makePoseYPR({0.02, 0.15, 0.18}, -1.7, 0.14, 0.0);
+  constexpr double kGrip = 0.3;
+  const auto frame = dressed.render(X_world_hand, kGrip), cleanFrame = clean.render(X_world_hand, kGrip);
+  const auto poses = dressed.hand.partPoses(kGrip);
+  const srp::core::Pose3 X_camera_world = dressed.scene.X_world_camera.inverse();
+  cv::Mat grey, cleanGrey;
+  cv::cvtColor(frame.colour_bgr8, grey, cv::COLOR_BGR2GRAY);
+  cv::cvtColor(cleanFrame.colour_bgr8, cleanGrey, cv::COLOR_BGR2GRAY);
+  const auto& w = o.sensorWires;
+  int inView = 0, dark = 0, cleanDark = 0, skinBeside = 0, tapes = 0, lightTapes = 0;
+  for (std::size_t i = 0; i < dressed.hand.parts().size(); ++i) {
+    const auto& part = dressed.hand.parts()[i];
+    const std::size_t first = clean.hand.parts()[i].mesh_part.size();
+    const srp::core::Pose3 X_camera_part = X_camera_world * X_world_hand * poses[i];
+    // The dressing is boxes (makeBoxMesh): each one's top face's centre and extent from its vertices.
+    const std::size_t kBox = srp::kb::makeBoxMesh({0, 0, 0}, {1, 1, 1}).size();
+    for (std::size_t t = first; t + kBox <= part.mesh_part.size(); t += kBox) {
+      Eigen::AlignedBox3d box;
+      for (std::size_t k = t; k < t + kBox; ++k)
+        for (const auto& v : part.mesh_part.triangles()[k]) box.extend(v);
+      const Eigen::Vector3d top(box.center().x(), box.center().y(), box.max().z());
+      const bool isWire = sameRgb(part.triangleRgb[t], w.wireRgb);
+      if (!isWire && part.name.find("distal") == std::string::npos) continue;  // tape: the fingertip sensors
+      const Eigen::Vector3d p_camera = X_camera_part * top;
+      const auto px = dressed.scene.intrinsics.project(p_camera);
+      if (!px) continue;
+      const int u = static_cast<int>(std::lround(px->x())), v = static_cast<int>(std::lround(px->y()));
+      if (u < 1 || v < 1 || u >= grey.cols - 1 || v >= grey.rows - 1) continue;
+      // In view: the rendered surface there is this box's top (nothing nearer hides it).
+      const float z = frame.depth_m.at<float>(v, u);
+      if (!(z > 0.f) || std::abs(z - p_camera.z()) > kWireDepthTol_m) continue;
+      if (!isWire) {
+        ++tapes;
+        const cv::Vec3b bgr = frame.colour_bgr8.at<cv::Vec3b>(v, u);
+        lightTapes += grey.at<uchar>(v, u) >= kTapeMinGrey && std::abs(bgr[2] - bgr[0]) <= kTapeMaxRedMinusBlue;
+        continue;
+      }
+      ++inView;
+      dark += grey.at<uchar>(v, u) <= kWireMaxGrey;
+      cleanDark += cleanGrey.at<uchar>(v, u) <= kWireMaxGrey;
+      // Skin 4 mm beside the wire, across its run (the box's shorter side in the part's plane).
+      const Eigen::Vector3d across = box.sizes().x() < box.sizes().y() ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+      int skin = 0;
+      for (double sgn : {-1.0, 1.0}) {
+        const auto q = dressed.scene.intrinsics.project(X_camera_part * (top + sgn * (0.5 * w.wireDiameter_m + 0.004) * across -
+                                                                         Eigen::Vector3d(0, 0, w.wireDiameter_m)));
+        if (!q) continue;
+        const int qu = static_cast<int>(std::lround(q->x())), qv = static_cast<int>(std::lround(q->y()));
+        if (qu >= 0 && qv >= 0 && qu < grey.cols && qv < grey.rows && grey.at<uchar>(qv, qu) >= kSkinMinGrey) ++skin;
+      }
+      skinBeside += skin > 0;
+    }
+  }
+  std::cout << "[measured] wire pieces in view " << inView << ", dark " << dark << " (clean hand: " << cleanDark
+            << "), skin beside " << skinBeside << "; fingertip tapes in view " << tapes << ", light " << lightTapes
+            << "\n";
+  ASSERT_GE(inView, 20);  // the digits' and the hand's wires, seen from above
+  EXPECT_GE(dark, kMinDarkShare * inView);
+  EXPECT_LE(cleanDark, 0.05 * inView);
+  EXPECT_GE(skinBeside, kMinDarkShare * inView);
+  ASSERT_GE(tapes, 3);
+  EXPECT_EQ(lightTapes, tapes);
 }
 
 }  // namespace

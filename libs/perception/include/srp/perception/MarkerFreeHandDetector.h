@@ -416,6 +416,10 @@ class MarkerFreeHandDetector : public HandDetector {
     /// background before it moves, and a shaded side of it may be of skin
     /// colour [0..1].
     double minIslandSkinFraction = 0.5;
+    /// The arm's skin is closed (a morphological closing, a disc of this diameter at the arm's median
+    /// depth) inside the arm before it is opened and its holes filled: thin things worn on the skin
+    /// (a sensor rig's wires, tape) cut it into pieces and notch its outline where they reach it. 0: off [m].
+    double skinGapClose_m = 0.0;
 
     // ---- gates and strides (were literals; defaults keep the old output) ----
     /// A pixel within this many pixels of the edge of the depth's field of
@@ -640,6 +644,8 @@ class MarkerFreeHandDetector : public HandDetector {
   cv::Mat foregroundMask(const rawlog::RgbdFrame& frame) const;
   /// The hand: skin part of the arm, opened, holes filled; empty when too small.
   cv::Mat handMask(const rawlog::RgbdFrame& frame, const cv::Mat& arm) const;
+  /// skinGapClose_m: closes `skin` (the arm's skin, CV_8UC1) across narrow gaps inside `arm`.
+  void closeSkinGaps(const rawlog::RgbdFrame& frame, const cv::Mat& arm, cv::Mat& skin) const;
   /// The non-skin part of the arm that reaches the border (empty mask: none).
   cv::Mat sleeveMask(const cv::Mat& arm, const cv::Mat& hand) const;
   /// Bare forearm: the largest skin component, when longer than a hand (or

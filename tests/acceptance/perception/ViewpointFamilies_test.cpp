@@ -239,10 +239,10 @@ TEST(ViewpointFamilies, EgocentricHeldSwaySr300Checked) { checkHeldSway(kHeldChe
 // development family and HRT1) closes them.
 // Reached: 72.1 %, 74.3 mm, 0 of 394 carry frames past the part (skinGapClose_m=0.02: 99.5 %, 11.2 mm, 0).
 TEST(ViewpointFamilies, EgocentricHeldSwayWiredChosenOn) { checkHeldSway(kHeldChooseSeed, {0.075, 0.72, 0}, false, true); }
-// Reached: 88.8 %, 67.9 mm, 0 of 393 carry frames past the part (skinGapClose_m=0.02: 97.7 %, 10.1 mm,
-// 1 past).
+// Reached, worked on at 960x540: 84.0 %, 67.4 mm, 0 of 393 carry frames past the part (at 1920x1080: 88.8 %,
+// 67.9 mm; with skinGapClose_m=0.02 at 1920x1080: 97.7 %, 10.1 mm, 1 past).
 TEST(ViewpointFamilies, EgocentricHeldSwaySr300WiredChosenOn) {
-  checkHeldSway(kHeldChooseSeed, {0.0685, 0.88, 0}, true, true);
+  checkHeldSway(kHeldChooseSeed, {0.068, 0.83, 0}, true, true);
 }
 
 }  // namespace

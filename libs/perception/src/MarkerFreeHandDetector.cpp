@@ -116,6 +116,13 @@ inline Eigen::Vector3d pixelToCamera(const core::CameraIntrinsics& k, double u_p
   return {(u_px - k.cx_px) * z_m / k.fx_px, (v_px - k.cy_px) * z_m / k.fy_px, z_m};
 }
 
+/// The intrinsics of an image shrunk `factor` times (`width_px` x `height_px`), pixel centres kept:
+/// u = factor (u_shrunk + 0.5) - 0.5.
+core::CameraIntrinsics shrunkIntrinsics(const core::CameraIntrinsics& k, int factor, int width_px, int height_px) {
+  const double f = factor;
+  return {k.fx_px / f, k.fy_px / f, (k.cx_px + 0.5) / f - 0.5, (k.cy_px + 0.5) / f - 0.5, width_px, height_px};
+}
+
 /// `view` shrunk by `margin_px` on every side: the pixels a region may hold without being cut by its edge.
 cv::Rect inset(const cv::Rect& view, int margin_px) {
   return {view.x + margin_px, view.y + margin_px, view.width - 2 * margin_px, view.height - 2 * margin_px};
@@ -488,9 +495,7 @@ const rawlog::RgbdFrame& MarkerFreeHandDetector::atWorkingSize(const rawlog::Rgb
     cv::resize(frame.colour_bgr8(cv::Rect(0, 0, W * f, H * f)), shrunk.colour_bgr8, {W, H}, 0, 0, cv::INTER_AREA);
   else
     shrunk.colour_bgr8.release();
-  // Pixel centres: u_full = f (u + 0.5) - 0.5.
-  const core::CameraIntrinsics& k = frame.intrinsics;
-  shrunk.intrinsics = {k.fx_px / f, k.fy_px / f, (k.cx_px + 0.5) / f - 0.5, (k.cy_px + 0.5) / f - 0.5, W, H};
+  shrunk.intrinsics = shrunkIntrinsics(frame.intrinsics, f, W, H);
   return shrunk;
 }
 
@@ -672,14 +677,8 @@ void MarkerFreeHandDetector::movingBackgroundFromPreview() {
     // The support plane in the first camera (half size: plenty of points).
     cv::Mat half_m;
     cv::resize(canvasDepth_m_, half_m, {}, 0.5, 0.5, cv::INTER_NEAREST);
-    core::CameraIntrinsics kh = canvasIntrinsics_;
-    kh.fx_px *= 0.5;
-    kh.fy_px *= 0.5;
-    kh.cx_px = (kh.cx_px + 0.5) * 0.5 - 0.5;
-    kh.cy_px = (kh.cy_px + 0.5) * 0.5 - 0.5;
-    kh.width_px = half_m.cols;
-    kh.height_px = half_m.rows;
-    canvasPlane_ = fitSupportPlane(depthToCloud(half_m, CameraModel(kh)));
+    const CameraModel halfCamera(shrunkIntrinsics(canvasIntrinsics_, 2, half_m.cols, half_m.rows));
+    canvasPlane_ = fitSupportPlane(depthToCloud(half_m, halfCamera));
   }
   if (options_.backgroundColourFromSurface && !previewColour_.empty()) {
     // The colour of the samples that show the background's surface there (within minForeground_m of its

@@ -1582,22 +1582,17 @@ cv::Mat MarkerFreeHandDetector::handMask(const rawlog::RgbdFrame& frame, const c
 }
 
 void MarkerFreeHandDetector::closeSkinGaps(const rawlog::RgbdFrame& frame, const cv::Mat& arm, cv::Mat& skin) const {
-  // The disc's diameter in pixels at the arm's median valid depth (every 4th pixel).
-  std::vector<float> z;
-  for (int v = 0; v < arm.rows; v += 4) {
-    const uchar* a = arm.ptr<uchar>(v);
-    const float* d = frame.depth_m.ptr<float>(v);
-    for (int u = 0; u < arm.cols; u += 4)
-      if (a[u] && d[u] > 0.f) z.push_back(d[u]);
-  }
-  if (z.empty()) return;
-  std::nth_element(z.begin(), z.begin() + static_cast<long>(z.size() / 2), z.end());
-  const int diameter_px =
-      static_cast<int>(std::lround(options_.skinGapClose_m * frame.intrinsics.fx_px / z[z.size() / 2]));
+  // The disc's diameter in pixels at the arm's median valid depth (a disc past the image: every arm pixel).
+  const auto z_m = medianDepthInDisc(frame.depth_m, arm, Eigen::Vector2d(arm.cols / 2.0, arm.rows / 2.0), 1e4,
+                                     options_.minDepthSamples);
+  if (!z_m) return;
+  const int diameter_px = static_cast<int>(std::lround(options_.skinGapClose_m * frame.intrinsics.fx_px / *z_m));
   if (diameter_px < 2) return;
   cv::Mat closed;
   cv::morphologyEx(skin, closed, cv::MORPH_CLOSE, disc(diameter_px | 1));
-  skin = closed & arm;  // closed across a wire or a patch on the arm, not past the arm's outline
+  // Closed across a wire or a patch on the arm, not past the arm's outline, and only added: the skin the
+  // depth lags behind (outside the arm, a fast hand's fingers) stays.
+  skin |= closed & arm;
 }
 
 cv::Mat MarkerFreeHandDetector::sleeveMask(const cv::Mat& arm, const cv::Mat& hand) const {

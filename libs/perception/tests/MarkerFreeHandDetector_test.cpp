@@ -108,6 +108,29 @@ TEST(MarkerFreeHandDetector, PalmFromTheCuffWhateverTheFingersDo) {
   EXPECT_FALSE(detector.detect(drawnFrame(30, std::nullopt)).has_value());
 }
 
+// skinGapClose_m: a dark band drawn across the palm (a wire or tape on the skin, at the skin's depth) cuts
+// the hand's skin in two. Closed at 0.02 m (a 17 px disc at the arm's median depth, 0.74 m) a 3 px wire
+// (4 mm) is one skin region again; a 3 cm band (24 px) is wider than the disc and stays open.
+int skinRegionsAcrossABand(double close_m, double band_m) {
+  MarkerFreeHandDetector::Options o;
+  o.skinGapClose_m = close_m;
+  MarkerFreeHandDetector detector(o);
+  for (int i = 0; i < kBackgroundFrames; ++i) detector.detect(drawnFrame(i, std::nullopt));
+  const ArmPose arm{{320.0, 260.0}, 80.0 * M_PI / 180, 0.08};
+  auto f = drawnFrame(kBackgroundFrames, arm);
+  drawBox(f, arm, -0.03 - band_m / 2, -0.03 + band_m / 2, 0.042, 0.0, {25, 20, 20}, kHandTop_m);
+  detector.detect(f);
+  cv::Mat labels;
+  return cv::connectedComponents(detector.lastMask(), labels, 8) - 1;
+}
+
+TEST(MarkerFreeHandDetector, SkinGapsNarrowerThanTheDiscAreClosed) {
+  constexpr double kWire_m = 3.0 / 800.0, kBand_m = 0.03;
+  EXPECT_EQ(skinRegionsAcrossABand(0.0, kWire_m), 2) << "the wire should cut the skin without the closing";
+  EXPECT_EQ(skinRegionsAcrossABand(0.02, kWire_m), 1);
+  EXPECT_EQ(skinRegionsAcrossABand(0.02, kBand_m), 2) << "a band wider than the disc should stay open";
+}
+
 // minWorkingWidth_px: a frame three times as large as the drawn one (every pixel repeated 3 x 3, the
 // intrinsics with it) is worked on at the drawn frame's size (640 px, the largest third of 1920 px that is
 // at least 640 px wide), so the palm is the drawn frame's, mapped to

@@ -418,7 +418,9 @@ class MarkerFreeHandDetector : public HandDetector {
     double minIslandSkinFraction = 0.5;
     /// The arm's skin is closed (a morphological closing, a disc of this diameter at the arm's median
     /// depth) inside the arm before it is opened and its holes filled: thin things worn on the skin
-    /// (a sensor rig's wires, tape) cut it into pieces and notch its outline where they reach it. 0: off [m].
+    /// (a sensor rig's wires, tape) cut it into pieces and notch its outline where they reach it. It only
+    /// adds skin. Off by default: it also joins an open hand's spread fingers across a part held behind
+    /// them, which then reads as a closed hand (perception README). 0: off [m].
     double skinGapClose_m = 0.0;
 
     // ---- gates and strides (were literals; defaults keep the old output) ----

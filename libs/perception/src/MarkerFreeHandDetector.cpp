@@ -434,6 +434,9 @@ MarkerFreeHandDetector::MarkerFreeHandDetector(const Options& options) : options
   core::require(options.maxHandLength_m > 0.0 && options.palmFromFarEnd_m > 0.0,
                 "MarkerFreeHandDetector: maxHandLength_m and palmFromFarEnd_m must be > 0 m (lengths of the "
                 "demonstrator's hand)");
+  core::require(options.palmFromFarEndAlongRay_m >= 0.0 && options.palmFromFarEndAcrossRay_m >= 0.0,
+                "MarkerFreeHandDetector: palmFromFarEndAlongRay_m and palmFromFarEndAcrossRay_m must be >= 0 m (0: "
+                "palmFromFarEnd_m)");
   core::require(options.skinLumaFloorFraction >= 0.0 && options.skinLumaFloorFraction < 1.0,
                 "MarkerFreeHandDetector: skinLumaFloorFraction must be in [0, 1) (a share of the skin's luma; 0: "
                 "the fixed skinMinLuma)");
@@ -2023,12 +2026,18 @@ HandObservation MarkerFreeHandDetector::placePalm(const rawlog::RgbdFrame& frame
   };
   Eigen::Vector2d palm;
   const std::optional<Eigen::Vector2d> tilt = options_.walkOnDepth ? handTilt(frame, a, hand) : std::nullopt;
+  geometry_.anchor_camera_m = geometry_.axis_camera = geometry_.normal_camera = Eigen::Vector3d::Zero();
+  geometry_.palmFromAnchor_m = std::abs(a.length_m);
   if (tilt) {
     // Depth z(s) = tilt(0) + tilt(1) s along the axis (s in pixels from the anchor): walk until the
     // 3D distance from the anchor is the length.
     const double sign = a.length_m < 0.0 ? -1.0 : 1.0;
     double target = std::abs(a.length_m);
     const Eigen::Vector3d p0 = backProject(a.anchor_px, (*tilt)(0));
+    // a.dir points towards the fingers from every anchor (the far end and the fingertips are walked
+    // back from, the cuff forwards); the profile's s is the distance walked.
+    geometry_.anchor_camera_m = p0;
+    geometry_.axis_camera = (backProject(a.anchor_px + a.dir, (*tilt)(0) + (*tilt)(1) * sign) - p0).normalized();
     if (a.depth_m > 0.0 && a.depth_m < (*tilt)(0)) {
       // The sleeve's edge stands nearer than the hand there: it hides the wrist's start, by the gap
       // between them along the hand's axis (in 3D, on the depth profile).
@@ -2036,13 +2045,12 @@ HandObservation MarkerFreeHandDetector::placePalm(const rawlog::RgbdFrame& frame
           (backProject(a.anchor_px + sign * a.dir, (*tilt)(0) + (*tilt)(1)) - p0).normalized();
       target -= std::max(0.0, (p0 - backProject(a.anchor_px, a.depth_m)).dot(sign * axis_m));
     }
-    const double maxS = options_.maxWalkFactor * target * hand.pxPerM;
-    double s = 0.0;
-    for (; s < maxS; s += 0.5) {
-      const double z = (*tilt)(0) + (*tilt)(1) * sign * s;
-      if (z <= 0.0 || (backProject(a.anchor_px + sign * s * a.dir, z) - p0).norm() >= target) break;
-    }
-    palm = a.anchor_px + sign * s * a.dir;
+    // A bare forearm's far end read closed (not farEndOpenHand's open hand): its length by the view.
+    if (geometry_.bareForearm && !geometry_.haveWrist && options_.palmFromFarEndAlongRay_m > 0.0 &&
+        options_.palmFromFarEndAcrossRay_m > 0.0 && a.length_m == -options_.palmFromFarEnd_m)
+      target = palmFromFarEndByView(p0, geometry_.axis_camera);
+    geometry_.palmFromAnchor_m = target;
+    palm = walkOnProfile(k, a, *tilt, target, hand.pxPerM);
   } else {
     const Eigen::Vector2d dir_m = Eigen::Vector2d(a.dir.x() / k.fx_px, a.dir.y() / k.fy_px).normalized();
     const Eigen::Vector3d p = backProject(a.anchor_px, hand.z_m + options_.palmDepth_m) +
@@ -2072,6 +2080,7 @@ HandObservation MarkerFreeHandDetector::placePalm(const rawlog::RgbdFrame& frame
       const double extra_m =
           silhouetteDepth(hand.mask, palm, a.dir, frame.intrinsics.fx_px / *z, frame.index) - options_.palmDepth_m;
       if (n) {
+        geometry_.normal_camera = *n;
         h.p_camera_palm_m = backProject(palm, *z) - options_.palmDepth_m * *n;
         palm = project(h.p_camera_palm_m);
       } else {
@@ -2086,6 +2095,31 @@ HandObservation MarkerFreeHandDetector::placePalm(const rawlog::RgbdFrame& frame
   h.palm_px = palm;
   geometry_.palm_px = palm;
   return h;
+}
+
+Eigen::Vector2d MarkerFreeHandDetector::walkOnProfile(const core::CameraIntrinsics& k, const Anchor& a,
+                                                      const Eigen::Vector2d& tilt, double length_m,
+                                                      double pxPerM) const {
+  const double sign = a.length_m < 0.0 ? -1.0 : 1.0;
+  const Eigen::Vector3d p0 = pixelToCamera(k, a.anchor_px.x(), a.anchor_px.y(), tilt(0));
+  const double maxS = options_.maxWalkFactor * length_m * pxPerM;
+  double s = 0.0;
+  for (; s < maxS; s += 0.5) {
+    const double z = tilt(0) + tilt(1) * sign * s;
+    const Eigen::Vector2d p = a.anchor_px + sign * s * a.dir;
+    if (z <= 0.0 || (pixelToCamera(k, p.x(), p.y(), z) - p0).norm() >= length_m) break;
+  }
+  return a.anchor_px + sign * s * a.dir;
+}
+
+double MarkerFreeHandDetector::palmFromFarEndByView(const Eigen::Vector3d& farEnd_m,
+                                                    const Eigen::Vector3d& axis) const {
+  // Seen along the hand (from above and behind it), the far end is the curled fingers seen end-on, just
+  // past the knuckles; seen across it (from the side, across the table), the fingers hang or stretch out
+  // of the palm in full and the far end is their tips.
+  const double along = std::abs(axis.dot(farEnd_m.normalized()));
+  return options_.palmFromFarEndAcrossRay_m +
+         (options_.palmFromFarEndAlongRay_m - options_.palmFromFarEndAcrossRay_m) * std::min(1.0, along);
 }
 
 double MarkerFreeHandDetector::silhouetteDepth(const cv::Mat& mask, const Eigen::Vector2d& palm_px,

@@ -35,6 +35,8 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
   std::map<std::string, double*> d{{"skinMaxMahalanobis", &o.skinMaxMahalanobis},
                                    {"skinModeRadius", &o.skinModeRadius},
                                    {"palmFromFarEnd_m", &o.palmFromFarEnd_m},
+                                   {"palmFromFarEndAlongRay_m", &o.palmFromFarEndAlongRay_m},
+                                   {"palmFromFarEndAcrossRay_m", &o.palmFromFarEndAcrossRay_m},
                                    {"maxHandLength_m", &o.maxHandLength_m},
                                    {"minForeground_m", &o.minForeground_m},
                                    {"backgroundPercentile", &o.backgroundPercentile},

@@ -479,6 +479,106 @@ TEST(MarkerFreeHandDetector, HandHangingFromAFlexedWristIsClosed) {
   }
 }
 
+// The palm's distance from a bare forearm's far end by the view (palmFromFarEndAlongRay_m,
+// palmFromFarEndAcrossRay_m). The arm and hand are drawn as boxes on a plane in 3D and projected
+// exactly (each pixel's depth where its ray meets the plane): an open hand (fingers 8 cm) lying across
+// the camera's ray, its far end the fingertips 0.125 m from the palm centre, and a closed hand (fingers
+// curled to 2 cm, far end 0.065 m from the palm) pointing 50 deg away from the camera, the arm entering
+// from the image's bottom edge nearer the camera, as an egocentric camera sees it from above and behind.
+namespace byview {
+struct PlaneArm {
+  Eigen::Vector3d palm_m;  ///< palm centre on the back of the hand (camera frame)
+  Eigen::Vector3d x, y;    ///< unit, along the arm towards the fingers and across it, in the hand's plane
+  double fingerLength_m;
+};
+
+void drawPlaneBox(rawlog::RgbdFrame& f, const PlaneArm& a, double along0, double along1, double halfWidth,
+                  double across) {
+  const auto k = camera();
+  std::vector<cv::Point> poly;
+  const std::pair<double, double> corners[] = {{along0, -halfWidth}, {along1, -halfWidth}, {along1, halfWidth},
+                                                {along0, halfWidth}};
+  for (const auto& [l, w] : corners) {
+    const Eigen::Vector3d p = a.palm_m + l * a.x + (w + across) * a.y;
+    poly.emplace_back(static_cast<int>(std::lround(k.fx_px * p.x() / p.z() + k.cx_px)),
+                      static_cast<int>(std::lround(k.fy_px * p.y() / p.z() + k.cy_px)));
+  }
+  cv::Mat inside(f.depth_m.size(), CV_8UC1, cv::Scalar(0));
+  cv::fillConvexPoly(inside, poly, cv::Scalar(255));
+  const Eigen::Vector3d n = a.x.cross(a.y);
+  for (int v = 0; v < inside.rows; ++v)
+    for (int u = 0; u < inside.cols; ++u) {
+      if (!inside.at<uchar>(v, u)) continue;
+      const Eigen::Vector3d ray((u - k.cx_px) / k.fx_px, (v - k.cy_px) / k.fy_px, 1.0);
+      f.depth_m.at<float>(v, u) = static_cast<float>(a.palm_m.dot(n) / ray.dot(n));
+      f.colour_bgr8.at<cv::Vec3b>(v, u) = cv::Vec3b(160, 195, 252);  // kSkinBgr: a bare forearm
+    }
+}
+
+rawlog::RgbdFrame planeFrame(int index, const std::optional<PlaneArm>& arm) {
+  auto f = drawnFrame(index, std::nullopt);
+  if (!arm) return f;
+  drawPlaneBox(f, *arm, -0.45, -0.045, 0.031, 0.0);  // forearm and wrist
+  drawPlaneBox(f, *arm, -0.045, 0.045, 0.042, 0.0);  // palm
+  for (const double across : {-0.030, -0.010, 0.010, 0.030})  // fingers
+    drawPlaneBox(f, *arm, 0.045, 0.045 + arm->fingerLength_m, 0.008, across);
+  drawPlaneBox(f, *arm, -0.02, 0.03, 0.01, 0.05);  // thumb
+  return f;
+}
+
+/// The palms' pixel distance from the true palm centre's pixel, 6 frames moving slightly.
+std::vector<double> palmErrors_px(const MarkerFreeHandDetector::Options& o, double tilt_rad, double fingerLength_m) {
+  const auto k = camera();
+  MarkerFreeHandDetector detector(o);
+  for (int i = 0; i < kBackgroundFrames; ++i) detector.detect(planeFrame(i, std::nullopt));
+  std::vector<double> out;
+  for (int i = 0; i < 6; ++i) {
+    // Pointing up the image (away from the bottom edge where the arm enters), tilted away from the camera.
+    const double yaw = (-90.0 + 3.0 * i) * M_PI / 180;
+    PlaneArm a{{0.01 * i, 0.06, kHandTop_m},
+               {std::cos(yaw) * std::cos(tilt_rad), std::sin(yaw) * std::cos(tilt_rad), std::sin(tilt_rad)},
+               {-std::sin(yaw), std::cos(yaw), 0.0},
+               fingerLength_m};
+    const auto h = detector.detect(planeFrame(kBackgroundFrames + i, a));
+    if (!h || !detector.lastGeometry().bareForearm) {
+      out.push_back(1e9);
+      continue;
+    }
+    const Eigen::Vector2d truth(k.fx_px * a.palm_m.x() / a.palm_m.z() + k.cx_px,
+                                k.fy_px * a.palm_m.y() / a.palm_m.z() + k.cy_px);
+    out.push_back((h->palm_px - truth).norm());
+  }
+  return out;
+}
+}  // namespace byview
+
+TEST(MarkerFreeHandDetector, PalmFromTheFarEndByTheView) {
+  using namespace byview;
+  // 1.5 cm at 0.75 m: the rule's lengths are the renders' (across the ray 0.12 m against the drawn open
+  // hand's 0.125 m); the fixed lengths miss by 4-6 cm.
+  constexpr double kTol_px = 12.0;
+  constexpr double kOpen_m = 0.08, kCurled_m = 0.02, kAcross_rad = 0.0, kAway_rad = 50.0 * M_PI / 180;
+  MarkerFreeHandDetector::Options byView, fixed, longer;
+  byView.palmFromFarEndAlongRay_m = 0.045;
+  byView.palmFromFarEndAcrossRay_m = 0.12;
+  longer.palmFromFarEnd_m = 0.12;  // one constant for both: the hand seen across the ray's
+  auto within = [&](const std::vector<double>& e) {
+    return std::count_if(e.begin(), e.end(), [&](double x) { return x < kTol_px; });
+  };
+  const auto acrossByView = palmErrors_px(byView, kAcross_rad, kOpen_m);
+  const auto awayByView = palmErrors_px(byView, kAway_rad, kCurled_m);
+  const auto acrossFixed = palmErrors_px(fixed, kAcross_rad, kOpen_m);
+  const auto awayLonger = palmErrors_px(longer, kAway_rad, kCurled_m);
+  for (std::size_t i = 0; i < acrossByView.size(); ++i)
+    std::printf("by the view, frame %zu: across the ray %.1f px (palmFromFarEnd_m %.1f px), pointing away %.1f px "
+                "(0.12 m: %.1f px)\n",
+                i, acrossByView[i], acrossFixed[i], awayByView[i], awayLonger[i]);
+  EXPECT_EQ(within(acrossByView), 6);
+  EXPECT_EQ(within(awayByView), 6);
+  EXPECT_EQ(within(acrossFixed), 0) << "palmFromFarEnd_m should put the open hand's palm on its fingers";
+  EXPECT_EQ(within(awayLonger), 0) << "the open hand's length should put the curled hand's palm on its wrist";
+}
+
 // A bare forearm in every frame of the recording, nearly still (swept
 // kSweep_px over the clip, as a hand holding a part while the head-mounted
 // camera looks down at it), over a table of a skin-like colour, beside a
@@ -654,6 +754,9 @@ TEST(MarkerFreeHandDetector, RejectsBadOptions) {
   EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
   o = {};
   o.palmFromWrist_m = 0.0;
+  EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
+  o = {};
+  o.palmFromFarEndAcrossRay_m = -0.12;
   EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
   o = {};
   o.skinLumaFloorFraction = 1.0;

@@ -34,7 +34,8 @@
 // release, retract): e.g. grasp alone is a recording with the hand in view and nearly still in every frame (the
 // guarded figures then fail: they are for the whole demonstrations);
 // SRP_HAND_CSV=<file> writes one row per hand-in-view frame (the palm's error in the camera frame, the
-// true hand's axis and normal, the rule that placed the palm, how far past the held part it lies) for
+// true hand's axis and normal, the rule that placed the palm, how far past the held part it lies, the detector's
+// anchor, hand axis, back normal and walked length) for
 // decompositions of the error.
 #include <gtest/gtest.h>
 
@@ -97,7 +98,8 @@ testing::HandEvaluation evaluateSpecs(const std::vector<ViewpointDemoSpec>& spec
   std::ofstream csv;
   if (csvPath) {
     csv.open(csvPath);
-    csv << "demo,frame,phase,grip,carry,detected,rule,depth_carried,x,y,z,tx,ty,tz,ax,ay,az,nx,ny,nz,past_m\n";
+    csv << "demo,frame,phase,grip,carry,detected,rule,depth_carried,x,y,z,tx,ty,tz,ax,ay,az,nx,ny,nz,past_m,"
+           "ex,ey,ez,ux,uy,uz,qx,qy,qz,d_m\n";
   }
   for (const auto& spec : specs) {
     if (variant && std::atoi(variant) != spec.variant) continue;
@@ -129,7 +131,11 @@ testing::HandEvaluation evaluateSpecs(const std::vector<ViewpointDemoSpec>& spec
                 << (!p_m ? "none" : g.bareForearm ? "far_end" : g.haveWrist ? "cuff" : "fingertips") << ','
                 << carriedDepth << ',' << p.x() << ',' << p.y() << ',' << p.z() << ',' << t.x() << ',' << t.y() << ','
                 << t.z() << ',' << R(0, 0) << ',' << R(1, 0) << ',' << R(2, 0) << ',' << R(0, 2) << ',' << R(1, 2)
-                << ',' << R(2, 2) << ',' << past_m << '\n';
+                << ',' << R(2, 2) << ',' << past_m;
+            // The detector's anchor, hand axis and back normal (camera frame) and the length walked.
+            for (const auto* v : {&g.anchor_camera_m, &g.axis_camera, &g.normal_camera})
+              csv << ',' << v->x() << ',' << v->y() << ',' << v->z();
+            csv << ',' << g.palmFromAnchor_m << '\n';
           }
           if (p_m) lastZ_m = p_m->z();
           if (debugDir.empty() || (!truth.handInView && !p_m)) return;

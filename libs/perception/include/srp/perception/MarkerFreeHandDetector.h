@@ -322,6 +322,17 @@ class MarkerFreeHandDetector : public HandDetector {
     /// axis [m] (half a palm plus the curled fingers of a hand grasping from
     /// above, 0.05 + 0.02 m).
     double palmFromFarEnd_m = 0.07;
+    /// Bare forearm, by the view: the palm's distance back from the far end follows the angle between
+    /// the hand's axis (on its depth profile, as the palm is walked) and the camera's ray at the far end:
+    /// palmFromFarEndAlongRay_m when the hand points along the ray (seen from above and behind: the far
+    /// end is the curled fingers seen end-on, near the palm), palmFromFarEndAcrossRay_m when it lies
+    /// across it (from the side, across the table: the far end is the fingers hanging or stretched out
+    /// of the palm), linear in |cos| between [m]. Both > 0: this rule instead of palmFromFarEnd_m for a
+    /// far end read closed. Chosen on the development renders: 0.045 and 0.12 m; 0 (off) because the
+    /// real HRT1 hands, closed and seen from beside the table, lie across the ray with their curled
+    /// fingers at the far end (perception README).
+    double palmFromFarEndAlongRay_m = 0.0;
+    double palmFromFarEndAcrossRay_m = 0.0;  ///< see palmFromFarEndAlongRay_m [m]
     /// Bare forearm: tell an open hand from a closed one. A hand joined to
     /// foreground that is not skin reaching past the skin's far end by more
     /// than palmRadius_m holds a part and is closed. Else by where the hand is
@@ -547,6 +558,15 @@ class MarkerFreeHandDetector : public HandDetector {
     Eigen::Vector2d farEnd_px = Eigen::Vector2d::Zero();  ///< bare forearm: its far end
     Eigen::Vector2d axis = Eigen::Vector2d::UnitX();     ///< unit, from the border towards the fingers
     Eigen::Vector2d palm_px = Eigen::Vector2d::Zero();
+    /// The palm's anchor (far end, cuff line or fingertips) in the camera frame, at the depth of the hand's
+    /// depth profile there [m]; zero without a profile.
+    Eigen::Vector3d anchor_camera_m = Eigen::Vector3d::Zero();
+    /// Unit, the hand's axis in the camera frame towards the fingers, on its depth profile; zero without one.
+    Eigen::Vector3d axis_camera = Eigen::Vector3d::Zero();
+    /// Unit, the back of the hand's normal at the palm in the camera frame (towards the camera); zero
+    /// without one (palmAlongNormal off, too few depths, not a disc).
+    Eigen::Vector3d normal_camera = Eigen::Vector3d::Zero();
+    double palmFromAnchor_m = 0.0;  ///< the length walked from the anchor to the palm [m]
   };
 
   /// The recording's skin model (Gaussian in Cr, Cb).
@@ -695,6 +715,14 @@ class MarkerFreeHandDetector : public HandDetector {
   /// Places the palm from the anchor at the palm's depth (step 7).
   HandObservation placePalm(const rawlog::RgbdFrame& frame, const Anchor& a, const HandBlob& hand,
                             const Eigen::Vector2d& handMean, int armArea);
+  /// The pixel `length_m` (>= 0) from anchor `a` along a.dir in 3D, walked on the hand's depth profile
+  /// `tilt` (z = tilt(0) + tilt(1) s, s in pixels from the anchor) for at most maxWalkFactor times the
+  /// length in the image plane at `pxPerM`.
+  Eigen::Vector2d walkOnProfile(const core::CameraIntrinsics& k, const Anchor& a, const Eigen::Vector2d& tilt,
+                                double length_m, double pxPerM) const;
+  /// palmFromFarEndAlongRay_m: the bare forearm's palm distance back from its far end `farEnd_m`
+  /// (camera frame) for the hand's unit axis `axis` (camera frame, on its depth profile) [m].
+  double palmFromFarEndByView(const Eigen::Vector3d& farEnd_m, const Eigen::Vector3d& axis) const;
   /// Skin pixels: the learnt model when `learnt` and there is one, else the prior box.
   /// `maxMahalanobis` > 0: this threshold instead of skinMaxMahalanobis.
   cv::Mat skinMask(const cv::Mat& colour_bgr8, bool learnt, double maxMahalanobis = 0.0) const;

@@ -444,6 +444,9 @@ MarkerFreeHandDetector::MarkerFreeHandDetector(const Options& options) : options
                     options.backgroundFillDiameter_px >= 0,
                 "MarkerFreeHandDetector: minBackgroundValidFraction must be in [0, 1] (a share of the preview's "
                 "samples; 0: every pixel's own quantile) and backgroundFillDiameter_px >= 0");
+  core::require(options.skinIlluminantNorm >= 0.0 && options.skinMaxChromaPerLuma >= 0.0,
+                "MarkerFreeHandDetector: skinIlluminantNorm must be >= 0 (a Minkowski exponent; 0: no white balance) "
+                "and skinMaxChromaPerLuma >= 0 (0: off)");
   core::require(options.minSkinReach_m >= 0.0,
                 "MarkerFreeHandDetector: minSkinReach_m must be >= 0 m (0: skin near the body's entry is not refused)");
   core::require(options.maxPalmSpeed_mps >= 0.0 && options.minPalmTrack >= 1 && options.maxPalmRefusals >= 0,
@@ -550,6 +553,11 @@ void MarkerFreeHandDetector::preview(const rawlog::RgbdFrame& fullFrame) {
 }
 
 void MarkerFreeHandDetector::finishPreview() {
+  if (!previewColourSum_.empty()) {  // the lamp, before any skin test (the still arm's too)
+    cv::Mat mean_bgr8;
+    previewColourSum_.convertTo(mean_bgr8, CV_8UC3, 1.0 / static_cast<double>(std::max(1, previewFrames_)));
+    estimateIlluminant(mean_bgr8);
+  }
   // A head-mounted camera turns: a shift alone, on a scene that a large moving arm dominates, is ICP
   // following the arm (drawn StillBareForearmInEveryFrame: 4 cm, 0.9 deg).
   const bool turned = previewMotion_ && previewMotion_->maxTranslation_m() > options_.minCameraMotion_m &&
@@ -1072,12 +1080,60 @@ void MarkerFreeHandDetector::decideBareForearms(const std::vector<cv::Mat>& fgHa
                       bareForearms_ ? "yes" : "no");
 }
 
+void MarkerFreeHandDetector::estimateIlluminant(const cv::Mat& background_bgr8) {
+  // Once per recording, not per frame (cv::xphoto's balancers estimate per image): the skin model learnt
+  // in the preview must see every frame through the same gains, and a frame's own mean moves with the
+  // arm in it. The background, not the frame: the hand and a held part are no evidence of the lamp.
+  skinGains_bgr_ = cv::Scalar(1.0, 1.0, 1.0, 0.0);
+  const double p = options_.skinIlluminantNorm;
+  if (p <= 0.0 || background_bgr8.empty()) return;
+  cv::Mat f;
+  background_bgr8.convertTo(f, CV_64FC3, 1.0 / 255.0);
+  cv::pow(f, p, f);
+  const cv::Scalar m = cv::mean(f);
+  double e[3];
+  for (int c = 0; c < 3; ++c) e[c] = std::pow(std::max(m[c], 1e-12), 1.0 / p);
+  const double grey = 0.114 * e[0] + 0.587 * e[1] + 0.299 * e[2];  // the illuminant's luma (BGR order)
+  for (int c = 0; c < 3; ++c) skinGains_bgr_[c] = grey / std::max(e[c], 1e-6);
+  if (core::Log::enabled("hand", core::Log::Level::Debug))
+    core::Log::writef("hand", core::Log::Level::Debug, "illuminant: BGR %.3f %.3f %.3f, gains %.3f %.3f %.3f\n", e[0],
+                      e[1], e[2], skinGains_bgr_[0], skinGains_bgr_[1], skinGains_bgr_[2]);
+}
+
+cv::Mat MarkerFreeHandDetector::skinYCrCb(const cv::Mat& colour_bgr8) const {
+  cv::Mat ycrcb;
+  if (skinGains_bgr_ == cv::Scalar(1.0, 1.0, 1.0, 0.0)) {
+    cv::cvtColor(colour_bgr8, ycrcb, cv::COLOR_BGR2YCrCb);
+  } else {
+    cv::Mat balanced;
+    cv::multiply(colour_bgr8, skinGains_bgr_, balanced);
+    cv::cvtColor(balanced, ycrcb, cv::COLOR_BGR2YCrCb);
+  }
+  return ycrcb;
+}
+
+cv::Mat MarkerFreeHandDetector::paleEnough(const cv::Mat& ycrcb) const {
+  cv::Mat pale(ycrcb.size(), CV_8UC1, cv::Scalar(255));
+  const double k = options_.skinMaxChromaPerLuma;
+  if (k <= 0.0) return pale;
+  // Squared, as integers: |(Cr - 128, Cb - 128)|^2 <= k^2 Y^2.
+  const int k2_1024 = static_cast<int>(std::lround(1024.0 * k * k));
+  for (int v = 0; v < ycrcb.rows; ++v) {
+    const cv::Vec3b* c = ycrcb.ptr<cv::Vec3b>(v);
+    uchar* m = pale.ptr<uchar>(v);
+    for (int u = 0; u < ycrcb.cols; ++u) {
+      const int dr = c[u][1] - 128, db = c[u][2] - 128, y = c[u][0];
+      m[u] = 1024 * (dr * dr + db * db) <= k2_1024 * y * y ? 255 : 0;
+    }
+  }
+  return pale;
+}
+
 void MarkerFreeHandDetector::accumulateSkin(const cv::Mat& colour_bgr8, const cv::Mat& foreground, int step) {
   if (skinHistogram_.empty()) {
     skinHistogram_ = cv::Mat(256, 256, CV_32FC1, cv::Scalar(0));
   }
-  cv::Mat ycrcb;
-  cv::cvtColor(colour_bgr8, ycrcb, cv::COLOR_BGR2YCrCb);
+  const cv::Mat ycrcb = skinYCrCb(colour_bgr8);
   const Options& o = options_;
   for (int v = 0; v < ycrcb.rows; v += step) {
     const cv::Vec3b* c = ycrcb.ptr<cv::Vec3b>(v);
@@ -1199,8 +1255,7 @@ void MarkerFreeHandDetector::fitSkin() {
 
 cv::Mat MarkerFreeHandDetector::skinMask(const cv::Mat& colour_bgr8, bool learnt, double maxMahalanobis) const {
   if (!options_.useSkin || colour_bgr8.empty()) return cv::Mat(colour_bgr8.size(), CV_8UC1, cv::Scalar(255));
-  cv::Mat ycrcb, skin;
-  cv::cvtColor(colour_bgr8, ycrcb, cv::COLOR_BGR2YCrCb);
+  cv::Mat ycrcb = skinYCrCb(colour_bgr8), skin;
   const Options& o = options_;
   if (maxMahalanobis <= 0.0) maxMahalanobis = o.skinMaxMahalanobis;
   // The learnt model judges each pixel by its neighbourhood's mean colour
@@ -1209,7 +1264,7 @@ cv::Mat MarkerFreeHandDetector::skinMask(const cv::Mat& colour_bgr8, bool learnt
   if (!learnt || !skin_.learnt) {
     cv::inRange(ycrcb, cv::Scalar(o.skinMinLuma, o.skinPriorCrMin, o.skinPriorCbMin),
                 cv::Scalar(255, o.skinPriorCrMax, o.skinPriorCbMax), skin);
-    return skin;
+    return skin & paleEnough(ycrcb);
   }
   // Look-up table over (Cr, Cb): inside the Gaussian's skinMaxMahalanobis ellipse.
   const Eigen::Matrix2d info = skin_.covariance.inverse();
@@ -1286,6 +1341,7 @@ std::optional<HandObservation> MarkerFreeHandDetector::detectAtWorkingSize(const
     cv::Mat acc(frame.colour_bgr8.size(), CV_32FC3, cv::Scalar::all(0));
     for (const auto& c : colourHistory_) cv::accumulate(c, acc);
     acc.convertTo(backgroundColour_, CV_8UC3, 1.0 / static_cast<double>(colourHistory_.size()));
+    estimateIlluminant(backgroundColour_);
     depthHistory_.clear();
     colourHistory_.clear();
     return std::nullopt;  // background frames show no hand by assumption

@@ -60,7 +60,9 @@ inline MarkerFreeHandDetector::Options optionsFromEnvironment() {
                                    {"palmDepth_m", &o.palmDepth_m},
                                    {"minPalmCrossSections", &o.minPalmCrossSections},
                                    {"maxWristToPalm", &o.maxWristToPalm},
-                                   {"skinGapClose_m", &o.skinGapClose_m}};
+                                   {"skinGapClose_m", &o.skinGapClose_m},
+                                   {"skinIlluminantNorm", &o.skinIlluminantNorm},
+                                   {"skinMaxChromaPerLuma", &o.skinMaxChromaPerLuma}};
   std::map<std::string, int*> i{{"holeColourChange", &o.holeColourChange},
                                 {"minWorkingWidth_px", &o.minWorkingWidth_px},
                                 {"backgroundFillDiameter_px", &o.backgroundFillDiameter_px},

@@ -748,9 +748,87 @@ TEST(MarkerFreeHandDetector, EnteringHandFromItsFingertips) {
   EXPECT_LT((h->palm_px - arm.palm_px).norm(), kFromFingertipsTol_px);
 }
 
+// A red part standing on the table away from the arm (no border contact: an island of foreground), its
+// face towards the camera in shade, under a white lamp and under a cold one (R 0.85, G 0.93, B 1.0 in
+// linear light, the renders' ColdLight). YCrCb's chroma grows with brightness: the shaded red (Y 36-40,
+// Cr 158-160) has a bright skin's Cr and is inside the prior box, so without skinMaxChromaPerLuma it is
+// skin under both lamps and, alone in the frame, reported as a hand. With it the part is no skin under
+// either lamp, and the sleeved arm's hand mask and palm are the same under both lamps.
+namespace lamp {
+const cv::Scalar kShadedRedBgr(16, 20, 84);
+const cv::Rect kPart(420, 300, 90, 70);  // 0.11 x 0.09 m at the part's depth, away from every border
+constexpr double kPartTop_m = kTable_m - 0.06;
+
+/// The drawn frame (with the red part), its encoded colour as under the lamp of linear-light gains `rgb`.
+rawlog::RgbdFrame litFrame(int index, const std::optional<ArmPose>& arm, bool part, const Eigen::Vector3d& rgb) {
+  auto f = drawnFrame(index, arm);
+  if (part) {
+    cv::rectangle(f.colour_bgr8, kPart, kShadedRedBgr, cv::FILLED);
+    cv::rectangle(f.depth_m, kPart, cv::Scalar(kPartTop_m), cv::FILLED);
+  }
+  constexpr double kInverseGamma = 1.0 / 2.2;  // the camera's encoding: a linear gain g scales 8-bit values by g^(1/2.2)
+  cv::multiply(f.colour_bgr8,
+               cv::Scalar(std::pow(rgb.z(), kInverseGamma), std::pow(rgb.y(), kInverseGamma),
+                          std::pow(rgb.x(), kInverseGamma)),
+               f.colour_bgr8);
+  return f;
+}
+
+struct LampRun {
+  int partAloneHands = 0;  ///< of kFrames frames with the part and no arm
+  std::vector<Eigen::Vector2d> palms_px;
+  std::vector<cv::Mat> masks;
+};
+constexpr int kFrames = 6;
+
+LampRun run(const MarkerFreeHandDetector::Options& o, const Eigen::Vector3d& rgb) {
+  MarkerFreeHandDetector detector(o);
+  LampRun r;
+  for (int i = 0; i < kBackgroundFrames; ++i) detector.detect(litFrame(i, std::nullopt, false, rgb));
+  for (int i = 0; i < kFrames; ++i)  // the part placed, the hand gone
+    if (detector.detect(litFrame(kBackgroundFrames + i, std::nullopt, true, rgb))) ++r.partAloneHands;
+  for (int i = 0; i < kFrames; ++i) {
+    const ArmPose arm{{260.0 + 10 * i, 200.0 + 5 * i}, (80.0 + 4.0 * i) * M_PI / 180, 0.06};
+    const auto h = detector.detect(litFrame(kBackgroundFrames + kFrames + i, arm, true, rgb));
+    r.palms_px.push_back(h ? h->palm_px : Eigen::Vector2d(-1e3, -1e3));
+    r.masks.push_back(h ? detector.lastMask().clone() : cv::Mat());
+  }
+  return r;
+}
+}  // namespace lamp
+
+TEST(MarkerFreeHandDetector, ShadedRedPartIsNoSkinUnderAWhiteOrAColdLamp) {
+  using namespace lamp;
+  const Eigen::Vector3d white(1.0, 1.0, 1.0), cold(0.85, 0.93, 1.0);
+  const MarkerFreeHandDetector::Options defaults;
+  ASSERT_GT(defaults.skinMaxChromaPerLuma, 0.0);
+  const LampRun w = run(defaults, white), c = run(defaults, cold);
+  EXPECT_EQ(w.partAloneHands, 0);
+  EXPECT_EQ(c.partAloneHands, 0) << "the shaded red part is taken for a hand under the cold lamp";
+  constexpr double kSameMask = 0.98;  // intersection over union of the hand masks under the two lamps
+  for (int i = 0; i < kFrames; ++i) {
+    ASSERT_FALSE(w.masks[i].empty()) << "frame " << i;
+    ASSERT_FALSE(c.masks[i].empty()) << "frame " << i;
+    EXPECT_LT((w.palms_px[i] - c.palms_px[i]).norm(), 1.0) << "frame " << i;
+    const double iou = static_cast<double>(cv::countNonZero(w.masks[i] & c.masks[i])) /
+                       std::max(1, cv::countNonZero(w.masks[i] | c.masks[i]));
+    EXPECT_GT(iou, kSameMask) << "frame " << i;
+  }
+  MarkerFreeHandDetector::Options off = defaults;
+  off.skinMaxChromaPerLuma = 0.0;
+  EXPECT_EQ(run(off, cold).partAloneHands, kFrames) << "the scene should show the part as a hand without the rule";
+  EXPECT_EQ(run(off, white).partAloneHands, kFrames) << "the scene should show the part as a hand without the rule";
+}
+
 TEST(MarkerFreeHandDetector, RejectsBadOptions) {
   MarkerFreeHandDetector::Options o;
   o.backgroundFrames = 0;
+  EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
+  o = {};
+  o.skinMaxChromaPerLuma = -0.1;
+  EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
+  o = {};
+  o.skinIlluminantNorm = -1.0;
   EXPECT_THROW(MarkerFreeHandDetector{o}, core::InvalidInputError);
   o = {};
   o.palmFromWrist_m = 0.0;

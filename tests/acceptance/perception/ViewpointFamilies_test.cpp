@@ -218,8 +218,9 @@ TEST(ViewpointFamilies, NearCornerChecked) { checkFamily(synth::ViewpointFamily:
 // Reached: 78.7 %, 29.5 mm, 1 of 653 carry frames past the part (17 mm).
 TEST(ViewpointFamilies, TableLevelChecked) { checkFamily(synth::ViewpointFamily::TableLevel, {0.030, 0.78, 1}); }
 // Development family facing (cold light from the demonstrator's side), seeds 11-16, chosen on.
-// Reached: 79.7 %, 35.0 mm, 1 of 656 carry frames past the part (5 mm), a hand in 118 frames without one.
-TEST(ViewpointFamilies, FacingChosenOn) { checkFamily(synth::ViewpointFamily::Facing, {0.0355, 0.79, 1, 118}); }
+// Reached: 77.1 %, 36.3 mm, 0 of 656 carry frames past the part, no hand in a frame without one
+// (skinMaxChromaPerLuma=0: 79.7 %, 35.0 mm, 1 past, a hand in 118 frames without one).
+TEST(ViewpointFamilies, FacingChosenOn) { checkFamily(synth::ViewpointFamily::Facing, {0.0365, 0.77, 0, 0}); }
 // Development family egocentric-held (head sway, the part held in every frame).
 // Reached on the seeds chosen on: 99.7 %, 10.1 mm, 0 of 394 carry frames past the part (the arm entering
 // through the image border only: 91.6 %, 10.3 mm; a still camera's background: 0.0 %, 425.8 mm, 135 past).

@@ -434,6 +434,24 @@ class MarkerFreeHandDetector : public HandDetector {
     /// them, which then reads as a closed hand (perception README). 0: off [m].
     double skinGapClose_m = 0.0;
 
+    // ---- the lamp's colour: the skin model and the island rule see the scene as under a white lamp ----
+    /// Skin is judged on the colour divided, channel by channel, by the scene's illuminant (von Kries
+    /// scaling), estimated once per recording from its background colour (the preview's mean image, or
+    /// the first frames' mean without a preview) as the Minkowski mean of each channel with this exponent
+    /// (shades of grey: 1 the grey world, large towards the white patch), the gains scaled so that a grey
+    /// keeps its luma. Off by default: the renders' background is mostly a beige table, so the estimate
+    /// follows the table's colour as much as the lamp's (white lamps: gains B 1.05-1.11, R 0.95-0.97;
+    /// facing's cold lamp reads neutral, its false hands unchanged). 0: off (the camera's colour as it is).
+    double skinIlluminantNorm = 0.0;
+    /// The prior box's skin (the skin test without a learnt model: a sleeve and glove, the still arm's
+    /// and the island's skin) has a chroma of at most this share of its luma: the length of
+    /// (Cr - 128, Cb - 128) over Y (8-bit). YCrCb's chroma grows with the brightness, so a dark saturated
+    /// colour (a red part's face in the shade of a lamp from the side: Y 36, Cr 158) has a bright skin's
+    /// Cr and passes the box, under any lamp; the renders' skin is 0.15-0.3 under white, warm and cold
+    /// lamps, a saturated part's 0.8-0.9. Not applied to the learnt model, which is the recording's own
+    /// skin under its own lamp (a real camera's skin in dim light reaches 0.7-1.0). 0: off.
+    double skinMaxChromaPerLuma = 0.5;
+
     // ---- gates and strides (were literals; defaults keep the old output) ----
     /// A pixel within this many pixels of the edge of the depth's field of
     /// view is on the border (where the arm enters, where a hand leaves the
@@ -729,6 +747,12 @@ class MarkerFreeHandDetector : public HandDetector {
   /// Adds the (Cr, Cb) of the foreground pixels inside the prior box.
   void accumulateSkin(const cv::Mat& colour_bgr8, const cv::Mat& foreground, int step);
   void fitSkin();
+  /// The skin test's colour space: YCrCb of `colour_bgr8` times skinGains_bgr_ (saturated to 8 bit).
+  cv::Mat skinYCrCb(const cv::Mat& colour_bgr8) const;
+  /// 255 where a pixel of `ycrcb` is pale enough to be skin (skinMaxChromaPerLuma; 0: everywhere).
+  cv::Mat paleEnough(const cv::Mat& ycrcb) const;
+  /// Sets skinGains_bgr_ from the recording's background colour (skinIlluminantNorm; 0: unit gains).
+  void estimateIlluminant(const cv::Mat& background_bgr8);
 
   std::vector<cv::Mat> depthHistory_, colourHistory_;
   // Preview: depth samples [mm, CV_16UC1] every previewStride_-th frame, the
@@ -739,6 +763,7 @@ class MarkerFreeHandDetector : public HandDetector {
   cv::Mat skinHistogram_;  ///< 256x256 CV_32F over (Cr, Cb)
   std::vector<cv::Vec3b> skinSamples_;  ///< (Y, Cr, Cb) of the preview's foreground pixels inside the prior box
   SkinModel skin_;
+  cv::Scalar skinGains_bgr_{1.0, 1.0, 1.0, 0.0};  ///< von Kries gains from the illuminant (estimateIlluminant)
   core::CameraIntrinsics previewIntrinsics_;
   bool bareForearms_ = false;  ///< the preview showed a bare forearm: the far end rule in every frame
   cv::Mat backgroundDepth_m_, backgroundColour_;

@@ -1116,14 +1116,14 @@ cv::Mat MarkerFreeHandDetector::paleEnough(const cv::Mat& ycrcb) const {
   cv::Mat pale(ycrcb.size(), CV_8UC1, cv::Scalar(255));
   const double k = options_.skinMaxChromaPerLuma;
   if (k <= 0.0) return pale;
-  // Squared, as integers: |(Cr - 128, Cb - 128)|^2 <= k^2 Y^2.
-  const int k2_1024 = static_cast<int>(std::lround(1024.0 * k * k));
+  // Squared, as 64-bit integers (k^2 Y^2 overflows an int for k above ~5.6): |(Cr - 128, Cb - 128)|^2 <= k^2 Y^2.
+  const std::int64_t k2_1024 = std::llround(1024.0 * k * k);
   for (int v = 0; v < ycrcb.rows; ++v) {
     const cv::Vec3b* c = ycrcb.ptr<cv::Vec3b>(v);
     uchar* m = pale.ptr<uchar>(v);
     for (int u = 0; u < ycrcb.cols; ++u) {
       const int dr = c[u][1] - 128, db = c[u][2] - 128, y = c[u][0];
-      m[u] = 1024 * (dr * dr + db * db) <= k2_1024 * y * y ? 255 : 0;
+      m[u] = std::int64_t{1024} * (dr * dr + db * db) <= k2_1024 * y * y ? 255 : 0;
     }
   }
   return pale;
@@ -1780,11 +1780,15 @@ std::optional<MarkerFreeHandDetector::Anchor> MarkerFreeHandDetector::bareForear
   a.anchor_px = mean + tip * local;
   a.dir = local;
   a.length_m = -options_.palmFromFarEnd_m;
+  a.closedFarEnd = true;
   geometry_.farEnd_px = a.anchor_px;
   if (options_.farEndOpenHand) {
     const double zEnd = endPoint(sMax).z();
     const Eigen::Vector3d farEnd_m = pixelToCamera(k, a.anchor_px.x(), a.anchor_px.y(), zEnd);
-    if (openHandAtFarEnd(frame, arm, comp, farEnd_m, a.anchor_px, local)) a.length_m = -options_.palmFromFingertips_m;
+    if (openHandAtFarEnd(frame, arm, comp, farEnd_m, a.anchor_px, local)) {
+      a.length_m = -options_.palmFromFingertips_m;
+      a.closedFarEnd = false;
+    }
   }
   hand.mask = comp;
   hand.z_m = z_comp;
@@ -2103,7 +2107,7 @@ HandObservation MarkerFreeHandDetector::placePalm(const rawlog::RgbdFrame& frame
     }
     // A bare forearm's far end read closed (not farEndOpenHand's open hand): its length by the view.
     if (geometry_.bareForearm && !geometry_.haveWrist && options_.palmFromFarEndAlongRay_m > 0.0 &&
-        options_.palmFromFarEndAcrossRay_m > 0.0 && a.length_m == -options_.palmFromFarEnd_m)
+        options_.palmFromFarEndAcrossRay_m > 0.0 && a.closedFarEnd)
       target = palmFromFarEndByView(p0, geometry_.axis_camera);
     geometry_.palmFromAnchor_m = target;
     palm = walkOnProfile(k, a, *tilt, target, hand.pxPerM);

@@ -623,6 +623,9 @@ class MarkerFreeHandDetector : public HandDetector {
     /// Depth of the anchor when known apart from the hand's own (the sleeve's
     /// edge at the cuff, cuffAtSleeveEdge) [m]; 0: the hand's depth profile there.
     double depth_m = 0.0;
+    /// The far end of a bare forearm read as a closed hand (length_m = -palmFromFarEnd_m): the anchor
+    /// palmFromFarEndAlongRay_m / palmFromFarEndAcrossRay_m set the length of.
+    bool closedFarEnd = false;
   };
   /// The hand's pixels with their depth and pixel scale.
   struct HandBlob {
